@@ -1,0 +1,38 @@
+// faultline: GUI entry and CLI subcommands (info, and more as features land).
+#include "app/cli.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+using namespace faultline::app;
+
+void faultline::app::printUsage() {
+    std::puts(
+        "usage: faultline [PATH]                 open the workbench (on PATH, or the demo model)\n"
+        "       faultline info PATH...           format, frames, spheres, columns and box of data files\n"
+        "\n"
+        "PATH may be a LAMMPS/LIGGGHTS dump (.gz too; many frames per file; '%' for per-processor\n"
+        "files), a VTK legacy or XML file (.vtk .vtu .vtp .pvd), or a CSV table with x,y,z columns.\n"
+        "Quote glob patterns: faultline info 'run1/dump.*.gz'");
+}
+
+int main(int argc, char** argv) {
+    Args args(argv + 1, argv + argc);
+    try {
+        if (!args.empty()) {
+            const std::string cmd = args.front();
+            Args rest(args.begin() + 1, args.end());
+            if (cmd == "info")
+                return runInfo(rest);
+            if (cmd == "-h" || cmd == "--help" || cmd == "help") {
+                printUsage();
+                return 0;
+            }
+        }
+        return runGui(args);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "faultline: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,182 @@
+#include "core/io/frame_source.hpp"
+
+#include "core/io/byte_source.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/lammps_dump.hpp"
+#include "core/io/table_reader.hpp"
+#include "core/io/vtk_legacy.hpp"
+#include "core/io/vtk_xml.hpp"
+
+#include <filesystem>
+
+namespace faultline::core {
+
+std::string_view formatName(FileFormat format) {
+    switch (format) {
+    case FileFormat::LammpsDump:
+        return "LAMMPS dump";
+    case FileFormat::VtkLegacy:
+        return "VTK legacy";
+    case FileFormat::VtkXml:
+        return "VTK XML";
+    case FileFormat::VtkCollection:
+        return "VTK collection (.pvd)";
+    case FileFormat::Table:
+        return "CSV / text table";
+    }
+    return "?";
+}
+
+FileFormat detectFormat(const std::string& path) {
+    ByteSource probe(path); // throws a clear error for a missing or unreadable file
+    std::string head(4096, '\0');
+    head.resize(probe.read(head.data(), head.size()));
+    if (head.empty())
+        throw InputError(path, "empty file");
+    if (looksLikeLammpsDump(head))
+        return FileFormat::LammpsDump;
+    if (looksLikeVtkLegacy(head))
+        return FileFormat::VtkLegacy;
+    if (looksLikeVtkCollection(head))
+        return FileFormat::VtkCollection;
+    if (looksLikeVtkXml(head))
+        return FileFormat::VtkXml;
+    // A table needs a text header naming x, y and z: parseTable checks that precisely.
+    for (unsigned char c : head)
+        if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t'))
+            throw InputError(path, "binary data of no known format (expected a LAMMPS dump, "
+                                   "VTK legacy or XML file, or a CSV table)");
+    return FileFormat::Table;
+}
+
+std::vector<FrameLocation> indexDataFile(const std::string& path) {
+    const FileFormat format = detectFormat(path);
+    std::vector<FrameLocation> frames;
+    switch (format) {
+    case FileFormat::LammpsDump:
+        for (const auto& f : indexLammpsDump(path)) {
+            FrameLocation loc;
+            loc.format = format;
+            loc.timestep = f.timestep;
+            loc.time = static_cast<double>(f.timestep);
+            loc.particleCount = f.atoms;
+            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
+            frames.push_back(std::move(loc));
+        }
+        break;
+    case FileFormat::VtkCollection: {
+        const auto folder = std::filesystem::path(path).parent_path();
+        const std::string bytes = readFileBytes(path);
+        std::int64_t index = 0;
+        for (const auto& entry : parseVtkCollection(path, bytes)) {
+            std::filesystem::path file(entry.file);
+            if (file.is_relative())
+                file = folder / file;
+            FrameLocation loc;
+            loc.format = detectFormat(file.string());
+            if (loc.format == FileFormat::VtkCollection || loc.format == FileFormat::LammpsDump)
+                throw InputError(path, "collection entry '" + entry.file +
+                                           "' must be a single-frame VTK file");
+            loc.timestep = index++;
+            loc.time = entry.time;
+            loc.pieces.push_back({file.string(), 0, 0, 1});
+            frames.push_back(std::move(loc));
+        }
+        if (frames.empty())
+            throw InputError(path, "collection lists no DataSet files");
+        break;
+    }
+    default: {
+        FrameLocation loc;
+        loc.format = format;
+        loc.pieces.push_back({path, 0, 0, 1});
+        frames.push_back(std::move(loc));
+    }
+    }
+    return frames;
+}
+
+namespace {
+Frame loadPiece(FileFormat format, const FramePiece& piece) {
+    const std::string bytes = readFileBytes(piece.path, piece.offset, piece.length);
+    switch (format) {
+    case FileFormat::LammpsDump:
+        return parseLammpsDumpFrame(piece.path, bytes, piece.firstLine);
+    case FileFormat::VtkLegacy:
+        return parseVtkLegacy(piece.path, bytes);
+    case FileFormat::VtkXml:
+        return parseVtkXml(piece.path, bytes);
+    case FileFormat::Table:
+        return parseTable(piece.path, bytes);
+    case FileFormat::VtkCollection:
+        break;
+    }
+    throw InputError(piece.path, "a collection is not a frame");
+}
+} // namespace
+
+Frame loadFrame(const FrameLocation& location) {
+    if (location.pieces.size() == 1) {
+        Frame f = loadPiece(location.format, location.pieces.front());
+        if (location.format != FileFormat::LammpsDump)
+            f.timestep = location.timestep;
+        return f;
+    }
+    std::vector<Frame> pieces;
+    pieces.reserve(location.pieces.size());
+    for (const auto& piece : location.pieces)
+        pieces.push_back(loadPiece(location.format, piece));
+    return mergeFrames(std::move(pieces), location.pieces.front().path);
+}
+
+Frame mergeFrames(std::vector<Frame>&& pieces, const std::string& pathForErrors) {
+    if (pieces.empty())
+        throw InputError(pathForErrors, "no pieces to merge");
+    Frame out = std::move(pieces.front());
+    for (std::size_t p = 1; p < pieces.size(); ++p) {
+        Frame& f = pieces[p];
+        if (f.timestep != out.timestep)
+            throw InputError(pathForErrors, "per-processor pieces disagree on the timestep (" +
+                                                std::to_string(out.timestep) + " vs " +
+                                                std::to_string(f.timestep) + ")");
+        if (f.attributes.size() != out.attributes.size())
+            throw InputError(pathForErrors, "per-processor pieces have different columns");
+        auto append = [](auto& dst, const auto& src) { dst.insert(dst.end(), src.begin(), src.end()); };
+        append(out.ids, f.ids);
+        append(out.x, f.x);
+        append(out.y, f.y);
+        append(out.z, f.z);
+        append(out.radius, f.radius);
+        for (std::size_t c = 0; c < out.attributes.size(); ++c) {
+            AttributeColumn& dst = out.attributes[c];
+            const AttributeColumn* src = f.attribute(dst.name);
+            if (!src)
+                throw InputError(pathForErrors, "piece " + std::to_string(p) + " lacks column '" +
+                                                    dst.name + "'");
+            if (dst.type == src->type) {
+                append(dst.floats, src->floats);
+                append(dst.ints, src->ints);
+            } else {
+                // One piece saw only integers: widen both to float.
+                if (dst.type == ColumnType::Int32) {
+                    dst.floats.assign(dst.ints.begin(), dst.ints.end());
+                    dst.ints.clear();
+                    dst.type = ColumnType::Float32;
+                }
+                if (src->type == ColumnType::Int32)
+                    dst.floats.insert(dst.floats.end(), src->ints.begin(), src->ints.end());
+                else
+                    append(dst.floats, src->floats);
+            }
+        }
+        f = Frame(); // release memory as we go
+    }
+    try {
+        out.finalize();
+    } catch (const std::invalid_argument& e) {
+        throw InputError(pathForErrors, e.what());
+    }
+    return out;
+}
+
+} // namespace faultline::core

@@ -1,0 +1,47 @@
+// Where frames live on disk and how to read one: format detection by content, indexing of a
+// file into frame locations, and loading a frame (merging LAMMPS per-processor pieces).
+#pragma once
+
+#include "core/model/frame.hpp"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace faultline::core {
+
+enum class FileFormat { LammpsDump, VtkLegacy, VtkXml, VtkCollection, Table };
+
+std::string_view formatName(FileFormat format);
+
+// By content (first bytes, inflated when gzip), not by extension. Throws InputError when the
+// file cannot be read or is of no known format.
+FileFormat detectFormat(const std::string& path);
+
+// A byte range of one file holding (part of) a frame.
+struct FramePiece {
+    std::string path;
+    std::uint64_t offset = 0;
+    std::uint64_t length = 0; // 0: the whole file
+    std::uint64_t firstLine = 1;
+};
+
+struct FrameLocation {
+    FileFormat format = FileFormat::Table;
+    std::int64_t timestep = 0;
+    double time = 0.0;                // from a .pvd collection, else the timestep
+    std::uint64_t particleCount = 0;  // when the index knows it (LAMMPS), else 0
+    std::vector<FramePiece> pieces;   // several for LAMMPS per-processor files
+};
+
+// Every frame one file holds (a .pvd collection expands to the files it lists).
+std::vector<FrameLocation> indexDataFile(const std::string& path);
+
+// Reads one frame; throws InputError with the file and position of any fault.
+Frame loadFrame(const FrameLocation& location);
+
+// Concatenates frames of the same columns (LAMMPS per-processor pieces) into one.
+Frame mergeFrames(std::vector<Frame>&& pieces, const std::string& pathForErrors);
+
+} // namespace faultline::core

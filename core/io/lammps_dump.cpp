@@ -1,0 +1,345 @@
+#include "core/io/lammps_dump.hpp"
+
+#include "core/io/byte_source.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/numeric_table.hpp"
+#include "core/io/text_lines.hpp"
+
+#include <fast_float/fast_float.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace faultline::core {
+
+namespace {
+
+struct DumpHeader {
+    std::int64_t timestep = 0;
+    std::uint64_t atoms = 0;
+    bool haveTimestep = false, haveAtoms = false, haveBox = false;
+    SimulationBox box;
+    std::vector<std::string> columns;
+};
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+        s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+        s.remove_suffix(1);
+    return s;
+}
+
+std::vector<std::string_view> words(std::string_view s) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
+            ++i;
+        std::size_t j = i;
+        while (j < s.size() && s[j] != ' ' && s[j] != '\t' && s[j] != '\r')
+            ++j;
+        if (j > i)
+            out.push_back(s.substr(i, j - i));
+        i = j;
+    }
+    return out;
+}
+
+bool parseDouble(std::string_view w, double& v) {
+    if (!w.empty() && w.front() == '+')
+        w.remove_prefix(1);
+    auto r = fast_float::from_chars(w.data(), w.data() + w.size(), v);
+    return r.ec == std::errc() && r.ptr == w.data() + w.size() && std::isfinite(v);
+}
+
+bool parseInteger(std::string_view w, std::int64_t& v) {
+    double d;
+    if (!parseDouble(w, d) || d != std::trunc(d) || std::fabs(d) > 9.0e18)
+        return false;
+    v = static_cast<std::int64_t>(d);
+    return true;
+}
+
+// Reads "ITEM:" sections until "ITEM: ATOMS". `next(line)` yields lines, `lineNo()` numbers
+// the last line yielded.
+template <typename NextLine, typename LineNo>
+DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
+    DumpHeader h;
+    std::string_view line;
+    auto fail = [&](const std::string& what) -> InputError {
+        return InputError(path, InputError::Where::Line, lineNo(), what);
+    };
+    auto need = [&](const char* what) {
+        if (!next(line))
+            throw InputError(path, InputError::Where::Line, lineNo() + 1,
+                             std::string("file ends where ") + what + " was expected");
+        line = trim(line);
+    };
+    for (;;) {
+        need("an ITEM: line");
+        if (line.empty())
+            continue;
+        if (line.substr(0, 5) != "ITEM:")
+            throw fail("expected an 'ITEM:' line, found " + quoteForError(line));
+        std::string_view item = trim(line.substr(5));
+        if (item == "TIMESTEP") {
+            need("the timestep");
+            if (!parseInteger(line, h.timestep))
+                throw fail("expected the timestep (an integer), found " + quoteForError(line));
+            h.haveTimestep = true;
+        } else if (item == "NUMBER OF ATOMS" || item == "NUMBER OF ENTRIES") {
+            need("the number of atoms");
+            std::int64_t n;
+            if (!parseInteger(line, n) || n < 0)
+                throw fail("expected the number of atoms (an integer >= 0), found " +
+                           quoteForError(line));
+            h.atoms = static_cast<std::uint64_t>(n);
+            h.haveAtoms = true;
+        } else if (item.substr(0, 10) == "BOX BOUNDS") {
+            auto flags = words(item.substr(10));
+            bool triclinic = false;
+            if (flags.size() >= 3 && flags[0] == "xy" && flags[1] == "xz" && flags[2] == "yz") {
+                triclinic = true;
+                flags.erase(flags.begin(), flags.begin() + 3);
+            }
+            for (std::size_t a = 0; a < 3 && a < flags.size(); ++a)
+                h.box.periodic[a] = flags[a] == "pp";
+            double bound[3][3] = {};
+            for (int a = 0; a < 3; ++a) {
+                need("a box bounds line");
+                auto w = words(line);
+                const std::size_t want = triclinic ? 3 : 2;
+                if (w.size() < want)
+                    throw fail("expected " + std::to_string(want) + " numbers for box bounds, found " +
+                               quoteForError(line));
+                for (std::size_t k = 0; k < want; ++k)
+                    if (!parseDouble(w[k], bound[a][k]))
+                        throw fail("expected a finite number in box bounds, found " +
+                                   quoteForError(w[k]));
+            }
+            h.box.triclinic = triclinic;
+            if (triclinic) {
+                // LAMMPS writes the bounding box of the tilted cell; recover the cell itself.
+                const double xy = bound[0][2], xz = bound[1][2], yz = bound[2][2];
+                h.box.xy = xy;
+                h.box.xz = xz;
+                h.box.yz = yz;
+                h.box.lo[0] = bound[0][0] - std::min({0.0, xy, xz, xy + xz});
+                h.box.hi[0] = bound[0][1] - std::max({0.0, xy, xz, xy + xz});
+                h.box.lo[1] = bound[1][0] - std::min(0.0, yz);
+                h.box.hi[1] = bound[1][1] - std::max(0.0, yz);
+            } else {
+                h.box.lo[0] = bound[0][0];
+                h.box.hi[0] = bound[0][1];
+                h.box.lo[1] = bound[1][0];
+                h.box.hi[1] = bound[1][1];
+            }
+            h.box.lo[2] = bound[2][0];
+            h.box.hi[2] = bound[2][1];
+            h.box.known = true;
+            h.haveBox = true;
+        } else if (item.substr(0, 5) == "ATOMS" || item.substr(0, 7) == "ENTRIES") {
+            for (auto w : words(item.substr(item[0] == 'A' ? 5 : 7)))
+                h.columns.emplace_back(w);
+            if (h.columns.empty())
+                throw fail("'ITEM: ATOMS' names no columns");
+            if (!h.haveAtoms)
+                throw fail("'ITEM: ATOMS' before 'ITEM: NUMBER OF ATOMS'");
+            return h;
+        } else if (item == "UNITS" || item == "TIME") {
+            need("the value of an ITEM: UNITS or TIME line");
+        } else {
+            throw fail("unknown section " + quoteForError(line));
+        }
+    }
+}
+
+} // namespace
+
+bool looksLikeLammpsDump(std::string_view head) {
+    std::size_t i = 0;
+    while (i < head.size() && (head[i] == ' ' || head[i] == '\n' || head[i] == '\r' || head[i] == '\t'))
+        ++i;
+    return head.substr(i, 5) == "ITEM:";
+}
+
+std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path) {
+    ByteSource source(path);
+    TextLineReader reader(source);
+    std::vector<LammpsFrameIndex> frames;
+    for (;;) {
+        reader.skipBlankLines();
+        if (reader.atEnd())
+            break;
+        LammpsFrameIndex f;
+        f.offset = reader.offset();
+        f.firstLine = reader.lineNumber() + 1;
+        DumpHeader h = readHeader(
+            path, [&](std::string_view& line) { return reader.next(line); },
+            [&] { return reader.lineNumber(); });
+        f.timestep = h.timestep;
+        f.atoms = h.atoms;
+        const std::uint64_t skipped = reader.skipLines(h.atoms);
+        if (skipped < h.atoms)
+            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
+                             "file ends after " + std::to_string(skipped) + " of " +
+                                 std::to_string(h.atoms) + " particle rows of timestep " +
+                                 std::to_string(h.timestep));
+        f.length = reader.offset() - f.offset;
+        frames.push_back(f);
+    }
+    if (frames.empty())
+        throw InputError(path, "no 'ITEM: TIMESTEP' frame found: not a LAMMPS dump");
+    return frames;
+}
+
+Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
+                           std::uint64_t firstLine) {
+    std::size_t pos = 0;
+    std::uint64_t line = firstLine - 1;
+    DumpHeader h = readHeader(
+        path,
+        [&](std::string_view& out) {
+            if (pos >= text.size())
+                return false;
+            const void* nl = std::memchr(text.data() + pos, '\n', text.size() - pos);
+            const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data())
+                                       : text.size();
+            out = text.substr(pos, end - pos);
+            pos = nl ? end + 1 : text.size();
+            ++line;
+            return true;
+        },
+        [&] { return line; });
+
+    const auto& cols = h.columns;
+    // Each row needs at least two bytes a column: refuse a count the text cannot hold before
+    // allocating anything for it.
+    const std::uint64_t remaining = text.size() - pos;
+    if (h.atoms > (remaining + 1) / (2 * cols.size()))
+        throw InputError(path, InputError::Where::Line, line,
+                         "NUMBER OF ATOMS is " + std::to_string(h.atoms) + " but only " +
+                             std::to_string(remaining) + " bytes of particle rows follow");
+    const std::size_t n = static_cast<std::size_t>(h.atoms);
+    std::size_t linesFound = 0;
+    const std::size_t end = skipLines(text, pos, n, linesFound);
+    std::string_view body = text.substr(pos, end - pos);
+
+    auto find = [&](std::initializer_list<const char*> names) -> int {
+        for (const char* name : names)
+            for (std::size_t c = 0; c < cols.size(); ++c)
+                if (cols[c] == name)
+                    return static_cast<int>(c);
+        return -1;
+    };
+    // Positions: unwrapped or wrapped, then scaled ones converted with the box.
+    const char* posNames[4][3] = {
+        {"x", "y", "z"}, {"xu", "yu", "zu"}, {"xs", "ys", "zs"}, {"xsu", "ysu", "zsu"}};
+    int posCol[3] = {-1, -1, -1};
+    bool scaled = false;
+    for (int set = 0; set < 4 && posCol[0] < 0; ++set) {
+        int c[3] = {find({posNames[set][0]}), find({posNames[set][1]}), find({posNames[set][2]})};
+        if (c[0] >= 0 && c[1] >= 0 && c[2] >= 0) {
+            std::copy(c, c + 3, posCol);
+            scaled = set >= 2;
+        }
+    }
+    if (posCol[0] < 0)
+        throw InputError(path, InputError::Where::Line, firstLine,
+                         "no position columns: expected x y z, xu yu zu, xs ys zs or xsu ysu zsu "
+                         "in 'ITEM: ATOMS'");
+    if (scaled && !h.haveBox)
+        throw InputError(path, InputError::Where::Line, firstLine,
+                         "scaled positions need 'ITEM: BOX BOUNDS'");
+    const int idCol = find({"id"});
+    const int radiusCol = find({"radius"});
+    const int diameterCol = radiusCol < 0 ? find({"diameter"}) : -1;
+
+    Frame frame;
+    frame.timestep = h.timestep;
+    frame.box = h.box;
+    frame.ids.resize(n);
+    frame.x.resize(n);
+    frame.y.resize(n);
+    frame.z.resize(n);
+    frame.radius.resize(n);
+
+    std::vector<TableColumnTarget> targets(cols.size());
+    std::vector<std::vector<float>> attributeValues(cols.size());
+    std::vector<bool> isAttribute(cols.size(), false);
+    std::vector<float>* axes[3] = {&frame.x, &frame.y, &frame.z};
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+        TableColumnTarget& t = targets[c];
+        t.name = cols[c];
+        const int ci = static_cast<int>(c);
+        if (ci == idCol) {
+            t.kind = TableColumnTarget::Kind::Int64;
+            t.ints = frame.ids.data();
+        } else if (ci == posCol[0] || ci == posCol[1] || ci == posCol[2]) {
+            const int a = ci == posCol[0] ? 0 : ci == posCol[1] ? 1 : 2;
+            t.kind = TableColumnTarget::Kind::Float;
+            t.floats = axes[a]->data();
+            t.requireFinite = true;
+        } else if (ci == radiusCol || ci == diameterCol) {
+            t.kind = TableColumnTarget::Kind::Float;
+            t.floats = frame.radius.data();
+            t.requireFinite = true;
+        } else {
+            bool duplicate = false;
+            for (std::size_t k = 0; k < c; ++k)
+                duplicate |= cols[k] == cols[c];
+            if (duplicate)
+                throw InputError(path, InputError::Where::Line, firstLine,
+                                 "column '" + cols[c] + "' appears twice in 'ITEM: ATOMS'");
+            attributeValues[c].resize(n);
+            isAttribute[c] = true;
+            t.kind = TableColumnTarget::Kind::Float;
+            t.floats = attributeValues[c].data();
+        }
+    }
+
+    NumericTableSpec spec;
+    spec.path = path;
+    spec.firstLine = line + 1;
+    spec.rows = n;
+    parseNumericTable(body, spec, targets);
+
+    if (idCol < 0) {
+        frame.idsAreRowNumbers = true;
+        for (std::size_t i = 0; i < n; ++i)
+            frame.ids[i] = static_cast<std::int64_t>(i);
+    }
+    if (radiusCol < 0 && diameterCol < 0) {
+        frame.radiusIsDefault = true;
+        std::fill(frame.radius.begin(), frame.radius.end(), kDefaultRadius);
+    } else if (diameterCol >= 0) {
+        for (float& r : frame.radius)
+            r *= 0.5f;
+    }
+    if (scaled) {
+        const SimulationBox& b = h.box;
+        const double lx = b.hi[0] - b.lo[0], ly = b.hi[1] - b.lo[1], lz = b.hi[2] - b.lo[2];
+        for (std::size_t i = 0; i < n; ++i) {
+            const double xs = frame.x[i], ys = frame.y[i], zs = frame.z[i];
+            frame.x[i] = static_cast<float>(b.lo[0] + xs * lx + ys * b.xy + zs * b.xz);
+            frame.y[i] = static_cast<float>(b.lo[1] + ys * ly + zs * b.yz);
+            frame.z[i] = static_cast<float>(b.lo[2] + zs * lz);
+        }
+    }
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+        if (!isAttribute[c])
+            continue;
+        frame.attributes.push_back(makeAttribute(cols[c], std::move(attributeValues[c]),
+                                                 !targets[c].sawNonInteger));
+    }
+    try {
+        frame.finalize();
+    } catch (const std::invalid_argument& e) {
+        throw InputError(path, InputError::Where::Line, firstLine, e.what());
+    }
+    return frame;
+}
+
+} // namespace faultline::core

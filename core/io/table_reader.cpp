@@ -1,0 +1,171 @@
+#include "core/io/table_reader.hpp"
+
+#include "core/io/input_error.hpp"
+#include "core/io/numeric_table.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+namespace faultline::core {
+
+namespace {
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+std::vector<std::string> headerNames(std::string_view line, char separator) {
+    std::vector<std::string> names;
+    std::size_t i = 0;
+    auto isSep = [&](char c) {
+        return separator ? c == separator : (c == ' ' || c == '\t');
+    };
+    while (i <= line.size()) {
+        std::size_t j = i;
+        while (j < line.size() && !isSep(line[j]))
+            ++j;
+        std::string_view w = line.substr(i, j - i);
+        while (!w.empty() && std::isspace(static_cast<unsigned char>(w.front())))
+            w.remove_prefix(1);
+        while (!w.empty() && std::isspace(static_cast<unsigned char>(w.back())))
+            w.remove_suffix(1);
+        if (w.size() >= 2 && (w.front() == '"' || w.front() == '\'') && w.back() == w.front())
+            w = w.substr(1, w.size() - 2);
+        if (!w.empty() || separator)
+            names.emplace_back(w);
+        if (j >= line.size())
+            break;
+        i = j + 1;
+        if (!separator)
+            while (i < line.size() && isSep(line[i]))
+                ++i;
+    }
+    return names;
+}
+
+} // namespace
+
+Frame parseTable(const std::string& path, std::string_view text) {
+    // Header: the first non-blank line; a leading '#' is allowed.
+    std::size_t pos = 0;
+    std::uint64_t line = 0;
+    std::string_view header;
+    while (pos < text.size()) {
+        const void* nl = std::memchr(text.data() + pos, '\n', text.size() - pos);
+        const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data()) : text.size();
+        std::string_view l = text.substr(pos, end - pos);
+        pos = nl ? end + 1 : text.size();
+        ++line;
+        if (l.find_first_not_of(" \t\r") != std::string_view::npos) {
+            header = l;
+            break;
+        }
+    }
+    if (header.empty())
+        throw InputError(path, "empty file: expected a header row naming columns x, y, z");
+    if (std::memchr(header.data(), '\0', header.size()))
+        throw InputError(path, InputError::Where::Line, line, "binary data where a header row was expected");
+    while (!header.empty() && (header.front() == '#' || header.front() == ' '))
+        header.remove_prefix(1);
+    const char separator = header.find(',') != std::string_view::npos  ? ','
+                           : header.find(';') != std::string_view::npos ? ';'
+                                                                        : 0;
+    const std::vector<std::string> names = headerNames(header, separator);
+    const std::uint64_t headerLine = line;
+
+    auto find = [&](std::initializer_list<const char*> wanted) -> int {
+        for (const char* w : wanted)
+            for (std::size_t c = 0; c < names.size(); ++c)
+                if (lower(names[c]) == w)
+                    return static_cast<int>(c);
+        return -1;
+    };
+    const int xc = find({"x"}), yc = find({"y"}), zc = find({"z"});
+    if (xc < 0 || yc < 0 || zc < 0)
+        throw InputError(path, InputError::Where::Line, headerLine,
+                         "header must name columns x, y and z, found " + quoteForError(header, 80));
+    const int idc = find({"id", "particle_id", "pid"});
+    const int rc = find({"radius", "r", "rad"});
+    const int dc = rc < 0 ? find({"diameter", "diam", "d"}) : -1;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        if (names[c].empty())
+            throw InputError(path, InputError::Where::Line, headerLine,
+                             "column " + std::to_string(c + 1) + " has no name");
+        for (std::size_t k = 0; k < c; ++k)
+            if (names[k] == names[c])
+                throw InputError(path, InputError::Where::Line, headerLine,
+                                 "column '" + names[c] + "' appears twice");
+    }
+
+    // Body: everything after the header, less trailing blank lines.
+    std::size_t bodyEnd = text.size();
+    while (bodyEnd > pos && std::isspace(static_cast<unsigned char>(text[bodyEnd - 1])))
+        --bodyEnd;
+    std::string_view body = text.substr(pos, bodyEnd - pos);
+    const std::size_t rows = body.empty() ? 0 : static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) + 1;
+
+    Frame frame;
+    frame.ids.resize(rows);
+    frame.x.resize(rows);
+    frame.y.resize(rows);
+    frame.z.resize(rows);
+    frame.radius.resize(rows);
+    std::vector<TableColumnTarget> targets(names.size());
+    std::vector<std::vector<float>> values(names.size());
+    std::vector<bool> isAttribute(names.size(), false);
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        const int ci = static_cast<int>(c);
+        TableColumnTarget& t = targets[c];
+        t.name = names[c];
+        t.kind = TableColumnTarget::Kind::Float;
+        if (ci == idc) {
+            t.kind = TableColumnTarget::Kind::Int64;
+            t.ints = frame.ids.data();
+        } else if (ci == xc || ci == yc || ci == zc) {
+            t.floats = (ci == xc ? frame.x : ci == yc ? frame.y : frame.z).data();
+            t.requireFinite = true;
+        } else if (ci == rc || ci == dc) {
+            t.floats = frame.radius.data();
+            t.requireFinite = true;
+        } else {
+            values[c].resize(rows);
+            t.floats = values[c].data();
+            isAttribute[c] = true;
+        }
+    }
+    NumericTableSpec spec;
+    spec.path = path;
+    spec.firstLine = headerLine + 1;
+    spec.rows = rows;
+    spec.separator = separator;
+    parseNumericTable(body, spec, targets);
+
+    if (idc < 0) {
+        frame.idsAreRowNumbers = true;
+        for (std::size_t i = 0; i < rows; ++i)
+            frame.ids[i] = static_cast<std::int64_t>(i);
+    }
+    if (rc < 0 && dc < 0) {
+        frame.radiusIsDefault = true;
+        std::fill(frame.radius.begin(), frame.radius.end(), kDefaultRadius);
+    } else if (dc >= 0) {
+        for (float& r : frame.radius)
+            r *= 0.5f;
+    }
+    for (std::size_t c = 0; c < names.size(); ++c)
+        if (isAttribute[c])
+            frame.attributes.push_back(
+                makeAttribute(names[c], std::move(values[c]), !targets[c].sawNonInteger));
+    try {
+        frame.finalize();
+    } catch (const std::invalid_argument& e) {
+        throw InputError(path, InputError::Where::Line, headerLine, e.what());
+    }
+    return frame;
+}
+
+} // namespace faultline::core

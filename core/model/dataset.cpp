@@ -1,0 +1,213 @@
+#include "core/model/dataset.hpp"
+
+#include "core/io/input_error.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <regex>
+
+namespace faultline::core {
+
+bool naturalLess(const std::string& a, const std::string& b) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        const bool da = std::isdigit(static_cast<unsigned char>(a[i]));
+        const bool db = std::isdigit(static_cast<unsigned char>(b[j]));
+        if (da && db) {
+            std::size_t ie = i, je = j;
+            while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie])))
+                ++ie;
+            while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je])))
+                ++je;
+            std::size_t is = i, js = j; // skip leading zeros
+            while (is + 1 < ie && a[is] == '0')
+                ++is;
+            while (js + 1 < je && b[js] == '0')
+                ++js;
+            if (ie - is != je - js)
+                return ie - is < je - js;
+            const int cmp = a.compare(is, ie - is, b, js, je - js);
+            if (cmp != 0)
+                return cmp < 0;
+            i = ie;
+            j = je;
+        } else {
+            if (a[i] != b[j])
+                return a[i] < b[j];
+            ++i;
+            ++j;
+        }
+    }
+    return a.size() - i < b.size() - j;
+}
+
+std::vector<std::string> expandGlob(const std::string& pattern) {
+    if (pattern.find_first_of("*?[") == std::string::npos)
+        return {pattern};
+    glob_t g{};
+    std::vector<std::string> out;
+    if (glob(pattern.c_str(), GLOB_NOSORT, nullptr, &g) == 0)
+        for (std::size_t k = 0; k < g.gl_pathc; ++k)
+            out.emplace_back(g.gl_pathv[k]);
+    globfree(&g);
+    std::sort(out.begin(), out.end(), naturalLess);
+    return out;
+}
+
+namespace {
+
+// Per-processor LAMMPS files: 'dump.%.lammpstrj' -> pieces dump.0..., grouped by what any '*'
+// matched (the timestep in 'dump.*.%').
+std::vector<FrameLocation> indexPerProcessor(const std::string& pattern) {
+    std::string globPattern = pattern;
+    std::replace(globPattern.begin(), globPattern.end(), '%', '*');
+    std::string re;
+    for (char c : pattern) {
+        if (c == '*')
+            re += "(.*)";
+        else if (c == '%')
+            re += "([0-9]+)";
+        else if (c == '?')
+            re += ".";
+        else if (std::string_view(".^$|()[]{}+\\").find(c) != std::string_view::npos)
+            re += std::string("\\") + c;
+        else
+            re += c;
+    }
+    const std::regex matcher(re);
+    const int procGroup = [&] {
+        int group = 0;
+        for (char c : pattern) {
+            if (c == '*' || c == '%')
+                ++group;
+            if (c == '%')
+                return group;
+        }
+        return 0;
+    }();
+    // key (the '*' parts) -> processor number -> file
+    std::map<std::string, std::map<long, std::string>, decltype(&naturalLess)> groups(&naturalLess);
+    for (const auto& file : expandGlob(globPattern)) {
+        std::smatch m;
+        if (!std::regex_match(file, m, matcher))
+            continue;
+        std::string key;
+        for (std::size_t g = 1; g < m.size(); ++g)
+            if (static_cast<int>(g) != procGroup)
+                key += m[g].str() + "\x1f";
+        groups[key][std::stol(m[procGroup].str())] = file;
+    }
+    if (groups.empty())
+        throw InputError(pattern, "no per-processor files match ('%' stands for 0, 1, 2, ...)");
+    std::vector<FrameLocation> frames;
+    for (const auto& [key, pieces] : groups) {
+        std::vector<std::vector<FrameLocation>> perPiece;
+        for (const auto& [proc, file] : pieces)
+            perPiece.push_back(indexDataFile(file));
+        const std::size_t count = perPiece.front().size();
+        for (std::size_t p = 1; p < perPiece.size(); ++p)
+            if (perPiece[p].size() != count)
+                throw InputError(std::next(pieces.begin(), static_cast<long>(p))->second,
+                                 "holds " + std::to_string(perPiece[p].size()) +
+                                     " frames, but processor 0's file holds " +
+                                     std::to_string(count));
+        for (std::size_t k = 0; k < count; ++k) {
+            FrameLocation loc = perPiece[0][k];
+            loc.particleCount = 0;
+            for (std::size_t p = 0; p < perPiece.size(); ++p) {
+                if (p > 0)
+                    loc.pieces.push_back(perPiece[p][k].pieces.front());
+                loc.particleCount += perPiece[p][k].particleCount;
+            }
+            frames.push_back(std::move(loc));
+        }
+    }
+    return frames;
+}
+
+} // namespace
+
+std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns) {
+    auto ds = std::make_shared<Dataset>();
+    ds->m_patterns = patterns;
+    for (const auto& pattern : patterns) {
+        if (pattern.find('%') != std::string::npos) {
+            auto frames = indexPerProcessor(pattern);
+            ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
+            continue;
+        }
+        const auto files = expandGlob(pattern);
+        if (files.empty())
+            throw InputError(pattern, "no file matches this pattern");
+        for (const auto& file : files) {
+            auto frames = indexDataFile(file);
+            ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
+        }
+    }
+    if (ds->m_frames.empty())
+        throw InputError(patterns.empty() ? std::string("(no path)") : patterns.front(),
+                         "no frames found");
+    return ds;
+}
+
+std::vector<std::string> Dataset::files() const {
+    std::vector<std::string> out;
+    for (const auto& f : m_frames)
+        for (const auto& p : f.pieces)
+            if (out.empty() || out.back() != p.path)
+                if (std::find(out.begin(), out.end(), p.path) == out.end())
+                    out.push_back(p.path);
+    return out;
+}
+
+std::shared_ptr<const Frame> Dataset::cachedFrame(std::size_t index) const {
+    std::lock_guard lock(m_mutex);
+    for (auto it = m_lru.begin(); it != m_lru.end(); ++it)
+        if (it->index == index) {
+            m_lru.splice(m_lru.begin(), m_lru, it);
+            return it->frame;
+        }
+    return nullptr;
+}
+
+std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
+    if (index >= m_frames.size())
+        throw std::out_of_range("frame " + std::to_string(index) + " of " +
+                                std::to_string(m_frames.size()));
+    if (auto hit = cachedFrame(index))
+        return hit;
+    auto loaded = std::make_shared<const Frame>(loadFrame(m_frames[index]));
+    std::lock_guard lock(m_mutex);
+    for (const auto& e : m_lru)
+        if (e.index == index)
+            return e.frame; // another thread won the race
+    const std::size_t bytes = loaded->memoryBytes();
+    m_lru.push_front({index, loaded, bytes});
+    m_cachedBytes += bytes;
+    evictLocked();
+    return loaded;
+}
+
+void Dataset::setCacheBudget(std::size_t bytes) {
+    std::lock_guard lock(m_mutex);
+    m_budget = bytes;
+    evictLocked();
+}
+
+std::size_t Dataset::cachedBytes() const {
+    std::lock_guard lock(m_mutex);
+    return m_cachedBytes;
+}
+
+void Dataset::evictLocked() const {
+    // The most recent frame always stays, even over budget.
+    while (m_cachedBytes > m_budget && m_lru.size() > 1) {
+        m_cachedBytes -= m_lru.back().bytes;
+        m_lru.pop_back();
+    }
+}
+
+} // namespace faultline::core

@@ -1,0 +1,169 @@
+#include "core/model/frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace faultline::core {
+
+namespace {
+constexpr std::uint32_t kNoRow = std::numeric_limits<std::uint32_t>::max();
+
+template <typename T> void rangeOf(const std::vector<T>& values, double& lo, double& hi) {
+    double mn = std::numeric_limits<double>::infinity();
+    double mx = -mn;
+    for (T v : values) {
+        const double d = static_cast<double>(v);
+        if (d < mn)
+            mn = d;
+        if (d > mx)
+            mx = d;
+    }
+    if (mn > mx)
+        mn = mx = 0.0; // empty or all NaN
+    lo = mn;
+    hi = mx;
+}
+} // namespace
+
+const AttributeColumn* Frame::attribute(std::string_view name) const {
+    for (const auto& c : attributes)
+        if (c.name == name)
+            return &c;
+    return nullptr;
+}
+
+AttributeColumn* Frame::attribute(std::string_view name) {
+    for (auto& c : attributes)
+        if (c.name == name)
+            return &c;
+    return nullptr;
+}
+
+std::vector<std::string> Frame::attributeNames() const {
+    std::vector<std::string> names;
+    names.reserve(attributes.size());
+    for (const auto& c : attributes)
+        names.push_back(c.name);
+    return names;
+}
+
+void Frame::finalize() {
+    const std::size_t n = ids.size();
+    if (n > kNoRow - 1)
+        throw std::invalid_argument("frame has more than 4 billion particles");
+    if (x.size() != n || y.size() != n || z.size() != n || radius.size() != n)
+        throw std::invalid_argument("frame columns have different lengths");
+    for (auto& c : attributes) {
+        if (c.size() != n)
+            throw std::invalid_argument("attribute '" + c.name + "' has " +
+                                        std::to_string(c.size()) + " values for " +
+                                        std::to_string(n) + " particles");
+        if (c.type == ColumnType::Float32)
+            rangeOf(c.floats, c.min, c.max);
+        else
+            rangeOf(c.ints, c.min, c.max);
+    }
+
+    m_centreMin = {0, 0, 0};
+    m_centreMax = {0, 0, 0};
+    if (n > 0) {
+        const std::vector<float>* axes[3] = {&x, &y, &z};
+        for (int a = 0; a < 3; ++a) {
+            auto [mn, mx] = std::minmax_element(axes[a]->begin(), axes[a]->end());
+            m_centreMin[a] = *mn;
+            m_centreMax[a] = *mx;
+        }
+    }
+    if (!box.known) {
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = m_centreMin[a];
+            box.hi[a] = m_centreMax[a];
+        }
+    }
+
+    // id -> row: a direct table when ids are dense (4 bytes per id in range), else rows sorted
+    // by id (4 bytes per particle) searched by bisection. Either way about 4 bytes a particle.
+    m_rowById.clear();
+    m_rowsSortedById.clear();
+    m_idBase = 0;
+    if (n == 0)
+        return;
+    auto [mnIt, mxIt] = std::minmax_element(ids.begin(), ids.end());
+    const std::int64_t idMin = *mnIt, idMax = *mxIt;
+    const auto span = static_cast<unsigned long long>(idMax) - static_cast<unsigned long long>(idMin);
+    if (span <= 2ull * n + 1024ull) {
+        m_idBase = idMin;
+        m_rowById.assign(span + 1, kNoRow);
+        for (std::size_t row = 0; row < n; ++row) {
+            auto& slot = m_rowById[static_cast<std::size_t>(ids[row] - idMin)];
+            if (slot != kNoRow)
+                throw std::invalid_argument("particle id " + std::to_string(ids[row]) +
+                                            " appears twice");
+            slot = static_cast<std::uint32_t>(row);
+        }
+    } else {
+        m_rowsSortedById.resize(n);
+        for (std::size_t row = 0; row < n; ++row)
+            m_rowsSortedById[row] = static_cast<std::uint32_t>(row);
+        std::sort(m_rowsSortedById.begin(), m_rowsSortedById.end(),
+                  [this](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
+        for (std::size_t k = 1; k < n; ++k)
+            if (ids[m_rowsSortedById[k]] == ids[m_rowsSortedById[k - 1]])
+                throw std::invalid_argument("particle id " +
+                                            std::to_string(ids[m_rowsSortedById[k]]) +
+                                            " appears twice");
+    }
+}
+
+AttributeColumn makeAttribute(std::string name, std::vector<float>&& values, bool integral) {
+    AttributeColumn c;
+    c.name = std::move(name);
+    constexpr float kExactIntLimit = 16777216.0f; // 2^24: larger integers are not exact as float
+    if (integral)
+        for (float v : values)
+            if (!(std::fabs(v) <= kExactIntLimit)) {
+                integral = false;
+                break;
+            }
+    if (integral) {
+        c.type = ColumnType::Int32;
+        c.ints.resize(values.size());
+        for (std::size_t i = 0; i < values.size(); ++i)
+            c.ints[i] = static_cast<std::int32_t>(values[i]);
+    } else {
+        c.type = ColumnType::Float32;
+        c.floats = std::move(values);
+    }
+    return c;
+}
+
+std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {
+    if (!m_rowById.empty()) {
+        if (id < m_idBase)
+            return std::nullopt;
+        const auto offset = static_cast<unsigned long long>(id) - static_cast<unsigned long long>(m_idBase);
+        if (offset >= m_rowById.size() || m_rowById[offset] == kNoRow)
+            return std::nullopt;
+        return m_rowById[offset];
+    }
+    auto it = std::lower_bound(m_rowsSortedById.begin(), m_rowsSortedById.end(), id,
+                               [this](std::uint32_t row, std::int64_t v) { return ids[row] < v; });
+    if (it == m_rowsSortedById.end() || ids[*it] != id)
+        return std::nullopt;
+    return *it;
+}
+
+std::size_t Frame::memoryBytes() const {
+    std::size_t bytes = ids.capacity() * sizeof(std::int64_t) +
+                        (x.capacity() + y.capacity() + z.capacity() + radius.capacity()) *
+                            sizeof(float) +
+                        (m_rowById.capacity() + m_rowsSortedById.capacity()) * sizeof(std::uint32_t);
+    for (const auto& c : attributes)
+        bytes += c.floats.capacity() * sizeof(float) + c.ints.capacity() * sizeof(std::int32_t) +
+                 c.name.capacity();
+    return bytes;
+}
+
+} // namespace faultline::core

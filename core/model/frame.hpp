@@ -1,0 +1,89 @@
+// Frame: one timestep of a DEM model as columns (structure of arrays).
+// Particle ids are the identity across frames; rowOf() maps an id to its row in this frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace faultline::core {
+
+enum class ColumnType { Float32, Int32 };
+
+// A named per-particle variable. Exactly one of floats/ints holds the values, by type.
+struct AttributeColumn {
+    std::string name;
+    ColumnType type = ColumnType::Float32;
+    std::vector<float> floats;
+    std::vector<std::int32_t> ints;
+    double min = 0.0; // cached by Frame::finalize(); NaN values are ignored
+    double max = 0.0;
+
+    std::size_t size() const { return type == ColumnType::Float32 ? floats.size() : ints.size(); }
+    double value(std::size_t row) const {
+        return type == ColumnType::Float32 ? static_cast<double>(floats[row])
+                                           : static_cast<double>(ints[row]);
+    }
+    bool isInteger() const { return type == ColumnType::Int32; }
+};
+
+// The simulation box: orthogonal [lo, hi], or a LAMMPS triclinic box with tilts xy xz yz.
+struct SimulationBox {
+    std::array<double, 3> lo{0, 0, 0};
+    std::array<double, 3> hi{0, 0, 0};
+    bool triclinic = false;
+    double xy = 0, xz = 0, yz = 0;
+    std::array<bool, 3> periodic{false, false, false};
+    bool known = false; // false when the file gives no box (the bounds of the spheres are used)
+};
+
+class Frame {
+  public:
+    std::int64_t timestep = 0;
+    std::vector<std::int64_t> ids;
+    std::vector<float> x, y, z;
+    std::vector<float> radius;
+    bool radiusIsDefault = false; // the file had no radius or diameter column
+    bool idsAreRowNumbers = false; // the file had no id column
+    SimulationBox box;
+    std::vector<AttributeColumn> attributes;
+
+    std::size_t size() const { return ids.size(); }
+
+    const AttributeColumn* attribute(std::string_view name) const;
+    AttributeColumn* attribute(std::string_view name);
+    std::vector<std::string> attributeNames() const;
+
+    // Must be called once all columns are filled: checks sizes, caches min/max, builds the
+    // id -> row map, and computes the box from the spheres when the file gave none.
+    // Throws std::invalid_argument when column sizes disagree or ids repeat.
+    void finalize();
+
+    std::optional<std::size_t> rowOf(std::int64_t id) const;
+
+    // Bounds of the sphere centres (not radii). Valid after finalize().
+    const std::array<float, 3>& centreMin() const { return m_centreMin; }
+    const std::array<float, 3>& centreMax() const { return m_centreMax; }
+
+    // Heap bytes held by this frame (columns and the id map).
+    std::size_t memoryBytes() const;
+
+  private:
+    // Dense ids (the common case): m_rowById[id - m_idBase]; sparse ids: rows sorted by id.
+    std::int64_t m_idBase = 0;
+    std::vector<std::uint32_t> m_rowById;      // dense map, kNoRow where absent
+    std::vector<std::uint32_t> m_rowsSortedById; // sparse map
+    std::array<float, 3> m_centreMin{0, 0, 0};
+    std::array<float, 3> m_centreMax{0, 0, 0};
+};
+
+inline constexpr float kDefaultRadius = 0.5f;
+
+// A column from parsed values: stored as Int32 when `integral` (every token was a plain
+// integer) and every value fits exactly, else as Float32.
+AttributeColumn makeAttribute(std::string name, std::vector<float>&& values, bool integral);
+
+} // namespace faultline::core

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Faultline builds and tests with. Idempotent: silent when nothing
+# is missing. Needs root (or sudo) only when something must be installed.
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build ccache pkg-config git
+    libglfw3-dev libglm-dev libopenvdb-dev libboost-iostreams-dev libtinygltf-dev libimgui-dev libstb-dev
+    nlohmann-json3-dev libtbb-dev libepoxy-dev libfast-float-dev zlib1g-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+    xvfb xauth libgl1-mesa-dri libglx-mesa0 mesa-utils
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$p")
+    fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "faultline setup: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null; then sudo="sudo"; else
+        echo "faultline setup: need root to install: ${missing[*]}" >&2; exit 1
+    fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

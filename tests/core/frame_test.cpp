@@ -1,0 +1,78 @@
+#include "core/model/frame.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace faultline::core;
+
+namespace {
+Frame frameWithIds(std::vector<std::int64_t> ids) {
+    Frame f;
+    f.ids = std::move(ids);
+    const std::size_t n = f.ids.size();
+    f.x.assign(n, 0);
+    f.y.assign(n, 0);
+    f.z.assign(n, 0);
+    f.radius.assign(n, 1);
+    return f;
+}
+} // namespace
+
+TEST(Frame, DenseIdsMapToRows) {
+    Frame f = frameWithIds({10, 12, 11});
+    f.finalize();
+    EXPECT_EQ(f.rowOf(10), 0u);
+    EXPECT_EQ(f.rowOf(11), 2u);
+    EXPECT_EQ(f.rowOf(12), 1u);
+    EXPECT_FALSE(f.rowOf(13));
+    EXPECT_FALSE(f.rowOf(9));
+    EXPECT_FALSE(f.rowOf(-5));
+}
+
+TEST(Frame, SparseIdsMapToRows) {
+    Frame f = frameWithIds({5, 1000000000000LL, -7});
+    f.finalize();
+    EXPECT_EQ(f.rowOf(1000000000000LL), 1u);
+    EXPECT_EQ(f.rowOf(-7), 2u);
+    EXPECT_FALSE(f.rowOf(6));
+}
+
+TEST(Frame, RepeatedIdIsAnError) {
+    Frame f = frameWithIds({1, 2, 1});
+    EXPECT_THROW(f.finalize(), std::invalid_argument);
+    Frame g = frameWithIds({1, 1000000000000LL, 1});
+    EXPECT_THROW(g.finalize(), std::invalid_argument);
+}
+
+TEST(Frame, AttributeRangesIgnoreNaN) {
+    Frame f = frameWithIds({1, 2, 3});
+    f.attributes.push_back(makeAttribute("strain", {0.5f, NAN, -1.0f}, false));
+    f.attributes.push_back(makeAttribute("broken", {3, 0, 7}, true));
+    f.finalize();
+    EXPECT_EQ(f.attribute("strain")->min, -1.0);
+    EXPECT_EQ(f.attribute("strain")->max, 0.5);
+    ASSERT_TRUE(f.attribute("broken")->isInteger());
+    EXPECT_EQ(f.attribute("broken")->max, 7);
+}
+
+TEST(Frame, IntegralColumnTooLargeForFloatStaysFloat) {
+    auto c = makeAttribute("big", {1.0f, 3.0e7f}, true);
+    EXPECT_FALSE(c.isInteger());
+}
+
+TEST(Frame, MemoryOf525kSpheresWith6ColumnsIsUnder30MB) {
+    const std::size_t n = 525000;
+    Frame f;
+    f.ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        f.ids[i] = static_cast<std::int64_t>(i + 1);
+    f.x.assign(n, 0);
+    f.y.assign(n, 0);
+    f.z.assign(n, 0);
+    f.radius.assign(n, 1);
+    for (int c = 0; c < 6; ++c)
+        f.attributes.push_back(makeAttribute("c" + std::to_string(c), std::vector<float>(n, 0.5f), false));
+    f.finalize();
+    EXPECT_LT(f.memoryBytes(), 30u * 1000 * 1000);
+}
