@@ -6,6 +6,7 @@
 #include "core/io/text_lines.hpp"
 
 #include <fast_float/fast_float.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -215,17 +216,46 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
         [&] { return line; });
 
     const auto& cols = h.columns;
-    // Each row needs at least two bytes a column: refuse a count the text cannot hold before
-    // allocating anything for it.
-    const std::uint64_t remaining = text.size() - pos;
-    if (h.atoms > (remaining + 1) / (2 * cols.size()))
-        throw InputError(path, InputError::Where::Line, line,
+    NumericTableSpec spec;
+    spec.path = path;
+    spec.firstLine = line + 1;
+    spec.rows = static_cast<std::size_t>(std::min<std::uint64_t>(h.atoms, text.size() - pos + 1));
+    const std::string_view rest = text.substr(pos);
+    if (spec.rows < h.atoms) // more rows announced than bytes left: cannot be
+        throw InputError(path, InputError::Where::Line, line + 1,
                          "NUMBER OF ATOMS is " + std::to_string(h.atoms) + " but only " +
-                             std::to_string(remaining) + " bytes of particle rows follow");
-    const std::size_t n = static_cast<std::size_t>(h.atoms);
-    std::size_t linesFound = 0;
-    const std::size_t end = skipLines(text, pos, n, linesFound);
-    std::string_view body = text.substr(pos, end - pos);
+                             std::to_string(rest.size()) + " bytes follow");
+    const NumericTableLayout layout = layoutNumericTable(rest, spec);
+    const std::size_t n = spec.rows;
+    const std::size_t end = pos + layout.end;
+    // A row of c values needs at least 2c bytes. When the rows are too short to hold the count,
+    // name the first short row instead of allocating for a count the text cannot hold.
+    const std::uint64_t rowBytes = layout.end;
+    if (h.atoms > (rowBytes + 1) / (2 * cols.size())) {
+        std::size_t p = pos;
+        for (std::uint64_t row = 0; row < h.atoms; ++row) {
+            const std::size_t nl = std::min(text.find('\n', p), end);
+            std::size_t tokens = 0;
+            for (std::size_t k = p; k < nl; ++k)
+                if (text[k] != ' ' && text[k] != '\t' && text[k] != '\r' &&
+                    (k == p || text[k - 1] == ' ' || text[k - 1] == '\t'))
+                    ++tokens;
+            if (tokens < cols.size())
+                throw InputError(path, InputError::Where::Line, line + row + 1,
+                                 "expected " + std::to_string(cols.size()) + " values, found " +
+                                     std::to_string(tokens));
+            p = nl + 1;
+        }
+    }
+    // Anything after the rows must be blank or the next frame.
+    {
+        std::size_t k = end;
+        while (k < text.size() && (text[k] == ' ' || text[k] == '\n' || text[k] == '\r' || text[k] == '\t'))
+            ++k;
+        if (k < text.size() && text.compare(k, 5, "ITEM:") != 0)
+            throw InputError(path, InputError::Where::Line, line + n + 1,
+                             "more rows than the " + std::to_string(n) + " announced");
+    }
 
     auto find = [&](std::initializer_list<const char*> names) -> int {
         for (const char* name : names)
@@ -260,15 +290,20 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
     Frame frame;
     frame.timestep = h.timestep;
     frame.box = h.box;
-    frame.ids.resize(n);
-    frame.x.resize(n);
-    frame.y.resize(n);
-    frame.z.resize(n);
-    frame.radius.resize(n);
 
     std::vector<TableColumnTarget> targets(cols.size());
     std::vector<std::vector<float>> attributeValues(cols.size());
     std::vector<bool> isAttribute(cols.size(), false);
+    {
+        std::vector<std::vector<float>*> floatColumns{&frame.x, &frame.y, &frame.z, &frame.radius};
+        for (std::size_t c = 0; c < cols.size(); ++c) {
+            const int ci = static_cast<int>(c);
+            if (ci != idCol && ci != posCol[0] && ci != posCol[1] && ci != posCol[2] &&
+                ci != radiusCol && ci != diameterCol)
+                floatColumns.push_back(&attributeValues[c]);
+        }
+        resizeColumnsInParallel(floatColumns, {&frame.ids}, n);
+    }
     std::vector<float>* axes[3] = {&frame.x, &frame.y, &frame.z};
     for (std::size_t c = 0; c < cols.size(); ++c) {
         TableColumnTarget& t = targets[c];
@@ -293,18 +328,13 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
             if (duplicate)
                 throw InputError(path, InputError::Where::Line, firstLine,
                                  "column '" + cols[c] + "' appears twice in 'ITEM: ATOMS'");
-            attributeValues[c].resize(n);
             isAttribute[c] = true;
             t.kind = TableColumnTarget::Kind::Float;
             t.floats = attributeValues[c].data();
         }
     }
 
-    NumericTableSpec spec;
-    spec.path = path;
-    spec.firstLine = line + 1;
-    spec.rows = n;
-    parseNumericTable(body, spec, targets);
+    parseNumericTable(rest, layout, spec, targets);
 
     if (idCol < 0) {
         frame.idsAreRowNumbers = true;
@@ -328,12 +358,16 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
             frame.z[i] = static_cast<float>(b.lo[2] + zs * lz);
         }
     }
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-        if (!isAttribute[c])
-            continue;
-        frame.attributes.push_back(makeAttribute(cols[c], std::move(attributeValues[c]),
-                                                 !targets[c].sawNonInteger));
-    }
+    std::vector<std::size_t> attributeCols;
+    for (std::size_t c = 0; c < cols.size(); ++c)
+        if (isAttribute[c])
+            attributeCols.push_back(c);
+    frame.attributes.resize(attributeCols.size());
+    tbb::parallel_for(std::size_t(0), attributeCols.size(), [&](std::size_t k) {
+        const std::size_t c = attributeCols[k];
+        frame.attributes[k] =
+            makeAttribute(cols[c], std::move(attributeValues[c]), !targets[c].sawNonInteger);
+    });
     try {
         frame.finalize();
     } catch (const std::invalid_argument& e) {

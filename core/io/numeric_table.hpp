@@ -27,14 +27,26 @@ struct NumericTableSpec {
     char separator = 0;           // extra separator besides blanks (',' for CSV), or 0
 };
 
-// Parses exactly spec.rows lines of `text`, each holding targets.size() values.
-// Throws InputError naming the file line and the column on any bad token or count mismatch.
-void parseNumericTable(std::string_view text, const NumericTableSpec& spec,
-                       std::vector<TableColumnTarget>& targets);
+// Where the rows of a table lie: found by counting newlines in parallel, once.
+struct NumericTableLayout {
+    std::vector<std::size_t> chunkStart; // byte offset of each chunk (a line start); +1 end entry
+    std::vector<std::size_t> chunkRow;   // first row of each chunk; +1 entry = rows
+    std::size_t end = 0;                 // byte offset just past the last wanted row
+    std::size_t rows = 0;                // rows found (<= spec.rows)
+};
 
-// The byte offset just past the end of line `count` counted from `from` (or text.size() when
-// the text ends first); `linesFound` receives how many complete or partial lines were skipped.
-std::size_t skipLines(std::string_view text, std::size_t from, std::size_t count,
-                      std::size_t& linesFound);
+// Locates the first spec.rows lines of `text` (more may follow; they are not part of the table).
+// Throws InputError when the text ends before spec.rows lines.
+NumericTableLayout layoutNumericTable(std::string_view text, const NumericTableSpec& spec);
+
+// Parses the rows of a layout, each holding targets.size() values, into the targets.
+// Throws InputError naming the file line and the column on any bad token.
+void parseNumericTable(std::string_view text, const NumericTableLayout& layout,
+                       const NumericTableSpec& spec, std::vector<TableColumnTarget>& targets);
+
+// Allocates several columns of n values at once, in parallel: first-touch page faults of
+// large fresh allocations are a good part of a reader's time.
+void resizeColumnsInParallel(const std::vector<std::vector<float>*>& floats,
+                             const std::vector<std::vector<std::int64_t>*>& ints, std::size_t n);
 
 } // namespace faultline::core

@@ -109,11 +109,7 @@ Frame parseTable(const std::string& path, std::string_view text) {
     const std::size_t rows = body.empty() ? 0 : static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) + 1;
 
     Frame frame;
-    frame.ids.resize(rows);
-    frame.x.resize(rows);
-    frame.y.resize(rows);
-    frame.z.resize(rows);
-    frame.radius.resize(rows);
+    resizeColumnsInParallel({&frame.x, &frame.y, &frame.z, &frame.radius}, {&frame.ids}, rows);
     std::vector<TableColumnTarget> targets(names.size());
     std::vector<std::vector<float>> values(names.size());
     std::vector<bool> isAttribute(names.size(), false);
@@ -142,7 +138,7 @@ Frame parseTable(const std::string& path, std::string_view text) {
     spec.firstLine = headerLine + 1;
     spec.rows = rows;
     spec.separator = separator;
-    parseNumericTable(body, spec, targets);
+    parseNumericTable(body, layoutNumericTable(body, spec), spec, targets);
 
     if (idc < 0) {
         frame.idsAreRowNumbers = true;

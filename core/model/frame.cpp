@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 namespace faultline::core {
 
 namespace {
@@ -55,26 +57,30 @@ void Frame::finalize() {
         throw std::invalid_argument("frame has more than 4 billion particles");
     if (x.size() != n || y.size() != n || z.size() != n || radius.size() != n)
         throw std::invalid_argument("frame columns have different lengths");
-    for (auto& c : attributes) {
+    for (auto& c : attributes)
         if (c.size() != n)
             throw std::invalid_argument("attribute '" + c.name + "' has " +
                                         std::to_string(c.size()) + " values for " +
                                         std::to_string(n) + " particles");
-        if (c.type == ColumnType::Float32)
-            rangeOf(c.floats, c.min, c.max);
-        else
-            rangeOf(c.ints, c.min, c.max);
-    }
-
-    m_centreMin = {0, 0, 0};
-    m_centreMax = {0, 0, 0};
-    if (n > 0) {
-        const std::vector<float>* axes[3] = {&x, &y, &z};
-        for (int a = 0; a < 3; ++a) {
-            auto [mn, mx] = std::minmax_element(axes[a]->begin(), axes[a]->end());
-            m_centreMin[a] = *mn;
-            m_centreMax[a] = *mx;
+    // Ranges of every column at once: each is a pass over memory, independent of the others.
+    const std::size_t tasks = attributes.size() + 3;
+    double axisRange[3][2] = {};
+    tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t k) {
+        if (k < attributes.size()) {
+            auto& c = attributes[k];
+            if (c.type == ColumnType::Float32)
+                rangeOf(c.floats, c.min, c.max);
+            else
+                rangeOf(c.ints, c.min, c.max);
+        } else {
+            const std::vector<float>* axes[3] = {&x, &y, &z};
+            const std::size_t a = k - attributes.size();
+            rangeOf(*axes[a], axisRange[a][0], axisRange[a][1]);
         }
+    });
+    for (int a = 0; a < 3; ++a) {
+        m_centreMin[a] = static_cast<float>(axisRange[a][0]);
+        m_centreMax[a] = static_cast<float>(axisRange[a][1]);
     }
     if (!box.known) {
         for (int a = 0; a < 3; ++a) {
