@@ -4,12 +4,20 @@
 #include <string>
 #include <vector>
 
+namespace faultline::core {
+class Session;
+}
+
 namespace faultline::app {
 
 using Args = std::vector<std::string>;
 
 int runInfo(const Args& args);
 int runGui(const Args& args);
+int runReplay(const Args& args);
+
+// Adds the ops that need layers above core (render) to a session.
+void registerAppOps(core::Session& session);
 void printUsage();
 
 } // namespace faultline::app

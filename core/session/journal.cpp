@@ -1,0 +1,206 @@
+#include "core/session/journal.hpp"
+
+#include "core/io/byte_source.hpp"
+#include "core/io/input_error.hpp"
+#include "core/selection/histogram.hpp"
+#include "core/session/session_json.hpp"
+
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace faultline::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kExpectations[] = {"visible_count", "fault_size", "fault_count", "histogram",
+                               "file_exists", "image", "frame"};
+
+std::string describe(const Json& v) { return v.dump(); }
+
+std::optional<std::string> mismatch(const Json& expected, const Json& actual) {
+    if (expected == actual)
+        return std::nullopt;
+    return "expected " + describe(expected) + ", actual " + describe(actual);
+}
+
+std::optional<std::string> compareImages(const std::string& path, const std::string& reference, double maxDiff) {
+    int w1, h1, c1, w2, h2, c2;
+    unsigned char* a = stbi_load(path.c_str(), &w1, &h1, &c1, 4);
+    if (!a)
+        return "cannot read image " + path;
+    unsigned char* b = stbi_load(reference.c_str(), &w2, &h2, &c2, 4);
+    if (!b) {
+        stbi_image_free(a);
+        return "cannot read reference image " + reference;
+    }
+    std::optional<std::string> result;
+    if (w1 != w2 || h1 != h2) {
+        result = "expected size " + std::to_string(w2) + "x" + std::to_string(h2) + ", actual " +
+                 std::to_string(w1) + "x" + std::to_string(h1);
+    } else {
+        double sum = 0;
+        const std::size_t n = static_cast<std::size_t>(w1) * static_cast<std::size_t>(h1) * 4;
+        for (std::size_t k = 0; k < n; ++k)
+            sum += std::abs(static_cast<int>(a[k]) - static_cast<int>(b[k]));
+        const double mean = sum / static_cast<double>(n);
+        if (mean > maxDiff) {
+            std::ostringstream msg;
+            msg << "expected mean abs diff <= " << maxDiff << ", actual " << mean;
+            result = msg.str();
+        }
+    }
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return result;
+}
+
+} // namespace
+
+bool isKnownExpectation(const std::string& name) {
+    for (const char* e : kExpectations)
+        if (name == e)
+            return true;
+    return false;
+}
+
+std::vector<JournalLine> parseJournal(const std::string& text, const std::string& path, const Session& session) {
+    std::vector<JournalLine> lines;
+    std::size_t pos = 0, number = 0;
+    while (pos < text.size()) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string::npos)
+            end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++number;
+        while (!line.empty() && (line.front() == ' ' || line.front() == '\t'))
+            line.remove_prefix(1);
+        while (!line.empty() && (line.back() == ' ' || line.back() == '\t' || line.back() == '\r'))
+            line.remove_suffix(1);
+        if (line.empty() || line.substr(0, 2) == "//")
+            continue;
+        Json value;
+        try {
+            value = parseJsonText(std::string(line), path);
+        } catch (const InputError& e) {
+            throw InputError(path, InputError::Where::Line, number, e.message());
+        }
+        if (!value.is_object())
+            throw InputError(path, InputError::Where::Line, number, "expected a JSON object with \"op\" or \"expect\"");
+        const bool isOp = value.contains("op"), isExpect = value.contains("expect");
+        if (isOp == isExpect)
+            throw InputError(path, InputError::Where::Line, number, "a line needs exactly one of \"op\" or \"expect\"");
+        const Json& name = isOp ? value["op"] : value["expect"];
+        if (!name.is_string())
+            throw InputError(path, InputError::Where::Line, number, std::string("\"") + (isOp ? "op" : "expect") + "\" must be a string");
+        if (isOp && !session.knowsOp(name.get<std::string>()))
+            throw InputError(path, InputError::Where::Line, number, "unknown op \"" + name.get<std::string>() + "\"");
+        if (isExpect && !isKnownExpectation(name.get<std::string>()))
+            throw InputError(path, InputError::Where::Line, number, "unknown expectation \"" + name.get<std::string>() + "\"");
+        lines.push_back({number, std::move(value), isExpect});
+    }
+    return lines;
+}
+
+std::optional<std::string> checkExpectation(Session& s, const Json& e) {
+    const std::string kind = e["expect"].get<std::string>();
+    if (kind == "visible_count") {
+        args::onlyFields(e, {"expect", "equals"});
+        return mismatch(args::require(e, "equals"), s.visibility().visibleCount);
+    }
+    if (kind == "frame") {
+        args::onlyFields(e, {"expect", "equals"});
+        return mismatch(args::require(e, "equals"), s.state().frame);
+    }
+    if (kind == "fault_count") {
+        args::onlyFields(e, {"expect", "equals"});
+        return mismatch(args::require(e, "equals"), s.state().faults.size());
+    }
+    if (kind == "fault_size") {
+        args::onlyFields(e, {"expect", "name", "equals"});
+        const std::string name = args::string(e, "name");
+        const Fault* f = s.state().fault(name);
+        if (!f)
+            return "expected fault \"" + name + "\" to exist, actual: no such fault";
+        return mismatch(args::require(e, "equals"), f->ids.size());
+    }
+    if (kind == "histogram") {
+        args::onlyFields(e, {"expect", "variable", "of", "bins", "range", "counts"});
+        auto frame = s.currentFrame();
+        if (!frame)
+            return std::string("expected a histogram, actual: no data open");
+        const std::string variable = args::string(e, "variable");
+        const std::string of = args::optionalString(e, "of").value_or("all");
+        if (of != "all" && of != "visible")
+            throw CommandError("histogram: \"of\" must be all or visible");
+        HistogramSpec spec;
+        spec.bins = static_cast<int>(args::optionalInteger(e, "bins").value_or(0));
+        if (e.contains("range")) {
+            const Json& r = e["range"];
+            if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
+                throw CommandError("histogram: \"range\" must be [low, high]");
+            spec.range = std::array<double, 2>{r[0].get<double>(), r[1].get<double>()};
+        }
+        const auto& mask = s.visibility().mask;
+        auto h = computeHistogram(*frame, variable, spec, of == "visible" ? &mask : nullptr);
+        if (!h)
+            return "expected a histogram of \"" + variable + "\", actual: the frame has no such variable";
+        const auto& counts = of == "visible" ? h->visible.bins : h->all.bins;
+        return mismatch(args::require(e, "counts"), counts);
+    }
+    if (kind == "file_exists") {
+        args::onlyFields(e, {"expect", "path"});
+        const std::string p = s.outputPath(args::string(e, "path"));
+        std::error_code ec;
+        if (fs::exists(p, ec) && fs::file_size(p, ec) > 0)
+            return std::nullopt;
+        return "expected file " + p + " to exist and be non-empty, actual: " + (fs::exists(p, ec) ? "empty" : "missing");
+    }
+    if (kind == "image") {
+        args::onlyFields(e, {"expect", "path", "reference", "max_mean_abs_diff"});
+        return compareImages(s.outputPath(args::string(e, "path")), s.inputPath(args::string(e, "reference")),
+                             args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0));
+    }
+    throw CommandError("unknown expectation \"" + kind + "\"");
+}
+
+ReplayReport replayJournal(const std::string& path, const ReplayOptions& options, Session& session) {
+    const std::string text = readFileBytes(path);
+    const auto lines = parseJournal(text, path, session); // everything checked before running
+    const std::string folder = fs::absolute(fs::path(path)).parent_path().string();
+    session.setBaseDir(folder);
+    if (!options.outDir.empty())
+        session.setOutputDir(fs::absolute(options.outDir).string());
+    std::vector<std::string> data;
+    for (const auto& d : options.data)
+        data.push_back(fs::absolute(d).string());
+    session.setDataOverride(data);
+
+    ReplayReport report;
+    for (const auto& line : lines) {
+        try {
+            if (line.isExpectation) {
+                ++report.expectations;
+                if (auto failure = checkExpectation(session, line.value))
+                    report.failures.push_back({line.line, "expect " + line.value["expect"].get<std::string>() + ": " + *failure});
+            } else {
+                ++report.commands;
+                session.apply(line.value);
+            }
+        } catch (const std::exception& e) {
+            report.failures.push_back({line.line, e.what()});
+            if (!line.isExpectation) {
+                report.stopped = true;
+                break;
+            }
+        }
+    }
+    return report;
+}
+
+} // namespace faultline::core

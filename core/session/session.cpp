@@ -1,0 +1,226 @@
+#include "core/session/session.hpp"
+
+#include "core/io/input_error.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace faultline::core {
+
+namespace fs = std::filesystem;
+
+Session::Session() {
+    std::map<std::string, std::pair<OpHandler, bool>> ops;
+    detail::registerDataOps(ops);
+    detail::registerSelectionOps(ops);
+    detail::registerFaultOps(ops);
+    detail::registerOutputOps(ops);
+    for (auto& [name, entry] : ops)
+        m_ops[name] = OpEntry{std::move(entry.first), entry.second};
+    // A group of commands that undoes as one (e.g. accepting every candidate).
+    m_ops["batch"] = OpEntry{
+        [](Session& s, const Json& cmd) -> Json {
+            args::onlyFields(cmd, {"commands"});
+            const Json& list = args::require(cmd, "commands");
+            if (!list.is_array())
+                throw CommandError("batch: \"commands\" must be an array");
+            std::vector<Json> inverses;
+            try {
+                for (const Json& c : list) {
+                    bool changes = false;
+                    Json inv = s.run(c, changes);
+                    if (!changes)
+                        throw CommandError("batch: only state-changing commands may be grouped");
+                    inverses.push_back(std::move(inv));
+                }
+            } catch (...) {
+                for (auto it = inverses.rbegin(); it != inverses.rend(); ++it) {
+                    bool changes = false;
+                    s.run(*it, changes);
+                }
+                throw;
+            }
+            std::reverse(inverses.begin(), inverses.end());
+            return Json{{"op", "batch"}, {"commands", inverses}};
+        },
+        true};
+}
+
+Session::~Session() = default;
+
+bool Session::knowsOp(const std::string& op) const {
+    return op == "undo" || op == "redo" || m_ops.count(op) > 0;
+}
+
+std::vector<std::string> Session::knownOps() const {
+    std::vector<std::string> out{"undo", "redo"};
+    for (const auto& [name, e] : m_ops)
+        out.push_back(name);
+    return out;
+}
+
+void Session::registerOp(const std::string& op, OpHandler handler, bool changesState) {
+    m_ops[op] = OpEntry{std::move(handler), changesState};
+}
+
+Json Session::run(const Json& cmd, bool& changesState) {
+    if (!cmd.is_object())
+        throw CommandError("a command must be a JSON object, found " + cmd.dump());
+    auto opIt = cmd.find("op");
+    if (opIt == cmd.end() || !opIt->is_string())
+        throw CommandError("a command needs an \"op\" string: " + cmd.dump());
+    const std::string op = opIt->get<std::string>();
+    auto it = m_ops.find(op);
+    if (it == m_ops.end())
+        throw CommandError("unknown op \"" + op + "\"");
+    changesState = it->second.changesState;
+    Json inverse = it->second.handler(*this, cmd);
+    if (changesState)
+        ++m_version;
+    return inverse;
+}
+
+Json Session::execute(const Json& cmd) {
+    bool changes = false;
+    Json inverse = run(cmd, changes);
+    if (!changes)
+        throw CommandError("only state-changing ops can be part of another op");
+    return inverse;
+}
+
+void Session::apply(const Json& cmd) {
+    const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
+                               ? cmd["op"].get<std::string>()
+                               : std::string();
+    if (op == "undo" || op == "redo") {
+        args::onlyFields(cmd, {});
+        if (op == "undo" ? !undo() : !redo())
+            throw CommandError(op + ": nothing to " + op);
+    } else {
+        bool changesState = false;
+        Json inverse = run(cmd, changesState);
+        if (changesState) {
+            m_undo.push_back(std::move(inverse));
+            m_redo.clear();
+        }
+    }
+    m_journal.push_back(cmd);
+    if (m_journalSink)
+        m_journalSink(cmd);
+}
+
+bool Session::undo() {
+    if (m_undo.empty())
+        return false;
+    bool changes = false;
+    Json redo = run(m_undo.back(), changes);
+    m_undo.pop_back();
+    m_redo.push_back(std::move(redo));
+    return true;
+}
+
+bool Session::redo() {
+    if (m_redo.empty())
+        return false;
+    bool changes = false;
+    Json undo = run(m_redo.back(), changes);
+    m_redo.pop_back();
+    m_undo.push_back(std::move(undo));
+    return true;
+}
+
+std::string Session::inputPath(const std::string& path) const {
+    if (path.empty() || fs::path(path).is_absolute() || m_baseDir.empty())
+        return path;
+    return (fs::path(m_baseDir) / path).lexically_normal().string();
+}
+
+std::string Session::outputPath(const std::string& path) const {
+    const std::string& dir = m_outputDir.empty() ? m_baseDir : m_outputDir;
+    if (path.empty() || fs::path(path).is_absolute() || dir.empty())
+        return path;
+    return (fs::path(dir) / path).lexically_normal().string();
+}
+
+void Session::setDataset(std::shared_ptr<Dataset> dataset) {
+    m_dataset = std::move(dataset);
+    m_visibility.clear();
+    m_visibilityFrame.reset();
+    ++m_version;
+}
+
+void Session::replaceState(SessionState state) {
+    std::shared_ptr<Dataset> ds;
+    if (!state.dataPaths.empty()) {
+        ds = Dataset::open(state.dataPaths); // throws InputError naming the missing file
+        if (state.frame >= ds->frameCount())
+            throw InputError(state.dataPaths.front(),
+                             "the session shows frame " + std::to_string(state.frame) +
+                                 " but the data has " + std::to_string(ds->frameCount()) +
+                                 " frames");
+    }
+    m_state = std::move(state);
+    m_undo.clear();
+    m_redo.clear();
+    setDataset(std::move(ds));
+}
+
+std::shared_ptr<const Frame> Session::currentFrame() {
+    if (!m_dataset)
+        return nullptr;
+    return m_dataset->frame(std::min(m_state.frame, m_dataset->frameCount() - 1));
+}
+
+std::size_t Session::frameOfView(const ViewState& view) const {
+    const long long count = m_dataset ? static_cast<long long>(m_dataset->frameCount()) : 1;
+    long long f = view.frame.relative ? static_cast<long long>(m_state.frame) + view.frame.value
+                                      : view.frame.value;
+    return static_cast<std::size_t>(std::clamp(f, 0LL, count - 1));
+}
+
+std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const Frame& frame) const {
+    const auto& filter = m_state.faultFilter;
+    const bool anyHidden = std::any_of(m_state.faults.begin(), m_state.faults.end(),
+                                       [](const Fault& f) { return !f.visible; });
+    if (filter.mode == FaultFilter::Mode::All && !anyHidden)
+        return nullptr;
+    auto mask = std::make_unique<std::vector<std::uint8_t>>(
+        frame.size(), filter.mode == FaultFilter::Mode::All ? 1 : 0);
+    auto mark = [&](const Fault& f, std::uint8_t value) {
+        for (std::int64_t id : f.ids)
+            if (auto row = frame.rowOf(id))
+                (*mask)[*row] = value;
+    };
+    switch (filter.mode) {
+    case FaultFilter::Mode::All:
+        for (const auto& f : m_state.faults)
+            if (!f.visible)
+                mark(f, 0);
+        break;
+    case FaultFilter::Mode::Labelled:
+        for (const auto& f : m_state.faults)
+            if (f.visible)
+                mark(f, 1);
+        break;
+    case FaultFilter::Mode::Only:
+        if (const Fault* f = m_state.fault(filter.fault))
+            mark(*f, 1);
+        break;
+    }
+    return mask;
+}
+
+const VisibilityResult& Session::visibility() {
+    auto frame = currentFrame();
+    if (!frame)
+        return m_emptyVisibility;
+    if (m_visibilityVersion == m_version && m_visibilityFrame == frame)
+        return m_visibility.result();
+    auto rowMask = faultRowMask(*frame);
+    m_visibility.evaluate(frame, m_state.boxes, m_state.thresholds, rowMask.get());
+    m_visibilityVersion = m_version;
+    m_visibilityFrame = frame;
+    return m_visibility.result();
+}
+
+} // namespace faultline::core

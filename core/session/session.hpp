@@ -1,0 +1,116 @@
+// Session: the session state, the commands that change it (each returns its inverse, giving
+// unlimited undo/redo), the journal of everything applied, the open dataset and the derived
+// data of the current frame (visibility). The UI, the CLI and replay all drive it the same way.
+#pragma once
+
+#include "core/model/dataset.hpp"
+#include "core/selection/visibility.hpp"
+#include "core/session/command_args.hpp"
+#include "core/session/session_state.hpp"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace faultline::core {
+
+class Session {
+  public:
+    // A state op returns the command that undoes it; an action (export, render, save) returns
+    // null and is not undoable. Either throws CommandError, having changed nothing.
+    using OpHandler = std::function<Json(Session&, const Json& cmd)>;
+
+    Session();
+    ~Session();
+
+    const SessionState& state() const { return m_state; }
+    std::uint64_t version() const { return m_version; } // grows with every change
+
+    // Runs one command (including {"op":"undo"} and {"op":"redo"}) and records it in the journal.
+    void apply(const Json& cmd);
+    bool canUndo() const { return !m_undo.empty(); }
+    bool canRedo() const { return !m_redo.empty(); }
+    bool undo(); // false when there is nothing to undo
+    bool redo();
+    std::size_t undoDepth() const { return m_undo.size(); }
+
+    // Ops known to this session: the built-in ones and any registered by outer layers.
+    bool knowsOp(const std::string& op) const;
+    std::vector<std::string> knownOps() const;
+    // Lets a layer above core add an op (the UI library adds "render").
+    void registerOp(const std::string& op, OpHandler handler, bool changesState = false);
+
+    // Every command applied, in order, as given (the journal). `sink`, when set, receives each
+    // line as it is applied (the GUI appends it to the session's journal file).
+    const std::vector<Json>& journal() const { return m_journal; }
+    void setJournalSink(std::function<void(const Json&)> sink) { m_journalSink = std::move(sink); }
+
+    // Paths in commands are relative to baseDir (the journal's folder); outputs (exports,
+    // renders, saves) go under outputDir when set, else baseDir.
+    void setBaseDir(std::string dir) { m_baseDir = std::move(dir); }
+    void setOutputDir(std::string dir) { m_outputDir = std::move(dir); }
+    const std::string& baseDir() const { return m_baseDir; }
+    std::string inputPath(const std::string& path) const;
+    std::string outputPath(const std::string& path) const;
+    // Replay on other data: data.open uses these paths instead of the journal's.
+    void setDataOverride(std::vector<std::string> paths) { m_dataOverride = std::move(paths); }
+
+    // Replaces the whole state (a loaded session file) and opens its data; undo history is
+    // cleared. All or nothing: on error (data missing, frame out of range) nothing changes.
+    void replaceState(SessionState state);
+
+    // The open dataset and the current frame (loaded on demand); null without data.
+    std::shared_ptr<Dataset> dataset() const { return m_dataset; }
+    std::shared_ptr<const Frame> currentFrame();
+    // The frame a view shows (its binding applied to the current frame, clamped).
+    std::size_t frameOfView(const ViewState& view) const;
+
+    // Visible spheres of the current frame (boxes, thresholds, fault filter), cached by version.
+    const VisibilityResult& visibility();
+    // Fault filter as a row mask of `frame` (null when the filter lets everything through).
+    std::unique_ptr<std::vector<std::uint8_t>> faultRowMask(const Frame& frame) const;
+
+    // For op implementations only: the state to change, and the dataset to swap.
+    SessionState& mutableState() { return m_state; }
+    void setDataset(std::shared_ptr<Dataset> dataset);
+    const std::vector<std::string>& dataOverride() const { return m_dataOverride; }
+    void touch() { ++m_version; }
+    // Runs a state-changing op without journal or undo entry and returns its inverse: for
+    // composite ops built from others (fault.merge, fault.candidates).
+    Json execute(const Json& cmd);
+
+  private:
+    Json run(const Json& cmd, bool& changesState);
+
+    SessionState m_state;
+    std::uint64_t m_version = 1;
+    std::shared_ptr<Dataset> m_dataset;
+    std::vector<Json> m_undo; // inverses, most recent last
+    std::vector<Json> m_redo; // commands that redo, most recent last
+    std::vector<Json> m_journal;
+    std::function<void(const Json&)> m_journalSink;
+    struct OpEntry {
+        OpHandler handler;
+        bool changesState;
+    };
+    std::map<std::string, OpEntry, std::less<>> m_ops;
+    std::string m_baseDir, m_outputDir;
+    std::vector<std::string> m_dataOverride;
+
+    VisibilityEvaluator m_visibility;
+    std::uint64_t m_visibilityVersion = 0;
+    std::shared_ptr<const Frame> m_visibilityFrame;
+    VisibilityResult m_emptyVisibility;
+};
+
+// Built-in ops, grouped by what they change (session_ops_*.cpp).
+namespace detail {
+void registerDataOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerSelectionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerFaultOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerOutputOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+} // namespace detail
+
+} // namespace faultline::core

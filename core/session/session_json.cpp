@@ -1,0 +1,428 @@
+#include "core/session/session_json.hpp"
+
+#include "core/io/byte_source.hpp"
+#include "core/io/input_error.hpp"
+#include "core/session/atomic_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+namespace faultline::core {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+std::string relativeIfPossible(const std::string& path, const std::string& baseDir) {
+    if (baseDir.empty() || path.empty())
+        return path;
+    std::error_code ec;
+    const fs::path rel = fs::path(path).lexically_relative(fs::path(baseDir));
+    if (rel.empty() || ec)
+        return path;
+    return rel.generic_string();
+}
+
+std::string resolve(const std::string& path, const std::string& baseDir) {
+    if (path.empty() || fs::path(path).is_absolute() || baseDir.empty())
+        return path;
+    return (fs::path(baseDir) / path).lexically_normal().string();
+}
+
+// Reads one JSON object field by field; errors name the file and the field's path.
+class Fields {
+  public:
+    Fields(const Json& obj, std::string where, const std::string& file)
+        : m_obj(obj), m_where(std::move(where)), m_file(file) {
+        if (!obj.is_object())
+            fail("", "must be an object, found " + std::string(obj.type_name()));
+    }
+    [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+        std::string at = m_where;
+        if (!field.empty())
+            at += (at.empty() ? "" : ".") + field;
+        throw InputError(m_file, (at.empty() ? std::string("document") : at) + ": " + what);
+    }
+    bool has(const char* f) const { return m_obj.contains(f); }
+    const Json& get(const char* f) const {
+        auto it = m_obj.find(f);
+        if (it == m_obj.end())
+            fail(f, "is missing");
+        return *it;
+    }
+    std::string str(const char* f, std::optional<std::string> fallback = std::nullopt) const {
+        if (!has(f) && fallback)
+            return *fallback;
+        const Json& v = get(f);
+        if (!v.is_string())
+            fail(f, "must be a string");
+        return v.get<std::string>();
+    }
+    double num(const char* f, std::optional<double> fallback = std::nullopt) const {
+        if (!has(f) && fallback)
+            return *fallback;
+        const Json& v = get(f);
+        if (!v.is_number() || !std::isfinite(v.get<double>()))
+            fail(f, "must be a finite number");
+        return v.get<double>();
+    }
+    bool boolean(const char* f, bool fallback) const {
+        if (!has(f))
+            return fallback;
+        const Json& v = get(f);
+        if (!v.is_boolean())
+            fail(f, "must be true or false");
+        return v.get<bool>();
+    }
+    template <std::size_t N> std::array<double, N> nums(const char* f, std::optional<std::array<double, N>> fallback = std::nullopt) const {
+        if (!has(f) && fallback)
+            return *fallback;
+        const Json& v = get(f);
+        if (!v.is_array() || v.size() != N)
+            fail(f, "must be an array of " + std::to_string(N) + " numbers");
+        std::array<double, N> out{};
+        for (std::size_t k = 0; k < N; ++k) {
+            if (!v[k].is_number() || !std::isfinite(v[k].get<double>()))
+                fail(f, "must hold finite numbers");
+            out[k] = v[k].get<double>();
+        }
+        return out;
+    }
+    const Json& array(const char* f) const {
+        static const Json kEmpty = Json::array();
+        if (!has(f))
+            return kEmpty;
+        const Json& v = get(f);
+        if (!v.is_array())
+            fail(f, "must be an array");
+        return v;
+    }
+    std::string child(const char* f, std::size_t k) const {
+        return (m_where.empty() ? "" : m_where + ".") + f + "[" + std::to_string(k) + "]";
+    }
+    std::string child(const char* f) const { return (m_where.empty() ? "" : m_where + ".") + f; }
+
+  private:
+    const Json& m_obj;
+    std::string m_where;
+    const std::string& m_file;
+};
+
+Json cameraToJson(const CameraState& c) {
+    return {{"target", c.target}, {"distance", c.distance}, {"azimuth", c.azimuth},
+            {"elevation", c.elevation}, {"fov_y", c.fovY}, {"orthographic", c.orthographic}};
+}
+
+CameraState cameraFromJson(const Json& j, const std::string& where, const std::string& file) {
+    Fields f(j, where, file);
+    CameraState c;
+    c.target = f.nums<3>("target", c.target);
+    c.distance = f.num("distance", c.distance);
+    if (c.distance < 0)
+        f.fail("distance", "must be >= 0");
+    c.azimuth = f.num("azimuth", c.azimuth);
+    c.elevation = f.num("elevation", c.elevation);
+    if (c.elevation < -90 || c.elevation > 90)
+        f.fail("elevation", "must lie in [-90, 90]");
+    c.fovY = f.num("fov_y", c.fovY);
+    if (c.fovY <= 0 || c.fovY >= 180)
+        f.fail("fov_y", "must lie in (0, 180)");
+    c.orthographic = f.boolean("orthographic", false);
+    return c;
+}
+
+const char* filterModeName(FaultFilter::Mode m) {
+    switch (m) {
+    case FaultFilter::Mode::All:
+        return "all";
+    case FaultFilter::Mode::Labelled:
+        return "labelled";
+    case FaultFilter::Mode::Only:
+        return "only";
+    }
+    return "all";
+}
+
+// Migrations from older schemas, each from N to N+1. Schema 1 is the first: none yet.
+Json migrate(Json doc, int from, const std::string& path) {
+    (void)path;
+    (void)from;
+    return doc;
+}
+
+} // namespace
+
+Json viewToJson(const ViewState& v) {
+    return {{"name", v.name},
+            {"frame", {{"relative", v.frame.relative}, {"value", v.frame.value}}},
+            {"color",
+             {{"variable", v.colorVariable},
+              {"map", v.colorMap},
+              {"range_mode", v.rangeMode},
+              {"range", v.range}}},
+            {"camera", cameraToJson(v.camera)},
+            {"linked_camera", v.linkedCamera}};
+}
+
+ViewState viewFromJson(const Json& j, const std::string& where, const std::string& path) {
+    Fields v(j, where, path);
+    ViewState view;
+    view.name = v.str("name");
+    if (view.name.empty())
+        v.fail("name", "must not be empty");
+    if (v.has("frame")) {
+        Fields fr(v.get("frame"), v.child("frame"), path);
+        view.frame.relative = fr.boolean("relative", true);
+        view.frame.value = static_cast<long long>(fr.num("value", 0.0));
+    }
+    if (v.has("color")) {
+        Fields c(v.get("color"), v.child("color"), path);
+        view.colorVariable = c.str("variable", "");
+        view.colorMap = c.str("map", view.colorMap);
+        view.rangeMode = c.str("range_mode", view.rangeMode);
+        if (view.rangeMode != "frame" && view.rangeMode != "all" && view.rangeMode != "fixed")
+            c.fail("range_mode", "must be frame, all or fixed");
+        view.range = c.nums<2>("range", view.range);
+    }
+    if (v.has("camera"))
+        view.camera = cameraFromJson(v.get("camera"), v.child("camera"), path);
+    view.linkedCamera = v.boolean("linked_camera", true);
+    return view;
+}
+
+Json boxToJson(const CuttingBox& b) {
+    return {{"name", b.name}, {"min", b.min}, {"max", b.max},
+            {"mode", std::string(boxModeName(b.mode))}, {"enabled", b.enabled}};
+}
+
+CuttingBox boxFromJson(const Json& j, const std::string& where, const std::string& path) {
+    Fields b(j, where, path);
+    CuttingBox box;
+    box.name = b.str("name");
+    if (box.name.empty())
+        b.fail("name", "must not be empty");
+    box.min = b.nums<3>("min");
+    box.max = b.nums<3>("max");
+    for (int a = 0; a < 3; ++a)
+        if (box.min[a] > box.max[a])
+            b.fail("min", "must not exceed max on any axis");
+    const auto mode = parseBoxMode(b.str("mode", "keep"));
+    if (!mode)
+        b.fail("mode", "must be keep or cut");
+    box.mode = *mode;
+    box.enabled = b.boolean("enabled", true);
+    return box;
+}
+
+Json faultToJson(const Fault& f) {
+    return {{"name", f.name}, {"color", f.color}, {"notes", f.notes}, {"visible", f.visible},
+            {"ids", f.ids}};
+}
+
+Fault faultFromJson(const Json& j, const std::string& where, const std::string& path) {
+    Fields f(j, where, path);
+    Fault fault;
+    fault.name = f.str("name");
+    if (fault.name.empty())
+        f.fail("name", "must not be empty");
+    const auto color = f.nums<3>("color", std::array<double, 3>{1, 0.5, 0});
+    for (int c = 0; c < 3; ++c) {
+        if (color[c] < 0 || color[c] > 1)
+            f.fail("color", "components must lie in [0, 1]");
+        fault.color[c] = static_cast<float>(color[c]);
+    }
+    fault.notes = f.str("notes", "");
+    fault.visible = f.boolean("visible", true);
+    const Json& ids = f.array("ids");
+    fault.ids.reserve(ids.size());
+    for (const Json& id : ids) {
+        if (!id.is_number_integer())
+            f.fail("ids", "must hold whole numbers");
+        fault.ids.push_back(id.get<std::int64_t>());
+    }
+    normalizeIds(fault.ids);
+    return fault;
+}
+
+Json sessionToJson(const SessionState& s, const std::string& baseDir) {
+    Json doc;
+    doc["format"] = "faultline-session";
+    doc["schema"] = kSessionSchema;
+    Json paths = Json::array();
+    for (const auto& p : s.dataPaths)
+        paths.push_back(relativeIfPossible(p, baseDir));
+    doc["data"] = {{"paths", paths}};
+    doc["frame"] = s.frame;
+    Json views = Json::array();
+    for (const auto& v : s.views)
+        views.push_back(viewToJson(v));
+    doc["views"] = views;
+    Json boxes = Json::array();
+    for (const auto& b : s.boxes)
+        boxes.push_back(boxToJson(b));
+    doc["boxes"] = boxes;
+    Json thresholds = Json::array();
+    for (const auto& t : s.thresholds)
+        thresholds.push_back({{"variable", t.variable}, {"low", t.low}, {"high", t.high}, {"enabled", t.enabled}});
+    doc["thresholds"] = thresholds;
+    Json faults = Json::array();
+    for (const auto& f : s.faults)
+        faults.push_back(faultToJson(f));
+    doc["faults"] = faults;
+    doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)}, {"fault", s.faultFilter.fault}};
+    Json surfaces = Json::array();
+    for (const auto& sf : s.surfaces)
+        surfaces.push_back({{"fault", sf.fault}, {"kernel", sf.kernel}, {"voxel", sf.voxel},
+                            {"iso", sf.iso}, {"visible", sf.visible}, {"opacity", sf.opacity}});
+    doc["surfaces"] = surfaces;
+    doc["dock_layout"] = s.dockLayout.is_null() ? Json::object() : s.dockLayout;
+    return doc;
+}
+
+SessionState sessionFromJson(const Json& input, const std::string& baseDir, const std::string& path) {
+    if (!input.is_object() || input.value("format", std::string()) != "faultline-session")
+        throw InputError(path, "not a Faultline session (expected \"format\": \"faultline-session\")");
+    if (!input.contains("schema") || !input["schema"].is_number_integer())
+        throw InputError(path, "session has no integer \"schema\" version");
+    const int schema = input["schema"].get<int>();
+    if (schema > kSessionSchema)
+        throw InputError(path, "session schema " + std::to_string(schema) +
+                                   " is newer than this Faultline understands (" +
+                                   std::to_string(kSessionSchema) + "): please update Faultline");
+    if (schema < 1)
+        throw InputError(path, "session schema " + std::to_string(schema) + " is not valid");
+    const Json doc = schema < kSessionSchema ? migrate(input, schema, path) : input;
+
+    Fields top(doc, "", path);
+    SessionState s;
+    if (top.has("data")) {
+        Fields data(top.get("data"), "data", path);
+        const Json& paths = data.array("paths");
+        for (std::size_t k = 0; k < paths.size(); ++k) {
+            if (!paths[k].is_string())
+                data.fail("paths[" + std::to_string(k) + "]", "must be a string");
+            s.dataPaths.push_back(resolve(paths[k].get<std::string>(), baseDir));
+        }
+    }
+    const double frame = top.num("frame", 0.0);
+    if (frame < 0 || frame != std::floor(frame))
+        top.fail("frame", "must be a whole number >= 0");
+    s.frame = static_cast<std::size_t>(frame);
+
+    s.views.clear();
+    const Json& views = top.array("views");
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        ViewState view = viewFromJson(views[k], top.child("views", k), path);
+        for (const auto& other : s.views)
+            if (other.name == view.name)
+                throw InputError(path, top.child("views", k) + ".name: '" + view.name +
+                                           "' is used by two views");
+        s.views.push_back(std::move(view));
+    }
+    if (!s.view("main"))
+        s.views.insert(s.views.begin(), mainView());
+
+    const Json& boxes = top.array("boxes");
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+        CuttingBox box = boxFromJson(boxes[k], top.child("boxes", k), path);
+        if (s.box(box.name))
+            throw InputError(path, top.child("boxes", k) + ".name: '" + box.name + "' is used twice");
+        s.boxes.push_back(box);
+    }
+    const Json& thresholds = top.array("thresholds");
+    for (std::size_t k = 0; k < thresholds.size(); ++k) {
+        Fields t(thresholds[k], top.child("thresholds", k), path);
+        VariableThreshold th;
+        th.variable = t.str("variable");
+        if (th.variable.empty() || s.threshold(th.variable))
+            t.fail("variable", "must be a unique, non-empty variable name");
+        th.low = t.num("low");
+        th.high = t.num("high");
+        th.enabled = t.boolean("enabled", true);
+        s.thresholds.push_back(th);
+    }
+    const Json& faults = top.array("faults");
+    for (std::size_t k = 0; k < faults.size(); ++k) {
+        Fault fault = faultFromJson(faults[k], top.child("faults", k), path);
+        if (s.fault(fault.name))
+            throw InputError(path, top.child("faults", k) + ".name: '" + fault.name + "' is used twice");
+        s.faults.push_back(std::move(fault));
+    }
+    if (top.has("fault_filter")) {
+        Fields ff(top.get("fault_filter"), "fault_filter", path);
+        const std::string mode = ff.str("mode", "all");
+        if (mode == "all")
+            s.faultFilter.mode = FaultFilter::Mode::All;
+        else if (mode == "labelled")
+            s.faultFilter.mode = FaultFilter::Mode::Labelled;
+        else if (mode == "only")
+            s.faultFilter.mode = FaultFilter::Mode::Only;
+        else
+            ff.fail("mode", "must be all, labelled or only");
+        s.faultFilter.fault = ff.str("fault", "");
+        if (s.faultFilter.mode == FaultFilter::Mode::Only && !s.fault(s.faultFilter.fault))
+            ff.fail("fault", "names no fault of this session");
+    }
+    const Json& surfaces = top.array("surfaces");
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+        Fields sf(surfaces[k], top.child("surfaces", k), path);
+        SurfaceSettings st;
+        st.fault = sf.str("fault");
+        if (!s.fault(st.fault))
+            sf.fail("fault", "names no fault of this session");
+        st.kernel = sf.str("kernel", st.kernel);
+        if (st.kernel != "inverse" && st.kernel != "inverse-square" && st.kernel != "compact")
+            sf.fail("kernel", "must be inverse, inverse-square or compact");
+        st.voxel = sf.num("voxel", 0.0);
+        st.iso = sf.num("iso", 1.0);
+        if (st.voxel < 0 || st.iso <= 0)
+            sf.fail("voxel", "voxel must be >= 0 and iso > 0");
+        st.visible = sf.boolean("visible", true);
+        st.opacity = sf.num("opacity", 0.8);
+        s.surfaces.push_back(st);
+    }
+    if (top.has("dock_layout")) {
+        if (!top.get("dock_layout").is_object())
+            top.fail("dock_layout", "must be an object");
+        s.dockLayout = top.get("dock_layout");
+    }
+    return s;
+}
+
+Json parseJsonText(const std::string& text, const std::string& path, std::size_t maxDepth) {
+    Json::parser_callback_t limitDepth = [&](int depth, Json::parse_event_t, Json&) {
+        if (static_cast<std::size_t>(depth) > maxDepth)
+            throw InputError(path, "JSON nested deeper than " + std::to_string(maxDepth) + " levels");
+        return true;
+    };
+    try {
+        return Json::parse(text, limitDepth);
+    } catch (const Json::parse_error& e) {
+        std::string msg = e.what();
+        const auto colon = msg.find("syntax error");
+        throw InputError(path, InputError::Where::Byte, e.byte,
+                         "invalid JSON: " + (colon != std::string::npos ? msg.substr(colon) : msg));
+    }
+}
+
+SessionState loadSessionFile(const std::string& path) {
+    constexpr std::uint64_t kMaxSessionBytes = 2ull << 30;
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    if (ec)
+        throw InputError(path, "cannot open: " + ec.message());
+    if (size > kMaxSessionBytes)
+        throw InputError(path, "session file is larger than 2 GiB: refused");
+    const std::string text = readFileBytes(path);
+    const Json doc = parseJsonText(text, path);
+    const std::string dir = fs::absolute(fs::path(path)).parent_path().string();
+    return sessionFromJson(doc, dir, path);
+}
+
+void saveSessionFile(const SessionState& state, const std::string& path) {
+    const std::string dir = fs::absolute(fs::path(path)).parent_path().string();
+    writeFileAtomically(path, sessionToJson(state, dir).dump(1) + "\n");
+}
+
+} // namespace faultline::core

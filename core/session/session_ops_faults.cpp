@@ -1,0 +1,227 @@
+// Ops on faults: fault.create/add/remove/set/delete/restore/merge/filter (JOURNAL.md).
+#include "core/session/session_ops.hpp"
+
+#include <algorithm>
+
+namespace faultline::core::detail {
+
+namespace {
+
+// Distinct, legible colours for new faults, in order.
+constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.90f, 0.30f, 0.20f},
+                                                              {0.20f, 0.55f, 0.90f},
+                                                              {0.95f, 0.70f, 0.10f},
+                                                              {0.40f, 0.75f, 0.30f},
+                                                              {0.65f, 0.35f, 0.80f},
+                                                              {0.10f, 0.75f, 0.75f},
+                                                              {0.95f, 0.45f, 0.65f},
+                                                              {0.60f, 0.45f, 0.25f},
+                                                              {0.55f, 0.85f, 0.10f},
+                                                              {0.35f, 0.35f, 0.95f}}};
+
+Fault& faultOf(Session& s, const Json& cmd, const char* op) {
+    const std::string name = args::string(cmd, "name");
+    Fault* f = s.mutableState().fault(name);
+    if (!f)
+        throw CommandError(std::string(op) + ": no fault named \"" + name + "\"");
+    return *f;
+}
+
+std::array<float, 3> colorArg(const Json& cmd, const char* op, std::array<float, 3> fallback) {
+    auto c = args::optionalVec3(cmd, "color");
+    if (!c)
+        return fallback;
+    std::array<float, 3> out{};
+    for (int k = 0; k < 3; ++k) {
+        if ((*c)[k] < 0 || (*c)[k] > 1)
+            throw CommandError(std::string(op) + ": \"color\" components must lie in [0, 1]");
+        out[k] = static_cast<float>((*c)[k]);
+    }
+    return out;
+}
+
+std::vector<std::int64_t> visibleIds(Session& s, const char* op) {
+    auto frame = s.currentFrame();
+    if (!frame)
+        throw CommandError(std::string(op) + ": \"from\": \"visible\" needs open data");
+    const auto& vis = s.visibility();
+    std::vector<std::int64_t> ids;
+    ids.reserve(vis.visibleCount);
+    for (std::size_t row = 0; row < vis.mask.size(); ++row)
+        if (vis.mask[row])
+            ids.push_back(frame->ids[row]);
+    return ids;
+}
+
+Json faultFilterJson(const FaultFilter& f) {
+    static const char* kModes[] = {"all", "labelled", "only"};
+    Json j = {{"op", "fault.filter"}, {"mode", kModes[static_cast<int>(f.mode)]}};
+    if (f.mode == FaultFilter::Mode::Only)
+        j["fault"] = f.fault;
+    return j;
+}
+
+} // namespace
+
+void registerFaultOps(OpTable& ops) {
+    addStateOp(ops, "fault.create", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"name", "from", "ids", "color", "notes", "index"});
+        Fault f;
+        f.name = args::string(cmd, "name");
+        if (f.name.empty() || s.state().fault(f.name))
+            throw CommandError("fault.create: a fault named \"" + f.name + "\" exists already");
+        if (cmd.contains("from") == cmd.contains("ids"))
+            throw CommandError("fault.create: give either \"from\": \"visible\" or \"ids\"");
+        if (cmd.contains("from")) {
+            if (args::string(cmd, "from") != "visible")
+                throw CommandError("fault.create: \"from\" must be \"visible\"");
+            f.ids = visibleIds(s, "fault.create");
+        } else {
+            f.ids = args::ids(cmd, "ids");
+        }
+        normalizeIds(f.ids);
+        auto& faults = s.mutableState().faults;
+        f.color = colorArg(cmd, "fault.create", kFaultPalette[faults.size() % kFaultPalette.size()]);
+        f.notes = args::optionalString(cmd, "notes").value_or("");
+        const long long index = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(faults.size()));
+        faults.insert(faults.begin() + std::clamp(index, 0LL, static_cast<long long>(faults.size())), std::move(f));
+        return {{"op", "fault.delete"}, {"name", args::string(cmd, "name")}};
+    });
+    addStateOp(ops, "fault.add", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"name", "ids", "from"});
+        Fault& f = faultOf(s, cmd, "fault.add");
+        if (cmd.contains("from") == cmd.contains("ids"))
+            throw CommandError("fault.add: give either \"from\": \"visible\" or \"ids\"");
+        std::vector<std::int64_t> ids;
+        if (cmd.contains("from")) {
+            if (args::string(cmd, "from") != "visible")
+                throw CommandError("fault.add: \"from\" must be \"visible\"");
+            ids = visibleIds(s, "fault.add");
+        } else {
+            ids = args::ids(cmd, "ids");
+        }
+        const auto added = f.add(std::move(ids));
+        return {{"op", "fault.remove"}, {"name", f.name}, {"ids", added}};
+    });
+    addStateOp(ops, "fault.remove", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"name", "ids"});
+        Fault& f = faultOf(s, cmd, "fault.remove");
+        const auto removed = f.remove(args::ids(cmd, "ids"));
+        return {{"op", "fault.add"}, {"name", f.name}, {"ids", removed}};
+    });
+    addStateOp(ops, "fault.set", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"name", "color", "notes", "visible", "rename"});
+        Fault& f = faultOf(s, cmd, "fault.set");
+        Fault next = f;
+        next.color = colorArg(cmd, "fault.set", f.color);
+        next.notes = args::optionalString(cmd, "notes").value_or(f.notes);
+        next.visible = args::optionalBool(cmd, "visible").value_or(f.visible);
+        if (auto rename = args::optionalString(cmd, "rename")) {
+            if (rename->empty() || (*rename != f.name && s.state().fault(*rename)))
+                throw CommandError("fault.set: cannot rename to \"" + *rename + "\"");
+            next.name = *rename;
+        }
+        Json inverse = {{"op", "fault.set"}, {"name", next.name}, {"color", f.color},
+                        {"notes", f.notes}, {"visible", f.visible}};
+        if (next.name != f.name) {
+            inverse["rename"] = f.name;
+            auto& state = s.mutableState();
+            for (auto& surface : state.surfaces)
+                if (surface.fault == f.name)
+                    surface.fault = next.name;
+            if (state.faultFilter.fault == f.name)
+                state.faultFilter.fault = next.name;
+        }
+        f = std::move(next);
+        return inverse;
+    });
+    addStateOp(ops, "fault.delete", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"name"});
+        const std::string name = args::string(cmd, "name");
+        auto& state = s.mutableState();
+        auto it = std::find_if(state.faults.begin(), state.faults.end(), [&](const Fault& f) { return f.name == name; });
+        if (it == state.faults.end())
+            throw CommandError("fault.delete: no fault named \"" + name + "\"");
+        Json inverse = {{"op", "fault.restore"}, {"fault", faultToJson(*it)}, {"index", it - state.faults.begin()}};
+        if (SurfaceSettings* surface = state.surface(name)) {
+            inverse["surface"] = {{"kernel", surface->kernel}, {"voxel", surface->voxel}, {"iso", surface->iso},
+                                  {"visible", surface->visible}, {"opacity", surface->opacity}};
+            state.surfaces.erase(state.surfaces.begin() + (surface - state.surfaces.data()));
+        }
+        if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
+            inverse = {{"op", "batch"}, {"commands", {inverse, faultFilterJson(state.faultFilter)}}};
+            state.faultFilter = FaultFilter{};
+        }
+        state.faults.erase(it);
+        return inverse;
+    });
+    addStateOp(ops, "fault.restore", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"fault", "index", "surface"});
+        Fault f = asCommand("fault.restore", [&] { return faultFromJson(args::require(cmd, "fault"), "fault", "fault.restore"); });
+        auto& state = s.mutableState();
+        if (state.fault(f.name))
+            throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");
+        if (cmd.contains("surface")) {
+            const Json& sj = cmd["surface"];
+            SurfaceSettings st;
+            st.fault = f.name;
+            st.kernel = sj.value("kernel", st.kernel);
+            st.voxel = sj.value("voxel", st.voxel);
+            st.iso = sj.value("iso", st.iso);
+            st.visible = sj.value("visible", st.visible);
+            st.opacity = sj.value("opacity", st.opacity);
+            state.surfaces.push_back(st);
+        }
+        const long long index = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(state.faults.size()));
+        const std::string name = f.name;
+        state.faults.insert(state.faults.begin() + std::clamp(index, 0LL, static_cast<long long>(state.faults.size())), std::move(f));
+        return {{"op", "fault.delete"}, {"name", name}};
+    });
+    addStateOp(ops, "fault.merge", [](Session& s, const Json& cmd) -> Json {
+        // Members of every named fault join `into` (created when new); the others are deleted.
+        args::onlyFields(cmd, {"names", "into"});
+        const auto names = args::strings(cmd, "names");
+        const std::string into = args::string(cmd, "into");
+        if (names.size() < 2)
+            throw CommandError("fault.merge: \"names\" needs at least two faults");
+        std::vector<std::int64_t> ids;
+        for (const auto& n : names) {
+            const Fault* f = s.state().fault(n);
+            if (!f)
+                throw CommandError("fault.merge: no fault named \"" + n + "\"");
+            ids.insert(ids.end(), f->ids.begin(), f->ids.end());
+        }
+        Json batch = Json::array();
+        if (!s.state().fault(into))
+            batch.push_back({{"op", "fault.create"}, {"name", into}, {"ids", Json::array()}});
+        batch.push_back({{"op", "fault.add"}, {"name", into}, {"ids", ids}});
+        for (const auto& n : names)
+            if (n != into)
+                batch.push_back({{"op", "fault.delete"}, {"name", n}});
+        // One batch: a failure leaves nothing half-merged, and undo restores every fault.
+        return s.execute({{"op", "batch"}, {"commands", batch}});
+    });
+    addStateOp(ops, "fault.filter", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"mode", "fault"});
+        const std::string mode = args::string(cmd, "mode");
+        FaultFilter next;
+        if (mode == "all")
+            next.mode = FaultFilter::Mode::All;
+        else if (mode == "labelled")
+            next.mode = FaultFilter::Mode::Labelled;
+        else if (mode == "only") {
+            next.mode = FaultFilter::Mode::Only;
+            next.fault = args::string(cmd, "fault");
+            if (!s.state().fault(next.fault))
+                throw CommandError("fault.filter: no fault named \"" + next.fault + "\"");
+        } else
+            throw CommandError("fault.filter: \"mode\" must be all, labelled or only");
+        Json inverse = faultFilterJson(s.state().faultFilter);
+        s.mutableState().faultFilter = next;
+        return inverse;
+    });
+    addNotYet(ops, "fault.candidates", "automatic candidates land with the fault analysis");
+    addNotYet(ops, "fault.split", "splitting lands with the fault analysis");
+}
+
+} // namespace faultline::core::detail

@@ -1,0 +1,101 @@
+// SessionState: everything a user sees and can save: data sources, frame, views, boxes,
+// thresholds, faults, surface settings, dock layout. Plain data; changed only by commands.
+#pragma once
+
+#include "core/faults/fault.hpp"
+#include "core/selection/cutting_box.hpp"
+#include "core/selection/variable_threshold.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace faultline::core {
+
+inline constexpr int kSessionSchema = 1;
+
+// An orbit camera as saved: the renderer derives its matrices from these.
+struct CameraState {
+    std::array<double, 3> target{0, 0, 0};
+    double distance = 0; // 0: not set yet, fit the model when first shown
+    double azimuth = 0;   // degrees, clockwise from north (+y) as seen from above
+    double elevation = 20; // degrees above horizontal
+    double fovY = 35;      // degrees; ignored when orthographic
+    bool orthographic = false;
+    bool operator==(const CameraState&) const = default;
+};
+
+// Which frame a view shows: the session's current frame plus an offset, or a fixed frame.
+struct FrameBinding {
+    bool relative = true;
+    long long value = 0; // offset when relative, frame index when absolute
+    bool operator==(const FrameBinding&) const = default;
+};
+
+struct ViewState;
+ViewState mainView();
+
+struct ViewState {
+    std::string name;
+    FrameBinding frame;
+    std::string colorVariable;  // empty: a plain colour
+    std::string colorMap = "blue-red";
+    std::string rangeMode = "frame";            // frame | all | fixed
+    std::array<double, 2> range{0, 1};          // used when rangeMode == fixed
+    CameraState camera;
+    bool linkedCamera = true;
+    bool operator==(const ViewState&) const = default;
+};
+
+inline ViewState mainView() {
+    ViewState v;
+    v.name = "main";
+    return v;
+}
+
+// Which spheres faults let through, before boxes and thresholds.
+struct FaultFilter {
+    enum class Mode { All, Labelled, Only };
+    Mode mode = Mode::All; // All: everything except members of hidden faults
+    std::string fault;     // for Only
+    bool operator==(const FaultFilter&) const = default;
+};
+
+struct SurfaceSettings {
+    std::string fault;
+    std::string kernel = "inverse-square"; // inverse | inverse-square | compact
+    double voxel = 0;                      // 0: radius / 3
+    double iso = 1.0;
+    bool visible = true;
+    double opacity = 0.8;
+    bool operator==(const SurfaceSettings&) const = default;
+};
+
+struct SessionState {
+    std::vector<std::string> dataPaths; // absolute in memory; saved relative to the session file
+    std::size_t frame = 0;
+    std::vector<ViewState> views{mainView()};
+    std::vector<CuttingBox> boxes;
+    std::vector<VariableThreshold> thresholds;
+    std::vector<Fault> faults;
+    FaultFilter faultFilter;
+    std::vector<SurfaceSettings> surfaces;
+    nlohmann::json dockLayout = nlohmann::json::object(); // owned by the UI; kept as it is
+
+    ViewState* view(std::string_view name);
+    const ViewState* view(std::string_view name) const;
+    CuttingBox* box(std::string_view name);
+    const CuttingBox* box(std::string_view name) const;
+    VariableThreshold* threshold(std::string_view variable);
+    const VariableThreshold* threshold(std::string_view variable) const;
+    Fault* fault(std::string_view name);
+    const Fault* fault(std::string_view name) const;
+    SurfaceSettings* surface(std::string_view fault);
+    const SurfaceSettings* surface(std::string_view fault) const;
+    bool operator==(const SessionState&) const = default;
+};
+
+} // namespace faultline::core

@@ -1,0 +1,301 @@
+#include "core/io/input_error.hpp"
+#include "core/session/journal.hpp"
+#include "core/session/session.hpp"
+#include "core/session/session_json.hpp"
+#include "test_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace faultline::core;
+using faultline::test::TempDir;
+
+namespace {
+
+// A 4x4x4 cubic lattice (ids 1..64, x,y,z in 0..3) over 3 frames; strain = x / 3, layer = z.
+std::string writeLattice(const TempDir& dir) {
+    std::string text;
+    for (int t = 0; t < 3; ++t) {
+        text += "ITEM: TIMESTEP\n" + std::to_string(t * 100) +
+                "\nITEM: NUMBER OF ATOMS\n64\nITEM: BOX BOUNDS pp pp pp\n0 3\n0 3\n0 3\n"
+                "ITEM: ATOMS id x y z radius strain layer\n";
+        int id = 1;
+        for (int z = 0; z < 4; ++z)
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x)
+                    text += std::to_string(id++) + " " + std::to_string(x) + " " + std::to_string(y) + " " +
+                            std::to_string(z) + " 0.5 " + std::to_string(x / 3.0 + t) + " " + std::to_string(z) + "\n";
+    }
+    return dir.write("lattice.dump", text);
+}
+
+Json cmd(const char* text) { return Json::parse(text); }
+
+// States compared through their saved form, so a failure prints a readable difference.
+std::string dump(const SessionState& s) { return sessionToJson(s, "").dump(); }
+
+} // namespace
+
+TEST(Session, BoxesThresholdsAndFaultFilterGiveExactVisibleCounts) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    EXPECT_EQ(s.visibility().visibleCount, 64u);
+    s.apply(cmd(R"({"op":"box.add","name":"low","min":[0,0,0],"max":[3,3,1],"mode":"keep"})"));
+    EXPECT_EQ(s.visibility().visibleCount, 32u); // z in {0, 1}, bounds inclusive
+    s.apply(cmd(R"({"op":"box.add","name":"hole","min":[0,0,0],"max":[0,3,3],"mode":"cut"})"));
+    EXPECT_EQ(s.visibility().visibleCount, 24u); // minus x == 0
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":1e30})"));
+    EXPECT_EQ(s.visibility().visibleCount, 16u); // x in {2, 3}
+    s.apply(cmd(R"({"op":"box.set","name":"hole","enabled":false})"));
+    EXPECT_EQ(s.visibility().visibleCount, 16u);
+    s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":0.3})"));
+    EXPECT_EQ(s.visibility().visibleCount, 24u); // x in {1, 2, 3}
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    EXPECT_EQ(s.state().fault("F1")->ids.size(), 24u);
+    s.apply(cmd(R"({"op":"threshold.remove","variable":"strain"})"));
+    s.apply(cmd(R"({"op":"box.remove","name":"low"})"));
+    EXPECT_EQ(s.visibility().visibleCount, 64u);
+    s.apply(cmd(R"({"op":"fault.filter","mode":"labelled"})"));
+    EXPECT_EQ(s.visibility().visibleCount, 24u);
+    s.apply(cmd(R"({"op":"fault.filter","mode":"all"})"));
+    s.apply(cmd(R"({"op":"fault.set","name":"F1","visible":false})"));
+    EXPECT_EQ(s.visibility().visibleCount, 40u);
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    EXPECT_EQ(s.visibility().visibleCount, 40u); // labels follow ids across frames
+}
+
+TEST(Session, EveryOpUndoesAndRedoesExactly) {
+    TempDir dir;
+    const std::string data = writeLattice(dir);
+    Session s;
+    const std::vector<Json> commands = {
+        {{"op", "data.open"}, {"paths", {data}}},
+        cmd(R"({"op":"frame.set","frame":1})"),
+        cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"),
+        cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[2,2,2],"mode":"cut","index":0})"),
+        cmd(R"({"op":"box.set","name":"a","max":[3,3,3],"mode":"cut","rename":"a2"})"),
+        cmd(R"({"op":"box.remove","name":"b"})"),
+        cmd(R"({"op":"threshold.add","variable":"strain","low":0,"high":2})"),
+        cmd(R"({"op":"threshold.add","variable":"layer","low":1,"high":2,"index":0})"),
+        cmd(R"({"op":"threshold.set","variable":"strain","high":1.5,"enabled":false})"),
+        cmd(R"({"op":"threshold.remove","variable":"layer"})"),
+        cmd(R"({"op":"fault.create","name":"F1","ids":[5,3,1,3]})"),
+        cmd(R"({"op":"fault.create","name":"F2","ids":[10,11],"color":[0,1,0],"notes":"n"})"),
+        cmd(R"({"op":"fault.add","name":"F1","ids":[2,3,4]})"),
+        cmd(R"({"op":"fault.remove","name":"F1","ids":[1,99]})"),
+        cmd(R"({"op":"fault.set","name":"F1","color":[0.1,0.2,0.3],"notes":"antithetic","rename":"F1b"})"),
+        cmd(R"({"op":"fault.filter","mode":"only","fault":"F2"})"),
+        cmd(R"({"op":"fault.delete","name":"F2"})"),
+        cmd(R"({"op":"fault.create","name":"F3","ids":[40]})"),
+        cmd(R"({"op":"fault.merge","names":["F1b","F3"],"into":"M"})"),
+        cmd(R"({"op":"view.add","name":"right","frame":2})"),
+        cmd(R"({"op":"view.set","name":"right","offset":-1})"),
+        cmd(R"({"op":"color.set","view":"main","variable":"strain","map":"viridis","range":[0,0.5]})"),
+        cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"),
+        cmd(R"({"op":"layout.set","layout":{"split":"h"}})"),
+        cmd(R"({"op":"view.remove","name":"right"})"),
+        cmd(R"({"op":"data.close"})"),
+    };
+    std::vector<SessionState> states{s.state()};
+    for (const auto& c : commands) {
+        s.apply(c);
+        states.push_back(s.state());
+    }
+    EXPECT_EQ(s.state().fault("M")->ids, (std::vector<std::int64_t>{2, 3, 4, 5, 40}));
+    for (std::size_t k = commands.size(); k > 0; --k) {
+        ASSERT_TRUE(s.undo());
+        EXPECT_EQ(dump(s.state()), dump(states[k - 1])) << "undo of " << commands[k - 1].dump();
+        EXPECT_EQ(s.state(), states[k - 1]);
+    }
+    EXPECT_FALSE(s.undo());
+    for (std::size_t k = 0; k < commands.size(); ++k) {
+        ASSERT_TRUE(s.redo());
+        EXPECT_EQ(dump(s.state()), dump(states[k + 1])) << "redo of " << commands[k].dump();
+    }
+    EXPECT_FALSE(s.redo());
+}
+
+TEST(Session, RejectedCommandsChangeNothing) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    const SessionState before = s.state();
+    const std::uint64_t version = s.version();
+    auto rejects = [&](const char* text, const char* message) {
+        try {
+            s.apply(Json::parse(text));
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const CommandError& e) {
+            EXPECT_EQ(std::string(e.what()), message);
+        }
+        EXPECT_EQ(s.state(), before);
+    };
+    rejects(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})", "box.add: a box named \"a\" exists already");
+    rejects(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,-1,1]})", "box.add: min must not exceed max on any axis");
+    rejects(R"({"op":"box.add","name":"b","min":[0,0],"max":[1,1,1]})", "box.add: \"min\" must be an array of 3 numbers, found [0,0]");
+    rejects(R"({"op":"box.set","name":"a","mode":"slice"})", "box.set: \"mode\" must be keep or cut, found \"slice\"");
+    rejects(R"({"op":"box.set","name":"a","colour":1})", "box.set: unknown field \"colour\" (expected name, min, max, mode, enabled, rename)");
+    rejects(R"({"op":"frame.set","frame":3})", "frame.set: frame 3 out of range 0..2");
+    rejects(R"({"op":"threshold.add","variable":"strain","low":2,"high":1})", "threshold.add: low must not exceed high");
+    rejects(R"({"op":"fault.add","name":"nope","ids":[1]})", "fault.add: no fault named \"nope\"");
+    rejects(R"({"op":"fault.create","name":"F","ids":[1.5]})", "fault.create: \"ids\" must hold whole numbers, found 1.5");
+    rejects(R"({"op":"fault.merge","names":["x","y"],"into":"z"})", "fault.merge: no fault named \"x\"");
+    rejects(R"({"op":"view.remove","name":"main"})", "view.remove: the main view cannot be removed");
+    rejects(R"({"op":"color.set","map":"rainbow"})", "color.set: unknown map \"rainbow\" (blue-red, viridis, diverging, pastel, bands, gray)");
+    rejects(R"({"op":"data.open","paths":["/nonexistent/file.dump"]})",
+            "data.open: /nonexistent/file.dump: cannot open: No such file or directory");
+    rejects(R"({"op":"warp"})", "unknown op \"warp\"");
+    rejects(R"({"op":"undo","steps":2})", "undo: unknown field \"steps\" (expected none)");
+    rejects(R"({"op":"surface.build","fault":"F1"})", "surface.build: not available yet (surfaces land with the implicit-surface feature)");
+    EXPECT_EQ(s.version(), version);
+}
+
+TEST(Session, FailedBatchRollsBack) {
+    Session s;
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    const SessionState before = s.state();
+    EXPECT_THROW(s.apply(cmd(R"({"op":"batch","commands":[{"op":"box.remove","name":"a"},{"op":"box.remove","name":"zz"}]})")),
+                 CommandError);
+    EXPECT_EQ(s.state(), before);
+}
+
+TEST(Session, NewCommandClearsRedo) {
+    Session s;
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_TRUE(s.canRedo());
+    s.apply(cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,1,1]})"));
+    EXPECT_FALSE(s.canRedo());
+    EXPECT_EQ(s.journal().size(), 3u);
+}
+
+TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1],"mode":"cut"})"));
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":9})"));
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[3,1,2],"notes":"a \"quoted\" note"})"));
+    s.apply(cmd(R"({"op":"view.add","name":"before","offset":-2})"));
+    s.apply(cmd(R"({"op":"color.set","variable":"strain","map":"pastel","range":[0,0.5]})"));
+    s.apply(cmd(R"({"op":"layout.set","layout":{"root":{"split":"v","ratio":0.3}}})"));
+    const std::string file = dir.file("out/a.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", file}});
+    std::ifstream in(file);
+    const Json doc = Json::parse(in);
+    EXPECT_EQ(doc["schema"], kSessionSchema);
+    EXPECT_EQ(doc["data"]["paths"][0], "../lattice.dump"); // relative to the session file
+    SessionState loaded = loadSessionFile(file);
+    EXPECT_EQ(loaded, s.state());
+    Session restored;
+    restored.replaceState(loaded);
+    EXPECT_EQ(restored.visibility().visibleCount, s.visibility().visibleCount);
+}
+
+TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
+    TempDir dir;
+    auto refuse = [&](const std::string& content, const std::string& expectedEnd) {
+        const std::string p = dir.write("s.faultline.json", content);
+        try {
+            loadSessionFile(p);
+            ADD_FAILURE() << "accepted " << content;
+        } catch (const InputError& e) {
+            const std::string msg = e.what();
+            EXPECT_EQ(msg.substr(msg.size() - std::min(msg.size(), expectedEnd.size())), expectedEnd) << msg;
+        }
+    };
+    refuse("{\"format\":\"faultline-session\",\"schema\":1,", "invalid JSON: syntax error while parsing object key - unexpected end of input; expected string literal");
+    refuse("[1,2]", "not a Faultline session (expected \"format\": \"faultline-session\")");
+    refuse(R"({"format":"faultline-session","schema":99})", "session schema 99 is newer than this Faultline understands (1): please update Faultline");
+    refuse(R"({"format":"faultline-session","schema":1,"faults":[{"name":"F","color":[2,0,0]}]})",
+           "faults[0].color: components must lie in [0, 1]");
+    refuse(R"({"format":"faultline-session","schema":1,"boxes":[{"name":"a","min":[0,0,0],"max":[1,1]}]})",
+           "boxes[0].max: must be an array of 3 numbers");
+    refuse(R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
+           "views[0].camera.fov_y: must lie in (0, 180)");
+    refuse(std::string(100, '[') + std::string(100, ']'), "JSON nested deeper than 64 levels");
+}
+
+TEST(SessionFile, MissingDataLeavesTheSessionUntouched) {
+    TempDir dir;
+    Session s;
+    s.apply(cmd(R"({"op":"box.add","name":"keep","min":[0,0,0],"max":[1,1,1]})"));
+    const SessionState before = s.state();
+    SessionState other;
+    other.dataPaths = {dir.file("moved-away.dump")};
+    EXPECT_THROW(s.replaceState(other), InputError);
+    EXPECT_EQ(s.state(), before);
+}
+
+TEST(Journal, LinesAreCheckedBeforeAnythingRuns) {
+    Session s;
+    auto errorOf = [&](const std::string& text) {
+        try {
+            parseJournal(text, "j.jsonl", s);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(errorOf("// comment\n\n{\"op\":\"frame.set\",\"frame\":1}\n{\"op\":\"teleport\"}\n"),
+              "j.jsonl:4: unknown op \"teleport\"");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\"}\n{\"expect\":\"vibes\"}\n"), "j.jsonl:2: unknown expectation \"vibes\"");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\"\n"),
+              "j.jsonl:1: invalid JSON: syntax error while parsing object - unexpected end of input; expected '}'");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\",\"expect\":\"frame\"}\n"), "j.jsonl:1: a line needs exactly one of \"op\" or \"expect\"");
+    EXPECT_EQ(errorOf("[1]\n"), "j.jsonl:1: expected a JSON object with \"op\" or \"expect\"");
+    EXPECT_EQ(parseJournal("{\"op\":\"undo\"}\r\n  // x\n{\"expect\":\"frame\",\"equals\":0}", "j", s).size(), 2u);
+}
+
+TEST(Journal, ReplayReportsEachFailingExpectation) {
+    TempDir dir;
+    writeLattice(dir);
+    const std::string journal = dir.write("j.jsonl",
+        "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
+        "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
+        "{\"expect\":\"visible_count\",\"equals\":32}\n"
+        "{\"expect\":\"visible_count\",\"equals\":31}\n"
+        "{\"expect\":\"histogram\",\"variable\":\"layer\",\"of\":\"visible\",\"bins\":4,\"range\":[0,4],\"counts\":[0,0,16,16]}\n"
+        "{\"op\":\"fault.create\",\"name\":\"F1\",\"from\":\"visible\"}\n"
+        "{\"expect\":\"fault_size\",\"name\":\"F1\",\"equals\":32}\n"
+        "{\"op\":\"session.save\",\"path\":\"out/s.faultline.json\"}\n"
+        "{\"expect\":\"file_exists\",\"path\":\"out/s.faultline.json\"}\n"
+        "{\"expect\":\"file_exists\",\"path\":\"out/nothing.png\"}\n");
+    Session s;
+    ReplayReport report = replayJournal(journal, {}, s);
+    EXPECT_EQ(report.commands, 4u);
+    EXPECT_EQ(report.expectations, 6u);
+    ASSERT_EQ(report.failures.size(), 2u);
+    EXPECT_EQ(report.failures[0].line, 4u);
+    EXPECT_EQ(report.failures[0].message, "expect visible_count: expected 31, actual 32");
+    EXPECT_EQ(report.failures[1].line, 10u);
+    EXPECT_FALSE(report.stopped);
+}
+
+TEST(Journal, DataOverrideRetargetsTheAnalysis) {
+    TempDir dir;
+    writeLattice(dir);
+    const std::string other = dir.write("other.csv", "id,x,y,z,layer\n1,0,0,0,2\n2,1,0,0,3\n3,2,0,0,0\n");
+    const std::string journal = dir.write("j.jsonl",
+        "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
+        "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
+        "{\"expect\":\"visible_count\",\"equals\":2}\n");
+    Session s;
+    ReplayOptions options;
+    options.data = {other};
+    EXPECT_TRUE(replayJournal(journal, options, s).ok());
+}
+
+TEST(Journal, FailingCommandStopsTheReplay) {
+    TempDir dir;
+    const std::string journal = dir.write("j.jsonl", "{\"op\":\"frame.set\",\"frame\":1}\n{\"expect\":\"frame\",\"equals\":1}\n");
+    Session s;
+    ReplayReport report = replayJournal(journal, {}, s);
+    EXPECT_TRUE(report.stopped);
+    ASSERT_EQ(report.failures.size(), 1u);
+    EXPECT_EQ(report.failures[0].message, "frame.set: no data is open");
+}
