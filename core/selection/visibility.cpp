@@ -85,8 +85,10 @@ Plan makePlan(const Frame& frame, std::span<const CuttingBox> boxes,
     for (const VariableThreshold& threshold : thresholds) {
         if (!threshold.enabled)
             continue;
-        if (auto column = findColumn(frame, threshold.variable))
+        if (auto column = findColumn(frame, threshold.variable)) {
+            assert(column->size == frame.size() && "Frame::finalize() checks column sizes");
             plan.tests.push_back(makeTest(*column, threshold));
+        }
         else
             noteMissing(missing, threshold.variable);
     }
@@ -105,6 +107,7 @@ VisibilityResult computeVisibility(const Frame& frame, std::span<const CuttingBo
                                    const std::vector<std::uint8_t>* rowMask) {
     const std::size_t n = frame.size();
     assert(!rowMask || rowMask->size() == n);
+    assert(frame.x.size() == n && frame.y.size() == n && frame.z.size() == n);
     VisibilityResult result;
     const Plan plan = makePlan(frame, boxes, thresholds, result.missingVariables);
     result.mask.resize(n);
