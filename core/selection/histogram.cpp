@@ -64,16 +64,13 @@ double quantile(std::vector<float>& values, double p) {
 }
 
 int freedmanDiaconisBins(const ColumnView& column, double lo, double hi) {
+    assert(!column.isInteger()); // integer columns get integer bins
     std::vector<float> finite;
     finite.reserve(column.size);
-    if (column.isInteger())
-        forEachValue<std::int32_t>(
-            column, [&](std::int32_t v) { finite.push_back(static_cast<float>(v)); });
-    else
-        forEachValue<float>(column, [&](float v) {
-            if (std::isfinite(v))
-                finite.push_back(v);
-        });
+    forEachValue<float>(column, [&](float v) {
+        if (std::isfinite(v))
+            finite.push_back(v);
+    });
     const std::size_t n = finite.size();
     if (n == 0)
         return 1;
