@@ -54,8 +54,7 @@ double quantile(std::vector<float>& values, double p) {
     assert(!values.empty());
     const double h = static_cast<double>(values.size() - 1) * p;
     const auto k = static_cast<std::size_t>(std::floor(h));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
-                     values.end());
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
     const double below = values[k];
     if (k + 1 >= values.size())
         return below;
@@ -65,17 +64,13 @@ double quantile(std::vector<float>& values, double p) {
 }
 
 int freedmanDiaconisBins(const ColumnView& column, double lo, double hi) {
+    assert(!column.isInteger()); // integer columns get integer bins
     std::vector<float> finite;
     finite.reserve(column.size);
-    if (column.isInteger())
-        forEachValue<std::int32_t>(column, [&](std::int32_t v) {
-            finite.push_back(static_cast<float>(v));
-        });
-    else
-        forEachValue<float>(column, [&](float v) {
-            if (std::isfinite(v))
-                finite.push_back(v);
-        });
+    forEachValue<float>(column, [&](float v) {
+        if (std::isfinite(v))
+            finite.push_back(v);
+    });
     const std::size_t n = finite.size();
     if (n == 0)
         return 1;
@@ -147,8 +142,7 @@ struct EqualWidthBins {
 
 template <typename T, bool kMasked, bool kInteger>
 void countRange(const T* values, const std::uint8_t* mask, std::size_t begin, std::size_t end,
-                const HistogramBinning& binning, const EqualWidthBins& equal,
-                LocalCounts& local) {
+                const HistogramBinning& binning, const EqualWidthBins& equal, LocalCounts& local) {
     std::uint32_t* counts = local.bins.data();
     const std::int64_t first = static_cast<std::int64_t>(binning.lo);
     const std::int64_t last = static_cast<std::int64_t>(binning.hi) - 1;
@@ -241,8 +235,11 @@ HistogramBinning chooseBinning(const ColumnView& column, const HistogramSpec& sp
 
     if (integer && spec.bins == 0) {
         if (spec.range) {
-            const double first = std::ceil((*spec.range)[0]);
-            const double last = std::floor((*spec.range)[1]);
+            // Integer columns hold int32 values: a wider range adds only empty bins.
+            constexpr double kMin = std::numeric_limits<std::int32_t>::min();
+            constexpr double kMax = std::numeric_limits<std::int32_t>::max();
+            const double first = std::clamp(std::ceil((*spec.range)[0]), kMin, kMax + 1.0);
+            const double last = std::clamp(std::floor((*spec.range)[1]), kMin - 1.0, kMax);
             if (first <= last)
                 return integerBinning(static_cast<std::int64_t>(first),
                                       static_cast<std::int64_t>(last));
@@ -291,30 +288,29 @@ Histogram computeHistogram(const ColumnView& column, const HistogramBinning& bin
     const std::uint8_t* mask = visibleMask ? visibleMask->data() : nullptr;
 
     tbb::enumerable_thread_specific<LocalCounts> locals(LocalCounts(binning.bins));
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, column.size, kGrainRows),
-        [&](const tbb::blocked_range<std::size_t>& rows) {
-            LocalCounts& local = locals.local();
-            auto run = [&]<typename T>(const T* values) {
-                const bool integer = binning.isInteger();
-                if (mask && integer)
-                    countRange<T, true, true>(values, mask, rows.begin(), rows.end(), binning,
-                                              equal, local);
-                else if (mask)
-                    countRange<T, true, false>(values, mask, rows.begin(), rows.end(),
-                                               binning, equal, local);
-                else if (integer)
-                    countRange<T, false, true>(values, mask, rows.begin(), rows.end(),
-                                               binning, equal, local);
-                else
-                    countRange<T, false, false>(values, mask, rows.begin(), rows.end(),
-                                                binning, equal, local);
-            };
-            if (column.isInteger())
-                run(column.ints);
-            else
-                run(column.floats);
-        });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, column.size, kGrainRows),
+                      [&](const tbb::blocked_range<std::size_t>& rows) {
+                          LocalCounts& local = locals.local();
+                          auto run = [&]<typename T>(const T* values) {
+                              const bool integer = binning.isInteger();
+                              if (mask && integer)
+                                  countRange<T, true, true>(values, mask, rows.begin(), rows.end(),
+                                                            binning, equal, local);
+                              else if (mask)
+                                  countRange<T, true, false>(values, mask, rows.begin(), rows.end(),
+                                                             binning, equal, local);
+                              else if (integer)
+                                  countRange<T, false, true>(values, mask, rows.begin(), rows.end(),
+                                                             binning, equal, local);
+                              else
+                                  countRange<T, false, false>(values, mask, rows.begin(),
+                                                              rows.end(), binning, equal, local);
+                          };
+                          if (column.isInteger())
+                              run(column.ints);
+                          else
+                              run(column.floats);
+                      });
 
     const auto nBins = static_cast<std::size_t>(binning.bins);
     h.all.bins.assign(nBins, 0);

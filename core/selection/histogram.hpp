@@ -36,7 +36,7 @@ inline constexpr int kMaxAutoHistogramBins = 256;
 inline constexpr int kMaxHistogramBins = 65536; // explicit requests beyond this are errors
 
 struct HistogramSpec {
-    int bins = 0;                              // 0: automatic
+    int bins = 0;                               // 0: automatic
     std::optional<std::array<double, 2>> range; // nullopt: automatic
 };
 

@@ -112,8 +112,8 @@ TEST(Histogram, WideIntegerRangesGroupWholeValues) {
         EXPECT_EQ(h->binning.integerWidth, 4); // 1001 values, 4 per bin
         EXPECT_EQ(h->binning.bins, 251);
         EXPECT_EQ(h->binning.hi, 1004.0);
-        EXPECT_EQ(h->all.bins[0], 2u);  // 0 and 3
-        EXPECT_EQ(h->all.bins[1], 1u);  // 4
+        EXPECT_EQ(h->all.bins[0], 2u);   // 0 and 3
+        EXPECT_EQ(h->all.bins[1], 1u);   // 4
         EXPECT_EQ(h->all.bins[250], 1u); // 1000
         EXPECT_EQ(h->all.inRange(), 4u);
         EXPECT_EQ(h->edges[1], 4.0);
@@ -136,6 +136,11 @@ TEST(Histogram, IntegerColumnWithAGivenRange) {
     EXPECT_EQ(h->binning.hi, 5.0);
     EXPECT_EQ(h->all.bins, (Counts{1, 1, 1}));
     EXPECT_EQ(h->all.outside, 2u);
+    // A range far beyond int32 is clipped to it (int32 values cannot lie outside).
+    const auto wide = chooseBinning(column(f), spec(0, {{-1e300, 1e300}}));
+    EXPECT_EQ(wide.lo, double(std::numeric_limits<std::int32_t>::min()));
+    EXPECT_EQ(wide.bins, 256);
+    EXPECT_EQ(wide.integerWidth, 16777216); // 2^32 values in 256 bins
     // No integer inside: one equal-width bin over the range.
     const auto g = computeHistogram(f, "v", spec(0, {{2.2, 2.8}}));
     EXPECT_FALSE(g->binning.isInteger());

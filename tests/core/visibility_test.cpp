@@ -73,24 +73,20 @@ std::vector<std::uint8_t> bytes(std::initializer_list<int> values) {
     return out;
 }
 
-// Runs both the fused pass and a fresh evaluator; they must agree. Returns the mask.
+// The fused pass, with the invariants every result must hold. Returns the mask.
 std::vector<std::uint8_t> visible(const std::shared_ptr<Frame>& frame,
                                   const std::vector<CuttingBox>& boxes,
                                   const std::vector<VariableThreshold>& thresholds = {},
                                   const std::vector<std::uint8_t>* rowMask = nullptr) {
-    const VisibilityResult fused = computeVisibility(*frame, boxes, thresholds, rowMask);
-    VisibilityEvaluator evaluator;
-    const VisibilityResult& cached = evaluator.evaluate(frame, boxes, thresholds, rowMask);
-    EXPECT_EQ(fused.mask, cached.mask);
-    EXPECT_EQ(fused.visibleCount, cached.visibleCount);
-    EXPECT_EQ(fused.missingVariables, cached.missingVariables);
+    const VisibilityResult r = computeVisibility(*frame, boxes, thresholds, rowMask);
+    EXPECT_EQ(r.mask.size(), frame->size());
     std::size_t ones = 0;
-    for (std::uint8_t m : fused.mask) {
+    for (std::uint8_t m : r.mask) {
         EXPECT_TRUE(m == 0 || m == 1);
         ones += m;
     }
-    EXPECT_EQ(ones, fused.visibleCount);
-    return fused.mask;
+    EXPECT_EQ(ones, r.visibleCount);
+    return r.mask;
 }
 
 } // namespace
@@ -230,15 +226,14 @@ TEST(Visibility, MissingVariableIsIgnoredAndReported) {
     auto f = lineFrame(4);
     f->attributes.push_back(makeAttribute("a", {0, 1, 2, 3}, false));
     f->finalize();
-    const std::vector<VariableThreshold> thresholds{
-        threshold("damage", 0, 1), threshold("a", 1, 2), threshold("porosity", 0, 1, false),
-        threshold("damage", 5, 6)};
+    const std::vector<VariableThreshold> thresholds{threshold("damage", 0, 1), threshold("a", 1, 2),
+                                                    threshold("porosity", 0, 1, false),
+                                                    threshold("damage", 5, 6)};
     const VisibilityResult r = computeVisibility(*f, {}, thresholds);
     EXPECT_EQ(r.mask, bytes({0, 1, 1, 0}));
     EXPECT_EQ(r.visibleCount, 2u);
     // Enabled ones only, each once, in order.
     EXPECT_EQ(r.missingVariables, std::vector<std::string>{"damage"});
-    visible(f, {}, thresholds); // the evaluator agrees
 }
 
 TEST(Visibility, RowMaskNonZeroAllows) {
@@ -252,14 +247,11 @@ TEST(Visibility, EmptyFrame) {
     auto f = lineFrame(0);
     const std::vector<std::uint8_t> rowMask;
     const std::vector<CuttingBox> boxes{xBox(0, 1)};
-    const std::vector<VariableThreshold> thresholds{threshold("x", 0, 1),
-                                                    threshold("gone", 0, 1)};
+    const std::vector<VariableThreshold> thresholds{threshold("x", 0, 1), threshold("gone", 0, 1)};
     const VisibilityResult r = computeVisibility(*f, boxes, thresholds, &rowMask);
     EXPECT_TRUE(r.mask.empty());
     EXPECT_EQ(r.visibleCount, 0u);
     EXPECT_EQ(r.missingVariables, std::vector<std::string>{"gone"});
-    VisibilityEvaluator e;
-    EXPECT_EQ(e.evaluate(f, {}, {}).visibleCount, 0u);
 }
 
 // A frame of a few hundred spheres (several words and a partial last word) against a direct
@@ -309,76 +301,9 @@ TEST(Visibility, MatchesTheRuleOnRandomFrames) {
     }
 }
 
-TEST(VisibilityEvaluator, RecomputesOnlyWhatChanged) {
-    auto f = lineFrame(300);
-    std::vector<float> a(300), b(300);
-    for (int i = 0; i < 300; ++i) {
-        a[i] = float(i % 10);
-        b[i] = float(i % 7);
-    }
-    f->attributes.push_back(makeAttribute("a", std::move(a), true));
-    f->attributes.push_back(makeAttribute("b", std::move(b), false));
-    f->finalize();
-    std::vector<CuttingBox> boxes{xBox(10, 250), xBox(100, 120, BoxMode::Cut)};
-    std::vector<VariableThreshold> thresholds{threshold("a", 2, 8), threshold("b", 1, 5)};
-
-    VisibilityEvaluator e;
-    auto check = [&](std::size_t computed, std::size_t reused) {
-        const VisibilityResult& r = e.evaluate(f, boxes, thresholds);
-        const VisibilityResult expected = computeVisibility(*f, boxes, thresholds);
-        EXPECT_EQ(r.mask, expected.mask);
-        EXPECT_EQ(r.visibleCount, expected.visibleCount);
-        EXPECT_EQ(e.lastComputed(), computed);
-        EXPECT_EQ(e.lastReused(), reused);
-    };
-    check(4, 0);
-    check(0, 4); // nothing changed
-    thresholds[1].low = 2;
-    check(1, 3);
-    thresholds[1].high = 5.0000000001; // rounds down to the same float bound: same bits
-    check(0, 4);
-    boxes[1].enabled = false; // toggling costs no pass over the frame
-    check(0, 4);
-    boxes[1].enabled = true;
-    check(0, 4);
-    boxes[0].mode = BoxMode::Cut;
-    check(0, 4);
-    thresholds[0].enabled = false;
-    thresholds[0].high = 9; // changed while disabled: not computed until enabled
-    check(0, 3);
-    thresholds[0].enabled = true;
-    check(1, 3);
-    boxes.push_back(boxes[0]); // a duplicate shares the cached bits
-    check(0, 4);
-    thresholds.push_back(threshold("missing", 0, 1));
-    check(0, 4);
-    EXPECT_EQ(e.result().missingVariables, std::vector<std::string>{"missing"});
-
-    // Another frame (even with equal contents) drops the cache.
-    auto g = std::make_shared<Frame>(*f);
-    const VisibilityResult& r = e.evaluate(g, boxes, thresholds);
-    EXPECT_EQ(e.lastComputed(), 4u);
-    EXPECT_EQ(r.visibleCount, computeVisibility(*g, boxes, thresholds).visibleCount);
-    EXPECT_GT(e.cacheBytes(), 0u);
-
-    e.clear();
-    EXPECT_EQ(e.cacheBytes(), 0u);
-    EXPECT_EQ(e.result().visibleCount, 0u);
-}
-
-TEST(VisibilityEvaluator, RowMaskIsReadEveryTime) {
-    auto f = lineFrame(100);
-    std::vector<std::uint8_t> rowMask(100, 1);
-    VisibilityEvaluator e;
-    EXPECT_EQ(e.evaluate(f, {}, {}, &rowMask).visibleCount, 100u);
-    rowMask[3] = 0; // same pointer, new contents
-    EXPECT_EQ(e.evaluate(f, {}, {}, &rowMask).visibleCount, 99u);
-    EXPECT_EQ(e.result().mask[3], 0);
-}
-
 TEST(RowBits, FloatRoundingIsExact) {
     using namespace faultline::core::detail;
-    EXPECT_EQ(ceilToFloat(0.1), 0.1f);                       // 0.1f > 0.1
+    EXPECT_EQ(ceilToFloat(0.1), 0.1f);                        // 0.1f > 0.1
     EXPECT_EQ(floorToFloat(0.1), std::nextafter(0.1f, 0.0f)); // largest float <= 0.1
     EXPECT_EQ(ceilToFloat(-0.1), std::nextafter(-0.1f, 0.0f));
     EXPECT_EQ(floorToFloat(-0.1), -0.1f);
