@@ -1,5 +1,7 @@
 #include "core/selection/histogram.hpp"
 
+#include "core/selection/row_bits.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -283,8 +285,16 @@ Histogram computeHistogram(const ColumnView& column, const HistogramBinning& bin
     h.binning = binning;
     h.edges = binning.edges();
     h.hasVisible = visibleMask != nullptr;
-    const EqualWidthBins equal{binning.lo, binning.hi, binning.bins / (binning.hi - binning.lo),
-                               binning.bins, h.edges.data()};
+    // Float columns are compared against edges rounded to the nearest float, as the values
+    // were when read and as thresholds are (row_bits.hpp): a value written in the file as
+    // exactly an edge, such as a radius of 0.005, falls in the bin that edge opens.
+    std::vector<double> compareEdges = h.edges;
+    if (!column.isInteger())
+        for (double& e : compareEdges)
+            e = static_cast<double>(detail::nearestFloatBound(e));
+    const EqualWidthBins equal{compareEdges.front(), compareEdges.back(),
+                               binning.bins / (binning.hi - binning.lo), binning.bins,
+                               compareEdges.data()};
     const std::uint8_t* mask = visibleMask ? visibleMask->data() : nullptr;
 
     tbb::enumerable_thread_specific<LocalCounts> locals(LocalCounts(binning.bins));

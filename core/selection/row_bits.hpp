@@ -24,24 +24,25 @@ inline std::uint64_t lowBits(std::size_t count) {
     return count >= kWordRows ? ~std::uint64_t{0} : (std::uint64_t{1} << count) - 1;
 }
 
-// Smallest float >= d and largest float <= d, so that for every float f:
-// double(f) >= d  <=>  f >= ceilToFloat(d), and double(f) <= d  <=>  f <= floorToFloat(d).
-// NaN stays NaN (every comparison then fails, as it does with the double).
-inline float ceilToFloat(double d) {
+// A bound typed by the user (double) as the float the values are stored in: rounded to the
+// nearest float, as the reader rounded the values. Rounding is monotonic, so every value that
+// lies within the bounds in the file still does, and a value printed as exactly the bound
+// (radius 0.005 against a threshold at 0.005) passes, as a check on the file's decimals says.
+// Only values within one float step of a bound can be taken as equal to it.
+// NaN stays NaN (every comparison then fails); a finite bound beyond the float range becomes
+// the largest float (an infinite value still fails it), an infinite bound stays infinite.
+inline float nearestFloatBound(double d) {
     constexpr double kMax = std::numeric_limits<float>::max();
     if (std::isnan(d))
         return std::numeric_limits<float>::quiet_NaN();
+    if (std::isinf(d))
+        return d > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
     if (d > kMax)
-        return std::numeric_limits<float>::infinity();
-    if (d < -kMax) // only -inf itself is >= -inf
-        return std::isinf(d) ? -std::numeric_limits<float>::infinity()
-                             : -std::numeric_limits<float>::max();
-    float f = static_cast<float>(d);
-    if (static_cast<double>(f) < d)
-        f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
+        return std::numeric_limits<float>::max();
+    if (d < -kMax)
+        return -std::numeric_limits<float>::max();
+    return static_cast<float>(d);
 }
-inline float floorToFloat(double d) { return -ceilToFloat(-d); }
 
 // Integer bounds equivalent to lo <= v <= hi for every int32 v; empty when no int32 passes.
 struct IntBounds {
@@ -60,7 +61,7 @@ inline IntBounds intBoundsFor(double lo, double hi) {
             static_cast<std::int32_t>(h > kMax ? kMax : h)};
 }
 
-// An axis-aligned box as float bounds (already rounded inwards with ceilToFloat/floorToFloat).
+// An axis-aligned box as float bounds (rounded with nearestFloatBound).
 struct FloatBox {
     std::array<float, 3> min{};
     std::array<float, 3> max{};

@@ -25,8 +25,8 @@ constexpr std::size_t kGrainWords = 128;
 FloatBox toFloatBox(const CuttingBox& box) {
     FloatBox b;
     for (int a = 0; a < 3; ++a) {
-        b.min[a] = detail::ceilToFloat(box.min[a]);
-        b.max[a] = detail::floorToFloat(box.max[a]);
+        b.min[a] = detail::nearestFloatBound(box.min[a]);
+        b.max[a] = detail::nearestFloatBound(box.max[a]);
     }
     return b;
 }
@@ -58,8 +58,8 @@ ThresholdTest makeTest(const ColumnView& column, const VariableThreshold& thresh
     if (column.isInteger())
         t.intBounds = detail::intBoundsFor(threshold.low, threshold.high);
     else {
-        t.floatLo = detail::ceilToFloat(threshold.low);
-        t.floatHi = detail::floorToFloat(threshold.high);
+        t.floatLo = detail::nearestFloatBound(threshold.low);
+        t.floatHi = detail::nearestFloatBound(threshold.high);
     }
     return t;
 }

@@ -144,7 +144,7 @@ std::string Session::outputPath(const std::string& path) const {
 
 void Session::setDataset(std::shared_ptr<Dataset> dataset) {
     m_dataset = std::move(dataset);
-    m_visibility.clear();
+    m_visibility = VisibilityResult{};
     m_visibilityFrame.reset();
     ++m_version;
 }
@@ -212,15 +212,18 @@ std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const Frame& fr
 
 const VisibilityResult& Session::visibility() {
     auto frame = currentFrame();
-    if (!frame)
-        return m_emptyVisibility;
+    if (!frame) {
+        m_visibility = VisibilityResult{};
+        m_visibilityFrame.reset();
+        return m_visibility;
+    }
     if (m_visibilityVersion == m_version && m_visibilityFrame == frame)
-        return m_visibility.result();
+        return m_visibility;
     auto rowMask = faultRowMask(*frame);
-    m_visibility.evaluate(frame, m_state.boxes, m_state.thresholds, rowMask.get());
+    m_visibility = computeVisibility(*frame, m_state.boxes, m_state.thresholds, rowMask.get());
     m_visibilityVersion = m_version;
     m_visibilityFrame = frame;
-    return m_visibility.result();
+    return m_visibility;
 }
 
 } // namespace faultline::core

@@ -99,10 +99,9 @@ class Session {
     std::string m_baseDir, m_outputDir;
     std::vector<std::string> m_dataOverride;
 
-    VisibilityEvaluator m_visibility;
+    VisibilityResult m_visibility;
     std::uint64_t m_visibilityVersion = 0;
     std::shared_ptr<const Frame> m_visibilityFrame;
-    VisibilityResult m_emptyVisibility;
 };
 
 // Built-in ops, grouped by what they change (session_ops_*.cpp).

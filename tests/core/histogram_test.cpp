@@ -62,12 +62,13 @@ TEST(Histogram, JournalSemanticsOnAnIntegerColumn) {
 }
 
 TEST(Histogram, ValuesOnEdgesGoRightAndHighIsInTheLastBin) {
-    // As float32 compared in double with edges k * 0.1: 0.3f is above edge 3, 0.7f below edge 7.
+    // Float values against edges rounded to float: 0.7f (read from "0.7") opens bin 7 just as
+    // the file's 0.7 would; 1.0 is the high end and falls in the last bin.
     const Frame f = frameWith(
         {0.0f, 0.1f, 0.3f, 0.6f, 0.7f, 0.9f, 1.0f, -0.0001f, 1.0001f, kNaN, kInf, -kInf}, false);
     const auto binning = chooseBinning(column(f), spec(10, {{0, 1}}));
     const Histogram h = computeHistogram(column(f), binning);
-    EXPECT_EQ(h.all.bins, (Counts{1, 1, 0, 1, 0, 0, 2, 0, 1, 1}));
+    EXPECT_EQ(h.all.bins, (Counts{1, 1, 0, 1, 0, 0, 1, 1, 0, 2}));
     EXPECT_EQ(h.all.outside, 4u);
     EXPECT_EQ(h.all.nan, 1u);
     EXPECT_FALSE(h.hasVisible);

@@ -146,14 +146,15 @@ TEST(Visibility, BoxIsThreeDimensionalWithCornersInside) {
     EXPECT_EQ(visible(f, {box("c", {1, 1, 1}, {2, 2, 2})}), bytes({1, 1, 1, 0, 0, 1}));
 }
 
-TEST(Visibility, BoxBoundsCompareAsDoublesAgainstFloatCentres) {
-    // 0.1f is 0.100000001490116..., just above the double 0.1.
+TEST(Visibility, BoxBoundsCompareAsTheFileWroteThem) {
+    // A centre read from "0.1" is 0.1f (0.100000001490116...); a box bound typed as 0.1 is the
+    // same number to the user: the centre lies on the face, inside both boxes.
     const float tenth = 0.1f;
     const float belowTenth = std::nextafter(tenth, 0.0f); // 0.0999999940...
     auto f = makeFrame({{tenth, 0, 0}, {belowTenth, 0, 0}});
     f->finalize();
     EXPECT_EQ(visible(f, {xBox(0.1, 1.0)}), bytes({1, 0}));
-    EXPECT_EQ(visible(f, {xBox(0.0, 0.1)}), bytes({0, 1}));
+    EXPECT_EQ(visible(f, {xBox(0.0, 0.1)}), bytes({1, 1}));
     EXPECT_EQ(visible(f, {xBox(double(tenth), double(tenth))}), bytes({1, 0}));
 }
 
@@ -219,7 +220,8 @@ TEST(Visibility, BuiltInColumnsCanBeThresholded) {
     f->radius = {0.1f, 0.2f, 0.3f};
     f->finalize();
     EXPECT_EQ(visible(f, {}, {threshold("z", 1, 2)}), bytes({0, 1, 1}));
-    EXPECT_EQ(visible(f, {}, {threshold("radius", 0, 0.2)}), bytes({1, 0, 0}));
+    EXPECT_EQ(visible(f, {}, {threshold("radius", 0, 0.2)}), bytes({1, 1, 0})); // 0.2 as written
+    EXPECT_EQ(visible(f, {}, {threshold("radius", 0, 0.19)}), bytes({1, 0, 0}));
 }
 
 TEST(Visibility, MissingVariableIsIgnoredAndReported) {
@@ -301,21 +303,33 @@ TEST(Visibility, MatchesTheRuleOnRandomFrames) {
     }
 }
 
-TEST(RowBits, FloatRoundingIsExact) {
+TEST(RowBits, BoundsRoundToTheNearestFloat) {
     using namespace faultline::core::detail;
-    EXPECT_EQ(ceilToFloat(0.1), 0.1f);                        // 0.1f > 0.1
-    EXPECT_EQ(floorToFloat(0.1), std::nextafter(0.1f, 0.0f)); // largest float <= 0.1
-    EXPECT_EQ(ceilToFloat(-0.1), std::nextafter(-0.1f, 0.0f));
-    EXPECT_EQ(floorToFloat(-0.1), -0.1f);
-    EXPECT_EQ(ceilToFloat(2.0), 2.0f);
-    EXPECT_EQ(floorToFloat(2.0), 2.0f);
-    EXPECT_EQ(ceilToFloat(1e300), kInf);
-    EXPECT_EQ(floorToFloat(1e300), std::numeric_limits<float>::max());
-    EXPECT_EQ(ceilToFloat(-1e300), -std::numeric_limits<float>::max());
-    EXPECT_EQ(floorToFloat(-1e300), -kInf);
-    EXPECT_EQ(ceilToFloat(-std::numeric_limits<double>::infinity()), -kInf);
-    EXPECT_EQ(floorToFloat(std::numeric_limits<double>::infinity()), kInf);
-    EXPECT_TRUE(std::isnan(ceilToFloat(std::nan(""))));
+    EXPECT_EQ(nearestFloatBound(0.1), 0.1f);
+    EXPECT_EQ(nearestFloatBound(-0.1), -0.1f);
+    EXPECT_EQ(nearestFloatBound(0.005), 0.005f);
+    EXPECT_EQ(nearestFloatBound(2.0), 2.0f);
+    EXPECT_EQ(nearestFloatBound(1e300), std::numeric_limits<float>::max());
+    EXPECT_EQ(nearestFloatBound(-1e300), -std::numeric_limits<float>::max());
+    EXPECT_EQ(nearestFloatBound(std::numeric_limits<double>::infinity()), kInf);
+    EXPECT_EQ(nearestFloatBound(-std::numeric_limits<double>::infinity()), -kInf);
+    EXPECT_TRUE(std::isnan(nearestFloatBound(std::nan(""))));
+}
+
+TEST(Visibility, ValuesWrittenAsExactlyABoundPass) {
+    // A file's 0.005 is stored as the float just below 0.005: it must still pass low = 0.005,
+    // and a centre at x = 0.1 must lie inside a box starting at 0.1.
+    Frame f;
+    f.ids = {1, 2};
+    f.x = {0.1f, 0.3f};
+    f.y = {0, 0};
+    f.z = {0, 0};
+    f.radius = {0.005f, 0.01f};
+    f.finalize();
+    std::vector<VariableThreshold> t{{"radius", 0.005, 0.01, true}};
+    EXPECT_EQ(computeVisibility(f, {}, t).visibleCount, 2u);
+    std::vector<CuttingBox> keep{{"k", {0.1, -1, -1}, {0.2, 1, 1}, BoxMode::Keep, true}};
+    EXPECT_EQ(computeVisibility(f, keep, {}).visibleCount, 1u);
 }
 
 TEST(RowBits, IntBounds) {
