@@ -7,7 +7,7 @@ packages=(
     build-essential cmake ninja-build ccache pkg-config git
     libglfw3-dev libglm-dev libopenvdb-dev libboost-iostreams-dev libtinygltf-dev libimgui-dev libstb-dev
     nlohmann-json3-dev libtbb-dev libepoxy-dev libfast-float-dev zlib1g-dev
-    libgtest-dev libgmock-dev libbenchmark-dev
+    libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
     xvfb xauth libgl1-mesa-dri libglx-mesa0 mesa-utils
 )
 

@@ -403,6 +403,11 @@ Json parseJsonText(const std::string& text, const std::string& path, std::size_t
         const auto colon = msg.find("syntax error");
         throw InputError(path, InputError::Where::Byte, e.byte,
                          "invalid JSON: " + (colon != std::string::npos ? msg.substr(colon) : msg));
+    } catch (const Json::exception& e) {
+        // e.g. out_of_range for a number beyond double (1e999): found by fuzz_journal.
+        std::string msg = e.what();
+        const auto bracket = msg.find("] ");
+        throw InputError(path, "invalid JSON: " + (bracket != std::string::npos ? msg.substr(bracket + 2) : msg));
     }
 }
 

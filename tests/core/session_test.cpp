@@ -218,6 +218,8 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
     refuse(R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
            "views[0].camera.fov_y: must lie in (0, 180)");
     refuse(std::string(100, '[') + std::string(100, ']'), "JSON nested deeper than 64 levels");
+    // Found by fuzz_journal: a number beyond double escaped as a library exception.
+    refuse(R"({"format":"faultline-session","schema":1e999})", "invalid JSON: number overflow parsing '1e999'");
 }
 
 TEST(SessionFile, MissingDataLeavesTheSessionUntouched) {

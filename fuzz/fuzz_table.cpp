@@ -1,0 +1,14 @@
+// CSV / whitespace table text -> parseTable; anything but InputError is a bug.
+#include "core/io/input_error.hpp"
+#include "core/io/table_reader.hpp"
+
+#include <string_view>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    try {
+        faultline::core::parseTable("fuzz.csv", text);
+    } catch (const faultline::core::InputError&) {
+    }
+    return 0;
+}
