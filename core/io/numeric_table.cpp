@@ -1,6 +1,7 @@
 #include "core/io/numeric_table.hpp"
 
 #include "core/io/input_error.hpp"
+#include "core/io/newline_count.hpp"
 
 #include <fast_float/fast_float.h>
 #include <tbb/parallel_for.h>
@@ -11,9 +12,6 @@
 #include <limits>
 #include <optional>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace faultline::core {
 
@@ -25,24 +23,6 @@ struct ChunkError {
     std::size_t row = 0; // row within the whole table
     std::string message;
 };
-
-// Newlines in [p, end): 16 bytes a step with SSE2 where available (GCC does not vectorise
-// std::count at -O2, and this count is a tenth of a reader's time).
-std::size_t countNewlines(const char* p, const char* end) {
-    std::size_t count = 0;
-#if defined(__SSE2__)
-    const __m128i nl = _mm_set1_epi8('\n');
-    while (end - p >= 16) {
-        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-        count += static_cast<std::size_t>(
-            __builtin_popcount(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, nl)))));
-        p += 16;
-    }
-#endif
-    for (; p < end; ++p)
-        count += *p == '\n';
-    return count;
-}
 
 inline bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 

@@ -1,6 +1,7 @@
 #include "core/io/text_lines.hpp"
 
 #include "core/io/input_error.hpp"
+#include "core/io/newline_count.hpp"
 
 #include <cstring>
 
@@ -68,6 +69,13 @@ std::uint64_t TextLineReader::skipLines(std::uint64_t count) {
             break;
         const char* p = m_buffer.data() + m_pos;
         const char* end = m_buffer.data() + m_end;
+        // Whole buffers that end before the wanted line are counted, not walked line by line.
+        if (const std::size_t inBuffer = countNewlines(p, end); skipped + inBuffer < count) {
+            skipped += inBuffer;
+            midLine = end > p && end[-1] != '\n';
+            m_pos = m_end;
+            continue;
+        }
         while (skipped < count && p < end) {
             const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
             if (!nl) {
