@@ -1,0 +1,89 @@
+#include "core/faults/tracking.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cassert>
+
+namespace faultline::core {
+
+std::vector<std::uint32_t> memberRows(const Frame& frame, std::span<const std::int64_t> ids) {
+    std::vector<std::uint32_t> rows;
+    rows.reserve(ids.size());
+    for (std::int64_t id : ids)
+        if (const auto row = frame.rowOf(id))
+            rows.push_back(static_cast<std::uint32_t>(*row));
+    return rows;
+}
+
+namespace {
+CandidateMatch matchOne(const Frame& frame, const CandidateSet& set, const Fault& fault) {
+    CandidateMatch m;
+    std::vector<std::int32_t> labels;
+    labels.reserve(fault.ids.size());
+    for (std::int64_t id : fault.ids) {
+        const auto row = frame.rowOf(id);
+        if (!row)
+            continue;
+        ++m.present;
+        if (const std::int32_t label = set.rowLabel[*row]; label >= 0)
+            labels.push_back(label);
+    }
+    if (labels.empty())
+        return m;
+    std::sort(labels.begin(), labels.end());
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < labels.size();) {
+        std::size_t j = i;
+        while (j < labels.size() && labels[j] == labels[i])
+            ++j;
+        if (j - i > best) { // strict: ties keep the lower (larger) candidate
+            best = j - i;
+            m.candidate = labels[i];
+        }
+        i = j;
+    }
+    m.shared = best;
+    m.candidateSize = set.candidates[static_cast<std::size_t>(m.candidate)].size();
+    m.jaccard = double(m.shared) / double(m.present + m.candidateSize - m.shared);
+    m.precision = double(m.shared) / double(m.candidateSize);
+    m.recall = double(m.shared) / double(m.present);
+    return m;
+}
+} // namespace
+
+std::vector<CandidateMatch> matchFaults(const Frame& frame, const CandidateSet& candidates,
+                                        std::span<const Fault> faults) {
+    assert(candidates.rowLabel.size() == frame.size());
+    std::vector<CandidateMatch> matches(faults.size());
+    tbb::parallel_for(std::size_t(0), faults.size(), [&](std::size_t k) {
+        matches[k] = matchOne(frame, candidates, faults[k]);
+    });
+    return matches;
+}
+
+std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
+                                    const VisibleMaskFn& visibleMask,
+                                    std::span<const Fault> faults, const CandidateOptions& options,
+                                    bool keepMembers) {
+    std::vector<FaultTrack> tracks(faults.size());
+    for (auto& t : tracks)
+        t.points.reserve(frameCount);
+    for (std::size_t f = 0; f < frameCount; ++f) {
+        const std::shared_ptr<const Frame> frame = load(f);
+        const std::vector<std::uint8_t> mask = visibleMask(*frame, f);
+        const CandidateSet set = findCandidates(*frame, mask, options);
+        const std::vector<CandidateMatch> matches = matchFaults(*frame, set, faults);
+        for (std::size_t k = 0; k < faults.size(); ++k) {
+            FaultTrackPoint p;
+            p.frame = f;
+            p.match = matches[k];
+            if (keepMembers && p.match.candidate >= 0)
+                p.members = set.candidates[static_cast<std::size_t>(p.match.candidate)].ids;
+            tracks[k].points.push_back(std::move(p));
+        }
+    }
+    return tracks;
+}
+
+} // namespace faultline::core

@@ -1,0 +1,59 @@
+// Fault tracking: labels follow particle ids across frames, and in each frame a fault is also
+// re-detected as the candidate sharing most ids with it, giving its membership through time.
+#pragma once
+
+#include "core/faults/candidates.hpp"
+#include "core/faults/fault.hpp"
+#include "core/faults/frame_loader.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace faultline::core {
+
+// Rows of the ids present in this frame, in the order of `ids` (absent ids are skipped).
+std::vector<std::uint32_t> memberRows(const Frame& frame, std::span<const std::int64_t> ids);
+
+// How one fault meets one frame's candidates.
+struct CandidateMatch {
+    std::size_t present = 0;      // fault ids present in the frame (the label, following ids)
+    std::int32_t candidate = -1;  // index into the frame's CandidateSet; -1 when none shares an id
+    std::size_t candidateSize = 0;
+    std::size_t shared = 0;       // present fault ids inside that candidate
+    double jaccard = 0;           // shared / (present + candidateSize - shared); 0 without a match
+    double precision = 0;         // shared / candidateSize: how much of the candidate is the fault
+    double recall = 0;            // shared / present: how much of the fault the candidate holds
+    bool operator==(const CandidateMatch&) const = default;
+};
+
+// For each fault, the candidate with the most shared ids (ties: the lower candidate index,
+// i.e. the larger candidate). `candidates` must come from findCandidates on this frame.
+std::vector<CandidateMatch> matchFaults(const Frame& frame, const CandidateSet& candidates,
+                                        std::span<const Fault> faults);
+
+struct FaultTrackPoint {
+    std::size_t frame = 0;
+    CandidateMatch match;
+    std::vector<std::int64_t> members; // the matched candidate's ids, when asked for
+};
+
+// One per fault, one point per frame in order 0..frameCount-1.
+struct FaultTrack {
+    std::vector<FaultTrackPoint> points;
+};
+
+// The visible mask of a frame (size frame.size()), as the session's boxes and thresholds say.
+using VisibleMaskFn = std::function<std::vector<std::uint8_t>(const Frame&, std::size_t frame)>;
+
+// Candidates of every frame (from its visible mask) matched against every fault. Frames are
+// visited one at a time (candidate search is parallel inside). keepMembers stores each
+// matched candidate's ids (memory: faults x frames x candidate size).
+std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
+                                    const VisibleMaskFn& visibleMask,
+                                    std::span<const Fault> faults,
+                                    const CandidateOptions& options = {},
+                                    bool keepMembers = false);
+
+} // namespace faultline::core

@@ -1,0 +1,101 @@
+#include "core/faults/tracking.hpp"
+
+#include "fault_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace faultline::core;
+using faultline::core::testing::frameOf;
+using faultline::core::testing::Sphere;
+
+namespace {
+Fault faultOf(std::string name, std::vector<std::int64_t> ids) {
+    Fault f;
+    f.name = std::move(name);
+    f.add(std::move(ids));
+    return f;
+}
+
+// Two lines of spheres: ids 1..5 along y = 0, ids 11..13 along y = 10; id 20 alone, hidden.
+Frame twoLines() {
+    std::vector<Sphere> s;
+    for (int i = 1; i <= 5; ++i)
+        s.push_back({i, double(i), 0, 0});
+    for (int i = 11; i <= 13; ++i)
+        s.push_back({i, double(i), 10, 0});
+    s.push_back({20, 0, 20, 0});
+    return frameOf(s);
+}
+} // namespace
+
+TEST(FaultTracking, MemberRowsFollowIds) {
+    const Frame f = frameOf({{7, 0, 0, 0}, {3, 1, 0, 0}, {5, 2, 0, 0}});
+    EXPECT_EQ(memberRows(f, std::vector<std::int64_t>{3, 4, 5, 7}),
+              (std::vector<std::uint32_t>{1, 2, 0}));
+}
+
+TEST(FaultTracking, MatchPicksTheCandidateSharingMostIds) {
+    const Frame f = twoLines();
+    std::vector<std::uint8_t> vis(f.size(), 1);
+    vis.back() = 0;
+    const CandidateSet set = findCandidates(f, vis);
+    ASSERT_EQ(set.candidates.size(), 2u);
+    // 3 ids in candidate 0 (1..5), 2 in candidate 1 (11..13), one hidden (20), one absent (99)
+    const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 11, 12, 20, 99}),
+                                    faultOf("G", {20, 99}), faultOf("H", {4, 5, 12, 13})};
+    const auto m = matchFaults(f, set, faults);
+    EXPECT_EQ(m[0].present, 6u);
+    EXPECT_EQ(m[0].candidate, 0);
+    EXPECT_EQ(m[0].candidateSize, 5u);
+    EXPECT_EQ(m[0].shared, 3u);
+    EXPECT_DOUBLE_EQ(m[0].jaccard, 3.0 / 8.0);
+    EXPECT_DOUBLE_EQ(m[0].precision, 3.0 / 5.0);
+    EXPECT_DOUBLE_EQ(m[0].recall, 3.0 / 6.0);
+
+    EXPECT_EQ(m[1].present, 1u); // only the hidden one
+    EXPECT_EQ(m[1].candidate, -1);
+    EXPECT_EQ(m[1].shared, 0u);
+    EXPECT_EQ(m[1].jaccard, 0.0);
+
+    EXPECT_EQ(m[2].candidate, 0); // 2 and 2: the tie goes to the larger candidate
+    EXPECT_EQ(m[2].shared, 2u);
+}
+
+TEST(FaultTracking, TrackFollowsAGrowingFault) {
+    // Frame t: spheres 1..10 on a line; the visible ones are ids <= 4 + 2t, plus a separate
+    // pair (ids 50, 51) visible in every frame.
+    std::vector<std::shared_ptr<const Frame>> frames;
+    for (int t = 0; t < 3; ++t) {
+        std::vector<Sphere> s;
+        for (int i = 1; i <= 10; ++i)
+            s.push_back({i, double(i), 0, 0.01 * t});
+        s.push_back({50, 0, 30, 0});
+        s.push_back({51, 1, 30, 0});
+        frames.push_back(std::make_shared<const Frame>(frameOf(s)));
+    }
+    auto visible = [](const Frame& f, std::size_t t) {
+        std::vector<std::uint8_t> v(f.size());
+        for (std::size_t r = 0; r < f.size(); ++r)
+            v[r] = f.ids[r] >= 50 || f.ids[r] <= 4 + 2 * std::int64_t(t);
+        return v;
+    };
+    const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 4})};
+    const auto tracks = trackFaults(
+        3, [&](std::size_t i) { return frames[i]; }, visible, faults, {1.1, 1}, true);
+    ASSERT_EQ(tracks.size(), 1u);
+    ASSERT_EQ(tracks[0].points.size(), 3u);
+    for (std::size_t t = 0; t < 3; ++t) {
+        const FaultTrackPoint& p = tracks[0].points[t];
+        EXPECT_EQ(p.frame, t);
+        EXPECT_EQ(p.match.present, 4u);
+        EXPECT_EQ(p.match.candidate, 0);
+        EXPECT_EQ(p.match.shared, 4u);
+        EXPECT_EQ(p.match.candidateSize, 4 + 2 * t);
+        EXPECT_DOUBLE_EQ(p.match.jaccard, 4.0 / double(4 + 2 * t));
+        EXPECT_EQ(p.members.size(), 4 + 2 * t);
+        EXPECT_EQ(p.members.front(), 1);
+        EXPECT_EQ(p.members.back(), std::int64_t(4 + 2 * t));
+    }
+    const auto lean = trackFaults(3, [&](std::size_t i) { return frames[i]; }, visible, faults);
+    EXPECT_TRUE(lean[0].points[2].members.empty());
+}
