@@ -1,11 +1,15 @@
 // Ops on faults: fault.create/add/remove/set/delete/restore/merge/filter (JOURNAL.md).
 #include "core/session/session_ops.hpp"
 
+#include "core/faults/candidates.hpp"
+
 #include <algorithm>
 
 namespace faultline::core::detail {
 
 namespace {
+
+constexpr long long kDefaultCandidateMinSize = 10;
 
 // Distinct, legible colours for new faults, in order.
 constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.90f, 0.30f, 0.20f},
@@ -220,8 +224,69 @@ void registerFaultOps(OpTable& ops) {
         s.mutableState().faultFilter = next;
         return inverse;
     });
-    addNotYet(ops, "fault.candidates", "automatic candidates land with the fault analysis");
-    addNotYet(ops, "fault.split", "splitting lands with the fault analysis");
+    addStateOp(ops, "fault.candidates", [](Session& s, const Json& cmd) -> Json {
+        // Connected components of the visible spheres, each accepted as a fault, largest first.
+        args::onlyFields(cmd, {"link", "min_size", "prefix"});
+        CandidateOptions options;
+        options.link = args::optionalNumber(cmd, "link").value_or(1.1);
+        const long long minSize = args::optionalInteger(cmd, "min_size").value_or(kDefaultCandidateMinSize);
+        if (!(options.link > 0) || minSize < 1)
+            throw CommandError("fault.candidates: \"link\" must be > 0 and \"min_size\" >= 1");
+        options.minSize = static_cast<std::size_t>(minSize);
+        const std::string prefix = args::optionalString(cmd, "prefix").value_or("C");
+        auto frame = s.currentFrame();
+        if (!frame)
+            throw CommandError("fault.candidates: no data is open");
+        const CandidateSet set = findCandidates(*frame, s.visibility().mask, options);
+        if (set.candidates.empty())
+            throw CommandError("fault.candidates: no group of at least " + std::to_string(minSize) +
+                               " linked visible spheres");
+        Json batch = Json::array();
+        for (const Fault& f : faultsFromCandidates(set.candidates, prefix)) {
+            if (s.state().fault(f.name))
+                throw CommandError("fault.candidates: a fault named \"" + f.name +
+                                   "\" exists already (choose another \"prefix\")");
+            batch.push_back({{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}});
+        }
+        return s.execute({{"op", "batch"}, {"commands", batch}});
+    });
+    addStateOp(ops, "fault.split", [](Session& s, const Json& cmd) -> Json {
+        // A fault's members in the current frame, split into connected pieces: name.1 (largest),
+        // name.2, ... Members absent from this frame stay with the largest piece.
+        args::onlyFields(cmd, {"name", "link"});
+        const Fault& fault = faultOf(s, cmd, "fault.split");
+        auto frame = s.currentFrame();
+        if (!frame)
+            throw CommandError("fault.split: no data is open");
+        CandidateOptions options;
+        options.link = args::optionalNumber(cmd, "link").value_or(1.1);
+        if (!(options.link > 0))
+            throw CommandError("fault.split: \"link\" must be > 0");
+        std::vector<std::uint8_t> members(frame->size(), 0);
+        std::vector<std::int64_t> absent;
+        for (std::int64_t id : fault.ids) {
+            if (auto row = frame->rowOf(id))
+                members[*row] = 1;
+            else
+                absent.push_back(id);
+        }
+        const CandidateSet set = findCandidates(*frame, members, options);
+        if (set.candidates.size() < 2)
+            throw CommandError("fault.split: \"" + fault.name + "\" is one connected piece at link " +
+                               std::to_string(options.link));
+        const std::string name = fault.name;
+        Json batch = Json::array({{{"op", "fault.delete"}, {"name", name}}});
+        for (std::size_t k = 0; k < set.candidates.size(); ++k) {
+            std::vector<std::int64_t> ids = set.candidates[k].ids;
+            if (k == 0)
+                ids.insert(ids.end(), absent.begin(), absent.end());
+            const std::string piece = name + "." + std::to_string(k + 1);
+            if (s.state().fault(piece))
+                throw CommandError("fault.split: a fault named \"" + piece + "\" exists already");
+            batch.push_back({{"op", "fault.create"}, {"name", piece}, {"ids", ids}, {"color", candidateColor(k)}});
+        }
+        return s.execute({{"op", "batch"}, {"commands", batch}});
+    });
 }
 
 } // namespace faultline::core::detail

@@ -2,6 +2,10 @@
 // not landed yet (a clear error instead of a silent pass).
 #include "core/session/session_ops.hpp"
 
+#include "core/faults/fault_export.hpp"
+#include "core/faults/metrics.hpp"
+#include "core/session/atomic_file.hpp"
+
 namespace faultline::core::detail {
 
 void registerOutputOps(OpTable& ops) {
@@ -15,7 +19,31 @@ void registerOutputOps(OpTable& ops) {
         }
         return nullptr;
     });
-    addNotYet(ops, "export.csv", "CSV export lands with the fault analysis");
+    addAction(ops, "export.csv", [](Session& s, const Json& cmd) -> Json {
+        // what = faults: "id,fault", a row per member; fault_metrics: a row per frame and fault.
+        args::onlyFields(cmd, {"what", "path"});
+        const std::string what = args::string(cmd, "what");
+        const std::string path = s.outputPath(args::string(cmd, "path"));
+        std::string text;
+        if (what == "faults") {
+            text = faultsCsv(s.state().faults);
+        } else if (what == "fault_metrics") {
+            auto ds = s.dataset();
+            if (!ds)
+                throw CommandError("export.csv: fault_metrics needs open data");
+            const FaultMetricsSeries series = computeMetricsSeries(
+                ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, s.state().faults);
+            text = faultMetricsCsv(series);
+        } else {
+            throw CommandError("export.csv: \"what\" must be faults or fault_metrics");
+        }
+        try {
+            writeFileAtomically(path, text);
+        } catch (const std::exception& e) {
+            throw CommandError(std::string("export.csv: ") + e.what());
+        }
+        return nullptr;
+    });
     addNotYet(ops, "surface.build", "surfaces land with the implicit-surface feature");
     addNotYet(ops, "export.vdb", "VDB export lands with the implicit-surface feature");
     addNotYet(ops, "export.gltf", "glTF export lands with the implicit-surface feature");

@@ -301,3 +301,32 @@ TEST(Journal, FailingCommandStopsTheReplay) {
     ASSERT_EQ(report.failures.size(), 1u);
     EXPECT_EQ(report.failures[0].message, "frame.set: no data is open");
 }
+
+TEST(Session, CandidatesAndSplitUndoExactly) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    // Two slabs three spacings apart: x = 0 and x = 3 (16 spheres each).
+    s.apply(cmd(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
+    s.apply(cmd(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+    const SessionState before = s.state();
+    s.apply(cmd(R"({"op":"fault.candidates","link":1.1,"min_size":5,"prefix":"K"})"));
+    ASSERT_EQ(s.state().faults.size(), 2u);
+    EXPECT_EQ(s.state().fault("K1")->ids.size(), 16u);
+    EXPECT_EQ(s.state().fault("K1")->ids.front(), 1); // equal sizes: the smaller id first
+    s.apply(cmd(R"({"op":"fault.merge","names":["K1","K2"],"into":"K"})"));
+    const SessionState merged = s.state();
+    s.apply(cmd(R"({"op":"fault.split","name":"K"})"));
+    EXPECT_EQ(s.state().fault("K.1")->ids.size(), 16u);
+    EXPECT_EQ(s.state().fault("K.2")->ids.size(), 16u);
+    EXPECT_FALSE(s.state().fault("K"));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(dump(s.state()), dump(merged));
+    s.apply(cmd(R"({"op":"undo"})"));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(dump(s.state()), dump(before));
+    EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":100})")), CommandError);
+    s.apply(cmd(R"({"op":"fault.create","name":"K1","ids":[1]})"));
+    EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":5,"prefix":"K"})")), CommandError);
+    EXPECT_THROW(s.apply(cmd(R"({"op":"fault.split","name":"K1"})")), CommandError); // one piece
+}
