@@ -3,6 +3,7 @@
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/numeric_table.hpp"
+#include "core/io/parsed_columns.hpp"
 #include "core/io/text_lines.hpp"
 
 #include <fast_float/fast_float.h>
@@ -336,18 +337,6 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
 
     parseNumericTable(rest, layout, spec, targets);
 
-    if (idCol < 0) {
-        frame.idsAreRowNumbers = true;
-        for (std::size_t i = 0; i < n; ++i)
-            frame.ids[i] = static_cast<std::int64_t>(i);
-    }
-    if (radiusCol < 0 && diameterCol < 0) {
-        frame.radiusIsDefault = true;
-        std::fill(frame.radius.begin(), frame.radius.end(), kDefaultRadius);
-    } else if (diameterCol >= 0) {
-        for (float& r : frame.radius)
-            r *= 0.5f;
-    }
     if (scaled) {
         const SimulationBox& b = h.box;
         const double lx = b.hi[0] - b.lo[0], ly = b.hi[1] - b.lo[1], lz = b.hi[2] - b.lo[2];
@@ -358,21 +347,12 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
             frame.z[i] = static_cast<float>(b.lo[2] + zs * lz);
         }
     }
-    std::vector<std::size_t> attributeCols;
-    for (std::size_t c = 0; c < cols.size(); ++c)
-        if (isAttribute[c])
-            attributeCols.push_back(c);
-    frame.attributes.resize(attributeCols.size());
-    tbb::parallel_for(std::size_t(0), attributeCols.size(), [&](std::size_t k) {
-        const std::size_t c = attributeCols[k];
-        frame.attributes[k] =
-            makeAttribute(cols[c], std::move(attributeValues[c]), !targets[c].sawNonInteger);
-    });
-    try {
-        frame.finalize();
-    } catch (const std::invalid_argument& e) {
-        throw InputError(path, InputError::Where::Line, firstLine, e.what());
-    }
+    completeParsedFrame(frame,
+                        {cols, targets, attributeValues, isAttribute, idCol >= 0,
+                         radiusCol >= 0     ? ParsedColumns::Radius::Radius
+                         : diameterCol >= 0 ? ParsedColumns::Radius::Diameter
+                                            : ParsedColumns::Radius::Missing},
+                        path, firstLine);
     return frame;
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/io/numeric_table.hpp"
+#include "core/io/parsed_columns.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -140,27 +141,12 @@ Frame parseTable(const std::string& path, std::string_view text) {
     spec.separator = separator;
     parseNumericTable(body, layoutNumericTable(body, spec), spec, targets);
 
-    if (idc < 0) {
-        frame.idsAreRowNumbers = true;
-        for (std::size_t i = 0; i < rows; ++i)
-            frame.ids[i] = static_cast<std::int64_t>(i);
-    }
-    if (rc < 0 && dc < 0) {
-        frame.radiusIsDefault = true;
-        std::fill(frame.radius.begin(), frame.radius.end(), kDefaultRadius);
-    } else if (dc >= 0) {
-        for (float& r : frame.radius)
-            r *= 0.5f;
-    }
-    for (std::size_t c = 0; c < names.size(); ++c)
-        if (isAttribute[c])
-            frame.attributes.push_back(
-                makeAttribute(names[c], std::move(values[c]), !targets[c].sawNonInteger));
-    try {
-        frame.finalize();
-    } catch (const std::invalid_argument& e) {
-        throw InputError(path, InputError::Where::Line, headerLine, e.what());
-    }
+    completeParsedFrame(frame,
+                        {names, targets, values, isAttribute, idc >= 0,
+                         rc >= 0   ? ParsedColumns::Radius::Radius
+                         : dc >= 0 ? ParsedColumns::Radius::Diameter
+                                   : ParsedColumns::Radius::Missing},
+                        path, headerLine);
     return frame;
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 
 using namespace faultline::core;
+using faultline::test::inputErrorOf;
 using faultline::test::TempDir;
 
 namespace {
@@ -22,15 +23,6 @@ std::string header(long atoms, const std::string& columns, const std::string& bo
 
 Frame parse(const std::string& text) { return parseLammpsDumpFrame("t.dump", text); }
 
-// Message of the InputError that `f` throws ("" when none).
-template <typename F> std::string errorOf(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 } // namespace
 
@@ -121,38 +113,38 @@ TEST(LammpsDump, UnitsTimeItemsAndWindowsLineEnds) {
 TEST(LammpsDump, ErrorsNameLineAndWhat) {
     const std::string h = header(2, "id x y z");
     // Header is 9 lines, rows start at line 10.
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 0 zz 0\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 zz 0\n"); }),
               "t.dump:11: column 3 ('y'): expected a number, found 'zz'");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 0 0\n"); }), "t.dump:11: expected 4 values, found 3");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 0 0 0 9\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0\n"); }), "t.dump:11: expected 4 values, found 3");
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0 0 9\n"); }),
               "t.dump:11: expected 4 values, found more: '9'");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 nan 0 0\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 nan 0 0\n"); }),
               "t.dump:11: column 'x' must be finite, found 'nan'");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 inf 0 0\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 inf 0 0\n"); }),
               "t.dump:11: column 'x' must be finite, found 'inf'");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n1.5 0 0 0\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n1.5 0 0 0\n"); }),
               "t.dump:11: column 1 ('id'): expected an integer, found '1.5'");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n1 0 0 0\n"); }), "t.dump:1: particle id 1 appears twice");
-    EXPECT_NE(errorOf([&] { parse(header(1, "id a b c") + "1 0 0 0\n"); }).find("no position columns"),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n1 0 0 0\n"); }), "t.dump:1: particle id 1 appears twice");
+    EXPECT_NE(inputErrorOf([&] { parse(header(1, "id a b c") + "1 0 0 0\n"); }).find("no position columns"),
               std::string::npos);
-    EXPECT_EQ(errorOf([&] { parse("ITEM: TIMESTEP\nabc\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\nabc\n"); }),
               "t.dump:2: expected the timestep (an integer), found 'abc'");
-    EXPECT_EQ(errorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n-4\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n-4\n"); }),
               "t.dump:4: expected the number of atoms (an integer >= 0), found '-4'");
-    EXPECT_EQ(errorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: BOGUS\n"); }), "t.dump:3: unknown section 'ITEM: BOGUS'");
-    EXPECT_EQ(errorOf([&] { parse("ITEM: TIMESTEP\n1\n"); }), "t.dump:3: file ends where an ITEM: line was expected");
-    EXPECT_EQ(errorOf([&] { parse(h + "1 0 0 0\n2 0 0 0\n3 0 0 0\n"); }), "t.dump:12: more rows than the 2 announced");
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: BOGUS\n"); }), "t.dump:3: unknown section 'ITEM: BOGUS'");
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\n"); }), "t.dump:3: file ends where an ITEM: line was expected");
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0 0\n3 0 0 0\n"); }), "t.dump:12: more rows than the 2 announced");
 }
 
 TEST(LammpsDump, HugeAtomCountRefusedBeforeAllocating) {
     const std::string text = header(1000000000000LL, "id x y z") + "1 0 0 0\n";
-    const std::string msg = errorOf([&] { parse(text); });
+    const std::string msg = inputErrorOf([&] { parse(text); });
     EXPECT_EQ(msg, "t.dump:10: NUMBER OF ATOMS is 1000000000000 but only 8 bytes follow");
 }
 
 TEST(LammpsDump, RowsTooShortForTheirCountNameTheRow) {
     // Two lines exist but hold too few bytes for 4 values each: the short row is named.
-    EXPECT_EQ(errorOf([&] { parse(header(2, "id x y z") + "1 0 0 0\n2\n"); }),
+    EXPECT_EQ(inputErrorOf([&] { parse(header(2, "id x y z") + "1 0 0 0\n2\n"); }),
               "t.dump:11: expected 4 values, found 1");
 }
 
@@ -184,7 +176,7 @@ TEST(LammpsDump, TruncatedMultiFrameNamesTheFrame) {
     TempDir dir;
     const std::string p = dir.write("cut.dump", header(2, "id x y z") + "1 0 0 0\n2 0 0 0\n" +
                                                     header(3, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", 200) + "1 0 0 0\n");
-    const std::string msg = errorOf([&] { Dataset::open({p}); });
+    const std::string msg = inputErrorOf([&] { Dataset::open({p}); });
     EXPECT_NE(msg.find(":22: file ends after 1 of 3 particle rows of timestep 200"), std::string::npos) << msg;
 }
 

@@ -7,16 +7,7 @@
 
 using namespace faultline::core;
 
-namespace {
-template <typename F> std::string errorOf(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-} // namespace
+using faultline::test::inputErrorOf;
 
 TEST(TableReader, CsvWithIdRadiusAndAttributes) {
     Frame f = parseTable("t.csv", "id,x,y,z,radius,strain\n5,1,2,3,0.5,0.1\n6,4,5,6,0.25,0.2\n");
@@ -36,14 +27,14 @@ TEST(TableReader, WhitespaceUpperCaseQuotedAndTrailingBlankLines) {
 }
 
 TEST(TableReader, Errors) {
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", ""); }), "t.csv: empty file: expected a header row naming columns x, y, z");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "a,b,c\n1,2,3\n"); }),
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", ""); }), "t.csv: empty file: expected a header row naming columns x, y, z");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "a,b,c\n1,2,3\n"); }),
               "t.csv:1: header must name columns x, y and z, found 'a,b,c'");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n1,2\n"); }), "t.csv:3: expected 3 values, found 2");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n\n1,2,3\n"); }), "t.csv:3: expected 3 values, found 0");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "x,y,z,x\n"); }), "t.csv:1: column 'x' appears twice");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "x,y,z\n1,2,-inf\n"); }), "t.csv:2: column 'z' must be finite, found '-inf'");
-    EXPECT_EQ(errorOf([] { parseTable("t.csv", "id,x,y,z\n1,0,0,0\n1,0,0,0\n"); }), "t.csv:1: particle id 1 appears twice");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n1,2\n"); }), "t.csv:3: expected 3 values, found 2");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n\n1,2,3\n"); }), "t.csv:3: expected 3 values, found 0");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z,x\n"); }), "t.csv:1: column 'x' appears twice");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,-inf\n"); }), "t.csv:2: column 'z' must be finite, found '-inf'");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "id,x,y,z\n1,0,0,0\n1,0,0,0\n"); }), "t.csv:1: particle id 1 appears twice");
 }
 
 TEST(TableReader, FixtureDemeWheel) {

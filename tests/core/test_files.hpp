@@ -1,6 +1,8 @@
 // Helpers for tests that write small files: a private temp folder per test, removed after.
 #pragma once
 
+#include "core/io/input_error.hpp"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -34,6 +36,16 @@ class TempDir {
   private:
     std::filesystem::path m_path;
 };
+
+// The message of the InputError that `f` throws, or "" when it throws none.
+template <typename F> std::string inputErrorOf(F f) {
+    try {
+        f();
+    } catch (const faultline::core::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
 
 inline std::string dataFile(const std::string& name) {
     return std::string(FAULTLINE_TEST_DATA) + "/" + name;
