@@ -4,6 +4,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FAULTLINE_BUILD_DIR:-$here/build}"
+# Paths relative to the checkout, so clones elsewhere (CI) hit the same ccache entries.
+export CCACHE_BASEDIR="$here" CCACHE_NOHASHDIR=1
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 if [ ! -f "$build/CMakeCache.txt" ]; then

@@ -7,6 +7,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FAULTLINE_HARDENING_DIR:-$here/build-hardening}"
 seconds="${FAULTLINE_FUZZ_SECONDS:-30}"
+export CCACHE_BASEDIR="$here" CCACHE_NOHASHDIR=1
 "$here/scripts/setup.sh"
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
