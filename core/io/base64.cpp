@@ -89,8 +89,7 @@ bool decodeBase64(std::string_view text, std::string& out, std::string& error,
                   std::size_t& errorOffset) {
     Base64Decoder decoder(text);
     out.resize(decoder.maxRemainingBytes());
-    const std::size_t n =
-        decoder.decode(reinterpret_cast<unsigned char*>(out.data()), out.size());
+    const std::size_t n = decoder.decode(reinterpret_cast<unsigned char*>(out.data()), out.size());
     out.resize(n);
     if (decoder.failed()) {
         error = decoder.error();

@@ -21,7 +21,8 @@ class Base64Decoder {
     std::size_t errorOffset() const { return m_errorOffset; } // in the text
     std::size_t position() const { return m_pos; }            // characters consumed
     // The most bytes the rest of the text can decode to.
-    std::size_t maxRemainingBytes() const { return (m_text.size() - m_pos) / 4 * 3 + (m_pendingCount - m_pendingUsed);
+    std::size_t maxRemainingBytes() const {
+        return (m_text.size() - m_pos) / 4 * 3 + (m_pendingCount - m_pendingUsed);
     }
 
   private:

@@ -45,7 +45,8 @@ inline bool isSpace(char c) {
 std::string decodeName(std::string_view s) {
     std::string out;
     for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+        if (s[i] == '%' && i + 2 < s.size() &&
+            std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
             std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
             out += static_cast<char>(std::stoi(std::string(s.substr(i + 1, 2)), nullptr, 16));
             i += 2;
@@ -146,7 +147,8 @@ class LegacyReader {
             return false;
         const void* nl = std::memchr(m_data.data() + m_pos, '\n', m_data.size() - m_pos);
         const std::size_t end =
-            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - m_data.data()) : m_data.size();
+            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - m_data.data())
+               : m_data.size();
         line = m_data.substr(m_pos, end - m_pos);
         if (!line.empty() && line.back() == '\r')
             line.remove_suffix(1);
@@ -200,8 +202,8 @@ class LegacyReader {
 
     void expectWords(const HeaderLine& h, std::size_t n, const char* form) const {
         if (h.words.size() != n)
-            fail(h, std::string("expected '") + form + "', found " + std::to_string(h.words.size()) +
-                        " words");
+            fail(h, std::string("expected '") + form + "', found " +
+                        std::to_string(h.words.size()) + " words");
     }
 
     std::uint64_t count(const HeaderLine& h, std::size_t index, const char* what) const {
@@ -221,8 +223,11 @@ class LegacyReader {
         if (!t) {
             const std::string found = upper(h.words[index]);
             fail(h, "expected a data type (float, double, int, unsigned_char, vtktypeint64, ...), "
-                    "found " + quoteForError(h.words[index]) +
-                        (found == "STRING" || found == "UTF8_STRING" ? " (string arrays are not supported)" : ""));
+                    "found " +
+                        quoteForError(h.words[index]) +
+                        (found == "STRING" || found == "UTF8_STRING"
+                             ? " (string arrays are not supported)"
+                             : ""));
         }
         return *t;
     }
@@ -239,11 +244,13 @@ class LegacyReader {
     void checkRoom(std::uint64_t values, VtkScalar type, const std::string& what,
                    std::uint64_t line) const {
         const std::uint64_t remaining = m_data.size() - m_pos;
-        const std::uint64_t needed = m_binary ? detail::vtkPackedBytes(type, std::min<std::uint64_t>(values, 1ull << 56))
-                                              : (values == 0 ? 0 : 2 * values - 1);
+        const std::uint64_t needed =
+            m_binary ? detail::vtkPackedBytes(type, std::min<std::uint64_t>(values, 1ull << 56))
+                     : (values == 0 ? 0 : 2 * values - 1);
         if (needed > remaining)
             failHere(line, what + ": " + std::to_string(values) + " values declared, but only " +
-                               std::to_string(remaining) + " bytes remain (truncated file or wrong count)");
+                               std::to_string(remaining) +
+                               " bytes remain (truncated file or wrong count)");
     }
 
     std::string_view nextToken(std::uint64_t& tokenLine) {
@@ -286,7 +293,8 @@ class LegacyReader {
                         throw InputError(m_path, InputError::Where::Byte,
                                          m_pos + bad * detail::vtkScalarBytes(type),
                                          what + ": value " + std::to_string(bad + 1) +
-                                             " is not a finite number (" + std::to_string(out[bad]) + ")");
+                                             " is not a finite number (" +
+                                             std::to_string(out[bad]) + ")");
                 }
             }
             m_pos += bytes;
@@ -301,8 +309,8 @@ class LegacyReader {
                 failValue(line, what, i, values, tok, "a number");
             if (!out) { // skipping: only refuse what cannot be a number (a keyword: too few values)
                 const char c = tok[0];
-                if (!(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' ||
-                      c == 'n' || c == 'N' || c == 'i' || c == 'I'))
+                if (!(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' ||
+                      c == '.' || c == 'n' || c == 'N' || c == 'i' || c == 'I'))
                     failValue(line, what, i, values, tok, "a number");
                 continue;
             }
@@ -339,34 +347,40 @@ class LegacyReader {
         double v = 0;
         auto r = fast_float::from_chars(version.data(), version.data() + version.size(), v);
         if (r.ec != std::errc() || !(v >= 1.0 && v < 100.0))
-            throw InputError(m_path, InputError::Where::Line, 1,
-                             "expected a version number such as 3.0 or 5.1 after 'Version', found " +
-                                 quoteForError(version));
+            throw InputError(
+                m_path, InputError::Where::Line, 1,
+                "expected a version number such as 3.0 or 5.1 after 'Version', found " +
+                    quoteForError(version));
         if (!nextLine(line, h.line, h.offset)) // title: anything
-            throw InputError(m_path, InputError::Where::Line, 2, "expected a title line, found the end of the file");
+            throw InputError(m_path, InputError::Where::Line, 2,
+                             "expected a title line, found the end of the file");
         if (!nextHeaderLine(h))
-            throw InputError(m_path, InputError::Where::Line, 3, "expected ASCII or BINARY, found the end of the file");
+            throw InputError(m_path, InputError::Where::Line, 3,
+                             "expected ASCII or BINARY, found the end of the file");
         const std::string mode = upper(h.words[0]);
         if (h.words.size() != 1 || (mode != "ASCII" && mode != "BINARY"))
             fail(h, "expected ASCII or BINARY, found " + quoteForError(h.words[0]));
         m_binary = mode == "BINARY";
         if (!nextHeaderLine(h))
             throw InputError(m_path, InputError::Where::Line, m_line,
-                             "expected 'DATASET POLYDATA' or 'DATASET UNSTRUCTURED_GRID', found the end of the file");
+                             "expected 'DATASET POLYDATA' or 'DATASET UNSTRUCTURED_GRID', found "
+                             "the end of the file");
         if (upper(h.words[0]) != "DATASET" || h.words.size() != 2)
             fail(h, "expected 'DATASET POLYDATA' or 'DATASET UNSTRUCTURED_GRID', found " +
                         quoteForError(h.words[0]));
         const std::string type = upper(h.words[1]);
         if (type != "POLYDATA" && type != "UNSTRUCTURED_GRID")
             fail(h, "DATASET " + std::string(h.words[1]) +
-                        " is not supported: expected POLYDATA or UNSTRUCTURED_GRID (particles as points)");
+                        " is not supported: expected POLYDATA or UNSTRUCTURED_GRID (particles as "
+                        "points)");
     }
 
     void readPoints(const HeaderLine& h) {
         expectWords(h, 3, "POINTS n type");
         const std::uint64_t n = count(h, 1, "point count");
         if (n > kMaxPoints)
-            fail(h, "POINTS " + std::to_string(n) + " is more than the 4 billion points a frame can hold");
+            fail(h, "POINTS " + std::to_string(n) +
+                        " is more than the 4 billion points a frame can hold");
         const VtkScalar type = scalarType(h, 2);
         checkRoom(3 * n, type, "POINTS", h.line);
         m_points.resize(3 * n);
@@ -410,6 +424,8 @@ class LegacyReader {
         if (!keep)
             return skipValues(values, type, what);
         checkRoom(values, type, what, h.line);
+        if (m_arrays.size() >= detail::kMaxVtkColumns)
+            fail(h, "more than " + std::to_string(detail::kMaxVtkColumns) + " point arrays");
         VtkPointArray a;
         a.name = std::move(name);
         a.components = components;
@@ -429,7 +445,8 @@ class LegacyReader {
             if (!nextHeaderLine(a))
                 throw InputError(m_path, InputError::Where::Line, m_line,
                                  "FIELD " + std::string(h.words[1]) + ": expected " +
-                                     std::to_string(arrays) + " arrays, found " + std::to_string(k));
+                                     std::to_string(arrays) + " arrays, found " +
+                                     std::to_string(k));
             if (upper(a.words[0]) == "NULL_ARRAY")
                 continue;
             if (a.words.size() != 4)
@@ -451,12 +468,14 @@ class LegacyReader {
     }
 
     // An attribute of POINT_DATA (keep) or CELL_DATA (skip). False for an unknown keyword.
-    bool readAttribute(const HeaderLine& h, const std::string& key, bool keep, std::uint64_t tuples) {
+    bool readAttribute(const HeaderLine& h, const std::string& key, bool keep,
+                       std::uint64_t tuples) {
         if (key == "SCALARS") {
             if (h.words.size() != 3 && h.words.size() != 4)
                 fail(h, "expected 'SCALARS name type [components]'");
             const VtkScalar type = scalarType(h, 2);
-            const std::uint64_t components = h.words.size() == 4 ? count(h, 3, "component count") : 1;
+            const std::uint64_t components =
+                h.words.size() == 4 ? count(h, 3, "component count") : 1;
             if (nextLineStartsWith("LOOKUP_TABLE", true)) {
                 HeaderLine lut;
                 nextHeaderLine(lut);

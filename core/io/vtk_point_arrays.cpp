@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <unordered_set>
 
 namespace faultline::core::detail {
 
@@ -18,8 +19,8 @@ std::string lower(std::string_view s) {
     return out;
 }
 
-template <typename T> void unpackAs(const unsigned char* p, std::size_t count, bool bigEndian,
-                                    double* out) {
+template <typename T>
+void unpackAs(const unsigned char* p, std::size_t count, bool bigEndian, double* out) {
     const bool swap = bigEndian != (std::endian::native == std::endian::big);
     unsigned char buf[sizeof(T)];
     for (std::size_t i = 0; i < count; ++i, p += sizeof(T)) {
@@ -126,8 +127,8 @@ std::optional<VtkScalar> vtkXmlScalar(std::string_view n) {
     return std::nullopt;
 }
 
-void unpackVtkValues(const unsigned char* bytes, std::size_t count, VtkScalar type,
-                     bool bigEndian, double* out) {
+void unpackVtkValues(const unsigned char* bytes, std::size_t count, VtkScalar type, bool bigEndian,
+                     double* out) {
     switch (type) {
     case VtkScalar::Bit:
         for (std::size_t i = 0; i < count; ++i)
@@ -178,11 +179,12 @@ Frame buildVtkFrame(const std::string& path, const std::vector<double>& points,
 
     const VtkPointArray* idArray = nullptr;
     bool haveRadius = false;
-    std::vector<std::string> names; // attribute column names, to refuse repeats
+    std::unordered_set<std::string> names; // attribute column names, to refuse repeats
     for (VtkPointArray& a : arrays) {
         if (a.values.size() != n * a.components)
-            failAt(path, a, "array '" + a.name + "' has " + std::to_string(a.values.size()) +
-                                " values, expected " + std::to_string(n * a.components));
+            failAt(path, a,
+                   "array '" + a.name + "' has " + std::to_string(a.values.size()) +
+                       " values, expected " + std::to_string(n * a.components));
         const std::string key = lower(a.name);
         if (a.components == 1 && !haveRadius && (isRadiusName(key) || isDiameterName(key))) {
             const std::size_t bad = firstNonFiniteAsFloat(a.values.data(), n);
@@ -209,14 +211,16 @@ Frame buildVtkFrame(const std::string& path, const std::vector<double>& points,
             std::string name = a.components == 1   ? a.name
                                : a.components == 3 ? a.name + kAxes[c]
                                                    : a.name + "_" + std::to_string(c);
-            if (std::find(names.begin(), names.end(), name) != names.end())
+            if (!names.insert(name).second)
                 failAt(path, a, "column '" + name + "' appears twice");
-            names.push_back(name);
+            if (names.size() > kMaxVtkColumns)
+                failAt(path, a,
+                       "more than " + std::to_string(kMaxVtkColumns) + " attribute columns");
             std::vector<float> column(n);
             for (std::size_t i = 0; i < n; ++i)
                 column[i] = static_cast<float>(a.values[i * a.components + c]);
-            frame.attributes.push_back(makeAttribute(std::move(name), std::move(column),
-                                                     a.integralType));
+            frame.attributes.push_back(
+                makeAttribute(std::move(name), std::move(column), a.integralType));
         }
         std::vector<double>().swap(a.values); // release as we go
     }

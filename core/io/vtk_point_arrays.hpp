@@ -13,7 +13,19 @@
 
 namespace faultline::core::detail {
 
-enum class VtkScalar { Bit, Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64 };
+enum class VtkScalar {
+    Bit,
+    Int8,
+    UInt8,
+    Int16,
+    UInt16,
+    Int32,
+    UInt32,
+    Int64,
+    UInt64,
+    Float32,
+    Float64
+};
 
 // Bytes of one value (Bit: 0, see vtkPackedBytes).
 std::size_t vtkScalarBytes(VtkScalar type);
@@ -27,8 +39,8 @@ std::optional<VtkScalar> vtkLegacyScalar(std::string_view name);
 std::optional<VtkScalar> vtkXmlScalar(std::string_view name);
 
 // Converts `count` packed values at `bytes` (which must hold vtkPackedBytes(type, count)).
-void unpackVtkValues(const unsigned char* bytes, std::size_t count, VtkScalar type,
-                     bool bigEndian, double* out);
+void unpackVtkValues(const unsigned char* bytes, std::size_t count, VtkScalar type, bool bigEndian,
+                     double* out);
 
 // The index of the first value that is not finite once stored as float32, or `count`.
 std::size_t firstNonFiniteAsFloat(const double* values, std::size_t count);
@@ -43,8 +55,10 @@ struct VtkPointArray {
     std::uint64_t position = 0;
 };
 
-// Most components an array may have (a bound against hostile headers).
+// Most components an array may have, and most attribute columns a frame may get (bounds
+// against hostile headers: with zero points, arrays cost nothing else to declare).
 inline constexpr std::size_t kMaxVtkComponents = 256;
+inline constexpr std::size_t kMaxVtkColumns = 4096;
 
 // Builds the frame: `points` holds x y z per point (already checked finite as float). Arrays
 // named radius/radii/rad (or diameter) give the radius, id/ids/particle_id the ids; every

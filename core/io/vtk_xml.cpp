@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
 
 namespace faultline::core {
 
@@ -80,7 +81,8 @@ void readVtkFileAttributes(const XmlTokenizer& t, Scan& scan) {
     scan.datasetType = *type;
     if (const std::string* order = t.attribute("byte_order")) {
         if (*order != "LittleEndian" && *order != "BigEndian")
-            t.fail("byte_order: expected LittleEndian or BigEndian, found " + quoteForError(*order));
+            t.fail("byte_order: expected LittleEndian or BigEndian, found " +
+                   quoteForError(*order));
         scan.encoding.bigEndian = *order == "BigEndian";
     }
     if (const std::string* header = t.attribute("header_type")) {
@@ -189,7 +191,8 @@ Scan scanStructure(const std::string& path, std::string_view bytes) {
             scan.encoding.appendedBase64 = *enc == "base64";
             if (kind == XmlTokenizer::Kind::StartTag) {
                 std::size_t p = t.position();
-                while (p < bytes.size() && (bytes[p] == ' ' || bytes[p] == '\t' || bytes[p] == '\n' || bytes[p] == '\r'))
+                while (p < bytes.size() && (bytes[p] == ' ' || bytes[p] == '\t' ||
+                                            bytes[p] == '\n' || bytes[p] == '\r'))
                     ++p;
                 if (p >= bytes.size() || bytes[p] != '_')
                     t.fail("<AppendedData>: expected the '_' marker before the data");
@@ -209,7 +212,8 @@ Scan scanStructure(const std::string& path, std::string_view bytes) {
             ctx = Context::Points;
         } else if (parent == Context::Piece && name == "PointData") {
             ctx = Context::PointData;
-        } else if ((parent == Context::Points || parent == Context::PointData) && name == "DataArray") {
+        } else if ((parent == Context::Points || parent == Context::PointData) &&
+                   name == "DataArray") {
             PieceSpec& piece = scan.pieces.back();
             auto& list = parent == Context::Points ? piece.pointsArrays : piece.pointData;
             list.push_back(readDataArrayTag(t, list.size()));
@@ -232,10 +236,10 @@ std::vector<double> decode(const std::string& path, const Scan& scan, const Piec
                            const ArraySpec& a, bool requireFinite) {
     if (a.tuples && *a.tuples != piece.points)
         throw InputError(path, InputError::Where::Line, a.source.tagLine,
-                         "DataArray '" + a.source.name + "': NumberOfTuples=" +
-                             std::to_string(*a.tuples) + " but the Piece (line " +
-                             std::to_string(piece.line) + ") has " + std::to_string(piece.points) +
-                             " points");
+                         "DataArray '" + a.source.name +
+                             "': NumberOfTuples=" + std::to_string(*a.tuples) +
+                             " but the Piece (line " + std::to_string(piece.line) + ") has " +
+                             std::to_string(piece.points) + " points");
     std::vector<double> values;
     detail::decodeXmlArray(path, scan.encoding, a.source, piece.points * a.components,
                            requireFinite, values);
@@ -249,7 +253,8 @@ bool looksLikeVtkXml(std::string_view head) {
     if (at == std::string_view::npos)
         return false;
     const std::size_t end = head.find('>', at);
-    const std::string_view tag = head.substr(at, end == std::string_view::npos ? head.size() - at : end - at);
+    const std::string_view tag =
+        head.substr(at, end == std::string_view::npos ? head.size() - at : end - at);
     // Any VTKFile but a collection: parseVtkXml names the types it cannot read.
     return tag.find("\"Collection\"") == std::string_view::npos &&
            tag.find("'Collection'") == std::string_view::npos;
@@ -269,6 +274,7 @@ Frame parseVtkXml(const std::string& path, std::string_view bytes) {
 
     std::vector<double> points;
     std::vector<VtkPointArray> arrays;
+    std::unordered_map<std::string, std::size_t> arrayIndex; // name -> position in arrays
     std::uint64_t total = 0;
     for (std::size_t p = 0; p < scan.pieces.size(); ++p) {
         const PieceSpec& piece = scan.pieces[p];
@@ -302,14 +308,17 @@ Frame parseVtkXml(const std::string& path, std::string_view bytes) {
         for (const ArraySpec& a : piece.pointData) {
             if (a.skip)
                 continue;
-            VtkPointArray* target = nullptr;
-            for (auto& existing : arrays)
-                if (existing.name == a.source.name)
-                    target = &existing;
+            const auto found = arrayIndex.find(a.source.name);
+            VtkPointArray* target = found == arrayIndex.end() ? nullptr : &arrays[found->second];
             if (p == 0) {
                 if (target)
                     throw InputError(path, InputError::Where::Line, a.source.tagLine,
                                      "PointData array '" + a.source.name + "' appears twice");
+                if (arrays.size() >= detail::kMaxVtkColumns)
+                    throw InputError(path, InputError::Where::Line, a.source.tagLine,
+                                     "more than " + std::to_string(detail::kMaxVtkColumns) +
+                                         " PointData arrays");
+                arrayIndex.emplace(a.source.name, arrays.size());
                 VtkPointArray fresh;
                 fresh.name = a.source.name;
                 fresh.components = a.components;
@@ -330,12 +339,14 @@ Frame parseVtkXml(const std::string& path, std::string_view bytes) {
                 target->values = std::move(v);
             else
                 target->values.insert(target->values.end(), v.begin(), v.end());
-            target->integralType = target->integralType && detail::vtkScalarIsIntegral(a.source.type);
+            target->integralType =
+                target->integralType && detail::vtkScalarIsIntegral(a.source.type);
         }
         if (matched != arrays.size())
             throw InputError(path, InputError::Where::Line, piece.line,
                              "Piece " + std::to_string(p + 1) + " has " + std::to_string(matched) +
-                                 " PointData arrays, the first Piece has " + std::to_string(arrays.size()));
+                                 " PointData arrays, the first Piece has " +
+                                 std::to_string(arrays.size()));
     }
     return detail::buildVtkFrame(path, points, arrays);
 }
@@ -375,15 +386,17 @@ std::vector<CollectionEntry> parseVtkCollection(const std::string& path, std::st
                 s.remove_prefix(1);
             double v = 0;
             auto r = fast_float::from_chars(s.data(), s.data() + s.size(), v);
-            if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
+            if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() ||
+                !std::isfinite(v))
                 t.fail("timestep: expected a finite number, found " + quoteForError(*time));
             entries.push_back({v, *file});
         }
         if (kind == XmlTokenizer::Kind::StartTag)
             stack.push_back(name);
     }
-    std::stable_sort(entries.begin(), entries.end(),
-                     [](const CollectionEntry& a, const CollectionEntry& b) { return a.time < b.time; });
+    std::stable_sort(
+        entries.begin(), entries.end(),
+        [](const CollectionEntry& a, const CollectionEntry& b) { return a.time < b.time; });
     return entries;
 }
 

@@ -25,7 +25,8 @@ void decodeAscii(const std::string& path, const XmlArraySource& s, std::uint64_t
     if (count > 0 && 2 * count - 1 > t.size())
         throw InputError(path, InputError::Where::Line, s.textLine,
                          describe(s) + ": expected " + std::to_string(count) +
-                             " values, its text is only " + std::to_string(t.size()) + " bytes long");
+                             " values, its text is only " + std::to_string(t.size()) +
+                             " bytes long");
     out.resize(count);
     const bool integral = vtkScalarIsIntegral(s.type);
     std::size_t p = 0;
@@ -44,10 +45,11 @@ void decodeAscii(const std::string& path, const XmlArraySource& s, std::uint64_t
             ++p;
         const std::string_view tok = t.substr(start, p - start);
         auto bad = [&](const char* expected) {
-            throw InputError(path, InputError::Where::Line, line,
-                             describe(s) + ": value " + std::to_string(i + 1) + " of " +
-                                 std::to_string(count) + ": expected " + expected + ", found " +
-                                 (tok.empty() ? std::string("the end of the array") : quoteForError(tok)));
+            throw InputError(
+                path, InputError::Where::Line, line,
+                describe(s) + ": value " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                    ": expected " + expected + ", found " +
+                    (tok.empty() ? std::string("the end of the array") : quoteForError(tok)));
         };
         if (tok.empty())
             bad("a number");
@@ -241,8 +243,9 @@ void decodeXmlArray(const std::string& path, const XmlEncoding& encoding,
                              describe(source) + " is appended, but the file has no <AppendedData>");
         if (source.appendedOffset > encoding.appended.size())
             throw InputError(path, InputError::Where::Line, source.tagLine,
-                             describe(source) + ": offset " + std::to_string(source.appendedOffset) +
-                                 " is beyond the " + std::to_string(encoding.appended.size()) +
+                             describe(source) + ": offset " +
+                                 std::to_string(source.appendedOffset) + " is beyond the " +
+                                 std::to_string(encoding.appended.size()) +
                                  " bytes of appended data");
         data = encoding.appended.substr(source.appendedOffset);
         fileOffset = encoding.appendedOffset + source.appendedOffset;

@@ -18,8 +18,8 @@ struct XmlEncoding {
     bool compressed = false;     // vtkZLibDataCompressor
     bool haveAppended = false;
     bool appendedBase64 = false;
-    std::string_view appended;       // everything after the '_' marker
-    std::size_t appendedOffset = 0;  // file offset of appended[0]
+    std::string_view appended;      // everything after the '_' marker
+    std::size_t appendedOffset = 0; // file offset of appended[0]
 };
 
 // One DataArray as declared.
@@ -28,10 +28,10 @@ struct XmlArraySource {
     std::string name;
     VtkScalar type = VtkScalar::Float32;
     Format format = Format::Ascii;
-    std::string_view text;          // inline content
-    std::size_t textOffset = 0;     // file offset of text[0]
-    std::uint64_t textLine = 0;     // line of text[0]
-    std::uint64_t tagLine = 0;      // line of the <DataArray> tag
+    std::string_view text;            // inline content
+    std::size_t textOffset = 0;       // file offset of text[0]
+    std::uint64_t textLine = 0;       // line of text[0]
+    std::uint64_t tagLine = 0;        // line of the <DataArray> tag
     std::uint64_t appendedOffset = 0; // its offset attribute
 };
 

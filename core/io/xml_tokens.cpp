@@ -60,14 +60,16 @@ void XmlTokenizer::failAt(std::size_t offset, const std::string& message) const 
     offset = std::min(offset, m_data.size());
     std::uint64_t line = m_line;
     if (offset >= m_pos)
-        line += static_cast<std::uint64_t>(std::count(m_data.begin() + static_cast<std::ptrdiff_t>(m_pos),
-                                                      m_data.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+        line += static_cast<std::uint64_t>(
+            std::count(m_data.begin() + static_cast<std::ptrdiff_t>(m_pos),
+                       m_data.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
     throw InputError(m_path, InputError::Where::Line, line, message);
 }
 
 void XmlTokenizer::advanceTo(std::size_t pos) {
-    m_line += static_cast<std::uint64_t>(std::count(m_data.begin() + static_cast<std::ptrdiff_t>(m_pos),
-                                                    m_data.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+    m_line += static_cast<std::uint64_t>(
+        std::count(m_data.begin() + static_cast<std::ptrdiff_t>(m_pos),
+                   m_data.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
     m_pos = pos;
 }
 
@@ -108,7 +110,8 @@ std::string XmlTokenizer::decodeEntities(std::string_view raw, std::size_t offse
             const char* b = e.data() + (hex ? 2 : 1);
             auto r = std::from_chars(b, e.data() + e.size(), cp, hex ? 16 : 10);
             if (r.ec != std::errc() || r.ptr != e.data() + e.size() || cp == 0 || cp > 0x10FFFF)
-                failAt(offset + i, "bad character reference " + quoteForError(raw.substr(i, semi - i + 1)));
+                failAt(offset + i,
+                       "bad character reference " + quoteForError(raw.substr(i, semi - i + 1)));
             appendUtf8(out, cp);
         } else {
             failAt(offset + i, "unknown entity " + quoteForError(raw.substr(i, semi - i + 1)));
@@ -137,13 +140,15 @@ XmlTokenizer::Kind XmlTokenizer::next() {
         if (m_data[m_pos] != '<') {
             const void* lt = std::memchr(m_data.data() + m_pos, '<', m_data.size() - m_pos);
             const std::size_t end =
-                lt ? static_cast<std::size_t>(static_cast<const char*>(lt) - m_data.data()) : m_data.size();
+                lt ? static_cast<std::size_t>(static_cast<const char*>(lt) - m_data.data())
+                   : m_data.size();
             m_text = m_data.substr(m_pos, end - m_pos);
             if (m_open.empty()) {
                 for (std::size_t i = 0; i < m_text.size(); ++i)
                     if (!isBlank(m_text[i]))
-                        failAt(m_pos + i, std::string(m_rootClosed ? "content after" : "text before") +
-                                              " the root element: " + quoteForError(m_text.substr(i)));
+                        failAt(m_pos + i,
+                               std::string(m_rootClosed ? "content after" : "text before") +
+                                   " the root element: " + quoteForError(m_text.substr(i)));
                 advanceTo(end);
                 continue;
             }
@@ -177,8 +182,10 @@ XmlTokenizer::Kind XmlTokenizer::next() {
         }
         if (rest.substr(0, 2) == "<!") {
             const std::size_t close = rest.find('>', 2);
-            if (close == std::string_view::npos || rest.substr(2, close - 2).find('[') != std::string_view::npos)
-                fail("unsupported or unterminated declaration " + quoteForError(rest.substr(0, 20)));
+            if (close == std::string_view::npos ||
+                rest.substr(2, close - 2).find('[') != std::string_view::npos)
+                fail("unsupported or unterminated declaration " +
+                     quoteForError(rest.substr(0, 20)));
             advanceTo(m_pos + close + 1);
             continue;
         }
@@ -191,9 +198,10 @@ XmlTokenizer::Kind XmlTokenizer::readTag() {
     const std::size_t nameStart = m_pos + (closing ? 2 : 1);
     const std::size_t nameEnd = readName(nameStart);
     if (nameEnd == nameStart)
-        failAt(nameStart, "expected a tag name after '<', found " +
-                              (nameStart < m_data.size() ? quoteForError(m_data.substr(nameStart, 10))
-                                                         : std::string("the end of the file")));
+        failAt(nameStart,
+               "expected a tag name after '<', found " +
+                   (nameStart < m_data.size() ? quoteForError(m_data.substr(nameStart, 10))
+                                              : std::string("the end of the file")));
     m_name = m_data.substr(nameStart, nameEnd - nameStart);
     std::size_t p = nameEnd;
     auto skipBlanks = [&] {
@@ -247,7 +255,8 @@ XmlTokenizer::Kind XmlTokenizer::readTag() {
             failAt(p, "unterminated value of attribute " + std::string(attrName));
         const std::string_view raw = m_data.substr(valueStart, valueEnd - valueStart);
         if (raw.find('<') != std::string_view::npos)
-            failAt(valueStart + raw.find('<'), "'<' inside the value of attribute " + std::string(attrName));
+            failAt(valueStart + raw.find('<'),
+                   "'<' inside the value of attribute " + std::string(attrName));
         if (attribute(attrName))
             failAt(p, "attribute " + std::string(attrName) + " appears twice");
         if (m_attributes.size() >= kMaxAttributes)

@@ -32,10 +32,10 @@ class XmlTokenizer {
     const std::string* attribute(std::string_view name) const;
     std::string_view text() const { return m_text; } // Text: raw content, entities not decoded
 
-    std::uint64_t line() const { return m_tokenLine; }     // where the current token starts
-    std::size_t offset() const { return m_tokenOffset; }   // byte offset of the token
-    std::size_t position() const { return m_pos; }         // just past the current token
-    std::size_t depth() const { return m_open.size(); }    // open elements after this token
+    std::uint64_t line() const { return m_tokenLine; }   // where the current token starts
+    std::size_t offset() const { return m_tokenOffset; } // byte offset of the token
+    std::size_t position() const { return m_pos; }       // just past the current token
+    std::size_t depth() const { return m_open.size(); }  // open elements after this token
 
     // Throws InputError at the current token's line.
     [[noreturn]] void fail(const std::string& message) const;

@@ -136,7 +136,8 @@ std::string binaryPolydata51() {
          "\nCONNECTIVITY vtktypeint64\n" + bigEndian<std::int64_t>({0, 1}) + "\n";
     s += "POINT_DATA 2\nSCALARS rad float 1\nLOOKUP_TABLE default\n" +
          bigEndian<float>({0.75f, 1.25f}) + "\n";
-    s += "SCALARS count short 1\nLOOKUP_TABLE default\n" + bigEndian<std::int16_t>({-2, 300}) + "\n";
+    s +=
+        "SCALARS count short 1\nLOOKUP_TABLE default\n" + bigEndian<std::int16_t>({-2, 300}) + "\n";
     return s;
 }
 
@@ -159,8 +160,9 @@ TEST(VtkLegacy, AsciiPolydataWithScalarsVectorsAndFields) {
     EXPECT_FALSE(f.radiusIsDefault);
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{10, 20, 30}));
     EXPECT_FALSE(f.idsAreRowNumbers);
-    EXPECT_EQ(f.attributeNames(), (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z",
-                                                            "layer", "stress xy_0", "stress xy_1"}));
+    EXPECT_EQ(f.attributeNames(),
+              (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z", "layer",
+                                        "stress xy_0", "stress xy_1"}));
     EXPECT_EQ(column(f, "velocity_y").floats, (std::vector<float>{2, 5, 8}));
     EXPECT_FALSE(column(f, "velocity_y").isInteger());
     EXPECT_TRUE(column(f, "layer").isInteger());
@@ -200,16 +202,25 @@ TEST(VtkLegacy, Version51CellsMetadataDiameterAndTensors) {
                              "1 3\n"
                              "TENSORS stress double\n"
                              "1 2 3 4 5 6 7 8 9\n"
-                             "9 8 7 6 5 4 3 2 1\n";
+                             "9 8 7 6 5 4 3 2 1\n"
+                             "FIELD FieldData 1\n"
+                             "mass 1 2 double\n"
+                             "2.5 3.5\n"
+                             "METADATA\n"
+                             "INFORMATION 1\n"
+                             "NAME L2_NORM_RANGE LOCATION vtkDataArray\n"
+                             "DATA 2 2.5 3.5\n"
+                             "\n";
     const Frame f = parseVtkLegacy(kPath, text);
     ASSERT_EQ(f.size(), 2u);
     EXPECT_EQ(f.radius, (std::vector<float>{0.5f, 1.5f}));
     EXPECT_TRUE(f.idsAreRowNumbers);
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{0, 1}));
-    ASSERT_EQ(f.attributes.size(), 9u);
+    ASSERT_EQ(f.attributes.size(), 10u);
     EXPECT_EQ(f.attributes[0].name, "stress_0");
     EXPECT_EQ(f.attributes[8].name, "stress_8");
     EXPECT_EQ(column(f, "stress_8").floats, (std::vector<float>{9, 1}));
+    EXPECT_EQ(column(f, "mass").floats, (std::vector<float>{2.5f, 3.5f}));
 }
 
 TEST(VtkLegacy, NoRadiusNoIdGivesDefaultsAndFloatIdsAreIds) {
@@ -223,9 +234,10 @@ TEST(VtkLegacy, NoRadiusNoIdGivesDefaultsAndFloatIdsAreIds) {
     EXPECT_TRUE(f.attributes.empty());
 
     // Yade's VTKRecorder writes ids as doubles and the radius as "radii".
-    const Frame g = parseVtkLegacy(kPath, plain + "POINT_DATA 2\nSCALARS id double 1\n"
-                                                  "LOOKUP_TABLE default\n4 9\n"
-                                                  "SCALARS radii double 1\nLOOKUP_TABLE default\n0.5 0.75\n");
+    const Frame g =
+        parseVtkLegacy(kPath, plain + "POINT_DATA 2\nSCALARS id double 1\n"
+                                      "LOOKUP_TABLE default\n4 9\n"
+                                      "SCALARS radii double 1\nLOOKUP_TABLE default\n0.5 0.75\n");
     EXPECT_EQ(g.ids, (std::vector<std::int64_t>{4, 9}));
     EXPECT_EQ(g.radius, (std::vector<float>{0.5f, 0.75f}));
     EXPECT_TRUE(g.attributes.empty());
@@ -268,7 +280,8 @@ TEST(VtkLegacy, MalformedTextNamesLineAndExpectation) {
     expectError(head + "POINTS 2 float\n0 0 0\n1 oops 1\n", W::Line, 7,
                 "POINTS: value 5 of 6: expected a number, found 'oops'");
     expectError(head + "POINTS 2 float\n0 0 0\n1 1 nan\n", W::Line, 7, "expected a finite number");
-    expectError(head + "POINTS 2 double\n0 0 0\n1 1e300 1\n", W::Line, 7, "expected a finite number");
+    expectError(head + "POINTS 2 double\n0 0 0\n1 1e300 1\n", W::Line, 7,
+                "expected a finite number");
     expectError(head + "POINTS 2 float\n0 0 0\n\n\n1 1 inf\n", W::Line, 9, "found 'inf'");
     expectError(head + "POINTS 1000000000000 float\n0 0 0\n", W::Line, 5, "4 billion");
     expectError(head + "POINTS 100000000 float\n0 0 0\n", W::Line, 5,
@@ -280,44 +293,65 @@ TEST(VtkLegacy, MalformedTextNamesLineAndExpectation) {
     expectError(head + "POINTS 1 float\n0 0 0\nPOINT_DATA 2\n", W::Line, 7,
                 "POINT_DATA 2 does not match POINTS 1");
     expectError(head + "POINT_DATA 1\n", W::Line, 5, "POINT_DATA before POINTS");
-    expectError(head + "POINTS 1 float\n0 0 0\nBANANAS 3\n", W::Line, 7, "unknown keyword 'BANANAS'");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS n int\n1 2.5\n", W::Line, 9,
-                "expected an integer, found '2.5'");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS n float 100000\n1 2\n", W::Line,
-                8, "expected 1 to 256 components");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 1\nname 1 3 float\n1 2 3\n",
+    expectError(head + "POINTS 1 float\n0 0 0\nBANANAS 3\n", W::Line, 7,
+                "unknown keyword 'BANANAS'");
+    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS n int\n1 2.5\n", W::Line,
+                9, "expected an integer, found '2.5'");
+    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS n float 100000\n1 2\n",
+                W::Line, 8, "expected 1 to 256 components");
+    expectError(head +
+                    "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 1\nname 1 3 float\n1 2 3\n",
                 W::Line, 9, "has 3 tuples, expected one per point (2)");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 2\nname 1 2 float\n1 2\n",
+    expectError(head +
+                    "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 2\nname 1 2 float\n1 2\n",
                 W::Line, 11, "expected 2 arrays, found 1");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 1\nname 1 2 string\na b\n",
+    expectError(head +
+                    "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nFIELD f 1\nname 1 2 string\na b\n",
                 W::Line, 9, "string arrays are not supported");
     expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nLINES 1 3\n2 0\nPOINT_DATA 2\n", W::Line, 9,
                 "LINES: value 3 of 3: expected a number, found 'POINT_DATA'");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS id int\n4 4\n", W::Line, 8,
-                "particle id 4 appears twice");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS radius float\n1 nan\n", W::Line, 8,
-                "radius array 'radius': value 2 is not a finite number");
-    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS a float\n1 2\nSCALARS a float\n1 2\n",
+    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS id int\n4 4\n", W::Line,
+                8, "particle id 4 appears twice");
+    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS radius float\n1 nan\n",
+                W::Line, 8, "radius array 'radius': value 2 is not a finite number");
+    expectError(head + "POINTS 2 float\n0 0 0 1 1 1\nPOINT_DATA 2\nSCALARS a float\n1 2\nSCALARS a "
+                       "float\n1 2\n",
                 W::Line, 10, "column 'a' appears twice");
+}
+
+TEST(VtkLegacy, ArraysWithoutDataAreStillBounded) {
+    // With zero points an array costs a line: the number of arrays is bounded instead.
+    std::string text = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n"
+                       "POINT_DATA 0\n";
+    for (int i = 0; i < 5000; ++i)
+        text += "SCALARS a" + std::to_string(i) + " float 256\n";
+    expectError(text, InputError::Where::Line, 4103, "more than 4096 point arrays");
+    text.resize(text.find("SCALARS a20 "));
+    expectError(text, InputError::Where::Line, 23, "more than 4096 attribute columns");
 }
 
 TEST(VtkLegacy, MalformedBinaryNamesByteOffset) {
     using W = InputError::Where;
-    const std::string head = "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET POLYDATA\nPOINTS 2 float\n";
+    const std::string head =
+        "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET POLYDATA\nPOINTS 2 float\n";
     const std::uint64_t data = head.size();
     // Truncated point data: refused before anything is read.
-    expectError(head + bigEndian<float>({1, 2, 3}), W::Byte, data, "6 values declared, but only 12 bytes");
+    expectError(head + bigEndian<float>({1, 2, 3}), W::Byte, data,
+                "6 values declared, but only 12 bytes");
     // An infinite coordinate: the offset of that value.
-    expectError(head + bigEndian<float>({1, 2, 3, 4, std::numeric_limits<float>::infinity(), 6}) + "\n",
+    expectError(head + bigEndian<float>({1, 2, 3, 4, std::numeric_limits<float>::infinity(), 6}) +
+                    "\n",
                 W::Byte, data + 16, "POINTS: value 5 is not a finite number");
     // Binary garbage where a keyword should be.
     const std::string points = head + bigEndian<float>({1, 2, 3, 4, 5, 6}) + "\n";
     expectError(points + std::string("\x01\x02\xfe\x00garbage", 11), W::Byte, points.size(),
                 "unknown keyword");
     // A count of 10^12 cells.
-    expectError(points + "LINES 1 1000000000000\n", W::Byte, points.size() + 22, "1000000000000 values declared");
+    expectError(points + "LINES 1 1000000000000\n", W::Byte, points.size() + 22,
+                "1000000000000 values declared");
     // Scalars cut short.
-    expectError(points + "POINT_DATA 2\nSCALARS s double\nLOOKUP_TABLE default\n" + bigEndian<double>(1.0),
+    expectError(points + "POINT_DATA 2\nSCALARS s double\nLOOKUP_TABLE default\n" +
+                    bigEndian<double>(1.0),
                 W::Byte, points.size() + 51, "2 values declared, but only 8 bytes remain");
 }
 
@@ -341,8 +375,8 @@ TEST(VtkLegacy, OpensThroughDatasetByContent) {
 
 #ifdef FAULTLINE_TEST_DATA
 TEST(VtkLegacy, LiggghtsCustomVtk51FieldData) {
-    const std::string path = std::string(FAULTLINE_TEST_DATA) +
-                             "/liggghts_customvtk_v51_fielddata_cohesion_49600.vtk";
+    const std::string path =
+        std::string(FAULTLINE_TEST_DATA) + "/liggghts_customvtk_v51_fielddata_cohesion_49600.vtk";
     auto ds = Dataset::open({path});
     ASSERT_EQ(ds->frameCount(), 1u);
     const auto f = ds->frame(0);
@@ -350,8 +384,8 @@ TEST(VtkLegacy, LiggghtsCustomVtk51FieldData) {
     EXPECT_FALSE(f->idsAreRowNumbers);
     EXPECT_FALSE(f->radiusIsDefault);
     EXPECT_EQ(f->attributeNames(),
-              (std::vector<std::string>{"type", "i_x", "i_y", "i_z", "v_x", "v_y", "v_z", "f_x", "f_y",
-                                        "f_z", "omega_x", "omega_y", "omega_z"}));
+              (std::vector<std::string>{"type", "i_x", "i_y", "i_z", "v_x", "v_y", "v_z", "f_x",
+                                        "f_y", "f_z", "omega_x", "omega_y", "omega_z"}));
     // First and last values as written in the file.
     EXPECT_EQ(f->ids.front(), 83);
     EXPECT_EQ(f->ids.back(), 864);
@@ -369,7 +403,8 @@ TEST(VtkLegacy, LiggghtsCustomVtk51FieldData) {
 }
 
 TEST(VtkLegacy, BinaryBigEndianTrackWithCellDataBeforePointData) {
-    const std::string path = std::string(FAULTLINE_TEST_DATA) + "/vtkdata_track1_binary_BE_polydata.vtk";
+    const std::string path =
+        std::string(FAULTLINE_TEST_DATA) + "/vtkdata_track1_binary_BE_polydata.vtk";
     auto ds = Dataset::open({path});
     const auto f = ds->frame(0);
     ASSERT_EQ(f->size(), 16267u);

@@ -23,7 +23,8 @@ const std::string kPath = "synthetic.vtu";
 // ---- building documents the way VTK writers do ------------------------------------------
 
 std::string base64(const std::string& bytes) {
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char* kAlphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     for (std::size_t i = 0; i < bytes.size(); i += 3) {
         const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
@@ -160,12 +161,15 @@ std::string makeDocument(const Options& o, const std::vector<TestPiece>& pieces)
         doc += "      <PointData Scalars=\"radius\">\n";
         for (const TestArray& a : p.pointData)
             doc += "        " + dataArray(a);
-        doc += "        <DataArray type=\"String\" Name=\"label\" format=\"ascii\">97 0 98 0</DataArray>\n";
+        doc += "        <DataArray type=\"String\" Name=\"label\" format=\"ascii\">97 0 98 "
+               "0</DataArray>\n";
         doc += "      </PointData>\n      <CellData>\n      </CellData>\n";
         doc += "      <Points>\n        " + dataArray(p.points) + "      </Points>\n";
-        doc += "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
-               "</DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n"
-               "        </DataArray>\n      </Cells>\n    </Piece>\n";
+        doc +=
+            "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" "
+            "format=\"ascii\">"
+            "</DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n"
+            "        </DataArray>\n      </Cells>\n    </Piece>\n";
     }
     doc += "  </" + o.type + ">\n";
     if (o.mode == Mode::AppendedRaw || o.mode == Mode::AppendedBase64)
@@ -203,8 +207,9 @@ void expectStandardFrame(const Frame& f) {
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{7, 5, 9}));
     EXPECT_FALSE(f.idsAreRowNumbers);
     EXPECT_FALSE(f.radiusIsDefault);
-    EXPECT_EQ(f.attributeNames(), (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z",
-                                                            "grain", "q_0", "q_1", "flags"}));
+    EXPECT_EQ(f.attributeNames(),
+              (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z", "grain", "q_0",
+                                        "q_1", "flags"}));
     EXPECT_EQ(column(f, "velocity_z").floats, (std::vector<float>{3, 6, 9}));
     EXPECT_EQ(column(f, "grain").ints, (std::vector<std::int32_t>{-1, 0, 2}));
     EXPECT_EQ(column(f, "q_1").floats, (std::vector<float>{1.5f, 3.5f, 5.5f}));
@@ -254,7 +259,8 @@ InputError errorOf(const std::string& doc) {
 std::uint64_t lineOf(const std::string& doc, const std::string& what) {
     const std::size_t at = doc.find(what);
     EXPECT_NE(at, std::string::npos) << what;
-    return 1 + static_cast<std::uint64_t>(std::count(doc.begin(), doc.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    return 1 + static_cast<std::uint64_t>(
+                   std::count(doc.begin(), doc.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 void expectError(const std::string& doc, InputError::Where where, std::uint64_t position,
@@ -278,7 +284,8 @@ std::string withPointsPayload(const std::string& payload, const std::string& att
                               std::size_t points = 3) {
     return "<VTKFile type=\"UnstructuredGrid\" byte_order=\"LittleEndian\"" + attrs +
            ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" + std::to_string(points) +
-           "\">\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"binary\">" +
+           "\">\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+           "format=\"binary\">" +
            payload + "</DataArray>\n</Points>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 
@@ -292,8 +299,8 @@ std::string floats(std::initializer_list<float> v) {
 std::string zlibOf(const std::string& raw) {
     uLongf size = compressBound(raw.size());
     std::string out(size, '\0');
-    compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
-              raw.size(), 6);
+    compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+              reinterpret_cast<const Bytef*>(raw.data()), raw.size(), 6);
     out.resize(size);
     return out;
 }
@@ -329,9 +336,9 @@ TEST(VtkXml, PolyDataAndSeveralPiecesConcatenate) {
     TestPiece a = standardPiece();
     TestPiece b;
     b.points = {"Points", "Float64", 3, {10, 11, 12}};
-    b.pointData = {{"radius", "Float64", 1, {0.4}},         {"id", "Int64", 1, {100}},
+    b.pointData = {{"radius", "Float64", 1, {0.4}},          {"id", "Int64", 1, {100}},
                    {"velocity", "Float32", 3, {-1, -2, -3}}, {"grain", "Int32", 1, {5}},
-                   {"q", "Float64", 2, {0.25, 0.75}},       {"flags", "UInt8", 1, {1}}};
+                   {"q", "Float64", 2, {0.25, 0.75}},        {"flags", "UInt8", 1, {1}}};
     const Frame f = parseVtkXml(kPath, makeDocument(o, {a, b}));
     ASSERT_EQ(f.size(), 4u);
     EXPECT_EQ(f.x, (std::vector<float>{0.5f, 2, -0.75f, 10}));
@@ -343,16 +350,18 @@ TEST(VtkXml, PolyDataAndSeveralPiecesConcatenate) {
 }
 
 TEST(VtkXml, EmptyPieceAndDefaults) {
-    const std::string empty = "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>"
-                              "<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\"><Points>"
-                              "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
-                              "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>";
+    const std::string empty =
+        "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>"
+        "<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\"><Points>"
+        "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+        "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>";
     EXPECT_EQ(parseVtkXml(kPath, empty).size(), 0u);
-    const std::string plain = "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"2\">"
-                              "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
-                              "format=\"ascii\">1 2 3 4 5 6</DataArray></Points>"
-                              "<PointData><DataArray type=\"Float32\" Name=\"Diameter\" format=\"ascii\">"
-                              "2 4</DataArray></PointData></Piece></PolyData></VTKFile>";
+    const std::string plain =
+        "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"2\">"
+        "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+        "format=\"ascii\">1 2 3 4 5 6</DataArray></Points>"
+        "<PointData><DataArray type=\"Float32\" Name=\"Diameter\" format=\"ascii\">"
+        "2 4</DataArray></PointData></Piece></PolyData></VTKFile>";
     const Frame f = parseVtkXml(kPath, plain);
     EXPECT_EQ(f.radius, (std::vector<float>{1, 2}));
     EXPECT_TRUE(f.idsAreRowNumbers);
@@ -368,13 +377,15 @@ TEST(VtkXml, BadBinaryDataNamesTheByteOffset) {
     expectError(bad, W::Byte, bad.find('!'), "expected base64 data, found '!'");
     // A size header beyond the data, and one that does not match the points.
     const std::string shortData = withPointsPayload(base64(le32(36)) + base64(data.substr(0, 12)));
-    expectError(shortData, W::Byte, shortData.find("JAAAAA==") + 8, "declares 36 bytes, only 12 remain");
+    expectError(shortData, W::Byte, shortData.find("JAAAAA==") + 8,
+                "declares 36 bytes, only 12 remain");
     expectError(withPointsPayload(base64(le32(1000000000)) + base64(data)), W::Byte,
                 withPointsPayload("").find("</DataArray>") + 8,
                 "size header declares 1000000000 bytes, expected 36");
     // Header and data encoded together, cut short: refused before reading the data.
     const std::string cut = withPointsPayload(base64(le32(36) + data).substr(0, 49));
-    expectError(cut, W::Byte, cut.find("format=\"binary\">") + 16 + 8, "declares 36 bytes, only 32 remain");
+    expectError(cut, W::Byte, cut.find("format=\"binary\">") + 16 + 8,
+                "declares 36 bytes, only 32 remain");
     // Base64 that ends inside a group of four characters.
     const std::string whole = base64(le32(24)) + base64(data.substr(0, 24));
     const std::string group = withPointsPayload(whole.substr(0, whole.size() - 3) + "   ", "", 2);
@@ -396,33 +407,42 @@ TEST(VtkXml, LyingZlibBlocksAreRefusedBeforeAllocating) {
     // The block inflates to 12 bytes, its header says 36.
     const std::string lies = withPointsPayload(
         base64(header(1, 36, 0, {static_cast<std::uint32_t>(small.size())})) + base64(small), zlib);
-    EXPECT_NE(std::string(errorOf(lies).what()).find("does not inflate to the 36 bytes its header declares"),
+    EXPECT_NE(std::string(errorOf(lies).what())
+                  .find("does not inflate to the 36 bytes its header declares"),
               std::string::npos)
         << errorOf(lies).what();
     // 10^8 points claimed from a few compressed bytes: more than zlib can produce.
     const std::string huge = withPointsPayload(
-        base64(header(1, 1200000000, 0, {static_cast<std::uint32_t>(small.size())})) + base64(small), zlib,
-        100000000);
-    EXPECT_NE(std::string(errorOf(huge).what()).find("more than zlib can produce"), std::string::npos)
+        base64(header(1, 1200000000, 0, {static_cast<std::uint32_t>(small.size())})) +
+            base64(small),
+        zlib, 100000000);
+    EXPECT_NE(std::string(errorOf(huge).what()).find("more than zlib can produce"),
+              std::string::npos)
         << errorOf(huge).what();
     EXPECT_EQ(errorOf(huge).where(), W::Byte);
     // Compressed sizes beyond the data, and a block count the data cannot hold.
-    const std::string beyond = withPointsPayload(base64(header(1, 36, 0, {1000000})) + base64(small), zlib);
-    EXPECT_NE(std::string(errorOf(beyond).what()).find("a compressed block of 1000000 bytes is declared"),
-              std::string::npos)
+    const std::string beyond =
+        withPointsPayload(base64(header(1, 36, 0, {1000000})) + base64(small), zlib);
+    EXPECT_NE(
+        std::string(errorOf(beyond).what()).find("a compressed block of 1000000 bytes is declared"),
+        std::string::npos)
         << errorOf(beyond).what();
     const std::string blocks = withPointsPayload(base64(header(0x7fffffff, 36, 0, {})), zlib);
-    EXPECT_NE(std::string(errorOf(blocks).what()).find("more than the data can hold"), std::string::npos)
+    EXPECT_NE(std::string(errorOf(blocks).what()).find("more than the data can hold"),
+              std::string::npos)
         << errorOf(blocks).what();
     // A total that does not match the points.
-    const std::string total = withPointsPayload(base64(header(2, 36, 0, {4, 4})) + base64("abcdefgh"), zlib);
-    EXPECT_NE(std::string(errorOf(total).what()).find("declares 72 uncompressed bytes, expected 36"),
-              std::string::npos)
+    const std::string total =
+        withPointsPayload(base64(header(2, 36, 0, {4, 4})) + base64("abcdefgh"), zlib);
+    EXPECT_NE(
+        std::string(errorOf(total).what()).find("declares 72 uncompressed bytes, expected 36"),
+        std::string::npos)
         << errorOf(total).what();
     // Garbage where zlib data should be.
     const std::string garbage =
         withPointsPayload(base64(header(1, 36, 0, {12})) + base64("not zlib at all"), zlib);
-    EXPECT_NE(std::string(errorOf(garbage).what()).find("zlib block 0 is corrupt"), std::string::npos)
+    EXPECT_NE(std::string(errorOf(garbage).what()).find("zlib block 0 is corrupt"),
+              std::string::npos)
         << errorOf(garbage).what();
 }
 
@@ -440,8 +460,8 @@ TEST(VtkXml, MalformedStructureNamesLineAndExpectation) {
                 "header_type: expected UInt32 or UInt64");
     expectError(replaced(good, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), W::Line, 2,
                 "byte_order: expected LittleEndian or BigEndian");
-    expectError(replaced(good, "version=\"1.0\"", "compressor=\"vtkLZ4DataCompressor\""), W::Line, 2,
-                "'vtkLZ4DataCompressor' is not supported");
+    expectError(replaced(good, "version=\"1.0\"", "compressor=\"vtkLZ4DataCompressor\""), W::Line,
+                2, "'vtkLZ4DataCompressor' is not supported");
     // Deeply nested, unclosed and mismatched elements.
     std::string deep = "<VTKFile type=\"PolyData\">\n";
     for (int i = 0; i < 100; ++i)
@@ -452,26 +472,33 @@ TEST(VtkXml, MalformedStructureNamesLineAndExpectation) {
                 "the file ends inside <UnstructuredGrid> opened at line 3");
     expectError(replaced(good, "</Points>", "</Piece>"), W::Line, lineOf(good, "</Points>"),
                 "expected </Points>");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"1000000000000\""),
-                W::Line, lineOf(good, "<Piece"), "NumberOfPoints=\"1000000000000\" is more than");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"100000000\""),
-                W::Line, lineOf(good, "Name=\"Points\""), "expected 300000000 values, its text is only");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"three\""), W::Line,
-                lineOf(good, "<Piece"), "NumberOfPoints: expected a non-negative integer, found 'three'");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece"), W::Line, lineOf(good, "<Piece"),
-                "<Piece> has no NumberOfPoints attribute");
+    expectError(
+        replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"1000000000000\""),
+        W::Line, lineOf(good, "<Piece"), "NumberOfPoints=\"1000000000000\" is more than");
+    expectError(
+        replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"100000000\""),
+        W::Line, lineOf(good, "Name=\"Points\""), "expected 300000000 values, its text is only");
+    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"three\""),
+                W::Line, lineOf(good, "<Piece"),
+                "NumberOfPoints: expected a non-negative integer, found 'three'");
+    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece"), W::Line,
+                lineOf(good, "<Piece"), "<Piece> has no NumberOfPoints attribute");
     expectError(replaced(good, "Name=\"radius\"", "Name=\"radius\" Name=\"r\""), W::Line,
                 lineOf(good, "Name=\"radius\""), "attribute Name appears twice");
-    expectError(replaced(good, "type=\"Float64\" Name=\"radius\"", "type=\"Float16\" Name=\"radius\""),
-                W::Line, lineOf(good, "Name=\"radius\""), "type 'Float16' is not supported");
-    expectError(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\"", "Name=\"Points\" NumberOfComponents=\"2\""),
-                W::Line, lineOf(good, "Name=\"Points\""), "must have 3 numeric components, found 2");
+    expectError(
+        replaced(good, "type=\"Float64\" Name=\"radius\"", "type=\"Float16\" Name=\"radius\""),
+        W::Line, lineOf(good, "Name=\"radius\""), "type 'Float16' is not supported");
+    expectError(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\"",
+                         "Name=\"Points\" NumberOfComponents=\"2\""),
+                W::Line, lineOf(good, "Name=\"Points\""),
+                "must have 3 numeric components, found 2");
     expectError(replaced(good, "Name=\"grain\" NumberOfComponents=\"1\"",
                          "Name=\"grain\" NumberOfComponents=\"1\" NumberOfTuples=\"4\""),
                 W::Line, lineOf(good, "Name=\"grain\""), "NumberOfTuples=4 but the Piece");
     // Values: not a number, NaN positions, too many values.
     expectError(replaced(good, "0.10000000000000001", "zero.one"), W::Line,
-                lineOf(good, "0.10000000000000001"), "value 1 of 3: expected a number, found 'zero.one'");
+                lineOf(good, "0.10000000000000001"),
+                "value 1 of 3: expected a number, found 'zero.one'");
     expectError(replaced(good, "-0.75", "nan"), W::Line, lineOf(good, "-0.75"),
                 "value 7 of 9: expected a finite number, found 'nan'");
     expectError(replaced(good, " 7 5 9", " 7 5 9 11"), W::Line, lineOf(good, " 7 5 9"),
@@ -481,13 +508,28 @@ TEST(VtkXml, MalformedStructureNamesLineAndExpectation) {
     expectError(replaced(good, " 7 5 9", " 7 7 9"), W::Line, lineOf(good, "Name=\"id\""),
                 "particle id 7 appears twice");
     // Missing points, binary garbage in markup.
-    const std::string noPoints =
-        "<VTKFile type=\"PolyData\">\n<PolyData>\n<Piece NumberOfPoints=\"2\">\n</Piece>\n</PolyData>\n</VTKFile>";
+    const std::string noPoints = "<VTKFile type=\"PolyData\">\n<PolyData>\n<Piece "
+                                 "NumberOfPoints=\"2\">\n</Piece>\n</PolyData>\n</VTKFile>";
     expectError(noPoints, W::Line, 3, "Piece with 2 points has no <Points> DataArray");
-    expectError("<VTKFile type=\"PolyData\">\x01\x02\n<\x03\xff", W::Line, 2, "expected a tag name after '<'");
+    expectError("<VTKFile type=\"PolyData\">\x01\x02\n<\x03\xff", W::Line, 2,
+                "expected a tag name after '<'");
     expectError("<VTKFile type=\"PolyData\">\n<PolyData>\n</PolyData>\n</VTKFile>", W::File, 0,
                 "no <Piece> inside <PolyData>");
-    expectError("<VTKFile type=\"PolyData\"/> trailing", W::Line, 1, "content after the root element");
+    expectError("<VTKFile type=\"PolyData\"/> trailing", W::Line, 1,
+                "content after the root element");
+}
+
+TEST(VtkXml, ArraysWithoutDataAreStillBounded) {
+    std::string doc =
+        "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"0\"><PointData>\n";
+    for (int i = 0; i < 5000; ++i)
+        doc += "<DataArray type=\"Float32\" Name=\"a" + std::to_string(i) +
+               "\" NumberOfComponents=\"256\" format=\"ascii\"/>\n";
+    doc += "</PointData></Piece></PolyData></VTKFile>";
+    expectError(doc, InputError::Where::Line, 4098, "more than 4096 PointData arrays");
+    const std::string twenty = doc.substr(0, doc.find("<DataArray type=\"Float32\" Name=\"a20\"")) +
+                               "</PointData></Piece></PolyData></VTKFile>";
+    expectError(twenty, InputError::Where::Line, 18, "more than 4096 attribute columns");
 }
 
 TEST(VtkXml, AppendedDataErrors) {
@@ -498,8 +540,8 @@ TEST(VtkXml, AppendedDataErrors) {
     const std::string noAppended = good.substr(0, good.find("  <AppendedData")) + "</VTKFile>\n";
     expectError(noAppended, W::Line, lineOf(good, "Name=\"Points\""),
                 "is appended, but the file has no <AppendedData>");
-    expectError(replaced(good, "offset=\"0\"", "offset=\"100000\""), W::Line, lineOf(good, "Name=\"radius\""),
-                "offset 100000 is beyond the");
+    expectError(replaced(good, "offset=\"0\"", "offset=\"100000\""), W::Line,
+                lineOf(good, "Name=\"radius\""), "offset 100000 is beyond the");
     expectError(replaced(good, "   _", "   x"), W::Line, lineOf(good, "<AppendedData"),
                 "expected the '_' marker");
     // An infinite coordinate in raw appended data: the byte offset of that array's data.
@@ -507,13 +549,15 @@ TEST(VtkXml, AppendedDataErrors) {
     p.points.values[4] = std::numeric_limits<double>::infinity();
     const std::string inf = makeDocument(raw, {p});
     const std::size_t appendedStart = inf.find("   _") + 4;
-    const std::string offsetAttr = "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"";
+    const std::string offsetAttr =
+        "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"";
     const std::size_t at = inf.find(offsetAttr) + offsetAttr.size();
     const std::uint64_t offset = std::stoull(inf.substr(at, inf.find('"', at) - at));
     expectError(inf, W::Byte, appendedStart + offset, "value 5 is not a finite number");
     // Appended data cut short.
     const std::string cut = good.substr(0, good.find("   _") + 4 + 190);
-    EXPECT_NE(std::string(errorOf(cut).what()).find("declares 36 bytes, only 15 remain"), std::string::npos)
+    EXPECT_NE(std::string(errorOf(cut).what()).find("declares 36 bytes, only 15 remain"),
+              std::string::npos)
         << errorOf(cut).what();
     EXPECT_EQ(errorOf(cut).where(), W::Byte) << errorOf(cut).what();
 }
@@ -547,13 +591,14 @@ TEST(VtkXml, TruncatedOrCorruptedFilesOnlyEverGiveInputErrors) {
 }
 
 TEST(VtkXml, CollectionSortsByTimestepKeepingFileOrder) {
-    const std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
-                            "  <Collection>\n"
-                            "    <DataSet timestep=\"2\" group=\"\" part=\"0\" file=\"c.vtu\"/>\n"
-                            "    <DataSet timestep=\"0\" file=\"a.vtu\"/>\n"
-                            "    <DataSet timestep=\"0.5\" file=\"b.vtu\"/>\n"
-                            "    <DataSet timestep=\"5e-1\" file=\"sub/d.vtu\"/>\n"
-                            "  </Collection>\n</VTKFile>\n";
+    const std::string pvd =
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+        "  <Collection>\n"
+        "    <DataSet timestep=\"2\" group=\"\" part=\"0\" file=\"c.vtu\"/>\n"
+        "    <DataSet timestep=\"0\" file=\"a.vtu\"/>\n"
+        "    <DataSet timestep=\"0.5\" file=\"b.vtu\"/>\n"
+        "    <DataSet timestep=\"5e-1\" file=\"sub/d.vtu\"/>\n"
+        "  </Collection>\n</VTKFile>\n";
     const auto entries = parseVtkCollection("run.pvd", pvd);
     ASSERT_EQ(entries.size(), 4u);
     EXPECT_EQ(entries[0].file, "a.vtu");
@@ -571,7 +616,8 @@ TEST(VtkXml, CollectionSortsByTimestepKeepingFileOrder) {
         }
         return "no error";
     };
-    EXPECT_EQ(err(replaced(pvd, " file=\"a.vtu\"", "")), "run.pvd:5: <DataSet> has no file attribute");
+    EXPECT_EQ(err(replaced(pvd, " file=\"a.vtu\"", "")),
+              "run.pvd:5: <DataSet> has no file attribute");
     EXPECT_EQ(err(replaced(pvd, "timestep=\"0\"", "timestep=\"soon\"")),
               "run.pvd:5: timestep: expected a finite number, found 'soon'");
     EXPECT_EQ(err(replaced(pvd, "\"Collection\"", "\"PolyData\"")),
@@ -620,7 +666,8 @@ TEST(VtkXml, CollectionOpensAsATimeSeries) {
 
 #ifdef FAULTLINE_TEST_DATA
 TEST(VtkXml, MercuryDpmAsciiWithCommentAndNoCells) {
-    auto ds = Dataset::open({std::string(FAULTLINE_TEST_DATA) + "/mercurydpm_particles_ascii_nocells.vtu"});
+    auto ds = Dataset::open(
+        {std::string(FAULTLINE_TEST_DATA) + "/mercurydpm_particles_ascii_nocells.vtu"});
     ASSERT_EQ(ds->frameCount(), 1u);
     EXPECT_EQ(ds->location(0).format, FileFormat::VtkXml);
     const auto f = ds->frame(0);
@@ -642,7 +689,8 @@ TEST(VtkXml, MercuryDpmAsciiWithCommentAndNoCells) {
 }
 
 TEST(VtkXml, CowHeadInlineBase64PolyData) {
-    auto ds = Dataset::open({std::string(FAULTLINE_TEST_DATA) + "/vtkdata_cowHead_inline_base64_uncompressed.vtp"});
+    auto ds = Dataset::open(
+        {std::string(FAULTLINE_TEST_DATA) + "/vtkdata_cowHead_inline_base64_uncompressed.vtp"});
     const auto f = ds->frame(0);
     ASSERT_EQ(f->size(), 4074u);
     EXPECT_TRUE(f->idsAreRowNumbers);
