@@ -248,8 +248,10 @@ class LegacyReader {
             m_binary ? detail::vtkPackedBytes(type, std::min<std::uint64_t>(values, 1ull << 56))
                      : (values == 0 ? 0 : 2 * values - 1);
         if (needed > remaining)
-            failHere(line, what + ": " + std::to_string(values) + " values declared, but only " +
-                               std::to_string(remaining) +
+            failHere(line, what + ": " + std::to_string(values) + " values declared (" +
+                               (m_binary ? std::to_string(needed) + " bytes"
+                                         : "at least " + std::to_string(needed) + " characters") +
+                               "), only " + std::to_string(remaining) +
                                " bytes remain (truncated file or wrong count)");
     }
 

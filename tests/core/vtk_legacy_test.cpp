@@ -285,7 +285,7 @@ TEST(VtkLegacy, MalformedTextNamesLineAndExpectation) {
     expectError(head + "POINTS 2 float\n0 0 0\n\n\n1 1 inf\n", W::Line, 9, "found 'inf'");
     expectError(head + "POINTS 1000000000000 float\n0 0 0\n", W::Line, 5, "4 billion");
     expectError(head + "POINTS 100000000 float\n0 0 0\n", W::Line, 5,
-                "300000000 values declared, but only 6 bytes remain");
+                "300000000 values declared (at least 599999999 characters), only 6 bytes remain");
     expectError(head + "POINTS 1 float\n0 0 0\nPOINTS 1 float\n0 0 0\n", W::Line, 7,
                 "a second POINTS section");
     expectError(head + "POINTS -1 float\n", W::Line, 5, "expected a point count");
@@ -337,7 +337,7 @@ TEST(VtkLegacy, MalformedBinaryNamesByteOffset) {
     const std::uint64_t data = head.size();
     // Truncated point data: refused before anything is read.
     expectError(head + bigEndian<float>({1, 2, 3}), W::Byte, data,
-                "6 values declared, but only 12 bytes");
+                "6 values declared (24 bytes), only 12 bytes remain");
     // An infinite coordinate: the offset of that value.
     expectError(head + bigEndian<float>({1, 2, 3, 4, std::numeric_limits<float>::infinity(), 6}) +
                     "\n",
@@ -352,7 +352,7 @@ TEST(VtkLegacy, MalformedBinaryNamesByteOffset) {
     // Scalars cut short.
     expectError(points + "POINT_DATA 2\nSCALARS s double\nLOOKUP_TABLE default\n" +
                     bigEndian<double>(1.0),
-                W::Byte, points.size() + 51, "2 values declared, but only 8 bytes remain");
+                W::Byte, points.size() + 51, "2 values declared (16 bytes), only 8 bytes remain");
 }
 
 TEST(VtkLegacy, TruncatedOrCorruptedFilesOnlyEverGiveInputErrors) {
