@@ -10,7 +10,7 @@
 
 namespace faultline::core {
 
-bool looksLikeVtkXml(std::string_view head);        // a VTKFile of UnstructuredGrid/PolyData
+bool looksLikeVtkXml(std::string_view head);        // a VTKFile that is not a Collection
 bool looksLikeVtkCollection(std::string_view head); // a VTKFile of type Collection (.pvd)
 
 Frame parseVtkXml(const std::string& path, std::string_view bytes);
