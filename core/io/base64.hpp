@@ -40,3 +40,10 @@ bool decodeBase64(std::string_view text, std::string& out, std::string& error,
                   std::size_t& errorOffset);
 
 } // namespace faultline::core
+
+namespace faultline::core {
+
+// Standard base64 with '=' padding (what decodeBase64 reads back).
+std::string encodeBase64(std::string_view bytes);
+
+} // namespace faultline::core

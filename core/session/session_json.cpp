@@ -3,6 +3,7 @@
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
+#include "core/session/id_codec.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -215,9 +216,16 @@ CuttingBox boxFromJson(const Json& j, const std::string& where, const std::strin
     return box;
 }
 
+// Faults this large store their members packed (id_codec.hpp); smaller ones stay readable.
+constexpr std::size_t kPackIdsFrom = 4096;
+
 Json faultToJson(const Fault& f) {
-    return {{"name", f.name}, {"color", f.color}, {"notes", f.notes}, {"visible", f.visible},
-            {"ids", f.ids}};
+    Json j = {{"name", f.name}, {"color", f.color}, {"notes", f.notes}, {"visible", f.visible}};
+    if (f.ids.size() >= kPackIdsFrom)
+        j["ids_packed"] = packSortedIds(f.ids);
+    else
+        j["ids"] = f.ids;
+    return j;
 }
 
 Fault faultFromJson(const Json& j, const std::string& where, const std::string& path) {
@@ -234,6 +242,16 @@ Fault faultFromJson(const Json& j, const std::string& where, const std::string& 
     }
     fault.notes = f.str("notes", "");
     fault.visible = f.boolean("visible", true);
+    if (f.has("ids") && f.has("ids_packed"))
+        f.fail("ids_packed", "cannot stand beside \"ids\"");
+    if (f.has("ids_packed")) {
+        std::string error;
+        auto ids = unpackSortedIds(f.str("ids_packed"), error);
+        if (!ids)
+            f.fail("ids_packed", error);
+        fault.ids = std::move(*ids);
+        return fault;
+    }
     const Json& ids = f.array("ids");
     fault.ids.reserve(ids.size());
     for (const Json& id : ids) {

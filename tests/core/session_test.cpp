@@ -330,3 +330,20 @@ TEST(Session, CandidatesAndSplitUndoExactly) {
     EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":5,"prefix":"K"})")), CommandError);
     EXPECT_THROW(s.apply(cmd(R"({"op":"fault.split","name":"K1"})")), CommandError); // one piece
 }
+
+TEST(SessionFile, LargeFaultsArePackedAndRoundTrip) {
+    TempDir dir;
+    SessionState st;
+    Fault big;
+    big.name = "big";
+    for (std::int64_t id = 0; id < 20000; id += 3)
+        big.ids.push_back(id - 100);
+    st.faults.push_back(big);
+    const std::string file = dir.file("s.faultline.json");
+    saveSessionFile(st, file);
+    std::ifstream in(file);
+    const Json doc = Json::parse(in);
+    EXPECT_TRUE(doc["faults"][0].contains("ids_packed"));
+    EXPECT_FALSE(doc["faults"][0].contains("ids"));
+    EXPECT_EQ(loadSessionFile(file), st);
+}
