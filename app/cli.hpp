@@ -9,6 +9,7 @@ namespace faultline::app {
 using Args = std::vector<std::string>;
 
 int runInfo(const Args& args);
+int runGenerate(const Args& args);
 int runGui(const Args& args);
 void printUsage();
 

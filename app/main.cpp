@@ -11,6 +11,9 @@ void faultline::app::printUsage() {
     std::puts(
         "usage: faultline [PATH]                 open the workbench (on PATH, or the demo model)\n"
         "       faultline info PATH...           format, frames, spheres, columns and box of data files\n"
+        "       faultline generate --demo        build the demo model once (per-user data folder)\n"
+        "       faultline generate ... --out DIR a bonded DEM extension model or known planar faults\n"
+        "                                        (faultline generate --help for options)\n"
         "\n"
         "PATH may be a LAMMPS/LIGGGHTS dump (.gz too; many frames per file; '%' for per-processor\n"
         "files), a VTK legacy or XML file (.vtk .vtu .vtp .pvd), or a CSV table with x,y,z columns.\n"
@@ -25,6 +28,8 @@ int main(int argc, char** argv) {
             Args rest(args.begin() + 1, args.end());
             if (cmd == "info")
                 return runInfo(rest);
+            if (cmd == "generate")
+                return runGenerate(rest);
             if (cmd == "-h" || cmd == "--help" || cmd == "help") {
                 printUsage();
                 return 0;
