@@ -31,7 +31,8 @@ constexpr const char *kUsage =
     "  --demo              build the demo model once into the per-user data folder and print its\n"
     "                      path (later runs reuse it)\n"
     "  --kind K            extension (bonded DEM sandbox, default) or planes (known faults)\n"
-    "  --size S            small (~14k spheres), medium (60k, default), large (525k)\n"
+    "  --size S            small, medium (default) or large: 14k, 60k or 525k spheres\n"
+    "                      (extension), 7k, 34k or 269k (planes)\n"
     "  --seed S            random seed (default 1)\n"
     "  --frames F          frames to write\n"
     "  --gzip              write the dump gzip-compressed\n"
@@ -51,6 +52,8 @@ constexpr const char *kUsage =
     "planes options:\n"
     "  --faults N          number of faults (default 3)\n"
     "  --dip D             dip of every fault in degrees (default: random 45-75)\n"
+    "  --dip-direction A   dip direction of every fault, degrees clockwise from north\n"
+    "                      (default: random)\n"
     "  --throw T           final throw in radii (default: random 4-8)\n";
 
 struct Parsed {
@@ -92,7 +95,7 @@ void checkKnown(const Args &args) {
         "--strain-sd",     "--weibull-shape", "--weibull-scale", "--gravity-ratio",
         "--friction",      "--extension",     "--velocity",      "--discontinuities",
         "--stretch-width", "--columns",       "--layers",        "--rows",
-        "--faults",        "--dip",           "--throw"};
+        "--faults",        "--dip",           "--dip-direction", "--throw"};
     static const std::vector<std::string> flags = {"--demo", "--gzip"};
     for (std::size_t i = 0; i < args.size(); ++i) {
         if (std::find(valued.begin(), valued.end(), args[i]) != valued.end()) {
@@ -216,6 +219,8 @@ int runPlanes(const Parsed &a, const fs::path &out) {
         o.faultCount = static_cast<int>(toInteger("--faults", *v));
     if (auto v = a.value("--dip"))
         o.dip = toDouble("--dip", *v);
+    if (auto v = a.value("--dip-direction"))
+        o.dipDirection = toDouble("--dip-direction", *v);
     if (auto v = a.value("--throw"))
         o.throwLength = toDouble("--throw", *v);
     if (auto v = a.value("--columns"))

@@ -54,6 +54,7 @@ ExtensionModelOptions extensionOptionsFor(ModelSize size) {
         o.columns = 350;
         o.layers = 10;
         o.rows = 150;
+        o.settleSteps = 2500; // a taller model takes longer to settle under gravity
         break;
     }
     return o;
