@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char *kUsage =
+constexpr const char* kUsage =
     "usage: faultline generate --demo\n"
     "       faultline generate [--kind extension] [--size small|medium|large] [options] --out DIR\n"
     "       faultline generate --kind planes [--faults N] [options] --out DIR\n"
@@ -57,14 +57,14 @@ constexpr const char *kUsage =
     "  --throw T           final throw in radii (default: random 4-8)\n";
 
 struct Parsed {
-    std::optional<std::string> value(const std::string &name) const {
+    std::optional<std::string> value(const std::string& name) const {
         for (std::size_t i = 0; i + 1 < args.size(); ++i)
             if (args[i] == name)
                 return args[i + 1];
         return std::nullopt;
     }
-    bool flag(const std::string &name) const {
-        for (const auto &a : args)
+    bool flag(const std::string& name) const {
+        for (const auto& a : args)
             if (a == name)
                 return true;
         return false;
@@ -72,7 +72,7 @@ struct Parsed {
     Args args;
 };
 
-double toDouble(const std::string &name, const std::string &text) {
+double toDouble(const std::string& name, const std::string& text) {
     double v = 0;
     auto r = std::from_chars(text.data(), text.data() + text.size(), v);
     if (r.ec != std::errc() || r.ptr != text.data() + text.size())
@@ -80,7 +80,7 @@ double toDouble(const std::string &name, const std::string &text) {
     return v;
 }
 
-long long toInteger(const std::string &name, const std::string &text) {
+long long toInteger(const std::string& name, const std::string& text) {
     long long v = 0;
     auto r = std::from_chars(text.data(), text.data() + text.size(), v);
     if (r.ec != std::errc() || r.ptr != text.data() + text.size())
@@ -88,7 +88,7 @@ long long toInteger(const std::string &name, const std::string &text) {
     return v;
 }
 
-void checkKnown(const Args &args) {
+void checkKnown(const Args& args) {
     static const std::vector<std::string> valued = {
         "--kind",          "--size",          "--seed",          "--frames",
         "--threads",       "--out",           "--law",           "--strain-mean",
@@ -128,7 +128,7 @@ class StderrProgress {
     int m_last = -1;
 };
 
-core::ModelSize parseSize(const std::string &s) {
+core::ModelSize parseSize(const std::string& s) {
     if (s == "small")
         return core::ModelSize::Small;
     if (s == "medium")
@@ -138,7 +138,7 @@ core::ModelSize parseSize(const std::string &s) {
     throw std::invalid_argument("--size expects small, medium or large, got '" + s + "'");
 }
 
-int runExtension(const Parsed &a, const fs::path &out) {
+int runExtension(const Parsed& a, const fs::path& out) {
     core::ExtensionModelOptions o =
         core::extensionOptionsFor(parseSize(a.value("--size").value_or("medium")));
     if (auto v = a.value("--seed"))
@@ -156,14 +156,14 @@ int runExtension(const Parsed &a, const fs::path &out) {
             throw std::invalid_argument("--law expects normal or weibull, got '" + *v + "'");
     }
     struct {
-        const char *name;
-        double *target;
+        const char* name;
+        double* target;
     } reals[] = {{"--strain-mean", &o.strainMean},     {"--strain-sd", &o.strainSd},
                  {"--weibull-shape", &o.weibullShape}, {"--weibull-scale", &o.weibullScale},
                  {"--gravity-ratio", &o.gravityRatio}, {"--friction", &o.friction},
                  {"--extension", &o.extension},        {"--velocity", &o.velocity},
                  {"--stretch-width", &o.stretchWidth}};
-    for (auto &r : reals)
+    for (auto& r : reals)
         if (auto v = a.value(r.name))
             *r.target = toDouble(r.name, *v);
     if (auto v = a.value("--discontinuities")) {
@@ -190,7 +190,7 @@ int runExtension(const Parsed &a, const fs::path &out) {
     core::LammpsDumpWriter writer(dump.string(), gz ? 1 : 0);
     StderrProgress progress("extension model");
     const auto stats = core::runExtensionModel(
-        o, [&](const core::Frame &f, int) { writer.write(f, core::extensionDumpColumns()); },
+        o, [&](const core::Frame& f, int) { writer.write(f, core::extensionDumpColumns()); },
         std::ref(progress));
     writer.close();
     const fs::path info = out / "extension.json";
@@ -205,7 +205,7 @@ int runExtension(const Parsed &a, const fs::path &out) {
     return 0;
 }
 
-int runPlanes(const Parsed &a, const fs::path &out) {
+int runPlanes(const Parsed& a, const fs::path& out) {
     core::PlanesModelOptions o;
     if (auto v = a.value("--size")) {
         const auto size = parseSize(*v);
@@ -239,7 +239,7 @@ int runPlanes(const Parsed &a, const fs::path &out) {
 
 } // namespace
 
-int runGenerate(const Args &args) {
+int runGenerate(const Args& args) {
     Parsed a{args};
     if (a.flag("--help") || a.flag("-h")) {
         std::fputs(kUsage, stdout);
@@ -264,7 +264,7 @@ int runGenerate(const Args &args) {
         if (kind == "planes")
             return runPlanes(a, *out);
         throw std::invalid_argument("--kind expects extension or planes, got '" + kind + "'");
-    } catch (const std::invalid_argument &e) {
+    } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "faultline generate: %s\n%s", e.what(), kUsage);
         return 2;
     }

@@ -13,7 +13,7 @@ using namespace faultline::core;
 namespace {
 
 // The small model (14,400 spheres), stepped through its extension where bonds break.
-void BM_ExtensionSteps(benchmark::State &state) {
+void BM_ExtensionSteps(benchmark::State& state) {
     ExtensionModelOptions o = extensionOptionsFor(ModelSize::Small);
     o.threads = static_cast<int>(state.range(0));
     ExtensionModel model(o);
@@ -29,7 +29,7 @@ void BM_ExtensionSteps(benchmark::State &state) {
 BENCHMARK(BM_ExtensionSteps)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // One 60,000-sphere frame: strain, snapshot and gzip text (level 1, as the demo).
-void BM_DemoFrameOutput(benchmark::State &state) {
+void BM_DemoFrameOutput(benchmark::State& state) {
     ExtensionModel model(extensionOptionsFor(ModelSize::Medium));
     const auto path = std::filesystem::temp_directory_path() / "faultline_bench_frame.lammpstrj.gz";
     LammpsDumpWriter writer(path.string(), 1);

@@ -17,13 +17,13 @@ namespace {
 namespace fs = std::filesystem;
 
 // Bump when the demo's options change, so older demos are rebuilt.
-constexpr const char *kDumpName = "extension-v1.lammpstrj.gz";
-constexpr const char *kInfoName = "extension-v1.json";
+constexpr const char* kDumpName = "extension-v1.lammpstrj.gz";
+constexpr const char* kInfoName = "extension-v1.json";
 
 fs::path dataHome() {
-    if (const char *xdg = std::getenv("XDG_DATA_HOME"); xdg && *xdg && fs::path(xdg).is_absolute())
+    if (const char* xdg = std::getenv("XDG_DATA_HOME"); xdg && *xdg && fs::path(xdg).is_absolute())
         return fs::path(xdg);
-    if (const char *home = std::getenv("HOME"); home && *home)
+    if (const char* home = std::getenv("HOME"); home && *home)
         return fs::path(home) / ".local" / "share";
     throw std::runtime_error("cannot find the data folder: neither XDG_DATA_HOME nor HOME is set");
 }
@@ -41,7 +41,7 @@ std::optional<std::string> existingDemoModel() {
     return std::nullopt;
 }
 
-std::string ensureDemoModel(const ProgressCallback &progress) {
+std::string ensureDemoModel(const ProgressCallback& progress) {
     if (auto path = existingDemoModel())
         return *path;
     const fs::path folder = demoModelFolder();
@@ -55,7 +55,7 @@ std::string ensureDemoModel(const ProgressCallback &progress) {
         const ExtensionModelOptions options = extensionOptionsFor(ModelSize::Medium);
         LammpsDumpWriter writer((temp / kDumpName).string(), 1);
         const ExtensionRunStats stats = runExtensionModel(
-            options, [&](const Frame &f, int) { writer.write(f, extensionDumpColumns()); },
+            options, [&](const Frame& f, int) { writer.write(f, extensionDumpColumns()); },
             progress);
         writer.close();
         std::ofstream info(temp / kInfoName, std::ios::binary);

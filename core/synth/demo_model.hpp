@@ -19,6 +19,6 @@ std::optional<std::string> existingDemoModel();
 // Returns the demo's dump file, generating it first when missing (about a minute; progress is
 // reported and may cancel, throwing GenerationCancelled). Generation writes into a temporary
 // folder renamed into place, so an interrupted run never leaves a half demo behind.
-std::string ensureDemoModel(const ProgressCallback &progress = {});
+std::string ensureDemoModel(const ProgressCallback& progress = {});
 
 } // namespace faultline::core

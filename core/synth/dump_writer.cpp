@@ -17,10 +17,10 @@ enum class Source { Id, X, Y, Z, Radius, Attribute };
 
 struct ColumnRef {
     Source source = Source::Attribute;
-    const AttributeColumn *attribute = nullptr;
+    const AttributeColumn* attribute = nullptr;
 };
 
-template <typename T> void append(std::string &out, T value) {
+template <typename T> void append(std::string& out, T value) {
     char buf[64];
     auto r = std::to_chars(buf, buf + sizeof buf, value);
     assert(r.ec == std::errc());
@@ -50,7 +50,7 @@ LammpsDumpWriter::~LammpsDumpWriter() {
         std::fclose(m_file);
 }
 
-void LammpsDumpWriter::put(const std::string &text) {
+void LammpsDumpWriter::put(const std::string& text) {
     if (text.empty() || m_failed)
         return;
     if (m_gz) {
@@ -71,10 +71,10 @@ void LammpsDumpWriter::put(const std::string &text) {
     }
 }
 
-void LammpsDumpWriter::write(const Frame &frame, const std::vector<std::string> &columns) {
+void LammpsDumpWriter::write(const Frame& frame, const std::vector<std::string>& columns) {
     assert(m_gz || m_file);
     std::vector<ColumnRef> refs;
-    for (const auto &name : columns) {
+    for (const auto& name : columns) {
         ColumnRef ref;
         if (name == "id")
             ref.source = Source::Id;
@@ -109,7 +109,7 @@ void LammpsDumpWriter::write(const Frame &frame, const std::vector<std::string> 
         head += '\n';
     }
     head += "ITEM: ATOMS";
-    for (const auto &name : columns)
+    for (const auto& name : columns)
         head += ' ' + name;
     head += '\n';
     put(head);
@@ -121,14 +121,14 @@ void LammpsDumpWriter::write(const Frame &frame, const std::vector<std::string> 
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
     std::vector<std::string> text(chunks);
     tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
-        std::string &out = text[c];
+        std::string& out = text[c];
         const std::size_t begin = c * kChunk, end = std::min(n, begin + kChunk);
         out.reserve((end - begin) * 16 * refs.size());
         for (std::size_t i = begin; i < end; ++i) {
             for (std::size_t k = 0; k < refs.size(); ++k) {
                 if (k)
                     out += ' ';
-                const ColumnRef &ref = refs[k];
+                const ColumnRef& ref = refs[k];
                 switch (ref.source) {
                 case Source::Id:
                     append(out, frame.ids[i]);
@@ -156,7 +156,7 @@ void LammpsDumpWriter::write(const Frame &frame, const std::vector<std::string> 
             out += '\n';
         }
     });
-    for (const auto &t : text)
+    for (const auto& t : text)
         put(t);
     if (m_failed)
         throw std::runtime_error(m_path + ": write failed (disk full?)");

@@ -4,7 +4,6 @@
 #include "core/synth/local_strain.hpp"
 #include "core/synth/seeded_random.hpp"
 
-#include <nlohmann/json.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -25,8 +24,8 @@ struct V3 {
 inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline V3 &operator+=(V3 &a, V3 b) { return a = a + b; }
-inline V3 &operator-=(V3 &a, V3 b) { return a = a - b; }
+inline V3& operator+=(V3& a, V3 b) { return a = a + b; }
+inline V3& operator-=(V3& a, V3 b) { return a = a - b; }
 inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 constexpr double kRadius = 1.0;
@@ -40,102 +39,13 @@ double quantize(double v, double step) { return std::round(v / step) * step; }
 
 } // namespace
 
-ExtensionModelOptions extensionOptionsFor(ModelSize size) {
-    ExtensionModelOptions o;
-    switch (size) {
-    case ModelSize::Small:
-        o.columns = 120;
-        o.layers = 4;
-        o.rows = 30;
-        break;
-    case ModelSize::Medium:
-        break; // 250 x 4 x 60 = 60,000
-    case ModelSize::Large:
-        o.columns = 350;
-        o.layers = 10;
-        o.rows = 150;
-        o.settleSteps = 2500; // a taller model takes longer to settle under gravity
-        break;
-    }
-    return o;
-}
-
-void validate(const ExtensionModelOptions &o) {
-    auto need = [](bool ok, const std::string &what) {
-        if (!ok)
-            throw std::invalid_argument(what);
-    };
-    need(o.columns >= 4 && o.layers >= 1 && o.rows >= 4,
-         "the lattice needs at least 4 columns, 1 layer and 4 rows");
-    need(static_cast<double>(o.columns) * o.layers * o.rows < 4.0e9, "the lattice is too large");
-    need(o.strainMean > 0 && o.strainSd >= 0, "the normal law needs mean > 0 and sd >= 0");
-    need(o.weibullShape > 0 && o.weibullScale > 0, "the Weibull law needs shape and scale > 0");
-    need(o.minBreakingStrain > 0, "the minimum breaking strain must be > 0");
-    need(o.gravityRatio >= 0, "the gravity ratio must be >= 0");
-    need(o.friction >= 0, "friction must be >= 0");
-    need(o.localDamping >= 0 && o.localDamping < 1, "local damping must be in [0, 1)");
-    need(o.dashpotRatio >= 0 && o.dashpotRatio <= 1, "the dashpot ratio must be in [0, 1]");
-    need(o.dtFactor > 0 && o.dtFactor <= 0.5, "the time step factor must be in (0, 0.5]");
-    need(o.extension > 0 && o.extension <= 1, "extension must be in (0, 1]");
-    need(o.velocity > 0 && o.velocity <= 0.5, "velocity must be in (0, 0.5]");
-    need(!o.discontinuities.empty() && o.discontinuities.size() <= 16,
-         "give 1 to 16 base discontinuities");
-    for (double d : o.discontinuities)
-        need(d > 0 && d < 1, "discontinuities must be in (0, 1)");
-    need(o.stretchWidth >= 0 && o.stretchWidth <= 1, "the stretch width must be in [0, 1]");
-    need(o.settleSteps >= 0, "settle steps must be >= 0");
-    need(o.frames >= 1 && o.frames <= 100000, "frames must be in 1..100000");
-    need(o.layerBands >= 1, "layer bands must be >= 1");
-    need(o.threads >= 0, "threads must be >= 0");
-}
-
-std::string describeExtensionRun(const ExtensionModelOptions &o, const ExtensionRunStats &s) {
-    nlohmann::json j;
-    j["model"] = "bonded DEM extension";
-    j["lattice"] = {{"columns", o.columns}, {"layers", o.layers}, {"rows", o.rows}};
-    j["seed"] = o.seed;
-    j["breaking_strain"] =
-        o.law == BreakingStrainLaw::Normal
-            ? nlohmann::json{{"law", "normal"}, {"mean", o.strainMean}, {"sd", o.strainSd}}
-            : nlohmann::json{
-                  {"law", "weibull"}, {"shape", o.weibullShape}, {"scale", o.weibullScale}};
-    j["min_breaking_strain"] = o.minBreakingStrain;
-    j["gravity_ratio"] = o.gravityRatio;
-    j["friction"] = o.friction;
-    j["local_damping"] = o.localDamping;
-    j["dashpot_ratio"] = o.dashpotRatio;
-    j["dt_factor"] = o.dtFactor;
-    j["extension"] = o.extension;
-    j["velocity"] = o.velocity;
-    j["discontinuities"] = o.discontinuities;
-    j["stretch_width"] = o.stretchWidth;
-    j["settle_steps"] = o.settleSteps;
-    j["frames"] = s.frames;
-    j["layer_bands"] = o.layerBands;
-    j["spheres"] = s.spheres;
-    j["bonds"] = s.bonds;
-    j["broken_bonds"] = s.brokenBonds;
-    j["steps"] = s.steps;
-    j["stepping_seconds"] = s.simulationSeconds;
-    j["total_seconds"] = s.totalSeconds;
-    j["steps_per_second"] = s.stepsPerSecond();
-    j["sphere_steps_per_second"] = s.sphereStepsPerSecond();
-    return j.dump(2);
-}
-
-const std::vector<std::string> &extensionDumpColumns() {
-    static const std::vector<std::string> columns = {
-        "id", "type", "x", "y", "z", "radius", "strain", "broken_bonds", "layer", "x0", "y0", "z0"};
-    return columns;
-}
-
 // Basal spheres move kinematically; side spheres (the first and last of every row) are welded
 // in x to the end plates but free in y and z, so the model settles and slides along them.
 enum class SphereKind : std::uint8_t { Free, Basal, Side };
 
 struct ExtensionModel::State {
     ExtensionModelOptions opt;
-    tbb::task_arena arena;
+    mutable tbb::task_arena arena; // executing work does not change the model
     double dt = 0, g = 0, bondDashpot = 0, length = 0;
     std::int64_t step = 0, frameInterval = 1;
 
@@ -182,15 +92,15 @@ struct ExtensionModel::State {
     void buildContacts();
     void installBonds();
     void computeBondForces();
-    void computeSphereForces(std::vector<V3> &acc);
-    double integrate(const std::vector<V3> &acc);
+    void computeSphereForces(std::vector<V3>& acc);
+    double integrate(const std::vector<V3>& acc);
 };
 
-ExtensionModel::ExtensionModel(const ExtensionModelOptions &options)
+ExtensionModel::ExtensionModel(const ExtensionModelOptions& options)
     : m(std::make_unique<State>()) {
-    State &s = *m;
+    State& s = *m;
     s.opt = options;
-    const auto &o = s.opt;
+    const auto& o = s.opt;
     assert(o.columns > 2 && o.layers > 0 && o.rows > 2 && o.frames >= 1);
     s.arena.initialize(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
 
@@ -238,7 +148,7 @@ ExtensionModel::ExtensionModel(const ExtensionModelOptions &options)
 
     // Bonds: every touching pair except two basal spheres (both moved by the base).
     SeededRandom rng(o.seed);
-    for (const auto &pr : lat.pairs) {
+    for (const auto& pr : lat.pairs) {
         if (s.kind[pr[0]] == SphereKind::Basal && s.kind[pr[1]] == SphereKind::Basal)
             continue;
         double e = o.law == BreakingStrainLaw::Normal ? rng.normal(o.strainMean, o.strainSd)
@@ -250,7 +160,7 @@ ExtensionModel::ExtensionModel(const ExtensionModelOptions &options)
     s.broken.assign(s.bonds.size(), 0);
     s.bondForce.assign(s.bonds.size(), V3{});
     s.bondOffsets.assign(s.n + 1, 0);
-    for (const auto &b : s.bonds) {
+    for (const auto& b : s.bonds) {
         ++s.bondOffsets[b[0] + 1];
         ++s.bondOffsets[b[1] + 1];
     }
@@ -305,7 +215,7 @@ void ExtensionModel::State::buildContacts() {
     // (stable, so the order within a cell is by index and the lists are deterministic).
     const double cut = 2 * kRadius + kSkin;
     V3 lo = p[0], hi = p[0];
-    for (const V3 &q : p) {
+    for (const V3& q : p) {
         lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
         hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
     }
@@ -332,7 +242,7 @@ void ExtensionModel::State::buildContacts() {
             sorted[fill[cellOf[i]]++] = i;
     }
 
-    auto visit = [&](std::uint32_t i, auto &&onPair) {
+    auto visit = [&](std::uint32_t i, auto&& onPair) {
         const int cx = cellCoord(p[i].x, lo.x, nx), cy = cellCoord(p[i].y, lo.y, ny),
                   cz = cellCoord(p[i].z, lo.z, nz);
         for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
@@ -352,7 +262,7 @@ void ExtensionModel::State::buildContacts() {
     };
     std::vector<std::uint32_t> counts(n + 1, 0);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(n), kGrain),
-                      [&](const auto &r) {
+                      [&](const auto& r) {
                           for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
                               std::uint32_t c = 0;
                               if (kind[i] != SphereKind::Basal)
@@ -366,7 +276,7 @@ void ExtensionModel::State::buildContacts() {
     contactPartner.resize(contactOffsets.back());
     contactBond.resize(contactOffsets.back());
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(n), kGrain),
-                      [&](const auto &r) {
+                      [&](const auto& r) {
                           for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
                               if (kind[i] == SphereKind::Basal)
                                   continue;
@@ -406,7 +316,7 @@ void ExtensionModel::State::computeBondForces() {
     const double k = kStiffness, c = bondDashpot;
     const bool canBreak = step >= opt.settleSteps;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bonds.size(), 4 * kGrain),
-                      [&](const auto &r) {
+                      [&](const auto& r) {
                           for (std::size_t b = r.begin(); b != r.end(); ++b) {
                               if (broken[b]) {
                                   bondForce[b] = {};
@@ -431,11 +341,11 @@ void ExtensionModel::State::computeBondForces() {
                       });
 }
 
-void ExtensionModel::State::computeSphereForces(std::vector<V3> &acc) {
+void ExtensionModel::State::computeSphereForces(std::vector<V3>& acc) {
     const double k = kStiffness, c = bondDashpot, mu = opt.friction, alpha = opt.localDamping;
     const double reach = 2 * kRadius;
     const double right = boxHi[0] + displacementAt(step);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const auto &r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const auto& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             if (kind[i] == SphereKind::Basal) {
                 acc[i] = {};
@@ -477,7 +387,7 @@ void ExtensionModel::State::computeSphereForces(std::vector<V3> &acc) {
             // Frictionless walls: x = 0 and the moving right wall, y = 0 and y = top, z = 0.
             const V3 q = p[i], w = v[i];
             // Separation speed is positive when the sphere leaves the wall.
-            auto wall = [&](double overlap, double separation, double &component, double sign) {
+            auto wall = [&](double overlap, double separation, double& component, double sign) {
                 if (overlap > 0)
                     component += sign * std::max(0.0, k * overlap - c * separation);
             };
@@ -502,11 +412,11 @@ void ExtensionModel::State::computeSphereForces(std::vector<V3> &acc) {
     });
 }
 
-double ExtensionModel::State::integrate(const std::vector<V3> &acc) {
+double ExtensionModel::State::integrate(const std::vector<V3>& acc) {
     const double u = displacementAt(step + 1), speed = speedAt(step + 1);
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, n, kGrain), 0.0,
-        [&](const auto &r, double worst) {
+        [&](const auto& r, double worst) {
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
                 if (kind[i] == SphereKind::Basal) {
                     p[i] = {x0[i].x + baseWeight[i] * u, x0[i].y, x0[i].z};
@@ -528,7 +438,7 @@ double ExtensionModel::State::integrate(const std::vector<V3> &acc) {
 }
 
 void ExtensionModel::advance(std::int64_t steps) {
-    State &s = *m;
+    State& s = *m;
     std::vector<V3> acc(s.n);
     s.arena.execute([&] {
         for (std::int64_t k = 0; k < steps; ++k) {
@@ -547,13 +457,13 @@ void ExtensionModel::advance(std::int64_t steps) {
 }
 
 Frame ExtensionModel::snapshot() const {
-    const State &s = *m;
+    const State& s = *m;
     std::vector<std::array<double, 3>> current(s.n);
     for (std::size_t i = 0; i < s.n; ++i)
         current[i] = {s.p[i].x, s.p[i].y, s.p[i].z};
     std::vector<double> strain;
     std::vector<std::int32_t> brokenPerSphere(s.n, 0);
-    const_cast<tbb::task_arena &>(s.arena).execute(
+    s.arena.execute(
         [&] { strain = vonMisesShearStrain(s.reference, current, s.strainNeighbours); });
     for (std::size_t i = 0; i < s.n; ++i)
         for (std::uint32_t e = s.bondOffsets[i]; e < s.bondOffsets[i + 1]; ++e)
@@ -582,14 +492,14 @@ Frame ExtensionModel::snapshot() const {
         iy[i] = static_cast<float>(quantize(s.reference[i][1], 1e-3));
         iz[i] = static_cast<float>(quantize(s.reference[i][2], 1e-3));
     }
-    auto ints = [](std::string name, std::vector<std::int32_t> &&values) {
+    auto ints = [](std::string name, std::vector<std::int32_t>&& values) {
         AttributeColumn c;
         c.name = std::move(name);
         c.type = ColumnType::Int32;
         c.ints = std::move(values);
         return c;
     };
-    auto floats = [](std::string name, std::vector<float> &&values) {
+    auto floats = [](std::string name, std::vector<float>&& values) {
         AttributeColumn c;
         c.name = std::move(name);
         c.type = ColumnType::Float32;
@@ -611,8 +521,8 @@ Frame ExtensionModel::snapshot() const {
     return f;
 }
 
-ExtensionRunStats runExtensionModel(const ExtensionModelOptions &options, const FrameSink &sink,
-                                    const ProgressCallback &progress) {
+ExtensionRunStats runExtensionModel(const ExtensionModelOptions& options, const FrameSink& sink,
+                                    const ProgressCallback& progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     ExtensionModel model(options);

@@ -52,20 +52,24 @@ struct ExtensionModelOptions {
 };
 
 // Throws std::invalid_argument naming the first option out of range.
-void validate(const ExtensionModelOptions &options);
+void validate(const ExtensionModelOptions& options);
 
 // small: ~14k spheres, medium (the demo): 60k, large: 525k.
 ExtensionModelOptions extensionOptionsFor(ModelSize size);
 
 // The dump columns, in order: id type x y z radius strain broken_bonds layer x0 y0 z0.
-const std::vector<std::string> &extensionDumpColumns();
+// type: 1 free sphere, 2 basal (moved with its base plate), 3 end plate (x moved, y z free).
+// strain: von Mises shear strain of the neighbourhood since settling; broken_bonds: count of the
+// sphere's broken bonds; layer: band of initial row (0 at the base); x0 y0 z0: settled position
+// (frame 0).
+const std::vector<std::string>& extensionDumpColumns();
 
 class ExtensionModel {
   public:
-    explicit ExtensionModel(const ExtensionModelOptions &options);
+    explicit ExtensionModel(const ExtensionModelOptions& options);
     ~ExtensionModel();
-    ExtensionModel(const ExtensionModel &) = delete;
-    ExtensionModel &operator=(const ExtensionModel &) = delete;
+    ExtensionModel(const ExtensionModel&) = delete;
+    ExtensionModel& operator=(const ExtensionModel&) = delete;
 
     std::size_t sphereCount() const;
     std::size_t bondCount() const; // breakable bonds (pairs of basal spheres excluded)
@@ -103,16 +107,16 @@ struct GenerationCancelled : std::runtime_error {
 };
 
 // Called with frames in order; `frame` counts from 0.
-using FrameSink = std::function<void(const Frame &frame, int index)>;
+using FrameSink = std::function<void(const Frame& frame, int index)>;
 // Called now and then with the fraction done (0..1); returning false cancels the run
 // (GenerationCancelled is thrown).
 using ProgressCallback = std::function<bool(double fraction)>;
 
 // The options and figures of a run as JSON text (for the model's side-car file).
-std::string describeExtensionRun(const ExtensionModelOptions &options,
-                                 const ExtensionRunStats &stats);
+std::string describeExtensionRun(const ExtensionModelOptions& options,
+                                 const ExtensionRunStats& stats);
 
-ExtensionRunStats runExtensionModel(const ExtensionModelOptions &options, const FrameSink &sink,
-                                    const ProgressCallback &progress = {});
+ExtensionRunStats runExtensionModel(const ExtensionModelOptions& options, const FrameSink& sink,
+                                    const ProgressCallback& progress = {});
 
 } // namespace faultline::core

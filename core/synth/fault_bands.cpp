@@ -14,7 +14,7 @@ struct Point {
 };
 
 // The heaviest band over all dips and offsets (sliding window over the sorted projections).
-DippingBand heaviestBand(const std::vector<Point> &pts, const FaultBandOptions &o) {
+DippingBand heaviestBand(const std::vector<Point>& pts, const FaultBandOptions& o) {
     DippingBand best;
     double bestSpread = 0;
     std::vector<std::pair<double, double>> proj(pts.size());
@@ -47,10 +47,10 @@ DippingBand heaviestBand(const std::vector<Point> &pts, const FaultBandOptions &
     return best;
 }
 
-double greedyShare(std::vector<Point> pts, const FaultBandOptions &o,
-                   std::vector<DippingBand> *out) {
+double greedyShare(std::vector<Point> pts, const FaultBandOptions& o,
+                   std::vector<DippingBand>* out) {
     double total = 0;
-    for (const auto &p : pts)
+    for (const auto& p : pts)
         total += p.w;
     if (total <= 0)
         return 0;
@@ -64,7 +64,7 @@ double greedyShare(std::vector<Point> pts, const FaultBandOptions &o,
             out->push_back(b);
         const double rad = b.dip * std::numbers::pi / 180.0;
         const double sn = std::sin(rad), cs = std::cos(rad);
-        std::erase_if(pts, [&](const Point &p) {
+        std::erase_if(pts, [&](const Point& p) {
             return std::fabs(p.x * sn + b.towardsPlusX * p.z * cs - b.offset) <=
                    0.5 * o.width + 1e-9;
         });
@@ -74,10 +74,10 @@ double greedyShare(std::vector<Point> pts, const FaultBandOptions &o,
 
 } // namespace
 
-FaultBandMeasure measureFaultBands(const Frame &frame, const FaultBandOptions &options) {
-    const AttributeColumn *broken = frame.attribute("broken_bonds");
+FaultBandMeasure measureFaultBands(const Frame& frame, const FaultBandOptions& options) {
+    const AttributeColumn* broken = frame.attribute("broken_bonds");
     assert(broken && "measureFaultBands needs a broken_bonds column");
-    const AttributeColumn *type = options.skipBoundaryTypes ? frame.attribute("type") : nullptr;
+    const AttributeColumn* type = options.skipBoundaryTypes ? frame.attribute("type") : nullptr;
     std::vector<Point> damaged, all;
     for (std::size_t i = 0; i < frame.size(); ++i) {
         if (type && type->value(i) != 1)

@@ -34,6 +34,6 @@ struct FaultBandOptions {
 // Weights are the frame's `broken_bonds` column (asserted present). Greedy: the heaviest band over
 // every dip and offset, its spheres removed, then the next. Runs the same search on weight 1 per
 // sphere for the uniform share.
-FaultBandMeasure measureFaultBands(const Frame &frame, const FaultBandOptions &options = {});
+FaultBandMeasure measureFaultBands(const Frame& frame, const FaultBandOptions& options = {});
 
 } // namespace faultline::core

@@ -53,8 +53,8 @@ HcpLattice makeHcpLattice(int columns, int layers, int rows, double radius) {
                             const std::uint32_t j = index(cc, ll, rr);
                             if (j <= i)
                                 continue;
-                            const auto &p = lat.positions[i];
-                            const auto &q = lat.positions[j];
+                            const auto& p = lat.positions[i];
+                            const auto& q = lat.positions[j];
                             const double d = std::sqrt((q[0] - p[0]) * (q[0] - p[0]) +
                                                        (q[1] - p[1]) * (q[1] - p[1]) +
                                                        (q[2] - p[2]) * (q[2] - p[2]));

@@ -13,17 +13,17 @@ namespace {
 
 using Mat3 = std::array<std::array<double, 3>, 3>;
 
-double det(const Mat3 &m) {
+double det(const Mat3& m) {
     return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
            m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
 // Inverse by cofactors; false when (nearly) singular relative to the matrix scale.
-bool invert(const Mat3 &m, Mat3 &out) {
+bool invert(const Mat3& m, Mat3& out) {
     const double d = det(m);
     double scale = 0;
-    for (const auto &row : m)
+    for (const auto& row : m)
         for (double v : row)
             scale = std::max(scale, std::fabs(v));
     if (!(std::fabs(d) > 1e-9 * scale * scale * scale))
@@ -44,10 +44,10 @@ bool invert(const Mat3 &m, Mat3 &out) {
 } // namespace
 
 NeighbourTable neighbourTableFromPairs(std::size_t sphereCount,
-                                       const std::vector<std::array<std::uint32_t, 2>> &pairs) {
+                                       const std::vector<std::array<std::uint32_t, 2>>& pairs) {
     NeighbourTable t;
     t.offsets.assign(sphereCount + 1, 0);
-    for (const auto &p : pairs) {
+    for (const auto& p : pairs) {
         assert(p[0] < sphereCount && p[1] < sphereCount);
         ++t.offsets[p[0] + 1];
         ++t.offsets[p[1] + 1];
@@ -56,7 +56,7 @@ NeighbourTable neighbourTableFromPairs(std::size_t sphereCount,
         t.offsets[i + 1] += t.offsets[i];
     t.partners.resize(t.offsets.back());
     std::vector<std::uint32_t> fill(t.offsets.begin(), t.offsets.end() - 1);
-    for (const auto &p : pairs) {
+    for (const auto& p : pairs) {
         t.partners[fill[p[0]]++] = p[1];
         t.partners[fill[p[1]]++] = p[0];
     }
@@ -65,14 +65,14 @@ NeighbourTable neighbourTableFromPairs(std::size_t sphereCount,
     return t;
 }
 
-std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>> &initial,
-                                        const std::vector<std::array<double, 3>> &current,
-                                        const NeighbourTable &neighbours) {
+std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>>& initial,
+                                        const std::vector<std::array<double, 3>>& current,
+                                        const NeighbourTable& neighbours) {
     assert(initial.size() == current.size());
     assert(neighbours.offsets.size() == initial.size() + 1);
     std::vector<double> out(initial.size(), 0.0);
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, initial.size(), 1024), [&](const auto &range) {
+        tbb::blocked_range<std::size_t>(0, initial.size(), 1024), [&](const auto& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 Mat3 xx{}, yx{};
                 for (std::uint32_t k = neighbours.offsets[i]; k < neighbours.offsets[i + 1]; ++k) {

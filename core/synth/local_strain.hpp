@@ -17,14 +17,14 @@ struct NeighbourTable {
 
 // Both directions of every pair, each row in increasing partner order.
 NeighbourTable neighbourTableFromPairs(std::size_t sphereCount,
-                                       const std::vector<std::array<std::uint32_t, 2>> &pairs);
+                                       const std::vector<std::array<std::uint32_t, 2>>& pairs);
 
 // For sphere i with neighbour vectors X_k (initial) and Y_k (current): F = (sum Y X^T)(sum X
 // X^T)^-1, E = (F^T F - I) / 2, and the result is sqrt(Exy^2 + Eyz^2 + Exz^2 +
 // ((Exx-Eyy)^2 + (Eyy-Ezz)^2 + (Ezz-Exx)^2) / 6). Zero where the neighbours do not span 3-D.
 // Runs in parallel; the result does not depend on the thread count.
-std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>> &initial,
-                                        const std::vector<std::array<double, 3>> &current,
-                                        const NeighbourTable &neighbours);
+std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>>& initial,
+                                        const std::vector<std::array<double, 3>>& current,
+                                        const NeighbourTable& neighbours);
 
 } // namespace faultline::core

@@ -21,9 +21,9 @@ using Vec = std::array<double, 3>;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-double dotv(const Vec &a, const Vec &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec sub(const Vec &a, const Vec &b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec addScaled(const Vec &a, double s, const Vec &b) {
+double dotv(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec addScaled(const Vec& a, double s, const Vec& b) {
     return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
 }
 
@@ -39,7 +39,7 @@ double wrapDegrees(double deg) {
 }
 
 // Distance from a point to a disc (centre c, unit normal n, radius r).
-double pointDiscDistance(const Vec &p, const Vec &c, const Vec &n, double r) {
+double pointDiscDistance(const Vec& p, const Vec& c, const Vec& n, double r) {
     const Vec d = sub(p, c);
     const double h = dotv(d, n);
     const Vec inPlane = addScaled(d, -h, n);
@@ -48,7 +48,7 @@ double pointDiscDistance(const Vec &p, const Vec &c, const Vec &n, double r) {
 }
 
 // Two unit vectors spanning the plane with normal n.
-std::pair<Vec, Vec> planeBasis(const Vec &n) {
+std::pair<Vec, Vec> planeBasis(const Vec& n) {
     const Vec helper = std::fabs(n[2]) < 0.9 ? Vec{0, 0, 1} : Vec{1, 0, 0};
     Vec u = {n[1] * helper[2] - n[2] * helper[1], n[2] * helper[0] - n[0] * helper[2],
              n[0] * helper[1] - n[1] * helper[0]};
@@ -60,10 +60,10 @@ std::pair<Vec, Vec> planeBasis(const Vec &n) {
 
 // Smallest distance between two discs, from points sampled on each (spacing below 1 radius) to
 // the other disc exactly; low by at most half the spacing.
-double discGap(const PlaneFaultSpec &a, const Vec &na, const PlaneFaultSpec &b, const Vec &nb) {
+double discGap(const PlaneFaultSpec& a, const Vec& na, const PlaneFaultSpec& b, const Vec& nb) {
     double best = 1e300;
-    auto sampleAgainst = [&](const PlaneFaultSpec &s, const Vec &ns, const PlaneFaultSpec &o,
-                             const Vec &no) {
+    auto sampleAgainst = [&](const PlaneFaultSpec& s, const Vec& ns, const PlaneFaultSpec& o,
+                             const Vec& no) {
         const auto [u, v] = planeBasis(ns);
         const int rings = std::max(2, static_cast<int>(std::ceil(s.radius)));
         for (int k = 0; k <= rings; ++k) {
@@ -82,8 +82,8 @@ double discGap(const PlaneFaultSpec &a, const Vec &na, const PlaneFaultSpec &b, 
     return best;
 }
 
-void check(const PlanesModelOptions &o) {
-    auto need = [](bool ok, const std::string &what) {
+void check(const PlanesModelOptions& o) {
+    auto need = [](bool ok, const std::string& what) {
         if (!ok)
             throw std::invalid_argument(what);
     };
@@ -97,7 +97,7 @@ void check(const PlanesModelOptions &o) {
     need(!o.throwLength || *o.throwLength >= 0, "throw must be >= 0");
     need(o.halfThickness > 0, "the half thickness must be > 0");
     need(o.layerBands >= 1, "layer bands must be >= 1");
-    for (const auto &f : o.faults) {
+    for (const auto& f : o.faults) {
         need(f.dip > 0 && f.dip <= 90, "a fault's dip must be in (0, 90]");
         need(f.radius > 0 && f.throwLength >= 0, "a fault needs radius > 0 and throw >= 0");
         need(f.appearsAt >= 0 && f.appearsAt < 1, "a fault's start must be in [0, 1)");
@@ -132,7 +132,7 @@ PlanesModelOptions planesOptionsFor(ModelSize size) {
     return o;
 }
 
-PlanesModel generatePlanesModel(const PlanesModelOptions &options) {
+PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
     check(options);
     PlanesModel model;
     model.options = options;
@@ -158,7 +158,7 @@ PlanesModel generatePlanesModel(const PlanesModelOptions &options) {
                 s.appearsAt = k == 0 ? 0.0 : rng.uniform(0.0, 0.5);
                 const Vec ns = planeNormal(s.dip, s.dipDirection);
                 placed = true;
-                for (const auto &other : specs)
+                for (const auto& other : specs)
                     if (discGap(s, ns, other, planeNormal(other.dip, other.dipDirection)) <
                         2 * options.halfThickness + options.minGap) {
                         placed = false;
@@ -203,8 +203,8 @@ PlanesModel generatePlanesModel(const PlanesModelOptions &options) {
         std::vector<Vec> pos = lat.positions;
         std::vector<float> strain = backgroundStrain;
         std::vector<std::int32_t> broken(n, 0);
-        for (auto &f : model.faults) {
-            const PlaneFaultSpec &s = f.spec;
+        for (auto& f : model.faults) {
+            const PlaneFaultSpec& s = f.spec;
             const double grown = std::clamp((t - s.appearsAt) / (1.0 - s.appearsAt), 0.0, 1.0);
             const double radius = grown * s.radius, slip = grown * f.slip;
             const Vec dd = downDip(s.dip, s.dipDirection);
@@ -257,7 +257,7 @@ PlanesModel generatePlanesModel(const PlanesModelOptions &options) {
             z0[i] = q(lat.positions[i][2]);
             strain[i] = static_cast<float>(std::round(strain[i] * 1e4) / 1e4);
         }
-        auto column = [](std::string name, auto &&values) {
+        auto column = [](std::string name, auto&& values) {
             AttributeColumn c;
             c.name = std::move(name);
             if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<float>>) {
@@ -286,7 +286,7 @@ PlanesModel generatePlanesModel(const PlanesModelOptions &options) {
     return model;
 }
 
-std::string planesTruthJson(const PlanesModel &model) {
+std::string planesTruthJson(const PlanesModel& model) {
     nlohmann::json j;
     j["kind"] = "planes";
     j["seed"] = model.options.seed;
@@ -299,7 +299,7 @@ std::string planesTruthJson(const PlanesModel &model) {
     if (!model.frames.empty())
         j["box"] = {{"lo", model.frames.front().box.lo}, {"hi", model.frames.front().box.hi}};
     nlohmann::json faults = nlohmann::json::array();
-    for (const auto &f : model.faults) {
+    for (const auto& f : model.faults) {
         nlohmann::json jf;
         jf["name"] = f.name;
         jf["point"] = f.spec.centre;
@@ -318,14 +318,14 @@ std::string planesTruthJson(const PlanesModel &model) {
     return j.dump(1);
 }
 
-PlanesModelFiles writePlanesModel(const PlanesModel &model, const std::string &folder, bool gzip) {
+PlanesModelFiles writePlanesModel(const PlanesModel& model, const std::string& folder, bool gzip) {
     namespace fs = std::filesystem;
     fs::create_directories(folder);
     PlanesModelFiles files;
     files.dump = (fs::path(folder) / (gzip ? "planes.lammpstrj.gz" : "planes.lammpstrj")).string();
     files.truth = (fs::path(folder) / "planes_truth.json").string();
     LammpsDumpWriter writer(files.dump, gzip ? 6 : 0);
-    for (const auto &f : model.frames)
+    for (const auto& f : model.frames)
         writer.write(f, extensionDumpColumns());
     writer.close();
     std::ofstream out(files.truth, std::ios::binary);

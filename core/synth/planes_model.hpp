@@ -72,11 +72,11 @@ std::array<double, 3> planeNormal(double dip, double dipDirection);
 // to each patch slides down-dip (fading out over halfThickness + minGap / 2 from the plane), the
 // throw and the patch growing from zero. Throws std::invalid_argument on bad
 // options, std::runtime_error when random faults cannot be placed apart in the block.
-PlanesModel generatePlanesModel(const PlanesModelOptions &options);
+PlanesModel generatePlanesModel(const PlanesModelOptions& options);
 
 // The ground truth as JSON text: per fault its plane (point, normal), dip, dip_direction,
 // strike, throw, slip, radius and member ids per frame.
-std::string planesTruthJson(const PlanesModel &model);
+std::string planesTruthJson(const PlanesModel& model);
 
 struct PlanesModelFiles {
     std::string dump;  // DIR/planes.lammpstrj[.gz]
@@ -84,6 +84,6 @@ struct PlanesModelFiles {
 };
 
 // Writes the dump and the truth JSON into `folder` (created when missing).
-PlanesModelFiles writePlanesModel(const PlanesModel &model, const std::string &folder, bool gzip);
+PlanesModelFiles writePlanesModel(const PlanesModel& model, const std::string& folder, bool gzip);
 
 } // namespace faultline::core

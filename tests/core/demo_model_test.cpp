@@ -10,8 +10,8 @@ using namespace faultline::core;
 
 namespace {
 struct ScopedEnv {
-    ScopedEnv(const char *name, const char *value) : m_name(name) {
-        if (const char *old = std::getenv(name))
+    ScopedEnv(const char* name, const char* value) : m_name(name) {
+        if (const char* old = std::getenv(name))
             m_old = old;
         if (value)
             ::setenv(name, value, 1);
@@ -24,7 +24,7 @@ struct ScopedEnv {
         else
             ::unsetenv(m_name);
     }
-    const char *m_name;
+    const char* m_name;
     std::optional<std::string> m_old;
 };
 } // namespace

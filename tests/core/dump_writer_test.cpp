@@ -11,7 +11,7 @@ using namespace faultline::core;
 
 namespace {
 
-std::string tempPath(const std::string &name) {
+std::string tempPath(const std::string& name) {
     const auto dir = std::filesystem::temp_directory_path() /
                      ("faultline_dump_writer_" +
                       std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
@@ -19,7 +19,7 @@ std::string tempPath(const std::string &name) {
     return (dir / name).string();
 }
 
-std::string slurp(const std::string &path) {
+std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
@@ -72,14 +72,14 @@ TEST(LammpsDumpWriter, ReaderGetsEveryValueBackExactlyPlainAndGzip) {
         const Frame a = sample(0, 0.0f), b = sample(100, 0.5f);
         {
             LammpsDumpWriter w(path, level);
-            for (const Frame *f : {&a, &b})
+            for (const Frame* f : {&a, &b})
                 w.write(*f, {"id", "type", "x", "y", "z", "radius", "strain"});
             w.close();
         }
         auto ds = Dataset::open({path});
         ASSERT_EQ(ds->frameCount(), 2u);
         for (std::size_t k = 0; k < 2; ++k) {
-            const Frame &want = k ? b : a;
+            const Frame& want = k ? b : a;
             auto got = ds->frame(k);
             EXPECT_EQ(got->timestep, want.timestep);
             EXPECT_EQ(got->ids, want.ids);
@@ -100,7 +100,7 @@ TEST(LammpsDumpWriter, UnwritablePathThrowsNamingIt) {
     try {
         LammpsDumpWriter w("/nonexistent-folder/x.lammpstrj");
         FAIL() << "no exception";
-    } catch (const std::runtime_error &e) {
+    } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent-folder/x.lammpstrj"), std::string::npos);
     }
 }

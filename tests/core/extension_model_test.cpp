@@ -13,7 +13,7 @@ using namespace faultline::core;
 
 namespace {
 
-std::string tempPath(const std::string &name) {
+std::string tempPath(const std::string& name) {
     const auto dir = std::filesystem::temp_directory_path() /
                      ("faultline_extension_" +
                       std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
@@ -21,7 +21,7 @@ std::string tempPath(const std::string &name) {
     return (dir / name).string();
 }
 
-std::string slurp(const std::string &path) {
+std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
@@ -41,11 +41,11 @@ ExtensionModelOptions tinyOptions() {
     return o;
 }
 
-std::string runToDump(ExtensionModelOptions o, int threads, const std::string &name) {
+std::string runToDump(ExtensionModelOptions o, int threads, const std::string& name) {
     o.threads = threads;
     const std::string path = tempPath(name);
     LammpsDumpWriter w(path, 1);
-    runExtensionModel(o, [&](const Frame &f, int) { w.write(f, extensionDumpColumns()); });
+    runExtensionModel(o, [&](const Frame& f, int) { w.write(f, extensionDumpColumns()); });
     w.close();
     return path;
 }
@@ -111,7 +111,7 @@ TEST(ExtensionModel, BrokenBondsGatherInAFewNarrowDippingZones) {
     std::ostringstream what;
     what << "damaged share " << m.damagedShare << ", uniform share " << m.uniformShare
          << ", bands:";
-    for (const auto &b : m.bands)
+    for (const auto& b : m.bands)
         what << " " << b.dip << (b.towardsPlusX > 0 ? "E" : "W");
     SCOPED_TRACE(what.str());
     EXPECT_GT(model.brokenBondCount(), 300u);
@@ -122,7 +122,7 @@ TEST(ExtensionModel, BrokenBondsGatherInAFewNarrowDippingZones) {
     // Normal faults of both dip directions, dipping near 60 degrees.
     ASSERT_EQ(m.bands.size(), 4u);
     bool east = false, west = false;
-    for (const auto &b : m.bands) {
+    for (const auto& b : m.bands) {
         EXPECT_GE(b.dip, 50);
         EXPECT_LE(b.dip, 70);
         (b.towardsPlusX > 0 ? east : west) = true;

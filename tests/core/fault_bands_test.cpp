@@ -9,7 +9,7 @@ using namespace faultline::core;
 
 namespace {
 // Spheres on a grid (x 0..99, z 0..39); those on the given lines get broken bonds.
-Frame gridFrame(const std::vector<std::pair<double, double>> &lines) {
+Frame gridFrame(const std::vector<std::pair<double, double>>& lines) {
     Frame f;
     std::vector<std::int32_t> broken, type;
     std::int64_t id = 1;
@@ -22,7 +22,7 @@ Frame gridFrame(const std::vector<std::pair<double, double>> &lines) {
             f.radius.push_back(0.5f);
             int b = 0;
             // Line through (x0, 0) dipping `dip` towards +x: x = x0 + z / tan(dip)... up-dip is -x.
-            for (const auto &[x0, dip] : lines) {
+            for (const auto& [x0, dip] : lines) {
                 const double onLine = x0 - z / std::tan(dip * std::numbers::pi / 180);
                 if (std::fabs(x - onLine) < 0.5)
                     b = 4;

@@ -29,7 +29,7 @@ TEST(HcpLattice, PairsAreExactlyTheTouchingSpheres) {
 TEST(HcpLattice, InteriorSpheresHaveTwelveNeighbours) {
     const HcpLattice lat = makeHcpLattice(7, 5, 7, 1.0);
     std::vector<int> degree(lat.size(), 0);
-    for (const auto &p : lat.pairs) {
+    for (const auto& p : lat.pairs) {
         ++degree[p[0]];
         ++degree[p[1]];
     }
@@ -44,7 +44,7 @@ TEST(HcpLattice, BoxHoldsEverySphere) {
     const HcpLattice lat = makeHcpLattice(4, 2, 3, 1.0);
     EXPECT_DOUBLE_EQ(lat.hi[0], 10.0); // odd row of the odd layer: centre 9, plus the radius
     EXPECT_NEAR(lat.hi[1], 2.0 + 2.0 * std::sqrt(2.0 / 3.0), 1e-12);
-    for (const auto &p : lat.positions)
+    for (const auto& p : lat.positions)
         for (int a = 0; a < 3; ++a) {
             EXPECT_GE(p[a], 1.0 - 1e-12);
             EXPECT_LE(p[a] + 1.0, lat.hi[a] + 1e-12);

@@ -8,9 +8,9 @@
 using namespace faultline::core;
 
 namespace {
-std::vector<std::array<double, 3>> mapped(const HcpLattice &lat, const double F[3][3]) {
+std::vector<std::array<double, 3>> mapped(const HcpLattice& lat, const double F[3][3]) {
     std::vector<std::array<double, 3>> out;
-    for (const auto &p : lat.positions) {
+    for (const auto& p : lat.positions) {
         std::array<double, 3> q{};
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
@@ -44,7 +44,7 @@ TEST(LocalStrain, RigidRotationAndTranslationGiveZero) {
     const double c = std::cos(0.7), s = std::sin(0.7);
     const double F[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
     auto moved = mapped(lat, F);
-    for (auto &p : moved)
+    for (auto& p : moved)
         p[2] += 5.0;
     const auto strain =
         vonMisesShearStrain(lat.positions, moved, neighbourTableFromPairs(lat.size(), lat.pairs));

@@ -25,7 +25,7 @@ PlanesModelOptions tiny() {
 }
 
 // Members linked by centre distance <= 2.2 form one piece.
-bool connected(const Frame &frame, const std::vector<std::int64_t> &ids) {
+bool connected(const Frame& frame, const std::vector<std::int64_t>& ids) {
     if (ids.empty())
         return true;
     std::vector<char> seen(ids.size(), 0);
@@ -80,10 +80,10 @@ TEST(PlanesModel, GivenVerticalFaultHasExactlyTheSpheresNearItsPlane) {
     o.halfThickness = 1.6; // away from the lattice's half-integer distances
     const PlanesModel m = generatePlanesModel(o);
     ASSERT_EQ(m.faults.size(), 1u);
-    const auto &f = m.faults[0];
+    const auto& f = m.faults[0];
     EXPECT_NEAR(f.strike, 0, 1e-12);
     // The last frame: exactly the spheres with |x0 - 20.5| <= 1.6, i.e. x0 in {19, 20, 21, 22}.
-    const Frame &frame = m.frames.back();
+    const Frame& frame = m.frames.back();
     std::vector<std::int64_t> want;
     for (std::size_t i = 0; i < frame.size(); ++i) {
         const double x0 = frame.attribute("x0")->value(i);
@@ -100,7 +100,7 @@ TEST(PlanesModel, RandomFaultsGrowApartAndCarryTheDamage) {
     const PlanesModel m = generatePlanesModel(tiny());
     ASSERT_EQ(m.faults.size(), 2u);
     ASSERT_EQ(m.frames.size(), 5u);
-    for (const auto &f : m.faults) {
+    for (const auto& f : m.faults) {
         ASSERT_EQ(f.members.size(), 5u);
         EXPECT_TRUE(f.members.front().empty()) << f.name;
         EXPECT_FALSE(f.members.back().empty()) << f.name;
@@ -114,7 +114,7 @@ TEST(PlanesModel, RandomFaultsGrowApartAndCarryTheDamage) {
         }
     }
     // No sphere in two faults; members damaged, every other sphere intact.
-    const Frame &last = m.frames.back();
+    const Frame& last = m.frames.back();
     std::vector<int> owner(last.size(), -1);
     for (int k = 0; k < 2; ++k)
         for (auto id : m.faults[k].members.back()) {
