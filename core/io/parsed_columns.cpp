@@ -30,8 +30,9 @@ void completeParsedFrame(Frame& frame, ParsedColumns&& parsed, const std::string
     frame.attributes.resize(columns.size());
     tbb::parallel_for(std::size_t(0), columns.size(), [&](std::size_t k) {
         const std::size_t c = columns[k];
-        frame.attributes[k] = makeAttribute(parsed.names[c], std::move(parsed.values[c]),
-                                            !parsed.targets[c].sawNonInteger);
+        const bool integral = !parsed.targets[c].sawNonInteger &&
+                              looksLikeIntegerColumn(parsed.names[c], parsed.values[c]);
+        frame.attributes[k] = makeAttribute(parsed.names[c], std::move(parsed.values[c]), integral);
     });
     try {
         frame.finalize();

@@ -1,5 +1,5 @@
 // The last step every table reader shares: ids from row numbers when the file has none, the
-// default radius (or diameters halved), attribute columns typed, and Frame::finalize with its
+// default radius (or diameters halved), attribute columns typed (looksLikeIntegerColumn), and Frame::finalize with its
 // complaints turned into InputError at the header line.
 #pragma once
 

@@ -1,6 +1,7 @@
 #include "core/model/frame.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -143,6 +144,25 @@ AttributeColumn makeAttribute(std::string name, std::vector<float>&& values, boo
         c.floats = std::move(values);
     }
     return c;
+}
+
+bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& values) {
+    static constexpr std::string_view kCounting[] = {
+        "type", "mol", "molecule", "proc", "procp1", "ix", "iy", "iz", "image", "species",
+        "speciestype", "layer", "band", "cluster", "broken_bonds", "bonds", "coordination",
+        "contacts", "flag", "group", "index", "count"};
+    std::string lower(name);
+    for (char& c : lower)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (std::string_view known : kCounting)
+        if (lower == known || (lower.size() > known.size() &&
+                               lower.compare(lower.size() - known.size(), known.size(), known) == 0 &&
+                               (lower[lower.size() - known.size() - 1] == '_')))
+            return true;
+    for (float v : values)
+        if (v != values.front())
+            return true;
+    return false;
 }
 
 std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {

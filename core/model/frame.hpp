@@ -82,8 +82,14 @@ class Frame {
 
 inline constexpr float kDefaultRadius = 0.5f;
 
-// A column from parsed values: stored as Int32 when `integral` (every token was a plain
-// integer) and every value fits exactly, else as Float32.
+// A column from parsed values: stored as Int32 when `integral` and every value fits exactly,
+// else as Float32.
 AttributeColumn makeAttribute(std::string name, std::vector<float>&& values, bool integral);
+
+// Whether a text column whose tokens were all plain integers is an integer variable. Text does
+// not say: "%g" prints a float column of zeros (strain before anything moves) as "0". So it
+// takes a name known to count things (type, mol, ix, broken_bonds, layer, ...) or at least two
+// distinct values; a constant column of another name stays float.
+bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& values);
 
 } // namespace faultline::core
