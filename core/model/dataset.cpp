@@ -186,20 +186,22 @@ std::vector<std::string> Dataset::files() const {
     return out;
 }
 
+std::shared_ptr<const Frame> Dataset::touchLocked(std::size_t index) const {
+    const auto it = m_lruIndex.find(index);
+    if (it == m_lruIndex.end())
+        return nullptr;
+    m_lru.splice(m_lru.begin(), m_lru, it->second);
+    return it->second->frame;
+}
+
 std::shared_ptr<const Frame> Dataset::cachedFrame(std::size_t index) const {
     std::lock_guard lock(m_mutex);
-    for (auto it = m_lru.begin(); it != m_lru.end(); ++it)
-        if (it->index == index) {
-            m_lru.splice(m_lru.begin(), m_lru, it);
-            return it->frame;
-        }
-    return nullptr;
+    return touchLocked(index);
 }
 
 bool Dataset::isCached(std::size_t index) const {
     std::lock_guard lock(m_mutex);
-    return std::any_of(m_lru.begin(), m_lru.end(),
-                       [index](const CacheEntry& e) { return e.index == index; });
+    return m_lruIndex.count(index) != 0;
 }
 
 std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
@@ -210,11 +212,8 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     std::shared_ptr<FrameCache> disk;
     {
         std::unique_lock lock(m_mutex);
-        for (auto it = m_lru.begin(); it != m_lru.end(); ++it)
-            if (it->index == index) {
-                m_lru.splice(m_lru.begin(), m_lru, it);
-                return it->frame;
-            }
+        if (auto hit = touchLocked(index))
+            return hit;
         if (auto loading = m_loading.find(index); loading != m_loading.end()) {
             auto future = loading->second;
             lock.unlock();
@@ -237,20 +236,23 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
         promise.set_exception(std::current_exception());
         throw;
     }
+    std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock: frees are slow
     std::lock_guard lock(m_mutex);
     const std::size_t bytes = loaded->memoryBytes();
     m_lru.push_front({index, loaded, bytes});
+    m_lruIndex[index] = m_lru.begin();
     m_cachedBytes += bytes;
-    evictLocked();
+    evictLocked(evicted);
     m_loading.erase(index);
     promise.set_value(loaded);
     return loaded;
 }
 
 void Dataset::setCacheBudget(std::size_t bytes) {
+    std::vector<std::shared_ptr<const Frame>> evicted;
     std::lock_guard lock(m_mutex);
     m_budget = bytes;
-    evictLocked();
+    evictLocked(evicted);
 }
 
 std::size_t Dataset::cachedBytes() const {
@@ -273,10 +275,12 @@ std::shared_ptr<FrameCache> Dataset::frameCache() const {
     return m_frameCache;
 }
 
-void Dataset::evictLocked() const {
+void Dataset::evictLocked(std::vector<std::shared_ptr<const Frame>>& evicted) const {
     // The most recent frame always stays, even over budget.
     while (m_cachedBytes > m_budget.load() && m_lru.size() > 1) {
         m_cachedBytes -= m_lru.back().bytes;
+        evicted.push_back(std::move(m_lru.back().frame));
+        m_lruIndex.erase(m_lru.back().index);
         m_lru.pop_back();
     }
 }

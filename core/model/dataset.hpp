@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace faultline::core {
@@ -72,13 +73,17 @@ class Dataset {
         std::shared_ptr<const Frame> frame;
         std::size_t bytes;
     };
-    mutable std::mutex m_mutex; // guards everything below
+    mutable std::mutex m_mutex;          // guards everything below
     mutable std::list<CacheEntry> m_lru; // most recent first
+    mutable std::unordered_map<std::size_t, std::list<CacheEntry>::iterator> m_lruIndex;
     mutable std::size_t m_cachedBytes = 0;
     mutable std::map<std::size_t, std::shared_future<std::shared_ptr<const Frame>>> m_loading;
     std::shared_ptr<FrameCache> m_frameCache;
     std::atomic<std::size_t> m_budget{defaultFrameMemoryBudget()};
-    void evictLocked() const;
+    // Drops least recently used frames over budget into `evicted`, for the caller to free
+    // after it unlocks.
+    void evictLocked(std::vector<std::shared_ptr<const Frame>>& evicted) const;
+    std::shared_ptr<const Frame> touchLocked(std::size_t index) const; // null when not cached
 };
 
 // Expands a glob pattern ('*', '?', '[..]'); a path with no wildcard is returned as it is.

@@ -72,7 +72,8 @@ std::string fileNameFor(const std::string& identity) {
 bool isOurFile(const fs::directory_entry& e) {
     const std::string name = e.path().filename().string();
     return name.size() > kExtension.size() &&
-           (name.ends_with(kExtension) || name.find(std::string(kExtension) + ".tmp") != std::string::npos);
+           (name.ends_with(kExtension) ||
+            name.find(std::string(kExtension) + ".tmp") != std::string::npos);
 }
 
 bool envSaysOff(const char* value) {
@@ -257,7 +258,8 @@ void FrameCache::evictOverBudget(const std::string& keep) {
     std::uint64_t total = 0;
     std::error_code ec;
     const auto now = fs::file_time_type::clock::now();
-    for (fs::directory_iterator it(m_settings.folder, ec), end; !ec && it != end; it.increment(ec)) {
+    for (fs::directory_iterator it(m_settings.folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
         if (!isOurFile(*it) || !it->is_regular_file(ec))
             continue;
         Entry e{it->path(), it->file_size(ec), it->last_write_time(ec)};

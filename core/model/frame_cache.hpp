@@ -68,7 +68,7 @@ class FrameCache {
     mutable std::mutex m_mutex; // guards the fields below
     std::string m_problem;
     bool m_warned = false;
-    bool m_writesDisabled = false; // after a write the file system refused for good
+    bool m_writesDisabled = false;              // after a write the file system refused for good
     std::optional<std::uint64_t> m_folderBytes; // known after the first write
     Stats m_stats;
 

@@ -97,7 +97,7 @@ struct FileHeader {
     std::uint32_t flags;
     std::uint32_t keyBytes;
     std::uint32_t namesBytes;
-    double box[9]; // lo xyz, hi xyz, xy xz yz
+    double box[9];                // lo xyz, hi xyz, xy xz yz
     std::uint64_t metaChecksum;   // of key, column table and names
     std::uint64_t headerChecksum; // of every byte before this field
 };
@@ -248,12 +248,12 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
         return reject(CachedFrameStatus::Corrupt, "file is " + std::to_string(fileBytes) +
                                                       " bytes, header says " +
                                                       std::to_string(h.fileBytes));
-    if (h.keyBytes > kMaxKeyBytes || h.columnCount < kFixedColumns ||
-        h.columnCount > kMaxColumns || h.namesBytes > kMaxNamesBytes ||
-        (h.flags & ~static_cast<std::uint32_t>(KnownFlags)) != 0)
+    if (h.keyBytes > kMaxKeyBytes || h.columnCount < kFixedColumns || h.columnCount > kMaxColumns ||
+        h.namesBytes > kMaxNamesBytes || (h.flags & ~static_cast<std::uint32_t>(KnownFlags)) != 0)
         return reject(CachedFrameStatus::Corrupt, "header fields out of range");
-    const std::uint64_t metaBytes =
-        std::uint64_t(h.keyBytes) + std::uint64_t(h.columnCount) * sizeof(ColumnEntry) + h.namesBytes;
+    const std::uint64_t metaBytes = std::uint64_t(h.keyBytes) +
+                                    std::uint64_t(h.columnCount) * sizeof(ColumnEntry) +
+                                    h.namesBytes;
     if (sizeof h + metaBytes > fileBytes)
         return reject(CachedFrameStatus::Corrupt, "metadata runs past the end of the file");
     std::vector<char> meta(metaBytes);
@@ -291,10 +291,11 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
     std::uint64_t namesUsed = 0;
     for (std::uint32_t k = 0; k < h.columnCount; ++k) {
         const ColumnEntry& e = entries[k];
-        const bool kindOk = k < kFixedColumns ? e.kind == k
-                                              : (e.kind == FloatAttribute || e.kind == IntAttribute);
+        const bool kindOk =
+            k < kFixedColumns ? e.kind == k : (e.kind == FloatAttribute || e.kind == IntAttribute);
         if (!kindOk || (k < kFixedColumns && e.nameBytes != 0))
-            return reject(CachedFrameStatus::Corrupt, "column " + std::to_string(k) + " of bad kind");
+            return reject(CachedFrameStatus::Corrupt,
+                          "column " + std::to_string(k) + " of bad kind");
         if (e.bytes != n * elementBytes(e.kind) || e.offset % kAlign != 0 || e.offset < dataStart ||
             e.offset > fileBytes || e.bytes > fileBytes - e.offset)
             return reject(CachedFrameStatus::Corrupt,
@@ -383,7 +384,8 @@ std::uint64_t writeCachedFrame(const std::string& path, std::string_view key, co
     h.box[7] = frame.box.xz;
     h.box[8] = frame.box.yz;
 
-    const std::uint64_t metaBytes = key.size() + entries.size() * sizeof(ColumnEntry) + names.size();
+    const std::uint64_t metaBytes =
+        key.size() + entries.size() * sizeof(ColumnEntry) + names.size();
     std::uint64_t offset = alignUp(sizeof h + metaBytes);
     for (auto& e : entries) {
         e.offset = offset;
@@ -397,7 +399,8 @@ std::uint64_t writeCachedFrame(const std::string& path, std::string_view key, co
     std::string meta;
     meta.reserve(metaBytes);
     meta.append(key);
-    meta.append(reinterpret_cast<const char*>(entries.data()), entries.size() * sizeof(ColumnEntry));
+    meta.append(reinterpret_cast<const char*>(entries.data()),
+                entries.size() * sizeof(ColumnEntry));
     meta.append(names);
     h.metaChecksum = detail::checksum64(meta.data(), meta.size(), kMetaSeed);
     h.headerChecksum = headerChecksum(h);

@@ -88,7 +88,9 @@ void cacheRange(AttributeColumn& c) {
             }
             return acc;
         },
-        [](Range a, Range b) { return Range{std::min(a.first, b.first), std::max(a.second, b.second)}; });
+        [](Range a, Range b) {
+            return Range{std::min(a.first, b.first), std::max(a.second, b.second)};
+        });
     if (r.first > r.second) {
         c.min = c.max = 0.0; // empty or all NaN, as Frame::finalize does
     } else {
@@ -123,26 +125,28 @@ struct PeriodicCell {
 
     // The shortest image of a displacement: whole cells removed along periodic axes, z first
     // since c carries x and y tilt, then y, then x.
+    // Most spheres move far less than half a cell: they skip the division.
     void wrap(double& dx, double& dy, double& dz) const {
-        if (periodic[2]) {
+        if (periodic[2] && std::fabs(dz) > 0.5 * lz) {
             const double n = std::round(dz / lz);
             dz -= n * lz;
             dy -= n * yz;
             dx -= n * xz;
         }
-        if (periodic[1]) {
+        if (periodic[1] && std::fabs(dy) > 0.5 * ly) {
             const double n = std::round(dy / ly);
             dy -= n * ly;
             dx -= n * xy;
         }
-        if (periodic[0])
+        if (periodic[0] && std::fabs(dx) > 0.5 * lx)
             dx -= std::round(dx / lx) * lx;
     }
 };
 
 } // namespace
 
-AttributeColumn variableChange(const Frame& now, const Frame& reference, std::string_view variable) {
+AttributeColumn variableChange(const Frame& now, const Frame& reference,
+                               std::string_view variable) {
     const ColumnReader current(now, variable);
     if (current.missing())
         throw std::invalid_argument("no variable '" + std::string(variable) + "' in this frame");

@@ -132,9 +132,8 @@ std::size_t FramePrefetcher::pendingCount() const {
 
 bool FramePrefetcher::waitIdle(std::chrono::milliseconds timeout) const {
     std::unique_lock lock(m_mutex);
-    return m_idle.wait_for(lock, timeout, [this] {
-        return m_queue.empty() && m_running.empty() && m_finishing == 0;
-    });
+    return m_idle.wait_for(
+        lock, timeout, [this] { return m_queue.empty() && m_running.empty() && m_finishing == 0; });
 }
 
 std::size_t FramePrefetcher::prefetchDepthLocked() const {

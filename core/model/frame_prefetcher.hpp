@@ -35,7 +35,8 @@ struct PrefetchSettings {
 
 class FramePrefetcher {
   public:
-    explicit FramePrefetcher(std::shared_ptr<const Dataset> dataset, PrefetchSettings settings = {});
+    explicit FramePrefetcher(std::shared_ptr<const Dataset> dataset,
+                             PrefetchSettings settings = {});
     // Drops queued loads and waits for the running ones (a reader cannot be interrupted).
     ~FramePrefetcher();
     FramePrefetcher(const FramePrefetcher&) = delete;

@@ -162,9 +162,9 @@ TEST(FrameCacheFormat, CorruptFilesAreRejectedNeverTrusted) {
         return readCachedFrame(path, "k").status;
     };
     EXPECT_EQ(statusOf(""), CachedFrameStatus::Corrupt);
-    EXPECT_EQ(statusOf(good.substr(0, 100)), CachedFrameStatus::Corrupt);           // header cut
+    EXPECT_EQ(statusOf(good.substr(0, 100)), CachedFrameStatus::Corrupt);             // header cut
     EXPECT_EQ(statusOf(good.substr(0, good.size() - 1)), CachedFrameStatus::Corrupt); // data cut
-    EXPECT_EQ(statusOf(good + "tail"), CachedFrameStatus::Corrupt);                 // size lies
+    EXPECT_EQ(statusOf(good + "tail"), CachedFrameStatus::Corrupt);                   // size lies
     std::string magic = good;
     magic[0] = 'X';
     EXPECT_EQ(statusOf(magic), CachedFrameStatus::Corrupt);
@@ -234,8 +234,8 @@ TEST(FrameCache, ChangedSourceInvalidates) {
 
 TEST(FrameCache, FramesOfOneFileAreCachedApart) {
     TempDir dir;
-    const std::string src =
-        dir.write("multi.dump", dumpFrame(0, 10, 0.0f) + dumpFrame(10, 10, 1.0f) + dumpFrame(20, 12, 2.0f));
+    const std::string src = dir.write(
+        "multi.dump", dumpFrame(0, 10, 0.0f) + dumpFrame(10, 10, 1.0f) + dumpFrame(20, 12, 2.0f));
     FrameCache cache(settingsIn(dir));
     const auto frames = indexDataFile(src);
     ASSERT_EQ(frames.size(), 3u);
@@ -334,8 +334,8 @@ TEST(FrameCache, FolderBudgetEvictsTheOldest) {
 
 TEST(Dataset, UsesTheDiskCacheAndLoadsEachFrameOnceUnderContention) {
     TempDir dir;
-    const std::string src =
-        dir.write("multi.dump", dumpFrame(0, 30, 0.0f) + dumpFrame(10, 30, 1.0f) + dumpFrame(20, 30, 2.0f));
+    const std::string src = dir.write(
+        "multi.dump", dumpFrame(0, 30, 0.0f) + dumpFrame(10, 30, 1.0f) + dumpFrame(20, 30, 2.0f));
     auto cache = std::make_shared<FrameCache>(settingsIn(dir));
     auto ds = Dataset::open({src});
     ds->setFrameCache(cache);
@@ -346,7 +346,7 @@ TEST(Dataset, UsesTheDiskCacheAndLoadsEachFrameOnceUnderContention) {
     for (auto& t : threads)
         t.join();
     for (std::size_t t = 0; t < got.size(); ++t)
-        EXPECT_EQ(got[t], got[t % 3]); // one shared frame per index
+        EXPECT_EQ(got[t], got[t % 3]);    // one shared frame per index
     EXPECT_EQ(cache->stats().misses, 3u); // one load per frame, not one per thread
     EXPECT_EQ(cache->stats().writes, 3u);
 

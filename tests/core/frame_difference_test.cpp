@@ -34,8 +34,8 @@ Frame makeFrame(std::vector<std::int64_t> ids, std::vector<float> x, std::vector
 TEST(FrameDifference, ChangeMatchedByIdWithNaNForMissing) {
     const Frame now = makeFrame({1, 2, 3, 4}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0},
                                 {0.5f, 0.75f, 1.0f, 2.0f}, {3, 5, 7, 9});
-    const Frame before = makeFrame({4, 2, 9}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0},
-                                   {1.5f, 0.25f, 8.0f}, {1, 5, 0});
+    const Frame before =
+        makeFrame({4, 2, 9}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1.5f, 0.25f, 8.0f}, {1, 5, 0});
     const AttributeColumn strain = variableChange(now, before, "strain");
     EXPECT_EQ(strain.name, "strain change");
     EXPECT_EQ(strain.type, ColumnType::Float32);
@@ -79,7 +79,8 @@ TEST(FrameDifference, MissingVariable) {
 }
 
 TEST(FrameDifference, DisplacementAcrossPeriodicBoundaries) {
-    Frame before = makeFrame({1, 2, 3}, {0.5f, 5, 5}, {5, 5, 9.5f}, {5, 5, 5}, {0, 0, 0}, {0, 0, 0});
+    Frame before =
+        makeFrame({1, 2, 3}, {0.5f, 5, 5}, {5, 5, 9.5f}, {5, 5, 5}, {0, 0, 0}, {0, 0, 0});
     Frame now = makeFrame({3, 1, 2}, {5, 9.5f, 5}, {0.5f, 5, 5}, {5, 5, 5}, {0, 0, 0}, {0, 0, 0});
     before.box.known = true;
     before.box.lo = {0, 0, 0};

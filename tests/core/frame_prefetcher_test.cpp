@@ -17,27 +17,29 @@ namespace {
 class RecordingLoader {
   public:
     explicit RecordingLoader(std::size_t frames, std::size_t particles = 1000)
-        : m_dataset(Dataset::fromLoader(frames, [this, particles](std::size_t k) {
-              m_gate.wait();
-              {
-                  std::lock_guard lock(m_mutex);
-                  m_loaded.push_back(k);
-              }
-              if (m_failing.count(k))
-                  throw InputError("run/dump." + std::to_string(k), InputError::Where::Line, 7,
-                                   "expected a number");
-              Frame f;
-              f.timestep = static_cast<std::int64_t>(k) * 100;
-              for (std::size_t i = 0; i < particles; ++i) {
-                  f.ids.push_back(static_cast<std::int64_t>(i));
-                  f.x.push_back(float(k));
-                  f.y.push_back(0);
-                  f.z.push_back(0);
-                  f.radius.push_back(0.5f);
-              }
-              f.finalize();
-              return f;
-          })),
+        : m_dataset(Dataset::fromLoader(frames,
+                                        [this, particles](std::size_t k) {
+                                            m_gate.wait();
+                                            {
+                                                std::lock_guard lock(m_mutex);
+                                                m_loaded.push_back(k);
+                                            }
+                                            if (m_failing.count(k))
+                                                throw InputError("run/dump." + std::to_string(k),
+                                                                 InputError::Where::Line, 7,
+                                                                 "expected a number");
+                                            Frame f;
+                                            f.timestep = static_cast<std::int64_t>(k) * 100;
+                                            for (std::size_t i = 0; i < particles; ++i) {
+                                                f.ids.push_back(static_cast<std::int64_t>(i));
+                                                f.x.push_back(float(k));
+                                                f.y.push_back(0);
+                                                f.z.push_back(0);
+                                                f.radius.push_back(0.5f);
+                                            }
+                                            f.finalize();
+                                            return f;
+                                        })),
           m_gate(m_open.get_future().share()) {}
 
     void holdLoads() { m_gate = (m_held = std::promise<void>()).get_future().share(); }
