@@ -287,7 +287,8 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
     f.box.xy = h.box[6];
     f.box.xz = h.box[7];
     f.box.yz = h.box[8];
-    const std::uint64_t dataStart = alignUp(sizeof h + metaBytes);
+    // Columns in file order without overlap: together no larger than the file.
+    std::uint64_t dataEnd = alignUp(sizeof h + metaBytes);
     std::uint64_t namesUsed = 0;
     for (std::uint32_t k = 0; k < h.columnCount; ++k) {
         const ColumnEntry& e = entries[k];
@@ -296,10 +297,11 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
         if (!kindOk || (k < kFixedColumns && e.nameBytes != 0))
             return reject(CachedFrameStatus::Corrupt,
                           "column " + std::to_string(k) + " of bad kind");
-        if (e.bytes != n * elementBytes(e.kind) || e.offset % kAlign != 0 || e.offset < dataStart ||
+        if (e.bytes != n * elementBytes(e.kind) || e.offset % kAlign != 0 || e.offset < dataEnd ||
             e.offset > fileBytes || e.bytes > fileBytes - e.offset)
             return reject(CachedFrameStatus::Corrupt,
-                          "column " + std::to_string(k) + " lies outside the file");
+                          "column " + std::to_string(k) + " overlaps another or the file's end");
+        dataEnd = e.offset + e.bytes;
         if (e.nameBytes > h.namesBytes - namesUsed)
             return reject(CachedFrameStatus::Corrupt, "column names overrun");
         if (k >= kFixedColumns) {

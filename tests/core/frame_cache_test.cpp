@@ -56,7 +56,8 @@ Frame everyFieldFrame() {
 }
 
 template <typename T> bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 void expectIdentical(const Frame& a, const Frame& b) {
@@ -188,6 +189,51 @@ TEST(FrameCacheFormat, CorruptFilesAreRejectedNeverTrusted) {
     CachedFrameRead r = readCachedFrame(path, "k");
     EXPECT_EQ(r.status, CachedFrameStatus::Corrupt);
     EXPECT_NE(r.detail.find("particle count"), std::string::npos) << r.detail;
+
+    // Columns that all point at the same bytes (an allocation bomb: each would be read in
+    // full), with both checksums correct. Layout: key at 144, then 32-byte column entries
+    // {kind, nameBytes, offset, bytes, checksum}; meta checksum at 128.
+    std::string overlapping = good;
+    const std::size_t table = 144 + 1; // key "k"
+    std::uint64_t idsOffset;
+    std::memcpy(&idsOffset, overlapping.data() + table + 8, 8);
+    std::memcpy(overlapping.data() + table + 32 + 8, &idsOffset, 8); // x starts where ids do
+    std::uint32_t keyBytes, columns, namesBytes;
+    std::memcpy(&columns, overlapping.data() + 40, 4);
+    std::memcpy(&keyBytes, overlapping.data() + 48, 4);
+    std::memcpy(&namesBytes, overlapping.data() + 52, 4);
+    const std::uint64_t meta = detail::checksum64(
+        overlapping.data() + 144, keyBytes + columns * 32u + namesBytes, 0x4d455441ULL);
+    std::memcpy(overlapping.data() + 128, &meta, 8);
+    const std::uint64_t head = detail::checksum64(overlapping.data(), 136, 0x4845414445520001ULL);
+    std::memcpy(overlapping.data() + 136, &head, 8);
+    writeAll(path, overlapping);
+    r = readCachedFrame(path, "k");
+    EXPECT_EQ(r.status, CachedFrameStatus::Corrupt);
+    EXPECT_NE(r.detail.find("overlaps"), std::string::npos) << r.detail;
+}
+
+TEST(FrameCacheFormat, EveryTruncationAndByteFlipIsCaught) {
+    TempDir dir;
+    const std::string path = dir.file("f.flframe");
+    const Frame truth = everyFieldFrame();
+    writeCachedFrame(path, "k", truth);
+    const std::string good = readAll(path);
+    for (std::size_t length = 0; length < good.size(); ++length) {
+        writeAll(path, good.substr(0, length));
+        ASSERT_EQ(readCachedFrame(path, "k").status, CachedFrameStatus::Corrupt) << length;
+    }
+    // A flipped bit anywhere: rejected, or (in alignment padding) the frame exactly as it was.
+    for (std::size_t at = 0; at < good.size(); ++at) {
+        std::string bad = good;
+        bad[at] ^= static_cast<char>(1u << (at % 8));
+        writeAll(path, bad);
+        CachedFrameRead r = readCachedFrame(path, "k");
+        if (r.status == CachedFrameStatus::Ok)
+            expectIdentical(truth, *r.frame);
+        else
+            ASSERT_EQ(r.status, CachedFrameStatus::Corrupt) << at;
+    }
 }
 
 TEST(FrameCache, SecondLoadComesFromTheCacheAndEqualsTheParse) {

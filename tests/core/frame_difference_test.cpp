@@ -1,3 +1,4 @@
+#include "core/model/difference_column_cache.hpp"
 #include "core/model/frame_difference.hpp"
 
 #include <gtest/gtest.h>
@@ -99,4 +100,25 @@ TEST(FrameDifference, DisplacementAcrossPeriodicBoundaries) {
     tiltedBefore.box = before.box;
     const Frame tiltedNow = makeFrame({1}, {-1}, {0.5f}, {5}, {0}, {0});
     EXPECT_EQ(displacementSince(tiltedNow, tiltedBefore).floats, (std::vector<float>{1}));
+}
+
+TEST(DifferenceColumnCache, ComputesOncePerDistinctInputs) {
+    auto a =
+        std::make_shared<const Frame>(makeFrame({1, 2}, {0, 0}, {0, 0}, {0, 0}, {1, 2}, {0, 1}));
+    auto b =
+        std::make_shared<const Frame>(makeFrame({2, 1}, {3, 0}, {4, 0}, {0, 0}, {5, 1}, {4, 0}));
+    DifferenceColumnCache cache(2);
+    auto strain = cache.change(b, a, "strain");
+    EXPECT_EQ(strain->floats, (std::vector<float>{3, 0}));
+    EXPECT_EQ(cache.change(b, a, "strain"), strain); // the same column, not recomputed
+    auto bonds = cache.change(b, a, "broken_bonds");
+    EXPECT_NE(bonds, strain);
+    EXPECT_EQ(bonds->floats, (std::vector<float>{3, 0}));
+    auto moved = cache.displacement(b, a);
+    EXPECT_EQ(moved->floats, (std::vector<float>{5, 0}));
+    EXPECT_EQ(cache.displacement(b, a), moved);
+    EXPECT_NE(cache.change(a, b, "strain"), strain); // the other way round is another column
+    // A new frame object with other values is never answered from the cache.
+    b = std::make_shared<const Frame>(makeFrame({2, 1}, {0, 0}, {0, 0}, {0, 0}, {7, 1}, {4, 0}));
+    EXPECT_EQ(cache.change(b, a, "strain")->floats, (std::vector<float>{5, 0}));
 }
