@@ -13,7 +13,7 @@ namespace faultline::core {
 
 // Bump when the layout below changes, or when a reader changes what it makes of the same bytes
 // (both make every existing cache file stale).
-inline constexpr std::uint32_t kFrameCacheFormatVersion = 1;
+inline constexpr std::uint32_t kFrameCacheFormatVersion = 2; // 2: constant %g columns stay float
 
 // Why a cache file was not used. Anything but Ok means "parse the source instead".
 enum class CachedFrameStatus { Ok, Missing, Stale, Corrupt };
