@@ -13,6 +13,7 @@ namespace faultline::app {
 using Args = std::vector<std::string>;
 
 int runInfo(const Args& args);
+int runGenerate(const Args& args);
 int runGui(const Args& args);
 int runReplay(const Args& args);
 

@@ -14,6 +14,9 @@ void faultline::app::printUsage() {
         "       faultline replay JOURNAL [--data PATH...] [--out DIR]\n"
         "                                        run a recorded journal headless; exit 0 when every\n"
         "                                        expectation holds (--data: the same analysis on other data)\n"
+        "       faultline generate --demo        build the demo model once (per-user data folder)\n"
+        "       faultline generate ... --out DIR a bonded DEM extension model or known planar faults\n"
+        "                                        (faultline generate --help for options)\n"
         "\n"
         "PATH may be a LAMMPS/LIGGGHTS dump (.gz too; many frames per file; '%' for per-processor\n"
         "files), a VTK legacy or XML file (.vtk .vtu .vtp .pvd), or a CSV table with x,y,z columns.\n"
@@ -30,6 +33,8 @@ int main(int argc, char** argv) {
                 return runInfo(rest);
             if (cmd == "replay")
                 return runReplay(rest);
+            if (cmd == "generate")
+                return runGenerate(rest);
             if (cmd == "-h" || cmd == "--help" || cmd == "help") {
                 printUsage();
                 return 0;
