@@ -1,8 +1,10 @@
 #include "core/model/dataset.hpp"
 
 #include "core/io/input_error.hpp"
+#include "core/model/frame_cache.hpp"
 
 #include <glob.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -10,6 +12,14 @@
 #include <regex>
 
 namespace faultline::core {
+
+std::size_t defaultFrameMemoryBudget() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0)
+        return std::size_t(2) << 30;
+    return static_cast<std::size_t>(pages) / 4 * static_cast<std::size_t>(pageSize);
+}
 
 bool naturalLess(const std::string& a, const std::string& b) {
     std::size_t i = 0, j = 0;
@@ -133,6 +143,7 @@ std::vector<FrameLocation> indexPerProcessor(const std::string& pattern) {
 std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns) {
     auto ds = std::make_shared<Dataset>();
     ds->m_patterns = patterns;
+    ds->m_frameCache = FrameCache::processDefault();
     for (const auto& pattern : patterns) {
         if (pattern.find('%') != std::string::npos) {
             auto frames = indexPerProcessor(pattern);
@@ -153,6 +164,18 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns)
     return ds;
 }
 
+std::shared_ptr<Dataset> Dataset::fromLoader(std::size_t frameCount,
+                                             std::function<Frame(std::size_t)> load) {
+    auto ds = std::make_shared<Dataset>();
+    ds->m_frames.resize(frameCount);
+    for (std::size_t k = 0; k < frameCount; ++k) {
+        ds->m_frames[k].timestep = static_cast<std::int64_t>(k);
+        ds->m_frames[k].time = static_cast<double>(k);
+    }
+    ds->m_loader = std::move(load);
+    return ds;
+}
+
 std::vector<std::string> Dataset::files() const {
     std::vector<std::string> out;
     for (const auto& f : m_frames)
@@ -163,38 +186,73 @@ std::vector<std::string> Dataset::files() const {
     return out;
 }
 
+std::shared_ptr<const Frame> Dataset::touchLocked(std::size_t index) const {
+    const auto it = m_lruIndex.find(index);
+    if (it == m_lruIndex.end())
+        return nullptr;
+    m_lru.splice(m_lru.begin(), m_lru, it->second);
+    return it->second->frame;
+}
+
 std::shared_ptr<const Frame> Dataset::cachedFrame(std::size_t index) const {
     std::lock_guard lock(m_mutex);
-    for (auto it = m_lru.begin(); it != m_lru.end(); ++it)
-        if (it->index == index) {
-            m_lru.splice(m_lru.begin(), m_lru, it);
-            return it->frame;
-        }
-    return nullptr;
+    return touchLocked(index);
+}
+
+bool Dataset::isCached(std::size_t index) const {
+    std::lock_guard lock(m_mutex);
+    return m_lruIndex.count(index) != 0;
 }
 
 std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     if (index >= m_frames.size())
         throw std::out_of_range("frame " + std::to_string(index) + " of " +
                                 std::to_string(m_frames.size()));
-    if (auto hit = cachedFrame(index))
-        return hit;
-    auto loaded = std::make_shared<const Frame>(loadFrame(m_frames[index]));
+    std::promise<std::shared_ptr<const Frame>> promise;
+    std::shared_ptr<FrameCache> disk;
+    {
+        std::unique_lock lock(m_mutex);
+        if (auto hit = touchLocked(index))
+            return hit;
+        if (auto loading = m_loading.find(index); loading != m_loading.end()) {
+            auto future = loading->second;
+            lock.unlock();
+            return future.get(); // rethrows the loader's error
+        }
+        m_loading.emplace(index, promise.get_future().share());
+        disk = m_frameCache;
+    }
+    std::shared_ptr<const Frame> loaded;
+    try {
+        if (m_loader)
+            loaded = std::make_shared<const Frame>(m_loader(index));
+        else if (disk)
+            loaded = std::make_shared<const Frame>(disk->fetch(m_frames[index]));
+        else
+            loaded = std::make_shared<const Frame>(loadFrame(m_frames[index]));
+    } catch (...) {
+        std::lock_guard lock(m_mutex);
+        m_loading.erase(index);
+        promise.set_exception(std::current_exception());
+        throw;
+    }
+    std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock: frees are slow
     std::lock_guard lock(m_mutex);
-    for (const auto& e : m_lru)
-        if (e.index == index)
-            return e.frame; // another thread won the race
     const std::size_t bytes = loaded->memoryBytes();
     m_lru.push_front({index, loaded, bytes});
+    m_lruIndex[index] = m_lru.begin();
     m_cachedBytes += bytes;
-    evictLocked();
+    evictLocked(evicted);
+    m_loading.erase(index);
+    promise.set_value(loaded);
     return loaded;
 }
 
 void Dataset::setCacheBudget(std::size_t bytes) {
+    std::vector<std::shared_ptr<const Frame>> evicted;
     std::lock_guard lock(m_mutex);
     m_budget = bytes;
-    evictLocked();
+    evictLocked(evicted);
 }
 
 std::size_t Dataset::cachedBytes() const {
@@ -202,10 +260,27 @@ std::size_t Dataset::cachedBytes() const {
     return m_cachedBytes;
 }
 
-void Dataset::evictLocked() const {
+std::size_t Dataset::cachedFrameCount() const {
+    std::lock_guard lock(m_mutex);
+    return m_lru.size();
+}
+
+void Dataset::setFrameCache(std::shared_ptr<FrameCache> cache) {
+    std::lock_guard lock(m_mutex);
+    m_frameCache = std::move(cache);
+}
+
+std::shared_ptr<FrameCache> Dataset::frameCache() const {
+    std::lock_guard lock(m_mutex);
+    return m_frameCache;
+}
+
+void Dataset::evictLocked(std::vector<std::shared_ptr<const Frame>>& evicted) const {
     // The most recent frame always stays, even over budget.
-    while (m_cachedBytes > m_budget && m_lru.size() > 1) {
+    while (m_cachedBytes > m_budget.load() && m_lru.size() > 1) {
         m_cachedBytes -= m_lru.back().bytes;
+        evicted.push_back(std::move(m_lru.back().frame));
+        m_lruIndex.erase(m_lru.back().index);
         m_lru.pop_back();
     }
 }

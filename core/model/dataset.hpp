@@ -1,55 +1,89 @@
 // Dataset: the ordered frames of one simulation run, from a multi-frame file, a numbered
 // series (glob, natural order), a .pvd collection, or LAMMPS per-processor files ('%').
-// Frames are indexed once and loaded lazily through a bounded LRU cache.
+// Frames are indexed once and loaded lazily through a bounded LRU cache (in memory), backed by
+// the binary FrameCache on disk.
 #pragma once
 
 #include "core/io/frame_source.hpp"
 #include "core/model/frame.hpp"
 
+#include <atomic>
+#include <functional>
+#include <future>
 #include <list>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace faultline::core {
+
+class FrameCache;
+
+// A quarter of the physical memory (sysconf), or 2 GiB when it cannot be told.
+std::size_t defaultFrameMemoryBudget();
 
 class Dataset {
   public:
     Dataset() = default;
 
     // Expands each pattern ('*', '?', '[..]' globs in natural order; '%' for per-processor
-    // pieces) and indexes every file. Throws InputError naming the file at fault.
+    // pieces) and indexes every file. Throws InputError naming the file at fault. The dataset
+    // uses FrameCache::processDefault() as its disk cache.
     static std::shared_ptr<Dataset> open(const std::vector<std::string>& patterns);
+
+    // Frames made by a function rather than read from files (synthetic models, tests): `load`
+    // returns the finalized frame `index` and may throw like a reader; no disk cache is used.
+    static std::shared_ptr<Dataset> fromLoader(std::size_t frameCount,
+                                               std::function<Frame(std::size_t index)> load);
 
     std::size_t frameCount() const { return m_frames.size(); }
     const FrameLocation& location(std::size_t frame) const { return m_frames.at(frame); }
     const std::vector<std::string>& patterns() const { return m_patterns; }
     std::vector<std::string> files() const;
 
-    // Loads (or returns the cached) frame; safe to call from several threads.
+    // Loads (or returns the cached) frame, blocking; safe to call from several threads. Two
+    // threads asking for the same frame share one load. Throws InputError from the reader.
     std::shared_ptr<const Frame> frame(std::size_t index) const;
-    // Cached frame or null, never loads.
+    // Cached frame or null, never loads (marks the frame most recently used).
     std::shared_ptr<const Frame> cachedFrame(std::size_t index) const;
+    // Whether the frame is in memory; leaves the LRU order alone.
+    bool isCached(std::size_t index) const;
 
+    // Memory budget of the LRU cache (default: defaultFrameMemoryBudget()). The most recent
+    // frame always stays, even over budget.
     void setCacheBudget(std::size_t bytes);
-    std::size_t cacheBudget() const { return m_budget; }
+    std::size_t cacheBudget() const { return m_budget.load(); }
     std::size_t cachedBytes() const;
+    std::size_t cachedFrameCount() const;
+
+    // The disk cache frames are read from and written to; null: parse every load.
+    void setFrameCache(std::shared_ptr<FrameCache> cache);
+    std::shared_ptr<FrameCache> frameCache() const;
 
   private:
     std::vector<std::string> m_patterns;
     std::vector<FrameLocation> m_frames;
+    std::function<Frame(std::size_t)> m_loader; // set by fromLoader
 
     struct CacheEntry {
         std::size_t index;
         std::shared_ptr<const Frame> frame;
         std::size_t bytes;
     };
-    mutable std::mutex m_mutex;
+    mutable std::mutex m_mutex;          // guards everything below
     mutable std::list<CacheEntry> m_lru; // most recent first
+    mutable std::unordered_map<std::size_t, std::list<CacheEntry>::iterator> m_lruIndex;
     mutable std::size_t m_cachedBytes = 0;
-    std::size_t m_budget = std::size_t(2) << 30;
-    void evictLocked() const;
+    mutable std::map<std::size_t, std::shared_future<std::shared_ptr<const Frame>>> m_loading;
+    std::shared_ptr<FrameCache> m_frameCache;
+    std::atomic<std::size_t> m_budget{defaultFrameMemoryBudget()};
+    // Drops least recently used frames over budget into `evicted`, for the caller to free
+    // after it unlocks.
+    void evictLocked(std::vector<std::shared_ptr<const Frame>>& evicted) const;
+    std::shared_ptr<const Frame> touchLocked(std::size_t index) const; // null when not cached
 };
 
 // Expands a glob pattern ('*', '?', '[..]'); a path with no wildcard is returned as it is.

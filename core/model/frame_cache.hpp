@@ -1,0 +1,79 @@
+// FrameCache: parsed frames kept on disk ($XDG_CACHE_HOME/faultline/frames) so a frame parsed
+// once loads again with no parsing. Keyed by the sources' paths, byte ranges, sizes and mtimes.
+#pragma once
+
+#include "core/io/frame_source.hpp"
+#include "core/model/frame.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+namespace faultline::core {
+
+struct FrameCacheSettings {
+    bool enabled = true;
+    std::string folder;                          // empty: defaultFrameCacheFolder()
+    std::uint64_t budgetBytes = 10ull << 30;     // the folder's size; oldest files go first
+    std::uint64_t minSourceBytes = 1ull << 20;   // smaller sources parse faster than a cache write
+    std::uint64_t minFreeDiskBytes = 1ull << 30; // never fill the disk past this
+};
+
+// $XDG_CACHE_HOME/faultline/frames, else ~/.cache/faultline/frames; empty when neither is known.
+std::string defaultFrameCacheFolder();
+
+// What identifies the source state of a frame: format, timestep, and for each piece its absolute
+// path, byte range, size and mtime (ns). nullopt when a source cannot be stat'ed.
+std::optional<std::string> frameCacheKey(const FrameLocation& location);
+
+class FrameCache {
+  public:
+    explicit FrameCache(FrameCacheSettings settings);
+
+    // The cache Dataset::open attaches: default settings, disabled when the environment says
+    // FAULTLINE_FRAME_CACHE=0 (or off/no/false). Replace it with setProcessDefault (null: none).
+    static std::shared_ptr<FrameCache> processDefault();
+    static void setProcessDefault(std::shared_ptr<FrameCache> cache);
+
+    // The frame from the cache when a valid file exists, else parsed from its source (throws
+    // InputError like loadFrame) and written to the cache. Failing to write never fails a load:
+    // the problem is logged once to stderr and kept in problem(). Safe from several threads.
+    Frame fetch(const FrameLocation& location);
+
+    // The cached frame, or nullopt (missing, stale or corrupt: a bad file is deleted).
+    std::optional<Frame> lookup(const FrameLocation& location);
+    // Writes `frame` for `location` unless disabled, too small, or the disk is short; never throws.
+    void store(const FrameLocation& location, const Frame& frame);
+
+    // The file that holds (or would hold) a location's frame; empty when disabled.
+    std::string pathFor(const FrameLocation& location) const;
+    // Deletes every cache file in the folder.
+    void clear();
+
+    const FrameCacheSettings& settings() const { return m_settings; }
+    bool enabled() const { return m_settings.enabled && !m_settings.folder.empty(); }
+    // The last problem (unwritable folder, full disk, corrupt file), "" when none.
+    std::string problem() const;
+
+    struct Stats {
+        std::uint64_t hits = 0, misses = 0, rejected = 0, writes = 0, writeFailures = 0;
+    };
+    Stats stats() const;
+
+  private:
+    FrameCacheSettings m_settings;
+    mutable std::mutex m_mutex; // guards the fields below
+    std::string m_problem;
+    bool m_warned = false;
+    bool m_writesDisabled = false;              // after a write the file system refused for good
+    std::optional<std::uint64_t> m_folderBytes; // known after the first write
+    Stats m_stats;
+
+    void noteProblem(const std::string& message, bool disableWrites);
+    void evictOverBudget(const std::string& keep);
+};
+
+} // namespace faultline::core

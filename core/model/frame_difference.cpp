@@ -1,0 +1,189 @@
+#include "core/model/frame_difference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace faultline::core {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr std::size_t kGrain = 16384;
+
+// A column of a frame as doubles by row: an attribute or one of the fixed columns.
+class ColumnReader {
+  public:
+    ColumnReader(const Frame& f, std::string_view name) {
+        if (const AttributeColumn* c = f.attribute(name)) {
+            if (c->type == ColumnType::Float32)
+                m_floats = c->floats.data();
+            else
+                m_ints = c->ints.data();
+        } else if (name == "x") {
+            m_floats = f.x.data();
+        } else if (name == "y") {
+            m_floats = f.y.data();
+        } else if (name == "z") {
+            m_floats = f.z.data();
+        } else if (name == "radius") {
+            m_floats = f.radius.data();
+        } else {
+            m_missing = true;
+        }
+    }
+    bool missing() const { return m_missing; }
+    double operator()(std::size_t row) const {
+        return m_floats ? static_cast<double>(m_floats[row]) : static_cast<double>(m_ints[row]);
+    }
+
+  private:
+    const float* m_floats = nullptr;
+    const std::int32_t* m_ints = nullptr;
+    bool m_missing = false;
+};
+
+bool sameIdOrder(const Frame& a, const Frame& b) {
+    return a.ids.size() == b.ids.size() &&
+           (a.ids.empty() ||
+            std::memcmp(a.ids.data(), b.ids.data(), a.ids.size() * sizeof(std::int64_t)) == 0);
+}
+
+// For each row of `now`, fn(row, referenceRow or -1).
+template <typename Fn> void forMatchedRows(const Frame& now, const Frame& reference, Fn fn) {
+    const bool aligned = sameIdOrder(now, reference);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t row = r.begin(); row != r.end(); ++row) {
+                              if (aligned) {
+                                  fn(row, static_cast<long long>(row));
+                                  continue;
+                              }
+                              const auto ref = reference.rowOf(now.ids[row]);
+                              fn(row, ref ? static_cast<long long>(*ref) : -1LL);
+                          }
+                      });
+}
+
+void cacheRange(AttributeColumn& c) {
+    using Range = std::pair<double, double>;
+    const Range empty{std::numeric_limits<double>::infinity(),
+                      -std::numeric_limits<double>::infinity()};
+    const Range r = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, c.floats.size(), kGrain), empty,
+        [&](const tbb::blocked_range<std::size_t>& b, Range acc) {
+            for (std::size_t k = b.begin(); k != b.end(); ++k) {
+                const double v = c.floats[k];
+                if (v < acc.first) // false for NaN
+                    acc.first = v;
+                if (v > acc.second)
+                    acc.second = v;
+            }
+            return acc;
+        },
+        [](Range a, Range b) {
+            return Range{std::min(a.first, b.first), std::max(a.second, b.second)};
+        });
+    if (r.first > r.second) {
+        c.min = c.max = 0.0; // empty or all NaN, as Frame::finalize does
+    } else {
+        c.min = r.first;
+        c.max = r.second;
+    }
+}
+
+// The periodic cell of a box as edge vectors a = (lx,0,0), b = (xy,ly,0), c = (xz,yz,lz).
+struct PeriodicCell {
+    bool any = false;
+    bool periodic[3] = {false, false, false};
+    double lx = 0, ly = 0, lz = 0, xy = 0, xz = 0, yz = 0;
+
+    explicit PeriodicCell(const SimulationBox& box) {
+        if (!box.known)
+            return;
+        lx = box.hi[0] - box.lo[0];
+        ly = box.hi[1] - box.lo[1];
+        lz = box.hi[2] - box.lo[2];
+        if (box.triclinic) {
+            xy = box.xy;
+            xz = box.xz;
+            yz = box.yz;
+        }
+        const double length[3] = {lx, ly, lz};
+        for (int a = 0; a < 3; ++a) {
+            periodic[a] = box.periodic[a] && length[a] > 0;
+            any = any || periodic[a];
+        }
+    }
+
+    // The shortest image of a displacement: whole cells removed along periodic axes, z first
+    // since c carries x and y tilt, then y, then x.
+    // Most spheres move far less than half a cell: they skip the division.
+    void wrap(double& dx, double& dy, double& dz) const {
+        if (periodic[2] && std::fabs(dz) > 0.5 * lz) {
+            const double n = std::round(dz / lz);
+            dz -= n * lz;
+            dy -= n * yz;
+            dx -= n * xz;
+        }
+        if (periodic[1] && std::fabs(dy) > 0.5 * ly) {
+            const double n = std::round(dy / ly);
+            dy -= n * ly;
+            dx -= n * xy;
+        }
+        if (periodic[0] && std::fabs(dx) > 0.5 * lx)
+            dx -= std::round(dx / lx) * lx;
+    }
+};
+
+} // namespace
+
+AttributeColumn variableChange(const Frame& now, const Frame& reference,
+                               std::string_view variable) {
+    const ColumnReader current(now, variable);
+    if (current.missing())
+        throw std::invalid_argument("no variable '" + std::string(variable) + "' in this frame");
+    const ColumnReader before(reference, variable);
+    AttributeColumn out;
+    out.name = std::string(variable) + " change";
+    out.type = ColumnType::Float32;
+    out.floats.assign(now.size(), kNaN);
+    if (!before.missing())
+        forMatchedRows(now, reference, [&](std::size_t row, long long ref) {
+            if (ref >= 0)
+                out.floats[row] =
+                    static_cast<float>(current(row) - before(static_cast<std::size_t>(ref)));
+        });
+    cacheRange(out);
+    return out;
+}
+
+AttributeColumn displacementSince(const Frame& now, const Frame& reference) {
+    const PeriodicCell cell(reference.box);
+    AttributeColumn out;
+    out.name = "displacement";
+    out.type = ColumnType::Float32;
+    out.floats.assign(now.size(), kNaN);
+    forMatchedRows(now, reference, [&](std::size_t row, long long ref) {
+        if (ref < 0)
+            return;
+        const auto r = static_cast<std::size_t>(ref);
+        double dx = double(now.x[row]) - reference.x[r];
+        double dy = double(now.y[row]) - reference.y[r];
+        double dz = double(now.z[row]) - reference.z[r];
+        if (cell.any)
+            cell.wrap(dx, dy, dz);
+        out.floats[row] = static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz));
+    });
+    cacheRange(out);
+    return out;
+}
+
+} // namespace faultline::core

@@ -1,0 +1,22 @@
+// Difference colouring: how a variable changed, and how far each sphere moved, since a reference
+// frame, matched by particle id, as float columns the renderer colours by like any other.
+#pragma once
+
+#include "core/model/frame.hpp"
+
+#include <string_view>
+
+namespace faultline::core {
+
+// Per row of `now`: value_now - value_in_reference for the same particle id; NaN where the id is
+// not in `reference` or `reference` lacks the variable. `variable` is an attribute name, or x, y,
+// z or radius. Named "<variable> change". Throws std::invalid_argument when `now` lacks it.
+AttributeColumn variableChange(const Frame& now, const Frame& reference, std::string_view variable);
+
+// Per row of `now`: |pos_now - pos_in_reference| for the same particle id; NaN where the id is
+// not in `reference`. Along a periodic axis of the reference box the shortest image counts
+// (triclinic cells too), so a sphere that crossed the boundary moved a little, not a box length.
+// Named "displacement".
+AttributeColumn displacementSince(const Frame& now, const Frame& reference);
+
+} // namespace faultline::core

@@ -1,0 +1,232 @@
+#include "core/model/frame_prefetcher.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+
+namespace faultline::core {
+
+namespace {
+// A step larger than this is a jump, not travel: prefetch one by one from where it landed.
+constexpr std::size_t kMaxStride = 8;
+} // namespace
+
+FramePrefetcher::FramePrefetcher(std::shared_ptr<const Dataset> dataset, PrefetchSettings settings)
+    : m_dataset(std::move(dataset)), m_settings(settings) {
+    const std::size_t workers = std::max<std::size_t>(1, m_settings.workers);
+    m_workers.reserve(workers);
+    for (std::size_t k = 0; k < workers; ++k)
+        m_workers.emplace_back([this] { work(); });
+}
+
+FramePrefetcher::~FramePrefetcher() {
+    {
+        std::lock_guard lock(m_mutex);
+        m_stop = true;
+        m_queue.clear();
+    }
+    m_wake.notify_all();
+    for (auto& t : m_workers)
+        t.join();
+}
+
+FrameRequestResult FramePrefetcher::request(std::size_t index, std::size_t channel) {
+    const std::size_t count = m_dataset ? m_dataset->frameCount() : 0;
+    if (index >= count)
+        return {FrameStatus::Failed, nullptr,
+                "frame " + std::to_string(index) + " does not exist (the data has " +
+                    std::to_string(count) + " frames)"};
+    auto frame = m_dataset->cachedFrame(index);
+    std::lock_guard lock(m_mutex);
+    Channel& c = m_channels[channel];
+    const bool moved = !c.seen || c.index != index;
+    if (moved && c.seen) {
+        // Distance each way (around the ends when looping); the shorter way is the direction.
+        const std::size_t unreachable = std::numeric_limits<std::size_t>::max();
+        std::size_t forward = index > c.index ? index - c.index : unreachable;
+        std::size_t backward = index < c.index ? c.index - index : unreachable;
+        if (m_settings.loop) {
+            forward = (index + count - c.index) % count;
+            backward = (c.index + count - index) % count;
+        }
+        c.direction = forward <= backward ? 1 : -1;
+        c.stride = std::min(forward, backward);
+        if (c.stride > kMaxStride)
+            c.stride = 1;
+    }
+    c.index = index;
+    c.seen = true;
+
+    FrameRequestResult result;
+    bool scheduled = true;
+    if (frame) {
+        result.status = FrameStatus::Ready;
+        result.frame = std::move(frame);
+    } else if (auto e = m_errors.find(index); e != m_errors.end()) {
+        result.status = FrameStatus::Failed;
+        result.error = e->second;
+    } else {
+        result.status = FrameStatus::Loading;
+        scheduled = m_running.count(index) ||
+                    std::find(m_queue.begin(), m_queue.end(), index) != m_queue.end();
+    }
+    if (moved || !scheduled)
+        rebuildQueueLocked();
+    return result;
+}
+
+FrameRequestResult FramePrefetcher::peek(std::size_t index) const {
+    FrameRequestResult result;
+    if (!m_dataset || index >= m_dataset->frameCount()) {
+        result.status = FrameStatus::Failed;
+        result.error = "frame " + std::to_string(index) + " does not exist";
+        return result;
+    }
+    if (auto frame = m_dataset->cachedFrame(index)) {
+        result.status = FrameStatus::Ready;
+        result.frame = std::move(frame);
+        return result;
+    }
+    std::lock_guard lock(m_mutex);
+    if (auto e = m_errors.find(index); e != m_errors.end()) {
+        result.status = FrameStatus::Failed;
+        result.error = e->second;
+    }
+    return result;
+}
+
+void FramePrefetcher::forgetChannel(std::size_t channel) {
+    std::lock_guard lock(m_mutex);
+    m_channels.erase(channel);
+    rebuildQueueLocked();
+}
+
+void FramePrefetcher::cancelPending() {
+    std::lock_guard lock(m_mutex);
+    m_channels.clear();
+    m_queue.clear();
+    if (m_running.empty() && m_finishing == 0)
+        m_idle.notify_all();
+}
+
+void FramePrefetcher::retry(std::size_t index) {
+    std::lock_guard lock(m_mutex);
+    m_errors.erase(index);
+}
+
+void FramePrefetcher::setLoop(bool loop) {
+    std::lock_guard lock(m_mutex);
+    m_settings.loop = loop;
+    rebuildQueueLocked();
+}
+
+void FramePrefetcher::setOnLoaded(std::function<void(std::size_t)> callback) {
+    std::lock_guard lock(m_mutex);
+    m_onLoaded = std::move(callback);
+}
+
+std::size_t FramePrefetcher::pendingCount() const {
+    std::lock_guard lock(m_mutex);
+    return m_queue.size() + m_running.size() + m_finishing;
+}
+
+bool FramePrefetcher::waitIdle(std::chrono::milliseconds timeout) const {
+    std::unique_lock lock(m_mutex);
+    return m_idle.wait_for(
+        lock, timeout, [this] { return m_queue.empty() && m_running.empty() && m_finishing == 0; });
+}
+
+std::size_t FramePrefetcher::prefetchDepthLocked() const {
+    const std::size_t channels = std::max<std::size_t>(1, m_channels.size());
+    const std::size_t cachedCount = m_dataset->cachedFrameCount();
+    if (cachedCount == 0) // no idea yet what a frame weighs: one step ahead
+        return std::min<std::size_t>(m_settings.lookAhead, 1);
+    const std::size_t perFrame = std::max<std::size_t>(1, m_dataset->cachedBytes() / cachedCount);
+    const std::size_t fits = m_dataset->cacheBudget() / perFrame;
+    // Every channel's current frame stays; what is left is shared among the channels.
+    if (fits <= channels)
+        return 0;
+    return std::min(m_settings.lookAhead, (fits - channels) / channels);
+}
+
+std::vector<std::size_t> FramePrefetcher::wishesLocked(const Channel& c, std::size_t depth) const {
+    const auto count = static_cast<long long>(m_dataset->frameCount());
+    std::vector<std::size_t> wishes{c.index};
+    long long at = static_cast<long long>(c.index);
+    const long long step = c.direction * static_cast<long long>(c.stride);
+    for (std::size_t k = 0; k < depth; ++k) {
+        at += step;
+        if (at < 0 || at >= count) {
+            if (!m_settings.loop)
+                break;
+            at = ((at % count) + count) % count;
+        }
+        if (static_cast<std::size_t>(at) == c.index)
+            break;
+        wishes.push_back(static_cast<std::size_t>(at));
+    }
+    return wishes;
+}
+
+void FramePrefetcher::rebuildQueueLocked() {
+    if (m_stop)
+        return;
+    const std::size_t depth = prefetchDepthLocked();
+    std::vector<std::vector<std::size_t>> wishes;
+    for (const auto& [id, channel] : m_channels)
+        wishes.push_back(wishesLocked(channel, depth));
+    // Every channel's own frame first, then the first frame ahead of each, and so on.
+    std::deque<std::size_t> queue;
+    for (std::size_t rank = 0; rank <= depth; ++rank)
+        for (const auto& list : wishes) {
+            if (rank >= list.size())
+                continue;
+            const std::size_t index = list[rank];
+            if (m_running.count(index) || m_errors.count(index) ||
+                std::find(queue.begin(), queue.end(), index) != queue.end() ||
+                m_dataset->isCached(index))
+                continue;
+            queue.push_back(index);
+        }
+    m_queue = std::move(queue);
+    if (!m_queue.empty())
+        m_wake.notify_all();
+    else if (m_running.empty() && m_finishing == 0)
+        m_idle.notify_all();
+}
+
+void FramePrefetcher::work() {
+    std::unique_lock lock(m_mutex);
+    for (;;) {
+        m_wake.wait(lock, [this] { return m_stop || !m_queue.empty(); });
+        if (m_stop)
+            return;
+        const std::size_t index = m_queue.front();
+        m_queue.pop_front();
+        m_running.insert(index);
+        lock.unlock();
+        std::string error;
+        try {
+            m_dataset->frame(index);
+        } catch (const std::exception& e) {
+            error = e.what();
+        } catch (...) {
+            error = "frame " + std::to_string(index) + ": unknown error while loading";
+        }
+        lock.lock();
+        m_running.erase(index);
+        if (!error.empty())
+            m_errors[index] = std::move(error);
+        if (auto callback = m_onLoaded) {
+            ++m_finishing; // not idle before the callback has run
+            lock.unlock();
+            callback(index);
+            lock.lock();
+            --m_finishing;
+        }
+        // A frame's weight is known now, and memory may have room for more prefetch.
+        rebuildQueueLocked();
+    }
+}
+
+} // namespace faultline::core

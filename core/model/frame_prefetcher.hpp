@@ -1,0 +1,102 @@
+// FramePrefetcher: frames for a UI that must never wait. request() answers at once with the frame
+// or "loading"; worker threads load it and the next frames in the direction of travel.
+#pragma once
+
+#include "core/model/dataset.hpp"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace faultline::core {
+
+enum class FrameStatus { Ready, Loading, Failed };
+
+struct FrameRequestResult {
+    FrameStatus status = FrameStatus::Loading;
+    std::shared_ptr<const Frame> frame; // when Ready
+    std::string error;                  // when Failed: the reader's message (path, line)
+};
+
+struct PrefetchSettings {
+    std::size_t workers = 2;   // loads in flight at most
+    std::size_t lookAhead = 4; // frames prefetched per channel, fewer when memory is short
+    bool loop = false;         // prefetch past the last frame wraps to the first (and back)
+};
+
+class FramePrefetcher {
+  public:
+    explicit FramePrefetcher(std::shared_ptr<const Dataset> dataset,
+                             PrefetchSettings settings = {});
+    // Drops queued loads and waits for the running ones (a reader cannot be interrupted).
+    ~FramePrefetcher();
+    FramePrefetcher(const FramePrefetcher&) = delete;
+    FramePrefetcher& operator=(const FramePrefetcher&) = delete;
+
+    // Never blocks on a load. Ready: the frame (from memory). Failed: the load's error (kept
+    // until retry()). Loading: it is queued first, ahead of any prefetch. A channel is one
+    // consumer (a viewport); its last requests give the direction and stride of travel, and the
+    // frames ahead are prefetched, within the dataset's memory budget. Queued loads no channel
+    // wants any more are dropped.
+    FrameRequestResult request(std::size_t index, std::size_t channel = 0);
+    // Like request() but schedules nothing and leaves the channels alone.
+    FrameRequestResult peek(std::size_t index) const;
+
+    // A closed viewport: its wishes leave the queue.
+    void forgetChannel(std::size_t channel);
+    // Drops every queued load and every channel's wishes until its next request (running
+    // loads finish and stay in the dataset's cache).
+    void cancelPending();
+    // Forgets a failed load so the next request() tries again.
+    void retry(std::size_t index);
+    void setLoop(bool loop);
+
+    // Called on a worker thread after each load ends (loaded or failed), e.g. to wake the UI.
+    void setOnLoaded(std::function<void(std::size_t index)> callback);
+
+    // Queued plus running loads.
+    std::size_t pendingCount() const;
+    // Waits until nothing is queued or running (for tests and the CLI); false on timeout.
+    bool waitIdle(std::chrono::milliseconds timeout) const;
+
+    const std::shared_ptr<const Dataset>& dataset() const { return m_dataset; }
+
+  private:
+    struct Channel {
+        std::size_t index = 0;
+        long direction = 1; // +1 forward, -1 backward
+        std::size_t stride = 1;
+        bool seen = false;
+    };
+
+    std::shared_ptr<const Dataset> m_dataset;
+    PrefetchSettings m_settings;
+
+    mutable std::mutex m_mutex;
+    mutable std::condition_variable m_wake; // workers: work or stop
+    mutable std::condition_variable m_idle; // waitIdle
+    std::map<std::size_t, Channel> m_channels;
+    std::deque<std::size_t> m_queue; // next load first
+    std::set<std::size_t> m_running;
+    std::size_t m_finishing = 0; // loads ended whose callback is running
+    std::map<std::size_t, std::string> m_errors;
+    std::function<void(std::size_t)> m_onLoaded;
+    bool m_stop = false;
+    std::vector<std::thread> m_workers;
+
+    void rebuildQueueLocked();
+    std::vector<std::size_t> wishesLocked(const Channel& channel, std::size_t depth) const;
+    std::size_t prefetchDepthLocked() const;
+    void work();
+};
+
+} // namespace faultline::core
