@@ -28,16 +28,6 @@ namespace fs = std::filesystem;
     return {};
 }
 
-// The demo model: the generator's, once it lands; until then a real LIGGGHTS packing from
-// the test data stands in.
-[[maybe_unused]] std::string demoModelPath() {
-#ifdef FAULTLINE_DEMO_DATA
-    return FAULTLINE_DEMO_DATA;
-#else
-    return {};
-#endif
-}
-
 } // namespace
 
 int runGui(const Args& argsIn) {
@@ -85,19 +75,20 @@ int runGui(const Args& argsIn) {
     options.maximize = screenshot.empty();
     options.workbench.stateDir = xdgDir("XDG_STATE_HOME", ".local/state");
     options.workbench.configDir = xdgDir("XDG_CONFIG_HOME", ".config");
-    options.workbench.demoPath = demoModelPath();
     try {
         ui::GuiApp gui(session, std::move(options));
-        const std::string path = args.empty() ? demoModelPath() : args.front();
-        if (!path.empty())
+        const std::string path = args.empty() ? std::string() : args.front();
+        if (path.empty())
+            gui.workbench().openDemo(); // made once (about a minute), then reused
+        else
             gui.workbench().openPath(path);
         if (screenshot.empty())
             return gui.run();
         // Settle: the data opened, its frame shown, a few frames drawn.
         int quiet = 0;
-        for (int k = 0; k < 3000 && quiet < 10 && gui.step(); ++k) {
+        for (int k = 0; k < 200000 && quiet < 10 && gui.step(true); ++k) {
             auto& wb = gui.workbench();
-            const bool busy = wb.jobs().busy() || wb.frames().loading() || (!path.empty() && !wb.dataset() && k < 2000);
+            const bool busy = wb.jobs().busy() || wb.frames().loading() || (!wb.dataset() && k < 2000);
             quiet = busy ? 0 : quiet + 1;
         }
         gui.workbench().requestScreenshot(screenshot); // taken before the next swap

@@ -108,10 +108,12 @@ bool GuiApp::animating() const {
 }
 
 bool GuiApp::step(bool wait) {
-    if (wait && !animating())
-        glfwWaitEventsTimeout(0.25); // wakes for autosave and message timeouts
+    if (!wait || m_workbench->playback().playing)
+        glfwPollEvents(); // the swap's vsync paces playback
+    else if (animating())
+        glfwWaitEventsTimeout(0.05); // progress bars at 20 frames per second; input wakes at once
     else
-        glfwPollEvents();
+        glfwWaitEventsTimeout(0.25); // idle: autosave and message timeouts still run
     if (m_pendingScale > 0 && m_pendingScale != m_scale) {
         setScale(m_pendingScale);
         m_pendingScale = 0;

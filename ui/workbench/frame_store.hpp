@@ -1,25 +1,24 @@
-// FrameStore: frames for the views without ever blocking the UI thread. A frame not in the
-// dataset's cache is loaded by one background worker (requests before prefetches, newest
-// first); until it arrives the caller keeps showing what it had.
+// FrameStore: frames for the views without ever blocking the UI thread, on the core's
+// FramePrefetcher (loads on worker threads, the next frames prefetched in each view's direction
+// of travel within the dataset's memory budget). Until a frame arrives the caller keeps showing
+// what it had.
 #pragma once
 
 #include "core/model/dataset.hpp"
+#include "core/model/frame_prefetcher.hpp"
 
-#include <condition_variable>
-#include <deque>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
-#include <vector>
 
 namespace faultline::ui {
 
 class FrameStore {
   public:
-    FrameStore();
+    FrameStore() = default;
     ~FrameStore();
     FrameStore(const FrameStore&) = delete;
     FrameStore& operator=(const FrameStore&) = delete;
@@ -27,37 +26,29 @@ class FrameStore {
     // The dataset frames come from; pending loads of another dataset are dropped.
     void setDataset(std::shared_ptr<core::Dataset> dataset);
     const std::shared_ptr<core::Dataset>& dataset() const { return m_dataset; }
+    void setLoop(bool loop);
 
-    // The frame when it is loaded, else null and a load is queued ahead of other work.
-    std::shared_ptr<const core::Frame> request(std::size_t index);
-    // Queues a load behind the requests (playback reads ahead in its direction).
-    void prefetch(std::size_t index);
+    // The frame when it is in memory, else null and it is loaded ahead of any prefetch.
+    // `channel`: one per view (its requests give the direction to read ahead in).
+    std::shared_ptr<const core::Frame> request(std::size_t index, std::size_t channel = 0);
     bool isLoaded(std::size_t index) const;
+    void forgetChannel(std::size_t channel);
 
-    // The frame being loaded, if any, and the last load error (cleared by the next success).
+    // A frame asked for and not there yet, if any; the last load error (cleared by a success).
     std::optional<std::size_t> loading() const;
     std::string lastError() const;
-    // True once after a frame arrived (the UI redraws).
-    bool takeArrivals();
     // Blocks until nothing is queued or loading (tests, scripted runs).
     void waitIdle();
+    // Called on a worker thread after each load (wakes an idle event loop).
     void setWakeUp(std::function<void()> wake);
 
   private:
-    void run();
-
-    std::shared_ptr<core::Dataset> m_dataset; // UI thread's view
-    mutable std::mutex m_mutex;
-    std::condition_variable m_wakeWorker, m_idle;
-    std::shared_ptr<core::Dataset> m_workDataset;
-    std::deque<std::size_t> m_requests, m_prefetches;
-    std::optional<std::size_t> m_loading;
-    std::vector<std::size_t> m_failed; // of this dataset
+    std::shared_ptr<core::Dataset> m_dataset;
+    std::unique_ptr<core::FramePrefetcher> m_prefetcher;
+    bool m_loop = false;
+    std::optional<std::size_t> m_waitingFor;
     std::string m_error;
-    bool m_arrived = false;
-    bool m_stop = false;
-    std::function<void()> m_wake;
-    std::thread m_worker;
+    std::shared_ptr<std::function<void()>> m_wake = std::make_shared<std::function<void()>>();
 };
 
 } // namespace faultline::ui

@@ -347,18 +347,12 @@ void Workbench::jumpToFrame(long long frame) {
 
 void Workbench::updatePlayback() {
     auto ds = dataset();
+    m_frames.setLoop(m_playback.loop);
     if (!m_playback.playing || !ds || !m_playback.frame)
         return;
     const std::size_t n = ds->frameCount();
     const std::size_t cur = *m_playback.frame;
-    // Read ahead in the direction of travel.
-    for (int k = 1; k <= 3; ++k) {
-        long long next = static_cast<long long>(cur) + k * m_playback.direction;
-        if (m_playback.loop)
-            next = ((next % static_cast<long long>(n)) + static_cast<long long>(n)) % static_cast<long long>(n);
-        if (next >= 0 && next < static_cast<long long>(n))
-            m_frames.prefetch(static_cast<std::size_t>(next));
-    }
+    // The prefetcher reads ahead in each view's direction of travel.
     if (m_now - m_playback.lastStep < 1.0 / std::max(m_playback.fps, 0.1))
         return;
     // The shown frame must have arrived before moving on: the old frame stays until then.
@@ -409,6 +403,7 @@ void Workbench::updateDisplay() {
 
     const std::size_t base = displayFrame();
     std::vector<ViewDisplay> next;
+    std::size_t channel = 0;
     for (const auto& v : s.views) {
         ViewDisplay d;
         if (const ViewDisplay* old = view(v.name))
@@ -418,7 +413,7 @@ void Workbench::updateDisplay() {
             const long long count = static_cast<long long>(ds->frameCount());
             const long long want = v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
             d.wantedFrame = static_cast<std::size_t>(std::clamp(want, 0LL, count - 1));
-            if (auto f = m_frames.request(d.wantedFrame)) {
+            if (auto f = m_frames.request(d.wantedFrame, channel)) {
                 d.frame = f;
                 d.shownFrame = d.wantedFrame;
             }
@@ -460,6 +455,7 @@ void Workbench::updateDisplay() {
         }
         d.colorRange = widen(range);
         next.push_back(std::move(d));
+        ++channel;
     }
     m_views = std::move(next);
     std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {

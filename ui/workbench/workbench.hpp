@@ -54,7 +54,6 @@ struct WorkbenchOptions {
     std::string stateDir;  // autosave and the journal of this run; empty: neither is written
     std::string configDir; // recent files; empty: not remembered
     double autosaveSeconds = 30.0;
-    std::string demoPath;  // what File > Open demo model opens (empty: no such item)
 };
 
 // What one view shows this frame (after previews, frame loading and camera fitting).
@@ -147,6 +146,9 @@ class Workbench {
     void openPath(const std::string& path); // data or *.faultline.json, in the background
     void openData(std::vector<std::string> paths);
     void openSession(const std::string& path);
+    // The generator's demo model: made once in the per-user data folder (a background job with
+    // progress and cancel), then opened.
+    void openDemo();
     void saveSession(); // to the session's file, else asks for one
     void saveSessionAs(const std::string& path);
     const std::string& sessionPath() const { return m_sessionPath; }

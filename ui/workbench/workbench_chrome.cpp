@@ -106,8 +106,8 @@ void Workbench::drawMenus() {
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open data...", "Ctrl+O"))
             m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {}, dataFolder);
-        if (!m_options.demoPath.empty() && ImGui::MenuItem("Open the demo model"))
-            openPath(m_options.demoPath);
+        if (ImGui::MenuItem("Open the demo model"))
+            openDemo();
         if (ImGui::MenuItem("Open session...", "Ctrl+Shift+O"))
             m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session", {".faultline.json"}, folderOf(m_sessionPath));
         if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {

@@ -5,6 +5,7 @@
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/session_json.hpp"
+#include "core/synth/demo_model.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -97,6 +98,23 @@ void Workbench::openSession(const std::string& pathIn) {
             };
         },
         [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
+}
+
+void Workbench::openDemo() {
+    if (auto path = core::existingDemoModel()) {
+        openData({*path});
+        return;
+    }
+    m_jobs.start(
+        "Making the demo model (once)",
+        [this](JobControl& control) -> std::function<void()> {
+            const std::string path = core::ensureDemoModel([&control](double fraction) {
+                control.setProgress(static_cast<float>(fraction));
+                return !control.cancelled();
+            });
+            return [this, path] { openData({path}); };
+        },
+        [this](const std::string& why) { error("Cannot make the demo model: " + why); }, m_now);
 }
 
 void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds) {
