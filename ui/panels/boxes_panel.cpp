@@ -34,7 +34,7 @@ class BoxesPanel final : public Panel {
         const core::SessionState& s = wb.state();
         const ViewDisplay* main = wb.mainDisplay();
         const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
-        const ModelBounds model = frame ? modelBounds(*frame) : ModelBounds{};
+        const ModelBounds model = frame ? main->bounds : ModelBounds{};
 
         ImGui::BeginDisabled(!frame);
         if (ImGui::Button("Add")) {

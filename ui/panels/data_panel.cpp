@@ -62,7 +62,7 @@ class DataPanel final : public Panel {
                 keyValue("spheres", std::to_string(fr.size()));
                 if (main->visibility)
                     keyValue("visible", std::to_string(main->visibility->visibleCount));
-                const ModelBounds b = modelBounds(fr);
+                const ModelBounds& b = main->bounds;
                 keyValue("extent", numberText(b.hi[0] - b.lo[0]) + " x " + numberText(b.hi[1] - b.lo[1]) + " x " +
                                        numberText(b.hi[2] - b.lo[2]));
                 if (fr.radiusIsDefault)
@@ -72,7 +72,6 @@ class DataPanel final : public Panel {
             }
         }
         if (main && main->frame && ImGui::CollapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
-            const core::Frame& fr = *main->frame;
             if (ImGui::BeginTable("##columns", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
                                                      ImGuiTableFlags_SizingStretchProp)) {
                 ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.4f);
@@ -80,10 +79,8 @@ class DataPanel final : public Panel {
                 ImGui::TableSetupColumn("min", ImGuiTableColumnFlags_WidthStretch, 1.0f);
                 ImGui::TableSetupColumn("max", ImGuiTableColumnFlags_WidthStretch, 1.0f);
                 ImGui::TableHeadersRow();
-                for (const std::string& name : variableNames(fr)) {
-                    auto info = variableInfo(fr, name);
-                    if (!info)
-                        continue;
+                for (const auto& [name, col] : wb.columns().of(main->frame)) {
+                    const VariableInfo* info = &col;
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
                     ImGui::TextUnformatted(name.c_str());

@@ -51,7 +51,7 @@ class HistogramsPanel final : public Panel {
         // Toolbar: add a variable, log scale.
         ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x * 0.6f, 200 * wb.scale()));
         if (ImGui::BeginCombo("##addhist", "Add a histogram...")) {
-            for (const std::string& v : variableNames(*frame))
+            for (const auto& [v, info] : wb.columns().of(main->frame))
                 if (std::find(vars.begin(), vars.end(), v) == vars.end() && ImGui::Selectable(v.c_str())) {
                     vars.push_back(v);
                     saveSettings(wb, vars, logScale);
@@ -164,7 +164,7 @@ class HistogramsPanel final : public Panel {
     bool drawOne(Workbench& wb, const core::Frame& frame, const ViewDisplay& main, const std::string& var, bool logScale) {
         const float scale = wb.scale();
         const core::Histogram* h = histogramFor(frame, main, var);
-        const auto info = variableInfo(frame, var);
+        const auto info = wb.columns().info(main.frame, var);
         const core::VariableThreshold* t = wb.state().threshold(var);
 
         // Title line: name, threshold, close.

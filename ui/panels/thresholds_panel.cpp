@@ -29,16 +29,15 @@ class ThresholdsPanel final : public Panel {
         ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x, 220 * scale));
         if (ImGui::BeginCombo("##addthreshold", "Add a threshold on...")) {
             if (frame)
-                for (const std::string& v : variableNames(*frame)) {
+                for (const auto& [v, vinfo] : wb.columns().of(main->frame)) {
                     if (wb.state().threshold(v))
                         continue;
                     const bool chosen = ImGui::Selectable(v.c_str());
                     wb.mark("thresholds.add." + v);
                     if (chosen) {
-                        auto info = variableInfo(*frame, v);
                         core::Json cmd = {{"op", "threshold.add"}, {"variable", v}};
-                        if (info && info->min <= info->max)
-                            cmd["low"] = info->min, cmd["high"] = info->max;
+                        if (vinfo.min <= vinfo.max)
+                            cmd["low"] = vinfo.min, cmd["high"] = vinfo.max;
                         wb.emit(cmd);
                     }
                 }
@@ -64,7 +63,7 @@ class ThresholdsPanel final : public Panel {
             VariableInfo info{};
             bool haveInfo = false;
             if (frame)
-                if (auto i = variableInfo(*frame, t.variable))
+                if (auto i = wb.columns().info(main->frame, t.variable))
                     info = *i, haveInfo = true;
             if (frame && !haveInfo) {
                 ImGui::SameLine();

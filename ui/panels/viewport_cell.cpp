@@ -34,12 +34,7 @@ glm::dvec3 faceCentre(const std::array<double, 3>& mn, const std::array<double, 
     return c;
 }
 
-double sceneRadius(const ViewDisplay& d) {
-    if (!d.frame)
-        return 1.0;
-    const ModelBounds b = modelBounds(*d.frame);
-    return 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) + std::pow(b.hi[1] - b.lo[1], 2) + std::pow(b.hi[2] - b.lo[2], 2));
-}
+double sceneRadius(const ViewDisplay& d) { return d.frame ? d.sceneRadius : 1.0; }
 
 } // namespace
 
@@ -200,7 +195,7 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
     if (ImGui::Selectable("plain colour", view.colorVariable.empty()))
         wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", ""}});
     if (d.frame)
-        for (const std::string& v : variableNames(*d.frame))
+        for (const auto& [v, info] : wb.columns().of(d.frame))
             if (ImGui::Selectable(v.c_str(), v == view.colorVariable))
                 wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == "fixed" ? "frame" : view.rangeMode}});
     ImGui::Separator();
@@ -377,7 +372,7 @@ void ViewportCells::drawOverlays(Workbench& wb, const core::ViewState& view, con
     };
     const bool placeholder = !wb.renderer();
     if (d.frame && placeholder) {
-        const ModelBounds b = modelBounds(*d.frame);
+        const ModelBounds& b = d.bounds;
         boxEdges(b.lo, b.hi, IM_COL32(150, 156, 168, 255), 1.0f * scale);
     }
     // Boxes (the renderer draws them too once it lands; here they are always outlined).

@@ -36,6 +36,30 @@ std::optional<VariableInfo> variableInfo(const core::Frame& frame, const std::st
     return info;
 }
 
+const ColumnCatalog::Entries& ColumnCatalog::of(const std::shared_ptr<const core::Frame>& frame) {
+    static const Entries kNone;
+    if (!frame)
+        return kNone;
+    for (auto& [f, entries] : m_recent)
+        if (f == frame)
+            return entries;
+    Entries entries;
+    for (const std::string& name : variableNames(*frame))
+        if (auto info = variableInfo(*frame, name))
+            entries.emplace_back(name, *info);
+    if (m_recent.size() >= 3)
+        m_recent.erase(m_recent.begin());
+    m_recent.emplace_back(frame, std::move(entries));
+    return m_recent.back().second;
+}
+
+std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core::Frame>& frame, const std::string& name) {
+    for (const auto& [n, info] : of(frame))
+        if (n == name)
+            return info;
+    return std::nullopt;
+}
+
 ModelBounds modelBounds(const core::Frame& frame) {
     ModelBounds b;
     if (frame.size() == 0)

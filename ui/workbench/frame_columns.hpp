@@ -5,6 +5,7 @@
 #include "core/model/frame.hpp"
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,18 @@ struct VariableInfo {
     bool integer = false;
 };
 std::optional<VariableInfo> variableInfo(const core::Frame& frame, const std::string& name);
+
+// The variables of recently shown frames with their ranges, computed once per frame (a radius
+// range is a pass over every sphere: too slow to repeat every UI frame at 10^6 spheres).
+class ColumnCatalog {
+  public:
+    using Entries = std::vector<std::pair<std::string, VariableInfo>>;
+    const Entries& of(const std::shared_ptr<const core::Frame>& frame);
+    std::optional<VariableInfo> info(const std::shared_ptr<const core::Frame>& frame, const std::string& name);
+
+  private:
+    std::vector<std::pair<std::shared_ptr<const core::Frame>, Entries>> m_recent; // newest last
+};
 
 // Bounds of the sphere centres widened by the largest radius: what a "whole model" box is.
 struct ModelBounds {

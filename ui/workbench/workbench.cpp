@@ -414,6 +414,12 @@ void Workbench::updateDisplay() {
             const long long want = v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
             d.wantedFrame = static_cast<std::size_t>(std::clamp(want, 0LL, count - 1));
             if (auto f = m_frames.request(d.wantedFrame, channel)) {
+                if (f != d.frame) { // bounds once per frame shown, not per UI frame
+                    d.bounds = modelBounds(*f);
+                    const ModelBounds& b = d.bounds;
+                    d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) + std::pow(b.hi[1] - b.lo[1], 2) +
+                                                    std::pow(b.hi[2] - b.lo[2], 2));
+                }
                 d.frame = f;
                 d.shownFrame = d.wantedFrame;
             }
@@ -436,16 +442,14 @@ void Workbench::updateDisplay() {
         }
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         d.camera = cameras[v.name];
-        if (d.camera.distance <= 0 && d.frame) {
-            const ModelBounds b = modelBounds(*d.frame);
-            fit(d.camera, b.lo, b.hi);
-        }
+        if (d.camera.distance <= 0 && d.frame)
+            fit(d.camera, d.bounds.lo, d.bounds.hi);
         // Colour range.
         std::array<double, 2> range{0, 1};
         if (v.rangeMode == "fixed") {
             range = v.range;
         } else if (d.frame && !v.colorVariable.empty()) {
-            if (auto info = variableInfo(*d.frame, v.colorVariable)) {
+            if (auto info = m_columns.info(d.frame, v.colorVariable)) {
                 range = {info->min, info->max};
                 auto& all = m_allFramesRange.try_emplace(v.colorVariable, range).first->second;
                 all = {std::min(all[0], range[0]), std::max(all[1], range[1])};

@@ -12,6 +12,7 @@
 #include "ui/workbench/item_registry.hpp"
 #include "ui/workbench/jobs.hpp"
 #include "ui/viewport/view_renderer.hpp"
+#include "ui/workbench/frame_columns.hpp"
 
 #include <fstream>
 #include <functional>
@@ -62,6 +63,8 @@ struct ViewDisplay {
     std::size_t wantedFrame = 0;
     std::shared_ptr<const core::Frame> frame; // shown; lags wantedFrame while it loads
     std::size_t shownFrame = 0;
+    ModelBounds bounds;     // of the shown frame (centres widened by the largest radius)
+    double sceneRadius = 1; // half the bounds' diagonal
     std::shared_ptr<const core::VisibilityResult> visibility;
     std::uint64_t visibilityKey = 0;
     core::CameraState camera;       // the session's, previewed, fitted when not set yet
@@ -112,6 +115,7 @@ class Workbench {
     const std::vector<core::CuttingBox>& displayBoxes() const { return m_displayBoxes; }
     const std::vector<core::VariableThreshold>& displayThresholds() const { return m_displayThresholds; }
     FrameStore& frames() { return m_frames; }
+    ColumnCatalog& columns() { return m_columns; }
     JobRunner& jobs() { return m_jobs; }
     Playback& playback() { return m_playback; }
     void play();
@@ -182,6 +186,7 @@ class Workbench {
     core::Session& m_session;
     WorkbenchOptions m_options;
     FrameStore m_frames;
+    ColumnCatalog m_columns;
     JobRunner m_jobs;
     ItemRegistry m_items;
     DockLayout m_layout;
