@@ -59,12 +59,27 @@ void zoom(core::CameraState& c, double factor) {
         c.distance = std::max(c.distance / factor, 1e-6);
 }
 
-void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
-    glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
+void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi, double aspect) {
+    const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
     const glm::dvec3 centre = 0.5 * (a + b);
-    const double radius = std::max(0.5 * glm::length(b - a), 1e-6);
     c.target = {centre.x, centre.y, centre.z};
-    c.distance = radius / std::sin(glm::radians(c.fovY) / 2.0) * 1.02;
+    aspect = std::max(aspect, 1e-3);
+    const double tanY = std::tan(glm::radians(c.fovY) / 2.0), tanX = tanY * aspect;
+    const CameraBasis basis = cameraBasis(c);
+    // Each corner must lie inside the view: |x| <= depth tanX and |y| <= depth tanY, where depth
+    // is the distance plus the corner's offset along the view direction (perspective); an
+    // orthographic view shows a height of 2 d tanY whatever the depth.
+    double d = 1e-6;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p = glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
+        const double x = std::fabs(glm::dot(p, basis.right)), y = std::fabs(glm::dot(p, basis.up));
+        const double z = glm::dot(p, basis.forward);
+        if (c.orthographic)
+            d = std::max({d, x / tanX, y / tanY});
+        else
+            d = std::max({d, x / tanX - z, y / tanY - z});
+    }
+    c.distance = d * 1.06;
 }
 
 void applyPreset(core::CameraState& c, const char* preset) {

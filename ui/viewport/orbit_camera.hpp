@@ -29,8 +29,10 @@ void orbit(core::CameraState& camera, double dxPixels, double dyPixels);
 void pan(core::CameraState& camera, double dxPixels, double dyPixels, double viewHeight);
 // factor > 1 moves closer.
 void zoom(core::CameraState& camera, double factor);
-// Centres the box [lo, hi] and sets the distance so it fills the view; keeps the direction.
-void fit(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi);
+// Centres the box [lo, hi] and sets the distance so all of it shows in a view of `aspect`
+// (width / height) with a small margin; keeps the direction.
+void fit(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+         double aspect);
 // Standard directions: "top" "front" (from the south) "side" (from the east) "iso".
 void applyPreset(core::CameraState& camera, const char* preset);
 

@@ -442,8 +442,12 @@ void Workbench::updateDisplay() {
         }
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         d.camera = cameras[v.name];
-        if (d.camera.distance <= 0 && d.frame)
-            fit(d.camera, d.bounds.lo, d.bounds.hi);
+        if (d.camera.distance <= 0 && d.frame) {
+            double aspect = 16.0 / 9.0;
+            if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
+                aspect = (r->x1 - r->x0) / (r->y1 - r->y0);
+            fit(d.camera, d.bounds.lo, d.bounds.hi, aspect);
+        }
         // Colour range.
         std::array<double, 2> range{0, 1};
         if (v.rangeMode == "fixed") {
