@@ -172,6 +172,11 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
     ASSERT_TRUE(ui.wb().fileDialog().isOpen());
     ui.key(GLFW_KEY_A, true); // select the suggested name, then replace it
     ui.type(saved);
+    const char* keep = std::getenv("FAULTLINE_GUI_TEST_KEEP");
+    if (keep && *keep) { // how the dialog looks, for a person to judge
+        ui.wb().requestScreenshot(std::string(keep) + "/gui-test-dialog.png");
+        ui.steps(1);
+    }
     ui.key(GLFW_KEY_ENTER);
     ui.steps(2);
     ASSERT_TRUE(std::filesystem::exists(saved)) << ui.wb().lastMessage();
@@ -199,7 +204,7 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
         colours.insert(reinterpret_cast<std::uint32_t*>(pixels)[k]);
     stbi_image_free(pixels);
     EXPECT_GT(colours.size(), 20u) << "the screenshot looks blank";
-    if (const char* keep = std::getenv("FAULTLINE_GUI_TEST_KEEP"); keep && *keep) {
+    if (keep && *keep) {
         std::filesystem::copy_file(shot, std::string(keep) + "/gui-test.png", std::filesystem::copy_options::overwrite_existing);
         std::filesystem::copy_file(ui.wb().journalPath(), std::string(keep) + "/gui-test.jsonl", std::filesystem::copy_options::overwrite_existing);
     }

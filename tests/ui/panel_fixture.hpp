@@ -15,6 +15,7 @@ class PanelTest : public ::testing::Test {
     void SetUp() override {
         ui::WorkbenchOptions options;
         options.stateDir = stateDir();
+        options.autosaveSeconds = 0; // every frame that changed something (tests)
         m_wb = std::make_unique<ui::Workbench>(session, options);
         headless.frames(wb(), 2);
     }

@@ -221,4 +221,30 @@ TEST_F(JournalTest, EveryCommandIsJournalledAndTheJournalReplays) {
     core::ReplayReport report = core::replayJournal(journal, {}, replayed);
     EXPECT_TRUE(report.ok());
     EXPECT_EQ(replayed.state().boxes, session.state().boxes);
+    // The autosave sits next to the journal.
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(journal).parent_path() / "autosave.faultline.json"));
+}
+
+TEST_F(PanelTest, SessionsOpenInTheBackgroundAsOneUndoableCommand) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"box.add","name":"saved box","min":[0,0,0],"max":[1,1,1]})"));
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    const std::string file = dir.file("a.faultline.json");
+    wb().saveSessionAs(file);
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(std::filesystem::exists(file));
+    EXPECT_EQ(wb().sessionPath(), file);
+    session.apply(Json::parse(R"({"op":"data.close"})"));
+    headless.frames(wb(), 2);
+    headless.clearEmitted();
+    wb().openSession(file);
+    headless.settle(wb());
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "session.open"}, {"path", file}}}));
+    ASSERT_NE(session.dataset(), nullptr);
+    EXPECT_EQ(session.state().frame, 2u);
+    EXPECT_EQ(wb().mainDisplay()->shownFrame, 2u);
+    EXPECT_EQ(visible(), 8u); // the saved keep box [0,1]^3
+    headless.key(wb(), GLFW_KEY_Z, true);
+    EXPECT_EQ(session.dataset(), nullptr);
+    EXPECT_EQ(wb().recentFiles().front(), file);
 }

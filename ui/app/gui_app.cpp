@@ -10,6 +10,7 @@
 #include <stb_image_write.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace faultline::ui {
@@ -54,6 +55,9 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
     m_imguiReady = true;
     float sx = 1, sy = 1;
     glfwGetWindowContentScale(m_window, &sx, &sy);
+    // FAULTLINE_UI_SCALE overrides the monitor's content scale (X11 without Xft.dpi, tests).
+    if (const char* env = std::getenv("FAULTLINE_UI_SCALE"); env && std::atof(env) >= 0.5 && std::atof(env) <= 4)
+        sx = static_cast<float>(std::atof(env));
     m_workbench = std::make_unique<Workbench>(session, std::move(options.workbench));
     setScale(std::max(1.0f, std::round(sx * 4) / 4));
     auto wake = [] { glfwPostEmptyEvent(); };
