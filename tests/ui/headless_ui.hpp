@@ -139,6 +139,11 @@ class HeadlessUi {
         io.KeyCtrl = io.KeyShift = false;
         frames(wb);
     }
+    void type(ui::Workbench& wb, const std::string& text) {
+        for (char c : text)
+            ImGui::GetIO().AddInputCharacter(static_cast<unsigned>(c));
+        frames(wb);
+    }
     void wheel(ui::Workbench& wb, float x, float y, float amount) {
         ImGui::GetIO().MousePos = ImVec2(x, y);
         ImGui::GetIO().MouseWheel = amount;

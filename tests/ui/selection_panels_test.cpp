@@ -103,6 +103,21 @@ TEST_F(PanelTest, ThresholdsPanelAddsSlidesInWholeValuesDisablesAndRemoves) {
     EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}}));
     EXPECT_EQ(session.state().threshold("layer")->low, 1.0);
 
+    // Typed bounds: a number, and an empty field for an open end.
+    headless.clearEmitted();
+    headless.click(wb(), "thresholds.low.layer");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "2.5");
+    headless.key(wb(), GLFW_KEY_ENTER);
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 3.0}}}));
+    headless.clearEmitted();
+    headless.click(wb(), "thresholds.high.layer");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.key(wb(), GLFW_KEY_BACKSPACE);
+    headless.key(wb(), GLFW_KEY_ENTER);
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"high", 1e30}}}));
+    EXPECT_EQ(visible(), 16u); // layer 3 only
+
     headless.clearEmitted();
     headless.click(wb(), "thresholds.enabled.layer");
     EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"enabled", false}}}));

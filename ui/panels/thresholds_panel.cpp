@@ -2,6 +2,7 @@
 // slider over the variable's values in the current frame; add on any variable, remove.
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/bound_input.hpp"
 #include "ui/widgets/range_slider.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
@@ -76,19 +77,15 @@ class ThresholdsPanel final : public Panel {
             wb.mark("thresholds.remove." + t.variable);
 
             const bool integer = haveInfo && info.integer;
-            // Numbers: committed when the field is left or Enter pressed.
+            // Numbers: committed when the field is left or Enter pressed; empty is open-ended.
             double low = t.low, high = t.high;
             const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
-            ImGui::SetNextItemWidth(half);
-            ImGui::InputDouble("##low", &low, 0, 0, integer ? "%.0f" : "%.6g");
-            if (ImGui::IsItemDeactivatedAfterEdit() && low != t.low)
-                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"low", integer ? std::ceil(low) : low}});
+            if (boundInput("low", &low, false, integer, half))
+                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"low", low}});
             wb.mark("thresholds.low." + t.variable);
             ImGui::SameLine();
-            ImGui::SetNextItemWidth(half);
-            ImGui::InputDouble("##high", &high, 0, 0, integer ? "%.0f" : "%.6g");
-            if (ImGui::IsItemDeactivatedAfterEdit() && high != t.high)
-                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"high", integer ? std::floor(high) : high}});
+            if (boundInput("high", &high, true, integer, half))
+                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"high", high}});
             wb.mark("thresholds.high." + t.variable);
 
             // Slider over the variable's range in this frame.
