@@ -17,8 +17,8 @@ double niceStep(ValueRange range, int maxTicks) {
         for (double m : {1.0, 2.0, 2.5, 5.0}) {
             const double step = m * magnitude;
             const double eps = step * 1e-6;
-            const double count = std::floor((range.high + eps) / step) -
-                                 std::ceil((range.low - eps) / step) + 1.0;
+            const double count =
+                std::floor((range.high + eps) / step) - std::ceil((range.low - eps) / step) + 1.0;
             if (count <= maxTicks)
                 return step;
         }

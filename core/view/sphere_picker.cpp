@@ -56,13 +56,13 @@ void SpherePicker::build(std::span<const float> x, std::span<const float> y,
 
     const std::size_t cells = std::size_t(m_dims.x) * m_dims.y * m_dims.z;
     std::vector<std::uint32_t> counts(cells + 1, 0);
-    auto forEachCell = [&](std::size_t i, auto&& fn) {
+    auto forEachCell = [&](std::size_t i, auto &&fn) {
         const double r = std::max(0.0f, radius[i]);
         const glm::dvec3 c(x[i], y[i], z[i]);
-        const glm::ivec3 a = glm::clamp(glm::ivec3(glm::floor((c - r - m_lo) / m_cell)),
-                                        glm::ivec3(0), m_dims - 1);
-        const glm::ivec3 b = glm::clamp(glm::ivec3(glm::floor((c + r - m_lo) / m_cell)),
-                                        glm::ivec3(0), m_dims - 1);
+        const glm::ivec3 a =
+            glm::clamp(glm::ivec3(glm::floor((c - r - m_lo) / m_cell)), glm::ivec3(0), m_dims - 1);
+        const glm::ivec3 b =
+            glm::clamp(glm::ivec3(glm::floor((c + r - m_lo) / m_cell)), glm::ivec3(0), m_dims - 1);
         for (int k = a.z; k <= b.z; ++k)
             for (int j = a.y; j <= b.y; ++j)
                 for (int ii = a.x; ii <= b.x; ++ii)
@@ -84,7 +84,7 @@ void SpherePicker::build(std::span<const float> x, std::span<const float> y,
     }
 }
 
-std::optional<SphereHit> SpherePicker::pick(const Ray& ray) const {
+std::optional<SphereHit> SpherePicker::pick(const Ray &ray) const {
     if (m_count == 0)
         return std::nullopt;
     const auto box = intersectBox(ray, m_lo, m_hi);
@@ -92,8 +92,8 @@ std::optional<SphereHit> SpherePicker::pick(const Ray& ray) const {
         return std::nullopt;
     const double tStart = std::max(0.0, box->tEnter);
     const glm::dvec3 p = ray.at(tStart);
-    glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor((p - m_lo) / m_cell)), glm::ivec3(0),
-                                 m_dims - 1);
+    glm::ivec3 cell =
+        glm::clamp(glm::ivec3(glm::floor((p - m_lo) / m_cell)), glm::ivec3(0), m_dims - 1);
     // 3-D DDA (Amanatides & Woo): t at which the ray crosses the next cell wall on each axis.
     glm::ivec3 step;
     glm::dvec3 tNext, tDelta;
@@ -127,8 +127,8 @@ std::optional<SphereHit> SpherePicker::pick(const Ray& ray) const {
         // A hit inside this cell cannot be beaten by a sphere met only in later cells.
         if (best && best->t <= tCellExit)
             return best;
-        const int axis = tNext.x <= tNext.y ? (tNext.x <= tNext.z ? 0 : 2)
-                                            : (tNext.y <= tNext.z ? 1 : 2);
+        const int axis =
+            tNext.x <= tNext.y ? (tNext.x <= tNext.z ? 0 : 2) : (tNext.y <= tNext.z ? 1 : 2);
         cell[axis] += step[axis];
         if (cell[axis] < 0 || cell[axis] >= m_dims[axis] || tNext[axis] > box->tExit)
             return best;

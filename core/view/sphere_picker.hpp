@@ -13,8 +13,8 @@ namespace faultline::core {
 
 struct SphereHit {
     std::size_t row = 0;
-    double t = 0.0;         // distance along the ray
-    glm::dvec3 point{0.0};  // where the ray meets the sphere
+    double t = 0.0;        // distance along the ray
+    glm::dvec3 point{0.0}; // where the ray meets the sphere
 };
 
 class SpherePicker {
@@ -25,7 +25,7 @@ class SpherePicker {
                std::span<const float> radius, std::span<const std::uint8_t> mask = {});
 
     // The nearest sphere the ray enters at t >= 0 (a ray starting inside a sphere hits it at 0).
-    std::optional<SphereHit> pick(const Ray& ray) const;
+    std::optional<SphereHit> pick(const Ray &ray) const;
 
     std::size_t indexedCount() const { return m_count; }
     glm::ivec3 gridSize() const { return m_dims; }
@@ -36,7 +36,8 @@ class SpherePicker {
     glm::dvec3 m_lo{0.0}, m_hi{0.0};
     glm::dvec3 m_cell{1.0};
     glm::ivec3 m_dims{0, 0, 0};
-    std::vector<std::uint32_t> m_cellStart; // CSR: rows of cell c are m_rows[start[c] .. start[c+1])
+    std::vector<std::uint32_t>
+        m_cellStart; // CSR: rows of cell c are m_rows[start[c] .. start[c+1])
     std::vector<std::uint32_t> m_rows;
 
     std::size_t cellIndex(int i, int j, int k) const {

@@ -9,13 +9,13 @@
 using namespace faultline::core;
 
 namespace {
-void expectVec(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-9) {
+void expectVec(const glm::dvec3 &a, const glm::dvec3 &b, double tol = 1e-9) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);
     EXPECT_NEAR(a.z, b.z, tol);
 }
 // Screen position (ndc) of a world point.
-glm::dvec2 project(const Camera& c, const glm::dvec3& p, double aspect) {
+glm::dvec2 project(const Camera &c, const glm::dvec3 &p, double aspect) {
     const glm::dmat4 m = projectionMatrix(c, aspect, {0.01, 1000}) * viewMatrix(c);
     const glm::dvec4 q = m * glm::dvec4(p, 1.0);
     return glm::dvec2(q) / q.w;
@@ -91,8 +91,8 @@ TEST(Camera, ZoomToCursorKeepsThePointUnderTheCursor) {
         const glm::dvec2 cursor(0.4, -0.3);
         // The point under the cursor on the target plane.
         const Ray ray = cameraRay(c, cursor, aspect);
-        const double t = glm::dot(c.target - ray.origin, c.forward()) /
-                         glm::dot(ray.direction, c.forward());
+        const double t =
+            glm::dot(c.target - ray.origin, c.forward()) / glm::dot(ray.direction, c.forward());
         const glm::dvec3 p = ray.at(t);
         zoomToCursor(c, 2.0, cursor, aspect);
         EXPECT_NEAR(c.distance, 10.0, 1e-12);
@@ -154,4 +154,27 @@ TEST(Camera, RaysGoThroughPixels) {
     expectVec(off.direction, {0, 0, -1});
     EXPECT_NEAR(off.origin.x, 0.5 * c.viewHeightAtTarget() * 2.0, 1e-9);
     EXPECT_GT(off.origin.z, 10.0);
+}
+
+TEST(Camera, FitBoxKeepsEveryCornerInViewAndOneOnTheEdge) {
+    const Aabb box{{0, 0, 0}, {60, 35, 25}, true};
+    for (Projection proj : {Projection::Perspective, Projection::Orthographic}) {
+        for (ViewPreset preset : {ViewPreset::Iso, ViewPreset::Front, ViewPreset::Top}) {
+            Camera c;
+            c.projection = proj;
+            applyPreset(c, preset);
+            const double aspect = 16.0 / 9.0;
+            fitBox(c, box, aspect, 1.0);
+            EXPECT_EQ(c.target, glm::dvec3(30, 17.5, 12.5));
+            double extreme = 0.0;
+            for (int i = 0; i < 8; ++i) {
+                const glm::dvec3 p(i & 1 ? 60 : 0, i & 2 ? 35 : 0, i & 4 ? 25 : 0);
+                const glm::dvec2 q = project(c, p, aspect);
+                EXPECT_LE(std::abs(q.x), 1.0 + 1e-9);
+                EXPECT_LE(std::abs(q.y), 1.0 + 1e-9);
+                extreme = std::max({extreme, std::abs(q.x), std::abs(q.y)});
+            }
+            EXPECT_NEAR(extreme, 1.0, 1e-9) << int(proj) << " " << int(preset);
+        }
+    }
 }

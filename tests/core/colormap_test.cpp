@@ -19,7 +19,7 @@ TEST(ColorMap, ParsesJournalNames) {
     EXPECT_FALSE(parseColorMap("bands:x"));
     EXPECT_FALSE(parseColorMap("bands:5000"));
     EXPECT_FALSE(parseColorMap("rainbow"));
-    for (const std::string& name : colorMapNames())
+    for (const std::string &name : colorMapNames())
         EXPECT_EQ(colorMapName(*parseColorMap(name)), name);
     EXPECT_EQ(colorMapName({ColorMapKind::Bands, 7}), "bands:7");
 }

@@ -21,7 +21,7 @@ SphereProjection makeProjection() {
     return p;
 }
 
-double depthAt(const SphereProjection& p, double z) {
+double depthAt(const SphereProjection &p, double z) {
     const double clipZ = p.projection[2][2] * z + p.projection[3][2];
     return 0.5 * clipZ / -z + 0.5;
 }
@@ -62,8 +62,8 @@ TEST(OcclusionCulling, OffCentreFootprintIsExact) {
     ASSERT_TRUE(projectSphere(p, c, r, f));
     for (int i = 0; i < 2000; ++i) {
         const double u = std::acos(1 - 2 * (i + 0.5) / 2000.0), v = i * 2.399963;
-        const glm::dvec3 q = c + r * glm::dvec3(std::sin(u) * std::cos(v), std::sin(u) * std::sin(v),
-                                                std::cos(u));
+        const glm::dvec3 q =
+            c + r * glm::dvec3(std::sin(u) * std::cos(v), std::sin(u) * std::sin(v), std::cos(u));
         const double px = (q.x / -q.z * 0.5 + 0.5) * 64, py = (q.y / -q.z * 0.5 + 0.5) * 64;
         if (px < 0 || px >= 64 || py < 0 || py >= 64)
             continue;
@@ -76,8 +76,7 @@ TEST(OcclusionCulling, OffCentreFootprintIsExact) {
 
 TEST(OcclusionCulling, CullsOnlyWhatIsWhollyBehind) {
     const SphereProjection p = makeProjection();
-    const std::vector<float> x{0, 0, 20, -200}, y{0, 0, 0, 0}, z{-10, -10, -30, -10},
-        r{1, 1, 1, 1};
+    const std::vector<float> x{0, 0, 20, -200}, y{0, 0, 0, 0}, z{-10, -10, -30, -10}, r{1, 1, 1, 1};
     const std::vector<std::uint32_t> rows{0, 1, 2, 3};
     SphereOcclusionCuller culler;
     culler.begin(x, y, z, r, rows, p);

@@ -13,7 +13,7 @@ TEST(ViewGeometry, RaySphere) {
     const Ray r{{0, 0, 10}, {0, 0, -1}};
     EXPECT_DOUBLE_EQ(*intersectSphere(r, {0, 0, 0}, 1.0), 9.0);
     EXPECT_FALSE(intersectSphere(r, {3, 0, 0}, 1.0));
-    EXPECT_FALSE(intersectSphere(r, {0, 0, 20}, 1.0)); // behind
+    EXPECT_FALSE(intersectSphere(r, {0, 0, 20}, 1.0));           // behind
     EXPECT_DOUBLE_EQ(*intersectSphere(r, {0, 0, 10}, 1.0), 0.0); // inside
 }
 
@@ -36,6 +36,11 @@ TEST(ViewGeometry, BoundingSphereHonoursMask) {
     const BoundingSphere some = boundingSphereOf(x, y, z, r, mask);
     EXPECT_DOUBLE_EQ(some.centre.x, 1.0);
     EXPECT_DOUBLE_EQ(some.radius, 2.0);
+    const Aabb box = boundsOf(x, y, z, r, mask);
+    ASSERT_TRUE(box.valid);
+    EXPECT_EQ(box.lo, glm::dvec3(-1, -1, -1));
+    EXPECT_EQ(box.hi, glm::dvec3(3, 1, 1));
+    EXPECT_FALSE(boundsOf(x, y, z, r, std::vector<std::uint8_t>{0, 0, 0}).valid);
     const BoundingSphere e = enclose({{0, 0, 0}, 1}, {{4, 0, 0}, 1});
     EXPECT_DOUBLE_EQ(e.centre.x, 2.0);
     EXPECT_DOUBLE_EQ(e.radius, 3.0);
@@ -73,11 +78,12 @@ TEST(BoxHandles, DragMovesOneFaceAlongItsAxis) {
     EXPECT_DOUBLE_EQ(moved.hi.y, 10.0);
     // Dragging the west face past the east face stops minSize short.
     const Ray far{{40, -50, 5}, {0, 1, 0}};
-    const BoxBounds clamped = dragBoxFace(lo, hi, BoxFace::MinX, {{0, -50, 5}, {0, 1, 0}}, far, 1.0);
+    const BoxBounds clamped =
+        dragBoxFace(lo, hi, BoxFace::MinX, {{0, -50, 5}, {0, 1, 0}}, far, 1.0);
     EXPECT_DOUBLE_EQ(clamped.lo.x, 9.0);
     // A ray along the axis cannot drag.
-    const BoxBounds same = dragBoxFace(lo, hi, BoxFace::MaxX, {{50, 5, 5}, {-1, 0, 0}},
-                                       {{50, 5, 5}, {-1, 0, 0}});
+    const BoxBounds same =
+        dragBoxFace(lo, hi, BoxFace::MaxX, {{50, 5, 5}, {-1, 0, 0}}, {{50, 5, 5}, {-1, 0, 0}});
     EXPECT_EQ(same.hi, hi);
 }
 
@@ -120,7 +126,7 @@ TEST(SpherePicker, AgreesWithBruteForce) {
         r.push_back(rad(rng));
     }
     std::vector<std::uint8_t> mask(x.size());
-    for (auto& m : mask)
+    for (auto &m : mask)
         m = rng() % 3 != 0;
     SpherePicker picker;
     picker.build(x, y, z, r, mask);
