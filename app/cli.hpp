@@ -9,6 +9,7 @@ namespace faultline::app {
 using Args = std::vector<std::string>;
 
 int runInfo(const Args& args);
+int runRenderData(const Args& args); // developer tool until `render` lands
 int runGui(const Args& args);
 void printUsage();
 

@@ -11,6 +11,8 @@ void faultline::app::printUsage() {
     std::puts(
         "usage: faultline [PATH]                 open the workbench (on PATH, or the demo model)\n"
         "       faultline info PATH...           format, frames, spheres, columns and box of data files\n"
+        "       faultline render-data FILE --out X.png [--color VAR] [--map NAME] [--size WxH] ...\n"
+        "                                        render one frame to a PNG (developer tool)\n"
         "\n"
         "PATH may be a LAMMPS/LIGGGHTS dump (.gz too; many frames per file; '%' for per-processor\n"
         "files), a VTK legacy or XML file (.vtk .vtu .vtp .pvd), or a CSV table with x,y,z columns.\n"
@@ -25,6 +27,8 @@ int main(int argc, char** argv) {
             Args rest(args.begin() + 1, args.end());
             if (cmd == "info")
                 return runInfo(rest);
+            if (cmd == "render-data")
+                return runRenderData(rest);
             if (cmd == "-h" || cmd == "--help" || cmd == "help") {
                 printUsage();
                 return 0;
