@@ -1,6 +1,7 @@
 #include "ui/app/gui_app.hpp"
 
 #include "ui/app/theme.hpp"
+#include "ui/viewport/gl_view_renderer.hpp"
 
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
@@ -60,13 +61,22 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
         sx = static_cast<float>(std::atof(env));
     m_workbench = std::make_unique<Workbench>(session, std::move(options.workbench));
     setScale(std::max(1.0f, std::round(sx * 4) / 4));
+    try {
+        m_renderer = std::make_unique<GlViewRenderer>();
+        m_workbench->setRenderer(m_renderer.get());
+    } catch (const std::exception& e) {
+        m_workbench->error(std::string("The 3-D views are off: ") + e.what());
+    }
     auto wake = [] { glfwPostEmptyEvent(); };
     m_workbench->jobs().setWakeUp(wake);
     m_workbench->frames().setWakeUp(wake);
 }
 
 GuiApp::~GuiApp() {
+    if (m_workbench)
+        m_workbench->setRenderer(nullptr);
     m_workbench.reset();
+    m_renderer.reset(); // GL objects go while the context is current
     if (m_imguiReady) {
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();

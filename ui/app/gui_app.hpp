@@ -54,6 +54,7 @@ class GuiApp {
 
     GLFWwindow* m_window = nullptr;
     std::unique_ptr<Workbench> m_workbench;
+    std::unique_ptr<ViewRenderer> m_renderer; // null when this OpenGL cannot draw spheres
     std::function<void(ImGuiIO&)> m_inputHook;
     float m_scale = 1.0f;
     float m_pendingScale = 0.0f;

@@ -325,6 +325,10 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     }
     if (hovered && m_hoverFace >= 0 && m_drag.mode == DragMode::None)
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+    if (m_drag.mode == DragMode::BoxFace)
+        wb.activeBoxFace = m_drag.face;
+    else if (hovered)
+        wb.activeBoxFace = m_hoverFace;
 
     // Wheel zoom: previewed; one camera.set once the wheel has rested.
     if (hovered && io.MouseWheel != 0 && d.frame) {
@@ -375,8 +379,11 @@ void ViewportCells::drawOverlays(Workbench& wb, const core::ViewState& view, con
         const ModelBounds& b = d.bounds;
         boxEdges(b.lo, b.hi, IM_COL32(150, 156, 168, 255), 1.0f * scale);
     }
-    // Boxes (the renderer draws them too once it lands; here they are always outlined).
+    // Boxes and handles, unless the renderer draws them into the image.
+    const bool drawBoxes = !wb.renderer() || !wb.renderer()->drawsBoxes();
     for (const auto& b : wb.displayBoxes()) {
+        if (!drawBoxes)
+            break;
         if (!b.enabled && b.name != wb.selectedBox)
             continue;
         const bool sel = b.name == wb.selectedBox;

@@ -7,6 +7,7 @@
 #include "core/selection/cutting_box.hpp"
 #include "core/session/session_state.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -41,6 +42,8 @@ class ViewRenderer {
     virtual void forget(const std::string& view) = 0;
     // One line for the status bar / About box, e.g. the GL renderer's name.
     virtual std::string description() const = 0;
+    // Whether box outlines and face handles are part of the image (else the viewport draws them).
+    virtual bool drawsBoxes() const { return false; }
 };
 
 } // namespace faultline::ui

@@ -179,6 +179,7 @@ void Workbench::frame(double now) {
     m_now = now;
     m_emittedLog.clear();
     m_previews.clear();
+    activeBoxFace = -1;
     m_jobs.poll();
     syncWithSession();
     updatePlayback();
@@ -492,8 +493,11 @@ void Workbench::renderViews() {
         scene.camera = d.camera;
         for (const auto& b : m_displayBoxes)
             if (b.enabled || b.name == selectedBox) {
-                if (b.name == selectedBox && editBoxInViewport)
+                if (b.name == selectedBox && editBoxInViewport) {
                     scene.selectedBox = scene.boxes.size();
+                    if (activeBoxFace >= 0)
+                        scene.activeFace = activeBoxFace;
+                }
                 scene.boxes.push_back(b);
             }
         const float fb = ImGui::GetIO().DisplayFramebufferScale.x;

@@ -139,6 +139,7 @@ class Workbench {
     // UI-only selection (not part of the session).
     std::string selectedBox;
     bool editBoxInViewport = true;
+    int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
     std::set<std::string> selectedFaults;
 
     void info(std::string text);
