@@ -444,10 +444,19 @@ void Workbench::updateDisplay() {
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         d.camera = cameras[v.name];
         if (d.camera.distance <= 0 && d.frame) {
-            double aspect = 16.0 / 9.0;
+            double w = 16, h = 9;
             if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
-                aspect = (r->x1 - r->x0) / (r->y1 - r->y0);
-            fit(d.camera, d.bounds.lo, d.bounds.hi, aspect);
+                w = r->x1 - r->x0, h = r->y1 - r->y0;
+            // Leave the colour legend (drawn at the right edge, about 110 px at 720 px high)
+            // its own strip, and centre the model in the rest.
+            double legend = 0;
+            if (!v.colorVariable.empty() && m_renderer)
+                legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
+            fit(d.camera, d.bounds.lo, d.bounds.hi, (w - legend) / h);
+            const CameraBasis basis = cameraBasis(d.camera);
+            const double worldPerPixel = 2.0 * d.camera.distance * std::tan(d.camera.fovY * M_PI / 360.0) / h;
+            for (int k = 0; k < 3; ++k)
+                d.camera.target[k] += basis.right[k] * 0.5 * legend * worldPerPixel;
         }
         // Colour range.
         std::array<double, 2> range{0, 1};
