@@ -57,6 +57,7 @@ class HeadlessUi {
         for (int k = 0; k < n; ++k) {
             ImGui::NewFrame();
             wb.frame(m_time);
+            wb.renderViews(); // a no-op without a renderer
             ImGui::Render();
             for (const auto& c : wb.emittedThisFrame())
                 m_emitted.push_back(c);
