@@ -14,6 +14,7 @@ using Args = std::vector<std::string>;
 
 int runInfo(const Args& args);
 int runGenerate(const Args& args);
+int runRenderData(const Args& args); // developer tool until `render` lands
 int runGui(const Args& args);
 int runReplay(const Args& args);
 

@@ -17,6 +17,8 @@ void faultline::app::printUsage() {
         "       faultline generate --demo        build the demo model once (per-user data folder)\n"
         "       faultline generate ... --out DIR a bonded DEM extension model or known planar faults\n"
         "                                        (faultline generate --help for options)\n"
+        "       faultline render-data FILE --out X.png [--color VAR] [--map NAME] [--size WxH] ...\n"
+        "                                        render one frame to a PNG (developer tool)\n"
         "\n"
         "PATH may be a LAMMPS/LIGGGHTS dump (.gz too; many frames per file; '%' for per-processor\n"
         "files), a VTK legacy or XML file (.vtk .vtu .vtp .pvd), or a CSV table with x,y,z columns.\n"
@@ -35,6 +37,8 @@ int main(int argc, char** argv) {
                 return runReplay(rest);
             if (cmd == "generate")
                 return runGenerate(rest);
+            if (cmd == "render-data")
+                return runRenderData(rest);
             if (cmd == "-h" || cmd == "--help" || cmd == "help") {
                 printUsage();
                 return 0;

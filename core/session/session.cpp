@@ -15,6 +15,7 @@ Session::Session() {
     detail::registerSelectionOps(ops);
     detail::registerFaultOps(ops);
     detail::registerOutputOps(ops);
+    detail::registerSessionOps(ops);
     for (auto& [name, entry] : ops)
         m_ops[name] = OpEntry{std::move(entry.first), entry.second};
     // A group of commands that undoes as one (e.g. accepting every candidate).
@@ -142,6 +143,10 @@ std::string Session::outputPath(const std::string& path) const {
     return (fs::path(dir) / path).lexically_normal().string();
 }
 
+std::shared_ptr<Dataset> Session::openDataset(const std::vector<std::string>& paths) const {
+    return m_datasetOpener ? m_datasetOpener(paths) : Dataset::open(paths);
+}
+
 void Session::setDataset(std::shared_ptr<Dataset> dataset) {
     m_dataset = std::move(dataset);
     m_visibility = VisibilityResult{};
@@ -152,7 +157,7 @@ void Session::setDataset(std::shared_ptr<Dataset> dataset) {
 void Session::replaceState(SessionState state) {
     std::shared_ptr<Dataset> ds;
     if (!state.dataPaths.empty()) {
-        ds = Dataset::open(state.dataPaths); // throws InputError naming the missing file
+        ds = openDataset(state.dataPaths); // throws InputError naming the missing file
         if (state.frame >= ds->frameCount())
             throw InputError(state.dataPaths.front(),
                              "the session shows frame " + std::to_string(state.frame) +

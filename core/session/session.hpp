@@ -57,6 +57,13 @@ class Session {
     // Replay on other data: data.open uses these paths instead of the journal's.
     void setDataOverride(std::vector<std::string> paths) { m_dataOverride = std::move(paths); }
 
+    // How data.open, session.open and replaceState turn paths into a dataset. The default is
+    // Dataset::open; the GUI installs one that hands over a dataset it opened in the background,
+    // so applying the command does not block. The opener throws InputError like Dataset::open.
+    using DatasetOpener = std::function<std::shared_ptr<Dataset>(const std::vector<std::string>&)>;
+    void setDatasetOpener(DatasetOpener opener) { m_datasetOpener = std::move(opener); }
+    std::shared_ptr<Dataset> openDataset(const std::vector<std::string>& paths) const;
+
     // Replaces the whole state (a loaded session file) and opens its data; undo history is
     // cleared. All or nothing: on error (data missing, frame out of range) nothing changes.
     void replaceState(SessionState state);
@@ -98,6 +105,7 @@ class Session {
     std::map<std::string, OpEntry, std::less<>> m_ops;
     std::string m_baseDir, m_outputDir;
     std::vector<std::string> m_dataOverride;
+    DatasetOpener m_datasetOpener;
 
     VisibilityResult m_visibility;
     std::uint64_t m_visibilityVersion = 0;
@@ -110,6 +118,7 @@ void registerDataOps(std::map<std::string, std::pair<Session::OpHandler, bool>>&
 void registerSelectionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerFaultOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerOutputOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerSessionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 } // namespace detail
 
 } // namespace faultline::core

@@ -42,7 +42,7 @@ void registerDataOps(OpTable& ops) {
             p = s.inputPath(p);
         std::shared_ptr<Dataset> ds;
         try {
-            ds = Dataset::open(paths);
+            ds = s.openDataset(paths);
         } catch (const InputError& e) {
             throw CommandError(std::string("data.open: ") + e.what());
         }

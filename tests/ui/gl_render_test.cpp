@@ -1,0 +1,188 @@
+// The OpenGL renderer on known scenes, compared with small reference images (mean absolute
+// difference per channel). Skips without a display; run under xvfb-run with Mesa llvmpipe.
+#include "core/selection/cutting_box.hpp"
+#include "test_scenes.hpp"
+#include "ui/render/gl_renderer.hpp"
+#include "ui/render/offscreen.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+using namespace faultline;
+using namespace faultline::ui;
+
+namespace {
+
+// llvmpipe is deterministic on one machine; other drivers round differently.
+constexpr double kTolerance = 1.5;
+
+class GlRender : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::string why;
+        if (!sharedOffscreenContext(why))
+            GTEST_SKIP() << "no OpenGL context: " << why;
+    }
+
+    // Renders, saves the image next to the build, and compares with tests/ui/ref/<name>.png
+    // (or rewrites the reference when FAULTLINE_UPDATE_REFS=1).
+    void compareWithReference(const RgbaImage &image, const std::string &name) {
+        ASSERT_FALSE(image.empty());
+        std::filesystem::create_directories(FAULTLINE_UI_OUT_DIR);
+        const std::string out = std::string(FAULTLINE_UI_OUT_DIR) + "/" + name + ".png";
+        writePng(image, out);
+        const std::string ref = std::string(FAULTLINE_UI_REF_DIR) + "/" + name + ".png";
+        if (const char *update = std::getenv("FAULTLINE_UPDATE_REFS"); update && *update == '1') {
+            writePng(image, ref);
+            return;
+        }
+        ASSERT_TRUE(std::filesystem::exists(ref))
+            << "no reference " << ref << " (see " << out << "; FAULTLINE_UPDATE_REFS=1 makes it)";
+        const double diff = meanAbsDiff(image, readPng(ref));
+        EXPECT_LE(diff, kTolerance) << name << ": see " << out << " against " << ref;
+    }
+};
+
+RenderSettings small(int w = 400, int h = 300) {
+    RenderSettings s;
+    s.width = w;
+    s.height = h;
+    s.supersample = 2;
+    return s;
+}
+
+} // namespace
+
+TEST_F(GlRender, TwoIntersectingSpheres) {
+    // Two spheres overlapping by half a radius: the intersection must be a crisp curve, which
+    // only exact per-pixel depth gives.
+    core::Frame f;
+    f.ids = {1, 2};
+    f.x = {-0.55f, 0.55f};
+    f.y = {0.0f, 0.3f};
+    f.z = {0.0f, 0.0f};
+    f.radius = {1.0f, 0.9f};
+    f.attributes.push_back(core::makeAttribute("strain", {0.05f, 0.45f}, false));
+    f.finalize();
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "strain";
+    scene.colorMap = {core::ColorMapKind::BlueRed};
+    scene.colorRange = core::ValueRange{0.0, 0.5};
+    core::Camera cam;
+    core::applyPreset(cam, core::ViewPreset::Front);
+    core::orbitTurntable(cam, 0.35, 0.75);
+    core::fitSphere(cam, {{0, 0.15, 0}, 1.7}, 4.0 / 3.0);
+    scene.camera = cam;
+    compareWithReference(renderSceneToImage(scene, small()), "two_spheres");
+}
+
+TEST_F(GlRender, ColourMappedLattice) {
+    const core::Frame f = test::makeLattice(14, 10, 8);
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "strain";
+    scene.colorMap = {core::ColorMapKind::Viridis};
+    scene.colorRange = core::ValueRange{0.0, 0.5};
+    compareWithReference(renderSceneToImage(scene, small()), "lattice_viridis");
+}
+
+TEST_F(GlRender, BoxCutWithHandlesAndBands) {
+    const core::Frame f = test::makeLattice(16, 12, 10);
+    const core::CuttingBox cut{"corner", {7.5, -1, 4.5}, {16, 6.5, 10}, core::BoxMode::Cut, true};
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.visible.resize(f.size());
+    for (std::size_t i = 0; i < f.size(); ++i)
+        scene.visible[i] = !cut.contains(f.x[i], f.y[i], f.z[i]);
+    scene.colorVariable = "layer";
+    scene.colorMap = *core::parseColorMap("bands:10");
+    scene.boxes.push_back({{cut.min[0], cut.min[1], cut.min[2]},
+                           {cut.max[0], cut.max[1], cut.max[2]},
+                           {0.85f, 0.2f, 0.15f}});
+    scene.selectedBox = BoxHandlesOverlay{0, 0.0, core::BoxFace::MaxZ};
+    scene.style.contextPoints = true;
+    compareWithReference(renderSceneToImage(scene, small()), "box_cut_bands");
+}
+
+TEST_F(GlRender, TransparentMeshThroughSpheres) {
+    const core::Frame f = test::makeLattice(10, 8, 6);
+    SceneDescription scene;
+    scene.frame = &f;
+    // A dipping plane through the block, coloured by height, half transparent.
+    MeshData plane;
+    const int n = 8;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = -1.0f + 11.0f * float(i) / n, y = -1.0f + 9.0f * float(j) / n;
+            const float z = 0.8f * (x - 1.0f);
+            plane.positions.insert(plane.positions.end(), {x, y, z});
+            plane.normals.insert(plane.normals.end(), {-0.6247f, 0.0f, 0.7809f});
+            plane.colors.insert(plane.colors.end(), {0.95f, 0.55f + 0.04f * z, 0.2f});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            plane.indices.insert(plane.indices.end(), {a, b, c, c, b, d});
+        }
+    plane.opacity = 0.6f;
+    scene.meshes.push_back(plane);
+    scene.style.sphereColor = {0.72f, 0.74f, 0.78f};
+    compareWithReference(renderSceneToImage(scene, small()), "mesh_and_spheres");
+}
+
+TEST_F(GlRender, OcclusionCullingDoesNotChangeTheImage) {
+    // Enough spheres (> 20,000) for culling to run, viewed obliquely so pores show depth. The
+    // spheres do not touch: where two touch, equal depths make the draw order pick the pixel.
+    const core::Frame f = test::makeLattice(40, 30, 20, 0.47f);
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "strain";
+    RenderSettings s = small(480, 320);
+    s.supersample = 1;
+    scene.style.culling = OcclusionCulling::Off;
+    const RgbaImage plain = renderSceneToImage(scene, s);
+    scene.style.culling = OcclusionCulling::On;
+    auto renderer = std::make_unique<GlRenderer>();
+    loadScene(*renderer, scene);
+    renderer->render(fittedCamera(scene, 480, 320), {480, 320, 1, false});
+    const RgbaImage culled = renderer->readImage();
+    EXPECT_GT(renderer->stats().occlusionCulled, f.size() / 2); // it did cull
+    EXPECT_EQ(renderer->stats().drawnSpheres + renderer->stats().occlusionCulled +
+                  renderer->stats().frustumCulled,
+              f.size());
+    EXPECT_EQ(meanAbsDiff(plain, culled), 0.0);
+}
+
+TEST_F(GlRender, TransparentBackgroundKeepsAlpha) {
+    core::Frame f;
+    f.ids = {1};
+    f.x = {0};
+    f.y = {0};
+    f.z = {0};
+    f.radius = {1};
+    f.finalize();
+    SceneDescription scene;
+    scene.frame = &f;
+    RenderSettings s = small(64, 64);
+    s.transparent = true;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    EXPECT_EQ(img.at(0, 0)[3], 0);     // corner: background
+    EXPECT_EQ(img.at(32, 32)[3], 255); // centre: the sphere
+    EXPECT_GT(img.at(32, 32)[0], 40);
+}
+
+TEST_F(GlRender, LargeFigureSize) {
+    // 3840 x 2160 works (without supersampling, to keep the test quick).
+    const core::Frame f = test::makeLattice(6, 6, 6);
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "height";
+    RenderSettings s = small(3840, 2160);
+    s.supersample = 1;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    EXPECT_EQ(img.width, 3840);
+    EXPECT_EQ(img.height, 2160);
+}

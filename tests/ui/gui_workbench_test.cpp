@@ -1,0 +1,219 @@
+// The workbench in a real window (GLFW, OpenGL, under Xvfb in CI) driven by synthetic input fed
+// to ImGui after the devices are read: drop a data file, add a box, drag a threshold on a
+// histogram, undo, save the session through the file dialog, take a screenshot. Skipped when
+// there is no display.
+#include "../core/test_files.hpp"
+
+#include "core/session/session.hpp"
+#include "ui/app/gui_app.hpp"
+
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <stb_image.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+using namespace faultline;
+using faultline::test::TempDir;
+using core::Json;
+
+namespace {
+
+// What the synthetic devices report this frame.
+struct SyntheticInput {
+    ImVec2 mouse{10, 10};
+    bool down[3] = {false, false, false};
+    std::set<int> keys;
+    bool ctrl = false, shift = false;
+    std::string text;
+    void apply(ImGuiIO& io) {
+        io.MousePos = mouse;
+        for (int b = 0; b < 3; ++b)
+            io.MouseDown[b] = down[b];
+        for (int k = 0; k < 512; ++k)
+            io.KeysDown[k] = keys.count(k) > 0;
+        io.KeyCtrl = ctrl;
+        io.KeyShift = shift;
+        for (char c : text)
+            io.AddInputCharacter(static_cast<unsigned>(c));
+        text.clear();
+    }
+};
+
+class Driver {
+  public:
+    Driver(ui::GuiApp& app) : m_app(app) {
+        app.setInputHook([this](ImGuiIO& io) { m_input.apply(io); });
+    }
+    ui::Workbench& wb() { return m_app.workbench(); }
+    void steps(int n = 1) {
+        for (int k = 0; k < n; ++k)
+            m_app.step(false);
+    }
+    void settle() {
+        for (int k = 0; k < 400; ++k) {
+            steps();
+            if (!wb().jobs().busy() && !wb().frames().loading() && k > 3)
+                break;
+        }
+        steps(3);
+    }
+    ui::ItemRect rect(const std::string& name) {
+        auto r = wb().items().find(name);
+        EXPECT_TRUE(r) << "no widget \"" << name << "\" on screen";
+        return r.value_or(ui::ItemRect{});
+    }
+    void moveTo(float x, float y) {
+        m_input.mouse = ImVec2(x, y);
+        steps(2);
+    }
+    void click(const std::string& name) {
+        const ui::ItemRect r = rect(name);
+        moveTo(r.cx(), r.cy());
+        m_input.down[0] = true;
+        steps();
+        m_input.down[0] = false;
+        steps(2);
+    }
+    void drag(float x0, float y0, float x1, float y1, int n = 8) {
+        moveTo(x0, y0);
+        m_input.down[0] = true;
+        steps();
+        for (int k = 1; k <= n; ++k)
+            moveTo(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n);
+        m_input.down[0] = false;
+        steps(2);
+    }
+    void key(int k, bool ctrl = false, bool shift = false) {
+        m_input.ctrl = ctrl;
+        m_input.shift = shift;
+        m_input.keys.insert(k);
+        steps();
+        m_input.keys.erase(k);
+        m_input.ctrl = m_input.shift = false;
+        steps(2);
+    }
+    void type(const std::string& text) {
+        m_input.text = text;
+        steps(2);
+    }
+
+  private:
+    ui::GuiApp& m_app;
+    SyntheticInput m_input;
+};
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display)
+        GTEST_SKIP() << "no display (run under xvfb-run for this test)";
+    TempDir dir;
+    core::Session session;
+    ui::GuiOptions options;
+    options.width = 1600;
+    options.height = 1000;
+    options.maximize = false;
+    options.workbench.stateDir = dir.file("state");
+    std::unique_ptr<ui::GuiApp> app;
+    try {
+        app = std::make_unique<ui::GuiApp>(session, options);
+    } catch (const std::exception& e) {
+        GTEST_SKIP() << "no OpenGL window here: " << e.what();
+    }
+    Driver ui(*app);
+    ui.steps(3);
+
+    // 1. Open data by dropping a file on the window.
+    const std::string data = test::dataFile("liggghts_packing_22410.particles");
+    app->dropFiles({data});
+    ui.settle();
+    ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
+    const ui::ViewDisplay* main = ui.wb().mainDisplay();
+    ASSERT_TRUE(main && main->visibility);
+    EXPECT_EQ(main->visibility->visibleCount, 22410u);
+
+    // 2. Add a box in the Cutting boxes panel.
+    ui.click("tab.boxes");
+    ui.click("boxes.add");
+    ASSERT_EQ(session.state().boxes.size(), 1u);
+    EXPECT_EQ(session.state().boxes[0].name, "box 1");
+
+    // 3. Drag across the vx histogram: a threshold on vx.
+    const ui::ItemRect h = ui.rect("histogram.vx");
+    ui.drag(h.x0 + (h.x1 - h.x0) * 0.55f, h.cy(), h.x1 - 2, h.cy());
+    ASSERT_NE(session.state().threshold("vx"), nullptr);
+    const std::size_t visibleWithThreshold = ui.wb().mainDisplay()->visibility->visibleCount;
+    EXPECT_LT(visibleWithThreshold, 22410u);
+    EXPECT_GT(visibleWithThreshold, 0u);
+
+    // 4. Undo (Ctrl+Z) removes the threshold, keeps the box.
+    ui.key(GLFW_KEY_Z, true);
+    EXPECT_EQ(session.state().threshold("vx"), nullptr);
+    EXPECT_EQ(session.state().boxes.size(), 1u);
+    EXPECT_EQ(ui.wb().mainDisplay()->visibility->visibleCount, 22410u);
+
+    // 5. Save (Ctrl+S): the session has no file yet, so the dialog asks; type a path, Enter.
+    const std::string saved = dir.file("gui-analysis.faultline.json");
+    ui.key(GLFW_KEY_S, true);
+    ASSERT_TRUE(ui.wb().fileDialog().isOpen());
+    ui.key(GLFW_KEY_A, true); // select the suggested name, then replace it
+    ui.type(saved);
+    const char* keep = std::getenv("FAULTLINE_GUI_TEST_KEEP");
+    if (keep && *keep) { // how the dialog looks, for a person to judge
+        ui.wb().requestScreenshot(std::string(keep) + "/gui-test-dialog.png");
+        ui.steps(1);
+    }
+    ui.key(GLFW_KEY_ENTER);
+    ui.steps(2);
+    ASSERT_TRUE(std::filesystem::exists(saved)) << ui.wb().lastMessage();
+    const Json doc = Json::parse(readFile(saved));
+    ASSERT_EQ(doc["boxes"].size(), 1u);
+    EXPECT_EQ(doc["boxes"][0]["name"], "box 1");
+    EXPECT_TRUE(doc["thresholds"].empty());
+    EXPECT_EQ(doc["data"].dump().find("liggghts_packing_22410.particles") != std::string::npos, true) << doc.dump();
+    EXPECT_TRUE(doc["dock_layout"].contains("root"));
+    EXPECT_EQ(ui.wb().sessionPath(), saved);
+
+    // 6. A screenshot of the window.
+    const std::string shot = dir.file("workbench.png");
+    ui.wb().requestScreenshot(shot);
+    ui.steps(1);
+    int w = 0, hgt = 0, c = 0;
+    unsigned char* pixels = stbi_load(shot.c_str(), &w, &hgt, &c, 4);
+    ASSERT_NE(pixels, nullptr) << "no PNG at " << shot;
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(app->window(), &fbw, &fbh);
+    EXPECT_EQ(w, fbw);
+    EXPECT_EQ(hgt, fbh);
+    std::set<std::uint32_t> colours;
+    for (int k = 0; k < w * hgt; k += 97)
+        colours.insert(reinterpret_cast<std::uint32_t*>(pixels)[k]);
+    stbi_image_free(pixels);
+    EXPECT_GT(colours.size(), 20u) << "the screenshot looks blank";
+    if (keep && *keep) {
+        std::filesystem::copy_file(shot, std::string(keep) + "/gui-test.png", std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(ui.wb().journalPath(), std::string(keep) + "/gui-test.jsonl", std::filesystem::copy_options::overwrite_existing);
+    }
+
+    // The journal of the run holds every step as a command.
+    std::vector<std::string> ops;
+    std::istringstream journal(readFile(ui.wb().journalPath()));
+    for (std::string line; std::getline(journal, line);)
+        if (!line.empty() && line[0] == '{')
+            ops.push_back(Json::parse(line)["op"].get<std::string>());
+    EXPECT_EQ(ops, (std::vector<std::string>{"data.open", "box.add", "threshold.add", "undo", "layout.set", "session.save"}));
+}

@@ -1,0 +1,73 @@
+// Text and legend layout: CPU only, no display.
+#include "ui/render/legend_layout.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+using namespace faultline;
+using namespace faultline::ui;
+
+namespace {
+bool fontAvailable() { return std::ifstream(defaultFontPath()).good(); }
+} // namespace
+
+TEST(TextAtlas, DecodesUtf8) {
+    EXPECT_EQ(decodeUtf8("a\xC2\xB5\xE2\x88\x92"), (std::vector<std::uint32_t>{'a', 0xB5, 0x2212}));
+    EXPECT_EQ(decodeUtf8("\xFF"), (std::vector<std::uint32_t>{0xFFFD}));
+    EXPECT_EQ(decodeUtf8("\xE2\x88"), (std::vector<std::uint32_t>{0xFFFD, 0xFFFD}));
+}
+
+TEST(TextAtlas, BakesDejaVuAndLaysOutText) {
+    if (!fontAvailable())
+        GTEST_SKIP() << "no font at " << defaultFontPath();
+    const auto font = FontAtlas::load(defaultFontPath(), 16.0f);
+    ASSERT_TRUE(font);
+    EXPECT_GT(font->ascent(), 10.0f);
+    EXPECT_GT(font->descent(), 2.0f);
+    EXPECT_GT(font->measure("strain"), 30.0f);
+    EXPECT_GT(font->measure("WWW"), font->measure("iii"));
+    std::vector<GlyphQuad> quads;
+    font->layout("a b", 10.0f, 20.0f, quads);
+    ASSERT_EQ(quads.size(), 2u); // the space has no quad
+    EXPECT_LT(quads[0].x1, quads[1].x0);
+    EXPECT_EQ(quads[0].x0, std::floor(quads[0].x0)); // snapped to pixels
+    EXPECT_LE(quads[0].y1, 20.0f + font->descent() + 1);
+    EXPECT_FALSE(FontAtlas::load("/no/such/font.ttf", 16.0f));
+}
+
+TEST(LegendLayout, BarTicksAndTextInsideTheImage) {
+    const auto ticks = core::legendTicks({0.0, 0.5});
+    const float scale = legendScale(1280, 720, 1.0f);
+    EXPECT_FLOAT_EQ(scale, 1.0f);
+    EXPECT_FLOAT_EQ(legendScale(3840, 2160, 1.0f), 3.0f);
+    std::optional<FontAtlas> labels, title;
+    if (fontAvailable()) {
+        labels = FontAtlas::load(defaultFontPath(), float(legendLabelPixels(scale)));
+        title = FontAtlas::load(defaultFontPath(), float(legendTitlePixels(scale)));
+    }
+    const LegendLayout l = layoutLegend(ticks, "strain", labels ? &*labels : nullptr,
+                                        title ? &*title : nullptr, 1280, 720, scale);
+    EXPECT_GT(l.bar.y1 - l.bar.y0, 0.4f * 720 - 1);
+    EXPECT_EQ(l.tickMarks.size(), ticks.size());
+    // The first tick (t = 0) at the bottom of the bar, the last (t = 1) at the top.
+    EXPECT_NEAR(0.5f * (l.tickMarks.front().y0 + l.tickMarks.front().y1), l.bar.y1, 1.0f);
+    EXPECT_NEAR(0.5f * (l.tickMarks.back().y0 + l.tickMarks.back().y1), l.bar.y0, 1.0f);
+    EXPECT_GE(l.panel.x0, 0.0f);
+    EXPECT_LE(l.panel.x1, 1280.0f);
+    EXPECT_GE(l.panel.y0, 0.0f);
+    EXPECT_LE(l.panel.y1, 720.0f);
+    if (labels) {
+        EXPECT_FALSE(l.labelGlyphs.empty());
+        EXPECT_FALSE(l.titleGlyphs.empty());
+        for (const GlyphQuad &g : l.labelGlyphs) {
+            EXPECT_GE(g.x0, l.panel.x0);
+            EXPECT_LE(g.x1, l.panel.x1);
+            EXPECT_GE(g.y0, l.panel.y0);
+            EXPECT_LE(g.y1, l.panel.y1);
+        }
+        for (const GlyphQuad &g : l.titleGlyphs)
+            EXPECT_LT(g.y1, l.bar.y0); // the title sits above the bar
+    }
+}

@@ -1,0 +1,49 @@
+// A workbench on a small lattice, run headless: the fixture of the panel tests.
+#pragma once
+
+#include "../core/test_files.hpp"
+#include "headless_ui.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace faultline::test {
+
+class PanelTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        ui::WorkbenchOptions options;
+        options.stateDir = stateDir();
+        options.autosaveSeconds = 0; // every frame that changed something (tests)
+        m_wb = std::make_unique<ui::Workbench>(session, options);
+        headless.frames(wb(), 2);
+    }
+    void TearDown() override { m_wb.reset(); }
+
+    virtual std::string stateDir() { return {}; } // no journal or autosave unless asked
+
+    ui::Workbench& wb() { return *m_wb; }
+    // Opens the lattice (3 frames of 64 spheres) the way a user does, in the background.
+    void openLattice() {
+        wb().openData({writeLattice(dir.file("lattice.dump"))});
+        headless.settle(wb());
+        ASSERT_NE(session.dataset(), nullptr);
+        ASSERT_NE(wb().mainDisplay(), nullptr);
+        ASSERT_NE(wb().mainDisplay()->frame, nullptr);
+        headless.clearEmitted();
+    }
+    std::size_t visible() const {
+        const ui::ViewDisplay* d = m_wb->mainDisplay();
+        return d && d->visibility ? d->visibility->visibleCount : 0;
+    }
+
+    TempDir dir;
+    core::Session session;
+    HeadlessUi headless;
+
+  private:
+    std::unique_ptr<ui::Workbench> m_wb;
+};
+
+} // namespace faultline::test

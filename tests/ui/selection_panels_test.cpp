@@ -1,0 +1,168 @@
+// Headless runs of the Data, Cutting boxes, Thresholds and Histograms panels: scripted mouse
+// input, checking the commands emitted and what the views show while dragging.
+#include "panel_fixture.hpp"
+
+#include "ui/panels/panel_ids.hpp"
+
+using namespace faultline;
+using namespace faultline::test;
+using core::Json;
+
+TEST_F(PanelTest, DataPanelOpensInTheBackgroundThenCloses) {
+    const std::string path = writeLattice(dir.file("lattice.dump"));
+    wb().openData({path});
+    EXPECT_EQ(session.dataset(), nullptr); // nothing changes until the job is done
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("data.open").size(), 1u);
+    EXPECT_EQ(headless.emitted("data.open")[0], (Json{{"op", "data.open"}, {"paths", {path}}}));
+    ASSERT_NE(session.dataset(), nullptr);
+    EXPECT_EQ(visible(), 64u);
+    headless.showPanel(wb(), ui::panel_ids::kData);
+    headless.click(wb(), "data.close");
+    ASSERT_EQ(headless.emitted("data.close").size(), 1u);
+    EXPECT_EQ(session.dataset(), nullptr);
+    EXPECT_EQ(wb().mainDisplay()->frame, nullptr);
+}
+
+TEST_F(PanelTest, AMissingFileIsReportedNotFatal) {
+    wb().openData({dir.file("nothing-here.dump")});
+    headless.settle(wb());
+    EXPECT_TRUE(headless.emitted().empty());
+    EXPECT_TRUE(wb().lastMessageIsError());
+    EXPECT_NE(wb().lastMessage().find("nothing-here.dump"), std::string::npos) << wb().lastMessage();
+}
+
+TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kBoxes);
+    headless.click(wb(), "boxes.add");
+    const Json expected = {{"op", "box.add"}, {"name", "box 1"}, {"min", {-0.5, -0.5, -0.5}}, {"max", {3.5, 3.5, 3.5}}, {"mode", "keep"}};
+    ASSERT_EQ(headless.emitted(), std::vector<Json>{expected});
+    EXPECT_EQ(wb().selectedBox, "box 1");
+    EXPECT_EQ(visible(), 64u);
+
+    // Drag the x slider's high end to the middle: the view follows during the drag, one command
+    // on release.
+    headless.frames(wb(), 2);
+    headless.clearEmitted();
+    const ui::ItemRect r = headless.rect(wb(), "boxes.fraction.0");
+    const float grab = std::max(6.0f, (r.y1 - r.y0) * 0.35f);
+    std::size_t visibleWhileHeld = 0;
+    double maxWhileHeld = 0;
+    headless.drag(wb(), r.x1 - grab, r.cy(), r.x0 + grab + (r.x1 - r.x0 - 2 * grab) * 0.5f, r.cy(), 6, 0, [&] {
+        visibleWhileHeld = visible();
+        maxWhileHeld = wb().displayBoxes().at(0).max[0];
+        EXPECT_TRUE(headless.emitted().empty()) << "no command before the release";
+    });
+    EXPECT_NEAR(maxWhileHeld, 1.5, 0.05); // half of [-0.5, 3.5]
+    EXPECT_EQ(visibleWhileHeld, 32u);     // x in {0, 1}
+    ASSERT_EQ(headless.emitted("box.set").size(), 1u);
+    EXPECT_EQ(headless.emitted().size(), 1u);
+    EXPECT_NEAR(session.state().box("box 1")->max[0], 1.5, 0.05);
+    EXPECT_EQ(visible(), 32u);
+
+    headless.clearEmitted();
+    headless.click(wb(), "boxes.enabled.box 1");
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "box.set"}, {"name", "box 1"}, {"enabled", false}}}));
+    EXPECT_EQ(visible(), 64u);
+    headless.click(wb(), "boxes.duplicate");
+    ASSERT_EQ(headless.emitted("box.add").size(), 1u);
+    EXPECT_EQ(headless.emitted("box.add")[0]["name"], "box 1 1");
+    EXPECT_EQ(wb().selectedBox, "box 1 1");
+    headless.click(wb(), "boxes.delete");
+    EXPECT_EQ(headless.emitted("box.remove").back(), (Json{{"op", "box.remove"}, {"name", "box 1 1"}}));
+    EXPECT_EQ(session.state().boxes.size(), 1u);
+
+    // Ctrl+Z undoes the delete.
+    headless.key(wb(), GLFW_KEY_Z, true);
+    EXPECT_EQ(headless.emitted().back(), (Json{{"op", "undo"}}));
+    EXPECT_EQ(session.state().boxes.size(), 2u);
+    headless.key(wb(), GLFW_KEY_Z, true, true);
+    EXPECT_EQ(headless.emitted().back(), (Json{{"op", "redo"}}));
+    EXPECT_EQ(session.state().boxes.size(), 1u);
+}
+
+TEST_F(PanelTest, ThresholdsPanelAddsSlidesInWholeValuesDisablesAndRemoves) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kThresholds);
+    headless.click(wb(), "thresholds.add");
+    headless.frames(wb(), 2);
+    headless.click(wb(), "thresholds.add.layer");
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 0.0}, {"high", 3.0}}));
+    headless.frames(wb(), 2);
+    headless.clearEmitted();
+
+    // The low handle from 0 to 40% of [0, 3]: 1.2 -> 1, an integer column moves by whole values.
+    const ui::ItemRect r = headless.rect(wb(), "thresholds.slider.layer");
+    const float grab = std::max(6.0f, (r.y1 - r.y0) * 0.35f);
+    const float x0 = r.x0 + grab, x1 = r.x1 - grab;
+    std::size_t visibleWhileHeld = 0;
+    headless.drag(wb(), x0, r.cy(), x0 + (x1 - x0) * 0.4f, r.cy(), 5, 0, [&] { visibleWhileHeld = visible(); });
+    EXPECT_EQ(visibleWhileHeld, 48u); // layers 1..3
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}}));
+    EXPECT_EQ(session.state().threshold("layer")->low, 1.0);
+
+    // Typed bounds: a number, and an empty field for an open end.
+    headless.clearEmitted();
+    headless.click(wb(), "thresholds.low.layer");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "2.5");
+    headless.key(wb(), GLFW_KEY_ENTER);
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 3.0}}}));
+    headless.clearEmitted();
+    headless.click(wb(), "thresholds.high.layer");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.key(wb(), GLFW_KEY_BACKSPACE);
+    headless.key(wb(), GLFW_KEY_ENTER);
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"high", 1e30}}}));
+    EXPECT_EQ(visible(), 16u); // layer 3 only
+
+    headless.clearEmitted();
+    headless.click(wb(), "thresholds.enabled.layer");
+    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"enabled", false}}}));
+    EXPECT_EQ(visible(), 64u);
+    headless.click(wb(), "thresholds.remove.layer");
+    EXPECT_EQ(headless.emitted().back(), (Json{{"op", "threshold.remove"}, {"variable", "layer"}}));
+    EXPECT_TRUE(session.state().thresholds.empty());
+}
+
+TEST_F(PanelTest, DraggingOnAHistogramSetsTheThresholdAndItsEdgesAdjustIt) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    // Default histograms: the first columns, strain and layer. layer has integer bins [0, 4).
+    const ui::ItemRect r = headless.rect(wb(), "histogram.layer");
+    auto xAt = [&](double value) { return r.x0 + static_cast<float>(value / 4.0) * (r.x1 - r.x0); };
+    std::size_t visibleWhileHeld = 0;
+    headless.drag(wb(), xAt(1.2), r.cy(), xAt(2.8), r.cy(), 6, 0, [&] {
+        visibleWhileHeld = visible();
+        EXPECT_TRUE(headless.emitted().empty());
+    });
+    EXPECT_EQ(visibleWhileHeld, 32u); // layers 1 and 2
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 1.0}, {"high", 2.0}}));
+    EXPECT_EQ(visible(), 32u);
+
+    // The high edge (at 3, the right side of bar 2) dragged to the end: high 3.
+    headless.clearEmitted();
+    headless.drag(wb(), xAt(3.0), r.cy(), r.x1 - 1, r.cy());
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}));
+    EXPECT_EQ(visible(), 48u);
+
+    // Log scale (on by default) is a panel setting kept with the layout.
+    headless.clearEmitted();
+    headless.click(wb(), "histograms.log");
+    ASSERT_EQ(headless.emitted("layout.set").size(), 1u);
+    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["log"], false);
+    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["variables"], (Json{"strain", "layer"}));
+
+    // A float variable: the drag covers about the middle of strain's range [0, 1].
+    headless.clearEmitted();
+    const ui::ItemRect s = headless.rect(wb(), "histogram.strain");
+    headless.drag(wb(), s.x0 + (s.x1 - s.x0) * 0.5f, s.cy(), s.x1 - 1, s.cy());
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0]["op"], "threshold.add");
+    EXPECT_NEAR(headless.emitted()[0]["low"].get<double>(), 0.5, 0.02);
+    EXPECT_EQ(visible(), 24u); // x in {2, 3} and layer >= 1
+}

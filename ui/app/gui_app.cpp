@@ -1,0 +1,186 @@
+#include "ui/app/gui_app.hpp"
+
+#include "ui/app/theme.hpp"
+#include "ui/viewport/gl_view_renderer.hpp"
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <stb_image_write.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace faultline::ui {
+
+GuiApp::GuiApp(core::Session& session, GuiOptions options) {
+    if (!glfwInit()) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        throw std::runtime_error(std::string("cannot open a window: ") + (why ? why : "GLFW failed to start"));
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+    glfwWindowHint(GLFW_MAXIMIZED, options.maximize ? GLFW_TRUE : GLFW_FALSE);
+    m_window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    if (!m_window) {
+        // Some drivers offer 4.1 at most (macOS-like stacks); the workbench needs no more.
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+        m_window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    }
+    if (!m_window) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        glfwTerminate();
+        throw std::runtime_error(std::string("cannot create an OpenGL 4 window: ") + (why ? why : "unknown reason"));
+    }
+    glfwMakeContextCurrent(m_window);
+    glfwSwapInterval(1);
+    glfwSetWindowUserPointer(m_window, this);
+    glfwSetDropCallback(m_window, &GuiApp::onDrop);
+    glfwSetWindowContentScaleCallback(m_window, &GuiApp::onContentScale);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr; // the layout lives in the session
+    io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard;
+    ImGui_ImplGlfw_InitForOpenGL(m_window, true);
+    ImGui_ImplOpenGL3_Init("#version 410 core");
+    m_imguiReady = true;
+    float sx = 1, sy = 1;
+    glfwGetWindowContentScale(m_window, &sx, &sy);
+    // FAULTLINE_UI_SCALE overrides the monitor's content scale (X11 without Xft.dpi, tests).
+    if (const char* env = std::getenv("FAULTLINE_UI_SCALE"); env && std::atof(env) >= 0.5 && std::atof(env) <= 4)
+        sx = static_cast<float>(std::atof(env));
+    m_workbench = std::make_unique<Workbench>(session, std::move(options.workbench));
+    setScale(std::max(1.0f, std::round(sx * 4) / 4));
+    try {
+        m_renderer = std::make_unique<GlViewRenderer>();
+        m_workbench->setRenderer(m_renderer.get());
+    } catch (const std::exception& e) {
+        m_workbench->error(std::string("The 3-D views are off: ") + e.what());
+    }
+    auto wake = [] { glfwPostEmptyEvent(); };
+    m_workbench->jobs().setWakeUp(wake);
+    m_workbench->frames().setWakeUp(wake);
+}
+
+GuiApp::~GuiApp() {
+    if (m_workbench)
+        m_workbench->setRenderer(nullptr);
+    m_workbench.reset();
+    m_renderer.reset(); // GL objects go while the context is current
+    if (m_imguiReady) {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    if (m_window)
+        glfwDestroyWindow(m_window);
+    glfwTerminate();
+}
+
+void GuiApp::setScale(float scale) {
+    m_scale = scale;
+    applyTheme(scale);
+    loadFonts(scale);
+    ImGui_ImplOpenGL3_DestroyFontsTexture();
+    ImGui_ImplOpenGL3_CreateFontsTexture();
+    m_workbench->setScale(scale);
+}
+
+void GuiApp::onDrop(GLFWwindow* window, int count, const char** paths) {
+    auto* self = static_cast<GuiApp*>(glfwGetWindowUserPointer(window));
+    std::vector<std::string> list(paths, paths + count);
+    self->dropFiles(list);
+}
+
+void GuiApp::onContentScale(GLFWwindow* window, float x, float) {
+    auto* self = static_cast<GuiApp*>(glfwGetWindowUserPointer(window));
+    self->m_pendingScale = std::max(1.0f, std::round(x * 4) / 4);
+}
+
+void GuiApp::dropFiles(const std::vector<std::string>& paths) {
+    if (paths.empty())
+        return;
+    // Several files dropped together are one run's frames; one file may also be a session.
+    if (paths.size() == 1)
+        m_workbench->openPath(paths.front());
+    else
+        m_workbench->openData(paths);
+}
+
+bool GuiApp::animating() const {
+    return m_workbench->playback().playing || m_workbench->jobs().busy() || m_workbench->frames().loading().has_value();
+}
+
+bool GuiApp::step(bool wait) {
+    if (!wait || m_workbench->playback().playing)
+        glfwPollEvents(); // the swap's vsync paces playback
+    else if (animating())
+        glfwWaitEventsTimeout(0.05); // progress bars at 20 frames per second; input wakes at once
+    else
+        glfwWaitEventsTimeout(0.25); // idle: autosave and message timeouts still run
+    if (m_pendingScale > 0 && m_pendingScale != m_scale) {
+        setScale(m_pendingScale);
+        m_pendingScale = 0;
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    if (m_inputHook)
+        m_inputHook(ImGui::GetIO());
+    ImGui::NewFrame();
+    m_workbench->frame(glfwGetTime());
+    m_workbench->renderViews();
+    ImGui::Render();
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(m_window, &w, &h);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glClearColor(0.82f, 0.84f, 0.87f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (auto path = m_workbench->takeScreenshotRequest()) {
+        if (saveScreenshot(*path))
+            m_workbench->info("Saved a screenshot to " + *path);
+        else
+            m_workbench->error("Cannot write the screenshot " + *path);
+    }
+    glfwSwapBuffers(m_window);
+    if (m_workbench->quitRequested())
+        glfwSetWindowShouldClose(m_window, GLFW_TRUE);
+    return !glfwWindowShouldClose(m_window);
+}
+
+int GuiApp::run() {
+    while (step(true)) {
+    }
+    return 0;
+}
+
+bool GuiApp::saveScreenshot(const std::string& path) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(m_window, &w, &h);
+    if (w <= 0 || h <= 0)
+        return false;
+    std::vector<unsigned char> pixels(static_cast<std::size_t>(w) * h * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    std::vector<unsigned char> flipped(pixels.size());
+    const std::size_t row = static_cast<std::size_t>(w) * 4;
+    for (int y = 0; y < h; ++y)
+        std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row, flipped.data() + static_cast<std::size_t>(y) * row);
+    for (std::size_t k = 3; k < flipped.size(); k += 4)
+        flipped[k] = 255;
+    return stbi_write_png(path.c_str(), w, h, 4, flipped.data(), static_cast<int>(row)) != 0;
+}
+
+} // namespace faultline::ui

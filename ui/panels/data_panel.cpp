@@ -1,0 +1,116 @@
+// Data panel: the files open, their frames, the current frame's columns with ranges, memory.
+#include "core/io/frame_source.hpp"
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <imgui.h>
+
+#include <filesystem>
+
+namespace faultline::ui {
+
+namespace {
+
+class DataPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kData; }
+    const char* title() const override { return "Data"; }
+
+    void draw(Workbench& wb) override {
+        auto ds = wb.dataset();
+        if (ImGui::Button("Open data..."))
+            wb.fileDialog().open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},
+                                 "");
+        wb.mark("data.open");
+        ImGui::SameLine();
+        ImGui::BeginDisabled(!ds);
+        if (ImGui::Button("Close"))
+            wb.emit({{"op", "data.close"}});
+        wb.mark("data.close");
+        ImGui::EndDisabled();
+        if (!ds) {
+            ImGui::Spacing();
+            ImGui::TextWrapped("No data is open. Open a LAMMPS or LIGGGHTS dump (also .gz, a numbered series "
+                               "as a pattern, or per-processor files with %%), a VTK file or a CSV table, or "
+                               "drop a file onto the window.");
+            return;
+        }
+        ImGui::Spacing();
+        if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
+            const auto files = ds->files();
+            const auto& loc = ds->location(0);
+            ImGui::TextDisabled("%zu file%s, %s", files.size(), files.size() == 1 ? "" : "s",
+                                std::string(core::formatName(loc.format)).c_str());
+            const std::size_t shown = std::min<std::size_t>(files.size(), 6);
+            for (std::size_t k = 0; k < shown; ++k) {
+                const std::string name = std::filesystem::path(files[k]).filename().string();
+                ImGui::BulletText("%s", name.c_str());
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%s", files[k].c_str());
+            }
+            if (files.size() > shown)
+                ImGui::TextDisabled("... and %zu more", files.size() - shown);
+        }
+        const ViewDisplay* main = wb.mainDisplay();
+        if (ImGui::CollapsingHeader("Frames", ImGuiTreeNodeFlags_DefaultOpen)) {
+            const std::size_t f = wb.displayFrame();
+            keyValue("frames", std::to_string(ds->frameCount()));
+            keyValue("current", std::to_string(f) + "  (timestep " + std::to_string(ds->location(f).timestep) + ")");
+            if (main && main->frame) {
+                const core::Frame& fr = *main->frame;
+                keyValue("spheres", std::to_string(fr.size()));
+                if (main->visibility)
+                    keyValue("visible", std::to_string(main->visibility->visibleCount));
+                const ModelBounds& b = main->bounds;
+                keyValue("extent", numberText(b.hi[0] - b.lo[0]) + " x " + numberText(b.hi[1] - b.lo[1]) + " x " +
+                                       numberText(b.hi[2] - b.lo[2]));
+                if (fr.radiusIsDefault)
+                    ImGui::TextDisabled("no radius column: radius %.2g assumed", core::kDefaultRadius);
+                if (fr.idsAreRowNumbers)
+                    ImGui::TextDisabled("no id column: row numbers are the ids");
+            }
+        }
+        if (main && main->frame && ImGui::CollapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
+            if (ImGui::BeginTable("##columns", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                                                     ImGuiTableFlags_SizingStretchProp)) {
+                ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.4f);
+                ImGui::TableSetupColumn("type", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+                ImGui::TableSetupColumn("min", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+                ImGui::TableSetupColumn("max", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+                ImGui::TableHeadersRow();
+                for (const auto& [name, col] : wb.columns().of(main->frame)) {
+                    const VariableInfo* info = &col;
+                    ImGui::TableNextRow();
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(name.c_str());
+                    ImGui::TableNextColumn();
+                    ImGui::TextDisabled("%s", info->integer ? "int" : "float");
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(numberText(info->min).c_str());
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(numberText(info->max).c_str());
+                }
+                ImGui::EndTable();
+            }
+        }
+        if (ImGui::CollapsingHeader("Memory", ImGuiTreeNodeFlags_DefaultOpen)) {
+            if (main && main->frame)
+                keyValue("this frame", bytesText(main->frame->memoryBytes()));
+            keyValue("frames cached", bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));
+        }
+    }
+
+  private:
+    static void keyValue(const char* key, const std::string& value) {
+        ImGui::TextDisabled("%s", key);
+        ImGui::SameLine(ImGui::GetFontSize() * 8);
+        ImGui::TextUnformatted(value.c_str());
+    }
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeDataPanel() { return std::make_unique<DataPanel>(); }
+
+} // namespace faultline::ui

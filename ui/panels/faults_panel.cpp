@@ -1,0 +1,256 @@
+// Faults panel: the table of named faults (visibility, colour, name, size, notes), creating one
+// from the visible spheres, adding/removing the visible ones, merge, delete, and which spheres
+// faults let through (fault.filter). Later analysis plugs in through PanelExtensions.
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/widgets/section.hpp"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+
+namespace faultline::ui {
+
+namespace {
+
+constexpr float kPalette[][3] = {{0.90f, 0.30f, 0.20f}, {0.20f, 0.55f, 0.90f}, {0.95f, 0.70f, 0.10f}, {0.40f, 0.75f, 0.30f},
+                                 {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
+                                 {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
+
+std::string nextFaultName(const core::SessionState& s) {
+    for (int k = 1;; ++k) {
+        std::string n = "F" + std::to_string(k);
+        if (!s.fault(n))
+            return n;
+    }
+}
+
+core::Json colorJson(const float c[3]) { return core::Json::array({c[0], c[1], c[2]}); }
+
+class FaultsPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kFaults; }
+    const char* title() const override { return "Faults"; }
+
+    void draw(Workbench& wb) override {
+        const core::SessionState& s = wb.state();
+        const ViewDisplay* main = wb.mainDisplay();
+        const bool haveVisible = main && main->frame && main->visibility && main->visibility->visibleCount > 0;
+        auto& selected = wb.selectedFaults;
+
+        ImGui::BeginDisabled(!haveVisible);
+        if (ImGui::Button("New from visible")) {
+            const std::string name = nextFaultName(s);
+            wb.emit({{"op", "fault.create"}, {"name", name}, {"from", "visible"}}, [&wb, name] {
+                wb.selectedFaults = {name};
+            });
+        }
+        wb.mark("faults.create");
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("A new fault whose members are the spheres visible now (%zu)",
+                              haveVisible ? main->visibility->visibleCount : std::size_t(0));
+        ImGui::SameLine();
+        ImGui::BeginDisabled(selected.size() < 2);
+        if (ImGui::Button("Merge")) {
+            std::vector<std::string> names;
+            for (const auto& f : s.faults) // in table order; the first keeps its name
+                if (selected.count(f.name))
+                    names.push_back(f.name);
+            const std::string into = names.front();
+            wb.emit({{"op", "fault.merge"}, {"names", names}, {"into", into}}, [&wb, into] { wb.selectedFaults = {into}; });
+        }
+        ImGui::EndDisabled();
+        ImGui::SameLine();
+        ImGui::BeginDisabled(selected.empty());
+        if (ImGui::Button("Delete")) {
+            core::Json batch = core::Json::array();
+            for (const auto& n : selected)
+                batch.push_back({{"op", "fault.delete"}, {"name", n}});
+            wb.emit(batch.size() == 1 ? batch[0] : core::Json{{"op", "batch"}, {"commands", batch}});
+        }
+        wb.mark("faults.delete");
+        ImGui::EndDisabled();
+
+        // Which spheres faults let through.
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted("Show");
+        ImGui::SameLine();
+        const auto& filter = s.faultFilter;
+        std::string current = filter.mode == core::FaultFilter::Mode::All        ? "all spheres"
+                              : filter.mode == core::FaultFilter::Mode::Labelled ? "spheres in visible faults"
+                                                                                 : "only " + filter.fault;
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::BeginCombo("##filter", current.c_str())) {
+            if (ImGui::Selectable("all spheres", filter.mode == core::FaultFilter::Mode::All))
+                wb.emit({{"op", "fault.filter"}, {"mode", "all"}});
+            wb.mark("faults.filter.all");
+            if (ImGui::Selectable("spheres in visible faults", filter.mode == core::FaultFilter::Mode::Labelled))
+                wb.emit({{"op", "fault.filter"}, {"mode", "labelled"}});
+            wb.mark("faults.filter.labelled");
+            for (const auto& f : s.faults) {
+                if (ImGui::Selectable(("only " + f.name).c_str(), filter.mode == core::FaultFilter::Mode::Only && filter.fault == f.name))
+                    wb.emit({{"op", "fault.filter"}, {"mode", "only"}, {"fault", f.name}});
+                wb.mark("faults.filter.only." + f.name);
+            }
+            ImGui::EndCombo();
+        }
+        wb.mark("faults.filter");
+
+        if (s.faults.empty()) {
+            ImGui::Spacing();
+            ImGui::TextWrapped("No faults yet. Narrow the visible spheres with thresholds (for example on "
+                               "broken bonds or strain) and boxes, then press \"New from visible\".");
+        } else {
+            drawTable(wb);
+            if (selected.size() == 1)
+                if (const core::Fault* f = s.fault(*selected.begin()))
+                    drawDetails(wb, *f, haveVisible);
+        }
+        for (const auto& section : wb.extensions().faultSections) {
+            ImGui::Spacing();
+            if (ImGui::CollapsingHeader(section.title.c_str()))
+                section.draw(wb);
+        }
+    }
+
+  private:
+    void drawTable(Workbench& wb) {
+        const core::SessionState& s = wb.state();
+        auto& selected = wb.selectedFaults;
+        const auto& extra = wb.extensions().faultColumns;
+        const int columns = 4 + static_cast<int>(extra.size());
+        const float rowH = ImGui::GetFrameHeightWithSpacing();
+        const float tableH = std::min(rowH * (static_cast<float>(s.faults.size()) + 1.2f), rowH * 9.0f);
+        if (!ImGui::BeginTable("##faults", columns, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
+                                                        ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable,
+                               ImVec2(0, tableH)))
+            return;
+        ImGui::TableSetupScrollFreeze(0, 1);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight() * 2.2f);
+        ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("spheres", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0000000").x);
+        ImGui::TableSetupColumn("notes", ImGuiTableColumnFlags_WidthStretch, 1.4f);
+        for (const auto& c : extra)
+            ImGui::TableSetupColumn(c.title.c_str(), ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("000000").x);
+        ImGui::TableHeadersRow();
+        for (const core::Fault& f : s.faults) {
+            ImGui::PushID(f.name.c_str());
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            bool visible = f.visible;
+            if (ImGui::Checkbox("##visible", &visible))
+                wb.emit({{"op", "fault.set"}, {"name", f.name}, {"visible", visible}});
+            wb.mark("faults.visible." + f.name);
+            ImGui::SameLine(0, 4);
+            drawSwatch(wb, f);
+            ImGui::TableNextColumn();
+            ImGui::AlignTextToFramePadding();
+            const bool isSelected = selected.count(f.name) > 0;
+            if (ImGui::Selectable(f.name.c_str(), isSelected, ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap)) {
+                if (ImGui::GetIO().KeyCtrl) {
+                    if (isSelected)
+                        selected.erase(f.name);
+                    else
+                        selected.insert(f.name);
+                } else {
+                    selected = {f.name};
+                }
+            }
+            wb.mark("faults.row." + f.name);
+            ImGui::TableNextColumn();
+            ImGui::Text("%zu", f.ids.size());
+            ImGui::TableNextColumn();
+            ImGui::TextDisabled("%s", f.notes.c_str());
+            if (!f.notes.empty() && ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s", f.notes.c_str());
+            for (const auto& c : extra) {
+                ImGui::TableNextColumn();
+                c.cell(wb, f);
+            }
+            ImGui::PopID();
+        }
+        ImGui::EndTable();
+    }
+
+    // A colour square; clicking opens a palette and a picker (committed when the popup closes).
+    void drawSwatch(Workbench& wb, const core::Fault& f) {
+        const ImVec4 c(f.color[0], f.color[1], f.color[2], 1.0f);
+        if (ImGui::ColorButton("##color", c, ImGuiColorEditFlags_NoTooltip, ImVec2(ImGui::GetFrameHeight(), ImGui::GetFrameHeight()))) {
+            m_colorFault = f.name;
+            std::copy(f.color.begin(), f.color.end(), m_color);
+            ImGui::OpenPopup("##colorpopup");
+        }
+        if (ImGui::BeginPopup("##colorpopup")) {
+            int k = 0;
+            for (const auto& p : kPalette) {
+                if (k++ % 6)
+                    ImGui::SameLine();
+                ImGui::PushID(k);
+                if (ImGui::ColorButton("##p", ImVec4(p[0], p[1], p[2], 1))) {
+                    std::copy(p, p + 3, m_color);
+                    ImGui::CloseCurrentPopup();
+                }
+                ImGui::PopID();
+            }
+            ImGui::ColorPicker3("##picker", m_color, ImGuiColorEditFlags_NoSidePreview | ImGuiColorEditFlags_NoSmallPreview);
+            ImGui::EndPopup();
+        } else if (m_colorFault == f.name) {
+            if (m_color[0] != f.color[0] || m_color[1] != f.color[1] || m_color[2] != f.color[2])
+                wb.emit({{"op", "fault.set"}, {"name", f.name}, {"color", colorJson(m_color)}});
+            m_colorFault.clear();
+        }
+    }
+
+    void drawDetails(Workbench& wb, const core::Fault& f, bool haveVisible) {
+        ImGui::Spacing();
+        sectionHeader("Fault \"" + f.name + "\"");
+        if (m_editFor != f.name) {
+            m_editFor = f.name;
+            m_name = f.name;
+            m_notes = f.notes;
+        }
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted("Name");
+        ImGui::SameLine(ImGui::GetFontSize() * 4);
+        ImGui::SetNextItemWidth(-1);
+        ImGui::InputText("##name", &m_name);
+        if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != f.name) {
+            const std::string next = m_name;
+            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}}, [&wb, next] { wb.selectedFaults = {next}; });
+        }
+        wb.mark("faults.name");
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted("Notes");
+        ImGui::SameLine(ImGui::GetFontSize() * 4);
+        ImGui::InputTextMultiline("##notes", &m_notes, ImVec2(-1, ImGui::GetTextLineHeight() * 3.2f));
+        if (ImGui::IsItemDeactivatedAfterEdit() && m_notes != f.notes)
+            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"notes", m_notes}});
+        wb.mark("faults.notes");
+        ImGui::BeginDisabled(!haveVisible);
+        if (ImGui::Button("Add the visible spheres"))
+            wb.emit({{"op", "fault.add"}, {"name", f.name}, {"from", "visible"}});
+        ImGui::SameLine();
+        if (ImGui::Button("Remove the visible spheres")) {
+            const ViewDisplay* main = wb.mainDisplay();
+            std::vector<std::int64_t> ids;
+            for (std::size_t row = 0; row < main->visibility->mask.size(); ++row)
+                if (main->visibility->mask[row] && std::binary_search(f.ids.begin(), f.ids.end(), main->frame->ids[row]))
+                    ids.push_back(main->frame->ids[row]);
+            if (!ids.empty())
+                wb.emit({{"op", "fault.remove"}, {"name", f.name}, {"ids", ids}});
+        }
+        ImGui::EndDisabled();
+    }
+
+    std::string m_colorFault;
+    float m_color[3] = {1, 0.5f, 0};
+    std::string m_editFor, m_name, m_notes;
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeFaultsPanel() { return std::make_unique<FaultsPanel>(); }
+
+} // namespace faultline::ui

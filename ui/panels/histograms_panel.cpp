@@ -1,0 +1,357 @@
+// Histograms panel: one plot per chosen variable with all spheres and the visible ones overlaid
+// (log scale optional). Dragging across a plot sets that variable's threshold; its edges are
+// handles; integer variables move by whole values. Chosen variables are kept with the layout.
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include "core/selection/histogram.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace faultline::ui {
+
+namespace {
+
+const ImU32 kAllColor = IM_COL32(168, 172, 180, 255);
+const ImU32 kVisibleColor = IM_COL32(52, 110, 190, 255);
+
+struct Cached {
+    std::shared_ptr<const core::Frame> frame; // held: a pointer alone could be reused by another frame
+    std::uint64_t visKey = 0;
+    int autoBins = 0; // the float binning chosen on the first frame, reused for later frames
+    core::Histogram hist;
+};
+
+enum class DragKind { None, NewRange, Low, High };
+
+class HistogramsPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kHistograms; }
+    const char* title() const override { return "Histograms"; }
+
+    void draw(Workbench& wb) override {
+        const ViewDisplay* main = wb.mainDisplay();
+        const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
+        if (wb.dataset() != m_dataset) {
+            m_dataset = wb.dataset();
+            m_cache.clear();
+        }
+        if (!frame) {
+            ImGui::TextDisabled("Histograms appear when data is open.");
+            return;
+        }
+        std::vector<std::string> vars = chosenVariables(wb, *frame);
+        bool logScale = settingsLog(wb);
+
+        // Toolbar: add a variable, log scale.
+        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x * 0.6f, 200 * wb.scale()));
+        if (ImGui::BeginCombo("##addhist", "Add a histogram...")) {
+            for (const auto& [v, info] : wb.columns().of(main->frame))
+                if (std::find(vars.begin(), vars.end(), v) == vars.end() && ImGui::Selectable(v.c_str())) {
+                    vars.push_back(v);
+                    saveSettings(wb, vars, logScale);
+                }
+            ImGui::EndCombo();
+        }
+        wb.mark("histograms.add");
+        ImGui::SameLine();
+        if (ImGui::Checkbox("Log scale", &logScale))
+            saveSettings(wb, vars, logScale);
+        wb.mark("histograms.log");
+        const float legendW = ImGui::CalcTextSize("allvisible").x + ImGui::GetTextLineHeight() * 2 + 30 * wb.scale();
+        const float usedX = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;
+        if (ImGui::GetContentRegionMax().x - usedX > legendW + 10 * wb.scale())
+            ImGui::SameLine(ImGui::GetContentRegionMax().x - legendW);
+        legendSwatch(kAllColor, "all");
+        ImGui::SameLine();
+        legendSwatch(kVisibleColor, "visible");
+
+        std::string removeVar;
+        for (const std::string& v : vars) {
+            ImGui::PushID(v.c_str());
+            ImGui::Spacing();
+            if (!drawOne(wb, *frame, *main, v, logScale))
+                removeVar = v;
+            ImGui::PopID();
+        }
+        if (!removeVar.empty()) {
+            std::erase(vars, removeVar);
+            saveSettings(wb, vars, logScale);
+        }
+    }
+
+  private:
+    static void legendSwatch(ImU32 color, const char* label) {
+        const float h = ImGui::GetTextLineHeight();
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        const float y = p.y + ImGui::GetStyle().FramePadding.y;
+        ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, y + h * 0.2f), ImVec2(p.x + h * 0.8f, y + h), color, 2);
+        ImGui::Dummy(ImVec2(h * 0.8f, ImGui::GetFrameHeight()));
+        ImGui::SameLine(0, 4);
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextDisabled("%s", label);
+    }
+
+    std::vector<std::string> chosenVariables(Workbench& wb, const core::Frame& frame) {
+        const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
+        std::vector<std::string> out;
+        if (s && s->contains("variables") && (*s)["variables"].is_array()) {
+            for (const auto& v : (*s)["variables"])
+                if (v.is_string())
+                    out.push_back(v.get<std::string>());
+            return out;
+        }
+        // Default: the main view's colour variable and the first columns, three at most.
+        const core::ViewState* mainView = wb.state().view("main");
+        if (mainView && !mainView->colorVariable.empty() && frame.attribute(mainView->colorVariable))
+            out.push_back(mainView->colorVariable);
+        for (const std::string& n : frame.attributeNames()) {
+            if (out.size() >= 3)
+                break;
+            if (std::find(out.begin(), out.end(), n) == out.end())
+                out.push_back(n);
+        }
+        if (out.empty())
+            out.push_back("radius");
+        return out;
+    }
+
+    static bool settingsLog(Workbench& wb) {
+        // Log by default: DEM variables (broken bonds, strain) are strongly skewed.
+        const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
+        return !(s && s->contains("log") && (*s)["log"].is_boolean()) || (*s)["log"].get<bool>();
+    }
+
+    static void saveSettings(Workbench& wb, const std::vector<std::string>& vars, bool log) {
+        core::Json& s = wb.layout().panelSettings(panel_ids::kHistograms);
+        s["variables"] = vars;
+        s["log"] = log;
+        wb.commitLayout();
+    }
+
+    const core::Histogram* histogramFor(const core::Frame& frame, const ViewDisplay& main, const std::string& var) {
+        Cached& c = m_cache[var];
+        const std::uint64_t visKey = main.visibilityKey;
+        if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty())
+            return &c.hist;
+        auto column = core::findColumn(frame, var);
+        if (!column)
+            return nullptr;
+        try {
+            core::HistogramSpec spec;
+            if (c.autoBins > 0 && !column->isInteger())
+                spec.bins = c.autoBins;
+            core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty()) ? c.hist.binning
+                                                                                           : core::chooseBinning(*column, spec);
+            if (!column->isInteger() && c.autoBins == 0)
+                c.autoBins = binning.bins;
+            const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
+            c.hist = core::computeHistogram(*column, binning, mask);
+            c.frame = main.frame;
+            c.visKey = visKey;
+            return &c.hist;
+        } catch (const std::exception&) {
+            return nullptr;
+        }
+    }
+
+    // Draws one histogram; false when its close button was pressed.
+    bool drawOne(Workbench& wb, const core::Frame& frame, const ViewDisplay& main, const std::string& var, bool logScale) {
+        const float scale = wb.scale();
+        const core::Histogram* h = histogramFor(frame, main, var);
+        const auto info = wb.columns().info(main.frame, var);
+        const core::VariableThreshold* t = wb.state().threshold(var);
+
+        // Title line: name, threshold, close.
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted(var.c_str());
+        if (t) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("%s  %s .. %s", t->enabled ? "threshold" : "threshold (off)", numberText(t->low).c_str(),
+                                numberText(t->high).c_str());
+        }
+        const float closeW = ImGui::GetFrameHeight();
+        ImGui::SameLine(ImGui::GetContentRegionMax().x - closeW);
+        const bool keep = !ImGui::Button("x", ImVec2(closeW, 0));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Hide this histogram");
+        if (!h || !info) {
+            ImGui::TextDisabled("(%s is not in this frame)", var.c_str());
+            return keep;
+        }
+
+        const float width = ImGui::GetContentRegionAvail().x;
+        const float height = std::round(96 * scale);
+        const ImVec2 p0 = ImGui::GetCursorScreenPos();
+        ImGui::InvisibleButton("##plot", ImVec2(std::max(width, 10.0f), height));
+        wb.mark("histogram." + var);
+        const bool hovered = ImGui::IsItemHovered();
+        ImDrawList* dl = ImGui::GetWindowDrawList();
+        const ImVec2 p1(p0.x + width, p0.y + height);
+        dl->AddRectFilled(p0, p1, ImGui::GetColorU32(ImGuiCol_FrameBg), 3 * scale);
+
+        const double lo = h->binning.lo, hi = h->edges.back();
+        const bool integer = h->binning.isInteger();
+        auto toX = [&](double v) { return p0.x + static_cast<float>((std::clamp(v, lo, hi) - lo) / (hi - lo)) * width; };
+        // Within a few pixels of either end means the end itself (the range's min or max).
+        auto toValue = [&](float x) {
+            if (x <= p0.x + 3 * scale)
+                return lo;
+            if (x >= p1.x - 3 * scale)
+                return hi;
+            return lo + (std::clamp(x, p0.x, p1.x) - p0.x) / width * (hi - lo);
+        };
+
+        // Bars: all, then visible over them.
+        const std::uint64_t maxAll = std::max<std::uint64_t>(1, h->all.maxBin());
+        auto barH = [&](std::uint64_t c) {
+            const double f = logScale ? std::log10(1.0 + c) / std::log10(1.0 + maxAll) : double(c) / maxAll;
+            return static_cast<float>(f) * (height - 4 * scale);
+        };
+        const std::size_t bins = h->all.bins.size();
+        for (std::size_t k = 0; k < bins; ++k) {
+            float x0 = toX(h->edges[k]), x1 = toX(h->edges[k + 1]);
+            if (x1 - x0 > 3)
+                x1 -= 1; // a hairline gap between wide bars
+            const std::uint64_t a = h->all.bins[k];
+            if (a)
+                dl->AddRectFilled(ImVec2(x0, p1.y - barH(a)), ImVec2(std::max(x1, x0 + 1), p1.y), kAllColor);
+            if (h->hasVisible && h->visible.bins[k])
+                dl->AddRectFilled(ImVec2(x0, p1.y - barH(h->visible.bins[k])), ImVec2(std::max(x1, x0 + 1), p1.y), kVisibleColor);
+        }
+
+        // Threshold band and handles (the drag's values while dragging).
+        Drag& d = m_drag[var];
+        std::optional<std::array<double, 2>> band;
+        if (d.kind != DragKind::None)
+            band = std::array<double, 2>{d.low, d.high};
+        else if (t)
+            band = std::array<double, 2>{t->low, t->high};
+        auto edgeX = [&](double v, bool isHigh) { return toX(integer && isHigh ? v + 1 : v); };
+        float bx0 = 0, bx1 = 0;
+        if (band) {
+            bx0 = edgeX((*band)[0], false);
+            bx1 = edgeX((*band)[1], true);
+            const bool off = t && !t->enabled && d.kind == DragKind::None;
+            const ImU32 shade = off ? IM_COL32(120, 120, 120, 30) : IM_COL32(52, 110, 190, 34);
+            dl->AddRectFilled(ImVec2(bx0, p0.y), ImVec2(bx1, p1.y), shade);
+            const ImU32 edge = off ? IM_COL32(120, 120, 120, 160) : IM_COL32(200, 90, 20, 255);
+            for (float x : {bx0, bx1}) {
+                dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), edge, 2 * scale);
+                dl->AddRectFilled(ImVec2(x - 4 * scale, p0.y), ImVec2(x + 4 * scale, p0.y + 10 * scale), edge, 2 * scale);
+            }
+        }
+
+        // Interaction.
+        const ImGuiIO& io = ImGui::GetIO();
+        const float grab = 6 * scale;
+        if (hovered && band && (std::fabs(io.MousePos.x - bx0) < grab || std::fabs(io.MousePos.x - bx1) < grab))
+            ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+        if (ImGui::IsItemActivated()) {
+            const float mx = io.MousePos.x;
+            d.anchor = toValue(mx);
+            if (band && std::fabs(mx - bx0) < grab && std::fabs(mx - bx0) <= std::fabs(mx - bx1))
+                d.kind = DragKind::Low;
+            else if (band && std::fabs(mx - bx1) < grab)
+                d.kind = DragKind::High;
+            else
+                d.kind = DragKind::NewRange;
+            d.low = band ? (*band)[0] : lo;
+            d.high = band ? (*band)[1] : hi;
+            d.moved = false;
+            d.startX = mx;
+        }
+        if (ImGui::IsItemActive() && d.kind != DragKind::None) {
+            const double v = toValue(io.MousePos.x);
+            if (std::fabs(io.MousePos.x - d.startX) > 2 * scale)
+                d.moved = true;
+            if (d.moved) {
+                if (d.kind == DragKind::NewRange) {
+                    double a = std::min(d.anchor, v), b = std::max(d.anchor, v);
+                    if (integer) {
+                        a = std::floor(a);
+                        b = std::min(std::floor(b), hi - 1);
+                    }
+                    d.low = a, d.high = b;
+                } else if (d.kind == DragKind::Low) {
+                    d.low = integer ? std::round(v) : v;
+                    d.low = std::min(d.low, d.high);
+                } else {
+                    d.high = integer ? std::round(v) - 1 : v;
+                    d.high = std::max(d.high, d.low);
+                }
+                if (!integer) {
+                    const double step = (hi - lo) / 1000.0; // a readable precision
+                    d.low = std::max(lo, std::floor(d.low / step) * step);
+                    d.high = std::min(hi, std::ceil(d.high / step) * step);
+                    if (d.low <= lo)
+                        d.low = lo;
+                }
+                wb.preview("histogram." + var, command(t, var, d));
+            }
+        }
+        if (ImGui::IsItemDeactivated() && d.kind != DragKind::None) {
+            if (d.moved)
+                wb.emit(command(t, var, d));
+            d.kind = DragKind::None;
+        }
+        if (ImGui::BeginPopupContextItem("##histmenu")) {
+            if (t && ImGui::MenuItem(t->enabled ? "Disable the threshold" : "Enable the threshold"))
+                wb.emit({{"op", "threshold.set"}, {"variable", var}, {"enabled", !t->enabled}});
+            if (t && ImGui::MenuItem("Remove the threshold"))
+                wb.emit({{"op", "threshold.remove"}, {"variable", var}});
+            if (!t)
+                ImGui::TextDisabled("Drag across the plot to set a threshold.");
+            ImGui::EndPopup();
+        }
+        if (hovered && d.kind == DragKind::None) {
+            if (auto bin = h->binning.binOf(toValue(io.MousePos.x))) {
+                const std::size_t k = static_cast<std::size_t>(*bin);
+                ImGui::BeginTooltip();
+                if (integer && h->binning.integerWidth == 1)
+                    ImGui::Text("%s = %s", var.c_str(), numberText(h->edges[k]).c_str());
+                else
+                    ImGui::Text("%s in [%s, %s)", var.c_str(), numberText(h->edges[k]).c_str(), numberText(h->edges[k + 1]).c_str());
+                ImGui::Text("%llu spheres, %llu visible", static_cast<unsigned long long>(h->all.bins[k]),
+                            static_cast<unsigned long long>(h->hasVisible ? h->visible.bins[k] : h->all.bins[k]));
+                ImGui::TextDisabled("drag to set the threshold; right-click for more");
+                ImGui::EndTooltip();
+            }
+        }
+        // Axis: range ends under the plot.
+        const std::string left = numberText(lo), right = numberText(integer ? hi - 1 : hi);
+        ImGui::TextDisabled("%s", left.c_str());
+        ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetContentRegionMax().x - ImGui::CalcTextSize(right.c_str()).x));
+        ImGui::TextDisabled("%s", right.c_str());
+        return keep;
+    }
+
+    struct Drag {
+        DragKind kind = DragKind::None;
+        double anchor = 0, low = 0, high = 0;
+        float startX = 0;
+        bool moved = false;
+    };
+
+    static core::Json command(const core::VariableThreshold* t, const std::string& var, const Drag& d) {
+        core::Json cmd = {{"op", t ? "threshold.set" : "threshold.add"}, {"variable", var}, {"low", d.low}, {"high", d.high}};
+        if (t && !t->enabled)
+            cmd["enabled"] = true; // dragging a threshold means using it
+        return cmd;
+    }
+
+    std::shared_ptr<core::Dataset> m_dataset;
+    std::map<std::string, Cached> m_cache;
+    std::map<std::string, Drag> m_drag;
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeHistogramsPanel() { return std::make_unique<HistogramsPanel>(); }
+
+} // namespace faultline::ui

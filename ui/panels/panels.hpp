@@ -1,0 +1,21 @@
+// The workbench's panels (one class per file in ui/panels/), made in the order of panel_ids.
+#pragma once
+
+#include "ui/workbench/workbench.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace faultline::ui {
+
+std::vector<std::unique_ptr<Panel>> createPanels();
+
+std::unique_ptr<Panel> makeDataPanel();
+std::unique_ptr<Panel> makeHistogramsPanel();
+std::unique_ptr<Panel> makeBoxesPanel();
+std::unique_ptr<Panel> makeThresholdsPanel();
+std::unique_ptr<Panel> makeFaultsPanel();
+std::unique_ptr<Panel> makeTimelinePanel();
+std::unique_ptr<Panel> makeViewportsPanel();
+
+} // namespace faultline::ui

@@ -1,0 +1,126 @@
+// Thresholds panel: one row per variable threshold: enabled, low/high as numbers and on a range
+// slider over the variable's values in the current frame; add on any variable, remove.
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/widgets/bound_input.hpp"
+#include "ui/widgets/range_slider.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace faultline::ui {
+
+namespace {
+
+class ThresholdsPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kThresholds; }
+    const char* title() const override { return "Thresholds"; }
+
+    void draw(Workbench& wb) override {
+        const ViewDisplay* main = wb.mainDisplay();
+        const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
+        const float scale = wb.scale();
+
+        // Add a threshold on a variable that has none.
+        ImGui::BeginDisabled(!frame);
+        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x, 220 * scale));
+        if (ImGui::BeginCombo("##addthreshold", "Add a threshold on...")) {
+            if (frame)
+                for (const auto& [v, vinfo] : wb.columns().of(main->frame)) {
+                    if (wb.state().threshold(v))
+                        continue;
+                    const bool chosen = ImGui::Selectable(v.c_str());
+                    wb.mark("thresholds.add." + v);
+                    if (chosen) {
+                        core::Json cmd = {{"op", "threshold.add"}, {"variable", v}};
+                        if (vinfo.min <= vinfo.max)
+                            cmd["low"] = vinfo.min, cmd["high"] = vinfo.max;
+                        wb.emit(cmd);
+                    }
+                }
+            ImGui::EndCombo();
+        }
+        wb.mark("thresholds.add");
+        ImGui::EndDisabled();
+        ImGui::Spacing();
+        if (wb.state().thresholds.empty()) {
+            ImGui::TextDisabled("No thresholds. Add one above, or drag across a histogram.");
+            return;
+        }
+        std::string toRemove;
+        for (const core::VariableThreshold& t : wb.state().thresholds) {
+            ImGui::PushID(t.variable.c_str());
+            ImGui::Separator();
+            bool enabled = t.enabled;
+            if (ImGui::Checkbox("##enabled", &enabled))
+                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"enabled", enabled}});
+            wb.mark("thresholds.enabled." + t.variable);
+            ImGui::SameLine();
+            ImGui::TextUnformatted(t.variable.c_str());
+            VariableInfo info{};
+            bool haveInfo = false;
+            if (frame)
+                if (auto i = wb.columns().info(main->frame, t.variable))
+                    info = *i, haveInfo = true;
+            if (frame && !haveInfo) {
+                ImGui::SameLine();
+                ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.1f, 1), "(not in this frame: ignored)");
+            }
+            const float removeW = ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
+            ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
+            if (ImGui::SmallButton("Remove"))
+                toRemove = t.variable;
+            wb.mark("thresholds.remove." + t.variable);
+
+            const bool integer = haveInfo && info.integer;
+            // Numbers: committed when the field is left or Enter pressed; empty is open-ended.
+            double low = t.low, high = t.high;
+            const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
+            if (boundInput("low", &low, false, integer, half))
+                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"low", low}});
+            wb.mark("thresholds.low." + t.variable);
+            ImGui::SameLine();
+            if (boundInput("high", &high, true, integer, half))
+                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"high", high}});
+            wb.mark("thresholds.high." + t.variable);
+
+            // Slider over the variable's range in this frame.
+            if (haveInfo && info.min <= info.max) {
+                auto& drag = m_drag[t.variable];
+                if (!drag.active)
+                    drag.lo = t.low, drag.hi = t.high;
+                const RangeEdit e = rangeSlider("##slider", &drag.lo, &drag.hi, info.min, info.max, integer, -1);
+                wb.mark("thresholds.slider." + t.variable);
+                if (e.changed)
+                    drag.active = true;
+                core::Json cmd = {{"op", "threshold.set"}, {"variable", t.variable}, {"low", drag.lo}, {"high", drag.hi}};
+                if (drag.active && !e.released)
+                    wb.preview("threshold." + t.variable, cmd);
+                if (e.released && drag.active) {
+                    wb.emit(cmd);
+                    drag.active = false;
+                }
+            }
+            ImGui::PopID();
+        }
+        if (!toRemove.empty())
+            wb.emit({{"op", "threshold.remove"}, {"variable", toRemove}});
+    }
+
+  private:
+    struct Drag {
+        double lo = 0, hi = 0;
+        bool active = false;
+    };
+    std::map<std::string, Drag> m_drag;
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeThresholdsPanel() { return std::make_unique<ThresholdsPanel>(); }
+
+} // namespace faultline::ui

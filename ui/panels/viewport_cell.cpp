@@ -1,0 +1,426 @@
+#include "ui/panels/viewport_cell.hpp"
+
+#include "ui/viewport/orbit_camera.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace faultline::ui {
+
+namespace {
+
+const char* kMaps[] = {"blue-red", "viridis", "diverging", "pastel", "bands", "gray"};
+
+core::Json cameraJson(const core::CameraState& c) {
+    return {{"target", c.target}, {"distance", c.distance}, {"azimuth", c.azimuth},
+            {"elevation", c.elevation}, {"fov_y", c.fovY}, {"orthographic", c.orthographic}};
+}
+
+std::string bindingText(const core::FrameBinding& b) {
+    if (!b.relative)
+        return "frame " + std::to_string(b.value);
+    if (b.value == 0)
+        return "current frame";
+    return std::string("current ") + (b.value < 0 ? "- " : "+ ") + std::to_string(std::llabs(b.value));
+}
+
+glm::dvec3 faceCentre(const std::array<double, 3>& mn, const std::array<double, 3>& mx, int face) {
+    glm::dvec3 c(0.5 * (mn[0] + mx[0]), 0.5 * (mn[1] + mx[1]), 0.5 * (mn[2] + mx[2]));
+    const int axis = face / 2;
+    c[axis] = face % 2 ? mx[axis] : mn[axis];
+    return c;
+}
+
+double sceneRadius(const ViewDisplay& d) { return d.frame ? d.sceneRadius : 1.0; }
+
+} // namespace
+
+void ViewportCells::emitForViews(Workbench& wb, const std::function<void(core::Json&)>& fill) {
+    core::Json batch = core::Json::array();
+    bool mainDone = false;
+    for (const auto& v : wb.state().views) {
+        if (v.linkedCamera && mainDone)
+            continue; // follows the main view
+        core::Json cmd = {{"op", "camera.set"}, {"view", v.name}};
+        fill(cmd);
+        batch.push_back(cmd);
+        if (v.linkedCamera)
+            mainDone = true;
+    }
+    if (batch.size() == 1)
+        wb.emit(batch[0]);
+    else if (!batch.empty())
+        wb.emit({{"op", "batch"}, {"commands", batch}});
+}
+
+void ViewportCells::presetAll(Workbench& wb, const char* preset) {
+    core::CameraState c;
+    applyPreset(c, preset);
+    emitForViews(wb, [&](core::Json& cmd) {
+        cmd["azimuth"] = c.azimuth;
+        cmd["elevation"] = c.elevation;
+    });
+}
+
+void ViewportCells::fitAll(Workbench& wb) {
+    emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
+}
+
+void ViewportCells::setOrthographic(Workbench& wb, bool ortho) {
+    emitForViews(wb, [&](core::Json& cmd) {
+        cmd["orthographic"] = ortho;
+        // Keep the display's fitted distance instead of "unset".
+        if (const ViewDisplay* d = wb.view(cmd["view"].get<std::string>()))
+            cmd["distance"] = d->camera.distance, cmd["target"] = d->camera.target;
+    });
+}
+
+void ViewportCells::draw(Workbench& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size) {
+    const ViewDisplay* dp = wb.view(view.name);
+    static const ViewDisplay kEmpty;
+    const ViewDisplay& d = dp ? *dp : kEmpty;
+    ImGui::PushID(view.name.c_str());
+    const float headerH = ImGui::GetFrameHeight() + 6 * wb.scale();
+    drawHeader(wb, view, d, pos, size.x);
+    const ImVec2 imgPos(pos.x, pos.y + headerH);
+    const ImVec2 imgSize(size.x, std::max(1.0f, size.y - headerH));
+    ImGui::SetCursorScreenPos(imgPos);
+    ImGui::InvisibleButton("##image", imgSize,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
+    wb.mark("view.image." + view.name);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 imgMax(imgPos.x + imgSize.x, imgPos.y + imgSize.y);
+    const unsigned int tex = wb.renderer() ? wb.renderer()->texture(view.name) : 0;
+    if (tex) {
+        dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)), imgPos, imgMax, ImVec2(0, 1), ImVec2(1, 0));
+    } else {
+        // No renderer in this build or run: a clear placeholder, with outlines drawn below.
+        dl->AddRectFilledMultiColor(imgPos, imgMax, IM_COL32(250, 251, 253, 255), IM_COL32(250, 251, 253, 255),
+                                    IM_COL32(226, 230, 238, 255), IM_COL32(226, 230, 238, 255));
+        const char* line1 = wb.renderer() ? "rendering..." : "3-D spheres are not drawn in this build";
+        std::string line2 = d.frame ? std::to_string(d.frame->size()) + " spheres, " +
+                                          std::to_string(d.visibility ? d.visibility->visibleCount : 0) + " visible"
+                                    : std::string("no data: File > Open data, or drop a file here");
+        const ImVec2 t1 = ImGui::CalcTextSize(line1), t2 = ImGui::CalcTextSize(line2.c_str());
+        const float cx = imgPos.x + imgSize.x * 0.5f, cy = imgPos.y + imgSize.y * 0.5f;
+        dl->AddText(ImVec2(cx - t1.x * 0.5f, cy - t1.y), IM_COL32(110, 116, 128, 255), line1);
+        dl->AddText(ImVec2(cx - t2.x * 0.5f, cy + 4), IM_COL32(110, 116, 128, 255), line2.c_str());
+    }
+    interact(wb, view, d, imgPos, imgSize);
+    const core::CameraState cam = m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace && m_drag.view == view.name
+                                      ? m_drag.current
+                                      : (m_wheel && m_wheel->view == view.name ? m_wheel->camera : d.camera);
+    dl->PushClipRect(imgPos, imgMax, true);
+    drawOverlays(wb, view, d, cam, imgPos, imgSize);
+    dl->PopClipRect();
+    ImGui::PopID();
+}
+
+void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width) {
+    const float scale = wb.scale();
+    const float h = ImGui::GetFrameHeight() + 6 * scale;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(pos, ImVec2(pos.x + width, pos.y + h), ImGui::GetColorU32(ImGuiCol_MenuBarBg));
+    ImGui::SetCursorScreenPos(ImVec2(pos.x + 6 * scale, pos.y + 3 * scale));
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(view.name.c_str());
+    ImGui::SameLine();
+    // Frame binding.
+    const std::string binding = bindingText(view.frame);
+    if (ImGui::Button((binding + "##binding").c_str())) {
+        m_frameRelative = view.frame.relative;
+        m_frameEdit = static_cast<int>(view.frame.value);
+        ImGui::OpenPopup("##framepopup");
+    }
+    wb.mark("view.binding." + view.name);
+    if (ImGui::IsItemHovered() && wb.dataset())
+        ImGui::SetTooltip("Shows frame %zu (timestep %lld). Click to bind this view to another frame.", d.wantedFrame,
+                          static_cast<long long>(wb.dataset()->location(d.wantedFrame).timestep));
+    drawFramePopup(wb, view);
+    ImGui::SameLine();
+    // Colour.
+    const std::string colour = view.colorVariable.empty() ? std::string("plain colour") : view.colorVariable + " (" + view.colorMap + ")";
+    if (ImGui::Button((colour + "##colour").c_str())) {
+        m_rangeEdit[0] = d.colorRange[0];
+        m_rangeEdit[1] = d.colorRange[1];
+        ImGui::OpenPopup("##colourpopup");
+    }
+    wb.mark("view.colour." + view.name);
+    drawColourPopup(wb, view, d);
+    ImGui::SameLine();
+    if (wb.state().views.size() > 1) {
+        bool linked = view.linkedCamera;
+        if (ImGui::Checkbox("linked", &linked))
+            wb.emit({{"op", "view.set"}, {"name", view.name}, {"linked_camera", linked}});
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Linked cameras move together; unlink to look at this view on its own.");
+    }
+    if (view.name != "main") {
+        const float bw = ImGui::GetFrameHeight();
+        ImGui::SameLine();
+        ImGui::SetCursorScreenPos(ImVec2(pos.x + width - bw - 6 * scale, pos.y + 3 * scale));
+        if (ImGui::Button("x", ImVec2(bw, 0)))
+            wb.emit({{"op", "view.remove"}, {"name", view.name}});
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Close this view");
+    }
+}
+
+void ViewportCells::drawFramePopup(Workbench& wb, const core::ViewState& view) {
+    if (!ImGui::BeginPopup("##framepopup"))
+        return;
+    ImGui::TextUnformatted("This view shows");
+    if (ImGui::RadioButton("the current frame plus", m_frameRelative))
+        m_frameRelative = true;
+    if (ImGui::RadioButton("a fixed frame", !m_frameRelative))
+        m_frameRelative = false;
+    ImGui::SetNextItemWidth(120 * wb.scale());
+    ImGui::InputInt(m_frameRelative ? "frames" : "frame", &m_frameEdit);
+    if (!m_frameRelative)
+        m_frameEdit = std::max(0, m_frameEdit);
+    if (ImGui::Button("Apply") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter))) {
+        wb.emit({{"op", "view.set"}, {"name", view.name}, {m_frameRelative ? "offset" : "frame", m_frameEdit}});
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+}
+
+void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d) {
+    if (!ImGui::BeginPopup("##colourpopup"))
+        return;
+    ImGui::TextDisabled("Colour by");
+    if (ImGui::Selectable("plain colour", view.colorVariable.empty()))
+        wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", ""}});
+    if (d.frame)
+        for (const auto& [v, info] : wb.columns().of(d.frame))
+            if (ImGui::Selectable(v.c_str(), v == view.colorVariable))
+                wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == "fixed" ? "frame" : view.rangeMode}});
+    ImGui::Separator();
+    ImGui::TextDisabled("Colour map");
+    for (const char* m : kMaps)
+        if (ImGui::Selectable(m, view.colorMap == m))
+            wb.emit({{"op", "color.set"}, {"view", view.name}, {"map", m}});
+    ImGui::Separator();
+    ImGui::TextDisabled("Range");
+    const struct {
+        const char* mode;
+        const char* label;
+    } modes[] = {{"frame", "this frame's min to max"}, {"all", "all frames seen (steady in playback)"}, {"fixed", "fixed"}};
+    for (const auto& m : modes)
+        if (ImGui::RadioButton(m.label, view.rangeMode == m.mode) && view.rangeMode != m.mode) {
+            core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};
+            if (std::string(m.mode) == "fixed")
+                cmd["range"] = {d.colorRange[0], d.colorRange[1]};
+            wb.emit(cmd);
+        }
+    ImGui::SetNextItemWidth(110 * wb.scale());
+    ImGui::InputDouble("##lo", &m_rangeEdit[0], 0, 0, "%.5g");
+    const bool loDone = ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(110 * wb.scale());
+    ImGui::InputDouble("##hi", &m_rangeEdit[1], 0, 0, "%.5g");
+    const bool hiDone = ImGui::IsItemDeactivatedAfterEdit();
+    if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
+        wb.emit({{"op", "color.set"}, {"view", view.name}, {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
+    ImGui::EndPopup();
+}
+
+void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const bool hovered = ImGui::IsItemHovered();
+    const bool active = ImGui::IsItemActive();
+    const double aspect = size.x / std::max(1.0f, size.y);
+    const double radius = sceneRadius(d);
+
+    // Which face handle of the selected box the mouse is over.
+    const core::CuttingBox* box = wb.editBoxInViewport ? wb.state().box(wb.selectedBox) : nullptr;
+    if (hovered && m_drag.mode == DragMode::None) {
+        m_hoverFace = -1;
+        m_hoverView = view.name;
+        if (box && d.frame) {
+            const glm::dmat4 vp = projectionMatrix(d.camera, aspect, radius) * viewMatrix(d.camera);
+            float best = 9.0f * wb.scale();
+            for (int f = 0; f < 6; ++f)
+                if (auto p = projectToPixels(vp, faceCentre(box->min, box->max, f), glm::dvec2(size.x, size.y))) {
+                    const float dist = std::hypot(static_cast<float>(p->x) + pos.x - io.MousePos.x, static_cast<float>(p->y) + pos.y - io.MousePos.y);
+                    if (dist < best)
+                        best = dist, m_hoverFace = f;
+                }
+        }
+    }
+
+    if (ImGui::IsItemActivated()) {
+        m_drag = Drag{};
+        m_drag.view = view.name;
+        m_drag.start = d.camera;
+        m_drag.current = d.camera;
+        m_drag.startMouse = io.MousePos;
+        const bool panButton = ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle) || io.KeyShift;
+        if (!panButton && m_hoverFace >= 0 && m_hoverView == view.name && box) {
+            m_drag.mode = DragMode::BoxFace;
+            m_drag.face = m_hoverFace;
+            m_drag.boxMin = box->min;
+            m_drag.boxMax = box->max;
+        } else {
+            m_drag.mode = panButton ? DragMode::Pan : DragMode::Orbit;
+        }
+    }
+    if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
+        const double dx = io.MousePos.x - m_drag.startMouse.x, dy = io.MousePos.y - m_drag.startMouse.y;
+        if (m_drag.mode == DragMode::BoxFace && box) {
+            // Move the face along its axis by the mouse motion projected on the axis on screen.
+            const int axis = m_drag.face / 2;
+            const glm::dmat4 vp = projectionMatrix(d.camera, aspect, radius) * viewMatrix(d.camera);
+            const glm::dvec3 c = faceCentre(m_drag.boxMin, m_drag.boxMax, m_drag.face);
+            const double len = std::max(1e-9, 0.25 * radius);
+            glm::dvec3 c2 = c;
+            c2[axis] += len;
+            auto p1 = projectToPixels(vp, c, glm::dvec2(size.x, size.y));
+            auto p2 = projectToPixels(vp, c2, glm::dvec2(size.x, size.y));
+            if (p1 && p2) {
+                const glm::dvec2 dir = *p2 - *p1;
+                const double l2 = glm::dot(dir, dir);
+                if (l2 > 1.0) {
+                    const double delta = glm::dot(glm::dvec2(dx, dy), dir) / l2 * len;
+                    auto mn = m_drag.boxMin, mx = m_drag.boxMax;
+                    if (m_drag.face % 2)
+                        mx[axis] = std::max(mn[axis], mx[axis] + delta);
+                    else
+                        mn[axis] = std::min(mx[axis], mn[axis] + delta);
+                    const core::Json cmd = {{"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
+                    wb.preview("viewport.box", cmd);
+                    m_pendingBox = cmd;
+                }
+            }
+        } else if (dx != 0 || dy != 0) {
+            core::CameraState c = m_drag.start;
+            if (m_drag.mode == DragMode::Orbit)
+                orbit(c, dx, dy);
+            else
+                pan(c, dx, dy, size.y);
+            m_drag.current = c;
+            core::Json cmd = cameraJson(c);
+            cmd["op"] = "camera.set";
+            cmd["view"] = view.name;
+            wb.preview("viewport.camera", cmd);
+        }
+        if (m_drag.mode != DragMode::BoxFace)
+            ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeAll);
+    }
+    if (ImGui::IsItemDeactivated() && m_drag.view == view.name) {
+        if (m_drag.mode == DragMode::BoxFace) {
+            if (!m_pendingBox.is_null())
+                wb.emit(m_pendingBox);
+        } else if (m_drag.mode != DragMode::None && !(m_drag.current == m_drag.start)) {
+            core::Json cmd = cameraJson(m_drag.current);
+            cmd["op"] = "camera.set";
+            cmd["view"] = view.name;
+            wb.emit(cmd);
+        }
+        m_pendingBox = nullptr;
+        m_drag = Drag{};
+    }
+    if (hovered && m_hoverFace >= 0 && m_drag.mode == DragMode::None)
+        ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+    if (m_drag.mode == DragMode::BoxFace)
+        wb.activeBoxFace = m_drag.face;
+    else if (hovered)
+        wb.activeBoxFace = m_hoverFace;
+
+    // Wheel zoom: previewed; one camera.set once the wheel has rested.
+    if (hovered && io.MouseWheel != 0 && d.frame) {
+        if (!m_wheel || m_wheel->view != view.name)
+            m_wheel = Wheel{view.name, d.camera, 0};
+        zoom(m_wheel->camera, std::pow(1.15, io.MouseWheel));
+        m_wheel->lastTime = wb.now();
+    }
+    if (m_wheel && m_wheel->view == view.name) {
+        core::Json cmd = cameraJson(m_wheel->camera);
+        cmd["op"] = "camera.set";
+        cmd["view"] = view.name;
+        if (wb.now() - m_wheel->lastTime > 0.4) {
+            wb.emit(cmd);
+            m_wheel.reset();
+        } else {
+            wb.preview("viewport.wheel", cmd);
+        }
+    }
+}
+
+void ViewportCells::drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
+                                 ImVec2 pos, ImVec2 size) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float scale = wb.scale();
+    const double aspect = size.x / std::max(1.0f, size.y);
+    const glm::dmat4 vp = projectionMatrix(cam, aspect, sceneRadius(d)) * viewMatrix(cam);
+    auto px = [&](const glm::dvec3& p) -> std::optional<ImVec2> {
+        auto q = projectToPixels(vp, p, glm::dvec2(size.x, size.y));
+        if (!q)
+            return std::nullopt;
+        return ImVec2(pos.x + static_cast<float>(q->x), pos.y + static_cast<float>(q->y));
+    };
+    auto boxEdges = [&](const std::array<double, 3>& mn, const std::array<double, 3>& mx, ImU32 color, float thickness) {
+        glm::dvec3 corner[8];
+        for (int k = 0; k < 8; ++k)
+            corner[k] = glm::dvec3(k & 1 ? mx[0] : mn[0], k & 2 ? mx[1] : mn[1], k & 4 ? mx[2] : mn[2]);
+        for (int a = 0; a < 8; ++a)
+            for (int bit = 1; bit < 8; bit <<= 1)
+                if (!(a & bit)) {
+                    auto p = px(corner[a]), q = px(corner[a | bit]);
+                    if (p && q)
+                        dl->AddLine(*p, *q, color, thickness);
+                }
+    };
+    const bool placeholder = !wb.renderer();
+    if (d.frame && placeholder) {
+        const ModelBounds& b = d.bounds;
+        boxEdges(b.lo, b.hi, IM_COL32(150, 156, 168, 255), 1.0f * scale);
+    }
+    // Boxes and handles, unless the renderer draws them into the image.
+    const bool drawBoxes = !wb.renderer() || !wb.renderer()->drawsBoxes();
+    for (const auto& b : wb.displayBoxes()) {
+        if (!drawBoxes)
+            break;
+        if (!b.enabled && b.name != wb.selectedBox)
+            continue;
+        const bool sel = b.name == wb.selectedBox;
+        const ImU32 col = b.mode == core::BoxMode::Keep ? IM_COL32(40, 140, 70, sel ? 255 : 170) : IM_COL32(200, 70, 40, sel ? 255 : 170);
+        boxEdges(b.min, b.max, col, (sel ? 2.0f : 1.2f) * scale);
+        if (sel && wb.editBoxInViewport)
+            for (int f = 0; f < 6; ++f)
+                if (auto p = px(faceCentre(b.min, b.max, f))) {
+                    const bool lit = (m_hoverFace == f && m_hoverView == view.name) || (m_drag.mode == DragMode::BoxFace && m_drag.face == f);
+                    dl->AddCircleFilled(*p, (lit ? 7.0f : 5.5f) * scale, lit ? IM_COL32(255, 170, 40, 255) : IM_COL32(255, 255, 255, 255));
+                    dl->AddCircle(*p, (lit ? 7.0f : 5.5f) * scale, col, 16, 1.5f * scale);
+                }
+    }
+    // Axes: east, north, up, in the lower left corner.
+    const CameraBasis basis = cameraBasis(cam);
+    const ImVec2 o(pos.x + 38 * scale, pos.y + size.y - 38 * scale);
+    const struct {
+        glm::dvec3 dir;
+        const char* label;
+        ImU32 color;
+    } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)}, {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)}, {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
+    for (const auto& a : axes) {
+        const ImVec2 e(o.x + static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * scale,
+                       o.y - static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * scale);
+        dl->AddLine(o, e, a.color, 2.0f * scale);
+        dl->AddText(ImVec2(e.x + 2 * scale, e.y - 7 * scale), a.color, a.label);
+    }
+    // Frame label, top left; loading state.
+    if (auto ds = wb.dataset(); ds && d.frame) {
+        char text[128];
+        std::snprintf(text, sizeof text, "frame %zu   timestep %lld", d.shownFrame, static_cast<long long>(ds->location(d.shownFrame).timestep));
+        dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), IM_COL32(60, 64, 72, 255), text);
+        if (d.loading()) {
+            std::snprintf(text, sizeof text, "loading frame %zu...", d.wantedFrame);
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeightWithSpacing()), IM_COL32(190, 110, 20, 255), text);
+        }
+    }
+}
+
+} // namespace faultline::ui

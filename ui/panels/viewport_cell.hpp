@@ -1,0 +1,57 @@
+// One view of the Viewports panel: its header (frame binding, colour, camera link) and its
+// image with mouse interaction (orbit, pan, zoom, dragging the selected box's faces) and the
+// overlays drawn over the renderer's image (box outlines, handles, axes, frame label).
+#pragma once
+
+#include "ui/workbench/workbench.hpp"
+
+#include <imgui.h>
+
+#include <optional>
+#include <string>
+
+namespace faultline::ui {
+
+class ViewportCells {
+  public:
+    void draw(Workbench& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size);
+    // Camera commands for every view at once (one undo step): linked views follow the main one.
+    void presetAll(Workbench& wb, const char* preset);
+    void fitAll(Workbench& wb);
+    void setOrthographic(Workbench& wb, bool ortho);
+
+  private:
+    void drawHeader(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
+    void drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d);
+    void drawFramePopup(Workbench& wb, const core::ViewState& view);
+    void interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
+    void drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
+                      ImVec2 pos, ImVec2 size);
+    void emitForViews(Workbench& wb, const std::function<void(core::Json&)>& fill);
+
+    enum class DragMode { None, Orbit, Pan, BoxFace };
+    struct Drag {
+        DragMode mode = DragMode::None;
+        std::string view;
+        core::CameraState start;
+        ImVec2 startMouse;
+        int face = -1;
+        std::array<double, 3> boxMin{}, boxMax{};
+        core::CameraState current;
+    };
+    Drag m_drag;
+    struct Wheel {
+        std::string view;
+        core::CameraState camera;
+        double lastTime = 0;
+    };
+    std::optional<Wheel> m_wheel;
+    core::Json m_pendingBox;
+    int m_hoverFace = -1;
+    std::string m_hoverView;
+    int m_frameEdit = 0;
+    bool m_frameRelative = true;
+    double m_rangeEdit[2] = {0, 1};
+};
+
+} // namespace faultline::ui

@@ -1,0 +1,96 @@
+// Viewports panel: the session's views side by side (up to four), each with its own frame
+// binding (the current frame plus an offset, or a fixed frame) and colour variable, cameras
+// linked or independent. Camera drags and box-handle drags preview live and emit one command
+// when released; the 3-D image comes from the ViewRenderer (viewport_interaction.cpp).
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/panels/viewport_cell.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace faultline::ui {
+
+namespace {
+
+std::string uniqueViewName(const core::SessionState& s) {
+    for (int k = 2;; ++k) {
+        std::string n = "view " + std::to_string(k);
+        if (!s.view(n))
+            return n;
+    }
+}
+
+class ViewportsPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kViewports; }
+    const char* title() const override { return "Viewports"; }
+    bool padded() const override { return false; }
+
+    void draw(Workbench& wb) override {
+        const core::SessionState& s = wb.state();
+        const float scale = wb.scale();
+        // Toolbar.
+        ImGui::SetCursorPos(ImVec2(6 * scale, 4 * scale));
+        ImGui::BeginDisabled(s.views.size() >= 4);
+        if (ImGui::Button("Add view")) {
+            core::Json cmd = {{"op", "view.add"}, {"name", uniqueViewName(s)}};
+            const long long count = wb.dataset() ? static_cast<long long>(wb.dataset()->frameCount()) : 1;
+            cmd["offset"] = -std::min<long long>(10, count - 1); // compare with an earlier moment
+            wb.emit(cmd);
+        }
+        wb.mark("viewports.add");
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("Another view side by side (up to four), e.g. ten frames earlier");
+        ImGui::SameLine();
+        ImGui::TextDisabled("|");
+        ImGui::SameLine();
+        for (const char* preset : {"top", "front", "side", "iso"}) {
+            char label[16];
+            std::snprintf(label, sizeof label, "%c%s", preset[0] - 32, preset + 1);
+            if (ImGui::Button(label))
+                m_cells.presetAll(wb, preset);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s", std::string(preset) == "top"     ? "Map view: from above, north up"
+                                        : std::string(preset) == "front" ? "From the south, looking north"
+                                        : std::string(preset) == "side"  ? "From the east, looking west"
+                                                                         : "Oblique, from the south-south-west");
+            ImGui::SameLine();
+        }
+        if (ImGui::Button("Fit"))
+            m_cells.fitAll(wb);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Fit the model in the views (F)");
+        ImGui::SameLine();
+        const core::ViewState* main = s.view("main");
+        bool ortho = main && main->camera.orthographic;
+        if (ImGui::Checkbox("Orthographic", &ortho))
+            m_cells.setOrthographic(wb, ortho);
+
+        // Cells: one to three side by side, four as two by two.
+        const ImVec2 origin = ImGui::GetCursorScreenPos();
+        const ImVec2 avail = ImGui::GetContentRegionAvail();
+        const std::size_t n = std::max<std::size_t>(1, s.views.size());
+        const int cols = n <= 3 ? static_cast<int>(n) : 2;
+        const int rows = n <= 3 ? 1 : 2;
+        const float gap = std::round(3 * scale);
+        const float cw = (avail.x - gap * static_cast<float>(cols - 1)) / static_cast<float>(cols);
+        const float ch = (avail.y - gap * static_cast<float>(rows - 1)) / static_cast<float>(rows);
+        for (std::size_t k = 0; k < s.views.size(); ++k) {
+            const int c = static_cast<int>(k) % cols, r = static_cast<int>(k) / cols;
+            const ImVec2 a(origin.x + static_cast<float>(c) * (cw + gap), origin.y + static_cast<float>(r) * (ch + gap));
+            m_cells.draw(wb, s.views[k], a, ImVec2(cw, ch));
+        }
+    }
+
+  private:
+    ViewportCells m_cells;
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeViewportsPanel() { return std::make_unique<ViewportsPanel>(); }
+
+} // namespace faultline::ui

@@ -1,0 +1,151 @@
+#include "ui/render/gl_resources.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+namespace faultline::ui::gl {
+
+void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+void deleteProgram(GLuint id) { glDeleteProgram(id); }
+
+Buffer makeBuffer() {
+    GLuint id = 0;
+    glGenBuffers(1, &id);
+    return Buffer(id);
+}
+Texture makeTexture() {
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    return Texture(id);
+}
+Framebuffer makeFramebuffer() {
+    GLuint id = 0;
+    glGenFramebuffers(1, &id);
+    return Framebuffer(id);
+}
+VertexArray makeVertexArray() {
+    GLuint id = 0;
+    glGenVertexArrays(1, &id);
+    return VertexArray(id);
+}
+
+namespace {
+
+GLuint compile(const std::string &name, GLenum stage, const std::string &source) {
+    const GLuint shader = glCreateShader(stage);
+    const char *text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        std::vector<char> log(static_cast<std::size_t>(length) + 1, '\0');
+        glGetShaderInfoLog(shader, length, nullptr, log.data());
+        glDeleteShader(shader);
+        throw std::runtime_error("shader '" + name + "' (" +
+                                 (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
+                                 ") does not compile: " + log.data());
+    }
+    return shader;
+}
+
+} // namespace
+
+Program makeProgram(const std::string &name, const std::string &vertexSource,
+                    const std::string &fragmentSource) {
+    const GLuint vs = compile(name, GL_VERTEX_SHADER, vertexSource);
+    GLuint fs = 0;
+    try {
+        fs = compile(name, GL_FRAGMENT_SHADER, fragmentSource);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    Program program(glCreateProgram());
+    glAttachShader(program.id(), vs);
+    glAttachShader(program.id(), fs);
+    glLinkProgram(program.id());
+    glDetachShader(program.id(), vs);
+    glDetachShader(program.id(), fs);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::vector<char> log(static_cast<std::size_t>(length) + 1, '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw std::runtime_error("shader '" + name + "' does not link: " + log.data());
+    }
+    return program;
+}
+
+void BufferTexture::upload(const void *data, std::size_t bytes, GLenum internalFormat) {
+    if (!m_buffer) {
+        m_buffer = makeBuffer();
+        m_texture = makeTexture();
+    }
+    // Fresh storage each time (the driver need not wait for draws still reading the old data);
+    // a zero-sized buffer texture is not allowed, so keep at least 16 bytes.
+    const std::size_t size = std::max<std::size_t>(bytes, 16);
+    glBindBuffer(GL_TEXTURE_BUFFER, m_buffer.id());
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(size), nullptr, GL_DYNAMIC_DRAW);
+    if (bytes)
+        glBufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_BUFFER, m_texture.id());
+    glTexBuffer(GL_TEXTURE_BUFFER, internalFormat, m_buffer.id());
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    m_size = bytes;
+}
+
+void BufferTexture::bind(GLuint unit) const {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_BUFFER, m_texture.id());
+}
+
+void RenderTexture::ensure(int width, int height, bool withDepth) {
+    if (m_fbo && width == m_width && height == m_height && withDepth == m_withDepth)
+        return;
+    m_fbo = makeFramebuffer();
+    m_color = makeTexture();
+    m_depth.reset();
+    m_width = width;
+    m_height = height;
+    m_withDepth = withDepth;
+    glBindTexture(GL_TEXTURE_2D, m_color.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_color.id(), 0);
+    if (withDepth) {
+        m_depth = makeTexture();
+        glBindTexture(GL_TEXTURE_2D, m_depth.id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT,
+                     GL_FLOAT, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_depth.id(), 0);
+    }
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("cannot make a " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " render target (status " +
+                                 std::to_string(status) + ")");
+}
+
+} // namespace faultline::ui::gl

@@ -1,0 +1,99 @@
+// Owning handles for OpenGL objects (move-only, deleted with their owner) and shader programs
+// compiled from source with the driver's log in the error. Needs a current context.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <string>
+#include <utility>
+
+namespace faultline::ui::gl {
+
+// One GL name and the function that deletes it.
+template <void (*Delete)(GLuint)> class Handle {
+  public:
+    Handle() = default;
+    explicit Handle(GLuint id) : m_id(id) {}
+    Handle(Handle &&o) noexcept : m_id(std::exchange(o.m_id, 0)) {}
+    Handle &operator=(Handle &&o) noexcept {
+        if (this != &o) {
+            reset();
+            m_id = std::exchange(o.m_id, 0);
+        }
+        return *this;
+    }
+    Handle(const Handle &) = delete;
+    Handle &operator=(const Handle &) = delete;
+    ~Handle() { reset(); }
+    GLuint id() const { return m_id; }
+    explicit operator bool() const { return m_id != 0; }
+    void reset() {
+        if (m_id)
+            Delete(m_id);
+        m_id = 0;
+    }
+
+  private:
+    GLuint m_id = 0;
+};
+
+void deleteBuffer(GLuint id);
+void deleteTexture(GLuint id);
+void deleteFramebuffer(GLuint id);
+void deleteVertexArray(GLuint id);
+void deleteProgram(GLuint id);
+
+using Buffer = Handle<deleteBuffer>;
+using Texture = Handle<deleteTexture>;
+using Framebuffer = Handle<deleteFramebuffer>;
+using VertexArray = Handle<deleteVertexArray>;
+using Program = Handle<deleteProgram>;
+
+Buffer makeBuffer();
+Texture makeTexture();
+Framebuffer makeFramebuffer();
+VertexArray makeVertexArray();
+
+// Compiles and links; throws std::runtime_error with `name`, the stage and the driver's log.
+Program makeProgram(const std::string &name, const std::string &vertexSource,
+                    const std::string &fragmentSource);
+
+// A buffer exposed to shaders as a buffer texture (samplerBuffer / usamplerBuffer), for vertex
+// pulling.
+class BufferTexture {
+  public:
+    void upload(const void *data, std::size_t bytes, GLenum internalFormat);
+    void bind(GLuint unit) const;
+    bool empty() const { return !m_texture; }
+    std::size_t size() const { return m_size; } // bytes of the last upload
+
+  private:
+    Buffer m_buffer;
+    Texture m_texture;
+    std::size_t m_size = 0;
+};
+
+// A framebuffer with an RGBA8 colour texture and optionally a 32-bit float depth texture.
+class RenderTexture {
+  public:
+    void ensure(int width, int height, bool withDepth);
+    GLuint framebuffer() const { return m_fbo.id(); }
+    GLuint color() const { return m_color.id(); }
+    GLuint depth() const { return m_depth.id(); }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+  private:
+    Framebuffer m_fbo;
+    Texture m_color;
+    Texture m_depth;
+    int m_width = 0, m_height = 0;
+    bool m_withDepth = false;
+};
+
+// Uniform location by name, cached per program by the caller if it matters; -1 when unused.
+inline GLint uniform(const Program &p, const char *name) {
+    return glGetUniformLocation(p.id(), name);
+}
+
+} // namespace faultline::ui::gl

@@ -1,0 +1,13 @@
+// Small drawing helpers shared by panels: a titled separator, a muted hint with a tooltip.
+#pragma once
+
+#include <string>
+
+namespace faultline::ui {
+
+// "Title ------" across the panel (Dear ImGui 1.86 has no SeparatorText).
+void sectionHeader(const std::string& title);
+// A "(?)" that shows `text` when hovered.
+void helpMarker(const char* text);
+
+} // namespace faultline::ui

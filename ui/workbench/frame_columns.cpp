@@ -1,0 +1,99 @@
+#include "ui/workbench/frame_columns.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace faultline::ui {
+
+std::vector<std::string> variableNames(const core::Frame& frame) {
+    std::vector<std::string> out = frame.attributeNames();
+    for (const char* b : {"x", "y", "z", "radius"})
+        if (std::find(out.begin(), out.end(), b) == out.end())
+            out.emplace_back(b);
+    return out;
+}
+
+std::optional<VariableInfo> variableInfo(const core::Frame& frame, const std::string& name) {
+    if (const core::AttributeColumn* c = frame.attribute(name))
+        return VariableInfo{c->min, c->max, c->isInteger()};
+    const std::vector<float>* v = nullptr;
+    if (name == "x")
+        return VariableInfo{frame.centreMin()[0], frame.centreMax()[0], false};
+    if (name == "y")
+        return VariableInfo{frame.centreMin()[1], frame.centreMax()[1], false};
+    if (name == "z")
+        return VariableInfo{frame.centreMin()[2], frame.centreMax()[2], false};
+    if (name == "radius")
+        v = &frame.radius;
+    if (!v)
+        return std::nullopt;
+    VariableInfo info{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), false};
+    for (float f : *v)
+        if (std::isfinite(f))
+            info.min = std::min<double>(info.min, f), info.max = std::max<double>(info.max, f);
+    return info;
+}
+
+const ColumnCatalog::Entries& ColumnCatalog::of(const std::shared_ptr<const core::Frame>& frame) {
+    static const Entries kNone;
+    if (!frame)
+        return kNone;
+    for (auto& [f, entries] : m_recent)
+        if (f == frame)
+            return entries;
+    Entries entries;
+    for (const std::string& name : variableNames(*frame))
+        if (auto info = variableInfo(*frame, name))
+            entries.emplace_back(name, *info);
+    if (m_recent.size() >= 3)
+        m_recent.erase(m_recent.begin());
+    m_recent.emplace_back(frame, std::move(entries));
+    return m_recent.back().second;
+}
+
+std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core::Frame>& frame, const std::string& name) {
+    for (const auto& [n, info] : of(frame))
+        if (n == name)
+            return info;
+    return std::nullopt;
+}
+
+ModelBounds modelBounds(const core::Frame& frame) {
+    ModelBounds b;
+    if (frame.size() == 0)
+        return b;
+    double r = 0;
+    for (float f : frame.radius)
+        if (std::isfinite(f))
+            r = std::max<double>(r, f);
+    for (int a = 0; a < 3; ++a) {
+        b.lo[a] = frame.centreMin()[a] - r;
+        b.hi[a] = frame.centreMax()[a] + r;
+    }
+    return b;
+}
+
+std::string bytesText(std::size_t bytes) {
+    char buf[32];
+    if (bytes >= (std::size_t(1) << 30))
+        std::snprintf(buf, sizeof buf, "%.2f GB", bytes / double(std::size_t(1) << 30));
+    else if (bytes >= (std::size_t(1) << 20))
+        std::snprintf(buf, sizeof buf, "%.1f MB", bytes / double(std::size_t(1) << 20));
+    else
+        std::snprintf(buf, sizeof buf, "%.0f KB", bytes / 1024.0);
+    return buf;
+}
+
+std::string numberText(double v) {
+    if (!std::isfinite(v))
+        return v > 0 ? "inf" : v < 0 ? "-inf" : "nan";
+    if (std::fabs(v) >= 1e30)
+        return v > 0 ? "max" : "min";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+} // namespace faultline::ui

@@ -1,0 +1,83 @@
+#include "ui/workbench/frame_store.hpp"
+
+#include <chrono>
+
+namespace faultline::ui {
+
+FrameStore::~FrameStore() { m_prefetcher.reset(); }
+
+void FrameStore::setDataset(std::shared_ptr<core::Dataset> dataset) {
+    if (dataset == m_dataset)
+        return;
+    m_prefetcher.reset(); // waits for its running loads
+    m_dataset = std::move(dataset);
+    m_waitingFor.reset();
+    m_error.clear();
+    if (!m_dataset)
+        return;
+    core::PrefetchSettings settings;
+    settings.loop = m_loop;
+    m_prefetcher = std::make_unique<core::FramePrefetcher>(m_dataset, settings);
+    auto wake = m_wake;
+    m_prefetcher->setOnLoaded([wake](std::size_t) {
+        if (*wake)
+            (*wake)();
+    });
+}
+
+void FrameStore::setLoop(bool loop) {
+    if (loop == m_loop)
+        return;
+    m_loop = loop;
+    if (m_prefetcher)
+        m_prefetcher->setLoop(loop);
+}
+
+void FrameStore::setWakeUp(std::function<void()> wake) { *m_wake = std::move(wake); }
+
+std::shared_ptr<const core::Frame> FrameStore::request(std::size_t index, std::size_t channel) {
+    if (!m_prefetcher || index >= m_dataset->frameCount())
+        return nullptr;
+    core::FrameRequestResult r = m_prefetcher->request(index, channel);
+    switch (r.status) {
+    case core::FrameStatus::Ready:
+        if (m_waitingFor == index) {
+            m_waitingFor.reset();
+            m_error.clear();
+        }
+        return r.frame;
+    case core::FrameStatus::Failed:
+        m_error = "frame " + std::to_string(index) + ": " + r.error;
+        if (m_waitingFor == index)
+            m_waitingFor.reset();
+        return nullptr;
+    case core::FrameStatus::Loading:
+        m_waitingFor = index;
+        return nullptr;
+    }
+    return nullptr;
+}
+
+bool FrameStore::isLoaded(std::size_t index) const {
+    return m_dataset && index < m_dataset->frameCount() && m_dataset->isCached(index);
+}
+
+void FrameStore::forgetChannel(std::size_t channel) {
+    if (m_prefetcher)
+        m_prefetcher->forgetChannel(channel);
+}
+
+std::optional<std::size_t> FrameStore::loading() const {
+    if (m_waitingFor && !isLoaded(*m_waitingFor))
+        return m_waitingFor;
+    return std::nullopt;
+}
+
+std::string FrameStore::lastError() const { return m_error; }
+
+void FrameStore::waitIdle() {
+    if (m_prefetcher)
+        m_prefetcher->waitIdle(std::chrono::minutes(2));
+}
+
+} // namespace faultline::ui

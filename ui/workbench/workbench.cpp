@@ -1,0 +1,520 @@
+#include "ui/workbench/workbench.hpp"
+
+#include "core/io/input_error.hpp"
+#include "core/selection/visibility.hpp"
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/viewport/orbit_camera.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <functional>
+
+namespace faultline::ui {
+
+namespace fs = std::filesystem;
+using core::Json;
+
+namespace {
+
+std::string timestampForFile() {
+    const std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
+    return buf;
+}
+
+// Applies a previewed command's fields to a copy of the selection it changes.
+void applySelectionPreview(const Json& cmd, std::vector<core::CuttingBox>& boxes,
+                           std::vector<core::VariableThreshold>& thresholds) {
+    const std::string op = cmd.value("op", "");
+    auto vec3 = [](const Json& j, std::array<double, 3>& out) {
+        if (j.is_array() && j.size() == 3)
+            for (int k = 0; k < 3; ++k)
+                if (j[k].is_number())
+                    out[k] = j[k].get<double>();
+    };
+    if (op == "box.set") {
+        for (auto& b : boxes)
+            if (b.name == cmd.value("name", "")) {
+                if (cmd.contains("min"))
+                    vec3(cmd["min"], b.min);
+                if (cmd.contains("max"))
+                    vec3(cmd["max"], b.max);
+                if (cmd.contains("enabled") && cmd["enabled"].is_boolean())
+                    b.enabled = cmd["enabled"].get<bool>();
+            }
+    } else if (op == "threshold.set" || op == "threshold.add") {
+        const std::string var = cmd.value("variable", "");
+        auto it = std::find_if(thresholds.begin(), thresholds.end(), [&](auto& t) { return t.variable == var; });
+        if (it == thresholds.end()) {
+            if (op != "threshold.add")
+                return;
+            thresholds.push_back({var, -1e30, 1e30, true});
+            it = thresholds.end() - 1;
+        }
+        if (cmd.contains("low") && cmd["low"].is_number())
+            it->low = cmd["low"].get<double>();
+        if (cmd.contains("high") && cmd["high"].is_number())
+            it->high = cmd["high"].get<double>();
+        if (cmd.contains("enabled") && cmd["enabled"].is_boolean())
+            it->enabled = cmd["enabled"].get<bool>();
+    }
+}
+
+void applyCameraPreview(const Json& cmd, core::CameraState& c) {
+    if (cmd.contains("target") && cmd["target"].is_array() && cmd["target"].size() == 3)
+        for (int k = 0; k < 3; ++k)
+            c.target[k] = cmd["target"][k].get<double>();
+    c.distance = cmd.value("distance", c.distance);
+    c.azimuth = cmd.value("azimuth", c.azimuth);
+    c.elevation = cmd.value("elevation", c.elevation);
+    c.fovY = cmd.value("fov_y", c.fovY);
+    c.orthographic = cmd.value("orthographic", c.orthographic);
+}
+
+std::array<double, 2> widen(std::array<double, 2> r) {
+    if (!std::isfinite(r[0]) || !std::isfinite(r[1]) || r[0] > r[1])
+        return {0, 1};
+    if (r[0] == r[1])
+        return {r[0] - 0.5, r[1] + 0.5};
+    return r;
+}
+
+} // namespace
+
+Workbench::Workbench(core::Session& session, WorkbenchOptions options)
+    : m_session(session), m_options(std::move(options)) {
+    m_layout = DockLayout::defaultLayout();
+    m_panels = createPanels();
+    m_session.setDatasetOpener([this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
+    m_frames.setDataset(m_session.dataset());
+    if (!m_options.stateDir.empty()) {
+        std::error_code ec;
+        fs::create_directories(m_options.stateDir, ec);
+        m_journalPath = (fs::path(m_options.stateDir) / ("journal-" + timestampForFile() + ".jsonl")).string();
+        m_journal.open(m_journalPath, std::ios::app);
+        if (m_journal) {
+            m_journal << "// faultline workbench journal; run again with: faultline replay " << m_journalPath << "\n";
+            m_journal.flush();
+            m_session.setJournalSink([this](const Json& cmd) {
+                m_journal << cmd.dump() << "\n";
+                m_journal.flush();
+            });
+        } else {
+            m_journalPath.clear();
+        }
+    }
+    loadSettings();
+}
+
+Workbench::~Workbench() {
+    m_jobs.waitAll();
+    m_session.setJournalSink(nullptr);
+    m_session.setDatasetOpener(nullptr);
+}
+
+void Workbench::emit(Json command, std::function<void()> onApplied) {
+    m_emittedLog.push_back(command);
+    m_pending.emplace_back(std::move(command), std::move(onApplied));
+}
+
+void Workbench::preview(const std::string& key, Json command) { m_previews[key] = std::move(command); }
+
+void Workbench::info(std::string text) {
+    m_message = std::move(text);
+    m_messageIsError = false;
+    m_messageTime = m_now;
+}
+
+void Workbench::error(std::string text) {
+    m_message = std::move(text);
+    m_messageIsError = true;
+    m_messageTime = m_now;
+}
+
+const ViewDisplay* Workbench::view(const std::string& name) const {
+    for (const auto& v : m_views)
+        if (v.name == name)
+            return &v;
+    return nullptr;
+}
+
+std::shared_ptr<core::Dataset> Workbench::openDatasetCached(const std::vector<std::string>& paths) {
+    for (auto it = m_datasets.begin(); it != m_datasets.end(); ++it)
+        if (it->first == paths) {
+            auto ds = it->second;
+            std::rotate(m_datasets.begin(), it, it + 1); // most recent first
+            return ds;
+        }
+    auto ds = core::Dataset::open(paths); // not prepared in the background: e.g. a replayed undo
+    m_datasets.insert(m_datasets.begin(), {paths, ds});
+    if (m_datasets.size() > 3)
+        m_datasets.pop_back();
+    return ds;
+}
+
+std::size_t Workbench::displayFrame() const {
+    for (const auto& [key, cmd] : m_previews)
+        if (cmd.value("op", "") == "frame.set" && cmd.contains("frame") && cmd["frame"].is_number_integer())
+            return static_cast<std::size_t>(std::max<long long>(0, cmd["frame"].get<long long>()));
+    if (m_playback.frame)
+        return *m_playback.frame;
+    return state().frame;
+}
+
+void Workbench::commitLayout() {
+    Json doc = m_layout.toJson();
+    if (doc != state().dockLayout)
+        emit({{"op", "layout.set"}, {"layout", doc}});
+}
+
+void Workbench::frame(double now) {
+    m_now = now;
+    m_emittedLog.clear();
+    m_previews.clear();
+    activeBoxFace = -1;
+    m_jobs.poll();
+    syncWithSession();
+    updatePlayback();
+    handleShortcuts();
+
+    const ImGuiIO& io = ImGui::GetIO();
+    drawMenus();
+    const float menuHeight = ImGui::GetFrameHeight();
+    const float statusHeight = std::round(ImGui::GetFrameHeight() + 8 * m_scale);
+    drawDock(menuHeight, io.DisplaySize.y - statusHeight);
+    drawStatusBar(statusHeight);
+    handleDialog();
+    drawHelp();
+
+    applyPending();
+    syncWithSession();
+    updateDisplay();
+    autosave(false);
+    m_items.endFrame();
+}
+
+void Workbench::drawDock(float top, float bottom) {
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(0, top));
+    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x, std::max(1.0f, bottom - top)));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0);
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(208, 213, 220, 255)); // the gaps between areas
+    ImGui::Begin("##dockhost", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
+                     ImGuiWindowFlags_NoNavFocus);
+    ImGui::PopStyleColor();
+    ImGui::PopStyleVar(3);
+    DockSpace::Callbacks cb;
+    cb.titleOf = [this](const std::string& id) -> const char* {
+        for (auto& p : m_panels)
+            if (id == p->id())
+                return p->title();
+        return "?";
+    };
+    cb.padded = [this](const std::string& id) {
+        for (auto& p : m_panels)
+            if (id == p->id())
+                return p->padded();
+        return true;
+    };
+    cb.drawPanel = [this](const std::string& id) {
+        for (auto& p : m_panels)
+            if (id == p->id())
+                p->draw(*this);
+    };
+    const float gap = std::round(3 * m_scale);
+    if (m_dock.draw(m_layout, ImVec2(gap, top + gap), ImVec2(io.DisplaySize.x - 2 * gap, bottom - top - 2 * gap), m_scale, cb, &m_items))
+        commitLayout();
+    ImGui::End();
+}
+
+void Workbench::applyPending() {
+    auto pending = std::move(m_pending);
+    m_pending.clear();
+    for (const auto& [cmd, onApplied] : pending) {
+        try {
+            m_session.apply(cmd);
+            if (onApplied)
+                onApplied();
+            const std::string op = cmd.value("op", "");
+            if (op == "session.save")
+                info("Saved the session to " + cmd.value("path", ""));
+            else if (op == "export.csv")
+                info("Exported " + cmd.value("path", ""));
+        } catch (const core::CommandError& e) {
+            error(e.what());
+        } catch (const core::InputError& e) {
+            error(e.what());
+        } catch (const std::exception& e) {
+            error(std::string(cmd.value("op", "command")) + ": " + e.what());
+        }
+    }
+}
+
+void Workbench::syncWithSession() {
+    if (m_session.dataset() != m_frames.dataset()) {
+        m_frames.setDataset(m_session.dataset());
+        m_views.clear();
+        m_visibilityCache.clear();
+        m_allFramesRange.clear();
+        Playback fresh;
+        fresh.fps = m_playback.fps;
+        fresh.loop = m_playback.loop;
+        m_playback = fresh;
+    }
+    if (state().dockLayout != m_adoptedLayout) {
+        m_adoptedLayout = state().dockLayout;
+        const bool empty = m_adoptedLayout.is_null() || (m_adoptedLayout.is_object() && m_adoptedLayout.empty());
+        std::string why;
+        if (empty)
+            m_layout = DockLayout::defaultLayout();
+        else if (auto l = DockLayout::fromJson(m_adoptedLayout, panel_ids::all(), &why))
+            m_layout = *l;
+        else {
+            m_layout = DockLayout::defaultLayout();
+            error("The session's panel layout was not usable (" + why + "); using the default layout");
+        }
+    }
+    if (!selectedBox.empty() && !state().box(selectedBox))
+        selectedBox.clear();
+    std::erase_if(selectedFaults, [&](const std::string& f) { return !state().fault(f); });
+    if (m_renderer)
+        for (const auto& v : m_views)
+            if (!state().view(v.name))
+                m_renderer->forget(v.name);
+}
+
+void Workbench::play() {
+    auto ds = dataset();
+    if (!ds || ds->frameCount() < 2)
+        return;
+    std::size_t f = displayFrame();
+    if (f + 1 >= ds->frameCount() && m_playback.direction > 0)
+        f = 0;
+    m_playback.playing = true;
+    m_playback.frame = f;
+    m_playback.lastStep = m_now;
+}
+
+void Workbench::pause() {
+    m_playback.playing = false;
+    if (m_playback.frame && *m_playback.frame != state().frame)
+        emit({{"op", "frame.set"}, {"frame", *m_playback.frame}});
+    m_playback.frame.reset();
+}
+
+void Workbench::stepFrames(long long delta) {
+    auto ds = dataset();
+    if (!ds)
+        return;
+    const long long n = static_cast<long long>(ds->frameCount());
+    long long f = static_cast<long long>(displayFrame()) + delta;
+    if (m_playback.loop)
+        f = ((f % n) + n) % n;
+    else
+        f = std::clamp(f, 0LL, n - 1);
+    if (m_playback.playing) {
+        m_playback.frame = static_cast<std::size_t>(f);
+        return;
+    }
+    m_playback.frame.reset();
+    if (static_cast<std::size_t>(f) != state().frame)
+        emit({{"op", "frame.set"}, {"frame", f}});
+}
+
+void Workbench::jumpToFrame(long long frame) {
+    auto ds = dataset();
+    if (!ds)
+        return;
+    const long long f = std::clamp(frame, 0LL, static_cast<long long>(ds->frameCount()) - 1);
+    if (m_playback.playing) {
+        m_playback.frame = static_cast<std::size_t>(f);
+        return;
+    }
+    if (static_cast<std::size_t>(f) != state().frame)
+        emit({{"op", "frame.set"}, {"frame", f}});
+}
+
+void Workbench::updatePlayback() {
+    auto ds = dataset();
+    m_frames.setLoop(m_playback.loop);
+    if (!m_playback.playing || !ds || !m_playback.frame)
+        return;
+    const std::size_t n = ds->frameCount();
+    const std::size_t cur = *m_playback.frame;
+    // The prefetcher reads ahead in each view's direction of travel.
+    if (m_now - m_playback.lastStep < 1.0 / std::max(m_playback.fps, 0.1))
+        return;
+    // The shown frame must have arrived before moving on: the old frame stays until then.
+    const ViewDisplay* main = mainDisplay();
+    if (main && main->loading())
+        return;
+    long long next = static_cast<long long>(cur) + m_playback.direction;
+    if (next < 0 || next >= static_cast<long long>(n)) {
+        if (!m_playback.loop) {
+            pause();
+            return;
+        }
+        next = m_playback.direction > 0 ? 0 : static_cast<long long>(n) - 1;
+    }
+    m_playback.frame = static_cast<std::size_t>(next);
+    m_playback.lastStep = m_now;
+}
+
+void Workbench::updateDisplay() {
+    const core::SessionState& s = state();
+    auto ds = dataset();
+
+    // The selection as shown: the session's plus any live edit, and a key for caching.
+    std::vector<core::CuttingBox> boxes = s.boxes;
+    std::vector<core::VariableThreshold> thresholds = s.thresholds;
+    std::string previewText;
+    std::map<std::string, core::CameraState> cameras;
+    for (const auto& v : s.views)
+        cameras[v.name] = v.camera;
+    for (const auto& [key, cmd] : m_previews) {
+        const std::string op = cmd.value("op", "");
+        if (op == "camera.set") {
+            const std::string name = cmd.value("view", "main");
+            const core::ViewState* src = s.view(name);
+            if (!src)
+                continue;
+            for (const auto& v : s.views)
+                if (v.name == name || (src->linkedCamera && v.linkedCamera))
+                    applyCameraPreview(cmd, cameras[v.name]);
+        } else if (op != "frame.set") {
+            applySelectionPreview(cmd, boxes, thresholds);
+            previewText += cmd.dump();
+        }
+    }
+    const std::uint64_t key = std::hash<std::string>{}(std::to_string(m_session.version()) + previewText) | 1;
+    m_displayBoxes = boxes;
+    m_displayThresholds = thresholds;
+
+    const std::size_t base = displayFrame();
+    std::vector<ViewDisplay> next;
+    std::size_t channel = 0;
+    for (const auto& v : s.views) {
+        ViewDisplay d;
+        if (const ViewDisplay* old = view(v.name))
+            d = *old;
+        d.name = v.name;
+        if (ds) {
+            const long long count = static_cast<long long>(ds->frameCount());
+            const long long want = v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
+            d.wantedFrame = static_cast<std::size_t>(std::clamp(want, 0LL, count - 1));
+            if (auto f = m_frames.request(d.wantedFrame, channel)) {
+                if (f != d.frame) { // bounds once per frame shown, not per UI frame
+                    d.bounds = modelBounds(*f);
+                    const ModelBounds& b = d.bounds;
+                    d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) + std::pow(b.hi[1] - b.lo[1], 2) +
+                                                    std::pow(b.hi[2] - b.lo[2], 2));
+                }
+                d.frame = f;
+                d.shownFrame = d.wantedFrame;
+            }
+        } else {
+            d.frame.reset();
+        }
+        d.visibility.reset();
+        if (d.frame) {
+            auto hit = std::find_if(m_visibilityCache.begin(), m_visibilityCache.end(),
+                                    [&](const VisibilityEntry& e) { return e.frame == d.frame && e.key == key; });
+            if (hit == m_visibilityCache.end()) {
+                auto rowMask = m_session.faultRowMask(*d.frame);
+                auto result = std::make_shared<core::VisibilityResult>(
+                    core::computeVisibility(*d.frame, boxes, thresholds, rowMask.get()));
+                m_visibilityCache.push_back({d.frame, key, result});
+                hit = m_visibilityCache.end() - 1;
+            }
+            d.visibility = hit->result;
+            d.visibilityKey = key ^ reinterpret_cast<std::uintptr_t>(d.frame.get());
+        }
+        // Camera: the session's (with a drag's preview); fitted to the model while unset.
+        d.camera = cameras[v.name];
+        if (d.camera.distance <= 0 && d.frame) {
+            double w = 16, h = 9;
+            if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
+                w = r->x1 - r->x0, h = r->y1 - r->y0;
+            // Leave the colour legend (drawn at the right edge, about 110 px at 720 px high)
+            // its own strip, and centre the model in the rest.
+            double legend = 0;
+            if (!v.colorVariable.empty() && m_renderer)
+                legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
+            fit(d.camera, d.bounds.lo, d.bounds.hi, (w - legend) / h);
+            const CameraBasis basis = cameraBasis(d.camera);
+            const double worldPerPixel = 2.0 * d.camera.distance * std::tan(d.camera.fovY * M_PI / 360.0) / h;
+            for (int k = 0; k < 3; ++k)
+                d.camera.target[k] += basis.right[k] * 0.5 * legend * worldPerPixel;
+        }
+        // Colour range.
+        std::array<double, 2> range{0, 1};
+        if (v.rangeMode == "fixed") {
+            range = v.range;
+        } else if (d.frame && !v.colorVariable.empty()) {
+            if (auto info = m_columns.info(d.frame, v.colorVariable)) {
+                range = {info->min, info->max};
+                auto& all = m_allFramesRange.try_emplace(v.colorVariable, range).first->second;
+                all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
+                if (v.rangeMode == "all")
+                    range = all;
+            }
+        }
+        d.colorRange = widen(range);
+        next.push_back(std::move(d));
+        ++channel;
+    }
+    m_views = std::move(next);
+    std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {
+        return std::none_of(m_views.begin(), m_views.end(),
+                            [&](const ViewDisplay& d) { return d.frame == e.frame && d.visibility == e.result; });
+    });
+}
+
+void Workbench::renderViews() {
+    if (!m_renderer)
+        return;
+    // Filled by the viewports panel: the pixel size each view was given this frame.
+    for (const ViewDisplay& d : m_views) {
+        const core::ViewState* v = state().view(d.name);
+        auto size = m_items.find("view.image." + d.name);
+        if (!v || !size)
+            continue;
+        ViewScene scene;
+        scene.view = d.name;
+        scene.frame = d.frame;
+        scene.visible = d.visibility ? &d.visibility->mask : nullptr;
+        scene.visibleKey = d.visibilityKey;
+        scene.colorVariable = v->colorVariable;
+        scene.colorMap = v->colorMap;
+        scene.colorRange = d.colorRange;
+        scene.camera = d.camera;
+        for (const auto& b : m_displayBoxes)
+            if (b.enabled || b.name == selectedBox) {
+                if (b.name == selectedBox && editBoxInViewport) {
+                    scene.selectedBox = scene.boxes.size();
+                    if (activeBoxFace >= 0)
+                        scene.activeFace = activeBoxFace;
+                }
+                scene.boxes.push_back(b);
+            }
+        const float fb = ImGui::GetIO().DisplayFramebufferScale.x;
+        scene.width = static_cast<int>((size->x1 - size->x0) * fb);
+        scene.height = static_cast<int>((size->y1 - size->y0) * fb);
+        if (scene.width > 0 && scene.height > 0)
+            m_renderer->render(scene);
+    }
+}
+
+} // namespace faultline::ui

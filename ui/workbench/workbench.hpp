@@ -1,0 +1,237 @@
+// Workbench: the whole GUI above the window: menus, the dock of panels, the status bar, and
+// the link between them and the session. Panels never change the session: they emit commands
+// (applied once the UI of a frame is built, so undo/redo and the journal cover everything) and,
+// while a drag is under way, previews that the views show at once without a command.
+#pragma once
+
+#include "core/session/session.hpp"
+#include "ui/dock/dock_layout.hpp"
+#include "ui/dock/dock_space.hpp"
+#include "ui/widgets/file_dialog.hpp"
+#include "ui/workbench/frame_store.hpp"
+#include "ui/workbench/item_registry.hpp"
+#include "ui/workbench/jobs.hpp"
+#include "ui/viewport/view_renderer.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace faultline::ui {
+
+class Workbench;
+
+class Panel {
+  public:
+    virtual ~Panel() = default;
+    virtual const char* id() const = 0;
+    virtual const char* title() const = 0;
+    virtual void draw(Workbench& wb) = 0;
+    virtual bool padded() const { return true; } // false: content fills the area (viewports)
+};
+
+// Where later features plug into existing panels without editing them (the fault analysis
+// adds per-fault metric columns and a candidates section to the Faults panel).
+struct PanelExtensions {
+    struct Section {
+        std::string title;
+        std::function<void(Workbench&)> draw;
+    };
+    struct FaultColumn {
+        std::string title;
+        std::function<void(Workbench&, const core::Fault&)> cell;
+    };
+    std::vector<Section> faultSections;
+    std::vector<FaultColumn> faultColumns;
+};
+
+struct WorkbenchOptions {
+    std::string stateDir;  // autosave and the journal of this run; empty: neither is written
+    std::string configDir; // recent files; empty: not remembered
+    double autosaveSeconds = 30.0;
+};
+
+// What one view shows this frame (after previews, frame loading and camera fitting).
+struct ViewDisplay {
+    std::string name;
+    std::size_t wantedFrame = 0;
+    std::shared_ptr<const core::Frame> frame; // shown; lags wantedFrame while it loads
+    std::size_t shownFrame = 0;
+    ModelBounds bounds;     // of the shown frame (centres widened by the largest radius)
+    double sceneRadius = 1; // half the bounds' diagonal
+    std::shared_ptr<const core::VisibilityResult> visibility;
+    std::uint64_t visibilityKey = 0;
+    core::CameraState camera;       // the session's, previewed, fitted when not set yet
+    std::array<double, 2> colorRange{0, 1};
+    bool loading() const { return !frame || shownFrame != wantedFrame; }
+};
+
+// Playing and scrubbing show frames without a command per frame; pausing commits frame.set.
+struct Playback {
+    bool playing = false;
+    double fps = 5.0;
+    bool loop = true;
+    int direction = 1;
+    std::optional<std::size_t> frame; // shown instead of the session's frame
+    double lastStep = 0.0;
+};
+
+class Workbench {
+  public:
+    explicit Workbench(core::Session& session, WorkbenchOptions options = {});
+    ~Workbench();
+    Workbench(const Workbench&) = delete;
+    Workbench& operator=(const Workbench&) = delete;
+
+    // Builds one frame of UI (between ImGui::NewFrame and ImGui::Render), applies the commands
+    // it emitted and updates what the views show. `now` in seconds.
+    void frame(double now);
+    // Draws every view into its texture (after frame(), before ImGui::Render).
+    void renderViews();
+
+    // ---- for panels ----
+    core::Session& session() { return m_session; }
+    const core::SessionState& state() const { return m_session.state(); }
+    const std::shared_ptr<core::Dataset>& dataset() const { return m_frames.dataset(); }
+    // `onApplied` runs once the command was applied without error.
+    void emit(core::Json command, std::function<void()> onApplied = {});
+    // A live edit (box.set, threshold.set/add, camera.set, frame.set) shown this frame only;
+    // re-issue it every frame while dragging, emit the command on release.
+    void preview(const std::string& key, core::Json command);
+    const std::vector<core::Json>& emittedThisFrame() const { return m_emittedLog; }
+
+    const std::vector<ViewDisplay>& views() const { return m_views; }
+    const ViewDisplay* view(const std::string& name) const;
+    // The frame the main view shows and its visibility (histograms, data panel).
+    const ViewDisplay* mainDisplay() const { return m_views.empty() ? nullptr : &m_views.front(); }
+    std::size_t displayFrame() const; // the current frame, or the one playing
+    // Boxes and thresholds as shown (the session's with a drag's preview applied).
+    const std::vector<core::CuttingBox>& displayBoxes() const { return m_displayBoxes; }
+    const std::vector<core::VariableThreshold>& displayThresholds() const { return m_displayThresholds; }
+    FrameStore& frames() { return m_frames; }
+    ColumnCatalog& columns() { return m_columns; }
+    JobRunner& jobs() { return m_jobs; }
+    Playback& playback() { return m_playback; }
+    void play();
+    void pause(); // commits the frame shown
+    void stepFrames(long long delta);
+    void jumpToFrame(long long frame);
+
+    DockLayout& layout() { return m_layout; }
+    void commitLayout(); // emits layout.set when the layout differs from the session's
+
+    ItemRegistry& items() { return m_items; }
+    void mark(const std::string& name) { m_items.markLastItem(name); }
+    double now() const { return m_now; }
+    float scale() const { return m_scale; }
+    void setScale(float s) { m_scale = s; }
+    ViewRenderer* renderer() const { return m_renderer; }
+    void setRenderer(ViewRenderer* renderer) { m_renderer = renderer; }
+
+    PanelExtensions& extensions() { return m_extensions; }
+
+    // UI-only selection (not part of the session).
+    std::string selectedBox;
+    bool editBoxInViewport = true;
+    int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
+    std::set<std::string> selectedFaults;
+
+    void info(std::string text);
+    void error(std::string text);
+    const std::string& lastMessage() const { return m_message; }
+    bool lastMessageIsError() const { return m_messageIsError; }
+
+    // ---- files (workbench_files.cpp) ----
+    void openPath(const std::string& path); // data or *.faultline.json, in the background
+    void openData(std::vector<std::string> paths);
+    void openSession(const std::string& path);
+    // The generator's demo model: made once in the per-user data folder (a background job with
+    // progress and cancel), then opened.
+    void openDemo();
+    void saveSession(); // to the session's file, else asks for one
+    void saveSessionAs(const std::string& path);
+    const std::string& sessionPath() const { return m_sessionPath; }
+    const std::vector<std::string>& recentFiles() const { return m_recent; }
+    void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
+    std::optional<std::string> takeScreenshotRequest();
+    const std::string& journalPath() const { return m_journalPath; }
+    FileDialog& fileDialog() { return m_dialog; }
+    bool quitRequested() const { return m_quit; }
+    void requestQuit() { m_quit = true; }
+    void showHelp() { m_showHelp = true; }
+
+  private:
+    void applyPending();
+    void syncWithSession();
+    void updatePlayback();
+    void updateDisplay();
+    void drawMenus();
+    void drawStatusBar(float height);
+    void drawDock(float top, float bottom);
+    void drawHelp();
+    void handleShortcuts();
+    void handleDialog();
+    void autosave(bool force);
+    void addRecent(const std::string& path);
+    void loadSettings();
+    void saveSettings() const;
+    std::shared_ptr<core::Dataset> openDatasetCached(const std::vector<std::string>& paths);
+    void rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds);
+
+    core::Session& m_session;
+    WorkbenchOptions m_options;
+    FrameStore m_frames;
+    ColumnCatalog m_columns;
+    JobRunner m_jobs;
+    ItemRegistry m_items;
+    DockLayout m_layout;
+    core::Json m_adoptedLayout; // the session's layout as last adopted
+    DockSpace m_dock;
+    FileDialog m_dialog;
+    std::vector<std::unique_ptr<Panel>> m_panels;
+    ViewRenderer* m_renderer = nullptr;
+    PanelExtensions m_extensions;
+    float m_scale = 1.0f;
+    double m_now = 0.0;
+
+    std::vector<std::pair<core::Json, std::function<void()>>> m_pending;
+    std::vector<core::Json> m_emittedLog;
+    std::map<std::string, core::Json> m_previews;
+    Playback m_playback;
+
+    std::vector<ViewDisplay> m_views;
+    std::vector<core::CuttingBox> m_displayBoxes;
+    std::vector<core::VariableThreshold> m_displayThresholds;
+    struct VisibilityEntry {
+        std::shared_ptr<const core::Frame> frame;
+        std::uint64_t key = 0;
+        std::shared_ptr<const core::VisibilityResult> result;
+    };
+    std::vector<VisibilityEntry> m_visibilityCache;
+    std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable
+
+    std::vector<std::pair<std::vector<std::string>, std::shared_ptr<core::Dataset>>> m_datasets;
+
+    std::string m_message;
+    bool m_messageIsError = false;
+    double m_messageTime = 0.0;
+
+    std::string m_sessionPath;
+    std::vector<std::string> m_recent;
+    std::optional<std::string> m_screenshotPath;
+    std::string m_journalPath;
+    std::ofstream m_journal;
+    double m_lastAutosave = 0.0;
+    std::uint64_t m_autosavedVersion = 0;
+    bool m_quit = false;
+    bool m_showHelp = false;
+    bool m_showAbout = false;
+};
+
+} // namespace faultline::ui

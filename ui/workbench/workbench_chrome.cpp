@@ -1,0 +1,327 @@
+// The workbench's frame around the panels: main menu, keyboard shortcuts, status bar, help.
+#include "ui/workbench/workbench.hpp"
+
+#include "ui/panels/panel_ids.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+
+namespace faultline::ui {
+
+namespace fs = std::filesystem;
+using core::Json;
+
+namespace {
+
+struct Shortcut {
+    const char* keys;
+    const char* what;
+};
+constexpr Shortcut kShortcuts[] = {
+    {"Ctrl+O", "Open data"},
+    {"Ctrl+Shift+O", "Open a session"},
+    {"Ctrl+S / Ctrl+Shift+S", "Save the session / save as"},
+    {"Ctrl+Z", "Undo"},
+    {"Ctrl+Shift+Z, Ctrl+Y", "Redo"},
+    {"Space", "Play / pause"},
+    {"Left / Right", "Previous / next frame (Shift: 10 frames)"},
+    {"Home / End", "First / last frame"},
+    {"F", "Fit the model in the viewports"},
+    {"F12", "Screenshot of the window (PNG in the working folder)"},
+    {"F1", "This list"},
+    {"Ctrl+Q", "Quit"},
+    {"Left drag in a view", "Orbit"},
+    {"Right or middle drag, Shift+drag", "Pan"},
+    {"Wheel", "Zoom"},
+    {"Drag on a histogram", "Set that variable's threshold (drag the edges to adjust)"},
+    {"Drag a tab", "Move a panel; drop on an edge to split the area"},
+};
+
+std::string stamp() {
+    const std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
+    return buf;
+}
+
+std::string folderOf(const std::string& path) {
+    if (path.empty())
+        return {};
+    return fs::path(path).parent_path().string();
+}
+
+} // namespace
+
+void Workbench::handleShortcuts() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput || ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId))
+        return;
+    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+    auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
+    auto repeat = [](int key) { return ImGui::IsKeyPressed(key, true); };
+    if (ctrl && pressed(GLFW_KEY_Z))
+        emit({{"op", shift ? "redo" : "undo"}});
+    else if (ctrl && pressed(GLFW_KEY_Y))
+        emit({{"op", "redo"}});
+    else if (ctrl && pressed(GLFW_KEY_O))
+        shift ? m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session", {".faultline.json"}, folderOf(m_sessionPath))
+              : m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},
+                              folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front()));
+    else if (ctrl && pressed(GLFW_KEY_S))
+        shift || m_sessionPath.empty()
+            ? m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json")
+            : saveSession();
+    else if (ctrl && pressed(GLFW_KEY_Q))
+        m_quit = true;
+    else if (ctrl)
+        return;
+    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space)))
+        m_playback.playing ? pause() : play();
+    else if (repeat(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
+        stepFrames(shift ? -10 : -1);
+    else if (repeat(ImGui::GetKeyIndex(ImGuiKey_RightArrow)))
+        stepFrames(shift ? 10 : 1);
+    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Home)))
+        jumpToFrame(0);
+    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_End)))
+        jumpToFrame(dataset() ? static_cast<long long>(dataset()->frameCount()) - 1 : 0);
+    else if (pressed(GLFW_KEY_F12))
+        requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
+    else if (pressed(GLFW_KEY_F1))
+        m_showHelp = true;
+    else if (pressed(GLFW_KEY_F) && dataset())
+        emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}}); // 0: fit the model
+}
+
+void Workbench::drawMenus() {
+    if (!ImGui::BeginMainMenuBar())
+        return;
+    const std::string dataFolder = folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("Open data...", "Ctrl+O"))
+            m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {}, dataFolder);
+        if (ImGui::MenuItem("Open the demo model"))
+            openDemo();
+        if (ImGui::MenuItem("Open session...", "Ctrl+Shift+O"))
+            m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session", {".faultline.json"}, folderOf(m_sessionPath));
+        if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {
+            for (const auto& r : m_recent)
+                if (ImGui::MenuItem(r.c_str()))
+                    openPath(r);
+            ImGui::EndMenu();
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Save session", "Ctrl+S"))
+            saveSession();
+        if (ImGui::MenuItem("Save session as...", "Ctrl+Shift+S"))
+            m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
+        if (ImGui::BeginMenu("Export")) {
+            const bool faults = !state().faults.empty();
+            if (ImGui::MenuItem("Fault members (CSV)...", nullptr, false, faults))
+                m_dialog.open("Export fault members as CSV (id,fault)", FileDialog::Mode::Save, "export-faults", {".csv"}, dataFolder, "faults.csv");
+            if (ImGui::MenuItem("Fault metrics (CSV)...", nullptr, false, faults))
+                m_dialog.open("Export fault metrics as CSV", FileDialog::Mode::Save, "export-metrics", {".csv"}, dataFolder, "fault_metrics.csv");
+            if (ImGui::MenuItem("Journal of this session...", nullptr, false, !m_session.journal().empty()))
+                m_dialog.open("Export the journal (replay with faultline replay)", FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder, "analysis.jsonl");
+            if (ImGui::MenuItem("Screenshot (PNG)..."))
+                m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save, "screenshot", {".png"}, "", "faultline-" + stamp() + ".png");
+            ImGui::EndMenu();
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Close data", nullptr, false, dataset() != nullptr))
+            emit({{"op", "data.close"}});
+        if (ImGui::MenuItem("Quit", "Ctrl+Q"))
+            m_quit = true;
+        ImGui::EndMenu();
+    }
+    m_items.markLastItem("menu.file");
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, m_session.canUndo()))
+            emit({{"op", "undo"}});
+        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, m_session.canRedo()))
+            emit({{"op", "redo"}});
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::BeginMenu("Panels")) {
+            for (auto& p : m_panels) {
+                const bool open = m_layout.contains(p->id());
+                if (ImGui::MenuItem(p->title(), nullptr, open)) {
+                    open ? (void)m_layout.closePanel(p->id()) : m_layout.openPanel(p->id());
+                    commitLayout();
+                }
+            }
+            ImGui::EndMenu();
+        }
+        if (ImGui::MenuItem("Reset layout")) {
+            m_layout = DockLayout::defaultLayout();
+            commitLayout();
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Screenshot", "F12"))
+            requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("Keyboard and mouse", "F1"))
+            m_showHelp = true;
+        if (ImGui::MenuItem("About Faultline"))
+            m_showAbout = true;
+        ImGui::EndMenu();
+    }
+    // The session's name on the right of the menu bar.
+    const std::string title = m_sessionPath.empty() ? std::string("unsaved session") : fs::path(m_sessionPath).filename().string();
+    const float w = ImGui::CalcTextSize(title.c_str()).x;
+    ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20 * m_scale, ImGui::GetWindowWidth() - w - 16 * m_scale));
+    ImGui::TextDisabled("%s", title.c_str());
+    ImGui::EndMainMenuBar();
+}
+
+void Workbench::drawStatusBar(float height) {
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(0, io.DisplaySize.y - height));
+    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x, height));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8 * m_scale, 4 * m_scale));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0);
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImGui::GetColorU32(ImGuiCol_MenuBarBg));
+    ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                                          ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoNavFocus);
+    ImGui::PopStyleColor();
+    ImGui::PopStyleVar(2);
+    ImGui::AlignTextToFramePadding();
+
+    // Right: where we are.
+    std::string where;
+    if (auto ds = dataset()) {
+        const ViewDisplay* main = mainDisplay();
+        const std::size_t f = displayFrame();
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "frame %zu / %zu   timestep %lld", f, ds->frameCount(),
+                      static_cast<long long>(ds->location(f).timestep));
+        where = buf;
+        if (main && main->frame && main->visibility) {
+            std::snprintf(buf, sizeof buf, "   %zu of %zu spheres visible", main->visibility->visibleCount, main->frame->size());
+            where += buf;
+        }
+    } else {
+        where = "no data open";
+    }
+    const float whereW = ImGui::CalcTextSize(where.c_str()).x;
+
+    // Left: background work, then the last message.
+    auto jobs = m_jobs.running();
+    for (auto& job : jobs) {
+        ImGui::PushID(job.get());
+        ImGui::TextUnformatted(job->title().c_str());
+        ImGui::SameLine();
+        const float p = job->progress();
+        ImGui::SetNextItemWidth(160 * m_scale);
+        if (p >= 0)
+            ImGui::ProgressBar(p, ImVec2(160 * m_scale, 0));
+        else
+            ImGui::ProgressBar(static_cast<float>(std::fmod(m_now - job->startTime(), 1.0)), ImVec2(160 * m_scale, 0), "working...");
+        ImGui::SameLine();
+        if (ImGui::SmallButton(job->cancelRequested() ? "cancelling" : "Cancel"))
+            job->cancel();
+        m_items.markLastItem("status.cancel");
+        ImGui::SameLine();
+        ImGui::PopID();
+    }
+    if (auto loading = m_frames.loading()) {
+        ImGui::TextDisabled("loading frame %zu...", *loading);
+        ImGui::SameLine();
+    }
+    const std::string frameError = m_frames.lastError();
+    const bool showMessage = !m_message.empty() && (m_messageIsError || m_now - m_messageTime < 10.0);
+    const std::string& message = frameError.empty() ? m_message : frameError;
+    if (showMessage || !frameError.empty()) {
+        const bool isError = !frameError.empty() || m_messageIsError;
+        const float avail = ImGui::GetContentRegionAvail().x - whereW - 24 * m_scale;
+        ImGui::PushClipRect(ImGui::GetCursorScreenPos(), ImVec2(ImGui::GetCursorScreenPos().x + std::max(0.0f, avail), ImGui::GetCursorScreenPos().y + height), true);
+        if (isError)
+            ImGui::TextColored(ImVec4(0.80f, 0.16f, 0.12f, 1.0f), "%s", message.c_str());
+        else
+            ImGui::TextUnformatted(message.c_str());
+        ImGui::PopClipRect();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s", message.c_str());
+        ImGui::SameLine();
+    }
+    ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowWidth() - whereW - 10 * m_scale));
+    ImGui::TextUnformatted(where.c_str());
+    ImGui::End();
+}
+
+void Workbench::drawHelp() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (m_showHelp) {
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        ImGui::SetNextWindowSize(ImVec2(620 * m_scale, 0), ImGuiCond_Appearing);
+        if (ImGui::Begin("Keyboard and mouse", &m_showHelp, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
+            if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+                ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 250 * m_scale);
+                ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
+                for (const auto& s : kShortcuts) {
+                    ImGui::TableNextRow();
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(s.keys);
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(s.what);
+                }
+                ImGui::EndTable();
+            }
+            ImGui::Spacing();
+            ImGui::TextWrapped("Every change is a command: Edit > Undo reverts it, and the whole run is recorded in %s.",
+                               m_journalPath.empty() ? "the session's journal" : m_journalPath.c_str());
+        }
+        ImGui::End();
+    }
+    if (m_showAbout) {
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        if (ImGui::Begin("About Faultline", &m_showAbout, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
+            ImGui::TextUnformatted("Faultline: find, name and follow faults in discrete element models.");
+            ImGui::TextDisabled("Dear ImGui %s", IMGUI_VERSION);
+            if (m_renderer)
+                ImGui::TextDisabled("%s", m_renderer->description().c_str());
+            if (!m_journalPath.empty())
+                ImGui::TextDisabled("Journal: %s", m_journalPath.c_str());
+        }
+        ImGui::End();
+    }
+}
+
+void Workbench::handleDialog() {
+    if (!m_dialog.draw(m_scale, &m_items))
+        return;
+    const std::string& purpose = m_dialog.purpose();
+    const std::string path = m_dialog.path();
+    if (purpose == "open-data")
+        openData({path});
+    else if (purpose == "open-session")
+        openSession(path);
+    else if (purpose == "save-session")
+        saveSessionAs(path);
+    else if (purpose == "screenshot")
+        requestScreenshot(path);
+    else if (purpose == "export-faults")
+        emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
+    else if (purpose == "export-metrics")
+        emit({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
+    else if (purpose == "export-journal") {
+        std::ofstream out(path);
+        for (const auto& cmd : m_session.journal())
+            out << cmd.dump() << "\n";
+        if (out)
+            info("Wrote the journal to " + path);
+        else
+            error("Cannot write " + path);
+    }
+}
+
+} // namespace faultline::ui

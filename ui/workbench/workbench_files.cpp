@@ -1,0 +1,210 @@
+// The workbench's files: opening data and sessions in the background, saving, recent files,
+// autosave next to the journal, screenshot requests.
+#include "ui/workbench/workbench.hpp"
+
+#include "core/io/input_error.hpp"
+#include "core/session/atomic_file.hpp"
+#include "core/session/session_json.hpp"
+#include "core/synth/demo_model.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace faultline::ui {
+
+namespace fs = std::filesystem;
+using core::Json;
+
+namespace {
+
+bool isSessionFile(const std::string& path) {
+    const std::string suffix = ".faultline.json";
+    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string absolute(const std::string& path) {
+    std::error_code ec;
+    auto p = fs::absolute(path, ec);
+    return ec ? path : p.lexically_normal().string();
+}
+
+std::string shortName(const std::vector<std::string>& paths) {
+    if (paths.empty())
+        return "data";
+    std::string n = fs::path(paths.front()).filename().string();
+    if (paths.size() > 1)
+        n += " and " + std::to_string(paths.size() - 1) + " more";
+    return n;
+}
+
+} // namespace
+
+void Workbench::openPath(const std::string& path) {
+    if (isSessionFile(path))
+        openSession(path);
+    else
+        openData({path});
+}
+
+void Workbench::openData(std::vector<std::string> paths) {
+    for (auto& p : paths)
+        p = absolute(p);
+    const std::string name = shortName(paths);
+    // The work runs on its own thread; the closure it returns runs on the UI thread.
+    m_jobs.start(
+        "Opening " + name,
+        [this, paths](JobControl& control) -> std::function<void()> {
+            auto ds = core::Dataset::open(paths); // indexes every file
+            control.setProgress(0.5f);
+            if (control.cancelled())
+                return {};
+            ds->frame(0); // the frame data.open shows
+            control.setProgress(1.0f);
+            return [this, paths, ds] {
+                rememberDataset(paths, ds);
+                emit({{"op", "data.open"}, {"paths", paths}},
+                     [this, paths] { addRecent(paths.size() == 1 ? paths.front() : std::string()); });
+            };
+        },
+        [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
+}
+
+void Workbench::openSession(const std::string& pathIn) {
+    const std::string path = absolute(pathIn);
+    const std::string name = fs::path(path).filename().string();
+    m_jobs.start(
+        "Opening " + name,
+        [this, path](JobControl& control) -> std::function<void()> {
+            core::SessionState s = core::loadSessionFile(path); // validated
+            std::shared_ptr<core::Dataset> ds;
+            if (!s.dataPaths.empty()) {
+                ds = core::Dataset::open(s.dataPaths);
+                control.setProgress(0.5f);
+                if (control.cancelled())
+                    return {};
+                if (s.frame < ds->frameCount())
+                    ds->frame(s.frame);
+            }
+            control.setProgress(1.0f);
+            return [this, path, s, ds] {
+                if (ds)
+                    rememberDataset(s.dataPaths, ds);
+                emit({{"op", "session.open"}, {"path", path}}, [this, path] {
+                    m_sessionPath = path;
+                    addRecent(path);
+                });
+            };
+        },
+        [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
+}
+
+void Workbench::openDemo() {
+    if (auto path = core::existingDemoModel()) {
+        openData({*path});
+        return;
+    }
+    m_jobs.start(
+        "Making the demo model (once)",
+        [this](JobControl& control) -> std::function<void()> {
+            const std::string path = core::ensureDemoModel([&control](double fraction) {
+                control.setProgress(static_cast<float>(fraction));
+                return !control.cancelled();
+            });
+            return [this, path] { openData({path}); };
+        },
+        [this](const std::string& why) { error("Cannot make the demo model: " + why); }, m_now);
+}
+
+void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds) {
+    std::erase_if(m_datasets, [&](const auto& e) { return e.first == paths; });
+    m_datasets.insert(m_datasets.begin(), {paths, std::move(ds)});
+    if (m_datasets.size() > 3)
+        m_datasets.pop_back();
+}
+
+void Workbench::saveSession() {
+    if (m_sessionPath.empty()) {
+        m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, "",
+                      "analysis.faultline.json");
+        return;
+    }
+    saveSessionAs(m_sessionPath);
+}
+
+void Workbench::saveSessionAs(const std::string& pathIn) {
+    const std::string path = absolute(pathIn);
+    commitLayout(); // active tabs and the like ride along with the save
+    emit({{"op", "session.save"}, {"path", path}}, [this, path] {
+        m_sessionPath = path;
+        addRecent(path);
+    });
+}
+
+std::optional<std::string> Workbench::takeScreenshotRequest() {
+    auto r = std::move(m_screenshotPath);
+    m_screenshotPath.reset();
+    return r;
+}
+
+void Workbench::autosave(bool force) {
+    if (m_options.stateDir.empty())
+        return;
+    if (!force && m_now - m_lastAutosave < m_options.autosaveSeconds)
+        return;
+    m_lastAutosave = m_now;
+    if (m_session.version() == m_autosavedVersion)
+        return;
+    try {
+        core::saveSessionFile(state(), (fs::path(m_options.stateDir) / "autosave.faultline.json").string());
+        m_autosavedVersion = m_session.version();
+    } catch (const std::exception& e) {
+        error(std::string("Autosave failed: ") + e.what());
+        m_lastAutosave = m_now + 300; // do not repeat the message every frame
+    }
+}
+
+void Workbench::addRecent(const std::string& path) {
+    if (path.empty())
+        return;
+    std::erase(m_recent, path);
+    m_recent.insert(m_recent.begin(), path);
+    if (m_recent.size() > 10)
+        m_recent.resize(10);
+    saveSettings();
+}
+
+void Workbench::loadSettings() {
+    if (m_options.configDir.empty())
+        return;
+    std::ifstream in(fs::path(m_options.configDir) / "settings.json");
+    if (!in)
+        return;
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+        const Json doc = Json::parse(text.str());
+        if (doc.contains("recent") && doc["recent"].is_array())
+            for (const Json& r : doc["recent"])
+                if (r.is_string() && m_recent.size() < 10)
+                    m_recent.push_back(r.get<std::string>());
+    } catch (const std::exception&) {
+        // A damaged settings file only loses the recent list.
+    }
+}
+
+void Workbench::saveSettings() const {
+    if (m_options.configDir.empty())
+        return;
+    try {
+        std::error_code ec;
+        fs::create_directories(m_options.configDir, ec);
+        core::writeFileAtomically((fs::path(m_options.configDir) / "settings.json").string(),
+                                  Json{{"recent", m_recent}}.dump(2));
+    } catch (const std::exception&) {
+        // Not worth interrupting the user for.
+    }
+}
+
+} // namespace faultline::ui
