@@ -3,10 +3,18 @@
 
 #include "core/session/session.hpp"
 
+#if FAULTLINE_WITH_GUI
+#include "ui/render/session_figure.hpp"
+#endif
+
 namespace faultline::app {
 
 void registerAppOps(core::Session& session) {
-    (void)session; // "render" is registered here once the renderer lands.
+#if FAULTLINE_WITH_GUI
+    ui::registerRenderOp(session);
+#else
+    (void)session; // a build without the GUI keeps core's "render: not available" answer
+#endif
 }
 
 } // namespace faultline::app

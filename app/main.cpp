@@ -14,6 +14,8 @@ void faultline::app::printUsage() {
         "       faultline replay JOURNAL [--data PATH...] [--out DIR]\n"
         "                                        run a recorded journal headless; exit 0 when every\n"
         "                                        expectation holds (--data: the same analysis on other data)\n"
+        "       faultline render SESSION|JOURNAL --out FIG.png [--view V] [--frame N] [--size WxH]\n"
+        "                                        [--transparent] [--data PATH...]  a figure, offscreen\n"
         "       faultline generate --demo        build the demo model once (per-user data folder)\n"
         "       faultline generate ... --out DIR a bonded DEM extension model or known planar faults\n"
         "                                        (faultline generate --help for options)\n"
@@ -35,6 +37,8 @@ int main(int argc, char** argv) {
                 return runInfo(rest);
             if (cmd == "replay")
                 return runReplay(rest);
+            if (cmd == "render")
+                return runRender(rest);
             if (cmd == "generate")
                 return runGenerate(rest);
             if (cmd == "render-data")
