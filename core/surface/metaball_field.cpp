@@ -1,0 +1,482 @@
+#include "core/surface/metaball_field.hpp"
+
+#include "core/surface/detail/field_level.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+
+namespace faultline::core {
+
+using detail::Box;
+using detail::Brick;
+using detail::FieldLevel;
+using detail::floorDiv;
+using detail::NearList;
+using detail::packKey;
+
+namespace {
+
+// Coarse grid spacing = cutoff / kappa: larger kappa, smaller interpolation error.
+// Measured on jittered slabs (tests/core/surface_field_test.cpp): with degree-5 interpolation and
+// C^4 softening, kappa = 6 keeps the largest error below the tolerance with a margin.
+int kappaFor(float tolerance) {
+    if (tolerance <= 2e-4f) return 7;
+    if (tolerance <= 2e-3f) return 6;
+    return 4;
+}
+
+
+Box voxelBox(const Coord3& lo, const Coord3& hi, float h) {
+    Box b;
+    for (int k = 0; k < 3; ++k) {
+        b.lo[k] = lo[k] * h;
+        b.hi[k] = hi[k] * h;
+    }
+    return b;
+}
+
+// Kernel value bound for one sphere (or a node of spheres) at squared distance d2.
+struct BoundKernel {
+    MetaballKernel kernel;
+    InverseKernel inverse;
+    float compactReach;
+    float value(float d2, float radius) const {
+        if (kernel != MetaballKernel::Compact) return inverse.value(d2);
+        const float big = compactReach * radius;
+        return compactValue(d2, 1.0f / (big * big));
+    }
+};
+
+} // namespace
+
+MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& params,
+                             float voxelSize, const MultilevelTuning& tuning)
+    : m_tree(spheres), m_params(params), m_tuning(tuning), m_h(voxelSize) {
+    double mean = 0.0;
+    for (float r : m_tree.spheres().r) mean += r;
+    mean /= static_cast<double>(sphereCount());
+    const float minD = kMinDistanceFactor * static_cast<float>(mean);
+    m_kernel = InverseKernel{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
+    if (params.kernel != MetaballKernel::Compact) {
+        const int kappa = m_tuning.kappa > 0 ? m_tuning.kappa : kappaFor(params.tolerance);
+        // Near cutoff about three radii: a few neighbours summed exactly per voxel.
+        const double target = m_tuning.nearCutoffRadii * mean;
+        m_ratio1 = std::max(1, static_cast<int>(std::lround(target / (kappa * m_h))));
+        m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
+        m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
+    } else {
+        m_a0 = params.compactReach * maxRadius();
+    }
+}
+
+MetaballField::~MetaballField() = default;
+
+double MetaballField::reach(double iso) const {
+    if (m_params.kernel == MetaballKernel::Compact) return m_params.compactReach * maxRadius();
+    const double ratio = totalWeight() / iso;
+    return m_kernel.p == 2 ? std::sqrt(ratio) : ratio;
+}
+
+float MetaballField::nearReach() const {
+    return std::max(m_a0, maxRadius() + m_params.colorReach);
+}
+
+std::size_t MetaballField::coarseNodeCount() const {
+    std::size_t n = 0;
+    for (const auto& l : m_levels) n += l->neededCount();
+    return n;
+}
+
+FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi) const {
+    const Box box = voxelBox(lo, hi, m_h);
+    const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
+    const auto& nodes = m_tree.nodes();
+    const auto& s = m_tree.spheres();
+    double low = 0.0, high = 0.0;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const auto& node = nodes[stack[--top]];
+        const float dmin2 = detail::minDistance2(node.box, box);
+        if (m_params.kernel == MetaballKernel::Compact) {
+            const float big = m_params.compactReach * node.rmax;
+            if (dmin2 >= big * big) continue;
+        }
+        const float dmax2 = detail::maxDistance2(node.box, box);
+        const float kHigh = k.value(dmin2, node.rmax);
+        const float kLow = k.value(dmax2, node.rmin);
+        if (!node.leaf() && (dmin2 == 0.0f || kHigh > 1.25f * kLow)) {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+            continue;
+        }
+        if (!node.leaf() || kHigh <= 1.01f * kLow) {
+            low += double(node.weight) * kLow;
+            high += double(node.weight) * kHigh;
+            continue;
+        }
+        for (std::uint32_t i = node.begin; i < node.end; ++i) {
+            Box p;
+            p.lo = p.hi = {s.x[i], s.y[i], s.z[i]};
+            low += double(s.r[i]) * k.value(detail::maxDistance2(p, box), s.r[i]);
+            high += double(s.r[i]) * k.value(detail::minDistance2(p, box), s.r[i]);
+        }
+    }
+    return {low, high};
+}
+
+void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interrupter) {
+    m_blocks.clear();
+    m_blockOrigins.assign(blocks.begin(), blocks.end());
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+        m_blocks.emplace(packKey({floorDiv(blocks[i][0], 8), floorDiv(blocks[i][1], 8),
+                                  floorDiv(blocks[i][2], 8)}),
+                         static_cast<std::uint32_t>(i));
+    m_levels.clear();
+    if (m_params.kernel == MetaballKernel::Compact || blocks.empty()) return;
+
+    // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
+    auto level1 = std::make_unique<FieldLevel>();
+    level1->spacing = m_ratio1 * m_h;
+    level1->ratio = m_ratio1;
+    for (const auto& o : blocks) {
+        detail::Int3 lo, hi;
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
+            hi[k] = floorDiv(o[k] + kBlockDim, m_ratio1) + detail::kTapsAbove;
+        }
+        level1->mark(lo, hi);
+    }
+    m_levels.push_back(std::move(level1));
+    const double n = static_cast<double>(sphereCount());
+    for (int l = 1;; ++l) {
+        FieldLevel& level = *m_levels.back();
+        const float aBelow = m_a0 * static_cast<float>(1 << (l - 1));
+        level.below = l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
+        level.cutoff = 2.0f * aBelow;
+        level.own = SoftenedKernel(m_kernel.p, level.cutoff, m_tuning.softeningOrder);
+        // Top: summing all spheres is cheap, or every sphere is within the cutoff anyway.
+        const auto& cb = centreBox();
+        double span2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            double lo = cb.lo[k], hi = cb.hi[k];
+            for (const auto& b : level.bricks) {
+                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * level.spacing);
+                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * level.spacing);
+            }
+            span2 += (hi - lo) * (hi - lo);
+        }
+        if (static_cast<double>(level.neededCount()) * n <= m_tuning.topLevelPairs ||
+            double(aBelow) * aBelow >= span2 || l >= 24) {
+            level.top = true;
+            break;
+        }
+        auto next = std::make_unique<FieldLevel>();
+        next->spacing = 2.0f * level.spacing;
+        next->ratio = 2;
+        for (const auto& b : level.bricks) {
+            detail::Int3 lo, hi;
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = floorDiv(b.origin[k] + b.lo[k], 2) - detail::kTapsBelow;
+                hi[k] = floorDiv(b.origin[k] + b.hi[k], 2) + detail::kTapsAbove;
+            }
+            next->mark(lo, hi);
+        }
+        m_levels.push_back(std::move(next));
+    }
+
+    // Compute from the coarsest level down: each level adds its window sum to the cubic
+    // interpolation of the level above.
+    std::size_t totalBricks = 0;
+    for (const auto& l : m_levels) totalBricks += l->bricks.size();
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> cancelled{false};
+    const auto& s = m_tree.spheres();
+    const InverseKernel kernel = m_kernel;
+    for (int li = static_cast<int>(m_levels.size()) - 1; li >= 0; --li) {
+        FieldLevel& level = *m_levels[li];
+        const FieldLevel* above = li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get()
+                                                                            : nullptr;
+        tbb::parallel_for(std::size_t{0}, level.bricks.size(), [&](std::size_t bi) {
+            if (cancelled.load(std::memory_order_relaxed)) return;
+            Brick& brick = level.bricks[bi];
+            thread_local NearList list;
+            const float* px = s.x.data();
+            const float* py = s.y.data();
+            const float* pz = s.z.data();
+            const float* pw = s.r.data();
+            std::size_t count = s.size();
+            if (!level.top) {
+                list.clear();
+                detail::Int3 lo, hi;
+                for (int k = 0; k < 3; ++k) {
+                    lo[k] = brick.origin[k] + brick.lo[k];
+                    hi[k] = brick.origin[k] + brick.hi[k];
+                }
+                Box box;
+                for (int k = 0; k < 3; ++k) {
+                    box.lo[k] = lo[k] * level.spacing;
+                    box.hi[k] = hi[k] * level.spacing;
+                }
+                m_tree.gather(box, level.cutoff, list, false);
+                px = list.x.data();
+                py = list.y.data();
+                pz = list.z.data();
+                pw = list.r.data();
+                count = list.size();
+            }
+            const SoftenedKernel below = level.below, own = level.own;
+            for (int i = brick.lo[0]; i <= brick.hi[0]; ++i)
+                for (int j = brick.lo[1]; j <= brick.hi[1]; ++j)
+                    for (int z = brick.lo[2]; z <= brick.hi[2]; ++z) {
+                        const int off = Brick::offset(i, j, z);
+                        if (!brick.needed(off)) continue;
+                        const float x = (brick.origin[0] + i) * level.spacing;
+                        const float y = (brick.origin[1] + j) * level.spacing;
+                        const float w = (brick.origin[2] + z) * level.spacing;
+                        float acc = 0.0f;
+                        if (level.top) {
+                            for (std::size_t q = 0; q < count; ++q) {
+                                const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
+                                const float d2 = dx * dx + dy * dy + dz * dz;
+                                const float v = d2 < below.a2 ? below.inner(d2) : kernel.value(d2);
+                                acc += pw[q] * v;
+                            }
+                        } else {
+                            for (std::size_t q = 0; q < count; ++q) {
+                                const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
+                                const float d2 = dx * dx + dy * dy + dz * dz;
+                                const float vb = d2 < below.a2 ? below.inner(d2) : kernel.value(d2);
+                                const float v = vb - own.inner(d2);
+                                acc += d2 < own.a2 ? pw[q] * v : 0.0f;
+                            }
+                        }
+                        brick.values[off] = acc;
+                    }
+            if (above) {
+                const detail::Int3 t0{brick.origin[0] + brick.lo[0], brick.origin[1] + brick.lo[1],
+                                      brick.origin[2] + brick.lo[2]};
+                const detail::Int3 nn{brick.hi[0] - brick.lo[0] + 1, brick.hi[1] - brick.lo[1] + 1,
+                                      brick.hi[2] - brick.lo[2] + 1};
+                thread_local std::vector<float> interp;
+                interp.assign(static_cast<std::size_t>(nn[0]) * nn[1] * nn[2], 0.0f);
+                detail::addInterpolated(*above, 2, t0, nn, interp.data());
+                for (int i = 0; i < nn[0]; ++i)
+                    for (int j = 0; j < nn[1]; ++j)
+                        for (int z = 0; z < nn[2]; ++z) {
+                            const int off =
+                                Brick::offset(brick.lo[0] + i, brick.lo[1] + j, brick.lo[2] + z);
+                            if (brick.needed(off))
+                                brick.values[off] += interp[(i * nn[1] + j) * nn[2] + z];
+                        }
+            }
+            const std::size_t d = ++done;
+            if (interrupter && interrupter->wasInterrupted(static_cast<int>(100 * d / totalBricks)))
+                cancelled = true;
+        });
+        if (cancelled) throw SurfaceCancelled();
+    }
+}
+
+void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color) const {
+    thread_local NearList list;
+    list.clear();
+    const Box box = voxelBox(o, {o[0] + 7, o[1] + 7, o[2] + 7}, m_h);
+    m_tree.gather(box, nearReach(), list, true);
+    const std::size_t count = list.size();
+    const float* lx = list.x.data();
+    const float* ly = list.y.data();
+    const float* lz = list.z.data();
+    const float* lr = list.r.data();
+    const float a2 = m_a0 * m_a0;
+    const float reachAdd = m_params.colorReach;
+    const bool compact = m_params.kernel == MetaballKernel::Compact;
+    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    const InverseKernel kernel = m_kernel;
+    const SoftenedKernel soft = m_soft0;
+    for (int i = 0; i < kBlockDim; ++i)
+        for (int j = 0; j < kBlockDim; ++j)
+            for (int k = 0; k < kBlockDim; ++k) {
+                const float x = (o[0] + i) * m_h, y = (o[1] + j) * m_h, z = (o[2] + k) * m_h;
+                float f = 0.0f;
+                if (compact) {
+                    for (std::size_t q = 0; q < count; ++q) {
+                        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+                        const float d2 = dx * dx + dy * dy + dz * dz;
+                        f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
+                    }
+                } else {
+                    for (std::size_t q = 0; q < count; ++q) {
+                        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+                        const float d2 = dx * dx + dy * dy + dz * dz;
+                        const float v = kernel.value(d2) - soft.inner(d2);
+                        f += d2 < a2 ? lr[q] * v : 0.0f;
+                    }
+                }
+                float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+                for (std::size_t q = 0; q < count; ++q) {
+                    const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+                    const float d2 = dx * dx + dy * dy + dz * dz;
+                    const float reach = lr[q] + reachAdd;
+                    const float in = d2 < reach * reach ? 1.0f : 0.0f;
+                    cr += in * list.red[q];
+                    cg += in * list.green[q];
+                    cb += in * list.blue[q];
+                    n += in;
+                }
+                const int off = blockOffset(i, j, k);
+                density[off] = f;
+                color[off] = n > 0.0f ? Vec3f{cr / n, cg / n, cb / n} : m_params.initialColor;
+            }
+    if (!m_levels.empty())
+        detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
+}
+
+void MetaballField::sumNear(const NearList& list, const Vec3f& p, float& value, Vec3f* gradient,
+                            Vec3f* color) const {
+    (void)color;
+    const bool compact = m_params.kernel == MetaballKernel::Compact;
+    const float a2 = m_a0 * m_a0;
+    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    float f = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
+    for (std::size_t q = 0; q < list.size(); ++q) {
+        const float dx = p[0] - list.x[q], dy = p[1] - list.y[q], dz = p[2] - list.z[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        float v = 0.0f, slope = 0.0f;
+        if (compact) {
+            const float inv = invC2 / (list.r[q] * list.r[q]);
+            v = compactValue(d2, inv);
+            slope = compactSlope(d2, inv);
+        } else if (d2 < a2) {
+            v = m_kernel.value(d2) - m_soft0.inner(d2);
+            slope = d2 < m_kernel.minD2 ? 0.0f : m_kernel.slope(d2) - m_soft0.innerSlope(d2);
+        }
+        f += list.r[q] * v;
+        const float g = 2.0f * list.r[q] * slope;
+        gx += g * dx;
+        gy += g * dy;
+        gz += g * dz;
+    }
+    value += f;
+    if (gradient) *gradient = {(*gradient)[0] + gx, (*gradient)[1] + gy, (*gradient)[2] + gz};
+}
+
+void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
+                                   Vec3f* gradients) const {
+    // Group the points by a prepared block next to them: one neighbour list and one coarse
+    // patch per group.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
+    std::vector<std::uint32_t> orphans;
+    for (std::size_t n = 0; n < points.size(); ++n) {
+        const auto& p = points[n];
+        int cell[3];
+        for (int k = 0; k < 3; ++k) cell[k] = static_cast<int>(std::floor(p[k] / m_h));
+        bool found = false;
+        for (int corner = 0; corner < 8 && !found; ++corner) {
+            const detail::Int3 v{cell[0] + (corner & 1), cell[1] + ((corner >> 1) & 1),
+                                 cell[2] + ((corner >> 2) & 1)};
+            auto it = m_blocks.find(packKey({floorDiv(v[0], 8), floorDiv(v[1], 8),
+                                             floorDiv(v[2], 8)}));
+            if (it != m_blocks.end()) {
+                groups[it->second].push_back(static_cast<std::uint32_t>(n));
+                found = true;
+            }
+        }
+        if (!found) orphans.push_back(static_cast<std::uint32_t>(n));
+    }
+    std::vector<const std::vector<std::uint32_t>*> groupList;
+    std::vector<std::uint32_t> groupBlock;
+    for (const auto& [block, members] : groups) {
+        groupList.push_back(&members);
+        groupBlock.push_back(block);
+    }
+    tbb::parallel_for(std::size_t{0}, groupList.size(), [&](std::size_t g) {
+        const auto& members = *groupList[g];
+        const Coord3 origin = m_blockOrigins[groupBlock[g]];
+        thread_local NearList list;
+        list.clear();
+        const Box box = voxelBox({origin[0] - 1, origin[1] - 1, origin[2] - 1},
+                                 {origin[0] + 8, origin[1] + 8, origin[2] + 8}, m_h);
+        m_tree.gather(box, m_a0, list, false);
+        thread_local std::vector<float> patch;
+        detail::Int3 s0{0, 0, 0}, sd{0, 0, 0};
+        const FieldLevel* level1 = m_levels.empty() ? nullptr : m_levels.front().get();
+        if (level1) {
+            for (int k = 0; k < 3; ++k) {
+                s0[k] = floorDiv(origin[k] - 1, m_ratio1) - detail::kTapsBelow;
+                sd[k] = floorDiv(origin[k] + 8, m_ratio1) + detail::kTapsAbove - s0[k] + 1;
+            }
+            detail::gatherPatch(*level1, s0, sd, patch);
+        }
+        for (std::uint32_t n : members) {
+            const Vec3f& p = points[n];
+            float value = 0.0f;
+            Vec3f grad{0, 0, 0};
+            sumNear(list, p, value, &grad, nullptr);
+            if (level1) {
+                constexpr int nt = detail::kTaps;
+                float w[3][nt], dw[3][nt];
+                int b[3];
+                for (int k = 0; k < 3; ++k) {
+                    const float t = p[k] / level1->spacing;
+                    const float fl = std::floor(t);
+                    b[k] = static_cast<int>(fl) - detail::kTapsBelow - s0[k];
+                    assert(b[k] >= 0 && b[k] + nt <= sd[k]);
+                    b[k] = std::clamp(b[k], 0, sd[k] - nt);
+                    detail::lagrangeWeights(t - fl, w[k]);
+                    detail::lagrangeDerivatives(t - fl, dw[k]);
+                }
+                float v = 0.0f, g0 = 0.0f, g1 = 0.0f, g2 = 0.0f;
+                for (int i = 0; i < nt; ++i)
+                    for (int j = 0; j < nt; ++j)
+                        for (int z = 0; z < nt; ++z) {
+                            const float node =
+                                patch[(static_cast<std::size_t>(b[0] + i) * sd[1] + b[1] + j) *
+                                          sd[2] +
+                                      b[2] + z];
+                            v += w[0][i] * w[1][j] * w[2][z] * node;
+                            g0 += dw[0][i] * w[1][j] * w[2][z] * node;
+                            g1 += w[0][i] * dw[1][j] * w[2][z] * node;
+                            g2 += w[0][i] * w[1][j] * dw[2][z] * node;
+                        }
+                const float inv = 1.0f / level1->spacing;
+                value += v;
+                grad = {grad[0] + g0 * inv, grad[1] + g1 * inv, grad[2] + g2 * inv};
+            }
+            if (values) values[n] = value;
+            if (gradients) gradients[n] = grad;
+        }
+    });
+    // Points away from every prepared block: sum every sphere (rare; correct, slow).
+    const auto& s = m_tree.spheres();
+    for (std::uint32_t n : orphans) {
+        const Vec3f& p = points[n];
+        float value = 0.0f;
+        Vec3f grad{0, 0, 0};
+        for (std::size_t q = 0; q < s.size(); ++q) {
+            const float dx = p[0] - s.x[q], dy = p[1] - s.y[q], dz = p[2] - s.z[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            float v, slope;
+            if (m_params.kernel == MetaballKernel::Compact) {
+                const float big = m_params.compactReach * s.r[q];
+                v = compactValue(d2, 1.0f / (big * big));
+                slope = compactSlope(d2, 1.0f / (big * big));
+            } else {
+                v = m_kernel.value(d2);
+                slope = d2 < m_kernel.minD2 ? 0.0f : m_kernel.slope(d2);
+            }
+            value += s.r[q] * v;
+            const float g = 2.0f * s.r[q] * slope;
+            grad = {grad[0] + g * dx, grad[1] + g * dy, grad[2] + g * dz};
+        }
+        if (values) values[n] = value;
+        if (gradients) gradients[n] = grad;
+    }
+}
+
+} // namespace faultline::core
