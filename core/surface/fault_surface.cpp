@@ -4,7 +4,6 @@
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"
 
-#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/parallel_for.h>
 
@@ -140,6 +139,8 @@ SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params
     impl->stats.coarseNodes = field.coarseNodeCount();
     impl->stats.levels = field.levelCount();
     impl->stats.nearCutoff = field.nearCutoff();
+    impl->stats.kappa = field.kappa();
+    impl->stats.estimatedError = field.estimatedError();
     if (interrupter) interrupter->end();
 
     SurfaceResult result;
@@ -181,12 +182,31 @@ SurfaceMesh remesh(const SurfaceField& surface, float iso, Interrupter* interrup
                                      : Vec3f{0.0f, 0.0f, 1.0f};
     });
     {
+        // Trilinear in the colour grid over the evaluated (active) voxels only: corners in
+        // never-evaluated tiles hold no colour.
         const auto& grid = *impl.color;
+        const float inv = 1.0f / surface.voxelSize();
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto& r) {
-            openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::BoxSampler> sampler(
-                grid);
+            auto acc = grid.getConstAccessor();
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                const openvdb::Vec3s c = sampler.wsSample(openvdb::Vec3d(points[i]));
+                const openvdb::Vec3f p = points[i] * inv;
+                const openvdb::Coord base(static_cast<int>(std::floor(p[0])),
+                                          static_cast<int>(std::floor(p[1])),
+                                          static_cast<int>(std::floor(p[2])));
+                const openvdb::Vec3f t = p - base.asVec3s();
+                openvdb::Vec3s sum(0.0f);
+                float weight = 0.0f;
+                for (int c = 0; c < 8; ++c) {
+                    const openvdb::Coord at = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+                    openvdb::Vec3s value;
+                    if (!acc.probeValue(at, value)) continue;
+                    const float w = ((c & 1) ? t[0] : 1.0f - t[0]) *
+                                    (((c >> 1) & 1) ? t[1] : 1.0f - t[1]) *
+                                    (((c >> 2) & 1) ? t[2] : 1.0f - t[2]);
+                    sum += w * value;
+                    weight += w;
+                }
+                const openvdb::Vec3s c = weight > 0.0f ? sum / weight : grid.background();
                 for (int k = 0; k < 3; ++k) mesh.colors[i][k] = std::clamp(c[k], 0.0f, 1.0f);
             }
         });

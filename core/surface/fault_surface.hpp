@@ -28,6 +28,8 @@ struct SurfaceStats {
     std::size_t coarseNodes = 0;  // nodes on the multilevel grids
     int levels = 0;
     float nearCutoff = 0.0f;
+    int kappa = 0;                // near cutoff / level-1 spacing
+    double estimatedError = 0.0;  // a priori bound on |f - f_exact| the parameters were chosen by
     double planSeconds = 0.0, fieldSeconds = 0.0, meshSeconds = 0.0;
 };
 

@@ -20,15 +20,15 @@ using detail::packKey;
 
 namespace {
 
-// Coarse grid spacing = cutoff / kappa: larger kappa, smaller interpolation error.
-// Measured on jittered slabs (tests/core/surface_field_test.cpp): with degree-5 interpolation and
-// C^4 softening, kappa = 6 keeps the largest error below the tolerance with a margin.
-int kappaFor(float tolerance) {
-    if (tolerance <= 2e-4f) return 7;
-    if (tolerance <= 2e-3f) return 6;
-    return 4;
-}
-
+// Interpolation error of the smooth remainders per unit of near-field scale (see errorScale()),
+// for kappa = cutoff / coarse spacing = 3 .. 8, with degree-5 interpolation and C^4 softening.
+// 1.5x the largest error measured over every voxel of jittered slabs and HCP zones, p = 1, 2
+// (tests/core/surface_field_test.cpp checks the result against Algorithm 1).
+constexpr double kErrorPerScale[] = {0, 0, 0, 8.4e-3, 2.1e-3, 6e-4, 3e-4, 1.5e-4, 8e-5};
+constexpr int kKappaMin = 3, kKappaMax = 8;
+// Coarse levels interpolate sums over many spheres, far smoother than one sphere's kernel: their
+// measured error is this fraction of the one-sphere model.
+constexpr double kCoarseErrorShare = 1.0;
 
 Box voxelBox(const Coord3& lo, const Coord3& hi, float h) {
     Box b;
@@ -62,15 +62,85 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
     const float minD = kMinDistanceFactor * static_cast<float>(mean);
     m_kernel = InverseKernel{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
     if (params.kernel != MetaballKernel::Compact) {
-        const int kappa = m_tuning.kappa > 0 ? m_tuning.kappa : kappaFor(params.tolerance);
-        // Near cutoff about three radii: a few neighbours summed exactly per voxel.
-        const double target = m_tuning.nearCutoffRadii * mean;
-        m_ratio1 = std::max(1, static_cast<int>(std::lround(target / (kappa * m_h))));
-        m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
+        // The tolerance at the lowest iso; the estimate is already pessimistic (kErrorPerScale
+        // is 1.5x the worst error measured, and errors of levels and spheres are added).
+        const double budget = params.tolerance * params.iso / params.isoRangeFactor;
+        for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
+            if (m_tuning.kappa > 0 && kappa != m_tuning.kappa) continue;
+            // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
+            // the near cutoff about nearCutoffRadii radii.
+            const double target = m_tuning.nearCutoffRadii * mean;
+            m_ratio1 = std::max(m_tuning.minRatio,
+                                static_cast<int>(std::lround(target / (kappa * m_h))));
+            m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
+            m_kappa = kappa;
+            m_coarseKappa = std::max(m_tuning.coarseKappa > 0 ? m_tuning.coarseKappa : kappa,
+                                     kappa / 2 + 1);
+            const auto scale = errorScale();
+            m_estimatedError = kErrorPerScale[kappa] * scale[0] +
+                               kCoarseErrorShare * kErrorPerScale[m_coarseKappa] * scale[1];
+            if (m_estimatedError <= budget) break;
+        }
         m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
     } else {
         m_a0 = params.compactReach * maxRadius();
     }
+}
+
+double MetaballField::weightWithin(const Vec3f& p, double a) const {
+    const Box point{{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
+    const float a2 = static_cast<float>(a * a);
+    const auto& nodes = m_tree.nodes();
+    const auto& s = m_tree.spheres();
+    double sum = 0.0;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const auto& node = nodes[stack[--top]];
+        if (detail::minDistance2(node.box, point) >= a2) continue;
+        if (detail::maxDistance2(node.box, point) < a2) {
+            sum += node.weight;
+        } else if (!node.leaf()) {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+        } else {
+            for (std::uint32_t i = node.begin; i < node.end; ++i) {
+                const float dx = s.x[i] - p[0], dy = s.y[i] - p[1], dz = s.z[i] - p[2];
+                if (dx * dx + dy * dy + dz * dz < a2) sum += s.r[i];
+            }
+        }
+    }
+    return sum;
+}
+
+double MetaballField::cutoff(int l) const {
+    // a_0 = kappa * H_1; a_l = coarseKappa * H_{l+1} with H_{l+1} = 2^l H_1 (2 coarseKappa > kappa).
+    if (l == 0) return m_a0;
+    return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
+}
+
+std::array<double, 2> MetaballField::errorScale() const {
+    // The densest weight within each cutoff over cutoff^p: the size of what each level
+    // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
+    const auto& s = m_tree.spheres();
+    const std::size_t n = s.size();
+    const std::size_t samples = std::min<std::size_t>(n, 256);
+    const auto& box = centreBox();
+    double span2 = 0.0;
+    for (int k = 0; k < 3; ++k) span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
+    std::array<double, 2> scale{0.0, 0.0};
+    for (int l = 0;; ++l) {
+        const double a = cutoff(l);
+        double densest = 0.0;
+        for (std::size_t q = 0; q < samples; ++q) {
+            const std::size_t i = q * n / samples;
+            densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
+        }
+        scale[l == 0 ? 0 : 1] += densest / (m_kernel.p == 2 ? a * a : a);
+        if (a * a > 4.0 * span2) break;
+    }
+    return scale;
 }
 
 MetaballField::~MetaballField() = default;
@@ -91,40 +161,61 @@ std::size_t MetaballField::coarseNodeCount() const {
     return n;
 }
 
-FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi) const {
+FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi, double isoMin,
+                                  double isoMax, int maxOpen) const {
     const Box box = voxelBox(lo, hi, m_h);
     const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
     const auto& nodes = m_tree.nodes();
     const auto& s = m_tree.spheres();
-    double low = 0.0, high = 0.0;
-    std::int32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const auto& node = nodes[stack[--top]];
+    struct Item {
+        double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
+        double low, high;
+        std::int32_t node;
+        bool operator<(const Item& o) const { return gap < o.gap; }
+    };
+    auto itemFor = [&](std::int32_t index) {
+        const auto& node = nodes[index];
         const float dmin2 = detail::minDistance2(node.box, box);
         if (m_params.kernel == MetaballKernel::Compact) {
             const float big = m_params.compactReach * node.rmax;
-            if (dmin2 >= big * big) continue;
+            if (dmin2 >= big * big) return Item{0.0, 0.0, 0.0, index};
         }
         const float dmax2 = detail::maxDistance2(node.box, box);
-        const float kHigh = k.value(dmin2, node.rmax);
-        const float kLow = k.value(dmax2, node.rmin);
-        if (!node.leaf() && (dmin2 == 0.0f || kHigh > 1.25f * kLow)) {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
+        const double low = double(node.weight) * k.value(dmax2, node.rmin);
+        const double high = double(node.weight) * k.value(dmin2, node.rmax);
+        return Item{high - low, low, high, index};
+    };
+    thread_local std::vector<Item> heap;
+    heap.clear();
+    const Item root = itemFor(0);
+    double low = root.low, high = root.high;
+    heap.push_back(root);
+    for (int opened = 0; opened < maxOpen && !heap.empty(); ++opened) {
+        if (low > isoMax || high < isoMin) break; // decided
+        std::pop_heap(heap.begin(), heap.end());
+        const Item item = heap.back();
+        heap.pop_back();
+        if (item.gap <= 0.0) break;
+        low -= item.low;
+        high -= item.high;
+        const auto& node = nodes[item.node];
+        if (node.leaf()) {
+            for (std::uint32_t i = node.begin; i < node.end; ++i) {
+                Box p;
+                p.lo = p.hi = {s.x[i], s.y[i], s.z[i]};
+                low += double(s.r[i]) * k.value(detail::maxDistance2(p, box), s.r[i]);
+                high += double(s.r[i]) * k.value(detail::minDistance2(p, box), s.r[i]);
+            }
             continue;
         }
-        if (!node.leaf() || kHigh <= 1.01f * kLow) {
-            low += double(node.weight) * kLow;
-            high += double(node.weight) * kHigh;
-            continue;
-        }
-        for (std::uint32_t i = node.begin; i < node.end; ++i) {
-            Box p;
-            p.lo = p.hi = {s.x[i], s.y[i], s.z[i]};
-            low += double(s.r[i]) * k.value(detail::maxDistance2(p, box), s.r[i]);
-            high += double(s.r[i]) * k.value(detail::minDistance2(p, box), s.r[i]);
+        for (std::int32_t child : {node.left, node.right}) {
+            const Item c = itemFor(child);
+            low += c.low;
+            high += c.high;
+            if (c.gap > 0.0) {
+                heap.push_back(c);
+                std::push_heap(heap.begin(), heap.end());
+            }
         }
     }
     return {low, high};
@@ -152,27 +243,31 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
         }
         level1->mark(lo, hi);
     }
+    double span2 = 0.0;
+    {
+        const auto& cb = centreBox();
+        const FieldLevel& l1 = *level1;
+        for (int k = 0; k < 3; ++k) {
+            double lo = cb.lo[k], hi = cb.hi[k];
+            for (const auto& b : l1.bricks) {
+                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * l1.spacing);
+                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * l1.spacing);
+            }
+            span2 += (hi - lo) * (hi - lo);
+        }
+    }
     m_levels.push_back(std::move(level1));
     const double n = static_cast<double>(sphereCount());
     for (int l = 1;; ++l) {
         FieldLevel& level = *m_levels.back();
-        const float aBelow = m_a0 * static_cast<float>(1 << (l - 1));
+        const float aBelow = static_cast<float>(cutoff(l - 1));
         level.below = l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
-        level.cutoff = 2.0f * aBelow;
+        level.cutoff = static_cast<float>(cutoff(l));
         level.own = SoftenedKernel(m_kernel.p, level.cutoff, m_tuning.softeningOrder);
-        // Top: summing all spheres is cheap, or every sphere is within the cutoff anyway.
-        const auto& cb = centreBox();
-        double span2 = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            double lo = cb.lo[k], hi = cb.hi[k];
-            for (const auto& b : level.bricks) {
-                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * level.spacing);
-                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * level.spacing);
-            }
-            span2 += (hi - lo) * (hi - lo);
-        }
+        // Top: summing all spheres is cheap, or every sphere lies within the cutoff of every
+        // point the voxels need.
         if (static_cast<double>(level.neededCount()) * n <= m_tuning.topLevelPairs ||
-            double(aBelow) * aBelow >= span2 || l >= 24) {
+            double(aBelow) * aBelow >= span2 || l >= 30) {
             level.top = true;
             break;
         }
@@ -241,6 +336,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
                         const float w = (brick.origin[2] + z) * level.spacing;
                         float acc = 0.0f;
                         if (level.top) {
+#pragma omp simd reduction(+ : acc)
                             for (std::size_t q = 0; q < count; ++q) {
                                 const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
                                 const float d2 = dx * dx + dy * dy + dz * dz;
@@ -248,6 +344,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
                                 acc += pw[q] * v;
                             }
                         } else {
+#pragma omp simd reduction(+ : acc)
                             for (std::size_t q = 0; q < count; ++q) {
                                 const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
                                 const float d2 = dx * dx + dy * dy + dz * dz;
@@ -305,12 +402,14 @@ void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color)
                 const float x = (o[0] + i) * m_h, y = (o[1] + j) * m_h, z = (o[2] + k) * m_h;
                 float f = 0.0f;
                 if (compact) {
+#pragma omp simd reduction(+ : f)
                     for (std::size_t q = 0; q < count; ++q) {
                         const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
                         const float d2 = dx * dx + dy * dy + dz * dz;
                         f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
                     }
                 } else {
+#pragma omp simd reduction(+ : f)
                     for (std::size_t q = 0; q < count; ++q) {
                         const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
                         const float d2 = dx * dx + dy * dy + dz * dz;
@@ -319,6 +418,7 @@ void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color)
                     }
                 }
                 float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+#pragma omp simd reduction(+ : cr, cg, cb, n)
                 for (std::size_t q = 0; q < count; ++q) {
                     const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
                     const float d2 = dx * dx + dy * dy + dz * dz;

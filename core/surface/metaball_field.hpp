@@ -39,8 +39,11 @@ struct FieldLevel;
 struct MultilevelTuning {
     double nearCutoffRadii = 3.0;   // exact near field within about this many mean radii
     double topLevelPairs = 2.0e7;   // stop coarsening once the top sum costs at most this
-    int kappa = 0;                  // cutoff / coarse spacing; 0 picks it from the tolerance
+    int kappa = 0;                  // cutoff / coarse spacing; 0 picks it from the error estimate
     int softeningOrder = 4;         // gamma_a is C^order
+    int coarseKappa = 0;            // cutoff / spacing on levels >= 2; 0: same as kappa
+    int minRatio = 2;               // level-1 spacing at least this many voxels
+    int maxOpen = 256;              // planning: tree nodes opened per block bound
 };
 
 class MetaballField {
@@ -53,6 +56,7 @@ class MetaballField {
     MetaballField& operator=(const MetaballField&) = delete;
 
     float voxelSize() const { return m_h; }
+    const MultilevelTuning& tuning() const { return m_tuning; }
     std::size_t sphereCount() const { return m_tree.spheres().size(); }
     const detail::SphereTree& tree() const { return m_tree; }
     // Sum of all weights, bounding box of the centres, and largest radius.
@@ -62,8 +66,10 @@ class MetaballField {
     // Beyond this distance from the centre box, f < iso everywhere.
     double reach(double iso) const;
 
-    // Guaranteed bounds of f over the voxel-index box [lo, hi] (inclusive).
-    FieldBounds bounds(const Coord3& lo, const Coord3& hi) const;
+    // Guaranteed bounds of f over the voxel-index box [lo, hi] (inclusive), tightened by opening
+    // at most maxOpen tree nodes, and no further once they decide [isoMin, isoMax] either way.
+    FieldBounds bounds(const Coord3& lo, const Coord3& hi, double isoMin, double isoMax,
+                       int maxOpen = 64) const;
 
     // Computes the coarse levels the given blocks need (block origins are multiples of 8).
     // Must be called once before evaluateBlock / evaluatePoints.
@@ -77,6 +83,16 @@ class MetaballField {
 
     // Cutoff of the exact near field and the number of coarse levels (for reports and tests).
     float nearCutoff() const { return m_a0; }
+    int kappa() const { return m_kappa; }
+    // A priori estimate of the largest |f - f_exact| (from kErrorPerScale and errorScale()).
+    double estimatedError() const { return m_estimatedError; }
+    // The densest weight within each level's cutoff over cutoff^p: the size of what level 1
+    // ([0]) and the coarser levels ([1]) interpolate.
+    std::array<double, 2> errorScale() const;
+    // Cutoff a_l: level 0 sums k - gamma_{a_0} exactly; level l >= 1 sums gamma_{a_{l-1}} -
+    // gamma_{a_l} within a_l on a grid of spacing ratio * voxel * 2^(l-1).
+    double cutoff(int level) const;
+    double weightWithin(const Vec3f& point, double radius) const;
     int levelCount() const { return static_cast<int>(m_levels.size()); }
     std::size_t coarseNodeCount() const;
 
@@ -91,6 +107,9 @@ class MetaballField {
     float m_h;
     InverseKernel m_kernel;
     float m_a0 = 0.0f;        // near cutoff
+    int m_kappa = 0;
+    int m_coarseKappa = 0;
+    double m_estimatedError = 0.0;
     int m_ratio1 = 1;         // level-1 spacing in voxels
     SoftenedKernel m_soft0;   // gamma_a0
     std::vector<std::unique_ptr<detail::FieldLevel>> m_levels; // level 1 .. L

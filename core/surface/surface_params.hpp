@@ -26,7 +26,7 @@ struct SurfaceParams {
     float tolerance = 1e-3f;
     // The grid holds exact values for every iso in [iso / f, iso * f]: re-meshing there needs
     // no new field. Larger ranges cost more voxels.
-    float isoRangeFactor = 1.5f;
+    float isoRangeFactor = 1.05f;
     // Figure 4: a field point takes the colour of each sphere whose radius + colorReach holds it
     // (averaged where several do), else initialColor.
     float colorReach = 0.0f;

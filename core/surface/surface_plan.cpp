@@ -76,12 +76,15 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
         std::vector<CellClass> classes(cells.size());
         tbb::parallel_for(std::size_t{0}, cells.size(), [&](std::size_t c) {
             const Cell& cell = cells[c];
+            // One voxel of margin: a voxel next to an evaluated block is then on the same side
+            // of every supported iso as the tile it lies in, so every mesh edge that crosses
+            // the surface joins two evaluated voxels.
             Coord3 vlo, vhi;
             for (int k = 0; k < 3; ++k) {
-                vlo[k] = cell.origin[k] * kBlockDim;
-                vhi[k] = (cell.origin[k] + cell.size) * kBlockDim - 1;
+                vlo[k] = cell.origin[k] * kBlockDim - 1;
+                vhi[k] = (cell.origin[k] + cell.size) * kBlockDim;
             }
-            const FieldBounds b = field.bounds(vlo, vhi);
+            const FieldBounds b = field.bounds(vlo, vhi, isoMin, isoMax, field.tuning().maxOpen);
             classes[c] = b.high < isoMin  ? CellClass::Outside
                          : b.low > isoMax ? CellClass::Inside
                                           : CellClass::Straddle;

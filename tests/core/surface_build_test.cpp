@@ -87,11 +87,13 @@ TEST(FaultSurface, RemeshWithinTheRangeNeedsNoNewField) {
     params.kernel = fc::MetaballKernel::Inverse;
     params.iso = 1.0f;
     params.voxelSize = 0.05f;
+    params.isoRangeFactor = 1.5f;
     const auto result = fc::buildSurface(s.set(), params);
     EXPECT_FLOAT_EQ(result.field->isoMin(), 1.0f / 1.5f);
     const auto mesh = fc::remesh(*result.field, 1.25f);
     ASSERT_FALSE(mesh.positions.empty());
-    for (const auto& p : mesh.positions) EXPECT_NEAR(distanceFromCentre(p), 0.4, 2e-3);
+    // Marching cubes interpolates linearly along edges: 1/d bends by ~h^2 f'' / 8 f' there.
+    for (const auto& p : mesh.positions) EXPECT_NEAR(distanceFromCentre(p), 0.4, 3e-3);
     EXPECT_THROW(fc::remesh(*result.field, 3.0f), fc::SurfaceRequestError);
 }
 

@@ -89,10 +89,10 @@ TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5; // force several coarse levels on a small set
     int levels = 0;
-    const Check c = compareWithReference(s, params, 0.25f, iso / 1.5f, iso * 1.5f, tuning, &levels);
+    const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor, iso * params.isoRangeFactor, tuning, &levels);
     EXPECT_GE(levels, 3);
     EXPECT_GT(c.voxels, 10000u);
-    EXPECT_LE(c.maxError, params.tolerance * iso / 1.5f) << "voxels " << c.voxels;
+    EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
     EXPECT_EQ(c.colorMismatches, 0u);
 }
 
@@ -104,10 +104,10 @@ TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5;
     int levels = 0;
-    const Check c = compareWithReference(s, params, 0.2f, iso / 1.5f, iso * 1.5f, tuning, &levels);
+    const Check c = compareWithReference(s, params, 0.2f, iso / params.isoRangeFactor, iso * params.isoRangeFactor, tuning, &levels);
     EXPECT_GE(levels, 3);
     EXPECT_GT(c.voxels, 10000u);
-    EXPECT_LE(c.maxError, params.tolerance * iso / 1.5f) << "voxels " << c.voxels;
+    EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
 }
 
 TEST(MetaballField, CompactIsExactWithinItsSupport) {
@@ -127,7 +127,7 @@ TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e4;
     fc::MetaballField field(set, params, 0.25f, tuning);
-    const auto plan = fc::planSurface(field, iso / 1.5f, iso * 1.5f, std::size_t{1} << 30, nullptr);
+    const auto plan = fc::planSurface(field, iso / params.isoRangeFactor, iso * params.isoRangeFactor, std::size_t{1} << 30, nullptr);
     field.prepare(plan.blocks, nullptr);
     std::mt19937 rng(5);
     std::vector<fc::Vec3f> points;
