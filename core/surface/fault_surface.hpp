@@ -23,13 +23,13 @@ struct SurfaceMesh {
 };
 
 struct SurfaceStats {
-    std::size_t blocks = 0;       // evaluated 8^3 blocks
+    std::size_t blocks = 0; // evaluated 8^3 blocks
     std::size_t activeVoxels = 0;
-    std::size_t coarseNodes = 0;  // nodes on the multilevel grids
+    std::size_t coarseNodes = 0; // nodes on the multilevel grids
     int levels = 0;
     float nearCutoff = 0.0f;
-    int kappa = 0;                // near cutoff / level-1 spacing
-    double estimatedError = 0.0;  // a priori bound on |f - f_exact| the parameters were chosen by
+    int kappa = 0;               // near cutoff / level-1 spacing
+    double estimatedError = 0.0; // a priori bound on |f - f_exact| the parameters were chosen by
     double planSeconds = 0.0, fieldSeconds = 0.0, meshSeconds = 0.0;
 };
 
@@ -41,16 +41,16 @@ class SurfaceField {
     explicit SurfaceField(std::unique_ptr<Impl> impl);
     ~SurfaceField();
 
-    const SurfaceParams& params() const;
+    const SurfaceParams &params() const;
     float voxelSize() const;
     std::size_t sphereCount() const;
     // Iso-values this grid re-meshes exactly: [iso / isoRangeFactor, iso * isoRangeFactor].
     float isoMin() const;
     float isoMax() const;
     bool supportsIso(float iso) const { return iso >= isoMin() && iso <= isoMax(); }
-    const SurfaceStats& stats() const;
+    const SurfaceStats &stats() const;
     std::size_t memoryBytes() const;
-    const Impl& impl() const { return *m_impl; }
+    const Impl &impl() const { return *m_impl; }
 
   private:
     std::unique_ptr<Impl> m_impl;
@@ -65,11 +65,11 @@ struct SurfaceResult {
 // Builds the field, colour and mesh. Throws SurfaceRequestError before any work for a bad
 // request (no spheres, bad numbers, over the memory budget: the message says how much it would
 // need) and SurfaceCancelled when the interrupter asks to stop.
-SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params,
-                           Interrupter* interrupter = nullptr);
+SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
+                           Interrupter *interrupter = nullptr);
 
 // The iso-surface of an existing field at another iso-value (no field recomputation). Throws
 // SurfaceRequestError when iso lies outside [isoMin, isoMax] (a rebuild is needed).
-SurfaceMesh remesh(const SurfaceField& field, float iso, Interrupter* interrupter = nullptr);
+SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr);
 
 } // namespace faultline::core

@@ -30,7 +30,7 @@ constexpr int kKappaMin = 3, kKappaMax = 8;
 // measured error is this fraction of the one-sphere model.
 constexpr double kCoarseErrorShare = 1.0;
 
-Box voxelBox(const Coord3& lo, const Coord3& hi, float h) {
+Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
     Box b;
     for (int k = 0; k < 3; ++k) {
         b.lo[k] = lo[k] * h;
@@ -45,7 +45,8 @@ struct BoundKernel {
     InverseKernel inverse;
     float compactReach;
     float value(float d2, float radius) const {
-        if (kernel != MetaballKernel::Compact) return inverse.value(d2);
+        if (kernel != MetaballKernel::Compact)
+            return inverse.value(d2);
         const float big = compactReach * radius;
         return compactValue(d2, 1.0f / (big * big));
     }
@@ -53,11 +54,12 @@ struct BoundKernel {
 
 } // namespace
 
-MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& params,
-                             float voxelSize, const MultilevelTuning& tuning)
+MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
+                             const MultilevelTuning &tuning)
     : m_tree(spheres), m_params(params), m_tuning(tuning), m_h(voxelSize) {
     double mean = 0.0;
-    for (float r : m_tree.spheres().r) mean += r;
+    for (float r : m_tree.spheres().r)
+        mean += r;
     mean /= static_cast<double>(sphereCount());
     const float minD = kMinDistanceFactor * static_cast<float>(mean);
     m_kernel = InverseKernel{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
@@ -66,20 +68,22 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
         // is 1.5x the worst error measured, and errors of levels and spheres are added).
         const double budget = params.tolerance * params.iso / params.isoRangeFactor;
         for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
-            if (m_tuning.kappa > 0 && kappa != m_tuning.kappa) continue;
+            if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
+                continue;
             // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
             // the near cutoff about nearCutoffRadii radii.
             const double target = m_tuning.nearCutoffRadii * mean;
-            m_ratio1 = std::max(m_tuning.minRatio,
-                                static_cast<int>(std::lround(target / (kappa * m_h))));
+            m_ratio1 =
+                std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
             m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
             m_kappa = kappa;
-            m_coarseKappa = std::max(m_tuning.coarseKappa > 0 ? m_tuning.coarseKappa : kappa,
-                                     kappa / 2 + 1);
+            m_coarseKappa =
+                std::max(m_tuning.coarseKappa > 0 ? m_tuning.coarseKappa : kappa, kappa / 2 + 1);
             const auto scale = errorScale();
             m_estimatedError = kErrorPerScale[kappa] * scale[0] +
                                kCoarseErrorShare * kErrorPerScale[m_coarseKappa] * scale[1];
-            if (m_estimatedError <= budget) break;
+            if (m_estimatedError <= budget)
+                break;
         }
         m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
     } else {
@@ -87,18 +91,19 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
     }
 }
 
-double MetaballField::weightWithin(const Vec3f& p, double a) const {
+double MetaballField::weightWithin(const Vec3f &p, double a) const {
     const Box point{{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
     const float a2 = static_cast<float>(a * a);
-    const auto& nodes = m_tree.nodes();
-    const auto& s = m_tree.spheres();
+    const auto &nodes = m_tree.nodes();
+    const auto &s = m_tree.spheres();
     double sum = 0.0;
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const auto& node = nodes[stack[--top]];
-        if (detail::minDistance2(node.box, point) >= a2) continue;
+        const auto &node = nodes[stack[--top]];
+        if (detail::minDistance2(node.box, point) >= a2)
+            continue;
         if (detail::maxDistance2(node.box, point) < a2) {
             sum += node.weight;
         } else if (!node.leaf()) {
@@ -107,7 +112,8 @@ double MetaballField::weightWithin(const Vec3f& p, double a) const {
         } else {
             for (std::uint32_t i = node.begin; i < node.end; ++i) {
                 const float dx = s.x[i] - p[0], dy = s.y[i] - p[1], dz = s.z[i] - p[2];
-                if (dx * dx + dy * dy + dz * dz < a2) sum += s.r[i];
+                if (dx * dx + dy * dy + dz * dz < a2)
+                    sum += s.r[i];
             }
         }
     }
@@ -115,20 +121,23 @@ double MetaballField::weightWithin(const Vec3f& p, double a) const {
 }
 
 double MetaballField::cutoff(int l) const {
-    // a_0 = kappa * H_1; a_l = coarseKappa * H_{l+1} with H_{l+1} = 2^l H_1 (2 coarseKappa > kappa).
-    if (l == 0) return m_a0;
+    // a_0 = kappa * H_1; a_l = coarseKappa * H_{l+1} with H_{l+1} = 2^l H_1 (2 coarseKappa >
+    // kappa).
+    if (l == 0)
+        return m_a0;
     return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
 }
 
 std::array<double, 2> MetaballField::errorScale() const {
     // The densest weight within each cutoff over cutoff^p: the size of what each level
     // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
-    const auto& s = m_tree.spheres();
+    const auto &s = m_tree.spheres();
     const std::size_t n = s.size();
     const std::size_t samples = std::min<std::size_t>(n, 256);
-    const auto& box = centreBox();
+    const auto &box = centreBox();
     double span2 = 0.0;
-    for (int k = 0; k < 3; ++k) span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
+    for (int k = 0; k < 3; ++k)
+        span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
     std::array<double, 2> scale{0.0, 0.0};
     for (int l = 0;; ++l) {
         const double a = cutoff(l);
@@ -138,7 +147,8 @@ std::array<double, 2> MetaballField::errorScale() const {
             densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
         }
         scale[l == 0 ? 0 : 1] += densest / (m_kernel.p == 2 ? a * a : a);
-        if (a * a > 4.0 * span2) break;
+        if (a * a > 4.0 * span2)
+            break;
     }
     return scale;
 }
@@ -146,39 +156,40 @@ std::array<double, 2> MetaballField::errorScale() const {
 MetaballField::~MetaballField() = default;
 
 double MetaballField::reach(double iso) const {
-    if (m_params.kernel == MetaballKernel::Compact) return m_params.compactReach * maxRadius();
+    if (m_params.kernel == MetaballKernel::Compact)
+        return m_params.compactReach * maxRadius();
     const double ratio = totalWeight() / iso;
     return m_kernel.p == 2 ? std::sqrt(ratio) : ratio;
 }
 
-float MetaballField::nearReach() const {
-    return std::max(m_a0, maxRadius() + m_params.colorReach);
-}
+float MetaballField::nearReach() const { return std::max(m_a0, maxRadius() + m_params.colorReach); }
 
 std::size_t MetaballField::coarseNodeCount() const {
     std::size_t n = 0;
-    for (const auto& l : m_levels) n += l->neededCount();
+    for (const auto &l : m_levels)
+        n += l->neededCount();
     return n;
 }
 
-FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi, double isoMin,
-                                  double isoMax, int maxOpen) const {
+FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double isoMin, double isoMax,
+                                  int maxOpen) const {
     const Box box = voxelBox(lo, hi, m_h);
     const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
-    const auto& nodes = m_tree.nodes();
-    const auto& s = m_tree.spheres();
+    const auto &nodes = m_tree.nodes();
+    const auto &s = m_tree.spheres();
     struct Item {
         double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
         double low, high;
         std::int32_t node;
-        bool operator<(const Item& o) const { return gap < o.gap; }
+        bool operator<(const Item &o) const { return gap < o.gap; }
     };
     auto itemFor = [&](std::int32_t index) {
-        const auto& node = nodes[index];
+        const auto &node = nodes[index];
         const float dmin2 = detail::minDistance2(node.box, box);
         if (m_params.kernel == MetaballKernel::Compact) {
             const float big = m_params.compactReach * node.rmax;
-            if (dmin2 >= big * big) return Item{0.0, 0.0, 0.0, index};
+            if (dmin2 >= big * big)
+                return Item{0.0, 0.0, 0.0, index};
         }
         const float dmax2 = detail::maxDistance2(node.box, box);
         const double low = double(node.weight) * k.value(dmax2, node.rmin);
@@ -191,14 +202,16 @@ FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi, double iso
     double low = root.low, high = root.high;
     heap.push_back(root);
     for (int opened = 0; opened < maxOpen && !heap.empty(); ++opened) {
-        if (low > isoMax || high < isoMin) break; // decided
+        if (low > isoMax || high < isoMin)
+            break; // decided
         std::pop_heap(heap.begin(), heap.end());
         const Item item = heap.back();
         heap.pop_back();
-        if (item.gap <= 0.0) break;
+        if (item.gap <= 0.0)
+            break;
         low -= item.low;
         high -= item.high;
-        const auto& node = nodes[item.node];
+        const auto &node = nodes[item.node];
         if (node.leaf()) {
             for (std::uint32_t i = node.begin; i < node.end; ++i) {
                 Box p;
@@ -221,7 +234,7 @@ FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi, double iso
     return {low, high};
 }
 
-void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interrupter) {
+void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
     m_blocks.clear();
     m_blockOrigins.assign(blocks.begin(), blocks.end());
     for (std::size_t i = 0; i < blocks.size(); ++i)
@@ -229,13 +242,14 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
                                   floorDiv(blocks[i][2], 8)}),
                          static_cast<std::uint32_t>(i));
     m_levels.clear();
-    if (m_params.kernel == MetaballKernel::Compact || blocks.empty()) return;
+    if (m_params.kernel == MetaballKernel::Compact || blocks.empty())
+        return;
 
     // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
     auto level1 = std::make_unique<FieldLevel>();
     level1->spacing = m_ratio1 * m_h;
     level1->ratio = m_ratio1;
-    for (const auto& o : blocks) {
+    for (const auto &o : blocks) {
         detail::Int3 lo, hi;
         for (int k = 0; k < 3; ++k) {
             lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
@@ -245,11 +259,11 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
     }
     double span2 = 0.0;
     {
-        const auto& cb = centreBox();
-        const FieldLevel& l1 = *level1;
+        const auto &cb = centreBox();
+        const FieldLevel &l1 = *level1;
         for (int k = 0; k < 3; ++k) {
             double lo = cb.lo[k], hi = cb.hi[k];
-            for (const auto& b : l1.bricks) {
+            for (const auto &b : l1.bricks) {
                 lo = std::min(lo, double(b.origin[k] + b.lo[k]) * l1.spacing);
                 hi = std::max(hi, double(b.origin[k] + b.hi[k]) * l1.spacing);
             }
@@ -259,9 +273,10 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
     m_levels.push_back(std::move(level1));
     const double n = static_cast<double>(sphereCount());
     for (int l = 1;; ++l) {
-        FieldLevel& level = *m_levels.back();
+        FieldLevel &level = *m_levels.back();
         const float aBelow = static_cast<float>(cutoff(l - 1));
-        level.below = l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
+        level.below =
+            l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
         level.cutoff = static_cast<float>(cutoff(l));
         level.own = SoftenedKernel(m_kernel.p, level.cutoff, m_tuning.softeningOrder);
         // Top: summing all spheres is cheap, or every sphere lies within the cutoff of every
@@ -274,7 +289,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
         auto next = std::make_unique<FieldLevel>();
         next->spacing = 2.0f * level.spacing;
         next->ratio = 2;
-        for (const auto& b : level.bricks) {
+        for (const auto &b : level.bricks) {
             detail::Int3 lo, hi;
             for (int k = 0; k < 3; ++k) {
                 lo[k] = floorDiv(b.origin[k] + b.lo[k], 2) - detail::kTapsBelow;
@@ -288,23 +303,25 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
     // Compute from the coarsest level down: each level adds its window sum to the cubic
     // interpolation of the level above.
     std::size_t totalBricks = 0;
-    for (const auto& l : m_levels) totalBricks += l->bricks.size();
+    for (const auto &l : m_levels)
+        totalBricks += l->bricks.size();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
-    const auto& s = m_tree.spheres();
+    const auto &s = m_tree.spheres();
     const InverseKernel kernel = m_kernel;
     for (int li = static_cast<int>(m_levels.size()) - 1; li >= 0; --li) {
-        FieldLevel& level = *m_levels[li];
-        const FieldLevel* above = li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get()
-                                                                            : nullptr;
+        FieldLevel &level = *m_levels[li];
+        const FieldLevel *above =
+            li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get() : nullptr;
         tbb::parallel_for(std::size_t{0}, level.bricks.size(), [&](std::size_t bi) {
-            if (cancelled.load(std::memory_order_relaxed)) return;
-            Brick& brick = level.bricks[bi];
+            if (cancelled.load(std::memory_order_relaxed))
+                return;
+            Brick &brick = level.bricks[bi];
             thread_local NearList list;
-            const float* px = s.x.data();
-            const float* py = s.y.data();
-            const float* pz = s.z.data();
-            const float* pw = s.r.data();
+            const float *px = s.x.data();
+            const float *py = s.y.data();
+            const float *pz = s.z.data();
+            const float *pw = s.r.data();
             std::size_t count = s.size();
             if (!level.top) {
                 list.clear();
@@ -330,7 +347,8 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
                 for (int j = brick.lo[1]; j <= brick.hi[1]; ++j)
                     for (int z = brick.lo[2]; z <= brick.hi[2]; ++z) {
                         const int off = Brick::offset(i, j, z);
-                        if (!brick.needed(off)) continue;
+                        if (!brick.needed(off))
+                            continue;
                         const float x = (brick.origin[0] + i) * level.spacing;
                         const float y = (brick.origin[1] + j) * level.spacing;
                         const float w = (brick.origin[2] + z) * level.spacing;
@@ -376,20 +394,21 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interru
             if (interrupter && interrupter->wasInterrupted(static_cast<int>(100 * d / totalBricks)))
                 cancelled = true;
         });
-        if (cancelled) throw SurfaceCancelled();
+        if (cancelled)
+            throw SurfaceCancelled();
     }
 }
 
-void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color) const {
+void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
     thread_local NearList list;
     list.clear();
     const Box box = voxelBox(o, {o[0] + 7, o[1] + 7, o[2] + 7}, m_h);
     m_tree.gather(box, nearReach(), list, true);
     const std::size_t count = list.size();
-    const float* lx = list.x.data();
-    const float* ly = list.y.data();
-    const float* lz = list.z.data();
-    const float* lr = list.r.data();
+    const float *lx = list.x.data();
+    const float *ly = list.y.data();
+    const float *lz = list.z.data();
+    const float *lr = list.r.data();
     const float a2 = m_a0 * m_a0;
     const float reachAdd = m_params.colorReach;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
@@ -437,8 +456,8 @@ void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color)
         detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
 }
 
-void MetaballField::sumNear(const NearList& list, const Vec3f& p, float& value, Vec3f* gradient,
-                            Vec3f* color) const {
+void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
+                            Vec3f *color) const {
     (void)color;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float a2 = m_a0 * m_a0;
@@ -463,40 +482,43 @@ void MetaballField::sumNear(const NearList& list, const Vec3f& p, float& value, 
         gz += g * dz;
     }
     value += f;
-    if (gradient) *gradient = {(*gradient)[0] + gx, (*gradient)[1] + gy, (*gradient)[2] + gz};
+    if (gradient)
+        *gradient = {(*gradient)[0] + gx, (*gradient)[1] + gy, (*gradient)[2] + gz};
 }
 
-void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
-                                   Vec3f* gradients) const {
+void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
+                                   Vec3f *gradients) const {
     // Group the points by a prepared block next to them: one neighbour list and one coarse
     // patch per group.
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
     std::vector<std::uint32_t> orphans;
     for (std::size_t n = 0; n < points.size(); ++n) {
-        const auto& p = points[n];
+        const auto &p = points[n];
         int cell[3];
-        for (int k = 0; k < 3; ++k) cell[k] = static_cast<int>(std::floor(p[k] / m_h));
+        for (int k = 0; k < 3; ++k)
+            cell[k] = static_cast<int>(std::floor(p[k] / m_h));
         bool found = false;
         for (int corner = 0; corner < 8 && !found; ++corner) {
             const detail::Int3 v{cell[0] + (corner & 1), cell[1] + ((corner >> 1) & 1),
                                  cell[2] + ((corner >> 2) & 1)};
-            auto it = m_blocks.find(packKey({floorDiv(v[0], 8), floorDiv(v[1], 8),
-                                             floorDiv(v[2], 8)}));
+            auto it =
+                m_blocks.find(packKey({floorDiv(v[0], 8), floorDiv(v[1], 8), floorDiv(v[2], 8)}));
             if (it != m_blocks.end()) {
                 groups[it->second].push_back(static_cast<std::uint32_t>(n));
                 found = true;
             }
         }
-        if (!found) orphans.push_back(static_cast<std::uint32_t>(n));
+        if (!found)
+            orphans.push_back(static_cast<std::uint32_t>(n));
     }
-    std::vector<const std::vector<std::uint32_t>*> groupList;
+    std::vector<const std::vector<std::uint32_t> *> groupList;
     std::vector<std::uint32_t> groupBlock;
-    for (const auto& [block, members] : groups) {
+    for (const auto &[block, members] : groups) {
         groupList.push_back(&members);
         groupBlock.push_back(block);
     }
     tbb::parallel_for(std::size_t{0}, groupList.size(), [&](std::size_t g) {
-        const auto& members = *groupList[g];
+        const auto &members = *groupList[g];
         const Coord3 origin = m_blockOrigins[groupBlock[g]];
         thread_local NearList list;
         list.clear();
@@ -505,7 +527,7 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
         m_tree.gather(box, m_a0, list, false);
         thread_local std::vector<float> patch;
         detail::Int3 s0{0, 0, 0}, sd{0, 0, 0};
-        const FieldLevel* level1 = m_levels.empty() ? nullptr : m_levels.front().get();
+        const FieldLevel *level1 = m_levels.empty() ? nullptr : m_levels.front().get();
         if (level1) {
             for (int k = 0; k < 3; ++k) {
                 s0[k] = floorDiv(origin[k] - 1, m_ratio1) - detail::kTapsBelow;
@@ -514,7 +536,7 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
             detail::gatherPatch(*level1, s0, sd, patch);
         }
         for (std::uint32_t n : members) {
-            const Vec3f& p = points[n];
+            const Vec3f &p = points[n];
             float value = 0.0f;
             Vec3f grad{0, 0, 0};
             sumNear(list, p, value, &grad, nullptr);
@@ -548,14 +570,16 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
                 value += v;
                 grad = {grad[0] + g0 * inv, grad[1] + g1 * inv, grad[2] + g2 * inv};
             }
-            if (values) values[n] = value;
-            if (gradients) gradients[n] = grad;
+            if (values)
+                values[n] = value;
+            if (gradients)
+                gradients[n] = grad;
         }
     });
     // Points away from every prepared block: sum every sphere (rare; correct, slow).
-    const auto& s = m_tree.spheres();
+    const auto &s = m_tree.spheres();
     for (std::uint32_t n : orphans) {
-        const Vec3f& p = points[n];
+        const Vec3f &p = points[n];
         float value = 0.0f;
         Vec3f grad{0, 0, 0};
         for (std::size_t q = 0; q < s.size(); ++q) {
@@ -574,8 +598,10 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
             const float g = 2.0f * s.r[q] * slope;
             grad = {grad[0] + g * dx, grad[1] + g * dy, grad[2] + g * dz};
         }
-        if (values) values[n] = value;
-        if (gradients) gradients[n] = grad;
+        if (values)
+            values[n] = value;
+        if (gradients)
+            gradients[n] = grad;
     }
 }
 

@@ -33,9 +33,9 @@ struct InverseKernel {
 // k = (k - gamma_a0) + (gamma_a0 - gamma_a1) + ... + gamma_aL.
 struct SoftenedKernel {
     int p = 2;
-    float a2 = 1.0f;       // a^2
-    float scale = 1.0f;    // a^-p
-    float coef[5] = {};    // binomial(-p/2, j)
+    float a2 = 1.0f;    // a^2
+    float scale = 1.0f; // a^-p
+    float coef[5] = {}; // binomial(-p/2, j)
 
     SoftenedKernel() = default;
     SoftenedKernel(int power, float a, int order = 4) : p(power), a2(a * a) {

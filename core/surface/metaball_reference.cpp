@@ -9,15 +9,17 @@
 
 namespace faultline::core {
 
-double meanRadius(const SphereSet& spheres) {
-    if (spheres.size() == 0) return 0.0;
+double meanRadius(const SphereSet &spheres) {
+    if (spheres.size() == 0)
+        return 0.0;
     double sum = 0.0;
-    for (float r : spheres.radius) sum += r;
+    for (float r : spheres.radius)
+        sum += r;
     return sum / static_cast<double>(spheres.size());
 }
 
-FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
-                            const std::array<double, 3>& p) {
+FieldSample referenceSample(const SphereSet &s, const SurfaceParams &params,
+                            const std::array<double, 3> &p) {
     FieldSample out;
     const double minD = kMinDistanceFactor * meanRadius(s);
     const double minD2 = minD * minD;
@@ -53,7 +55,8 @@ FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
         out.gradient[2] += 2.0 * slope * dz;
         const double reach = s.radius[i] + params.colorReach;
         if (d2raw < reach * reach) {
-            for (int c = 0; c < 3; ++c) rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
+            for (int c = 0; c < 3; ++c)
+                rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
             ++colored;
         }
     }
@@ -62,9 +65,9 @@ FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
     return out;
 }
 
-std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& params,
-                                   const std::array<int, 3>& origin,
-                                   const std::array<int, 3>& dims, float h) {
+std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &params,
+                                   const std::array<int, 3> &origin, const std::array<int, 3> &dims,
+                                   float h) {
     const std::size_t nx = dims[0], ny = dims[1], nz = dims[2];
     std::vector<float> field(nx * ny * nz, 0.0f);
     const float minD = kMinDistanceFactor * static_cast<float>(meanRadius(s));
@@ -73,7 +76,7 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
         const float pz = (origin[2] + static_cast<int>(k)) * h;
         for (std::size_t j = 0; j < ny; ++j) {
             const float py = (origin[1] + static_cast<int>(j)) * h;
-            float* row = &field[(k * ny + j) * nx];
+            float *row = &field[(k * ny + j) * nx];
             for (std::size_t i = 0; i < nx; ++i) {
                 const float px = (origin[0] + static_cast<int>(i)) * h;
                 float f = 0.0f;

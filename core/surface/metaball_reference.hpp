@@ -16,16 +16,16 @@ struct FieldSample {
     std::array<float, 3> color{1, 1, 1};     // Figure 4
 };
 
-double meanRadius(const SphereSet& spheres);
+double meanRadius(const SphereSet &spheres);
 
 // Field, gradient and colour at one point, in double precision.
-FieldSample referenceSample(const SphereSet& spheres, const SurfaceParams& params,
-                            const std::array<double, 3>& point);
+FieldSample referenceSample(const SphereSet &spheres, const SurfaceParams &params,
+                            const std::array<double, 3> &point);
 
 // Field on a dense box of voxels [origin, origin + dims) (world = index * voxelSize), x fastest;
 // every sphere against every voxel, in parallel. What the benchmark compares against.
-std::vector<float> algorithm1Dense(const SphereSet& spheres, const SurfaceParams& params,
-                                   const std::array<int, 3>& origin,
-                                   const std::array<int, 3>& dims, float voxelSize);
+std::vector<float> algorithm1Dense(const SphereSet &spheres, const SurfaceParams &params,
+                                   const std::array<int, 3> &origin, const std::array<int, 3> &dims,
+                                   float voxelSize);
 
 } // namespace faultline::core

@@ -10,7 +10,7 @@
 namespace faultline::core {
 
 std::string formatBytes(double bytes) {
-    const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
+    const char *units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
     int u = 0;
     while (bytes >= 1024.0 && u < 5) {
         bytes /= 1024.0;
@@ -31,7 +31,7 @@ struct Cell {
 enum class CellClass { Outside, Inside, Straddle };
 
 [[noreturn]] void refuseBudget(double neededBytes, std::size_t budget, float voxel,
-                               const char* how) {
+                               const char *how) {
     const double scale = std::sqrt(neededBytes / static_cast<double>(budget));
     char text[160];
     std::snprintf(text, sizeof text, "use a voxel size of at least %.3g", voxel * scale);
@@ -42,14 +42,14 @@ enum class CellClass { Outside, Inside, Straddle };
 
 } // namespace
 
-SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
-                        std::size_t budgetBytes, Interrupter* interrupter) {
+SurfacePlan planSurface(const MetaballField &field, float isoMin, float isoMax,
+                        std::size_t budgetBytes, Interrupter *interrupter) {
     SurfacePlan plan;
     plan.isoMin = isoMin;
     plan.isoMax = isoMax;
     const float h = field.voxelSize();
     const double reach = field.reach(isoMin) + field.maxRadius();
-    const auto& box = field.centreBox();
+    const auto &box = field.centreBox();
     const double blockWorld = kBlockDim * static_cast<double>(h);
     Coord3 lo, hi;
     int extent = 1;
@@ -64,18 +64,21 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
                 "; raise the voxel size or the iso-value");
         lo[k] = static_cast<int>(l);
         hi[k] = static_cast<int>(u);
-        while (extent < hi[k] - lo[k] + 1) extent *= 2;
+        while (extent < hi[k] - lo[k] + 1)
+            extent *= 2;
     }
     const std::size_t budgetBlocks = std::max<std::size_t>(1, budgetBytes / kBytesPerBlock);
     int levelsLeft = 0;
-    for (int s = extent; s > 1; s /= 2) ++levelsLeft;
+    for (int s = extent; s > 1; s /= 2)
+        ++levelsLeft;
 
     std::vector<Cell> cells{{lo, extent}};
-    if (interrupter) interrupter->start("plan");
+    if (interrupter)
+        interrupter->start("plan");
     while (!cells.empty()) {
         std::vector<CellClass> classes(cells.size());
         tbb::parallel_for(std::size_t{0}, cells.size(), [&](std::size_t c) {
-            const Cell& cell = cells[c];
+            const Cell &cell = cells[c];
             // One voxel of margin: a voxel next to an evaluated block is then on the same side
             // of every supported iso as the tile it lies in, so every mesh edge that crosses
             // the surface joins two evaluated voxels.
@@ -92,8 +95,9 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
         std::vector<Cell> next;
         std::size_t straddling = 0;
         for (std::size_t c = 0; c < cells.size(); ++c) {
-            const Cell& cell = cells[c];
-            if (classes[c] == CellClass::Outside) continue;
+            const Cell &cell = cells[c];
+            if (classes[c] == CellClass::Outside)
+                continue;
             if (classes[c] == CellClass::Inside) {
                 Coord3 vlo, vhi;
                 for (int k = 0; k < 3; ++k) {
@@ -113,7 +117,8 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
                 const Coord3 o{cell.origin[0] + (child & 1) * half,
                                cell.origin[1] + ((child >> 1) & 1) * half,
                                cell.origin[2] + ((child >> 2) & 1) * half};
-                if (o[0] > hi[0] || o[1] > hi[1] || o[2] > hi[2]) continue;
+                if (o[0] > hi[0] || o[1] > hi[1] || o[2] > hi[2])
+                    continue;
                 next.push_back({o, half});
             }
         }
@@ -127,12 +132,15 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
         }
         --levelsLeft;
         cells = std::move(next);
-        if (interrupter && interrupter->wasInterrupted(-1)) throw SurfaceCancelled();
+        if (interrupter && interrupter->wasInterrupted(-1))
+            throw SurfaceCancelled();
     }
-    for (auto& b : plan.blocks)
-        for (int k = 0; k < 3; ++k) b[k] *= kBlockDim;
+    for (auto &b : plan.blocks)
+        for (int k = 0; k < 3; ++k)
+            b[k] *= kBlockDim;
     plan.estimatedBytes = plan.blocks.size() * kBytesPerBlock + field.sphereCount() * 48;
-    if (interrupter) interrupter->end();
+    if (interrupter)
+        interrupter->end();
     return plan;
 }
 

@@ -19,7 +19,7 @@ struct Spheres {
     fc::SphereSet set() const { return {x, y, z, r, rgb}; }
 };
 
-std::filesystem::path tempPath(const std::string& name) {
+std::filesystem::path tempPath(const std::string &name) {
     return std::filesystem::temp_directory_path() / ("faultline_surface_test_" + name);
 }
 
@@ -79,8 +79,9 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
     EXPECT_EQ(model.nodes[0].name, "F1");
     EXPECT_EQ(model.nodes[1].name, "F2");
     EXPECT_EQ(model.nodes[2].name, "glyphs");
-    const auto& prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
-    for (const char* attr : {"POSITION", "NORMAL", "COLOR_0"}) EXPECT_TRUE(prim.attributes.count(attr));
+    const auto &prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
+    for (const char *attr : {"POSITION", "NORMAL", "COLOR_0"})
+        EXPECT_TRUE(prim.attributes.count(attr));
     EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
     EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());
     EXPECT_TRUE(model.nodes[2].extensions.count("EXT_mesh_gpu_instancing"));

@@ -43,29 +43,31 @@ struct Check {
 };
 
 // Evaluates every planned block and compares every voxel with Algorithm 1.
-Check compareWithReference(const Spheres& s, const fc::SurfaceParams& params, float voxel,
-                           float isoMin, float isoMax, const fc::MultilevelTuning& tuning,
-                           int* levels = nullptr) {
+Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, float voxel,
+                           float isoMin, float isoMax, const fc::MultilevelTuning &tuning,
+                           int *levels = nullptr) {
     const auto set = s.set();
     fc::MetaballField field(set, params, voxel, tuning);
     const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
     field.prepare(plan.blocks, nullptr);
-    if (levels) *levels = field.levelCount();
+    if (levels)
+        *levels = field.levelCount();
     Check check;
     const double clamp = 4.0 * isoMax;
     std::vector<float> density(fc::kBlockVoxels);
     std::vector<fc::Vec3f> color(fc::kBlockVoxels);
-    for (const auto& o : plan.blocks) {
+    for (const auto &o : plan.blocks) {
         field.evaluateBlock(o, density.data(), color.data());
         for (int i = 0; i < 8; ++i)
             for (int j = 0; j < 8; ++j)
                 for (int k = 0; k < 8; ++k) {
                     const int off = fc::blockOffset(i, j, k);
-                    const auto ref = fc::referenceSample(
-                        set, params, {(o[0] + i) * double(voxel), (o[1] + j) * double(voxel),
-                                      (o[2] + k) * double(voxel)});
-                    const double err =
-                        std::abs(std::min<double>(density[off], clamp) - std::min(ref.value, clamp));
+                    const auto ref =
+                        fc::referenceSample(set, params,
+                                            {(o[0] + i) * double(voxel), (o[1] + j) * double(voxel),
+                                             (o[2] + k) * double(voxel)});
+                    const double err = std::abs(std::min<double>(density[off], clamp) -
+                                                std::min(ref.value, clamp));
                     check.maxError = std::max(check.maxError, err);
                     for (int c = 0; c < 3; ++c)
                         if (std::abs(color[off][c] - ref.color[c]) > 1e-5f) {
@@ -89,7 +91,8 @@ TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5; // force several coarse levels on a small set
     int levels = 0;
-    const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor, iso * params.isoRangeFactor, tuning, &levels);
+    const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                                         iso * params.isoRangeFactor, tuning, &levels);
     EXPECT_GE(levels, 3);
     EXPECT_GT(c.voxels, 10000u);
     EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
@@ -104,7 +107,8 @@ TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5;
     int levels = 0;
-    const Check c = compareWithReference(s, params, 0.2f, iso / params.isoRangeFactor, iso * params.isoRangeFactor, tuning, &levels);
+    const Check c = compareWithReference(s, params, 0.2f, iso / params.isoRangeFactor,
+                                         iso * params.isoRangeFactor, tuning, &levels);
     EXPECT_GE(levels, 3);
     EXPECT_GT(c.voxels, 10000u);
     EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
@@ -127,24 +131,29 @@ TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e4;
     fc::MetaballField field(set, params, 0.25f, tuning);
-    const auto plan = fc::planSurface(field, iso / params.isoRangeFactor, iso * params.isoRangeFactor, std::size_t{1} << 30, nullptr);
+    const auto plan = fc::planSurface(field, iso / params.isoRangeFactor,
+                                      iso * params.isoRangeFactor, std::size_t{1} << 30, nullptr);
     field.prepare(plan.blocks, nullptr);
     std::mt19937 rng(5);
     std::vector<fc::Vec3f> points;
     for (int n = 0; n < 200; ++n) {
-        const auto& o = plan.blocks[rng() % plan.blocks.size()];
+        const auto &o = plan.blocks[rng() % plan.blocks.size()];
         std::uniform_real_distribution<float> u(0.0f, 7.0f);
-        points.push_back({(o[0] + u(rng)) * 0.25f, (o[1] + u(rng)) * 0.25f, (o[2] + u(rng)) * 0.25f});
+        points.push_back(
+            {(o[0] + u(rng)) * 0.25f, (o[1] + u(rng)) * 0.25f, (o[2] + u(rng)) * 0.25f});
     }
     std::vector<float> values(points.size());
     std::vector<fc::Vec3f> grads(points.size());
     field.evaluatePoints(points, values.data(), grads.data());
     for (std::size_t n = 0; n < points.size(); ++n) {
-        const auto ref = fc::referenceSample(set, params, {points[n][0], points[n][1], points[n][2]});
-        if (ref.value > 4 * iso) continue;
+        const auto ref =
+            fc::referenceSample(set, params, {points[n][0], points[n][1], points[n][2]});
+        if (ref.value > 4 * iso)
+            continue;
         EXPECT_NEAR(values[n], ref.value, params.tolerance * iso);
         const double norm = std::hypot(ref.gradient[0], ref.gradient[1], ref.gradient[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(grads[n][k], ref.gradient[k], 1e-2 * norm + 1e-3);
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(grads[n][k], ref.gradient[k], 1e-2 * norm + 1e-3);
     }
 }
 
@@ -163,7 +172,8 @@ TEST(MetaballField, PlanLeavesOnlyBlocksThatCannotHoldTheSurface) {
         const std::array<int, 3> v{int(std::floor(u(rng) / 0.25)), int(std::floor(u(rng) / 0.25)),
                                    int(std::floor((u(rng) - 3.0) / 0.25))};
         const auto ref = fc::referenceSample(set, params, {v[0] * 0.25, v[1] * 0.25, v[2] * 0.25});
-        if (ref.value < isoMin || ref.value > isoMax) continue;
+        if (ref.value < isoMin || ref.value > isoMax)
+            continue;
         const fc::Coord3 o{fc::detail::floorDiv(v[0], 8) * 8, fc::detail::floorDiv(v[1], 8) * 8,
                            fc::detail::floorDiv(v[2], 8) * 8};
         EXPECT_NE(std::find(plan.blocks.begin(), plan.blocks.end(), o), plan.blocks.end());
@@ -177,7 +187,7 @@ TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
     try {
         fc::planSurface(field, 4.0f, 8.0f, std::size_t{64} << 20, nullptr);
         FAIL() << "expected a refusal";
-    } catch (const fc::SurfaceRequestError& e) {
+    } catch (const fc::SurfaceRequestError &e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("budget is 64.0 MiB"), std::string::npos) << what;
         EXPECT_NE(what.find("needs"), std::string::npos) << what;

@@ -9,7 +9,7 @@
 
 namespace fc = faultline::core;
 
-int main(int argc, char** argv) {
+int main(int argc, char **argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: surface_export_samples OUTPUT_DIR\n");
         return 2;
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2 compact", &b.mesh}};
     fc::exportGlb(dir / "faults.glb", surfaces);
     fc::exportGlb(dir / "faults_glyphs.glb", surfaces, spheres);
-    std::printf("wrote %zu + %zu triangles to %s\n", a.mesh.triangleCount(),
-                b.mesh.triangleCount(), dir.string().c_str());
+    std::printf("wrote %zu + %zu triangles to %s\n", a.mesh.triangleCount(), b.mesh.triangleCount(),
+                dir.string().c_str());
     return 0;
 }

@@ -5,7 +5,7 @@
 
 namespace faultline::core::detail {
 
-void FieldLevel::mark(const Int3& lo, const Int3& hi) {
+void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
     Int3 blo, bhi;
     for (int k = 0; k < 3; ++k) {
         blo[k] = floorDiv(lo[k], 8);
@@ -21,7 +21,7 @@ void FieldLevel::mark(const Int3& lo, const Int3& hi) {
                     bricks.emplace_back();
                     bricks.back().origin = {bx * 8, by * 8, bz * 8};
                 }
-                Brick& brick = bricks[it->second];
+                Brick &brick = bricks[it->second];
                 Int3 l, h;
                 for (int k = 0; k < 3; ++k) {
                     l[k] = std::max(lo[k] - brick.origin[k], 0);
@@ -38,7 +38,7 @@ void FieldLevel::mark(const Int3& lo, const Int3& hi) {
             }
 }
 
-const Brick* FieldLevel::find(const Int3& node) const {
+const Brick *FieldLevel::find(const Int3 &node) const {
     const Int3 b{floorDiv(node[0], 8), floorDiv(node[1], 8), floorDiv(node[2], 8)};
     auto it = index.find(packKey(b));
     return it == index.end() ? nullptr : &bricks[it->second];
@@ -46,8 +46,9 @@ const Brick* FieldLevel::find(const Int3& node) const {
 
 std::size_t FieldLevel::neededCount() const {
     std::size_t count = 0;
-    for (const auto& b : bricks)
-        for (auto m : b.mask) count += static_cast<std::size_t>(__builtin_popcountll(m));
+    for (const auto &b : bricks)
+        for (auto m : b.mask)
+            count += static_cast<std::size_t>(__builtin_popcountll(m));
     return count;
 }
 
@@ -55,7 +56,8 @@ void lagrangeWeights(float t, float w[kTaps]) {
     for (int k = 0; k < kTaps; ++k) {
         double v = 1.0;
         for (int j = 0; j < kTaps; ++j)
-            if (j != k) v *= (t - (j - kTapsBelow)) / double(k - j);
+            if (j != k)
+                v *= (t - (j - kTapsBelow)) / double(k - j);
         w[k] = static_cast<float>(v);
     }
 }
@@ -64,27 +66,30 @@ void lagrangeDerivatives(float t, float w[kTaps]) {
     for (int k = 0; k < kTaps; ++k) {
         double sum = 0.0;
         for (int m = 0; m < kTaps; ++m) {
-            if (m == k) continue;
+            if (m == k)
+                continue;
             double v = 1.0 / double(k - m);
             for (int j = 0; j < kTaps; ++j)
-                if (j != k && j != m) v *= (t - (j - kTapsBelow)) / double(k - j);
+                if (j != k && j != m)
+                    v *= (t - (j - kTapsBelow)) / double(k - j);
             sum += v;
         }
         w[k] = static_cast<float>(sum);
     }
 }
 
-void gatherPatch(const FieldLevel& level, const Int3& lo, const Int3& dims,
-                 std::vector<float>& out) {
+void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
+                 std::vector<float> &out) {
     out.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0.0f);
     const Int3 hi{lo[0] + dims[0] - 1, lo[1] + dims[1] - 1, lo[2] + dims[2] - 1};
     for (int bx = floorDiv(lo[0], 8); bx <= floorDiv(hi[0], 8); ++bx)
         for (int by = floorDiv(lo[1], 8); by <= floorDiv(hi[1], 8); ++by)
             for (int bz = floorDiv(lo[2], 8); bz <= floorDiv(hi[2], 8); ++bz) {
-                const Brick* brick = level.find({bx * 8, by * 8, bz * 8});
+                const Brick *brick = level.find({bx * 8, by * 8, bz * 8});
                 assert(brick && "a coarse node the interpolation needs was never marked");
-                if (!brick) continue;
-                const Int3& o = brick->origin;
+                if (!brick)
+                    continue;
+                const Int3 &o = brick->origin;
                 Int3 l, h;
                 for (int k = 0; k < 3; ++k) {
                     l[k] = std::max(lo[k], o[k]);
@@ -102,8 +107,8 @@ void gatherPatch(const FieldLevel& level, const Int3& lo, const Int3& dims,
             }
 }
 
-void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const Int3& n,
-                     float* out) {
+void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n,
+                     float *out) {
     Int3 s0, sd;
     for (int k = 0; k < 3; ++k) {
         s0[k] = floorDiv(t0[k], ratio) - kTapsBelow;
@@ -122,7 +127,7 @@ void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const I
             const int b = floorDiv(g, ratio);
             base[k][t] = b - kTapsBelow - s0[k];
             lagrangeWeights(static_cast<float>(g - b * ratio) / static_cast<float>(ratio),
-                         weights[k][t].data());
+                            weights[k][t].data());
         }
     }
     // x pass: [n0][sd1][sd2]
@@ -131,9 +136,10 @@ void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const I
     for (int i = 0; i < n[0]; ++i)
         for (int q = 0; q < kTaps; ++q) {
             const float w = weights[0][i][q];
-            const float* s = &src[(base[0][i] + q) * plane];
-            float* d = &pass1[i * plane];
-            for (std::size_t e = 0; e < plane; ++e) d[e] += w * s[e];
+            const float *s = &src[(base[0][i] + q) * plane];
+            float *d = &pass1[i * plane];
+            for (std::size_t e = 0; e < plane; ++e)
+                d[e] += w * s[e];
         }
     // y pass: [n0][n1][sd2]
     pass2.assign(static_cast<std::size_t>(n[0]) * n[1] * sd[2], 0.0f);
@@ -141,20 +147,22 @@ void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const I
         for (int j = 0; j < n[1]; ++j)
             for (int q = 0; q < kTaps; ++q) {
                 const float w = weights[1][j][q];
-                const float* s = &pass1[(i * sd[1] + base[1][j] + q) * sd[2]];
-                float* d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
-                for (int e = 0; e < sd[2]; ++e) d[e] += w * s[e];
+                const float *s = &pass1[(i * sd[1] + base[1][j] + q) * sd[2]];
+                float *d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
+                for (int e = 0; e < sd[2]; ++e)
+                    d[e] += w * s[e];
             }
     // z pass into out
     for (int i = 0; i < n[0]; ++i)
         for (int j = 0; j < n[1]; ++j) {
-            const float* s = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
-            float* d = &out[(static_cast<std::size_t>(i) * n[1] + j) * n[2]];
+            const float *s = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
+            float *d = &out[(static_cast<std::size_t>(i) * n[1] + j) * n[2]];
             for (int z = 0; z < n[2]; ++z) {
-                const auto& w = weights[2][z];
-                const float* b = s + base[2][z];
+                const auto &w = weights[2][z];
+                const float *b = s + base[2][z];
                 float v = 0.0f;
-                for (int q = 0; q < kTaps; ++q) v += w[q] * b[q];
+                for (int q = 0; q < kTaps; ++q)
+                    v += w[q] * b[q];
                 d[z] += v;
             }
         }

@@ -10,7 +10,7 @@ namespace {
 constexpr std::uint32_t kLeafSize = 8;
 }
 
-float minDistance2(const Box& a, const Box& b) {
+float minDistance2(const Box &a, const Box &b) {
     float d2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         const float gap = std::max({0.0f, a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]});
@@ -19,7 +19,7 @@ float minDistance2(const Box& a, const Box& b) {
     return d2;
 }
 
-float maxDistance2(const Box& a, const Box& b) {
+float maxDistance2(const Box &a, const Box &b) {
     float d2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         const float span = std::max(a.hi[k] - b.lo[k], b.hi[k] - a.lo[k]);
@@ -29,22 +29,26 @@ float maxDistance2(const Box& a, const Box& b) {
 }
 
 void NearList::clear() {
-    for (auto* v : {&x, &y, &z, &r, &red, &green, &blue}) v->clear();
+    for (auto *v : {&x, &y, &z, &r, &red, &green, &blue})
+        v->clear();
 }
 
-SphereTree::SphereTree(const SphereSet& s) {
+SphereTree::SphereTree(const SphereSet &s) {
     const std::size_t n = s.size();
     assert(n > 0 && s.consistent());
     m_centres.resize(n);
     m_radii.assign(s.radius.begin(), s.radius.end());
-    for (std::size_t i = 0; i < n; ++i) m_centres[i] = {s.x[i], s.y[i], s.z[i]};
+    for (std::size_t i = 0; i < n; ++i)
+        m_centres[i] = {s.x[i], s.y[i], s.z[i]};
     std::vector<std::uint32_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i)
+        order[i] = static_cast<std::uint32_t>(i);
     m_nodes.reserve(2 * n / kLeafSize + 2);
     build(order, 0, static_cast<std::uint32_t>(n));
 
-    auto& p = m_spheres;
-    for (auto* v : {&p.x, &p.y, &p.z, &p.r, &p.red, &p.green, &p.blue}) v->resize(n);
+    auto &p = m_spheres;
+    for (auto *v : {&p.x, &p.y, &p.z, &p.r, &p.red, &p.green, &p.blue})
+        v->resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t src = order[i];
         p.x[i] = s.x[src];
@@ -62,7 +66,7 @@ SphereTree::SphereTree(const SphereSet& s) {
     m_radii.shrink_to_fit();
 }
 
-std::int32_t SphereTree::build(std::vector<std::uint32_t>& order, std::uint32_t begin,
+std::int32_t SphereTree::build(std::vector<std::uint32_t> &order, std::uint32_t begin,
                                std::uint32_t end) {
     const auto index = static_cast<std::int32_t>(m_nodes.size());
     m_nodes.emplace_back();
@@ -75,7 +79,7 @@ std::int32_t SphereTree::build(std::vector<std::uint32_t>& order, std::uint32_t 
     node.rmin = inf;
     double weight = 0.0;
     for (std::uint32_t i = begin; i < end; ++i) {
-        const auto& c = m_centres[order[i]];
+        const auto &c = m_centres[order[i]];
         for (int k = 0; k < 3; ++k) {
             node.box.lo[k] = std::min(node.box.lo[k], c[k]);
             node.box.hi[k] = std::max(node.box.hi[k], c[k]);
@@ -89,7 +93,8 @@ std::int32_t SphereTree::build(std::vector<std::uint32_t>& order, std::uint32_t 
     if (end - begin > kLeafSize) {
         int axis = 0;
         for (int k = 1; k < 3; ++k)
-            if (node.box.hi[k] - node.box.lo[k] > node.box.hi[axis] - node.box.lo[axis]) axis = k;
+            if (node.box.hi[k] - node.box.lo[k] > node.box.hi[axis] - node.box.lo[axis])
+                axis = k;
         const std::uint32_t mid = begin + (end - begin) / 2;
         std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                          [&](std::uint32_t a, std::uint32_t b) {
@@ -102,15 +107,16 @@ std::int32_t SphereTree::build(std::vector<std::uint32_t>& order, std::uint32_t 
     return index;
 }
 
-void SphereTree::gather(const Box& box, float reach, NearList& out, bool withColor) const {
+void SphereTree::gather(const Box &box, float reach, NearList &out, bool withColor) const {
     const float reach2 = reach * reach;
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
-    const auto& p = m_spheres;
+    const auto &p = m_spheres;
     while (top > 0) {
-        const TreeNode& node = m_nodes[stack[--top]];
-        if (minDistance2(node.box, box) > reach2) continue;
+        const TreeNode &node = m_nodes[stack[--top]];
+        if (minDistance2(node.box, box) > reach2)
+            continue;
         if (!node.leaf()) {
             stack[top++] = node.left;
             stack[top++] = node.right;
@@ -123,7 +129,8 @@ void SphereTree::gather(const Box& box, float reach, NearList& out, bool withCol
                 const float gap = std::max({0.0f, box.lo[k] - c[k], c[k] - box.hi[k]});
                 d2 += gap * gap;
             }
-            if (d2 > reach2) continue;
+            if (d2 > reach2)
+                continue;
             out.x.push_back(c[0]);
             out.y.push_back(c[1]);
             out.z.push_back(c[2]);

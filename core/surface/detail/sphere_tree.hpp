@@ -16,8 +16,8 @@ struct Box {
 };
 
 // Squared smallest and largest distances between points of two boxes.
-float minDistance2(const Box& a, const Box& b);
-float maxDistance2(const Box& a, const Box& b);
+float minDistance2(const Box &a, const Box &b);
+float maxDistance2(const Box &a, const Box &b);
 
 // Spheres in tree order (structure of arrays), weights w = radius.
 struct PackedSpheres {
@@ -43,17 +43,17 @@ struct NearList {
 
 class SphereTree {
   public:
-    explicit SphereTree(const SphereSet& spheres);
+    explicit SphereTree(const SphereSet &spheres);
 
-    const PackedSpheres& spheres() const { return m_spheres; }
-    const std::vector<TreeNode>& nodes() const { return m_nodes; }
-    const TreeNode& root() const { return m_nodes.front(); }
+    const PackedSpheres &spheres() const { return m_spheres; }
+    const std::vector<TreeNode> &nodes() const { return m_nodes; }
+    const TreeNode &root() const { return m_nodes.front(); }
 
     // Appends every sphere whose centre lies within `reach` of `box`.
-    void gather(const Box& box, float reach, NearList& out, bool withColor) const;
+    void gather(const Box &box, float reach, NearList &out, bool withColor) const;
 
   private:
-    std::int32_t build(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end);
+    std::int32_t build(std::vector<std::uint32_t> &order, std::uint32_t begin, std::uint32_t end);
     PackedSpheres m_spheres;
     std::vector<TreeNode> m_nodes;
     std::vector<std::array<float, 3>> m_centres; // scratch during build
