@@ -1,5 +1,6 @@
 #include "core/surface/fault_surface.hpp"
 
+#include "core/surface/detail/field_level.hpp"
 #include "core/surface/detail/vdb_grids.hpp"
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 
 namespace faultline::core {
 
@@ -46,6 +48,56 @@ void validate(const SphereSet &s, const SurfaceParams &p) {
             throw SurfaceRequestError("sphere " + std::to_string(i) +
                                       " has a non-finite centre or a radius that is not positive");
     }
+}
+
+enum class BlockSide { Below, Above, Crossing };
+
+// Which evaluated blocks hold, with the facing layers of their evaluated neighbours, only values
+// on one side of [isoMin, isoMax]: no mesh edge for a supported iso touches them.
+std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
+                                  const std::vector<openvdb::FloatTree::LeafNodeType *> &leaves,
+                                  float isoMin, float isoMax) {
+    std::unordered_map<std::uint64_t, std::size_t> index;
+    auto key = [](const Coord3 &o) { return detail::packKey({o[0] >> 3, o[1] >> 3, o[2] >> 3}); };
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+        index.emplace(key(blocks[b]), b);
+    std::vector<BlockSide> sides(blocks.size(), BlockSide::Crossing);
+    tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+        const float *v = leaves[b]->buffer().data();
+        float lo = v[0], hi = v[0];
+        for (int n = 1; n < kBlockVoxels; ++n) {
+            lo = std::min(lo, v[n]);
+            hi = std::max(hi, v[n]);
+        }
+        for (int axis = 0; axis < 3; ++axis)
+            for (int dir : {-1, 1}) {
+                Coord3 o = blocks[b];
+                o[axis] += dir * kBlockDim;
+                auto it = index.find(key(o));
+                if (it == index.end())
+                    continue; // a tile: on this block's side by the plan's margin
+                const float *u = leaves[it->second]->buffer().data();
+                const int layer = dir < 0 ? kBlockDim - 1 : 0;
+                for (int i = 0; i < kBlockDim; ++i)
+                    for (int j = 0; j < kBlockDim; ++j) {
+                        int c[3] = {i, j, 0};
+                        c[axis] = layer;
+                        if (axis == 0)
+                            c[1] = i, c[2] = j;
+                        else if (axis == 1)
+                            c[0] = i, c[2] = j;
+                        else
+                            c[0] = i, c[1] = j;
+                        const float value = u[blockOffset(c[0], c[1], c[2])];
+                        lo = std::min(lo, value);
+                        hi = std::max(hi, value);
+                    }
+            }
+        sides[b] = hi < isoMin   ? BlockSide::Below
+                   : lo > isoMax ? BlockSide::Above
+                                 : BlockSide::Crossing;
+    });
+    return sides;
 }
 
 } // namespace
@@ -138,10 +190,20 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         impl->density->tree().sparseFill(openvdb::CoordBBox(openvdb::Coord(lo[0], lo[1], lo[2]),
                                                             openvdb::Coord(hi[0], hi[1], hi[2])),
                                          clamp, false);
-    for (auto *l : densityLeaves)
-        impl->density->tree().addLeaf(l);
-    for (auto *l : colorLeaves)
-        impl->color->tree().addLeaf(l);
+    const std::vector<BlockSide> sides =
+        blockSides(plan.blocks, densityLeaves, impl->isoMin, impl->isoMax);
+    for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
+        if (sides[b] == BlockSide::Crossing) {
+            impl->density->tree().addLeaf(densityLeaves[b]);
+            impl->color->tree().addLeaf(colorLeaves[b]);
+            continue;
+        }
+        // No edge of this block or into it can cross any supported iso: a tile will do.
+        if (sides[b] == BlockSide::Above)
+            impl->density->tree().addTile(1, densityLeaves[b]->origin(), clamp, false);
+        delete densityLeaves[b];
+        delete colorLeaves[b];
+    }
     impl->stats.fieldSeconds = secondsSince(t0);
     impl->stats.blocks = plan.blocks.size();
     impl->stats.activeVoxels = impl->density->activeVoxelCount();

@@ -52,6 +52,138 @@ struct BoundKernel {
     }
 };
 
+// Hot loops: bodies templated on the kernel power (no branch inside the loops), instantiated in
+// functions compiled for AVX2 too and picked at run time by CPU feature.
+#define FAULTLINE_HOT __attribute__((target_clones("avx2", "default")))
+
+template <int P> inline float inversePower(float d2, float minD2) {
+    d2 = d2 < minD2 ? minD2 : d2;
+    if constexpr (P == 2)
+        return 1.0f / d2;
+    else
+        return 1.0f / std::sqrt(d2);
+}
+
+// Softened kernel's polynomial part with a multiplication instead of a division.
+inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
+    const float t = d2 * invA2 - 1.0f;
+    return k.scale *
+           (k.coef[0] + t * (k.coef[1] + t * (k.coef[2] + t * (k.coef[3] + t * k.coef[4]))));
+}
+
+// Sum over a sphere list of w (gamma_below - gamma_own) within own's cutoff (a coarse level's
+// window), or of w gamma_below over all of them (top level).
+template <int P>
+[[gnu::always_inline]] inline float
+windowSumBody(float x, float y, float z, const float *px, const float *py, const float *pz,
+              const float *pw, std::size_t count, const SoftenedKernel &below,
+              const SoftenedKernel &own, float minD2, bool top) {
+    const float invBelow = 1.0f / below.a2, invOwn = 1.0f / own.a2;
+    const float belowA2 = below.a2, ownA2 = own.a2;
+    float acc = 0.0f;
+    if (top) {
+#pragma omp simd reduction(+ : acc)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float inner = softInner(below, invBelow, d2);
+            const float outer = inversePower<P>(d2, minD2);
+            acc += pw[q] * (d2 < belowA2 ? inner : outer);
+        }
+        return acc;
+    }
+#pragma omp simd reduction(+ : acc)
+    for (std::size_t q = 0; q < count; ++q) {
+        const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float inner = softInner(below, invBelow, d2);
+        const float outer = inversePower<P>(d2, minD2);
+        const float v = (d2 < belowA2 ? inner : outer) - softInner(own, invOwn, d2);
+        acc += d2 < ownA2 ? pw[q] * v : 0.0f;
+    }
+    return acc;
+}
+
+FAULTLINE_HOT float windowSum1(float x, float y, float z, const float *px, const float *py,
+                               const float *pz, const float *pw, std::size_t count,
+                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
+                               bool top) {
+    return windowSumBody<1>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+}
+FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const float *py,
+                               const float *pz, const float *pw, std::size_t count,
+                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
+                               bool top) {
+    return windowSumBody<2>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+}
+
+// Exact near field (k - gamma_a0 within a0, or the compact kernel with P = 0) and Figure 4
+// colour at one voxel. Returns the field; rgbn gets the colour sum and count.
+template <int P>
+[[gnu::always_inline]] inline float
+nearSumBody(float x, float y, float z, const NearList &list, float invC2, float a2, float minD2,
+            const SoftenedKernel &soft, float reachAdd, float rgbn[4]) {
+    const std::size_t count = list.size();
+    const float *lx = list.x.data();
+    const float *ly = list.y.data();
+    const float *lz = list.z.data();
+    const float *lr = list.r.data();
+    const float invSoft = 1.0f / soft.a2;
+    float f = 0.0f;
+    if constexpr (P == 0) {
+#pragma omp simd reduction(+ : f)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
+        }
+    } else {
+#pragma omp simd reduction(+ : f)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float v = inversePower<P>(d2, minD2) - softInner(soft, invSoft, d2);
+            f += d2 < a2 ? lr[q] * v : 0.0f;
+        }
+    }
+    float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+    const float *red = list.red.data();
+    const float *green = list.green.data();
+    const float *blue = list.blue.data();
+#pragma omp simd reduction(+ : cr, cg, cb, n)
+    for (std::size_t q = 0; q < count; ++q) {
+        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float reach = lr[q] + reachAdd;
+        const float in = d2 < reach * reach ? 1.0f : 0.0f;
+        cr += in * red[q];
+        cg += in * green[q];
+        cb += in * blue[q];
+        n += in;
+    }
+    rgbn[0] = cr;
+    rgbn[1] = cg;
+    rgbn[2] = cb;
+    rgbn[3] = n;
+    return f;
+}
+
+FAULTLINE_HOT float nearSum0(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<0>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+FAULTLINE_HOT float nearSum1(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<1>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+FAULTLINE_HOT float nearSum2(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<2>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+
 } // namespace
 
 MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
@@ -318,60 +450,53 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                 return;
             Brick &brick = level.bricks[bi];
             thread_local NearList list;
-            const float *px = s.x.data();
-            const float *py = s.y.data();
-            const float *pz = s.z.data();
-            const float *pw = s.r.data();
-            std::size_t count = s.size();
-            if (!level.top) {
-                list.clear();
-                detail::Int3 lo, hi;
-                for (int k = 0; k < 3; ++k) {
-                    lo[k] = brick.origin[k] + brick.lo[k];
-                    hi[k] = brick.origin[k] + brick.hi[k];
-                }
-                Box box;
-                for (int k = 0; k < 3; ++k) {
-                    box.lo[k] = lo[k] * level.spacing;
-                    box.hi[k] = hi[k] * level.spacing;
-                }
-                m_tree.gather(box, level.cutoff, list, false);
-                px = list.x.data();
-                py = list.y.data();
-                pz = list.z.data();
-                pw = list.r.data();
-                count = list.size();
-            }
             const SoftenedKernel below = level.below, own = level.own;
-            for (int i = brick.lo[0]; i <= brick.hi[0]; ++i)
-                for (int j = brick.lo[1]; j <= brick.hi[1]; ++j)
-                    for (int z = brick.lo[2]; z <= brick.hi[2]; ++z) {
-                        const int off = Brick::offset(i, j, z);
-                        if (!brick.needed(off))
-                            continue;
-                        const float x = (brick.origin[0] + i) * level.spacing;
-                        const float y = (brick.origin[1] + j) * level.spacing;
-                        const float w = (brick.origin[2] + z) * level.spacing;
-                        float acc = 0.0f;
-                        if (level.top) {
-#pragma omp simd reduction(+ : acc)
-                            for (std::size_t q = 0; q < count; ++q) {
-                                const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
-                                const float d2 = dx * dx + dy * dy + dz * dz;
-                                const float v = d2 < below.a2 ? below.inner(d2) : kernel.value(d2);
-                                acc += pw[q] * v;
-                            }
-                        } else {
-#pragma omp simd reduction(+ : acc)
-                            for (std::size_t q = 0; q < count; ++q) {
-                                const float dx = x - px[q], dy = y - py[q], dz = w - pz[q];
-                                const float d2 = dx * dx + dy * dy + dz * dz;
-                                const float vb = d2 < below.a2 ? below.inner(d2) : kernel.value(d2);
-                                const float v = vb - own.inner(d2);
-                                acc += d2 < own.a2 ? pw[q] * v : 0.0f;
-                            }
+            // Nodes in 2^3 groups, each with its own neighbour list: the window (a ball of radius
+            // a_l) fills more of a small group's box than of the whole brick's.
+            for (int gi = brick.lo[0] & ~1; gi <= brick.hi[0]; gi += 2)
+                for (int gj = brick.lo[1] & ~1; gj <= brick.hi[1]; gj += 2)
+                    for (int gz = brick.lo[2] & ~1; gz <= brick.hi[2]; gz += 2) {
+                        int needed[8], count = 0;
+                        for (int c = 0; c < 8; ++c) {
+                            const int off =
+                                Brick::offset(gi + (c & 1), gj + ((c >> 1) & 1), gz + (c >> 2));
+                            if (brick.needed(off))
+                                needed[count++] = c;
                         }
-                        brick.values[off] = acc;
+                        if (count == 0)
+                            continue;
+                        const float *px = s.x.data();
+                        const float *py = s.y.data();
+                        const float *pz = s.z.data();
+                        const float *pw = s.r.data();
+                        std::size_t listSize = s.size();
+                        if (!level.top) {
+                            list.clear();
+                            Box box;
+                            const int g[3] = {gi, gj, gz};
+                            for (int k = 0; k < 3; ++k) {
+                                box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
+                                box.hi[k] = (brick.origin[k] + g[k] + 1) * level.spacing;
+                            }
+                            m_tree.gather(box, level.cutoff, list, false);
+                            px = list.x.data();
+                            py = list.y.data();
+                            pz = list.z.data();
+                            pw = list.r.data();
+                            listSize = list.size();
+                        }
+                        for (int n = 0; n < count; ++n) {
+                            const int c = needed[n];
+                            const int i = gi + (c & 1), j = gj + ((c >> 1) & 1), z = gz + (c >> 2);
+                            const float x = (brick.origin[0] + i) * level.spacing;
+                            const float y = (brick.origin[1] + j) * level.spacing;
+                            const float w = (brick.origin[2] + z) * level.spacing;
+                            brick.values[Brick::offset(i, j, z)] =
+                                kernel.p == 2 ? windowSum2(x, y, w, px, py, pz, pw, listSize, below,
+                                                           own, kernel.minD2, level.top)
+                                              : windowSum1(x, y, w, px, py, pz, pw, listSize, below,
+                                                           own, kernel.minD2, level.top);
+                        }
                     }
             if (above) {
                 const detail::Int3 t0{brick.origin[0] + brick.lo[0], brick.origin[1] + brick.lo[1],
@@ -401,57 +526,37 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
 
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
     thread_local NearList list;
-    list.clear();
-    const Box box = voxelBox(o, {o[0] + 7, o[1] + 7, o[2] + 7}, m_h);
-    m_tree.gather(box, nearReach(), list, true);
-    const std::size_t count = list.size();
-    const float *lx = list.x.data();
-    const float *ly = list.y.data();
-    const float *lz = list.z.data();
-    const float *lr = list.r.data();
     const float a2 = m_a0 * m_a0;
-    const float reachAdd = m_params.colorReach;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
-    const InverseKernel kernel = m_kernel;
-    const SoftenedKernel soft = m_soft0;
-    for (int i = 0; i < kBlockDim; ++i)
-        for (int j = 0; j < kBlockDim; ++j)
-            for (int k = 0; k < kBlockDim; ++k) {
-                const float x = (o[0] + i) * m_h, y = (o[1] + j) * m_h, z = (o[2] + k) * m_h;
-                float f = 0.0f;
-                if (compact) {
-#pragma omp simd reduction(+ : f)
-                    for (std::size_t q = 0; q < count; ++q) {
-                        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-                        const float d2 = dx * dx + dy * dy + dz * dz;
-                        f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
-                    }
-                } else {
-#pragma omp simd reduction(+ : f)
-                    for (std::size_t q = 0; q < count; ++q) {
-                        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-                        const float d2 = dx * dx + dy * dy + dz * dz;
-                        const float v = kernel.value(d2) - soft.inner(d2);
-                        f += d2 < a2 ? lr[q] * v : 0.0f;
-                    }
+    // One neighbour list per 4^3 octant: shorter lists than one for the whole block.
+    constexpr int kHalf = kBlockDim / 2;
+    for (int octant = 0; octant < 8; ++octant) {
+        const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
+                        o[2] + ((octant >> 2) & 1) * kHalf};
+        list.clear();
+        m_tree.gather(voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h),
+                      nearReach(), list, true);
+        for (int i = 0; i < kHalf; ++i)
+            for (int j = 0; j < kHalf; ++j)
+                for (int k = 0; k < kHalf; ++k) {
+                    float rgbn[4];
+                    const float x = (lo[0] + i) * m_h, y = (lo[1] + j) * m_h, z = (lo[2] + k) * m_h;
+                    const float f = compact ? nearSum0(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                       m_soft0, m_params.colorReach, rgbn)
+                                    : m_kernel.p == 2
+                                        ? nearSum2(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                   m_soft0, m_params.colorReach, rgbn)
+                                        : nearSum1(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                   m_soft0, m_params.colorReach, rgbn);
+                    const int off =
+                        blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k);
+                    density[off] = f;
+                    color[off] = rgbn[3] > 0.0f ? Vec3f{rgbn[0] / rgbn[3], rgbn[1] / rgbn[3],
+                                                        rgbn[2] / rgbn[3]}
+                                                : m_params.initialColor;
                 }
-                float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
-#pragma omp simd reduction(+ : cr, cg, cb, n)
-                for (std::size_t q = 0; q < count; ++q) {
-                    const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-                    const float d2 = dx * dx + dy * dy + dz * dz;
-                    const float reach = lr[q] + reachAdd;
-                    const float in = d2 < reach * reach ? 1.0f : 0.0f;
-                    cr += in * list.red[q];
-                    cg += in * list.green[q];
-                    cb += in * list.blue[q];
-                    n += in;
-                }
-                const int off = blockOffset(i, j, k);
-                density[off] = f;
-                color[off] = n > 0.0f ? Vec3f{cr / n, cg / n, cb / n} : m_params.initialColor;
-            }
+    }
     if (!m_levels.empty())
         detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
 }
@@ -459,27 +564,42 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
 void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
                             Vec3f *color) const {
     (void)color;
-    const bool compact = m_params.kernel == MetaballKernel::Compact;
-    const float a2 = m_a0 * m_a0;
-    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    const std::size_t count = list.size();
+    const float *lx = list.x.data();
+    const float *ly = list.y.data();
+    const float *lz = list.z.data();
+    const float *lr = list.r.data();
     float f = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
-    for (std::size_t q = 0; q < list.size(); ++q) {
-        const float dx = p[0] - list.x[q], dy = p[1] - list.y[q], dz = p[2] - list.z[q];
-        const float d2 = dx * dx + dy * dy + dz * dz;
-        float v = 0.0f, slope = 0.0f;
-        if (compact) {
-            const float inv = invC2 / (list.r[q] * list.r[q]);
-            v = compactValue(d2, inv);
-            slope = compactSlope(d2, inv);
-        } else if (d2 < a2) {
-            v = m_kernel.value(d2) - m_soft0.inner(d2);
-            slope = d2 < m_kernel.minD2 ? 0.0f : m_kernel.slope(d2) - m_soft0.innerSlope(d2);
+    if (m_params.kernel == MetaballKernel::Compact) {
+        const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+#pragma omp simd reduction(+ : f, gx, gy, gz)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float inv = invC2 / (lr[q] * lr[q]);
+            f += lr[q] * compactValue(d2, inv);
+            const float g = 2.0f * lr[q] * compactSlope(d2, inv);
+            gx += g * dx;
+            gy += g * dy;
+            gz += g * dz;
         }
-        f += list.r[q] * v;
-        const float g = 2.0f * list.r[q] * slope;
-        gx += g * dx;
-        gy += g * dy;
-        gz += g * dz;
+    } else {
+        const float a2 = m_a0 * m_a0;
+        const InverseKernel kernel = m_kernel;
+        const SoftenedKernel soft = m_soft0;
+#pragma omp simd reduction(+ : f, gx, gy, gz)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const bool in = d2 < a2;
+            const float v = kernel.value(d2) - soft.inner(d2);
+            const float slope = (d2 < kernel.minD2 ? 0.0f : kernel.slope(d2)) - soft.innerSlope(d2);
+            f += in ? lr[q] * v : 0.0f;
+            const float g = in ? 2.0f * lr[q] * slope : 0.0f;
+            gx += g * dx;
+            gy += g * dy;
+            gz += g * dz;
+        }
     }
     value += f;
     if (gradient)
@@ -553,19 +673,34 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
                     detail::lagrangeWeights(t - fl, w[k]);
                     detail::lagrangeDerivatives(t - fl, dw[k]);
                 }
-                float v = 0.0f, g0 = 0.0f, g1 = 0.0f, g2 = 0.0f;
+                // Separable: contract z, then y, then x, carrying the derivative weights.
+                float sz[nt][nt], dz[nt][nt];
                 for (int i = 0; i < nt; ++i)
-                    for (int j = 0; j < nt; ++j)
+                    for (int j = 0; j < nt; ++j) {
+                        const float *row =
+                            &patch[(static_cast<std::size_t>(b[0] + i) * sd[1] + b[1] + j) * sd[2] +
+                                   b[2]];
+                        float a = 0.0f, d = 0.0f;
                         for (int z = 0; z < nt; ++z) {
-                            const float node =
-                                patch[(static_cast<std::size_t>(b[0] + i) * sd[1] + b[1] + j) *
-                                          sd[2] +
-                                      b[2] + z];
-                            v += w[0][i] * w[1][j] * w[2][z] * node;
-                            g0 += dw[0][i] * w[1][j] * w[2][z] * node;
-                            g1 += w[0][i] * dw[1][j] * w[2][z] * node;
-                            g2 += w[0][i] * w[1][j] * dw[2][z] * node;
+                            a += w[2][z] * row[z];
+                            d += dw[2][z] * row[z];
                         }
+                        sz[i][j] = a;
+                        dz[i][j] = d;
+                    }
+                float v = 0.0f, g0 = 0.0f, g1 = 0.0f, g2 = 0.0f;
+                for (int i = 0; i < nt; ++i) {
+                    float a = 0.0f, dy = 0.0f, dzy = 0.0f;
+                    for (int j = 0; j < nt; ++j) {
+                        a += w[1][j] * sz[i][j];
+                        dy += dw[1][j] * sz[i][j];
+                        dzy += w[1][j] * dz[i][j];
+                    }
+                    v += w[0][i] * a;
+                    g0 += dw[0][i] * a;
+                    g1 += w[0][i] * dy;
+                    g2 += w[0][i] * dzy;
+                }
                 const float inv = 1.0f / level1->spacing;
                 value += v;
                 grad = {grad[0] + g0 * inv, grad[1] + g1 * inv, grad[2] + g2 * inv};

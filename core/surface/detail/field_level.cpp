@@ -52,29 +52,55 @@ std::size_t FieldLevel::neededCount() const {
     return count;
 }
 
-void lagrangeWeights(float t, float w[kTaps]) {
-    for (int k = 0; k < kTaps; ++k) {
-        double v = 1.0;
-        for (int j = 0; j < kTaps; ++j)
-            if (j != k)
-                v *= (t - (j - kTapsBelow)) / double(k - j);
-        w[k] = static_cast<float>(v);
+namespace {
+// 1 / prod_{j != k} (k - j) for nodes -kTapsBelow .. kTapsAbove.
+struct LagrangeDenominators {
+    float inv[kTaps];
+    LagrangeDenominators() {
+        for (int k = 0; k < kTaps; ++k) {
+            double d = 1.0;
+            for (int j = 0; j < kTaps; ++j)
+                if (j != k)
+                    d *= double(k - j);
+            inv[k] = static_cast<float>(1.0 / d);
+        }
     }
+};
+const LagrangeDenominators kDenominators;
+} // namespace
+
+void lagrangeWeights(float t, float w[kTaps]) {
+    float x[kTaps];
+    for (int j = 0; j < kTaps; ++j)
+        x[j] = t - static_cast<float>(j - kTapsBelow);
+    // Prefix and suffix products: w_k = prod_{j<k} x_j * prod_{j>k} x_j / denominator_k.
+    float prefix[kTaps + 1], suffix[kTaps + 1];
+    prefix[0] = 1.0f;
+    suffix[kTaps] = 1.0f;
+    for (int j = 0; j < kTaps; ++j)
+        prefix[j + 1] = prefix[j] * x[j];
+    for (int j = kTaps - 1; j >= 0; --j)
+        suffix[j] = suffix[j + 1] * x[j];
+    for (int k = 0; k < kTaps; ++k)
+        w[k] = prefix[k] * suffix[k + 1] * kDenominators.inv[k];
 }
 
 void lagrangeDerivatives(float t, float w[kTaps]) {
+    float x[kTaps];
+    for (int j = 0; j < kTaps; ++j)
+        x[j] = t - static_cast<float>(j - kTapsBelow);
     for (int k = 0; k < kTaps; ++k) {
-        double sum = 0.0;
+        float sum = 0.0f;
         for (int m = 0; m < kTaps; ++m) {
             if (m == k)
                 continue;
-            double v = 1.0 / double(k - m);
+            float v = 1.0f;
             for (int j = 0; j < kTaps; ++j)
                 if (j != k && j != m)
-                    v *= (t - (j - kTapsBelow)) / double(k - j);
+                    v *= x[j];
             sum += v;
         }
-        w[k] = static_cast<float>(sum);
+        w[k] = sum * kDenominators.inv[k];
     }
 }
 
