@@ -451,51 +451,55 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
             Brick &brick = level.bricks[bi];
             thread_local NearList list;
             const SoftenedKernel below = level.below, own = level.own;
-            // Nodes in 2^3 groups, each with its own neighbour list: the window (a ball of radius
+            // Nodes in 4^3 groups, each with its own sphere ranges: the window (a ball of radius
             // a_l) fills more of a small group's box than of the whole brick's.
-            for (int gi = brick.lo[0] & ~1; gi <= brick.hi[0]; gi += 2)
-                for (int gj = brick.lo[1] & ~1; gj <= brick.hi[1]; gj += 2)
-                    for (int gz = brick.lo[2] & ~1; gz <= brick.hi[2]; gz += 2) {
-                        int needed[8], count = 0;
-                        for (int c = 0; c < 8; ++c) {
-                            const int off =
-                                Brick::offset(gi + (c & 1), gj + ((c >> 1) & 1), gz + (c >> 2));
+            constexpr int kGroup = 4;
+            for (int gi = brick.lo[0] & ~(kGroup - 1); gi <= brick.hi[0]; gi += kGroup)
+                for (int gj = brick.lo[1] & ~(kGroup - 1); gj <= brick.hi[1]; gj += kGroup)
+                    for (int gz = brick.lo[2] & ~(kGroup - 1); gz <= brick.hi[2]; gz += kGroup) {
+                        int needed[kGroup * kGroup * kGroup], count = 0;
+                        for (int c = 0; c < kGroup * kGroup * kGroup; ++c) {
+                            const int off = Brick::offset(gi + c / (kGroup * kGroup),
+                                                          gj + (c / kGroup) % kGroup,
+                                                          gz + c % kGroup);
                             if (brick.needed(off))
-                                needed[count++] = c;
+                                needed[count++] = off;
                         }
                         if (count == 0)
                             continue;
-                        const float *px = s.x.data();
-                        const float *py = s.y.data();
-                        const float *pz = s.z.data();
-                        const float *pw = s.r.data();
-                        std::size_t listSize = s.size();
-                        if (!level.top) {
-                            list.clear();
+                        thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
+                        ranges.clear();
+                        if (level.top) {
+                            ranges.emplace_back(0u, static_cast<std::uint32_t>(s.size()));
+                        } else {
                             Box box;
                             const int g[3] = {gi, gj, gz};
                             for (int k = 0; k < 3; ++k) {
                                 box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
-                                box.hi[k] = (brick.origin[k] + g[k] + 1) * level.spacing;
+                                box.hi[k] = (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
                             }
-                            m_tree.gather(box, level.cutoff, list, false);
-                            px = list.x.data();
-                            py = list.y.data();
-                            pz = list.z.data();
-                            pw = list.r.data();
-                            listSize = list.size();
+                            m_tree.gatherRanges(box, level.cutoff, ranges);
                         }
                         for (int n = 0; n < count; ++n) {
-                            const int c = needed[n];
-                            const int i = gi + (c & 1), j = gj + ((c >> 1) & 1), z = gz + (c >> 2);
+                            const int off = needed[n];
+                            const int i = off >> 6, j = (off >> 3) & 7, z = off & 7;
                             const float x = (brick.origin[0] + i) * level.spacing;
                             const float y = (brick.origin[1] + j) * level.spacing;
                             const float w = (brick.origin[2] + z) * level.spacing;
-                            brick.values[Brick::offset(i, j, z)] =
-                                kernel.p == 2 ? windowSum2(x, y, w, px, py, pz, pw, listSize, below,
-                                                           own, kernel.minD2, level.top)
-                                              : windowSum1(x, y, w, px, py, pz, pw, listSize, below,
-                                                           own, kernel.minD2, level.top);
+                            float sum = 0.0f;
+                            for (const auto &[first, last] : ranges) {
+                                const float *px = s.x.data() + first;
+                                const float *py = s.y.data() + first;
+                                const float *pz = s.z.data() + first;
+                                const float *pw = s.r.data() + first;
+                                const std::size_t len = last - first;
+                                sum += kernel.p == 2
+                                           ? windowSum2(x, y, w, px, py, pz, pw, len, below, own,
+                                                        kernel.minD2, level.top)
+                                           : windowSum1(x, y, w, px, py, pz, pw, len, below, own,
+                                                        kernel.minD2, level.top);
+                            }
+                            brick.values[off] = sum;
                         }
                     }
             if (above) {

@@ -13,7 +13,8 @@ constexpr std::uint32_t kLeafSize = 8;
 float minDistance2(const Box &a, const Box &b) {
     float d2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
-        const float gap = std::max({0.0f, a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]});
+        const float below = a.lo[k] - b.hi[k], above = b.lo[k] - a.hi[k];
+        const float gap = below > 0.0f ? below : (above > 0.0f ? above : 0.0f);
         d2 += gap * gap;
     }
     return d2;
@@ -117,6 +118,28 @@ void SphereTree::gather(const Box &box, float reach, NearList &out, bool withCol
         const TreeNode &node = m_nodes[stack[--top]];
         if (minDistance2(node.box, box) > reach2)
             continue;
+        // Largest distance from a point of the node's box to the query box (per axis bound).
+        float far2 = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            const float below = box.lo[k] - node.box.lo[k], above = node.box.hi[k] - box.hi[k];
+            const float gap = std::max(0.0f, std::max(below, above));
+            far2 += gap * gap;
+        }
+        if (far2 <= reach2) {
+            // Every sphere of the node is in reach: copy its contiguous range.
+            const auto b = static_cast<std::ptrdiff_t>(node.begin);
+            const auto e = static_cast<std::ptrdiff_t>(node.end);
+            out.x.insert(out.x.end(), p.x.begin() + b, p.x.begin() + e);
+            out.y.insert(out.y.end(), p.y.begin() + b, p.y.begin() + e);
+            out.z.insert(out.z.end(), p.z.begin() + b, p.z.begin() + e);
+            out.r.insert(out.r.end(), p.r.begin() + b, p.r.begin() + e);
+            if (withColor) {
+                out.red.insert(out.red.end(), p.red.begin() + b, p.red.begin() + e);
+                out.green.insert(out.green.end(), p.green.begin() + b, p.green.begin() + e);
+                out.blue.insert(out.blue.end(), p.blue.begin() + b, p.blue.begin() + e);
+            }
+            continue;
+        }
         if (!node.leaf()) {
             stack[top++] = node.left;
             stack[top++] = node.right;
@@ -126,7 +149,7 @@ void SphereTree::gather(const Box &box, float reach, NearList &out, bool withCol
             float d2 = 0.0f;
             const float c[3] = {p.x[i], p.y[i], p.z[i]};
             for (int k = 0; k < 3; ++k) {
-                const float gap = std::max({0.0f, box.lo[k] - c[k], c[k] - box.hi[k]});
+                const float gap = std::max(0.0f, std::max(box.lo[k] - c[k], c[k] - box.hi[k]));
                 d2 += gap * gap;
             }
             if (d2 > reach2)
@@ -141,6 +164,35 @@ void SphereTree::gather(const Box &box, float reach, NearList &out, bool withCol
                 out.blue.push_back(p.blue[i]);
             }
         }
+    }
+}
+
+void SphereTree::gatherRanges(const Box &box, float reach,
+                              std::vector<std::pair<std::uint32_t, std::uint32_t>> &out) const {
+    const float reach2 = reach * reach;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const TreeNode &node = m_nodes[stack[--top]];
+        if (minDistance2(node.box, box) > reach2)
+            continue;
+        float far2 = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            const float below = box.lo[k] - node.box.lo[k], above = node.box.hi[k] - box.hi[k];
+            const float gap = std::max(0.0f, std::max(below, above));
+            far2 += gap * gap;
+        }
+        if (far2 <= reach2 || node.leaf()) {
+            if (!out.empty() && out.back().second == node.begin)
+                out.back().second = node.end;
+            else
+                out.emplace_back(node.begin, node.end);
+            continue;
+        }
+        // Right first so that the left child (lower tree order) is taken next: ranges merge.
+        stack[top++] = node.right;
+        stack[top++] = node.left;
     }
 }
 

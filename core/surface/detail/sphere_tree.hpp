@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace faultline::core::detail {
@@ -51,6 +52,10 @@ class SphereTree {
 
     // Appends every sphere whose centre lies within `reach` of `box`.
     void gather(const Box &box, float reach, NearList &out, bool withColor) const;
+    // Ranges [first, second) of tree order that hold every sphere within `reach` of `box` (and
+    // some a little farther, from leaves only partly in reach): no copies.
+    void gatherRanges(const Box &box, float reach,
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>> &out) const;
 
   private:
     std::int32_t build(std::vector<std::uint32_t> &order, std::uint32_t begin, std::uint32_t end);
