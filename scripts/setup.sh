@@ -7,7 +7,7 @@ packages=(
     build-essential cmake ninja-build ccache pkg-config git
     libglfw3-dev libglm-dev libopenvdb-dev libboost-iostreams-dev libtinygltf-dev libimgui-dev libstb-dev
     nlohmann-json3-dev libtbb-dev libepoxy-dev libfast-float-dev zlib1g-dev
-    libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
+    libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs
     xvfb xauth libgl1-mesa-dri libglx-mesa0 mesa-utils
 )
 
@@ -17,7 +17,19 @@ for p in "${packages[@]}"; do
         missing+=("$p")
     fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+# The Khronos glTF-Validator for the export tests (tools/gltf-validator): npm ci once, quietly.
+install_gltf_validator() {
+    local dir
+    dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/gltf-validator"
+    [ -d "$dir/node_modules" ] && return 0
+    if ! command -v npm >/dev/null; then
+        echo "faultline setup: installing npm"
+        ${sudo:-} apt-get install -y -qq --no-install-recommends npm >/dev/null
+    fi
+    (cd "$dir" && npm ci --silent --no-audit --no-fund >/dev/null)
+}
+
+[ ${#missing[@]} -eq 0 ] && { install_gltf_validator; exit 0; }
 
 echo "faultline setup: installing ${missing[*]}"
 sudo=""
@@ -29,3 +41,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+install_gltf_validator

@@ -1,0 +1,196 @@
+// Fault surface speed (issue 8), all on the same spheres in one run:
+//  - 50,000 spheres, voxel = r/2, inverse-square at the default tolerance: field + colour + mesh,
+//    against OpenVDB's ParticlesToLevelSet + volumeToMesh at the same voxel size;
+//  - the compact kernel on the same set; re-meshing at a new iso-value;
+//  - 2,000 spheres: the paper's Algorithm 1 (dense grid, every sphere against every voxel)
+//    against the multilevel field, with the largest disagreement reported as a counter;
+//  - 26,000 spheres at voxel 0.5 (the ParaView comparison in the issue).
+#include "bench/fault_zone.hpp"
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/metaball_field.hpp"
+#include "core/surface/metaball_reference.hpp"
+#include "core/surface/surface_plan.hpp"
+
+#include <benchmark/benchmark.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/ParticlesToLevelSet.h>
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include <cmath>
+
+namespace fb = faultline::bench;
+namespace fc = faultline::core;
+
+namespace {
+
+constexpr float kRadius = 0.5f;
+constexpr float kThickness = 4.0f;
+
+const fb::FaultZone &zone(std::size_t count) {
+    static std::map<std::size_t, fb::FaultZone> zones;
+    auto it = zones.find(count);
+    if (it == zones.end())
+        it = zones.emplace(count, fb::hcpFaultZone(count, kRadius, kThickness)).first;
+    return it->second;
+}
+
+// The iso-value whose surface passes one radius... one unit outside the zone's middle.
+float isoOneUnitOutside(const fb::FaultZone &z, fc::MetaballKernel kernel) {
+    const double dip = 60.0 * 3.14159265358979 / 180.0;
+    const double d = kThickness / 2 + 1.0;
+    fc::SurfaceParams p;
+    p.kernel = kernel;
+    return static_cast<float>(
+        fc::referenceSample(z.set(), p, {0.3, d * std::sin(dip), d * std::cos(dip)}).value);
+}
+
+fc::SurfaceParams params(const fb::FaultZone &z, fc::MetaballKernel kernel, float voxel) {
+    fc::SurfaceParams p;
+    p.kernel = kernel;
+    p.voxelSize = voxel;
+    p.iso = kernel == fc::MetaballKernel::Compact ? 0.5f : isoOneUnitOutside(z, kernel);
+    return p;
+}
+
+void report(benchmark::State &state, const fc::SurfaceResult &r) {
+    const auto &s = r.field->stats();
+    state.counters["blocks"] = double(s.blocks);
+    state.counters["voxels"] = double(s.activeVoxels);
+    state.counters["levels"] = s.levels;
+    state.counters["coarse_nodes"] = double(s.coarseNodes);
+    state.counters["triangles"] = double(r.mesh.triangleCount());
+    state.counters["plan_ms"] = 1e3 * s.planSeconds;
+    state.counters["field_ms"] = 1e3 * s.fieldSeconds;
+    state.counters["mesh_ms"] = 1e3 * s.meshSeconds;
+    state.counters["iso"] = r.iso;
+    state.counters["kappa"] = s.kappa;
+    state.counters["a0"] = s.nearCutoff;
+    state.counters["est_err_over_iso"] = s.estimatedError / r.iso;
+}
+
+void BM_Surface(benchmark::State &state, fc::MetaballKernel kernel, std::size_t count,
+                float voxel) {
+    const auto &z = zone(count);
+    const auto p = params(z, kernel, voxel);
+    fc::SurfaceResult last;
+    for (auto _ : state)
+        last = fc::buildSurface(z.set(), p);
+    report(state, last);
+}
+
+struct ZoneParticles {
+    using PosType = openvdb::Vec3R;
+    const fb::FaultZone *z;
+    std::size_t size() const { return z->x.size(); }
+    void getPos(std::size_t n, openvdb::Vec3R &p) const { p = {z->x[n], z->y[n], z->z[n]}; }
+    void getPosRad(std::size_t n, openvdb::Vec3R &p, openvdb::Real &r) const {
+        getPos(n, p);
+        r = z->radius[n];
+    }
+};
+
+void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State &state, std::size_t count, float voxel) {
+    openvdb::initialize();
+    const ZoneParticles particles{&zone(count)};
+    std::size_t quads = 0, voxels = 0;
+    for (auto _ : state) {
+        auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
+        openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
+        raster.rasterizeSpheres(particles);
+        raster.finalize(true);
+        std::vector<openvdb::Vec3s> points;
+        std::vector<openvdb::Vec4I> polys;
+        openvdb::tools::volumeToMesh(*grid, points, polys, 0.0);
+        quads = polys.size();
+        voxels = grid->activeVoxelCount();
+    }
+    state.counters["quads"] = double(quads);
+    state.counters["voxels"] = double(voxels);
+}
+
+void BM_Remesh(benchmark::State &state, std::size_t count, float voxel) {
+    const auto &z = zone(count);
+    const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
+    const auto built = fc::buildSurface(z.set(), p);
+    const float iso = p.iso * 1.05f;
+    fc::SurfaceMesh mesh;
+    for (auto _ : state)
+        mesh = fc::remesh(*built.field, iso);
+    state.counters["triangles"] = double(mesh.triangleCount());
+}
+
+// Algorithm 1 on the dense box around every evaluated block; the counter is the largest
+// |multilevel - Algorithm 1| over the kept voxels as a fraction of the iso-value.
+void BM_Algorithm1Dense(benchmark::State &state, std::size_t count, float voxel) {
+    const auto &z = zone(count);
+    const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
+    fc::MetaballField field(z.set(), p, voxel);
+    const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor, p.iso * p.isoRangeFactor,
+                                      p.memoryBudgetBytes, nullptr);
+    std::array<int, 3> lo{1 << 30, 1 << 30, 1 << 30}, hi{-(1 << 30), -(1 << 30), -(1 << 30)};
+    for (const auto &b : plan.blocks)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b[k]);
+            hi[k] = std::max(hi[k], b[k] + 7);
+        }
+    const std::array<int, 3> dims{hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
+    std::vector<float> dense;
+    for (auto _ : state)
+        dense = fc::algorithm1Dense(z.set(), p, lo, dims, voxel);
+    field.prepare(plan.blocks, nullptr);
+    double worst = 0.0;
+    const double clamp = 4.0 * p.iso * p.isoRangeFactor;
+    float density[fc::kBlockVoxels];
+    fc::Vec3f color[fc::kBlockVoxels];
+    for (const auto &b : plan.blocks) {
+        field.evaluateBlock(b, density, color);
+        for (int i = 0; i < 8; ++i)
+            for (int j = 0; j < 8; ++j)
+                for (int k = 0; k < 8; ++k) {
+                    const std::size_t at =
+                        (std::size_t(b[2] + k - lo[2]) * dims[1] + (b[1] + j - lo[1])) * dims[0] +
+                        (b[0] + i - lo[0]);
+                    const double e =
+                        std::abs(std::min<double>(density[fc::blockOffset(i, j, k)], clamp) -
+                                 std::min<double>(dense[at], clamp));
+                    worst = std::max(worst, e);
+                }
+    }
+    state.counters["dense_voxels"] = double(dense.size());
+    state.counters["kept_voxels"] = double(plan.blocks.size() * fc::kBlockVoxels);
+    state.counters["max_err_over_iso"] = worst / p.iso;
+}
+
+} // namespace
+
+BENCHMARK_CAPTURE(BM_Surface, inverse_square_50k, fc::MetaballKernel::InverseSquare, 50000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_OpenVdbParticlesToLevelSetAndMesh, openvdb_50k, 50000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_Surface, compact_50k, fc::MetaballKernel::Compact, 50000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_Remesh, inverse_square_50k, 50000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_Surface, inverse_square_2k, fc::MetaballKernel::InverseSquare, 2000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_square_2k, 2000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Surface, inverse_square_26k_voxel_0_5, fc::MetaballKernel::InverseSquare,
+                  26000, 0.5f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,197 @@
+#include "core/surface/detail/field_level.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+namespace faultline::core::detail {
+
+void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
+    Int3 blo, bhi;
+    for (int k = 0; k < 3; ++k) {
+        blo[k] = floorDiv(lo[k], 8);
+        bhi[k] = floorDiv(hi[k], 8);
+    }
+    for (int bx = blo[0]; bx <= bhi[0]; ++bx)
+        for (int by = blo[1]; by <= bhi[1]; ++by)
+            for (int bz = blo[2]; bz <= bhi[2]; ++bz) {
+                const Int3 b{bx, by, bz};
+                auto [it, inserted] =
+                    index.try_emplace(packKey(b), static_cast<std::uint32_t>(bricks.size()));
+                if (inserted) {
+                    bricks.emplace_back();
+                    bricks.back().origin = {bx * 8, by * 8, bz * 8};
+                }
+                Brick &brick = bricks[it->second];
+                Int3 l, h;
+                for (int k = 0; k < 3; ++k) {
+                    l[k] = std::max(lo[k] - brick.origin[k], 0);
+                    h[k] = std::min(hi[k] - brick.origin[k], 7);
+                    brick.lo[k] = std::min(brick.lo[k], l[k]);
+                    brick.hi[k] = std::max(brick.hi[k], h[k]);
+                }
+                for (int i = l[0]; i <= h[0]; ++i)
+                    for (int j = l[1]; j <= h[1]; ++j)
+                        for (int z = l[2]; z <= h[2]; ++z) {
+                            const int n = Brick::offset(i, j, z);
+                            brick.mask[n >> 6] |= std::uint64_t{1} << (n & 63);
+                        }
+            }
+}
+
+const Brick *FieldLevel::find(const Int3 &node) const {
+    const Int3 b{floorDiv(node[0], 8), floorDiv(node[1], 8), floorDiv(node[2], 8)};
+    auto it = index.find(packKey(b));
+    return it == index.end() ? nullptr : &bricks[it->second];
+}
+
+std::size_t FieldLevel::neededCount() const {
+    std::size_t count = 0;
+    for (const auto &b : bricks)
+        for (auto m : b.mask)
+            count += static_cast<std::size_t>(__builtin_popcountll(m));
+    return count;
+}
+
+namespace {
+// 1 / prod_{j != k} (k - j) for nodes -kTapsBelow .. kTapsAbove.
+struct LagrangeDenominators {
+    float inv[kTaps];
+    LagrangeDenominators() {
+        for (int k = 0; k < kTaps; ++k) {
+            double d = 1.0;
+            for (int j = 0; j < kTaps; ++j)
+                if (j != k)
+                    d *= double(k - j);
+            inv[k] = static_cast<float>(1.0 / d);
+        }
+    }
+};
+const LagrangeDenominators kDenominators;
+} // namespace
+
+void lagrangeWeights(float t, float w[kTaps]) {
+    float x[kTaps];
+    for (int j = 0; j < kTaps; ++j)
+        x[j] = t - static_cast<float>(j - kTapsBelow);
+    // Prefix and suffix products: w_k = prod_{j<k} x_j * prod_{j>k} x_j / denominator_k.
+    float prefix[kTaps + 1], suffix[kTaps + 1];
+    prefix[0] = 1.0f;
+    suffix[kTaps] = 1.0f;
+    for (int j = 0; j < kTaps; ++j)
+        prefix[j + 1] = prefix[j] * x[j];
+    for (int j = kTaps - 1; j >= 0; --j)
+        suffix[j] = suffix[j + 1] * x[j];
+    for (int k = 0; k < kTaps; ++k)
+        w[k] = prefix[k] * suffix[k + 1] * kDenominators.inv[k];
+}
+
+void lagrangeDerivatives(float t, float w[kTaps]) {
+    float x[kTaps];
+    for (int j = 0; j < kTaps; ++j)
+        x[j] = t - static_cast<float>(j - kTapsBelow);
+    for (int k = 0; k < kTaps; ++k) {
+        float sum = 0.0f;
+        for (int m = 0; m < kTaps; ++m) {
+            if (m == k)
+                continue;
+            float v = 1.0f;
+            for (int j = 0; j < kTaps; ++j)
+                if (j != k && j != m)
+                    v *= x[j];
+            sum += v;
+        }
+        w[k] = sum * kDenominators.inv[k];
+    }
+}
+
+void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
+                 std::vector<float> &out) {
+    out.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0.0f);
+    const Int3 hi{lo[0] + dims[0] - 1, lo[1] + dims[1] - 1, lo[2] + dims[2] - 1};
+    for (int bx = floorDiv(lo[0], 8); bx <= floorDiv(hi[0], 8); ++bx)
+        for (int by = floorDiv(lo[1], 8); by <= floorDiv(hi[1], 8); ++by)
+            for (int bz = floorDiv(lo[2], 8); bz <= floorDiv(hi[2], 8); ++bz) {
+                const Brick *brick = level.find({bx * 8, by * 8, bz * 8});
+                assert(brick && "a coarse node the interpolation needs was never marked");
+                if (!brick)
+                    continue;
+                const Int3 &o = brick->origin;
+                Int3 l, h;
+                for (int k = 0; k < 3; ++k) {
+                    l[k] = std::max(lo[k], o[k]);
+                    h[k] = std::min(hi[k], o[k] + 7);
+                }
+                for (int i = l[0]; i <= h[0]; ++i)
+                    for (int j = l[1]; j <= h[1]; ++j)
+                        for (int z = l[2]; z <= h[2]; ++z) {
+                            const int n = Brick::offset(i - o[0], j - o[1], z - o[2]);
+                            assert(brick->needed(n));
+                            out[(static_cast<std::size_t>(i - lo[0]) * dims[1] + (j - lo[1])) *
+                                    dims[2] +
+                                (z - lo[2])] = brick->values[n];
+                        }
+            }
+}
+
+void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n,
+                     float *out) {
+    Int3 s0, sd;
+    for (int k = 0; k < 3; ++k) {
+        s0[k] = floorDiv(t0[k], ratio) - kTapsBelow;
+        sd[k] = floorDiv(t0[k] + n[k] - 1, ratio) + kTapsAbove - s0[k] + 1;
+    }
+    thread_local std::vector<float> src, pass1, pass2;
+    gatherPatch(level, s0, sd, src);
+    // Per target index along each axis: first source node and weights.
+    std::vector<int> base[3];
+    std::vector<std::array<float, kTaps>> weights[3];
+    for (int k = 0; k < 3; ++k) {
+        base[k].resize(n[k]);
+        weights[k].resize(n[k]);
+        for (int t = 0; t < n[k]; ++t) {
+            const int g = t0[k] + t;
+            const int b = floorDiv(g, ratio);
+            base[k][t] = b - kTapsBelow - s0[k];
+            lagrangeWeights(static_cast<float>(g - b * ratio) / static_cast<float>(ratio),
+                            weights[k][t].data());
+        }
+    }
+    // x pass: [n0][sd1][sd2]
+    pass1.assign(static_cast<std::size_t>(n[0]) * sd[1] * sd[2], 0.0f);
+    const std::size_t plane = static_cast<std::size_t>(sd[1]) * sd[2];
+    for (int i = 0; i < n[0]; ++i)
+        for (int q = 0; q < kTaps; ++q) {
+            const float w = weights[0][i][q];
+            const float *s = &src[(base[0][i] + q) * plane];
+            float *d = &pass1[i * plane];
+            for (std::size_t e = 0; e < plane; ++e)
+                d[e] += w * s[e];
+        }
+    // y pass: [n0][n1][sd2]
+    pass2.assign(static_cast<std::size_t>(n[0]) * n[1] * sd[2], 0.0f);
+    for (int i = 0; i < n[0]; ++i)
+        for (int j = 0; j < n[1]; ++j)
+            for (int q = 0; q < kTaps; ++q) {
+                const float w = weights[1][j][q];
+                const float *s = &pass1[(i * sd[1] + base[1][j] + q) * sd[2]];
+                float *d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
+                for (int e = 0; e < sd[2]; ++e)
+                    d[e] += w * s[e];
+            }
+    // z pass into out
+    for (int i = 0; i < n[0]; ++i)
+        for (int j = 0; j < n[1]; ++j) {
+            const float *s = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
+            float *d = &out[(static_cast<std::size_t>(i) * n[1] + j) * n[2]];
+            for (int z = 0; z < n[2]; ++z) {
+                const auto &w = weights[2][z];
+                const float *b = s + base[2][z];
+                float v = 0.0f;
+                for (int q = 0; q < kTaps; ++q)
+                    v += w[q] * b[q];
+                d[z] += v;
+            }
+        }
+}
+
+} // namespace faultline::core::detail

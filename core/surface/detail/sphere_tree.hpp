@@ -1,0 +1,68 @@
+// SphereTree: a kd-tree over sphere centres with per-node weight and radius range. It answers
+// "which spheres lie within R of this box" and gives field bounds over boxes (surface planning).
+#pragma once
+
+#include "core/surface/sphere_set.hpp"
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace faultline::core::detail {
+
+struct Box {
+    std::array<float, 3> lo{0, 0, 0};
+    std::array<float, 3> hi{0, 0, 0};
+};
+
+// Squared smallest and largest distances between points of two boxes.
+float minDistance2(const Box &a, const Box &b);
+float maxDistance2(const Box &a, const Box &b);
+
+// Spheres in tree order (structure of arrays), weights w = radius.
+struct PackedSpheres {
+    std::vector<float> x, y, z, r, red, green, blue;
+    std::size_t size() const { return x.size(); }
+};
+
+struct TreeNode {
+    Box box;
+    float weight = 0; // sum of radii
+    float rmin = 0, rmax = 0;
+    std::uint32_t begin = 0, end = 0; // range in tree order
+    std::int32_t left = -1, right = -1;
+    bool leaf() const { return left < 0; }
+};
+
+// Spheres near a box, gathered into contiguous arrays for vectorisable loops.
+struct NearList {
+    std::vector<float> x, y, z, r, red, green, blue;
+    void clear();
+    std::size_t size() const { return x.size(); }
+};
+
+class SphereTree {
+  public:
+    explicit SphereTree(const SphereSet &spheres);
+
+    const PackedSpheres &spheres() const { return m_spheres; }
+    const std::vector<TreeNode> &nodes() const { return m_nodes; }
+    const TreeNode &root() const { return m_nodes.front(); }
+
+    // Appends every sphere whose centre lies within `reach` of `box`.
+    void gather(const Box &box, float reach, NearList &out, bool withColor) const;
+    // Ranges [first, second) of tree order that hold every sphere within `reach` of `box` (and
+    // some a little farther, from leaves only partly in reach): no copies.
+    void gatherRanges(const Box &box, float reach,
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>> &out) const;
+
+  private:
+    std::int32_t build(std::vector<std::uint32_t> &order, std::uint32_t begin, std::uint32_t end);
+    PackedSpheres m_spheres;
+    std::vector<TreeNode> m_nodes;
+    std::vector<std::array<float, 3>> m_centres; // scratch during build
+    std::vector<float> m_radii;
+};
+
+} // namespace faultline::core::detail

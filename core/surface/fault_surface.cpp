@@ -1,0 +1,317 @@
+#include "core/surface/fault_surface.hpp"
+
+#include "core/surface/detail/field_level.hpp"
+#include "core/surface/detail/vdb_grids.hpp"
+#include "core/surface/metaball_reference.hpp"
+#include "core/surface/surface_plan.hpp"
+
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+
+namespace faultline::core {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Stored densities are clamped here: above every supported iso-value, finite near centres.
+float clampValue(float isoMax) { return 4.0f * isoMax; }
+
+void validate(const SphereSet &s, const SurfaceParams &p) {
+    if (s.size() == 0)
+        throw SurfaceRequestError("cannot build a surface from an empty sphere set");
+    if (!s.consistent())
+        throw SurfaceRequestError("sphere columns differ in length (positions, radii, colours)");
+    auto bad = [](float v) { return !std::isfinite(v); };
+    if (!(p.iso > 0.0f) || bad(p.iso))
+        throw SurfaceRequestError("iso-value must be a positive number, got " +
+                                  std::to_string(p.iso));
+    if (p.voxelSize < 0.0f || bad(p.voxelSize))
+        throw SurfaceRequestError("voxel size must be positive (or 0 for radius / 3), got " +
+                                  std::to_string(p.voxelSize));
+    if (!(p.tolerance > 0.0f) || !(p.isoRangeFactor >= 1.0f) || !(p.compactReach > 0.0f) ||
+        p.colorReach < 0.0f)
+        throw SurfaceRequestError("tolerance, iso range, compact reach must be positive and the "
+                                  "colour reach not negative");
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (bad(s.x[i]) || bad(s.y[i]) || bad(s.z[i]) || !(s.radius[i] > 0.0f) || bad(s.radius[i]))
+            throw SurfaceRequestError("sphere " + std::to_string(i) +
+                                      " has a non-finite centre or a radius that is not positive");
+    }
+}
+
+enum class BlockSide { Below, Above, Crossing };
+
+// Which evaluated blocks hold, with the facing layers of their evaluated neighbours, only values
+// on one side of [isoMin, isoMax]: no mesh edge for a supported iso touches them.
+std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
+                                  const std::vector<openvdb::FloatTree::LeafNodeType *> &leaves,
+                                  float isoMin, float isoMax) {
+    std::unordered_map<std::uint64_t, std::size_t> index;
+    auto key = [](const Coord3 &o) { return detail::packKey({o[0] >> 3, o[1] >> 3, o[2] >> 3}); };
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+        index.emplace(key(blocks[b]), b);
+    std::vector<BlockSide> sides(blocks.size(), BlockSide::Crossing);
+    tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+        const float *v = leaves[b]->buffer().data();
+        float lo = v[0], hi = v[0];
+        for (int n = 1; n < kBlockVoxels; ++n) {
+            lo = std::min(lo, v[n]);
+            hi = std::max(hi, v[n]);
+        }
+        for (int axis = 0; axis < 3; ++axis)
+            for (int dir : {-1, 1}) {
+                Coord3 o = blocks[b];
+                o[axis] += dir * kBlockDim;
+                auto it = index.find(key(o));
+                if (it == index.end())
+                    continue; // a tile: on this block's side by the plan's margin
+                const float *u = leaves[it->second]->buffer().data();
+                const int layer = dir < 0 ? kBlockDim - 1 : 0;
+                for (int i = 0; i < kBlockDim; ++i)
+                    for (int j = 0; j < kBlockDim; ++j) {
+                        int c[3] = {i, j, 0};
+                        c[axis] = layer;
+                        if (axis == 0)
+                            c[1] = i, c[2] = j;
+                        else if (axis == 1)
+                            c[0] = i, c[2] = j;
+                        else
+                            c[0] = i, c[1] = j;
+                        const float value = u[blockOffset(c[0], c[1], c[2])];
+                        lo = std::min(lo, value);
+                        hi = std::max(hi, value);
+                    }
+            }
+        sides[b] = hi < isoMin   ? BlockSide::Below
+                   : lo > isoMax ? BlockSide::Above
+                                 : BlockSide::Crossing;
+    });
+    return sides;
+}
+
+} // namespace
+
+void ensureOpenVdbInitialized() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+SurfaceField::SurfaceField(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+SurfaceField::~SurfaceField() = default;
+const SurfaceParams &SurfaceField::params() const { return m_impl->params; }
+float SurfaceField::voxelSize() const { return m_impl->field->voxelSize(); }
+std::size_t SurfaceField::sphereCount() const { return m_impl->field->sphereCount(); }
+float SurfaceField::isoMin() const { return m_impl->isoMin; }
+float SurfaceField::isoMax() const { return m_impl->isoMax; }
+const SurfaceStats &SurfaceField::stats() const { return m_impl->stats; }
+std::size_t SurfaceField::memoryBytes() const {
+    return m_impl->density->memUsage() + m_impl->color->memUsage() +
+           m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);
+}
+
+SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
+                           Interrupter *interrupter) {
+    validate(spheres, params);
+    ensureOpenVdbInitialized();
+    auto impl = std::make_unique<SurfaceField::Impl>();
+    impl->params = params;
+    impl->isoMin = params.iso / params.isoRangeFactor;
+    impl->isoMax = params.iso * params.isoRangeFactor;
+    const float h = resolvedVoxelSize(params, meanRadius(spheres));
+    if (!(h > 0.0f))
+        throw SurfaceRequestError("voxel size resolves to zero");
+
+    auto t0 = Clock::now();
+    impl->field = std::make_unique<MetaballField>(spheres, params, h);
+    MetaballField &field = *impl->field;
+    const SurfacePlan plan =
+        planSurface(field, impl->isoMin, impl->isoMax, params.memoryBudgetBytes, interrupter);
+    impl->stats.planSeconds = secondsSince(t0);
+
+    // Field: coarse levels, then every planned block in parallel into its own leaves.
+    t0 = Clock::now();
+    if (interrupter)
+        interrupter->start("field");
+    field.prepare(plan.blocks, interrupter);
+    using FloatLeaf = openvdb::FloatTree::LeafNodeType;
+    using ColorLeaf = openvdb::Vec3STree::LeafNodeType;
+    std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
+    std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
+    const float clamp = clampValue(impl->isoMax);
+    const openvdb::Vec3s initial(params.initialColor[0], params.initialColor[1],
+                                 params.initialColor[2]);
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> cancelled{false};
+    tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
+        if (cancelled.load(std::memory_order_relaxed))
+            return;
+        const auto &o = plan.blocks[b];
+        const openvdb::Coord origin(o[0], o[1], o[2]);
+        float density[kBlockVoxels];
+        Vec3f color[kBlockVoxels];
+        field.evaluateBlock(o, density, color);
+        auto *dl = new FloatLeaf(origin, 0.0f, true);
+        auto *cl = new ColorLeaf(origin, initial, true);
+        for (int n = 0; n < kBlockVoxels; ++n) {
+            dl->setValueOnly(n, std::min(density[n], clamp));
+            cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
+        }
+        densityLeaves[b] = dl;
+        colorLeaves[b] = cl;
+        const std::size_t d = ++done;
+        if (interrupter && (d & 63) == 0 &&
+            interrupter->wasInterrupted(static_cast<int>(100 * d / plan.blocks.size())))
+            cancelled = true;
+    });
+    if (cancelled) {
+        for (auto *l : densityLeaves)
+            delete l;
+        for (auto *l : colorLeaves)
+            delete l;
+        throw SurfaceCancelled();
+    }
+    const auto transform = openvdb::math::Transform::createLinearTransform(h);
+    impl->density = openvdb::FloatGrid::create(0.0f);
+    impl->density->setTransform(transform);
+    impl->color = openvdb::Vec3SGrid::create(initial);
+    impl->color->setTransform(transform->copy());
+    for (const auto &[lo, hi] : plan.inside)
+        impl->density->tree().sparseFill(openvdb::CoordBBox(openvdb::Coord(lo[0], lo[1], lo[2]),
+                                                            openvdb::Coord(hi[0], hi[1], hi[2])),
+                                         clamp, false);
+    const std::vector<BlockSide> sides =
+        blockSides(plan.blocks, densityLeaves, impl->isoMin, impl->isoMax);
+    for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
+        if (sides[b] == BlockSide::Crossing) {
+            impl->density->tree().addLeaf(densityLeaves[b]);
+            impl->color->tree().addLeaf(colorLeaves[b]);
+            continue;
+        }
+        // No edge of this block or into it can cross any supported iso: a tile will do.
+        if (sides[b] == BlockSide::Above)
+            impl->density->tree().addTile(1, densityLeaves[b]->origin(), clamp, false);
+        delete densityLeaves[b];
+        delete colorLeaves[b];
+    }
+    impl->stats.fieldSeconds = secondsSince(t0);
+    impl->stats.blocks = plan.blocks.size();
+    impl->stats.activeVoxels = impl->density->activeVoxelCount();
+    impl->stats.coarseNodes = field.coarseNodeCount();
+    impl->stats.levels = field.levelCount();
+    impl->stats.nearCutoff = field.nearCutoff();
+    impl->stats.kappa = field.kappa();
+    impl->stats.estimatedError = field.estimatedError();
+    if (interrupter)
+        interrupter->end();
+
+    SurfaceResult result;
+    result.iso = params.iso;
+    auto shared = std::make_shared<SurfaceField>(std::move(impl));
+    t0 = Clock::now();
+    result.mesh = remesh(*shared, params.iso, interrupter);
+    const_cast<SurfaceStats &>(shared->stats()).meshSeconds = secondsSince(t0);
+    result.field = std::move(shared);
+    return result;
+}
+
+SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrupter) {
+    if (!surface.supportsIso(iso))
+        throw SurfaceRequestError("iso-value " + std::to_string(iso) + " is outside [" +
+                                  std::to_string(surface.isoMin()) + ", " +
+                                  std::to_string(surface.isoMax()) +
+                                  "] that this surface's grid holds; rebuild the surface");
+    const auto &impl = surface.impl();
+    if (interrupter)
+        interrupter->start("mesh");
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(*impl.density, points, triangles, quads, iso, 0.0);
+    if (interrupter && interrupter->wasInterrupted(50))
+        throw SurfaceCancelled();
+
+    SurfaceMesh mesh;
+    mesh.positions.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+        mesh.positions[i] = {points[i][0], points[i][1], points[i][2]};
+    std::vector<Vec3f> gradients(points.size());
+    impl.field->evaluatePoints(mesh.positions, nullptr, gradients.data());
+    mesh.normals.resize(points.size());
+    mesh.colors.resize(points.size());
+    tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+        const Vec3f &g = gradients[i];
+        const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        mesh.normals[i] =
+            len > 0.0f ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len} : Vec3f{0.0f, 0.0f, 1.0f};
+    });
+    {
+        // Trilinear in the colour grid over the evaluated (active) voxels only: corners in
+        // never-evaluated tiles hold no colour.
+        const auto &grid = *impl.color;
+        const float inv = 1.0f / surface.voxelSize();
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto &r) {
+            auto acc = grid.getConstAccessor();
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const openvdb::Vec3f p = points[i] * inv;
+                const openvdb::Coord base(static_cast<int>(std::floor(p[0])),
+                                          static_cast<int>(std::floor(p[1])),
+                                          static_cast<int>(std::floor(p[2])));
+                const openvdb::Vec3f t = p - base.asVec3s();
+                openvdb::Vec3s sum(0.0f);
+                float weight = 0.0f;
+                for (int c = 0; c < 8; ++c) {
+                    const openvdb::Coord at = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+                    openvdb::Vec3s value;
+                    if (!acc.probeValue(at, value))
+                        continue;
+                    const float w = ((c & 1) ? t[0] : 1.0f - t[0]) *
+                                    (((c >> 1) & 1) ? t[1] : 1.0f - t[1]) *
+                                    (((c >> 2) & 1) ? t[2] : 1.0f - t[2]);
+                    sum += w * value;
+                    weight += w;
+                }
+                const openvdb::Vec3s c = weight > 0.0f ? sum / weight : grid.background();
+                for (int k = 0; k < 3; ++k)
+                    mesh.colors[i][k] = std::clamp(c[k], 0.0f, 1.0f);
+            }
+        });
+    }
+    mesh.indices.reserve(3 * triangles.size() + 6 * quads.size());
+    for (const auto &t : triangles)
+        mesh.indices.insert(mesh.indices.end(), {t[0], t[1], t[2]});
+    for (const auto &q : quads)
+        mesh.indices.insert(mesh.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+    // OpenVDB orients polygons for level sets (inside below iso); our density is inside above
+    // iso. Make the winding agree with the outward normals.
+    double agreement = 0.0;
+    for (std::size_t t = 0; t < mesh.indices.size(); t += 3 * 17) {
+        const auto &a = mesh.positions[mesh.indices[t]];
+        const auto &b = mesh.positions[mesh.indices[t + 1]];
+        const auto &c = mesh.positions[mesh.indices[t + 2]];
+        const Vec3f u{b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+            v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const Vec3f n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                      u[0] * v[1] - u[1] * v[0]};
+        const auto &m = mesh.normals[mesh.indices[t]];
+        agreement += n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+    }
+    if (agreement < 0.0)
+        for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
+            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    if (interrupter)
+        interrupter->end();
+    return mesh;
+}
+
+} // namespace faultline::core

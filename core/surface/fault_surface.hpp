@@ -1,0 +1,75 @@
+// Fault surfaces: the implicit metaball surface through a set of spheres (paper eq. 1, Fig. 4),
+// kept as sparse density + colour grids so a new iso-value re-meshes without a new field.
+#pragma once
+
+#include "core/surface/interrupter.hpp"
+#include "core/surface/sphere_set.hpp"
+#include "core/surface/surface_params.hpp"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace faultline::core {
+
+// What the renderer draws: indexed triangles with per-vertex normals and float RGB colours.
+struct SurfaceMesh {
+    std::vector<std::array<float, 3>> positions;
+    std::vector<std::array<float, 3>> normals; // unit, pointing out of the surface (down f)
+    std::vector<std::array<float, 3>> colors;  // RGB in [0, 1]
+    std::vector<std::uint32_t> indices;        // three per triangle, counter-clockwise from outside
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct SurfaceStats {
+    std::size_t blocks = 0; // evaluated 8^3 blocks
+    std::size_t activeVoxels = 0;
+    std::size_t coarseNodes = 0; // nodes on the multilevel grids
+    int levels = 0;
+    float nearCutoff = 0.0f;
+    int kappa = 0;               // near cutoff / level-1 spacing
+    double estimatedError = 0.0; // a priori bound on |f - f_exact| the parameters were chosen by
+    double planSeconds = 0.0, fieldSeconds = 0.0, meshSeconds = 0.0;
+};
+
+// The grids of one build (opaque: OpenVDB stays inside a few .cpp files). Immutable once built,
+// so a cache and a background job can share it.
+class SurfaceField {
+  public:
+    struct Impl;
+    explicit SurfaceField(std::unique_ptr<Impl> impl);
+    ~SurfaceField();
+
+    const SurfaceParams &params() const;
+    float voxelSize() const;
+    std::size_t sphereCount() const;
+    // Iso-values this grid re-meshes exactly: [iso / isoRangeFactor, iso * isoRangeFactor].
+    float isoMin() const;
+    float isoMax() const;
+    bool supportsIso(float iso) const { return iso >= isoMin() && iso <= isoMax(); }
+    const SurfaceStats &stats() const;
+    std::size_t memoryBytes() const;
+    const Impl &impl() const { return *m_impl; }
+
+  private:
+    std::unique_ptr<Impl> m_impl;
+};
+
+struct SurfaceResult {
+    std::shared_ptr<const SurfaceField> field;
+    SurfaceMesh mesh;
+    float iso = 0.0f;
+};
+
+// Builds the field, colour and mesh. Throws SurfaceRequestError before any work for a bad
+// request (no spheres, bad numbers, over the memory budget: the message says how much it would
+// need) and SurfaceCancelled when the interrupter asks to stop.
+SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
+                           Interrupter *interrupter = nullptr);
+
+// The iso-surface of an existing field at another iso-value (no field recomputation). Throws
+// SurfaceRequestError when iso lies outside [isoMin, isoMax] (a rebuild is needed).
+SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr);
+
+} // namespace faultline::core

@@ -1,0 +1,185 @@
+#include "core/surface/surface_export.hpp"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace faultline::core {
+
+namespace {
+
+using V3 = std::array<float, 3>;
+
+// Appends raw data to the single buffer, 4-byte aligned; returns the new buffer view's index.
+int addView(tinygltf::Model &model, const void *data, std::size_t bytes, int target) {
+    auto &buffer = model.buffers.front().data;
+    while (buffer.size() % 4)
+        buffer.push_back(0);
+    const std::size_t offset = buffer.size();
+    buffer.resize(offset + bytes);
+    std::memcpy(buffer.data() + offset, data, bytes);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = bytes;
+    if (target)
+        view.target = target;
+    model.bufferViews.push_back(view);
+    return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int addVec3Accessor(tinygltf::Model &model, const std::vector<V3> &values, bool withBounds,
+                    int target = TINYGLTF_TARGET_ARRAY_BUFFER) {
+    tinygltf::Accessor a;
+    a.bufferView = addView(model, values.data(), values.size() * sizeof(V3), target);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = values.size();
+    if (withBounds) {
+        V3 lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+              std::numeric_limits<float>::max()};
+        V3 hi{-lo[0], -lo[1], -lo[2]};
+        for (const auto &v : values)
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = std::min(lo[k], v[k]);
+                hi[k] = std::max(hi[k], v[k]);
+            }
+        a.minValues = {lo[0], lo[1], lo[2]};
+        a.maxValues = {hi[0], hi[1], hi[2]};
+    }
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+}
+
+int addIndexAccessor(tinygltf::Model &model, const std::vector<std::uint32_t> &indices) {
+    tinygltf::Accessor a;
+    a.bufferView = addView(model, indices.data(), indices.size() * sizeof(std::uint32_t),
+                           TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    a.count = indices.size();
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+}
+
+int addMesh(tinygltf::Model &model, const std::string &name, const std::vector<V3> &positions,
+            const std::vector<V3> &normals, const std::vector<V3> *colors,
+            const std::vector<std::uint32_t> &indices, int material) {
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = addVec3Accessor(model, positions, true);
+    prim.attributes["NORMAL"] = addVec3Accessor(model, normals, false);
+    if (colors)
+        prim.attributes["COLOR_0"] = addVec3Accessor(model, *colors, false);
+    prim.indices = addIndexAccessor(model, indices);
+    prim.material = material;
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(prim);
+    model.meshes.push_back(mesh);
+    return static_cast<int>(model.meshes.size()) - 1;
+}
+
+// Unit icosphere (one subdivision of an icosahedron: 42 vertices, 80 triangles).
+void icosphere(std::vector<V3> &v, std::vector<std::uint32_t> &tri) {
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    tri = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+           4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+           6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+    auto normalize = [](V3 p) {
+        const float l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        return V3{p[0] / l, p[1] / l, p[2] / l};
+    };
+    for (auto &p : v)
+        p = normalize(p);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+        const auto key = std::minmax(a, b);
+        auto it = mid.find(key);
+        if (it != mid.end())
+            return it->second;
+        v.push_back(
+            normalize({(v[a][0] + v[b][0]) / 2, (v[a][1] + v[b][1]) / 2, (v[a][2] + v[b][2]) / 2}));
+        const auto index = static_cast<std::uint32_t>(v.size() - 1);
+        mid.emplace(key, index);
+        return index;
+    };
+    std::vector<std::uint32_t> finer;
+    for (std::size_t i = 0; i < tri.size(); i += 3) {
+        const std::uint32_t a = tri[i], b = tri[i + 1], c = tri[i + 2];
+        const std::uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        finer.insert(finer.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    tri = std::move(finer);
+}
+
+} // namespace
+
+void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> surfaces,
+               const SphereSet &glyphs) {
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "Faultline";
+    model.buffers.emplace_back();
+    tinygltf::Material material; // vertex colours times white, double-sided surfaces
+    material.name = "fault-surface";
+    material.doubleSided = true;
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.8;
+    model.materials.push_back(material);
+    tinygltf::Scene scene;
+    scene.name = "faults";
+    for (const auto &s : surfaces) {
+        if (!s.mesh)
+            throw std::invalid_argument("exportGlb: surface '" + s.name + "' has no mesh");
+        tinygltf::Node node;
+        node.name = s.name;
+        if (s.mesh->triangleCount() > 0)
+            node.mesh = addMesh(model, s.name, s.mesh->positions, s.mesh->normals, &s.mesh->colors,
+                                s.mesh->indices, 0);
+        model.nodes.push_back(node);
+        scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+    }
+    if (glyphs.size() > 0) {
+        std::vector<V3> sphere;
+        std::vector<std::uint32_t> tri;
+        icosphere(sphere, tri);
+        tinygltf::Material glyphMaterial;
+        glyphMaterial.name = "glyph";
+        glyphMaterial.pbrMetallicRoughness.metallicFactor = 0.0;
+        model.materials.push_back(glyphMaterial);
+        const int mesh = addMesh(model, "glyph", sphere, sphere, nullptr, tri, 1);
+        std::vector<V3> translation(glyphs.size()), scale(glyphs.size());
+        for (std::size_t i = 0; i < glyphs.size(); ++i) {
+            translation[i] = {glyphs.x[i], glyphs.y[i], glyphs.z[i]};
+            scale[i] = {glyphs.radius[i], glyphs.radius[i], glyphs.radius[i]};
+        }
+        tinygltf::Value::Object attributes;
+        attributes["TRANSLATION"] = tinygltf::Value(addVec3Accessor(model, translation, false, 0));
+        attributes["SCALE"] = tinygltf::Value(addVec3Accessor(model, scale, false, 0));
+        tinygltf::Value::Object instancing;
+        instancing["attributes"] = tinygltf::Value(attributes);
+        tinygltf::Node node;
+        node.name = "glyphs";
+        node.mesh = mesh;
+        node.extensions["EXT_mesh_gpu_instancing"] = tinygltf::Value(instancing);
+        model.nodes.push_back(node);
+        scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+        model.extensionsUsed.push_back("EXT_mesh_gpu_instancing");
+    }
+    model.scenes.push_back(scene);
+    model.defaultScene = 0;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToFile(&model, path.string(), false, true, false, true))
+        throw std::runtime_error(path.string() + ": cannot write glTF file");
+}
+
+} // namespace faultline::core

@@ -1,0 +1,747 @@
+#include "core/surface/metaball_field.hpp"
+
+#include "core/surface/detail/field_level.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+
+namespace faultline::core {
+
+using detail::Box;
+using detail::Brick;
+using detail::FieldLevel;
+using detail::floorDiv;
+using detail::NearList;
+using detail::packKey;
+
+namespace {
+
+// Interpolation error of the smooth remainders per unit of near-field scale (see errorScale()),
+// for kappa = cutoff / coarse spacing = 3 .. 8, with degree-5 interpolation and C^4 softening.
+// 1.5x the largest error measured over every voxel of jittered slabs and HCP zones, p = 1, 2
+// (tests/core/surface_field_test.cpp checks the result against Algorithm 1).
+constexpr double kErrorPerScale[] = {0, 0, 0, 8.4e-3, 2.1e-3, 6e-4, 3e-4, 1.5e-4, 8e-5};
+constexpr int kKappaMin = 3, kKappaMax = 8;
+// Coarse levels interpolate sums over many spheres, far smoother than one sphere's kernel: their
+// measured error is this fraction of the one-sphere model.
+constexpr double kCoarseErrorShare = 1.0;
+
+Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
+    Box b;
+    for (int k = 0; k < 3; ++k) {
+        b.lo[k] = lo[k] * h;
+        b.hi[k] = hi[k] * h;
+    }
+    return b;
+}
+
+// Kernel value bound for one sphere (or a node of spheres) at squared distance d2.
+struct BoundKernel {
+    MetaballKernel kernel;
+    InverseKernel inverse;
+    float compactReach;
+    float value(float d2, float radius) const {
+        if (kernel != MetaballKernel::Compact)
+            return inverse.value(d2);
+        const float big = compactReach * radius;
+        return compactValue(d2, 1.0f / (big * big));
+    }
+};
+
+// Hot loops: bodies templated on the kernel power (no branch inside the loops), instantiated in
+// functions compiled for AVX2 too and picked at run time by CPU feature.
+#define FAULTLINE_HOT __attribute__((target_clones("avx2", "default")))
+
+template <int P> inline float inversePower(float d2, float minD2) {
+    d2 = d2 < minD2 ? minD2 : d2;
+    if constexpr (P == 2)
+        return 1.0f / d2;
+    else
+        return 1.0f / std::sqrt(d2);
+}
+
+// Softened kernel's polynomial part with a multiplication instead of a division.
+inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
+    const float t = d2 * invA2 - 1.0f;
+    return k.scale *
+           (k.coef[0] + t * (k.coef[1] + t * (k.coef[2] + t * (k.coef[3] + t * k.coef[4]))));
+}
+
+// Sum over a sphere list of w (gamma_below - gamma_own) within own's cutoff (a coarse level's
+// window), or of w gamma_below over all of them (top level).
+template <int P>
+[[gnu::always_inline]] inline float
+windowSumBody(float x, float y, float z, const float *px, const float *py, const float *pz,
+              const float *pw, std::size_t count, const SoftenedKernel &below,
+              const SoftenedKernel &own, float minD2, bool top) {
+    const float invBelow = 1.0f / below.a2, invOwn = 1.0f / own.a2;
+    const float belowA2 = below.a2, ownA2 = own.a2;
+    float acc = 0.0f;
+    if (top) {
+#pragma omp simd reduction(+ : acc)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float inner = softInner(below, invBelow, d2);
+            const float outer = inversePower<P>(d2, minD2);
+            acc += pw[q] * (d2 < belowA2 ? inner : outer);
+        }
+        return acc;
+    }
+#pragma omp simd reduction(+ : acc)
+    for (std::size_t q = 0; q < count; ++q) {
+        const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float inner = softInner(below, invBelow, d2);
+        const float outer = inversePower<P>(d2, minD2);
+        const float v = (d2 < belowA2 ? inner : outer) - softInner(own, invOwn, d2);
+        acc += d2 < ownA2 ? pw[q] * v : 0.0f;
+    }
+    return acc;
+}
+
+FAULTLINE_HOT float windowSum1(float x, float y, float z, const float *px, const float *py,
+                               const float *pz, const float *pw, std::size_t count,
+                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
+                               bool top) {
+    return windowSumBody<1>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+}
+FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const float *py,
+                               const float *pz, const float *pw, std::size_t count,
+                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
+                               bool top) {
+    return windowSumBody<2>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+}
+
+// Exact near field (k - gamma_a0 within a0, or the compact kernel with P = 0) and Figure 4
+// colour at one voxel. Returns the field; rgbn gets the colour sum and count.
+template <int P>
+[[gnu::always_inline]] inline float
+nearSumBody(float x, float y, float z, const NearList &list, float invC2, float a2, float minD2,
+            const SoftenedKernel &soft, float reachAdd, float rgbn[4]) {
+    const std::size_t count = list.size();
+    const float *lx = list.x.data();
+    const float *ly = list.y.data();
+    const float *lz = list.z.data();
+    const float *lr = list.r.data();
+    const float invSoft = 1.0f / soft.a2;
+    float f = 0.0f;
+    if constexpr (P == 0) {
+#pragma omp simd reduction(+ : f)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
+        }
+    } else {
+#pragma omp simd reduction(+ : f)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float v = inversePower<P>(d2, minD2) - softInner(soft, invSoft, d2);
+            f += d2 < a2 ? lr[q] * v : 0.0f;
+        }
+    }
+    float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+    const float *red = list.red.data();
+    const float *green = list.green.data();
+    const float *blue = list.blue.data();
+#pragma omp simd reduction(+ : cr, cg, cb, n)
+    for (std::size_t q = 0; q < count; ++q) {
+        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float reach = lr[q] + reachAdd;
+        const float in = d2 < reach * reach ? 1.0f : 0.0f;
+        cr += in * red[q];
+        cg += in * green[q];
+        cb += in * blue[q];
+        n += in;
+    }
+    rgbn[0] = cr;
+    rgbn[1] = cg;
+    rgbn[2] = cb;
+    rgbn[3] = n;
+    return f;
+}
+
+FAULTLINE_HOT float nearSum0(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<0>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+FAULTLINE_HOT float nearSum1(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<1>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+FAULTLINE_HOT float nearSum2(float x, float y, float z, const NearList &list, float invC2, float a2,
+                             float minD2, const SoftenedKernel &soft, float reachAdd,
+                             float rgbn[4]) {
+    return nearSumBody<2>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+}
+
+} // namespace
+
+MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
+                             const MultilevelTuning &tuning)
+    : m_tree(spheres), m_params(params), m_tuning(tuning), m_h(voxelSize) {
+    double mean = 0.0;
+    for (float r : m_tree.spheres().r)
+        mean += r;
+    mean /= static_cast<double>(sphereCount());
+    const float minD = kMinDistanceFactor * static_cast<float>(mean);
+    m_kernel = InverseKernel{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
+    if (params.kernel != MetaballKernel::Compact) {
+        // The tolerance at the lowest iso; the estimate is already pessimistic (kErrorPerScale
+        // is 1.5x the worst error measured, and errors of levels and spheres are added).
+        const double budget = params.tolerance * params.iso / params.isoRangeFactor;
+        for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
+            if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
+                continue;
+            // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
+            // the near cutoff about nearCutoffRadii radii.
+            const double target = m_tuning.nearCutoffRadii * mean;
+            m_ratio1 =
+                std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
+            m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
+            m_kappa = kappa;
+            m_coarseKappa =
+                std::max(m_tuning.coarseKappa > 0 ? m_tuning.coarseKappa : kappa, kappa / 2 + 1);
+            const auto scale = errorScale();
+            m_estimatedError = kErrorPerScale[kappa] * scale[0] +
+                               kCoarseErrorShare * kErrorPerScale[m_coarseKappa] * scale[1];
+            if (m_estimatedError <= budget)
+                break;
+        }
+        m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
+    } else {
+        m_a0 = params.compactReach * maxRadius();
+    }
+}
+
+double MetaballField::weightWithin(const Vec3f &p, double a) const {
+    const Box point{{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
+    const float a2 = static_cast<float>(a * a);
+    const auto &nodes = m_tree.nodes();
+    const auto &s = m_tree.spheres();
+    double sum = 0.0;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const auto &node = nodes[stack[--top]];
+        if (detail::minDistance2(node.box, point) >= a2)
+            continue;
+        if (detail::maxDistance2(node.box, point) < a2) {
+            sum += node.weight;
+        } else if (!node.leaf()) {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+        } else {
+            for (std::uint32_t i = node.begin; i < node.end; ++i) {
+                const float dx = s.x[i] - p[0], dy = s.y[i] - p[1], dz = s.z[i] - p[2];
+                if (dx * dx + dy * dy + dz * dz < a2)
+                    sum += s.r[i];
+            }
+        }
+    }
+    return sum;
+}
+
+double MetaballField::cutoff(int l) const {
+    // a_0 = kappa * H_1; a_l = coarseKappa * H_{l+1} with H_{l+1} = 2^l H_1 (2 coarseKappa >
+    // kappa).
+    if (l == 0)
+        return m_a0;
+    return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
+}
+
+std::array<double, 2> MetaballField::errorScale() const {
+    // The densest weight within each cutoff over cutoff^p: the size of what each level
+    // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
+    const auto &s = m_tree.spheres();
+    const std::size_t n = s.size();
+    const std::size_t samples = std::min<std::size_t>(n, 256);
+    const auto &box = centreBox();
+    double span2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+        span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
+    std::array<double, 2> scale{0.0, 0.0};
+    for (int l = 0;; ++l) {
+        const double a = cutoff(l);
+        double densest = 0.0;
+        for (std::size_t q = 0; q < samples; ++q) {
+            const std::size_t i = q * n / samples;
+            densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
+        }
+        scale[l == 0 ? 0 : 1] += densest / (m_kernel.p == 2 ? a * a : a);
+        if (a * a > 4.0 * span2)
+            break;
+    }
+    return scale;
+}
+
+MetaballField::~MetaballField() = default;
+
+double MetaballField::reach(double iso) const {
+    if (m_params.kernel == MetaballKernel::Compact)
+        return m_params.compactReach * maxRadius();
+    const double ratio = totalWeight() / iso;
+    return m_kernel.p == 2 ? std::sqrt(ratio) : ratio;
+}
+
+float MetaballField::nearReach() const { return std::max(m_a0, maxRadius() + m_params.colorReach); }
+
+std::size_t MetaballField::coarseNodeCount() const {
+    std::size_t n = 0;
+    for (const auto &l : m_levels)
+        n += l->neededCount();
+    return n;
+}
+
+FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double isoMin, double isoMax,
+                                  int maxOpen) const {
+    const Box box = voxelBox(lo, hi, m_h);
+    const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
+    const auto &nodes = m_tree.nodes();
+    const auto &s = m_tree.spheres();
+    struct Item {
+        double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
+        double low, high;
+        std::int32_t node;
+        bool operator<(const Item &o) const { return gap < o.gap; }
+    };
+    auto itemFor = [&](std::int32_t index) {
+        const auto &node = nodes[index];
+        const float dmin2 = detail::minDistance2(node.box, box);
+        if (m_params.kernel == MetaballKernel::Compact) {
+            const float big = m_params.compactReach * node.rmax;
+            if (dmin2 >= big * big)
+                return Item{0.0, 0.0, 0.0, index};
+        }
+        const float dmax2 = detail::maxDistance2(node.box, box);
+        const double low = double(node.weight) * k.value(dmax2, node.rmin);
+        const double high = double(node.weight) * k.value(dmin2, node.rmax);
+        return Item{high - low, low, high, index};
+    };
+    thread_local std::vector<Item> heap;
+    heap.clear();
+    const Item root = itemFor(0);
+    double low = root.low, high = root.high;
+    heap.push_back(root);
+    for (int opened = 0; opened < maxOpen && !heap.empty(); ++opened) {
+        if (low > isoMax || high < isoMin)
+            break; // decided
+        std::pop_heap(heap.begin(), heap.end());
+        const Item item = heap.back();
+        heap.pop_back();
+        if (item.gap <= 0.0)
+            break;
+        low -= item.low;
+        high -= item.high;
+        const auto &node = nodes[item.node];
+        if (node.leaf()) {
+            for (std::uint32_t i = node.begin; i < node.end; ++i) {
+                Box p;
+                p.lo = p.hi = {s.x[i], s.y[i], s.z[i]};
+                low += double(s.r[i]) * k.value(detail::maxDistance2(p, box), s.r[i]);
+                high += double(s.r[i]) * k.value(detail::minDistance2(p, box), s.r[i]);
+            }
+            continue;
+        }
+        for (std::int32_t child : {node.left, node.right}) {
+            const Item c = itemFor(child);
+            low += c.low;
+            high += c.high;
+            if (c.gap > 0.0) {
+                heap.push_back(c);
+                std::push_heap(heap.begin(), heap.end());
+            }
+        }
+    }
+    return {low, high};
+}
+
+void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
+    m_blocks.clear();
+    m_blockOrigins.assign(blocks.begin(), blocks.end());
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+        m_blocks.emplace(packKey({floorDiv(blocks[i][0], 8), floorDiv(blocks[i][1], 8),
+                                  floorDiv(blocks[i][2], 8)}),
+                         static_cast<std::uint32_t>(i));
+    m_levels.clear();
+    if (m_params.kernel == MetaballKernel::Compact || blocks.empty())
+        return;
+
+    // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
+    auto level1 = std::make_unique<FieldLevel>();
+    level1->spacing = m_ratio1 * m_h;
+    level1->ratio = m_ratio1;
+    for (const auto &o : blocks) {
+        detail::Int3 lo, hi;
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
+            hi[k] = floorDiv(o[k] + kBlockDim, m_ratio1) + detail::kTapsAbove;
+        }
+        level1->mark(lo, hi);
+    }
+    double span2 = 0.0;
+    {
+        const auto &cb = centreBox();
+        const FieldLevel &l1 = *level1;
+        for (int k = 0; k < 3; ++k) {
+            double lo = cb.lo[k], hi = cb.hi[k];
+            for (const auto &b : l1.bricks) {
+                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * l1.spacing);
+                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * l1.spacing);
+            }
+            span2 += (hi - lo) * (hi - lo);
+        }
+    }
+    m_levels.push_back(std::move(level1));
+    const double n = static_cast<double>(sphereCount());
+    for (int l = 1;; ++l) {
+        FieldLevel &level = *m_levels.back();
+        const float aBelow = static_cast<float>(cutoff(l - 1));
+        level.below =
+            l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
+        level.cutoff = static_cast<float>(cutoff(l));
+        level.own = SoftenedKernel(m_kernel.p, level.cutoff, m_tuning.softeningOrder);
+        // Top: summing all spheres is cheap, or every sphere lies within the cutoff of every
+        // point the voxels need.
+        if (static_cast<double>(level.neededCount()) * n <= m_tuning.topLevelPairs ||
+            double(aBelow) * aBelow >= span2 || l >= 30) {
+            level.top = true;
+            break;
+        }
+        auto next = std::make_unique<FieldLevel>();
+        next->spacing = 2.0f * level.spacing;
+        next->ratio = 2;
+        for (const auto &b : level.bricks) {
+            detail::Int3 lo, hi;
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = floorDiv(b.origin[k] + b.lo[k], 2) - detail::kTapsBelow;
+                hi[k] = floorDiv(b.origin[k] + b.hi[k], 2) + detail::kTapsAbove;
+            }
+            next->mark(lo, hi);
+        }
+        m_levels.push_back(std::move(next));
+    }
+
+    // Compute from the coarsest level down: each level adds its window sum to the cubic
+    // interpolation of the level above.
+    std::size_t totalBricks = 0;
+    for (const auto &l : m_levels)
+        totalBricks += l->bricks.size();
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> cancelled{false};
+    const auto &s = m_tree.spheres();
+    const InverseKernel kernel = m_kernel;
+    for (int li = static_cast<int>(m_levels.size()) - 1; li >= 0; --li) {
+        FieldLevel &level = *m_levels[li];
+        const FieldLevel *above =
+            li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get() : nullptr;
+        tbb::parallel_for(std::size_t{0}, level.bricks.size(), [&](std::size_t bi) {
+            if (cancelled.load(std::memory_order_relaxed))
+                return;
+            Brick &brick = level.bricks[bi];
+            thread_local NearList list;
+            const SoftenedKernel below = level.below, own = level.own;
+            // Nodes in 4^3 groups, each with its own sphere ranges: the window (a ball of radius
+            // a_l) fills more of a small group's box than of the whole brick's.
+            constexpr int kGroup = 4;
+            for (int gi = brick.lo[0] & ~(kGroup - 1); gi <= brick.hi[0]; gi += kGroup)
+                for (int gj = brick.lo[1] & ~(kGroup - 1); gj <= brick.hi[1]; gj += kGroup)
+                    for (int gz = brick.lo[2] & ~(kGroup - 1); gz <= brick.hi[2]; gz += kGroup) {
+                        int needed[kGroup * kGroup * kGroup], count = 0;
+                        for (int c = 0; c < kGroup * kGroup * kGroup; ++c) {
+                            const int off = Brick::offset(gi + c / (kGroup * kGroup),
+                                                          gj + (c / kGroup) % kGroup,
+                                                          gz + c % kGroup);
+                            if (brick.needed(off))
+                                needed[count++] = off;
+                        }
+                        if (count == 0)
+                            continue;
+                        thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
+                        ranges.clear();
+                        if (level.top) {
+                            ranges.emplace_back(0u, static_cast<std::uint32_t>(s.size()));
+                        } else {
+                            Box box;
+                            const int g[3] = {gi, gj, gz};
+                            for (int k = 0; k < 3; ++k) {
+                                box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
+                                box.hi[k] = (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
+                            }
+                            m_tree.gatherRanges(box, level.cutoff, ranges);
+                        }
+                        for (int n = 0; n < count; ++n) {
+                            const int off = needed[n];
+                            const int i = off >> 6, j = (off >> 3) & 7, z = off & 7;
+                            const float x = (brick.origin[0] + i) * level.spacing;
+                            const float y = (brick.origin[1] + j) * level.spacing;
+                            const float w = (brick.origin[2] + z) * level.spacing;
+                            float sum = 0.0f;
+                            for (const auto &[first, last] : ranges) {
+                                const float *px = s.x.data() + first;
+                                const float *py = s.y.data() + first;
+                                const float *pz = s.z.data() + first;
+                                const float *pw = s.r.data() + first;
+                                const std::size_t len = last - first;
+                                sum += kernel.p == 2
+                                           ? windowSum2(x, y, w, px, py, pz, pw, len, below, own,
+                                                        kernel.minD2, level.top)
+                                           : windowSum1(x, y, w, px, py, pz, pw, len, below, own,
+                                                        kernel.minD2, level.top);
+                            }
+                            brick.values[off] = sum;
+                        }
+                    }
+            if (above) {
+                const detail::Int3 t0{brick.origin[0] + brick.lo[0], brick.origin[1] + brick.lo[1],
+                                      brick.origin[2] + brick.lo[2]};
+                const detail::Int3 nn{brick.hi[0] - brick.lo[0] + 1, brick.hi[1] - brick.lo[1] + 1,
+                                      brick.hi[2] - brick.lo[2] + 1};
+                thread_local std::vector<float> interp;
+                interp.assign(static_cast<std::size_t>(nn[0]) * nn[1] * nn[2], 0.0f);
+                detail::addInterpolated(*above, 2, t0, nn, interp.data());
+                for (int i = 0; i < nn[0]; ++i)
+                    for (int j = 0; j < nn[1]; ++j)
+                        for (int z = 0; z < nn[2]; ++z) {
+                            const int off =
+                                Brick::offset(brick.lo[0] + i, brick.lo[1] + j, brick.lo[2] + z);
+                            if (brick.needed(off))
+                                brick.values[off] += interp[(i * nn[1] + j) * nn[2] + z];
+                        }
+            }
+            const std::size_t d = ++done;
+            if (interrupter && interrupter->wasInterrupted(static_cast<int>(100 * d / totalBricks)))
+                cancelled = true;
+        });
+        if (cancelled)
+            throw SurfaceCancelled();
+    }
+}
+
+void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
+    thread_local NearList list;
+    const float a2 = m_a0 * m_a0;
+    const bool compact = m_params.kernel == MetaballKernel::Compact;
+    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    // One neighbour list per 4^3 octant: shorter lists than one for the whole block.
+    constexpr int kHalf = kBlockDim / 2;
+    for (int octant = 0; octant < 8; ++octant) {
+        const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
+                        o[2] + ((octant >> 2) & 1) * kHalf};
+        list.clear();
+        m_tree.gather(voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h),
+                      nearReach(), list, true);
+        for (int i = 0; i < kHalf; ++i)
+            for (int j = 0; j < kHalf; ++j)
+                for (int k = 0; k < kHalf; ++k) {
+                    float rgbn[4];
+                    const float x = (lo[0] + i) * m_h, y = (lo[1] + j) * m_h, z = (lo[2] + k) * m_h;
+                    const float f = compact ? nearSum0(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                       m_soft0, m_params.colorReach, rgbn)
+                                    : m_kernel.p == 2
+                                        ? nearSum2(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                   m_soft0, m_params.colorReach, rgbn)
+                                        : nearSum1(x, y, z, list, invC2, a2, m_kernel.minD2,
+                                                   m_soft0, m_params.colorReach, rgbn);
+                    const int off =
+                        blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k);
+                    density[off] = f;
+                    color[off] = rgbn[3] > 0.0f ? Vec3f{rgbn[0] / rgbn[3], rgbn[1] / rgbn[3],
+                                                        rgbn[2] / rgbn[3]}
+                                                : m_params.initialColor;
+                }
+    }
+    if (!m_levels.empty())
+        detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
+}
+
+void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
+                            Vec3f *color) const {
+    (void)color;
+    const std::size_t count = list.size();
+    const float *lx = list.x.data();
+    const float *ly = list.y.data();
+    const float *lz = list.z.data();
+    const float *lr = list.r.data();
+    float f = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
+    if (m_params.kernel == MetaballKernel::Compact) {
+        const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+#pragma omp simd reduction(+ : f, gx, gy, gz)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const float inv = invC2 / (lr[q] * lr[q]);
+            f += lr[q] * compactValue(d2, inv);
+            const float g = 2.0f * lr[q] * compactSlope(d2, inv);
+            gx += g * dx;
+            gy += g * dy;
+            gz += g * dz;
+        }
+    } else {
+        const float a2 = m_a0 * m_a0;
+        const InverseKernel kernel = m_kernel;
+        const SoftenedKernel soft = m_soft0;
+#pragma omp simd reduction(+ : f, gx, gy, gz)
+        for (std::size_t q = 0; q < count; ++q) {
+            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            const bool in = d2 < a2;
+            const float v = kernel.value(d2) - soft.inner(d2);
+            const float slope = (d2 < kernel.minD2 ? 0.0f : kernel.slope(d2)) - soft.innerSlope(d2);
+            f += in ? lr[q] * v : 0.0f;
+            const float g = in ? 2.0f * lr[q] * slope : 0.0f;
+            gx += g * dx;
+            gy += g * dy;
+            gz += g * dz;
+        }
+    }
+    value += f;
+    if (gradient)
+        *gradient = {(*gradient)[0] + gx, (*gradient)[1] + gy, (*gradient)[2] + gz};
+}
+
+void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
+                                   Vec3f *gradients) const {
+    // Group the points by a prepared block next to them: one neighbour list and one coarse
+    // patch per group.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
+    std::vector<std::uint32_t> orphans;
+    for (std::size_t n = 0; n < points.size(); ++n) {
+        const auto &p = points[n];
+        int cell[3];
+        for (int k = 0; k < 3; ++k)
+            cell[k] = static_cast<int>(std::floor(p[k] / m_h));
+        bool found = false;
+        for (int corner = 0; corner < 8 && !found; ++corner) {
+            const detail::Int3 v{cell[0] + (corner & 1), cell[1] + ((corner >> 1) & 1),
+                                 cell[2] + ((corner >> 2) & 1)};
+            auto it =
+                m_blocks.find(packKey({floorDiv(v[0], 8), floorDiv(v[1], 8), floorDiv(v[2], 8)}));
+            if (it != m_blocks.end()) {
+                groups[it->second].push_back(static_cast<std::uint32_t>(n));
+                found = true;
+            }
+        }
+        if (!found)
+            orphans.push_back(static_cast<std::uint32_t>(n));
+    }
+    std::vector<const std::vector<std::uint32_t> *> groupList;
+    std::vector<std::uint32_t> groupBlock;
+    for (const auto &[block, members] : groups) {
+        groupList.push_back(&members);
+        groupBlock.push_back(block);
+    }
+    tbb::parallel_for(std::size_t{0}, groupList.size(), [&](std::size_t g) {
+        const auto &members = *groupList[g];
+        const Coord3 origin = m_blockOrigins[groupBlock[g]];
+        thread_local NearList list;
+        list.clear();
+        const Box box = voxelBox({origin[0] - 1, origin[1] - 1, origin[2] - 1},
+                                 {origin[0] + 8, origin[1] + 8, origin[2] + 8}, m_h);
+        m_tree.gather(box, m_a0, list, false);
+        thread_local std::vector<float> patch;
+        detail::Int3 s0{0, 0, 0}, sd{0, 0, 0};
+        const FieldLevel *level1 = m_levels.empty() ? nullptr : m_levels.front().get();
+        if (level1) {
+            for (int k = 0; k < 3; ++k) {
+                s0[k] = floorDiv(origin[k] - 1, m_ratio1) - detail::kTapsBelow;
+                sd[k] = floorDiv(origin[k] + 8, m_ratio1) + detail::kTapsAbove - s0[k] + 1;
+            }
+            detail::gatherPatch(*level1, s0, sd, patch);
+        }
+        for (std::uint32_t n : members) {
+            const Vec3f &p = points[n];
+            float value = 0.0f;
+            Vec3f grad{0, 0, 0};
+            sumNear(list, p, value, &grad, nullptr);
+            if (level1) {
+                constexpr int nt = detail::kTaps;
+                float w[3][nt], dw[3][nt];
+                int b[3];
+                for (int k = 0; k < 3; ++k) {
+                    const float t = p[k] / level1->spacing;
+                    const float fl = std::floor(t);
+                    b[k] = static_cast<int>(fl) - detail::kTapsBelow - s0[k];
+                    assert(b[k] >= 0 && b[k] + nt <= sd[k]);
+                    b[k] = std::clamp(b[k], 0, sd[k] - nt);
+                    detail::lagrangeWeights(t - fl, w[k]);
+                    detail::lagrangeDerivatives(t - fl, dw[k]);
+                }
+                // Separable: contract z, then y, then x, carrying the derivative weights.
+                float sz[nt][nt], dz[nt][nt];
+                for (int i = 0; i < nt; ++i)
+                    for (int j = 0; j < nt; ++j) {
+                        const float *row =
+                            &patch[(static_cast<std::size_t>(b[0] + i) * sd[1] + b[1] + j) * sd[2] +
+                                   b[2]];
+                        float a = 0.0f, d = 0.0f;
+                        for (int z = 0; z < nt; ++z) {
+                            a += w[2][z] * row[z];
+                            d += dw[2][z] * row[z];
+                        }
+                        sz[i][j] = a;
+                        dz[i][j] = d;
+                    }
+                float v = 0.0f, g0 = 0.0f, g1 = 0.0f, g2 = 0.0f;
+                for (int i = 0; i < nt; ++i) {
+                    float a = 0.0f, dy = 0.0f, dzy = 0.0f;
+                    for (int j = 0; j < nt; ++j) {
+                        a += w[1][j] * sz[i][j];
+                        dy += dw[1][j] * sz[i][j];
+                        dzy += w[1][j] * dz[i][j];
+                    }
+                    v += w[0][i] * a;
+                    g0 += dw[0][i] * a;
+                    g1 += w[0][i] * dy;
+                    g2 += w[0][i] * dzy;
+                }
+                const float inv = 1.0f / level1->spacing;
+                value += v;
+                grad = {grad[0] + g0 * inv, grad[1] + g1 * inv, grad[2] + g2 * inv};
+            }
+            if (values)
+                values[n] = value;
+            if (gradients)
+                gradients[n] = grad;
+        }
+    });
+    // Points away from every prepared block: sum every sphere (rare; correct, slow).
+    const auto &s = m_tree.spheres();
+    for (std::uint32_t n : orphans) {
+        const Vec3f &p = points[n];
+        float value = 0.0f;
+        Vec3f grad{0, 0, 0};
+        for (std::size_t q = 0; q < s.size(); ++q) {
+            const float dx = p[0] - s.x[q], dy = p[1] - s.y[q], dz = p[2] - s.z[q];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            float v, slope;
+            if (m_params.kernel == MetaballKernel::Compact) {
+                const float big = m_params.compactReach * s.r[q];
+                v = compactValue(d2, 1.0f / (big * big));
+                slope = compactSlope(d2, 1.0f / (big * big));
+            } else {
+                v = m_kernel.value(d2);
+                slope = d2 < m_kernel.minD2 ? 0.0f : m_kernel.slope(d2);
+            }
+            value += s.r[q] * v;
+            const float g = 2.0f * s.r[q] * slope;
+            grad = {grad[0] + g * dx, grad[1] + g * dy, grad[2] + g * dz};
+        }
+        if (values)
+            values[n] = value;
+        if (gradients)
+            gradients[n] = grad;
+    }
+}
+
+} // namespace faultline::core

@@ -1,0 +1,120 @@
+// MetaballField: the paper's field (eq. 1) evaluated fast on sparse voxel blocks by multilevel
+// summation: exact near field within a cutoff a0, smooth remainders on ever coarser grids.
+#pragma once
+
+#include "core/surface/detail/sphere_tree.hpp"
+#include "core/surface/interrupter.hpp"
+#include "core/surface/metaball_kernel.hpp"
+#include "core/surface/sphere_set.hpp"
+#include "core/surface/surface_params.hpp"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+namespace faultline::core {
+
+using Coord3 = std::array<int, 3>;
+using Vec3f = std::array<float, 3>;
+
+// A block is 8^3 voxels (an OpenVDB leaf); voxel (i, j, k) sits at world (i, j, k) * voxelSize.
+inline constexpr int kBlockDim = 8;
+inline constexpr int kBlockVoxels = kBlockDim * kBlockDim * kBlockDim;
+// Offset of a voxel in a block's arrays: z fastest, as in an OpenVDB leaf.
+inline int blockOffset(int i, int j, int k) { return (i * kBlockDim + j) * kBlockDim + k; }
+
+struct FieldBounds {
+    double low = 0.0;
+    double high = 0.0;
+};
+
+namespace detail {
+struct FieldLevel;
+}
+
+// Knobs that trade speed between the levels; they do not change the accuracy target.
+struct MultilevelTuning {
+    double nearCutoffRadii = 3.0; // exact near field within about this many mean radii
+    double topLevelPairs = 2.0e7; // stop coarsening once the top sum costs at most this
+    int kappa = 0;                // cutoff / coarse spacing; 0 picks it from the error estimate
+    int softeningOrder = 4;       // gamma_a is C^order
+    int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: same as kappa
+    int minRatio = 2;             // level-1 spacing at least this many voxels
+    int maxOpen = 256;            // planning: tree nodes opened per block bound
+};
+
+class MetaballField {
+  public:
+    // Copies the spheres into its own tree order (the caller's columns may go away later).
+    MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
+                  const MultilevelTuning &tuning = {});
+    ~MetaballField();
+    MetaballField(const MetaballField &) = delete;
+    MetaballField &operator=(const MetaballField &) = delete;
+
+    float voxelSize() const { return m_h; }
+    const MultilevelTuning &tuning() const { return m_tuning; }
+    std::size_t sphereCount() const { return m_tree.spheres().size(); }
+    const detail::SphereTree &tree() const { return m_tree; }
+    // Sum of all weights, bounding box of the centres, and largest radius.
+    double totalWeight() const { return m_tree.root().weight; }
+    const detail::Box &centreBox() const { return m_tree.root().box; }
+    float maxRadius() const { return m_tree.root().rmax; }
+    // Beyond this distance from the centre box, f < iso everywhere.
+    double reach(double iso) const;
+
+    // Guaranteed bounds of f over the voxel-index box [lo, hi] (inclusive), tightened by opening
+    // at most maxOpen tree nodes, and no further once they decide [isoMin, isoMax] either way.
+    FieldBounds bounds(const Coord3 &lo, const Coord3 &hi, double isoMin, double isoMax,
+                       int maxOpen = 64) const;
+
+    // Computes the coarse levels the given blocks need (block origins are multiples of 8).
+    // Must be called once before evaluateBlock / evaluatePoints.
+    void prepare(std::span<const Coord3> blockOrigins, Interrupter *interrupter);
+
+    // Density and colour of the 512 voxels of a prepared block (blockOffset order).
+    void evaluateBlock(const Coord3 &origin, float *density, Vec3f *color) const;
+
+    // Value and analytic gradient at points inside or next to prepared blocks.
+    void evaluatePoints(std::span<const Vec3f> points, float *values, Vec3f *gradients) const;
+
+    // Cutoff of the exact near field and the number of coarse levels (for reports and tests).
+    float nearCutoff() const { return m_a0; }
+    int kappa() const { return m_kappa; }
+    // A priori estimate of the largest |f - f_exact| (from kErrorPerScale and errorScale()).
+    double estimatedError() const { return m_estimatedError; }
+    // The densest weight within each level's cutoff over cutoff^p: the size of what level 1
+    // ([0]) and the coarser levels ([1]) interpolate.
+    std::array<double, 2> errorScale() const;
+    // Cutoff a_l: level 0 sums k - gamma_{a_0} exactly; level l >= 1 sums gamma_{a_{l-1}} -
+    // gamma_{a_l} within a_l on a grid of spacing ratio * voxel * 2^(l-1).
+    double cutoff(int level) const;
+    double weightWithin(const Vec3f &point, double radius) const;
+    int levelCount() const { return static_cast<int>(m_levels.size()); }
+    std::size_t coarseNodeCount() const;
+
+  private:
+    float nearReach() const;
+    void sumNear(const detail::NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
+                 Vec3f *color) const;
+
+    detail::SphereTree m_tree;
+    SurfaceParams m_params;
+    MultilevelTuning m_tuning;
+    float m_h;
+    InverseKernel m_kernel;
+    float m_a0 = 0.0f; // near cutoff
+    int m_kappa = 0;
+    int m_coarseKappa = 0;
+    double m_estimatedError = 0.0;
+    int m_ratio1 = 1;                                          // level-1 spacing in voxels
+    SoftenedKernel m_soft0;                                    // gamma_a0
+    std::vector<std::unique_ptr<detail::FieldLevel>> m_levels; // level 1 .. L
+    std::unordered_map<std::uint64_t, std::uint32_t> m_blocks; // prepared block -> index
+    std::vector<Coord3> m_blockOrigins;
+};
+
+} // namespace faultline::core

@@ -1,0 +1,100 @@
+#include "core/surface/metaball_reference.hpp"
+
+#include "core/surface/metaball_kernel.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace faultline::core {
+
+double meanRadius(const SphereSet &spheres) {
+    if (spheres.size() == 0)
+        return 0.0;
+    double sum = 0.0;
+    for (float r : spheres.radius)
+        sum += r;
+    return sum / static_cast<double>(spheres.size());
+}
+
+FieldSample referenceSample(const SphereSet &s, const SurfaceParams &params,
+                            const std::array<double, 3> &p) {
+    FieldSample out;
+    const double minD = kMinDistanceFactor * meanRadius(s);
+    const double minD2 = minD * minD;
+    double rgb[3] = {0, 0, 0};
+    int colored = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double dx = p[0] - s.x[i], dy = p[1] - s.y[i], dz = p[2] - s.z[i];
+        const double d2raw = dx * dx + dy * dy + dz * dz;
+        const double d2 = std::max(d2raw, minD2);
+        const double w = s.radius[i];
+        double slope = 0.0; // d f_i / d(d^2)
+        switch (params.kernel) {
+        case MetaballKernel::InverseSquare:
+            out.value += w / d2;
+            slope = d2raw < minD2 ? 0.0 : -w / (d2 * d2);
+            break;
+        case MetaballKernel::Inverse:
+            out.value += w / std::sqrt(d2);
+            slope = d2raw < minD2 ? 0.0 : -0.5 * w / (d2 * std::sqrt(d2));
+            break;
+        case MetaballKernel::Compact: {
+            const double big = params.compactReach * w;
+            const double t = 1.0 - d2raw / (big * big);
+            if (t > 0) {
+                out.value += w * t * t * t;
+                slope = -3.0 * w * t * t / (big * big);
+            }
+            break;
+        }
+        }
+        out.gradient[0] += 2.0 * slope * dx;
+        out.gradient[1] += 2.0 * slope * dy;
+        out.gradient[2] += 2.0 * slope * dz;
+        const double reach = s.radius[i] + params.colorReach;
+        if (d2raw < reach * reach) {
+            for (int c = 0; c < 3; ++c)
+                rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
+            ++colored;
+        }
+    }
+    for (int c = 0; c < 3; ++c)
+        out.color[c] = colored ? static_cast<float>(rgb[c] / colored) : params.initialColor[c];
+    return out;
+}
+
+std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &params,
+                                   const std::array<int, 3> &origin, const std::array<int, 3> &dims,
+                                   float h) {
+    const std::size_t nx = dims[0], ny = dims[1], nz = dims[2];
+    std::vector<float> field(nx * ny * nz, 0.0f);
+    const float minD = kMinDistanceFactor * static_cast<float>(meanRadius(s));
+    const InverseKernel inv{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
+    tbb::parallel_for(std::size_t{0}, nz, [&](std::size_t k) {
+        const float pz = (origin[2] + static_cast<int>(k)) * h;
+        for (std::size_t j = 0; j < ny; ++j) {
+            const float py = (origin[1] + static_cast<int>(j)) * h;
+            float *row = &field[(k * ny + j) * nx];
+            for (std::size_t i = 0; i < nx; ++i) {
+                const float px = (origin[0] + static_cast<int>(i)) * h;
+                float f = 0.0f;
+                for (std::size_t n = 0; n < s.size(); ++n) {
+                    const float dx = px - s.x[n], dy = py - s.y[n], dz = pz - s.z[n];
+                    const float d2 = dx * dx + dy * dy + dz * dz;
+                    if (params.kernel == MetaballKernel::Compact) {
+                        const float big = params.compactReach * s.radius[n];
+                        f += s.radius[n] * compactValue(d2, 1.0f / (big * big));
+                    } else {
+                        f += s.radius[n] * inv.value(d2);
+                    }
+                }
+                row[i] = f;
+            }
+        }
+    });
+    return field;
+}
+
+} // namespace faultline::core

@@ -1,0 +1,31 @@
+// The paper's Algorithm 1 taken literally: every sphere against every point, no cutoff.
+// It is the exact reference the fast multilevel field is tested and benchmarked against.
+#pragma once
+
+#include "core/surface/sphere_set.hpp"
+#include "core/surface/surface_params.hpp"
+
+#include <array>
+#include <vector>
+
+namespace faultline::core {
+
+struct FieldSample {
+    double value = 0.0;
+    std::array<double, 3> gradient{0, 0, 0}; // Algorithm 1 line 8: the analytic gradient of the sum
+    std::array<float, 3> color{1, 1, 1};     // Figure 4
+};
+
+double meanRadius(const SphereSet &spheres);
+
+// Field, gradient and colour at one point, in double precision.
+FieldSample referenceSample(const SphereSet &spheres, const SurfaceParams &params,
+                            const std::array<double, 3> &point);
+
+// Field on a dense box of voxels [origin, origin + dims) (world = index * voxelSize), x fastest;
+// every sphere against every voxel, in parallel. What the benchmark compares against.
+std::vector<float> algorithm1Dense(const SphereSet &spheres, const SurfaceParams &params,
+                                   const std::array<int, 3> &origin, const std::array<int, 3> &dims,
+                                   float voxelSize);
+
+} // namespace faultline::core

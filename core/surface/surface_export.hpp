@@ -1,0 +1,35 @@
+// Exporters for fault surfaces: .vdb (density + colour grids with metadata, for OpenVDB tools and
+// Blender) and .glb (one named node per surface, optionally the glyphs as instanced spheres).
+#pragma once
+
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/sphere_set.hpp"
+
+#include <filesystem>
+#include <span>
+#include <string>
+
+namespace faultline::core {
+
+struct VdbSurface {
+    std::string name; // the fault's name: grids "<name>.density" and "<name>.color"
+    const SurfaceField *field = nullptr;
+    float iso = 0.0f;
+};
+
+// Writes the grids with metadata (faultline.fault, iso, kernel, voxel_size, sphere_count,
+// tolerance, iso_min, iso_max). Throws std::runtime_error naming the path when writing fails.
+void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> surfaces);
+
+struct GltfSurface {
+    std::string name; // node and mesh name
+    const SurfaceMesh *mesh = nullptr;
+};
+
+// Writes a binary glTF 2.0 file. Glyphs (may be empty) become one icosphere mesh drawn at every
+// sphere through EXT_mesh_gpu_instancing (TRANSLATION, SCALE). Throws std::runtime_error naming
+// the path when writing fails.
+void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> surfaces,
+               const SphereSet &glyphs = {});
+
+} // namespace faultline::core

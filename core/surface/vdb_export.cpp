@@ -1,0 +1,48 @@
+#include "core/surface/detail/vdb_grids.hpp"
+#include "core/surface/surface_export.hpp"
+
+#include <openvdb/io/File.h>
+
+#include <stdexcept>
+
+namespace faultline::core {
+
+void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> surfaces) {
+    ensureOpenVdbInitialized();
+    openvdb::GridPtrVec grids;
+    for (const auto &s : surfaces) {
+        if (!s.field)
+            throw std::invalid_argument("exportVdb: surface '" + s.name + "' has no field");
+        const auto &impl = s.field->impl();
+        auto density = impl.density->copyGrid(); // shares the tree; own name and metadata
+        auto color = impl.color->copyGrid();
+        density->setName(s.name + ".density");
+        color->setName(s.name + ".color");
+        for (auto &grid : {density, color}) {
+            grid->insertMeta("faultline.fault", openvdb::StringMetadata(s.name));
+            grid->insertMeta("iso", openvdb::FloatMetadata(s.iso));
+            grid->insertMeta("kernel",
+                             openvdb::StringMetadata(std::string(kernelName(impl.params.kernel))));
+            grid->insertMeta("voxel_size", openvdb::FloatMetadata(s.field->voxelSize()));
+            grid->insertMeta("sphere_count", openvdb::Int64Metadata(static_cast<std::int64_t>(
+                                                 s.field->sphereCount())));
+            grid->insertMeta("tolerance", openvdb::FloatMetadata(impl.params.tolerance));
+            grid->insertMeta("iso_min", openvdb::FloatMetadata(s.field->isoMin()));
+            grid->insertMeta("iso_max", openvdb::FloatMetadata(s.field->isoMax()));
+            grid->setSaveFloatAsHalf(false);
+            grids.push_back(grid);
+        }
+        density->setGridClass(openvdb::GRID_UNKNOWN);
+    }
+    openvdb::MetaMap fileMeta;
+    fileMeta.insertMeta("creator", openvdb::StringMetadata("Faultline"));
+    try {
+        openvdb::io::File file(path.string());
+        file.write(grids, fileMeta);
+        file.close();
+    } catch (const openvdb::Exception &e) {
+        throw std::runtime_error(path.string() + ": cannot write VDB file: " + e.what());
+    }
+}
+
+} // namespace faultline::core

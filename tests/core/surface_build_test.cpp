@@ -1,0 +1,130 @@
+// Fault surfaces end to end: mesh geometry, normals, colours, re-meshing, refusals, cancel.
+#include "core/surface/fault_surface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fc = faultline::core;
+
+namespace {
+
+struct Spheres {
+    std::vector<float> x, y, z, r, rgb;
+    fc::SphereSet set() const { return {x, y, z, r, rgb}; }
+};
+
+Spheres single(float radius, std::array<float, 3> colour) {
+    return {{0.1f}, {-0.2f}, {0.3f}, {radius}, {colour[0], colour[1], colour[2]}};
+}
+
+double distanceFromCentre(const std::array<float, 3> &p) {
+    return std::sqrt((p[0] - 0.1) * (p[0] - 0.1) + (p[1] + 0.2) * (p[1] + 0.2) +
+                     (p[2] - 0.3) * (p[2] - 0.3));
+}
+
+class CancelAfter : public fc::Interrupter {
+  public:
+    bool wasInterrupted(int) override { return ++m_calls > 2; }
+    std::atomic<int> m_calls{0};
+};
+
+} // namespace
+
+TEST(FaultSurface, SingleSphereInverseSquareIsASphereOfRadiusSqrtROverIso) {
+    const Spheres s = single(0.5f, {0.2f, 0.4f, 0.6f});
+    fc::SurfaceParams params;
+    params.iso = 1.0f;
+    params.voxelSize = 0.05f;
+    params.colorReach = 0.5f; // the surface at 0.707 lies within radius + reach = 1.0
+    const auto result = fc::buildSurface(s.set(), params);
+    const auto &mesh = result.mesh;
+    ASSERT_GT(mesh.triangleCount(), 100u);
+    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+    ASSERT_EQ(mesh.colors.size(), mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const auto &p = mesh.positions[i];
+        EXPECT_NEAR(distanceFromCentre(p), std::sqrt(0.5), 2e-3);
+        const double d = distanceFromCentre(p);
+        const std::array<double, 3> radial{(p[0] - 0.1) / d, (p[1] + 0.2) / d, (p[2] - 0.3) / d};
+        const auto &n = mesh.normals[i];
+        EXPECT_GT(n[0] * radial[0] + n[1] * radial[1] + n[2] * radial[2], 0.999);
+        EXPECT_NEAR(mesh.colors[i][0], 0.2f, 1e-5f);
+        EXPECT_NEAR(mesh.colors[i][2], 0.6f, 1e-5f);
+    }
+    // Counter-clockwise seen from outside.
+    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+        const auto &a = mesh.positions[mesh.indices[t]];
+        const auto &b = mesh.positions[mesh.indices[t + 1]];
+        const auto &c = mesh.positions[mesh.indices[t + 2]];
+        const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const std::array<double, 3> v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const std::array<double, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                      u[0] * v[1] - u[1] * v[0]};
+        EXPECT_GT(n[0] * (a[0] - 0.1) + n[1] * (a[1] + 0.2) + n[2] * (a[2] - 0.3), 0.0);
+    }
+}
+
+TEST(FaultSurface, InitialColourWhereNoSphereReaches) {
+    const Spheres s = single(0.5f, {0.2f, 0.4f, 0.6f});
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Inverse; // surface at d = r / iso = 0.5 / 0.8
+    params.iso = 0.8f;
+    params.voxelSize = 0.05f;
+    params.initialColor = {0.9f, 0.1f, 0.1f};
+    const auto result = fc::buildSurface(s.set(), params);
+    ASSERT_FALSE(result.mesh.positions.empty());
+    for (std::size_t i = 0; i < result.mesh.positions.size(); ++i) {
+        EXPECT_NEAR(distanceFromCentre(result.mesh.positions[i]), 0.625, 2e-3);
+        EXPECT_NEAR(result.mesh.colors[i][0], 0.9f, 1e-5f);
+        EXPECT_NEAR(result.mesh.colors[i][1], 0.1f, 1e-5f);
+    }
+}
+
+TEST(FaultSurface, RemeshWithinTheRangeNeedsNoNewField) {
+    const Spheres s = single(0.5f, {1, 1, 1});
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Inverse;
+    params.iso = 1.0f;
+    params.voxelSize = 0.05f;
+    params.isoRangeFactor = 1.5f;
+    const auto result = fc::buildSurface(s.set(), params);
+    EXPECT_FLOAT_EQ(result.field->isoMin(), 1.0f / 1.5f);
+    const auto mesh = fc::remesh(*result.field, 1.25f);
+    ASSERT_FALSE(mesh.positions.empty());
+    // Marching cubes interpolates linearly along edges: 1/d bends by ~h^2 f'' / 8 f' there.
+    for (const auto &p : mesh.positions)
+        EXPECT_NEAR(distanceFromCentre(p), 0.4, 3e-3);
+    EXPECT_THROW(fc::remesh(*result.field, 3.0f), fc::SurfaceRequestError);
+}
+
+TEST(FaultSurface, RefusesBadRequestsBeforeWork) {
+    fc::SurfaceParams params;
+    EXPECT_THROW(fc::buildSurface(fc::SphereSet{}, params), fc::SurfaceRequestError);
+    const Spheres s = single(0.5f, {1, 1, 1});
+    params.iso = -1.0f;
+    EXPECT_THROW(fc::buildSurface(s.set(), params), fc::SurfaceRequestError);
+    params.iso = 1.0f;
+    params.voxelSize = 1e-4f;
+    params.memoryBudgetBytes = std::size_t{256} << 20;
+    try {
+        fc::buildSurface(s.set(), params);
+        FAIL() << "expected a refusal";
+    } catch (const fc::SurfaceRequestError &e) {
+        EXPECT_NE(std::string(e.what()).find("budget is 256.0 MiB"), std::string::npos) << e.what();
+    }
+}
+
+TEST(FaultSurface, CancelStopsTheBuild) {
+    Spheres s;
+    for (int i = 0; i < 400; ++i) {
+        s.x.push_back(float(i % 20));
+        s.y.push_back(float(i / 20));
+        s.z.push_back(0.0f);
+        s.r.push_back(0.5f);
+    }
+    fc::SurfaceParams params;
+    params.iso = 3.0f;
+    CancelAfter cancel;
+    EXPECT_THROW(fc::buildSurface(s.set(), params, &cancel), fc::SurfaceCancelled);
+}

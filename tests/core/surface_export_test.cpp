@@ -1,0 +1,89 @@
+// Surface exports read back: .vdb through OpenVDB's own reader, .glb through tinygltf.
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/surface_export.hpp"
+
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <tiny_gltf.h>
+
+#include <filesystem>
+
+namespace fc = faultline::core;
+
+namespace {
+
+struct Spheres {
+    std::vector<float> x{0.0f, 0.8f, 1.6f}, y{0, 0, 0.2f}, z{0, 0.1f, 0}, r{0.5f, 0.5f, 0.4f};
+    std::vector<float> rgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    fc::SphereSet set() const { return {x, y, z, r, rgb}; }
+};
+
+std::filesystem::path tempPath(const std::string &name) {
+    return std::filesystem::temp_directory_path() / ("faultline_surface_test_" + name);
+}
+
+} // namespace
+
+TEST(SurfaceExport, VdbHoldsNamedGridsAndMetadata) {
+    const Spheres s;
+    fc::SurfaceParams params;
+    params.iso = 2.0f;
+    params.voxelSize = 0.1f;
+    const auto result = fc::buildSurface(s.set(), params);
+    const auto path = tempPath("F1.vdb");
+    const fc::VdbSurface entry{"F1", result.field.get(), 2.0f};
+    fc::exportVdb(path, {&entry, 1});
+
+    openvdb::initialize();
+    openvdb::io::File file(path.string());
+    file.open();
+    auto grids = file.getGrids();
+    file.close();
+    ASSERT_EQ(grids->size(), 2u);
+    auto density =
+        openvdb::gridPtrCast<openvdb::FloatGrid>(openvdb::findGridByName(*grids, "F1.density"));
+    auto color =
+        openvdb::gridPtrCast<openvdb::Vec3SGrid>(openvdb::findGridByName(*grids, "F1.color"));
+    ASSERT_TRUE(density) << (*grids)[0]->getName() << " " << (*grids)[0]->type();
+    ASSERT_TRUE(color);
+    EXPECT_EQ(density->getName(), "F1.density");
+    EXPECT_EQ(color->getName(), "F1.color");
+    EXPECT_FLOAT_EQ(density->metaValue<float>("iso"), 2.0f);
+    EXPECT_EQ(density->metaValue<std::string>("kernel"), "inverse-square");
+    EXPECT_FLOAT_EQ(density->metaValue<float>("voxel_size"), 0.1f);
+    EXPECT_EQ(density->metaValue<std::int64_t>("sphere_count"), 3);
+    EXPECT_EQ(color->metaValue<std::string>("faultline.fault"), "F1");
+    EXPECT_DOUBLE_EQ(density->voxelSize()[0], 0.1f);
+    EXPECT_EQ(density->activeVoxelCount(), result.field->stats().activeVoxels);
+    std::filesystem::remove(path);
+}
+
+TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
+    const Spheres s;
+    fc::SurfaceParams params;
+    params.iso = 2.0f;
+    params.voxelSize = 0.1f;
+    const auto a = fc::buildSurface(s.set(), params);
+    params.iso = 2.5f;
+    const auto b = fc::buildSurface(s.set(), params);
+    const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2", &b.mesh}};
+    const auto path = tempPath("faults.glb");
+    fc::exportGlb(path, surfaces, s.set());
+
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+    ASSERT_EQ(model.nodes.size(), 3u);
+    EXPECT_EQ(model.nodes[0].name, "F1");
+    EXPECT_EQ(model.nodes[1].name, "F2");
+    EXPECT_EQ(model.nodes[2].name, "glyphs");
+    const auto &prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
+    for (const char *attr : {"POSITION", "NORMAL", "COLOR_0"})
+        EXPECT_TRUE(prim.attributes.count(attr));
+    EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
+    EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());
+    EXPECT_TRUE(model.nodes[2].extensions.count("EXT_mesh_gpu_instancing"));
+    std::filesystem::remove(path);
+}

@@ -1,0 +1,195 @@
+// The multilevel metaball field against the paper's Algorithm 1 (dense all-pairs sum).
+#include "core/surface/detail/field_level.hpp"
+#include "core/surface/metaball_field.hpp"
+#include "core/surface/metaball_reference.hpp"
+#include "core/surface/surface_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace fc = faultline::core;
+
+namespace {
+
+struct Spheres {
+    std::vector<float> x, y, z, r, rgb;
+    fc::SphereSet set() const { return {x, y, z, r, rgb}; }
+};
+
+// A slab-shaped "fault zone" of jittered spheres, deterministic.
+Spheres slab(int nx, int ny, int nz, unsigned seed) {
+    Spheres s;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> jitter(-0.15f, 0.15f), radius(0.4f, 0.6f);
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j)
+            for (int k = 0; k < nz; ++k) {
+                s.x.push_back(i + jitter(rng));
+                s.y.push_back(j + jitter(rng));
+                s.z.push_back(0.9f * k + jitter(rng));
+                s.r.push_back(radius(rng));
+                s.rgb.insert(s.rgb.end(), {i / float(nx), j / float(ny), k / float(nz)});
+            }
+    return s;
+}
+
+struct Check {
+    double maxError = 0.0;
+    std::size_t voxels = 0;
+    std::size_t colorMismatches = 0;
+};
+
+// Evaluates every planned block and compares every voxel with Algorithm 1.
+Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, float voxel,
+                           float isoMin, float isoMax, const fc::MultilevelTuning &tuning,
+                           int *levels = nullptr) {
+    const auto set = s.set();
+    fc::MetaballField field(set, params, voxel, tuning);
+    const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
+    field.prepare(plan.blocks, nullptr);
+    if (levels)
+        *levels = field.levelCount();
+    Check check;
+    const double clamp = 4.0 * isoMax;
+    std::vector<float> density(fc::kBlockVoxels);
+    std::vector<fc::Vec3f> color(fc::kBlockVoxels);
+    for (const auto &o : plan.blocks) {
+        field.evaluateBlock(o, density.data(), color.data());
+        for (int i = 0; i < 8; ++i)
+            for (int j = 0; j < 8; ++j)
+                for (int k = 0; k < 8; ++k) {
+                    const int off = fc::blockOffset(i, j, k);
+                    const auto ref =
+                        fc::referenceSample(set, params,
+                                            {(o[0] + i) * double(voxel), (o[1] + j) * double(voxel),
+                                             (o[2] + k) * double(voxel)});
+                    const double err = std::abs(std::min<double>(density[off], clamp) -
+                                                std::min(ref.value, clamp));
+                    check.maxError = std::max(check.maxError, err);
+                    for (int c = 0; c < 3; ++c)
+                        if (std::abs(color[off][c] - ref.color[c]) > 1e-5f) {
+                            ++check.colorMismatches;
+                            break;
+                        }
+                    ++check.voxels;
+                }
+    }
+    return check;
+}
+
+} // namespace
+
+TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
+    const Spheres s = slab(10, 10, 3, 1);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::InverseSquare;
+    params.colorReach = 0.1f;
+    const float iso = 6.0f;
+    fc::MultilevelTuning tuning;
+    tuning.topLevelPairs = 1e5; // force several coarse levels on a small set
+    int levels = 0;
+    const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                                         iso * params.isoRangeFactor, tuning, &levels);
+    EXPECT_GE(levels, 3);
+    EXPECT_GT(c.voxels, 10000u);
+    EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
+    EXPECT_EQ(c.colorMismatches, 0u);
+}
+
+TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
+    const Spheres s = slab(9, 8, 3, 2);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Inverse;
+    const float iso = 40.0f;
+    fc::MultilevelTuning tuning;
+    tuning.topLevelPairs = 1e5;
+    int levels = 0;
+    const Check c = compareWithReference(s, params, 0.2f, iso / params.isoRangeFactor,
+                                         iso * params.isoRangeFactor, tuning, &levels);
+    EXPECT_GE(levels, 3);
+    EXPECT_GT(c.voxels, 10000u);
+    EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor) << "voxels " << c.voxels;
+}
+
+TEST(MetaballField, CompactIsExactWithinItsSupport) {
+    const Spheres s = slab(6, 5, 2, 3);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Compact;
+    const Check c = compareWithReference(s, params, 0.2f, 0.3f, 0.6f, {});
+    EXPECT_GT(c.voxels, 1000u);
+    EXPECT_LE(c.maxError, 1e-5);
+}
+
+TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
+    const Spheres s = slab(8, 8, 2, 4);
+    const auto set = s.set();
+    fc::SurfaceParams params;
+    const float iso = 5.0f;
+    fc::MultilevelTuning tuning;
+    tuning.topLevelPairs = 1e4;
+    fc::MetaballField field(set, params, 0.25f, tuning);
+    const auto plan = fc::planSurface(field, iso / params.isoRangeFactor,
+                                      iso * params.isoRangeFactor, std::size_t{1} << 30, nullptr);
+    field.prepare(plan.blocks, nullptr);
+    std::mt19937 rng(5);
+    std::vector<fc::Vec3f> points;
+    for (int n = 0; n < 200; ++n) {
+        const auto &o = plan.blocks[rng() % plan.blocks.size()];
+        std::uniform_real_distribution<float> u(0.0f, 7.0f);
+        points.push_back(
+            {(o[0] + u(rng)) * 0.25f, (o[1] + u(rng)) * 0.25f, (o[2] + u(rng)) * 0.25f});
+    }
+    std::vector<float> values(points.size());
+    std::vector<fc::Vec3f> grads(points.size());
+    field.evaluatePoints(points, values.data(), grads.data());
+    for (std::size_t n = 0; n < points.size(); ++n) {
+        const auto ref =
+            fc::referenceSample(set, params, {points[n][0], points[n][1], points[n][2]});
+        if (ref.value > 4 * iso)
+            continue;
+        EXPECT_NEAR(values[n], ref.value, params.tolerance * iso);
+        const double norm = std::hypot(ref.gradient[0], ref.gradient[1], ref.gradient[2]);
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(grads[n][k], ref.gradient[k], 1e-2 * norm + 1e-3);
+    }
+}
+
+TEST(MetaballField, PlanLeavesOnlyBlocksThatCannotHoldTheSurface) {
+    const Spheres s = slab(6, 6, 2, 6);
+    const auto set = s.set();
+    fc::SurfaceParams params;
+    fc::MetaballField field(set, params, 0.25f);
+    const float isoMin = 3.0f, isoMax = 6.0f;
+    const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
+    ASSERT_FALSE(plan.blocks.empty());
+    // Any voxel whose exact field lies in [isoMin, isoMax] must be in a planned block.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-3.0, 9.0);
+    for (int n = 0; n < 3000; ++n) {
+        const std::array<int, 3> v{int(std::floor(u(rng) / 0.25)), int(std::floor(u(rng) / 0.25)),
+                                   int(std::floor((u(rng) - 3.0) / 0.25))};
+        const auto ref = fc::referenceSample(set, params, {v[0] * 0.25, v[1] * 0.25, v[2] * 0.25});
+        if (ref.value < isoMin || ref.value > isoMax)
+            continue;
+        const fc::Coord3 o{fc::detail::floorDiv(v[0], 8) * 8, fc::detail::floorDiv(v[1], 8) * 8,
+                           fc::detail::floorDiv(v[2], 8) * 8};
+        EXPECT_NE(std::find(plan.blocks.begin(), plan.blocks.end(), o), plan.blocks.end());
+    }
+}
+
+TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
+    const Spheres s = slab(20, 20, 2, 8);
+    fc::SurfaceParams params;
+    fc::MetaballField field(s.set(), params, 0.01f);
+    try {
+        fc::planSurface(field, 4.0f, 8.0f, std::size_t{64} << 20, nullptr);
+        FAIL() << "expected a refusal";
+    } catch (const fc::SurfaceRequestError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("budget is 64.0 MiB"), std::string::npos) << what;
+        EXPECT_NE(what.find("needs"), std::string::npos) << what;
+    }
+}
