@@ -1,5 +1,7 @@
 #include "ui/panels/viewport_cell.hpp"
 
+#include "core/view/box_handles.hpp"
+#include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
@@ -233,25 +235,27 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
     const double aspect = size.x / std::max(1.0f, size.y);
-    const double radius = sceneRadius(d);
 
-    // Which face handle of the selected box the mouse is over.
+    // Which face handle of the selected box the mouse is over: a ray from the eye through the
+    // cursor against the handle spheres the renderer draws (core/view/box_handles).
     const core::CuttingBox* box = wb.editBoxInViewport ? wb.state().box(wb.selectedBox) : nullptr;
+    auto rayAt = [&](ImVec2 mouse, const core::CameraState& cam) {
+        const glm::dvec2 ndc((mouse.x - pos.x) / size.x * 2.0 - 1.0, 1.0 - (mouse.y - pos.y) / size.y * 2.0);
+        return core::cameraRay(toRenderCamera(cam), ndc, aspect);
+    };
     if (hovered && m_drag.mode == DragMode::None) {
         m_hoverFace = -1;
         m_hoverView = view.name;
         if (box && d.frame) {
-            const glm::dmat4 vp = projectionMatrix(d.camera, aspect, radius) * viewMatrix(d.camera);
-            float best = 9.0f * wb.scale();
-            for (int f = 0; f < 6; ++f)
-                if (auto p = projectToPixels(vp, faceCentre(box->min, box->max, f), glm::dvec2(size.x, size.y))) {
-                    const float dist = std::hypot(static_cast<float>(p->x) + pos.x - io.MousePos.x, static_cast<float>(p->y) + pos.y - io.MousePos.y);
-                    if (dist < best)
-                        best = dist, m_hoverFace = f;
-                }
+            const glm::dvec3 lo(box->min[0], box->min[1], box->min[2]), hi(box->max[0], box->max[1], box->max[2]);
+            const core::Ray ray = rayAt(io.MousePos, d.camera);
+            const double r = core::defaultHandleRadius(lo, hi);
+            double best = 1e300;
+            for (const core::BoxHandle& h : core::boxFaceHandles(lo, hi))
+                if (auto t = core::intersectSphere(ray, h.centre, r); t && *t < best)
+                    best = *t, m_hoverFace = static_cast<int>(h.face);
         }
     }
-
     if (ImGui::IsItemActivated()) {
         m_drag = Drag{};
         m_drag.view = view.name;
@@ -271,30 +275,15 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
         const double dx = io.MousePos.x - m_drag.startMouse.x, dy = io.MousePos.y - m_drag.startMouse.y;
         if (m_drag.mode == DragMode::BoxFace && box) {
-            // Move the face along its axis by the mouse motion projected on the axis on screen.
-            const int axis = m_drag.face / 2;
-            const glm::dmat4 vp = projectionMatrix(d.camera, aspect, radius) * viewMatrix(d.camera);
-            const glm::dvec3 c = faceCentre(m_drag.boxMin, m_drag.boxMax, m_drag.face);
-            const double len = std::max(1e-9, 0.25 * radius);
-            glm::dvec3 c2 = c;
-            c2[axis] += len;
-            auto p1 = projectToPixels(vp, c, glm::dvec2(size.x, size.y));
-            auto p2 = projectToPixels(vp, c2, glm::dvec2(size.x, size.y));
-            if (p1 && p2) {
-                const glm::dvec2 dir = *p2 - *p1;
-                const double l2 = glm::dot(dir, dir);
-                if (l2 > 1.0) {
-                    const double delta = glm::dot(glm::dvec2(dx, dy), dir) / l2 * len;
-                    auto mn = m_drag.boxMin, mx = m_drag.boxMax;
-                    if (m_drag.face % 2)
-                        mx[axis] = std::max(mn[axis], mx[axis] + delta);
-                    else
-                        mn[axis] = std::min(mx[axis], mn[axis] + delta);
-                    const core::Json cmd = {{"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
-                    wb.preview("viewport.box", cmd);
-                    m_pendingBox = cmd;
-                }
-            }
+            // The face follows the cursor along its axis (exact under perspective).
+            const glm::dvec3 lo(m_drag.boxMin[0], m_drag.boxMin[1], m_drag.boxMin[2]);
+            const glm::dvec3 hi(m_drag.boxMax[0], m_drag.boxMax[1], m_drag.boxMax[2]);
+            const core::BoxBounds moved = core::dragBoxFace(lo, hi, static_cast<core::BoxFace>(m_drag.face),
+                                                            rayAt(m_drag.startMouse, d.camera), rayAt(io.MousePos, d.camera));
+            const std::array<double, 3> mn{moved.lo.x, moved.lo.y, moved.lo.z}, mx{moved.hi.x, moved.hi.y, moved.hi.z};
+            const core::Json cmd = {{"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
+            wb.preview("viewport.box", cmd);
+            m_pendingBox = cmd;
         } else if (dx != 0 || dy != 0) {
             core::CameraState c = m_drag.start;
             if (m_drag.mode == DragMode::Orbit)

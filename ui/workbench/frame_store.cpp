@@ -4,12 +4,23 @@
 
 namespace faultline::ui {
 
-FrameStore::~FrameStore() { m_prefetcher.reset(); }
+FrameStore::~FrameStore() {
+    m_prefetcher.reset();
+    m_retiring.clear(); // waits for running loads: fine at exit
+}
+
+void FrameStore::retire() {
+    std::erase_if(m_retiring, [](const auto& p) { return p->pendingCount() == 0; });
+}
 
 void FrameStore::setDataset(std::shared_ptr<core::Dataset> dataset) {
     if (dataset == m_dataset)
         return;
-    m_prefetcher.reset(); // waits for its running loads
+    if (m_prefetcher) {
+        m_prefetcher->cancelPending();
+        m_retiring.push_back(std::move(m_prefetcher));
+    }
+    retire();
     m_dataset = std::move(dataset);
     m_waitingFor.reset();
     m_error.clear();
@@ -36,6 +47,8 @@ void FrameStore::setLoop(bool loop) {
 void FrameStore::setWakeUp(std::function<void()> wake) { *m_wake = std::move(wake); }
 
 std::shared_ptr<const core::Frame> FrameStore::request(std::size_t index, std::size_t channel) {
+    if (!m_retiring.empty())
+        retire();
     if (!m_prefetcher || index >= m_dataset->frameCount())
         return nullptr;
     core::FrameRequestResult r = m_prefetcher->request(index, channel);

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace faultline::ui {
 
@@ -45,6 +46,10 @@ class FrameStore {
   private:
     std::shared_ptr<core::Dataset> m_dataset;
     std::unique_ptr<core::FramePrefetcher> m_prefetcher;
+    // Prefetchers of datasets no longer shown, kept until their running load ends (a reader
+    // cannot be interrupted, and waiting for it would freeze the UI).
+    std::vector<std::unique_ptr<core::FramePrefetcher>> m_retiring;
+    void retire();
     bool m_loop = false;
     std::optional<std::size_t> m_waitingFor;
     std::string m_error;
