@@ -253,18 +253,19 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
     } else {
         const auto &grid = *impl.density;
         const float h = surface.voxelSize();
+        const float inv = 1.0f / h;
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto &r) {
             auto acc = grid.getConstAccessor();
-            openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor,
-                                        openvdb::tools::BoxSampler>
-                sampler(acc, grid.transform());
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                const openvdb::Vec3d p(points[i]);
+                // Index space (world = index * h): central differences half a voxel apart.
+                const openvdb::Vec3R p(points[i][0] * inv, points[i][1] * inv, points[i][2] * inv);
                 for (int k = 0; k < 3; ++k) {
-                    openvdb::Vec3d d(0.0);
-                    d[k] = 0.5 * h;
-                    gradients[i][k] =
-                        (sampler.wsSample(p + d) - sampler.wsSample(p - d)) / static_cast<float>(h);
+                    openvdb::Vec3R d(0.0);
+                    d[k] = 0.5;
+                    float up = 0.0f, down = 0.0f;
+                    openvdb::tools::BoxSampler::sample(acc, p + d, up);
+                    openvdb::tools::BoxSampler::sample(acc, p - d, down);
+                    gradients[i][k] = (up - down) * inv;
                 }
             }
         });
