@@ -108,14 +108,14 @@ void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State &state, std::size_t c
     state.counters["voxels"] = double(voxels);
 }
 
-void BM_Remesh(benchmark::State &state, std::size_t count, float voxel) {
+void BM_Remesh(benchmark::State &state, std::size_t count, float voxel, fc::NormalSource normals) {
     const auto &z = zone(count);
     const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
     const auto built = fc::buildSurface(z.set(), p);
     const float iso = p.iso * 1.05f;
     fc::SurfaceMesh mesh;
     for (auto _ : state)
-        mesh = fc::remesh(*built.field, iso);
+        mesh = fc::remesh(*built.field, iso, nullptr, normals);
     state.counters["triangles"] = double(mesh.triangleCount());
 }
 
@@ -175,7 +175,12 @@ BENCHMARK_CAPTURE(BM_Surface, compact_50k, fc::MetaballKernel::Compact, 50000, 0
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);
-BENCHMARK_CAPTURE(BM_Remesh, inverse_square_50k, 50000, 0.25f)
+BENCHMARK_CAPTURE(BM_Remesh, inverse_square_50k_analytic_normals, 50000, 0.25f,
+                  fc::NormalSource::Analytic)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_Remesh, inverse_square_50k_grid_normals, 50000, 0.25f, fc::NormalSource::Grid)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);

@@ -5,6 +5,7 @@
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"
 
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/parallel_for.h>
 
@@ -225,7 +226,8 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     return result;
 }
 
-SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrupter) {
+SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrupter,
+                   NormalSource normalSource) {
     if (!surface.supportsIso(iso))
         throw SurfaceRequestError("iso-value " + std::to_string(iso) + " is outside [" +
                                   std::to_string(surface.isoMin()) + ", " +
@@ -246,7 +248,28 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
     for (std::size_t i = 0; i < points.size(); ++i)
         mesh.positions[i] = {points[i][0], points[i][1], points[i][2]};
     std::vector<Vec3f> gradients(points.size());
-    impl.field->evaluatePoints(mesh.positions, nullptr, gradients.data());
+    if (normalSource == NormalSource::Analytic) {
+        impl.field->evaluatePoints(mesh.positions, nullptr, gradients.data());
+    } else {
+        const auto &grid = *impl.density;
+        const float h = surface.voxelSize();
+        const float inv = 1.0f / h;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto &r) {
+            auto acc = grid.getConstAccessor();
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                // Index space (world = index * h): central differences half a voxel apart.
+                const openvdb::Vec3R p(points[i][0] * inv, points[i][1] * inv, points[i][2] * inv);
+                for (int k = 0; k < 3; ++k) {
+                    openvdb::Vec3R d(0.0);
+                    d[k] = 0.5;
+                    float up = 0.0f, down = 0.0f;
+                    openvdb::tools::BoxSampler::sample(acc, p + d, up);
+                    openvdb::tools::BoxSampler::sample(acc, p - d, down);
+                    gradients[i][k] = (up - down) * inv;
+                }
+            }
+        });
+    }
     mesh.normals.resize(points.size());
     mesh.colors.resize(points.size());
     tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {

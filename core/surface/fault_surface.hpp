@@ -68,8 +68,14 @@ struct SurfaceResult {
 SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
                            Interrupter *interrupter = nullptr);
 
+// Where vertex normals come from: the analytic gradient of the sum (Algorithm 1 line 8: exact
+// near field plus the interpolated smooth levels), or central differences of the stored density
+// grid (several times faster, for interactive re-meshing; same field within the tolerance).
+enum class NormalSource { Analytic, Grid };
+
 // The iso-surface of an existing field at another iso-value (no field recomputation). Throws
 // SurfaceRequestError when iso lies outside [isoMin, isoMax] (a rebuild is needed).
-SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr);
+SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr,
+                   NormalSource normals = NormalSource::Analytic);
 
 } // namespace faultline::core

@@ -459,9 +459,9 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                     for (int gz = brick.lo[2] & ~(kGroup - 1); gz <= brick.hi[2]; gz += kGroup) {
                         int needed[kGroup * kGroup * kGroup], count = 0;
                         for (int c = 0; c < kGroup * kGroup * kGroup; ++c) {
-                            const int off = Brick::offset(gi + c / (kGroup * kGroup),
-                                                          gj + (c / kGroup) % kGroup,
-                                                          gz + c % kGroup);
+                            const int off =
+                                Brick::offset(gi + c / (kGroup * kGroup),
+                                              gj + (c / kGroup) % kGroup, gz + c % kGroup);
                             if (brick.needed(off))
                                 needed[count++] = off;
                         }
@@ -565,49 +565,85 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
         detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
 }
 
-void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
-                            Vec3f *color) const {
-    (void)color;
+namespace {
+
+// Near field and its analytic gradient (Algorithm 1 line 8) at one point.
+template <int P>
+[[gnu::always_inline]] inline void nearGradientBody(const NearList &list, const Vec3f &p, float a2,
+                                                    float minD2, float invC2,
+                                                    const SoftenedKernel &soft, float out[4]) {
     const std::size_t count = list.size();
     const float *lx = list.x.data();
     const float *ly = list.y.data();
     const float *lz = list.z.data();
     const float *lr = list.r.data();
+    const float invSoft = 1.0f / soft.a2;
     float f = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
-    if (m_params.kernel == MetaballKernel::Compact) {
-        const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
 #pragma omp simd reduction(+ : f, gx, gy, gz)
-        for (std::size_t q = 0; q < count; ++q) {
-            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
-            const float d2 = dx * dx + dy * dy + dz * dz;
+    for (std::size_t q = 0; q < count; ++q) {
+        const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        float v, slope;
+        if constexpr (P == 0) {
             const float inv = invC2 / (lr[q] * lr[q]);
-            f += lr[q] * compactValue(d2, inv);
-            const float g = 2.0f * lr[q] * compactSlope(d2, inv);
-            gx += g * dx;
-            gy += g * dy;
-            gz += g * dz;
-        }
-    } else {
-        const float a2 = m_a0 * m_a0;
-        const InverseKernel kernel = m_kernel;
-        const SoftenedKernel soft = m_soft0;
-#pragma omp simd reduction(+ : f, gx, gy, gz)
-        for (std::size_t q = 0; q < count; ++q) {
-            const float dx = p[0] - lx[q], dy = p[1] - ly[q], dz = p[2] - lz[q];
-            const float d2 = dx * dx + dy * dy + dz * dz;
+            v = compactValue(d2, inv);
+            slope = compactSlope(d2, inv);
+        } else {
+            const float dc = d2 < minD2 ? minD2 : d2;
+            const float k = inversePower<P>(dc, minD2);
+            // dk/d(d^2) = -(P/2) k / d^2, zero where the distance is clamped.
+            const float kSlope = d2 < minD2 ? 0.0f : -0.5f * float(P) * k / dc;
+            const float t = d2 * invSoft - 1.0f;
+            const float softSlope =
+                soft.scale * invSoft *
+                (soft.coef[1] +
+                 t * (2.0f * soft.coef[2] + t * (3.0f * soft.coef[3] + t * 4.0f * soft.coef[4])));
             const bool in = d2 < a2;
-            const float v = kernel.value(d2) - soft.inner(d2);
-            const float slope = (d2 < kernel.minD2 ? 0.0f : kernel.slope(d2)) - soft.innerSlope(d2);
-            f += in ? lr[q] * v : 0.0f;
-            const float g = in ? 2.0f * lr[q] * slope : 0.0f;
-            gx += g * dx;
-            gy += g * dy;
-            gz += g * dz;
+            v = in ? k - softInner(soft, invSoft, d2) : 0.0f;
+            slope = in ? kSlope - softSlope : 0.0f;
         }
+        f += lr[q] * v;
+        const float g = 2.0f * lr[q] * slope;
+        gx += g * dx;
+        gy += g * dy;
+        gz += g * dz;
     }
-    value += f;
+    out[0] = f;
+    out[1] = gx;
+    out[2] = gy;
+    out[3] = gz;
+}
+
+FAULTLINE_HOT void nearGradient0(const NearList &list, const Vec3f &p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+    nearGradientBody<0>(list, p, a2, minD2, invC2, soft, out);
+}
+FAULTLINE_HOT void nearGradient1(const NearList &list, const Vec3f &p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+    nearGradientBody<1>(list, p, a2, minD2, invC2, soft, out);
+}
+FAULTLINE_HOT void nearGradient2(const NearList &list, const Vec3f &p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+    nearGradientBody<2>(list, p, a2, minD2, invC2, soft, out);
+}
+
+} // namespace
+
+void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
+                            Vec3f *color) const {
+    (void)color;
+    const float a2 = m_a0 * m_a0;
+    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    float out[4];
+    if (m_params.kernel == MetaballKernel::Compact)
+        nearGradient0(list, p, a2, m_kernel.minD2, invC2, m_soft0, out);
+    else if (m_kernel.p == 2)
+        nearGradient2(list, p, a2, m_kernel.minD2, invC2, m_soft0, out);
+    else
+        nearGradient1(list, p, a2, m_kernel.minD2, invC2, m_soft0, out);
+    value += out[0];
     if (gradient)
-        *gradient = {(*gradient)[0] + gx, (*gradient)[1] + gy, (*gradient)[2] + gz};
+        *gradient = {(*gradient)[0] + out[1], (*gradient)[1] + out[2], (*gradient)[2] + out[3]};
 }
 
 void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,

@@ -96,6 +96,14 @@ TEST(FaultSurface, RemeshWithinTheRangeNeedsNoNewField) {
     for (const auto &p : mesh.positions)
         EXPECT_NEAR(distanceFromCentre(p), 0.4, 3e-3);
     EXPECT_THROW(fc::remesh(*result.field, 3.0f), fc::SurfaceRequestError);
+    // Grid normals (central differences of the stored field) agree with the analytic ones.
+    const auto fast = fc::remesh(*result.field, 1.25f, nullptr, fc::NormalSource::Grid);
+    ASSERT_EQ(fast.normals.size(), mesh.normals.size());
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+        const auto &a = mesh.normals[i];
+        const auto &b = fast.normals[i];
+        EXPECT_GT(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 0.999);
+    }
 }
 
 TEST(FaultSurface, RefusesBadRequestsBeforeWork) {
