@@ -15,6 +15,7 @@ Session::Session() {
     detail::registerSelectionOps(ops);
     detail::registerFaultOps(ops);
     detail::registerOutputOps(ops);
+    detail::registerSurfaceOps(ops);
     detail::registerSessionOps(ops);
     for (auto& [name, entry] : ops)
         m_ops[name] = OpEntry{std::move(entry.first), entry.second};

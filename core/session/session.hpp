@@ -118,6 +118,7 @@ void registerDataOps(std::map<std::string, std::pair<Session::OpHandler, bool>>&
 void registerSelectionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerFaultOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerOutputOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerSurfaceOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerSessionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 } // namespace detail
 

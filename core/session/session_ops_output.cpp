@@ -44,9 +44,6 @@ void registerOutputOps(OpTable& ops) {
         }
         return nullptr;
     });
-    addNotYet(ops, "surface.build", "surfaces land with the implicit-surface feature");
-    addNotYet(ops, "export.vdb", "VDB export lands with the implicit-surface feature");
-    addNotYet(ops, "export.gltf", "glTF export lands with the implicit-surface feature");
     addNotYet(ops, "render", "rendering needs the renderer; run `faultline replay` from a build with the GUI");
 }
 

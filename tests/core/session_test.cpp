@@ -149,7 +149,7 @@ TEST(Session, RejectedCommandsChangeNothing) {
             "data.open: /nonexistent/file.dump: cannot open: No such file or directory");
     rejects(R"({"op":"warp"})", "unknown op \"warp\"");
     rejects(R"({"op":"undo","steps":2})", "undo: unknown field \"steps\" (expected none)");
-    rejects(R"({"op":"surface.build","fault":"F1"})", "surface.build: not available yet (surfaces land with the implicit-surface feature)");
+    rejects(R"({"op":"surface.build","fault":"F1"})", "surface.build: no fault named \"F1\"");
     EXPECT_EQ(s.version(), version);
 }
 

@@ -1,0 +1,169 @@
+// Ops on fault surfaces (JOURNAL.md): surface.build (settings + a checked build), surface.set /
+// surface.remove (settings only; undo of each other), export.vdb and export.gltf.
+#include "core/session/session_ops.hpp"
+
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/surface_export.hpp"
+
+#include <algorithm>
+
+namespace faultline::core::detail {
+
+namespace {
+
+// A fault's members in the current frame, as the surface builder reads them, in its colour.
+struct FaultSpheres {
+    std::vector<float> x, y, z, radius, rgb;
+    SphereSet set() const { return {x, y, z, radius, rgb}; }
+};
+
+FaultSpheres gather(const Frame& frame, const Fault& fault) {
+    FaultSpheres s;
+    for (std::int64_t id : fault.ids)
+        if (auto row = frame.rowOf(id)) {
+            s.x.push_back(frame.x[*row]);
+            s.y.push_back(frame.y[*row]);
+            s.z.push_back(frame.z[*row]);
+            s.radius.push_back(frame.radius[*row]);
+            s.rgb.insert(s.rgb.end(), fault.color.begin(), fault.color.end());
+        }
+    return s;
+}
+
+Json settingsJson(const SurfaceSettings& st) {
+    return {{"op", "surface.set"}, {"fault", st.fault}, {"kernel", st.kernel}, {"voxel", st.voxel},
+            {"iso", st.iso}, {"visible", st.visible}, {"opacity", st.opacity}};
+}
+
+// The settings a command asks for, over the fault's current ones.
+SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
+    const std::string fault = args::string(cmd, "fault");
+    if (!s.state().fault(fault))
+        throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
+    SurfaceSettings st;
+    st.fault = fault;
+    if (const SurfaceSettings* old = s.state().surface(fault))
+        st = *old;
+    st.kernel = args::optionalString(cmd, "kernel").value_or(st.kernel);
+    if (!parseKernel(st.kernel))
+        throw CommandError(std::string(op) + ": \"kernel\" must be inverse, inverse-square or compact");
+    st.voxel = args::optionalNumber(cmd, "voxel").value_or(st.voxel);
+    st.iso = args::optionalNumber(cmd, "iso").value_or(st.iso);
+    st.visible = args::optionalBool(cmd, "visible").value_or(st.visible);
+    st.opacity = args::optionalNumber(cmd, "opacity").value_or(st.opacity);
+    if (st.voxel < 0 || !(st.iso > 0) || st.opacity < 0 || st.opacity > 1)
+        throw CommandError(std::string(op) + ": voxel >= 0 (0: radius / 3), iso > 0, opacity in [0, 1]");
+    return st;
+}
+
+Json storeSettings(Session& s, const SurfaceSettings& st) {
+    auto& surfaces = s.mutableState().surfaces;
+    auto it = std::find_if(surfaces.begin(), surfaces.end(), [&](const SurfaceSettings& e) { return e.fault == st.fault; });
+    Json inverse = it == surfaces.end() ? Json{{"op", "surface.remove"}, {"fault", st.fault}} : settingsJson(*it);
+    if (it == surfaces.end())
+        surfaces.push_back(st);
+    else
+        *it = st;
+    return inverse;
+}
+
+SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
+    auto frame = s.currentFrame();
+    if (!frame)
+        throw CommandError(std::string(op) + ": no data is open");
+    const Fault* fault = s.state().fault(st.fault);
+    if (!fault)
+        throw CommandError(std::string(op) + ": no fault named \"" + st.fault + "\"");
+    const FaultSpheres spheres = gather(*frame, *fault);
+    SurfaceParams params;
+    params.kernel = *parseKernel(st.kernel);
+    params.iso = static_cast<float>(st.iso);
+    params.voxelSize = static_cast<float>(st.voxel);
+    try {
+        return buildSurface(spheres.set(), params);
+    } catch (const std::exception& e) {
+        throw CommandError(std::string(op) + ": fault \"" + st.fault + "\": " + e.what());
+    }
+}
+
+SurfaceSettings settingsOf(Session& s, const std::string& fault, const char* op) {
+    if (const SurfaceSettings* st = s.state().surface(fault))
+        return *st;
+    if (!s.state().fault(fault))
+        throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
+    SurfaceSettings st; // never built: the defaults
+    st.fault = fault;
+    return st;
+}
+
+} // namespace
+
+void registerSurfaceOps(OpTable& ops) {
+    addStateOp(ops, "surface.build", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"fault", "kernel", "voxel", "iso", "visible", "opacity"});
+        const SurfaceSettings st = settingsFrom(s, cmd, "surface.build");
+        build(s, st, "surface.build"); // a request that cannot be built is refused here
+        return storeSettings(s, st);
+    });
+    addStateOp(ops, "surface.set", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"fault", "kernel", "voxel", "iso", "visible", "opacity"});
+        return storeSettings(s, settingsFrom(s, cmd, "surface.set"));
+    });
+    addStateOp(ops, "surface.remove", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"fault"});
+        const std::string fault = args::string(cmd, "fault");
+        auto& surfaces = s.mutableState().surfaces;
+        auto it = std::find_if(surfaces.begin(), surfaces.end(), [&](const SurfaceSettings& e) { return e.fault == fault; });
+        if (it == surfaces.end())
+            throw CommandError("surface.remove: fault \"" + fault + "\" has no surface");
+        Json inverse = settingsJson(*it);
+        surfaces.erase(it);
+        return inverse;
+    });
+    addAction(ops, "export.vdb", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"fault", "path"});
+        const SurfaceSettings st = settingsOf(s, args::string(cmd, "fault"), "export.vdb");
+        const SurfaceResult result = build(s, st, "export.vdb");
+        const std::string path = s.outputPath(args::string(cmd, "path"));
+        const VdbSurface surface{st.fault, result.field.get(), result.iso};
+        try {
+            std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+            exportVdb(path, std::span<const VdbSurface>(&surface, 1));
+        } catch (const std::exception& e) {
+            throw CommandError(std::string("export.vdb: ") + e.what());
+        }
+        return nullptr;
+    });
+    addAction(ops, "export.gltf", [](Session& s, const Json& cmd) -> Json {
+        args::onlyFields(cmd, {"faults", "path", "glyphs"});
+        const auto names = args::strings(cmd, "faults");
+        if (names.empty())
+            throw CommandError("export.gltf: \"faults\" names no fault");
+        std::vector<SurfaceResult> results;
+        for (const auto& name : names)
+            results.push_back(build(s, settingsOf(s, name, "export.gltf"), "export.gltf"));
+        std::vector<GltfSurface> surfaces;
+        for (std::size_t k = 0; k < names.size(); ++k)
+            surfaces.push_back({names[k], &results[k].mesh});
+        // Optionally the member spheres as instanced glyphs, in their fault's colour.
+        FaultSpheres glyphs;
+        if (args::optionalBool(cmd, "glyphs").value_or(false))
+            if (auto frame = s.currentFrame())
+                for (const auto& name : names) {
+                    const FaultSpheres f = gather(*frame, *s.state().fault(name));
+                    for (auto [dst, src] : {std::pair{&glyphs.x, &f.x}, {&glyphs.y, &f.y}, {&glyphs.z, &f.z},
+                                            {&glyphs.radius, &f.radius}, {&glyphs.rgb, &f.rgb}})
+                        dst->insert(dst->end(), src->begin(), src->end());
+                }
+        const std::string path = s.outputPath(args::string(cmd, "path"));
+        try {
+            std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+            exportGlb(path, surfaces, glyphs.set());
+        } catch (const std::exception& e) {
+            throw CommandError(std::string("export.gltf: ") + e.what());
+        }
+        return nullptr;
+    });
+}
+
+} // namespace faultline::core::detail
