@@ -29,13 +29,13 @@ class GlRender : public ::testing::Test {
 
     // Renders, saves the image next to the build, and compares with tests/ui/ref/<name>.png
     // (or rewrites the reference when FAULTLINE_UPDATE_REFS=1).
-    void compareWithReference(const RgbaImage &image, const std::string &name) {
+    void compareWithReference(const RgbaImage& image, const std::string& name) {
         ASSERT_FALSE(image.empty());
         std::filesystem::create_directories(FAULTLINE_UI_OUT_DIR);
         const std::string out = std::string(FAULTLINE_UI_OUT_DIR) + "/" + name + ".png";
         writePng(image, out);
         const std::string ref = std::string(FAULTLINE_UI_REF_DIR) + "/" + name + ".png";
-        if (const char *update = std::getenv("FAULTLINE_UPDATE_REFS"); update && *update == '1') {
+        if (const char* update = std::getenv("FAULTLINE_UPDATE_REFS"); update && *update == '1') {
             writePng(image, ref);
             return;
         }
