@@ -19,8 +19,8 @@ namespace faultline::app {
 
 namespace {
 
-std::vector<double> parseNumbers(const std::string &text, char sep, std::size_t count,
-                                 const std::string &option) {
+std::vector<double> parseNumbers(const std::string& text, char sep, std::size_t count,
+                                 const std::string& option) {
     std::vector<double> out;
     std::stringstream ss(text);
     std::string item;
@@ -30,7 +30,7 @@ std::vector<double> parseNumbers(const std::string &text, char sep, std::size_t 
             out.push_back(std::stod(item, &used));
             if (used != item.size())
                 throw std::invalid_argument(item);
-        } catch (const std::exception &) {
+        } catch (const std::exception&) {
             throw std::invalid_argument(option + ": '" + item + "' is not a number");
         }
     }
@@ -39,7 +39,7 @@ std::vector<double> parseNumbers(const std::string &text, char sep, std::size_t 
     return out;
 }
 
-const char *kUsage =
+const char* kUsage =
     "usage: faultline render-data FILE --out OUT.png [--frame N] [--color VAR] [--map NAME]\n"
     "         [--range LO,HI] [--size WxH] [--view front|back|left|side|top|bottom|iso] [--ortho]\n"
     "         [--zoom F]\n"
@@ -50,7 +50,7 @@ const char *kUsage =
 
 } // namespace
 
-int runRenderData(const Args &args) {
+int runRenderData(const Args& args) {
 #if !FAULTLINE_WITH_GUI
     (void)args;
     std::fprintf(stderr,
@@ -71,8 +71,8 @@ int runRenderData(const Args &args) {
     std::vector<Threshold> thresholds;
     try {
         for (std::size_t i = 0; i < args.size(); ++i) {
-            const std::string &a = args[i];
-            auto value = [&]() -> const std::string & {
+            const std::string& a = args[i];
+            auto value = [&]() -> const std::string& {
                 if (i + 1 >= args.size())
                     throw std::invalid_argument(a + " needs a value");
                 return args[++i];
@@ -84,7 +84,7 @@ int runRenderData(const Args &args) {
             } else if (a == "--color") {
                 color = value();
             } else if (a == "--map") {
-                const std::string &name = value();
+                const std::string& name = value();
                 auto map = core::parseColorMap(name);
                 if (!map)
                     throw std::invalid_argument("unknown colour map '" + name + "'");
@@ -117,7 +117,7 @@ int runRenderData(const Args &args) {
                 cuts.push_back(
                     {"cut", {b[0], b[1], b[2]}, {b[3], b[4], b[5]}, core::BoxMode::Cut, true});
             } else if (a == "--threshold") {
-                const std::string &t = value();
+                const std::string& t = value();
                 const auto colon = t.find(':');
                 if (colon == std::string::npos)
                     throw std::invalid_argument("--threshold needs VAR:LO:HI");
@@ -139,7 +139,7 @@ int runRenderData(const Args &args) {
         if (settings.width <= 0 || settings.height <= 0 || settings.width > 16384 ||
             settings.height > 16384)
             throw std::invalid_argument("--size must be between 1x1 and 16384x16384");
-    } catch (const std::exception &e) {
+    } catch (const std::exception& e) {
         std::fprintf(stderr, "faultline render-data: %s\n%s\n", e.what(), kUsage);
         return 2;
     }
@@ -155,7 +155,7 @@ int runRenderData(const Args &args) {
         scene.boxes.clear();
         if (!cuts.empty() || !thresholds.empty()) {
             scene.visible.assign(frame->size(), 1);
-            for (const core::CuttingBox &box : cuts) {
+            for (const core::CuttingBox& box : cuts) {
                 for (std::size_t i = 0; i < frame->size(); ++i)
                     if (box.contains(frame->x[i], frame->y[i], frame->z[i]))
                         scene.visible[i] = 0;
@@ -163,8 +163,8 @@ int runRenderData(const Args &args) {
                                        {box.max[0], box.max[1], box.max[2]},
                                        {0.85f, 0.2f, 0.15f}});
             }
-            for (const Threshold &t : thresholds) {
-                const core::AttributeColumn *column = frame->attribute(t.variable);
+            for (const Threshold& t : thresholds) {
+                const core::AttributeColumn* column = frame->attribute(t.variable);
                 if (!column)
                     throw std::invalid_argument("no variable '" + t.variable + "'");
                 for (std::size_t i = 0; i < frame->size(); ++i) {
@@ -190,7 +190,7 @@ int runRenderData(const Args &args) {
         std::printf("%s: %zu spheres, %dx%d, %.0f ms\n", out.c_str(), frame->size(), settings.width,
                     settings.height, ms);
         return 0;
-    } catch (const std::exception &e) {
+    } catch (const std::exception& e) {
         std::fprintf(stderr, "faultline render-data: %s\n", e.what());
         return 1;
     }

@@ -48,7 +48,7 @@ core::Frame makeBlock(int nx, int ny, int nz) {
     return f;
 }
 
-const core::Frame &block(int count) {
+const core::Frame& block(int count) {
     static std::map<int, core::Frame> blocks;
     auto it = blocks.find(count);
     if (it == blocks.end()) {
@@ -59,7 +59,7 @@ const core::Frame &block(int count) {
     return it->second;
 }
 
-bool haveContext(benchmark::State &state) {
+bool haveContext(benchmark::State& state) {
     std::string why;
     if (!ui::sharedOffscreenContext(why)) {
         state.SkipWithError(("no OpenGL context: " + why).c_str());
@@ -68,7 +68,7 @@ bool haveContext(benchmark::State &state) {
     return true;
 }
 
-ui::SceneDescription sceneOf(const core::Frame &f) {
+ui::SceneDescription sceneOf(const core::Frame& f) {
     ui::SceneDescription scene;
     scene.frame = &f;
     scene.colorVariable = "strain";
@@ -76,10 +76,10 @@ ui::SceneDescription sceneOf(const core::Frame &f) {
     return scene;
 }
 
-void impostors(benchmark::State &state, ui::OcclusionCulling culling, bool ao) {
+void impostors(benchmark::State& state, ui::OcclusionCulling culling, bool ao) {
     if (!haveContext(state))
         return;
-    const core::Frame &f = block(static_cast<int>(state.range(0)));
+    const core::Frame& f = block(static_cast<int>(state.range(0)));
     ui::SceneDescription scene = sceneOf(f);
     scene.style.culling = culling;
     scene.style.ambientOcclusion = ao;
@@ -93,7 +93,7 @@ void impostors(benchmark::State &state, ui::OcclusionCulling culling, bool ao) {
         renderer.render(camera, target);
         glFinish();
     }
-    const ui::RenderStats &s = renderer.stats();
+    const ui::RenderStats& s = renderer.stats();
     state.counters["spheres"] = double(s.visibleSpheres);
     state.counters["drawn"] = double(s.drawnSpheres);
     state.counters["culled"] = double(s.occlusionCulled + s.frustumCulled);
@@ -102,7 +102,7 @@ void impostors(benchmark::State &state, ui::OcclusionCulling culling, bool ao) {
 
 // ---- the baseline: an instanced icosphere of 320 triangles per sphere ----
 
-const char *kMeshVertex = R"(#version 410 core
+const char* kMeshVertex = R"(#version 410 core
 layout(location = 0) in vec3 aPos;       // unit icosphere vertex (= normal)
 layout(location = 1) in vec4 aSphere;    // per instance: centre, radius
 layout(location = 2) in float aValue;    // per instance
@@ -116,7 +116,7 @@ void main() {
     gl_Position = uProj * uView * vec4(aSphere.xyz + aPos * aSphere.w, 1.0);
 }
 )";
-const char *kMeshFragment = R"(#version 410 core
+const char* kMeshFragment = R"(#version 410 core
 in vec3 vNormal;
 in float vValue;
 out vec4 oColor;
@@ -130,11 +130,11 @@ void main() {
 )";
 
 // Icosahedron subdivided twice: 320 triangles, 162 vertices.
-void icosphere(std::vector<glm::vec3> &vertices, std::vector<std::uint32_t> &indices) {
+void icosphere(std::vector<glm::vec3>& vertices, std::vector<std::uint32_t>& indices) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    for (auto &v : vertices)
+    for (auto& v : vertices)
         v = glm::normalize(v);
     indices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
                4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
@@ -161,10 +161,10 @@ void icosphere(std::vector<glm::vec3> &vertices, std::vector<std::uint32_t> &ind
     }
 }
 
-void meshSpheres(benchmark::State &state) {
+void meshSpheres(benchmark::State& state) {
     if (!haveContext(state))
         return;
-    const core::Frame &f = block(static_cast<int>(state.range(0)));
+    const core::Frame& f = block(static_cast<int>(state.range(0)));
     const ui::SceneDescription scene = sceneOf(f);
     const core::Camera camera = ui::fittedCamera(scene, kWidth, kHeight);
 
@@ -175,7 +175,7 @@ void meshSpheres(benchmark::State &state) {
         throw std::logic_error("icosphere must have 320 triangles");
     std::vector<float> instances;
     instances.reserve(f.size() * 5);
-    const auto &strain = f.attribute("strain")->floats;
+    const auto& strain = f.attribute("strain")->floats;
     for (std::size_t i = 0; i < f.size(); ++i)
         instances.insert(instances.end(), {f.x[i], f.y[i], f.z[i], f.radius[i], strain[i]});
 
@@ -197,7 +197,7 @@ void meshSpheres(benchmark::State &state) {
     glVertexAttribDivisor(1, 1);
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 5 * sizeof(float),
-                          reinterpret_cast<const void *>(4 * sizeof(float)));
+                          reinterpret_cast<const void*>(4 * sizeof(float)));
     glVertexAttribDivisor(2, 1);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(std::uint32_t)),

@@ -71,7 +71,7 @@ float toSrgb(float c) {
 
 std::string lower(std::string_view s) {
     std::string out(s);
-    for (char &c : out)
+    for (char& c : out)
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return out;
 }
@@ -82,7 +82,7 @@ std::uint8_t toByte(float v) {
 
 } // namespace
 
-std::string colorMapName(const ColorMapSpec &spec) {
+std::string colorMapName(const ColorMapSpec& spec) {
     switch (spec.kind) {
     case ColorMapKind::BlueRed:
         return "blue-red";
@@ -113,8 +113,8 @@ std::optional<ColorMapSpec> parseColorMap(std::string_view name) {
     constexpr std::string_view kBandsPrefix = "bands:";
     if (n.starts_with(kBandsPrefix)) {
         int count = 0;
-        const char *first = n.data() + kBandsPrefix.size();
-        const char *last = n.data() + n.size();
+        const char* first = n.data() + kBandsPrefix.size();
+        const char* last = n.data() + n.size();
         auto [ptr, ec] = std::from_chars(first, last, count);
         if (ec != std::errc() || ptr != last || first == last || count < 1 || count > kMaxBands)
             return std::nullopt;
@@ -123,13 +123,13 @@ std::optional<ColorMapSpec> parseColorMap(std::string_view name) {
     return std::nullopt;
 }
 
-const std::vector<std::string> &colorMapNames() {
+const std::vector<std::string>& colorMapNames() {
     static const std::vector<std::string> names{"blue-red", "viridis", "diverging", "pastel",
                                                 "bands"};
     return names;
 }
 
-glm::vec3 sampleColorMap(const ColorMapSpec &spec, double t) {
+glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
     if (std::isnan(t))
         return kNanColor;
     t = std::clamp(t, 0.0, 1.0);
@@ -158,7 +158,7 @@ glm::vec3 sampleColorMap(const ColorMapSpec &spec, double t) {
     return kNanColor;
 }
 
-std::vector<std::uint8_t> colorMapTable(const ColorMapSpec &spec, int size) {
+std::vector<std::uint8_t> colorMapTable(const ColorMapSpec& spec, int size) {
     size = std::max(size, 2);
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(size) * 4);
     for (int i = 0; i < size; ++i) {
@@ -171,13 +171,13 @@ std::vector<std::uint8_t> colorMapTable(const ColorMapSpec &spec, int size) {
     return rgba;
 }
 
-ColorMapTexture colorMapTexture(const ColorMapSpec &spec, int size) {
+ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size) {
     ColorMapTexture tex;
     if (spec.kind == ColorMapKind::Bands) {
         tex.width = static_cast<int>(kBandPalette.size());
         tex.nearest = true;
         tex.bandCount = std::clamp(spec.bands, 1, kMaxBands);
-        for (const glm::vec3 &c : kBandPalette)
+        for (const glm::vec3& c : kBandPalette)
             tex.rgba.insert(tex.rgba.end(), {toByte(c.r), toByte(c.g), toByte(c.b), 255});
         return tex;
     }

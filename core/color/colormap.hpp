@@ -23,20 +23,20 @@ enum class ColorMapKind {
 struct ColorMapSpec {
     ColorMapKind kind = ColorMapKind::BlueRed;
     int bands = 10; // Bands only: how many bands cover the range (1..1024)
-    bool operator==(const ColorMapSpec &) const = default;
+    bool operator==(const ColorMapSpec&) const = default;
 };
 
 inline constexpr int kMaxBands = 1024;
 
 // The journal's names: "blue-red", "viridis", "diverging", "pastel", "bands", "bands:N".
-std::string colorMapName(const ColorMapSpec &spec);
+std::string colorMapName(const ColorMapSpec& spec);
 // Case-insensitive; nullopt for an unknown name or a band count outside 1..kMaxBands.
 std::optional<ColorMapSpec> parseColorMap(std::string_view name);
 // Names to offer in a combo box, in display order.
-const std::vector<std::string> &colorMapNames();
+const std::vector<std::string>& colorMapNames();
 
 // Colour (sRGB, 0..1) at t in [0, 1]; t is clamped; NaN gives kNanColor.
-glm::vec3 sampleColorMap(const ColorMapSpec &spec, double t);
+glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t);
 inline constexpr glm::vec3 kNanColor{0.55f, 0.55f, 0.55f};
 
 // What the GPU samples: continuous maps are `size` texels sampled linearly at t; Bands is a short
@@ -47,17 +47,17 @@ struct ColorMapTexture {
     bool nearest = false;
     int bandCount = 0; // 0: continuous
 };
-ColorMapTexture colorMapTexture(const ColorMapSpec &spec, int size = 256);
+ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size = 256);
 
 // RGBA8 table of `size` samples at t = i / (size - 1); for every map (Bands included).
-std::vector<std::uint8_t> colorMapTable(const ColorMapSpec &spec, int size);
+std::vector<std::uint8_t> colorMapTable(const ColorMapSpec& spec, int size);
 
 // ---- value ranges ----
 
 struct ValueRange {
     double low = 0.0;
     double high = 1.0;
-    bool operator==(const ValueRange &) const = default;
+    bool operator==(const ValueRange&) const = default;
 };
 
 enum class RangeMode {

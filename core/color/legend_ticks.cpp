@@ -6,7 +6,7 @@
 
 namespace faultline::core {
 
-double niceStep(ValueRange range, int maxTicks) {
+double niceStep(ValueRange range, int maxTicks, bool integerSteps) {
     maxTicks = std::max(maxTicks, 2);
     const double span = range.high - range.low;
     if (!(span > 0.0) || !std::isfinite(span))
@@ -16,6 +16,8 @@ double niceStep(ValueRange range, int maxTicks) {
     for (int guard = 0; guard < 40; ++guard, magnitude *= 10.0) {
         for (double m : {1.0, 2.0, 2.5, 5.0}) {
             const double step = m * magnitude;
+            if (integerSteps && (step < 1.0 || step != std::floor(step)))
+                continue;
             const double eps = step * 1e-6;
             const double count =
                 std::floor((range.high + eps) / step) - std::ceil((range.low - eps) / step) + 1.0;
@@ -44,7 +46,7 @@ std::string formatTick(double v, double step) {
     return buf;
 }
 
-std::vector<LegendTick> legendTicks(ValueRange range, int maxTicks) {
+std::vector<LegendTick> legendTicks(ValueRange range, int maxTicks, bool integerSteps) {
     std::vector<LegendTick> ticks;
     const double span = range.high - range.low;
     if (!(span > 0.0) || !std::isfinite(span)) {
@@ -52,7 +54,7 @@ std::vector<LegendTick> legendTicks(ValueRange range, int maxTicks) {
         ticks.push_back({range.high, 1.0, formatTick(range.high, 1.0)});
         return ticks;
     }
-    const double step = niceStep(range, maxTicks);
+    const double step = niceStep(range, maxTicks, integerSteps);
     const double eps = step * 1e-6;
     const double first = std::ceil((range.low - eps) / step);
     for (double k = first;; k += 1.0) {

@@ -17,11 +17,12 @@ struct LegendTick {
 
 // Between 2 and maxTicks ticks inside [range.low, range.high] (both ends included when they
 // fall on a step). An empty range gives its two ends.
-std::vector<LegendTick> legendTicks(ValueRange range, int maxTicks = 6);
+// integerSteps: only whole-number steps (for integer variables such as broken bonds).
+std::vector<LegendTick> legendTicks(ValueRange range, int maxTicks = 6, bool integerSteps = false);
 
 // The smallest round step (1, 2, 2.5 or 5 times a power of ten) that puts at most maxTicks
 // ticks inside the range; 1 for an empty range.
-double niceStep(ValueRange range, int maxTicks);
+double niceStep(ValueRange range, int maxTicks, bool integerSteps = false);
 
 // A tick label for v on a grid of `step`: "0.25", "-3", "1.5e+06".
 std::string formatTick(double v, double step);

@@ -7,7 +7,7 @@
 
 namespace faultline::core {
 
-std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3 &lo, const glm::dvec3 &hi) {
+std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3& lo, const glm::dvec3& hi) {
     const glm::dvec3 mid = (lo + hi) * 0.5;
     std::array<BoxHandle, 6> handles{};
     for (int f = 0; f < 6; ++f) {
@@ -22,7 +22,7 @@ std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3 &lo, const glm::dvec3 &
     return handles;
 }
 
-double defaultHandleRadius(const glm::dvec3 &lo, const glm::dvec3 &hi) {
+double defaultHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi) {
     const glm::dvec3 size = glm::abs(hi - lo);
     const double diag = glm::length(size);
     const double thinnest = std::min({size.x, size.y, size.z});
@@ -32,11 +32,11 @@ double defaultHandleRadius(const glm::dvec3 &lo, const glm::dvec3 &hi) {
     return r > 0.0 ? r : 1e-3;
 }
 
-std::optional<BoxFace> pickBoxFace(const glm::dvec3 &lo, const glm::dvec3 &hi, const Ray &ray,
+std::optional<BoxFace> pickBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, const Ray& ray,
                                    double handleRadius) {
     std::optional<BoxFace> best;
     double bestT = 0.0;
-    for (const BoxHandle &h : boxFaceHandles(lo, hi)) {
+    for (const BoxHandle& h : boxFaceHandles(lo, hi)) {
         if (auto t = intersectSphere(ray, h.centre, handleRadius); t && (!best || *t < bestT)) {
             best = h.face;
             bestT = *t;
@@ -53,7 +53,7 @@ std::optional<BoxFace> pickBoxFace(const glm::dvec3 &lo, const glm::dvec3 &hi, c
     return static_cast<BoxFace>(axis * 2 + (isMax ? 1 : 0));
 }
 
-std::optional<double> closestOnLine(const glm::dvec3 &p, const glm::dvec3 &axis, const Ray &ray) {
+std::optional<double> closestOnLine(const glm::dvec3& p, const glm::dvec3& axis, const Ray& ray) {
     // Minimise |p + s a - (o + t d)|: standard closest points of two lines.
     const glm::dvec3 w = p - ray.origin;
     const double a = glm::dot(axis, axis);
@@ -67,8 +67,8 @@ std::optional<double> closestOnLine(const glm::dvec3 &p, const glm::dvec3 &axis,
     return (b * e - c * d) / denom;
 }
 
-BoxBounds dragBoxFace(const glm::dvec3 &lo, const glm::dvec3 &hi, BoxFace face, const Ray &startRay,
-                      const Ray &currentRay, double minSize) {
+BoxBounds dragBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, BoxFace face, const Ray& startRay,
+                      const Ray& currentRay, double minSize) {
     BoxBounds out{lo, hi};
     const int axis = faceAxis(face);
     const BoxHandle handle = boxFaceHandles(lo, hi)[static_cast<int>(face)];

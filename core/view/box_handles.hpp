@@ -22,15 +22,15 @@ struct BoxHandle {
 };
 
 // One handle per face, in BoxFace order.
-std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3 &lo, const glm::dvec3 &hi);
+std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // A handle radius that reads well for this box: 4% of its diagonal, at most a third of its
 // thinnest side so opposite handles do not merge.
-double defaultHandleRadius(const glm::dvec3 &lo, const glm::dvec3 &hi);
+double defaultHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // The face a ray grabs: the nearest handle sphere it hits, else the face through which it enters
 // the box; nullopt when it misses both.
-std::optional<BoxFace> pickBoxFace(const glm::dvec3 &lo, const glm::dvec3 &hi, const Ray &ray,
+std::optional<BoxFace> pickBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, const Ray& ray,
                                    double handleRadius);
 
 // The box after dragging `face` from where `startRay` grabbed it to where `currentRay` points.
@@ -40,10 +40,10 @@ struct BoxBounds {
     glm::dvec3 lo;
     glm::dvec3 hi;
 };
-BoxBounds dragBoxFace(const glm::dvec3 &lo, const glm::dvec3 &hi, BoxFace face, const Ray &startRay,
-                      const Ray &currentRay, double minSize = 0.0);
+BoxBounds dragBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, BoxFace face, const Ray& startRay,
+                      const Ray& currentRay, double minSize = 0.0);
 
 // Parameter s of the point on the line (p + s * axis) nearest to the ray; nullopt when parallel.
-std::optional<double> closestOnLine(const glm::dvec3 &p, const glm::dvec3 &axis, const Ray &ray);
+std::optional<double> closestOnLine(const glm::dvec3& p, const glm::dvec3& axis, const Ray& ray);
 
 } // namespace faultline::core

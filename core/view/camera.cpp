@@ -17,12 +17,12 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string lower(std::string_view s) {
     std::string out(s);
-    for (char &c : out)
+    for (char& c : out)
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return out;
 }
 
-double tanHalfFov(const Camera &c) {
+double tanHalfFov(const Camera& c) {
     return std::tan(std::clamp(c.fovYDegrees, 1.0, 170.0) * kPi / 360.0);
 }
 
@@ -86,7 +86,7 @@ glm::dvec3 Camera::right() const { return orientation * glm::dvec3(1.0, 0.0, 0.0
 glm::dvec3 Camera::eye() const { return target - forward() * distance; }
 double Camera::viewHeightAtTarget() const { return 2.0 * distance * tanHalfFov(*this); }
 
-glm::dquat lookRotation(const glm::dvec3 &forward, const glm::dvec3 &up) {
+glm::dquat lookRotation(const glm::dvec3& forward, const glm::dvec3& up) {
     const glm::dvec3 back = -glm::normalize(forward);
     glm::dvec3 right = glm::cross(up, back);
     if (glm::dot(right, right) < 1e-24) // up parallel to forward: any perpendicular will do
@@ -97,7 +97,7 @@ glm::dquat lookRotation(const glm::dvec3 &forward, const glm::dvec3 &up) {
     return glm::normalize(glm::quat_cast(glm::dmat3(right, trueUp, back)));
 }
 
-glm::dmat4 viewMatrix(const Camera &c) {
+glm::dmat4 viewMatrix(const Camera& c) {
     const glm::dmat3 rot = glm::mat3_cast(glm::normalize(c.orientation));
     const glm::dmat3 inv = glm::transpose(rot);
     glm::dmat4 m(inv);
@@ -105,7 +105,7 @@ glm::dmat4 viewMatrix(const Camera &c) {
     return m;
 }
 
-glm::dmat4 projectionMatrix(const Camera &c, double aspect, ClipRange clip) {
+glm::dmat4 projectionMatrix(const Camera& c, double aspect, ClipRange clip) {
     if (c.projection == Projection::Orthographic) {
         const double h = 0.5 * c.viewHeightAtTarget();
         return glm::ortho(-h * aspect, h * aspect, -h, h, clip.nearClip, clip.farClip);
@@ -113,7 +113,7 @@ glm::dmat4 projectionMatrix(const Camera &c, double aspect, ClipRange clip) {
     return glm::perspective(2.0 * std::atan(tanHalfFov(c)), aspect, clip.nearClip, clip.farClip);
 }
 
-ClipRange clipRangeFor(const Camera &c, const BoundingSphere &scene) {
+ClipRange clipRangeFor(const Camera& c, const BoundingSphere& scene) {
     const double r = std::max(scene.radius, 1e-9) * 1.02;
     const double depth = glm::dot(scene.centre - c.eye(), c.forward());
     double farClip = depth + r;
@@ -128,7 +128,7 @@ ClipRange clipRangeFor(const Camera &c, const BoundingSphere &scene) {
     return {nearClip, farClip};
 }
 
-Ray cameraRay(const Camera &c, glm::dvec2 ndc, double aspect) {
+Ray cameraRay(const Camera& c, glm::dvec2 ndc, double aspect) {
     const double h = tanHalfFov(c);
     const glm::dvec3 f = c.forward(), u = c.up(), r = c.right();
     if (c.projection == Projection::Orthographic) {
@@ -141,7 +141,7 @@ Ray cameraRay(const Camera &c, glm::dvec2 ndc, double aspect) {
     return {c.eye(), dir};
 }
 
-void orbitTrackball(Camera &c, glm::dvec2 fromNdc, glm::dvec2 toNdc, double aspect) {
+void orbitTrackball(Camera& c, glm::dvec2 fromNdc, glm::dvec2 toNdc, double aspect) {
     // Round ball: scale x by the aspect so a drag of equal pixels turns equally in x and y.
     const glm::dvec2 scale(std::max(aspect, 1.0), std::max(1.0 / aspect, 1.0));
     const glm::dvec3 p0 = trackballPoint(fromNdc * scale);
@@ -156,7 +156,7 @@ void orbitTrackball(Camera &c, glm::dvec2 fromNdc, glm::dvec2 toNdc, double aspe
     c.orientation = glm::normalize(c.orientation * glm::inverse(sceneTurn));
 }
 
-void orbitTurntable(Camera &c, double yaw, double pitch) {
+void orbitTurntable(Camera& c, double yaw, double pitch) {
     const glm::dvec3 zUp(0.0, 0.0, 1.0);
     glm::dvec3 f = c.forward();
     // Pitch, clamped 1 degree short of the poles.
@@ -174,12 +174,12 @@ void orbitTurntable(Camera &c, double yaw, double pitch) {
     c.orientation = lookRotation(f, zUp);
 }
 
-void pan(Camera &c, glm::dvec2 deltaNdc, double aspect) {
+void pan(Camera& c, glm::dvec2 deltaNdc, double aspect) {
     const double halfH = 0.5 * c.viewHeightAtTarget();
     c.target -= c.right() * (deltaNdc.x * halfH * aspect) + c.up() * (deltaNdc.y * halfH);
 }
 
-void zoomToCursor(Camera &c, double factor, glm::dvec2 cursorNdc, double aspect) {
+void zoomToCursor(Camera& c, double factor, glm::dvec2 cursorNdc, double aspect) {
     if (!(factor > 0.0))
         return;
     const double halfH = 0.5 * c.viewHeightAtTarget();
@@ -189,7 +189,7 @@ void zoomToCursor(Camera &c, double factor, glm::dvec2 cursorNdc, double aspect)
     c.distance /= factor;
 }
 
-void fitSphere(Camera &c, const BoundingSphere &s, double aspect, double margin) {
+void fitSphere(Camera& c, const BoundingSphere& s, double aspect, double margin) {
     c.target = s.centre;
     const double r = std::max(s.radius, 1e-9) * margin;
     const double tanY = tanHalfFov(c);
@@ -203,7 +203,7 @@ void fitSphere(Camera &c, const BoundingSphere &s, double aspect, double margin)
     }
 }
 
-void fitBox(Camera &c, const Aabb &box, double aspect, double margin) {
+void fitBox(Camera& c, const Aabb& box, double aspect, double margin) {
     if (!box.valid)
         return;
     c.target = (box.lo + box.hi) * 0.5;
@@ -232,7 +232,7 @@ void fitBox(Camera &c, const Aabb &box, double aspect, double margin) {
     c.distance = d;
 }
 
-void applyPreset(Camera &c, ViewPreset preset) {
+void applyPreset(Camera& c, ViewPreset preset) {
     const glm::dvec3 zUp(0, 0, 1), north(0, 1, 0);
     switch (preset) {
     case ViewPreset::Front:

@@ -45,7 +45,7 @@ struct Camera {
     double fovYDegrees = 30.0;
     Projection projection = Projection::Perspective;
 
-    bool operator==(const Camera &) const = default;
+    bool operator==(const Camera&) const = default;
 
     glm::dvec3 eye() const;
     glm::dvec3 forward() const; // unit, towards the target
@@ -59,35 +59,35 @@ struct ClipRange {
     double farClip = 100.0;
 };
 
-glm::dmat4 viewMatrix(const Camera &camera);
-glm::dmat4 projectionMatrix(const Camera &camera, double aspect, ClipRange clip);
+glm::dmat4 viewMatrix(const Camera& camera);
+glm::dmat4 projectionMatrix(const Camera& camera, double aspect, ClipRange clip);
 // Near and far planes enclosing `scene` (with a margin); the near plane stays in front of the eye
 // for perspective views and may go behind it for orthographic ones.
-ClipRange clipRangeFor(const Camera &camera, const BoundingSphere &scene);
+ClipRange clipRangeFor(const Camera& camera, const BoundingSphere& scene);
 
 // The ray through a point in normalized device coordinates (x, y in [-1, 1], y up), in world
 // space: from the eye for perspective, from the near side of the view for orthographic.
-Ray cameraRay(const Camera &camera, glm::dvec2 ndc, double aspect);
+Ray cameraRay(const Camera& camera, glm::dvec2 ndc, double aspect);
 
 // Virtual trackball: the scene turns as if the cursor dragged a ball from `fromNdc` to `toNdc`
 // around the target. `aspect` (width / height) keeps the ball round on a wide viewport.
-void orbitTrackball(Camera &camera, glm::dvec2 fromNdc, glm::dvec2 toNdc, double aspect);
+void orbitTrackball(Camera& camera, glm::dvec2 fromNdc, glm::dvec2 toNdc, double aspect);
 // Turntable: yaw about the world z axis through the target, then pitch about the camera's right
 // axis; the pitch stops short of looking straight up or down so z stays up on screen.
-void orbitTurntable(Camera &camera, double yawRadians, double pitchRadians);
+void orbitTurntable(Camera& camera, double yawRadians, double pitchRadians);
 // Moves target and eye so the scene follows the cursor by `deltaNdc`.
-void pan(Camera &camera, glm::dvec2 deltaNdc, double aspect);
+void pan(Camera& camera, glm::dvec2 deltaNdc, double aspect);
 // Zooms by `factor` (> 1 moves closer) keeping the point under `cursorNdc` (on the plane through
 // the target facing the camera) fixed on screen.
-void zoomToCursor(Camera &camera, double factor, glm::dvec2 cursorNdc, double aspect);
+void zoomToCursor(Camera& camera, double factor, glm::dvec2 cursorNdc, double aspect);
 // Centres `sphere` and sets the distance so it fills the view with `margin` (1 = touching).
-void fitSphere(Camera &camera, const BoundingSphere &sphere, double aspect, double margin = 1.08);
+void fitSphere(Camera& camera, const BoundingSphere& sphere, double aspect, double margin = 1.08);
 // Centres the box and sets the distance so all its corners are in view with `margin`: tighter
 // than fitSphere for the flat blocks DEM models are. Keeps the orientation.
-void fitBox(Camera &camera, const Aabb &box, double aspect, double margin = 1.05);
+void fitBox(Camera& camera, const Aabb& box, double aspect, double margin = 1.05);
 // Turns the camera to a preset direction, keeping its target and distance.
-void applyPreset(Camera &camera, ViewPreset preset);
+void applyPreset(Camera& camera, ViewPreset preset);
 // Camera-to-world rotation looking along `forward` with `up` roughly up on screen.
-glm::dquat lookRotation(const glm::dvec3 &forward, const glm::dvec3 &up);
+glm::dquat lookRotation(const glm::dvec3& forward, const glm::dvec3& up);
 
 } // namespace faultline::core

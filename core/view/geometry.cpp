@@ -9,7 +9,7 @@
 
 namespace faultline::core {
 
-std::optional<double> intersectSphere(const Ray &ray, const glm::dvec3 &centre, double radius) {
+std::optional<double> intersectSphere(const Ray& ray, const glm::dvec3& centre, double radius) {
     const glm::dvec3 oc = ray.origin - centre;
     const double b = glm::dot(oc, ray.direction);
     const double c = glm::dot(oc, oc) - radius * radius;
@@ -21,7 +21,7 @@ std::optional<double> intersectSphere(const Ray &ray, const glm::dvec3 &centre, 
     return -b - std::sqrt(disc);
 }
 
-std::optional<SlabHit> intersectBox(const Ray &ray, const glm::dvec3 &lo, const glm::dvec3 &hi) {
+std::optional<SlabHit> intersectBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
     double tEnter = -std::numeric_limits<double>::infinity();
     double tExit = std::numeric_limits<double>::infinity();
     int axis = -1;
@@ -80,13 +80,13 @@ BoundingSphere boundingSphereOf(std::span<const float> x, std::span<const float>
     return {centre, std::sqrt(r2) + maxR};
 }
 
-void Aabb::extend(const glm::dvec3 &p) {
+void Aabb::extend(const glm::dvec3& p) {
     lo = valid ? glm::min(lo, p) : p;
     hi = valid ? glm::max(hi, p) : p;
     valid = true;
 }
 
-void Aabb::extend(const Aabb &b) {
+void Aabb::extend(const Aabb& b) {
     if (b.valid) {
         extend(b.lo);
         extend(b.hi);
@@ -108,7 +108,7 @@ Aabb boundsOf(std::span<const float> x, std::span<const float> y, std::span<cons
     return box;
 }
 
-BoundingSphere enclose(const BoundingSphere &a, const BoundingSphere &b) {
+BoundingSphere enclose(const BoundingSphere& a, const BoundingSphere& b) {
     if (a.radius <= 0.0 && a.centre == glm::dvec3(0.0))
         return b;
     if (b.radius <= 0.0 && b.centre == glm::dvec3(0.0))

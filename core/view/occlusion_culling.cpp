@@ -15,7 +15,7 @@ namespace faultline::core {
 namespace {
 
 // Window depth of a view-space z (negative in front of the eye).
-double windowDepth(const SphereProjection &p, double zView) {
+double windowDepth(const SphereProjection& p, double zView) {
     const double clipZ = p.projection[2][2] * zView + p.projection[3][2];
     const double clipW = p.projection[2][3] * zView + p.projection[3][3];
     return 0.5 * (clipZ / clipW) + 0.5;
@@ -24,7 +24,7 @@ double windowDepth(const SphereProjection &p, double zView) {
 // Exact extent of a sphere's perspective projection along one screen axis: the planes through
 // the eye that contain the other screen axis and touch the sphere (Mara & McGuire 2013).
 // `a` is the view coordinate along the axis, `zc` the view depth (negative). Returns ndc bounds.
-void perspectiveExtent(double a, double zc, double r, double scale, double &lo, double &hi) {
+void perspectiveExtent(double a, double zc, double r, double scale, double& lo, double& hi) {
     const double l2 = a * a + zc * zc;
     const double t2 = l2 - r * r;
     if (t2 <= 0.0) {
@@ -45,9 +45,9 @@ void perspectiveExtent(double a, double zc, double r, double scale, double &lo, 
 
 } // namespace
 
-bool projectSphere(const SphereProjection &p, const glm::dvec3 &centre, double radius,
-                   SphereFootprint &out) {
-    const glm::dmat4 &v = p.view;
+bool projectSphere(const SphereProjection& p, const glm::dvec3& centre, double radius,
+                   SphereFootprint& out) {
+    const glm::dmat4& v = p.view;
     const glm::dvec3 c(v[0][0] * centre.x + v[1][0] * centre.y + v[2][0] * centre.z + v[3][0],
                        v[0][1] * centre.x + v[1][1] * centre.y + v[2][1] * centre.z + v[3][1],
                        v[0][2] * centre.x + v[1][2] * centre.y + v[2][2] * centre.z + v[3][2]);
@@ -98,7 +98,7 @@ bool projectSphere(const SphereProjection &p, const glm::dvec3 &centre, double r
 void SphereOcclusionCuller::begin(std::span<const float> x, std::span<const float> y,
                                   std::span<const float> z, std::span<const float> radius,
                                   std::span<const std::uint32_t> rows,
-                                  const SphereProjection &projection) {
+                                  const SphereProjection& projection) {
     assert(projection.width > 0 && projection.height > 0);
     assert(projection.width <= 65535 && projection.height <= 65535);
     m_projection = projection;
@@ -108,10 +108,10 @@ void SphereOcclusionCuller::begin(std::span<const float> x, std::span<const floa
     m_candidates.resize(rows.size());
     std::vector<std::uint8_t> inView(rows.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 8192),
-                      [&](const tbb::blocked_range<std::size_t> &range) {
+                      [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i < range.end(); ++i) {
                               const std::uint32_t row = rows[i];
-                              SphereFootprint &f = m_candidates[i];
+                              SphereFootprint& f = m_candidates[i];
                               inView[i] = projectSphere(
                                   projection, glm::dvec3(x[row], y[row], z[row]), radius[row], f);
                               f.row = row;
@@ -147,12 +147,12 @@ std::vector<std::uint32_t> SphereOcclusionCuller::takeOccluders(int tileSize) {
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> best(static_cast<std::size_t>(tw) * th, kNone);
     for (std::uint32_t i = 0; i < m_candidates.size(); ++i) {
-        const SphereFootprint &f = m_candidates[i];
+        const SphereFootprint& f = m_candidates[i];
         if (f.crossesNear)
             continue;
         const int tx = ((f.x0 + f.x1) / 2) / tileSize;
         const int ty = ((f.y0 + f.y1) / 2) / tileSize;
-        std::uint32_t &slot = best[static_cast<std::size_t>(ty) * tw + tx];
+        std::uint32_t& slot = best[static_cast<std::size_t>(ty) * tw + tx];
         if (slot == kNone || f.nearDepth < m_candidates[slot].nearDepth)
             slot = i;
     }
@@ -200,7 +200,7 @@ void SphereOcclusionCuller::buildPyramid(std::span<const float> depth) {
     }
 }
 
-float SphereOcclusionCuller::maxDepthOver(const SphereFootprint &f,
+float SphereOcclusionCuller::maxDepthOver(const SphereFootprint& f,
                                           std::span<const float> level0) const {
     // The finest level where the rectangle spans at most 4 x 4 texels.
     int x0 = f.x0, x1 = f.x1, y0 = f.y0, y1 = f.y1;
@@ -223,9 +223,9 @@ void SphereOcclusionCuller::cullBehind(std::span<const float> depth) {
     buildPyramid(depth);
     std::vector<std::uint8_t> hidden(m_candidates.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_candidates.size(), 8192),
-                      [&](const tbb::blocked_range<std::size_t> &range) {
+                      [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                              const SphereFootprint &f = m_candidates[i];
+                              const SphereFootprint& f = m_candidates[i];
                               hidden[i] = !f.crossesNear && maxDepthOver(f, depth) < f.nearDepth;
                           }
                       });
@@ -241,7 +241,7 @@ void SphereOcclusionCuller::cullBehind(std::span<const float> depth) {
 std::vector<std::uint32_t> SphereOcclusionCuller::takeRemaining() {
     std::vector<std::uint32_t> rows;
     rows.reserve(m_candidates.size());
-    for (const SphereFootprint &f : m_candidates)
+    for (const SphereFootprint& f : m_candidates)
         rows.push_back(f.row);
     m_candidates.clear();
     return rows;

@@ -33,15 +33,15 @@ struct SphereFootprint {
 
 // Footprint of a sphere, or false when it is entirely outside the view (off-screen, behind the
 // near plane, beyond the far plane). Pixel rows count up from the bottom, as glReadPixels gives.
-bool projectSphere(const SphereProjection &p, const glm::dvec3 &centre, double radius,
-                   SphereFootprint &out);
+bool projectSphere(const SphereProjection& p, const glm::dvec3& centre, double radius,
+                   SphereFootprint& out);
 
 class SphereOcclusionCuller {
   public:
     // Projects the candidate rows; spheres outside the view are dropped now (frustum culling).
     void begin(std::span<const float> x, std::span<const float> y, std::span<const float> z,
                std::span<const float> radius, std::span<const std::uint32_t> rows,
-               const SphereProjection &projection);
+               const SphereProjection& projection);
 
     // The nearest candidate per tile of tileSize x tileSize pixels (by the centre of its
     // footprint), removed from the candidates. Empty when no candidate is left. A tile size of 0
@@ -69,7 +69,7 @@ class SphereOcclusionCuller {
     std::vector<glm::ivec2> m_levelSize;
     void buildPyramid(std::span<const float> depth);
     int autoTileSize() const;
-    float maxDepthOver(const SphereFootprint &f, std::span<const float> level0) const;
+    float maxDepthOver(const SphereFootprint& f, std::span<const float> level0) const;
 };
 
 } // namespace faultline::core

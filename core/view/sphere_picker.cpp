@@ -56,7 +56,7 @@ void SpherePicker::build(std::span<const float> x, std::span<const float> y,
 
     const std::size_t cells = std::size_t(m_dims.x) * m_dims.y * m_dims.z;
     std::vector<std::uint32_t> counts(cells + 1, 0);
-    auto forEachCell = [&](std::size_t i, auto &&fn) {
+    auto forEachCell = [&](std::size_t i, auto&& fn) {
         const double r = std::max(0.0f, radius[i]);
         const glm::dvec3 c(x[i], y[i], z[i]);
         const glm::ivec3 a =
@@ -84,7 +84,7 @@ void SpherePicker::build(std::span<const float> x, std::span<const float> y,
     }
 }
 
-std::optional<SphereHit> SpherePicker::pick(const Ray &ray) const {
+std::optional<SphereHit> SpherePicker::pick(const Ray& ray) const {
     if (m_count == 0)
         return std::nullopt;
     const auto box = intersectBox(ray, m_lo, m_hi);

@@ -25,7 +25,7 @@ class SpherePicker {
                std::span<const float> radius, std::span<const std::uint8_t> mask = {});
 
     // The nearest sphere the ray enters at t >= 0 (a ray starting inside a sphere hits it at 0).
-    std::optional<SphereHit> pick(const Ray &ray) const;
+    std::optional<SphereHit> pick(const Ray& ray) const;
 
     std::size_t indexedCount() const { return m_count; }
     glm::ivec3 gridSize() const { return m_dims; }

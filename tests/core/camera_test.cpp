@@ -9,13 +9,13 @@
 using namespace faultline::core;
 
 namespace {
-void expectVec(const glm::dvec3 &a, const glm::dvec3 &b, double tol = 1e-9) {
+void expectVec(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-9) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);
     EXPECT_NEAR(a.z, b.z, tol);
 }
 // Screen position (ndc) of a world point.
-glm::dvec2 project(const Camera &c, const glm::dvec3 &p, double aspect) {
+glm::dvec2 project(const Camera& c, const glm::dvec3& p, double aspect) {
     const glm::dmat4 m = projectionMatrix(c, aspect, {0.01, 1000}) * viewMatrix(c);
     const glm::dvec4 q = m * glm::dvec4(p, 1.0);
     return glm::dvec2(q) / q.w;

@@ -19,7 +19,7 @@ TEST(ColorMap, ParsesJournalNames) {
     EXPECT_FALSE(parseColorMap("bands:x"));
     EXPECT_FALSE(parseColorMap("bands:5000"));
     EXPECT_FALSE(parseColorMap("rainbow"));
-    for (const std::string &name : colorMapNames())
+    for (const std::string& name : colorMapNames())
         EXPECT_EQ(colorMapName(*parseColorMap(name)), name);
     EXPECT_EQ(colorMapName({ColorMapKind::Bands, 7}), "bands:7");
 }
@@ -141,4 +141,7 @@ TEST(LegendTicks, NiceStep) {
     EXPECT_DOUBLE_EQ(niceStep({0.0, 13.0}, 6), 2.5);
     EXPECT_DOUBLE_EQ(niceStep({0.0, 100.0}, 3), 50.0);
     EXPECT_DOUBLE_EQ(niceStep({2.0, 2.0}, 5), 1.0);
+    EXPECT_DOUBLE_EQ(niceStep({0.0, 12.0}, 6, true), 5.0); // not 2.5
+    EXPECT_DOUBLE_EQ(niceStep({0.0, 3.0}, 6, true), 1.0);  // not 0.5
+    EXPECT_EQ(legendTicks({0, 12}, 6, true)[1].label, "5");
 }

@@ -21,7 +21,7 @@ SphereProjection makeProjection() {
     return p;
 }
 
-double depthAt(const SphereProjection &p, double z) {
+double depthAt(const SphereProjection& p, double z) {
     const double clipZ = p.projection[2][2] * z + p.projection[3][2];
     return 0.5 * clipZ / -z + 0.5;
 }

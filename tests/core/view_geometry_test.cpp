@@ -126,7 +126,7 @@ TEST(SpherePicker, AgreesWithBruteForce) {
         r.push_back(rad(rng));
     }
     std::vector<std::uint8_t> mask(x.size());
-    for (auto &m : mask)
+    for (auto& m : mask)
         m = rng() % 3 != 0;
     SpherePicker picker;
     picker.build(x, y, z, r, mask);

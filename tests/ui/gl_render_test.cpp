@@ -5,6 +5,7 @@
 #include "ui/render/gl_renderer.hpp"
 #include "ui/render/offscreen.hpp"
 
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -28,13 +29,13 @@ class GlRender : public ::testing::Test {
 
     // Renders, saves the image next to the build, and compares with tests/ui/ref/<name>.png
     // (or rewrites the reference when FAULTLINE_UPDATE_REFS=1).
-    void compareWithReference(const RgbaImage &image, const std::string &name) {
+    void compareWithReference(const RgbaImage& image, const std::string& name) {
         ASSERT_FALSE(image.empty());
         std::filesystem::create_directories(FAULTLINE_UI_OUT_DIR);
         const std::string out = std::string(FAULTLINE_UI_OUT_DIR) + "/" + name + ".png";
         writePng(image, out);
         const std::string ref = std::string(FAULTLINE_UI_REF_DIR) + "/" + name + ".png";
-        if (const char *update = std::getenv("FAULTLINE_UPDATE_REFS"); update && *update == '1') {
+        if (const char* update = std::getenv("FAULTLINE_UPDATE_REFS"); update && *update == '1') {
             writePng(image, ref);
             return;
         }
@@ -185,4 +186,41 @@ TEST_F(GlRender, LargeFigureSize) {
     const RgbaImage img = renderSceneToImage(scene, s);
     EXPECT_EQ(img.width, 3840);
     EXPECT_EQ(img.height, 2160);
+}
+
+TEST_F(GlRender, SphereCoversItsExactDisc) {
+    // One sphere of radius 1 seen from above: its disc must cover pi r^2 pixels, orthographic
+    // (r = 25 pixels) and perspective (r = d tan-projected), within antialiasing at the rim.
+    core::Frame f;
+    f.ids = {1};
+    f.x = {0};
+    f.y = {0};
+    f.z = {0};
+    f.radius = {1};
+    f.finalize();
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.ambientOcclusion = false;
+    RenderSettings s = small(100, 100);
+    s.transparent = true;
+    s.supersample = 1;
+    for (core::Projection proj : {core::Projection::Orthographic, core::Projection::Perspective}) {
+        core::Camera cam;
+        core::applyPreset(cam, core::ViewPreset::Top);
+        cam.projection = proj;
+        cam.fovYDegrees = 40.0;
+        cam.distance = 2.0 / std::tan(20.0 * M_PI / 180.0); // view height 4 at the target
+        scene.camera = cam;
+        const RgbaImage img = renderSceneToImage(scene, s);
+        int covered = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                covered += img.at(x, y)[3] > 127;
+        // Perspective: the silhouette is where rays touch the sphere, radius d/sqrt(d^2-1)
+        // times the scale at the target plane.
+        const double d = cam.distance;
+        const double rPx =
+            proj == core::Projection::Orthographic ? 25.0 : 25.0 * d / std::sqrt(d * d - 1.0);
+        EXPECT_NEAR(covered, M_PI * rPx * rPx, 2.0 * M_PI * rPx) << int(proj);
+    }
 }

@@ -61,13 +61,13 @@ TEST(LegendLayout, BarTicksAndTextInsideTheImage) {
     if (labels) {
         EXPECT_FALSE(l.labelGlyphs.empty());
         EXPECT_FALSE(l.titleGlyphs.empty());
-        for (const GlyphQuad &g : l.labelGlyphs) {
+        for (const GlyphQuad& g : l.labelGlyphs) {
             EXPECT_GE(g.x0, l.panel.x0);
             EXPECT_LE(g.x1, l.panel.x1);
             EXPECT_GE(g.y0, l.panel.y0);
             EXPECT_LE(g.y1, l.panel.y1);
         }
-        for (const GlyphQuad &g : l.titleGlyphs)
+        for (const GlyphQuad& g : l.titleGlyphs)
             EXPECT_LT(g.y1, l.bar.y0); // the title sits above the bar
     }
 }

@@ -9,14 +9,14 @@ using namespace faultline;
 using namespace faultline::ui;
 
 namespace {
-std::size_t countOf(const std::vector<MockCall> &calls, const std::string &what) {
+std::size_t countOf(const std::vector<MockCall>& calls, const std::string& what) {
     std::size_t n = 0;
-    for (const MockCall &c : calls)
+    for (const MockCall& c : calls)
         n += c.what == what;
     return n;
 }
-const MockCall *find(const std::vector<MockCall> &calls, const std::string &what) {
-    for (const MockCall &c : calls)
+const MockCall* find(const std::vector<MockCall>& calls, const std::string& what) {
+    for (const MockCall& c : calls)
         if (c.what == what)
             return &c;
     return nullptr;

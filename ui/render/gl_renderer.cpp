@@ -21,8 +21,8 @@ constexpr GLuint kUnitSpheres = 0, kUnitValues = 1, kUnitRows = 2, kUnitColorMap
 constexpr std::size_t kMinSpheresToCull = 20000;
 constexpr int kMaxOccluderRounds = 3;
 
-bool isSoftware(const std::string &renderer) {
-    for (const char *name : {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer",
+bool isSoftware(const std::string& renderer) {
+    for (const char* name : {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer",
                              "GDI Generic", "lavapipe"}) {
         if (renderer.find(name) != std::string::npos)
             return true;
@@ -30,12 +30,12 @@ bool isSoftware(const std::string &renderer) {
     return false;
 }
 
-void setMat4(GLuint program, const char *name, const glm::dmat4 &m) {
+void setMat4(GLuint program, const char* name, const glm::dmat4& m) {
     const glm::mat4 f(m);
     glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(f));
 }
 
-core::BoundingSphere boxSphere(const glm::dvec3 &lo, const glm::dvec3 &hi) {
+core::BoundingSphere boxSphere(const glm::dvec3& lo, const glm::dvec3& hi) {
     return {(lo + hi) * 0.5, glm::length(hi - lo) * 0.5};
 }
 
@@ -51,14 +51,14 @@ void setSamplers(GLuint program) {
 } // namespace
 
 GlRenderer::GlRenderer() {
-    const GLubyte *version = glGetString(GL_VERSION);
+    const GLubyte* version = glGetString(GL_VERSION);
     if (!version)
         throw std::runtime_error("no current OpenGL context");
     if (epoxy_gl_version() < 41)
         throw std::runtime_error(std::string("OpenGL 4.1 or newer is needed; this context is ") +
-                                 reinterpret_cast<const char *>(version));
-    const GLubyte *renderer = glGetString(GL_RENDERER);
-    m_rendererName = renderer ? reinterpret_cast<const char *>(renderer) : "";
+                                 reinterpret_cast<const char*>(version));
+    const GLubyte* renderer = glGetString(GL_RENDERER);
+    m_rendererName = renderer ? reinterpret_cast<const char*>(renderer) : "";
     m_software = isSoftware(m_rendererName);
 
     namespace s = gl::shaders;
@@ -76,7 +76,7 @@ GlRenderer::GlRenderer() {
     m_programs.downsample =
         gl::makeProgram("downsample", s::fullscreenVertex(), s::downsampleFragment());
     m_programs.overlay = gl::makeProgram("overlay", s::overlayVertex(), s::overlayFragment());
-    for (const gl::Program *p : {&m_programs.spheresPerspective, &m_programs.spheresOrthographic,
+    for (const gl::Program* p : {&m_programs.spheresPerspective, &m_programs.spheresOrthographic,
                                  &m_programs.points, &m_programs.lines, &m_programs.overlay})
         setSamplers(p->id());
     glUseProgram(0);
@@ -94,7 +94,7 @@ GlRenderer::GlRenderer() {
 
 GlRenderer::~GlRenderer() = default;
 
-void GlRenderer::setSpheres(const SphereColumns &s) {
+void GlRenderer::setSpheres(const SphereColumns& s) {
     const std::size_t n = s.x.size();
     assert(s.y.size() == n && s.z.size() == n && s.radius.size() == n);
     m_x.assign(s.x.begin(), s.x.end());
@@ -140,7 +140,7 @@ void GlRenderer::setVisibleMask(std::span<const std::uint8_t> mask) {
     ++m_stats.visibilityUploads;
 }
 
-void GlRenderer::setColorMap(const core::ColorMapSpec &map) {
+void GlRenderer::setColorMap(const core::ColorMapSpec& map) {
     m_map = map;
     const core::ColorMapTexture table = core::colorMapTexture(map);
     if (!m_colorMapTex)
@@ -164,7 +164,7 @@ void GlRenderer::setColorRange(core::ValueRange range) { m_range = core::widenDe
 void GlRenderer::setMeshes(std::span<const MeshData> meshes) {
     m_meshes.clear();
     m_meshBounds = {};
-    for (const MeshData &m : meshes) {
+    for (const MeshData& m : meshes) {
         assert(m.positions.size() % 3 == 0 && m.indices.size() % 3 == 0);
         const std::size_t n = m.positions.size() / 3;
         assert(m.normals.empty() || m.normals.size() == m.positions.size());
@@ -174,7 +174,7 @@ void GlRenderer::setMeshes(std::span<const MeshData> meshes) {
         std::vector<float> interleaved(n * 9);
         glm::dvec3 lo(m.positions[0], m.positions[1], m.positions[2]), hi = lo;
         for (std::size_t v = 0; v < n; ++v) {
-            float *out = &interleaved[9 * v];
+            float* out = &interleaved[9 * v];
             for (int c = 0; c < 3; ++c) {
                 out[c] = m.positions[3 * v + c];
                 out[3 + c] = m.normals.empty() ? 0.0f : m.normals[3 * v + c];
@@ -204,7 +204,7 @@ void GlRenderer::setMeshes(std::span<const MeshData> meshes) {
             glEnableVertexAttribArray(a);
             glVertexAttribPointer(
                 a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
-                reinterpret_cast<const void *>(std::uintptr_t(a * 3 * sizeof(float))));
+                reinterpret_cast<const void*>(std::uintptr_t(a * 3 * sizeof(float))));
         }
         glBindVertexArray(0);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -220,11 +220,11 @@ void GlRenderer::setBoxes(std::span<const BoxOverlay> boxes,
     uploadSegments();
 }
 
-void GlRenderer::setStyle(const RenderStyle &style) { m_style = style; }
+void GlRenderer::setStyle(const RenderStyle& style) { m_style = style; }
 
 core::BoundingSphere GlRenderer::sceneBounds() const {
     core::BoundingSphere b = core::enclose(m_sphereBounds, m_meshBounds);
-    for (const BoxOverlay &box : m_boxes)
+    for (const BoxOverlay& box : m_boxes)
         b = core::enclose(b, boxSphere(box.lo, box.hi));
     return b;
 }
@@ -233,7 +233,7 @@ void GlRenderer::uploadSegments() {
     std::vector<float> data;
     m_segmentCount = 0;
     for (std::size_t bi = 0; bi < m_boxes.size(); ++bi) {
-        const BoxOverlay &b = m_boxes[bi];
+        const BoxOverlay& b = m_boxes[bi];
         const bool selected = m_selected && m_selected->box == bi;
         auto corner = [&](int i) {
             return glm::dvec3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y,
@@ -257,13 +257,13 @@ void GlRenderer::uploadSegments() {
 
     // Handle spheres of the selected box, in BoxFace order.
     if (m_selected) {
-        const BoxOverlay &b = m_boxes[m_selected->box];
+        const BoxOverlay& b = m_boxes[m_selected->box];
         const double radius = m_selected->handleRadius > 0.0
                                   ? m_selected->handleRadius
                                   : core::defaultHandleRadius(b.lo, b.hi);
         std::vector<float> spheres;
         std::vector<std::uint32_t> rows;
-        for (const core::BoxHandle &h : core::boxFaceHandles(b.lo, b.hi)) {
+        for (const core::BoxHandle& h : core::boxFaceHandles(b.lo, b.hi)) {
             const bool active = m_selected->activeFace == h.face;
             spheres.insert(spheres.end(), {float(h.centre.x), float(h.centre.y), float(h.centre.z),
                                            float(radius * (active ? 1.3 : 1.0))});
@@ -280,7 +280,7 @@ void GlRenderer::bindColorMap(GLuint program, GLuint unit) {
     glUniform1i(glGetUniformLocation(program, "uBandCount"), m_bandCount);
 }
 
-void GlRenderer::useSphereProgram(const FrameSetup &f) {
+void GlRenderer::useSphereProgram(const FrameSetup& f) {
     const GLuint p =
         f.perspective ? m_programs.spheresPerspective.id() : m_programs.spheresOrthographic.id();
     glUseProgram(p);
@@ -297,7 +297,7 @@ void GlRenderer::useSphereProgram(const FrameSetup &f) {
     bindColorMap(p, kUnitColorMap);
 }
 
-void GlRenderer::drawSphereRows(const gl::BufferTexture &rows, std::size_t count) {
+void GlRenderer::drawSphereRows(const gl::BufferTexture& rows, std::size_t count) {
     if (count == 0)
         return;
     rows.bind(kUnitRows);
@@ -305,7 +305,7 @@ void GlRenderer::drawSphereRows(const gl::BufferTexture &rows, std::size_t count
     m_stats.drawnSpheres += count;
 }
 
-void GlRenderer::drawSpheres(const FrameSetup &f) {
+void GlRenderer::drawSpheres(const FrameSetup& f) {
     m_stats.drawnSpheres = 0;
     m_stats.occluderPasses = m_stats.frustumCulled = m_stats.occlusionCulled = 0;
     if (m_visible.empty())
@@ -344,34 +344,40 @@ void GlRenderer::drawSpheres(const FrameSetup &f) {
     m_stats.occlusionCulled = m_culler.occlusionCulled();
 }
 
-void GlRenderer::drawContextPoints(const FrameSetup &f) {
+void GlRenderer::drawContextPoints(const FrameSetup& f) {
     m_stats.contextPoints = 0;
     if (!m_style.contextPoints || m_hidden.empty())
         return;
+    // Into a layer of its own, depth-tested against the spheres but not blended: each pixel
+    // holds at most one point, so hundreds of thousands of them make an even ghost of the
+    // hidden material (the composite lays it over the scene) rather than a dark moire mass.
+    m_contextLayer.ensureSharingDepth(f.width, f.height, m_scene.depth());
+    glBindFramebuffer(GL_FRAMEBUFFER, m_contextLayer.framebuffer());
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
     const GLuint p = m_programs.points.id();
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
     glUniform1f(glGetUniformLocation(p, "uPointSize"),
                 std::max(1.0f, m_style.contextPointSize * float(f.supersample)));
-    glUniform4fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.contextColor));
+    const glm::vec4 color(glm::vec3(m_style.contextColor), 1.0f);
+    glUniform4fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(color));
     m_spheresTex.bind(kUnitSpheres);
     m_hiddenTex.bind(kUnitRows);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m_hidden.size()));
     glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
     glDisable(GL_PROGRAM_POINT_SIZE);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_scene.framebuffer());
     m_stats.contextPoints = m_hidden.size();
 }
 
-void GlRenderer::drawMeshes(const FrameSetup &f, bool transparent) {
+void GlRenderer::drawMeshes(const FrameSetup& f, bool transparent) {
     const GLuint p = m_programs.mesh.id();
     bool bound = false;
-    for (const GpuMesh &m : m_meshes) {
+    for (const GpuMesh& m : m_meshes) {
         if ((m.opacity < 1.0f) != transparent)
             continue;
         if (!bound) {
@@ -401,7 +407,7 @@ void GlRenderer::drawMeshes(const FrameSetup &f, bool transparent) {
     }
 }
 
-void GlRenderer::drawBoxEdges(const FrameSetup &f, float widthPx, float alpha, bool depthTest) {
+void GlRenderer::drawBoxEdges(const FrameSetup& f, float widthPx, float alpha, bool depthTest) {
     if (m_segmentCount == 0)
         return;
     const GLuint p = m_programs.lines.id();
@@ -425,7 +431,7 @@ void GlRenderer::drawBoxEdges(const FrameSetup &f, float widthPx, float alpha, b
     glDisable(GL_BLEND);
 }
 
-void GlRenderer::render(const core::Camera &camera, const RenderTarget &target) {
+void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) {
     if (target.width <= 0 || target.height <= 0)
         throw std::invalid_argument("render target must be at least 1x1");
     GLint maxSize = 0;

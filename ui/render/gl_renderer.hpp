@@ -21,24 +21,24 @@ class GlRenderer final : public Renderer {
     ~GlRenderer() override;
 
     RendererBackend backend() const override { return RendererBackend::OpenGL; }
-    void setSpheres(const SphereColumns &spheres) override;
+    void setSpheres(const SphereColumns& spheres) override;
     void setSphereValues(std::span<const float> values) override;
     void setVisibleMask(std::span<const std::uint8_t> mask) override;
-    void setColorMap(const core::ColorMapSpec &map) override;
+    void setColorMap(const core::ColorMapSpec& map) override;
     void setColorRange(core::ValueRange range) override;
     void setMeshes(std::span<const MeshData> meshes) override;
     void setBoxes(std::span<const BoxOverlay> boxes,
                   std::optional<BoxHandlesOverlay> selected) override;
-    void setStyle(const RenderStyle &style) override;
-    void render(const core::Camera &camera, const RenderTarget &target) override;
+    void setStyle(const RenderStyle& style) override;
+    void render(const core::Camera& camera, const RenderTarget& target) override;
     RgbaImage readImage() override;
     unsigned int colorTexture() const override { return m_output.color(); }
-    const RenderStats &stats() const override { return m_stats; }
+    const RenderStats& stats() const override { return m_stats; }
     core::BoundingSphere sceneBounds() const override;
 
     // True on Mesa llvmpipe/softpipe and similar (OcclusionCulling::Auto turns culling on).
     bool softwareRenderer() const { return m_software; }
-    const std::string &rendererName() const { return m_rendererName; }
+    const std::string& rendererName() const { return m_rendererName; }
 
   private:
     struct Programs {
@@ -102,24 +102,25 @@ class GlRenderer final : public Renderer {
     std::map<int, std::unique_ptr<FontTexture>> m_fonts; // by pixel height
     bool m_fontMissingReported = false;
 
-    gl::RenderTexture m_scene;     // supersampled colour + depth
-    gl::RenderTexture m_occlusion; // supersampled occlusion (red), before blurring
-    gl::RenderTexture m_composite; // supersampled colour after darkening (supersample > 1)
-    gl::RenderTexture m_output;    // final size, what colorTexture() shows
+    gl::RenderTexture m_scene;        // supersampled colour + depth
+    gl::RenderTexture m_occlusion;    // supersampled occlusion (red), before blurring
+    gl::RenderTexture m_contextLayer; // hidden spheres as points (scene depth, not written)
+    gl::RenderTexture m_composite;    // supersampled colour after darkening (supersample > 1)
+    gl::RenderTexture m_output;       // final size, what colorTexture() shows
     RenderTarget m_lastTarget{0, 0};
 
     // Passes (gl_renderer.cpp)
-    void drawSpheres(const FrameSetup &f);
-    void drawSphereRows(const gl::BufferTexture &rows, std::size_t count);
-    void useSphereProgram(const FrameSetup &f);
-    void drawContextPoints(const FrameSetup &f);
-    void drawMeshes(const FrameSetup &f, bool transparent);
-    void drawBoxEdges(const FrameSetup &f, float widthPx, float alpha, bool depthTest);
+    void drawSpheres(const FrameSetup& f);
+    void drawSphereRows(const gl::BufferTexture& rows, std::size_t count);
+    void useSphereProgram(const FrameSetup& f);
+    void drawContextPoints(const FrameSetup& f);
+    void drawMeshes(const FrameSetup& f, bool transparent);
+    void drawBoxEdges(const FrameSetup& f, float widthPx, float alpha, bool depthTest);
     // Passes (gl_renderer_overlay.cpp)
-    void composite(const FrameSetup &f, const RenderTarget &target);
-    void drawHandles(const FrameSetup &f);
-    void drawLegend(const RenderTarget &target);
-    FontTexture *font(int pixelHeight);
+    void composite(const FrameSetup& f, const RenderTarget& target);
+    void drawHandles(const FrameSetup& f);
+    void drawLegend(const RenderTarget& target);
+    FontTexture* font(int pixelHeight);
     void uploadSegments();
     void bindColorMap(GLuint program, GLuint unit);
 };

@@ -17,7 +17,7 @@ namespace faultline::ui {
 namespace {
 
 constexpr GLuint kUnitSource = 0, kUnitDepth = 1, kUnitFont = 4, kUnitColorMap = 3,
-                 kUnitOcclusion = 5;
+                 kUnitOcclusion = 5, kUnitContext = 6;
 constexpr GLuint kUnitSpheres = 0, kUnitRows = 2;
 
 // Handle colours by axis (x red, y green, z blue), and the one being dragged.
@@ -29,7 +29,7 @@ struct OverlayVertex {
     float x, y, u, v, r, g, b, a;
 };
 
-void addQuad(std::vector<OverlayVertex> &out, float x0, float y0, float x1, float y1, float u0,
+void addQuad(std::vector<OverlayVertex>& out, float x0, float y0, float x1, float y1, float u0,
              float v0, float u1, float v1, glm::vec4 c) {
     const OverlayVertex a{x0, y0, u0, v0, c.r, c.g, c.b, c.a};
     const OverlayVertex b{x1, y0, u1, v0, c.r, c.g, c.b, c.a};
@@ -38,13 +38,13 @@ void addQuad(std::vector<OverlayVertex> &out, float x0, float y0, float x1, floa
     out.insert(out.end(), {a, b, d, d, b, e});
 }
 
-void addRect(std::vector<OverlayVertex> &out, const LegendRect &r, glm::vec4 c) {
+void addRect(std::vector<OverlayVertex>& out, const LegendRect& r, glm::vec4 c) {
     addQuad(out, r.x0, r.y0, r.x1, r.y1, 0, 0, 0, 0, c);
 }
 
 } // namespace
 
-void GlRenderer::composite(const FrameSetup &f, const RenderTarget &target) {
+void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
@@ -74,7 +74,7 @@ void GlRenderer::composite(const FrameSetup &f, const RenderTarget &target) {
         glActiveTexture(GL_TEXTURE0 + kUnitOcclusion);
         glBindTexture(GL_TEXTURE_2D, m_occlusion.color());
     }
-    const gl::RenderTexture &dst = f.supersample > 1 ? m_composite : m_output;
+    const gl::RenderTexture& dst = f.supersample > 1 ? m_composite : m_output;
     glBindFramebuffer(GL_FRAMEBUFFER, dst.framebuffer());
     glViewport(0, 0, f.width, f.height);
     GLuint p = m_programs.composite.id();
@@ -84,6 +84,14 @@ void GlRenderer::composite(const FrameSetup &f, const RenderTarget &target) {
     glUniform1i(glGetUniformLocation(p, "uOcclusion"), kUnitOcclusion);
     glUniform1i(glGetUniformLocation(p, "uAmbientOcclusion"), m_style.ambientOcclusion ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "uStrength"), std::clamp(m_style.aoStrength, 0.0f, 1.0f));
+    const bool context = m_stats.contextPoints > 0;
+    glUniform1f(glGetUniformLocation(p, "uContextAlpha"),
+                context ? std::clamp(m_style.contextColor.a, 0.0f, 1.0f) : 0.0f);
+    if (context) {
+        glActiveTexture(GL_TEXTURE0 + kUnitContext);
+        glBindTexture(GL_TEXTURE_2D, m_contextLayer.color());
+        glUniform1i(glGetUniformLocation(p, "uContext"), kUnitContext);
+    }
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
     if (f.supersample > 1) {
@@ -101,7 +109,7 @@ void GlRenderer::composite(const FrameSetup &f, const RenderTarget &target) {
     glEnable(GL_DEPTH_TEST);
 }
 
-void GlRenderer::drawHandles(const FrameSetup &f) {
+void GlRenderer::drawHandles(const FrameSetup& f) {
     m_stats.handles = 0;
     if (!m_selected)
         return;
@@ -121,7 +129,7 @@ void GlRenderer::drawHandles(const FrameSetup &f) {
     m_stats.handles = 6;
 }
 
-GlRenderer::FontTexture *GlRenderer::font(int pixelHeight) {
+GlRenderer::FontTexture* GlRenderer::font(int pixelHeight) {
     auto it = m_fonts.find(pixelHeight);
     if (it != m_fonts.end())
         return it->second.get();
@@ -142,19 +150,20 @@ GlRenderer::FontTexture *GlRenderer::font(int pixelHeight) {
                      defaultFontPath().c_str());
         m_fontMissingReported = true;
     }
-    FontTexture *raw = entry.get();
+    FontTexture* raw = entry.get();
     m_fonts[pixelHeight] = std::move(entry);
     return raw;
 }
 
-void GlRenderer::drawLegend(const RenderTarget &target) {
+void GlRenderer::drawLegend(const RenderTarget& target) {
     m_stats.legendTicks = 0;
     if (!m_style.showLegend || !m_hasValues)
         return;
     const float scale = legendScale(target.width, target.height, m_style.legendScale);
-    FontTexture *labels = font(legendLabelPixels(scale));
-    FontTexture *title = font(legendTitlePixels(scale));
-    const std::vector<core::LegendTick> ticks = core::legendTicks(m_range);
+    FontTexture* labels = font(legendLabelPixels(scale));
+    FontTexture* title = font(legendTitlePixels(scale));
+    const std::vector<core::LegendTick> ticks =
+        core::legendTicks(m_range, 6, m_style.integerValues);
     const LegendLayout layout =
         layoutLegend(ticks, m_style.legendTitle, labels ? &labels->atlas : nullptr,
                      title ? &title->atlas : nullptr, target.width, target.height, scale);
@@ -171,19 +180,19 @@ void GlRenderer::drawLegend(const RenderTarget &target) {
 
     std::vector<OverlayVertex> solid, bar, labelText, titleText;
     addRect(solid, layout.panel, panel);
-    const LegendRect &b = layout.bar;
+    const LegendRect& b = layout.bar;
     const float o = layout.outline;
     addRect(solid, {b.x0 - o, b.y0 - o, b.x1 + o, b.y0}, ink);
     addRect(solid, {b.x0 - o, b.y1, b.x1 + o, b.y1 + o}, ink);
     addRect(solid, {b.x0 - o, b.y0, b.x0, b.y1}, ink);
     addRect(solid, {b.x1, b.y0, b.x1 + o, b.y1}, ink);
-    for (const LegendRect &t : layout.tickMarks)
+    for (const LegendRect& t : layout.tickMarks)
         addRect(solid, t, ink);
     // The bar: v is t, 1 at the top.
     addQuad(bar, b.x0, b.y0, b.x1, b.y1, 0, 1, 0, 0, glm::vec4(1.0f));
-    for (const GlyphQuad &g : layout.labelGlyphs)
+    for (const GlyphQuad& g : layout.labelGlyphs)
         addQuad(labelText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
-    for (const GlyphQuad &g : layout.titleGlyphs)
+    for (const GlyphQuad& g : layout.titleGlyphs)
         addQuad(titleText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
 
     if (!m_overlayVao) {
@@ -196,10 +205,10 @@ void GlRenderer::drawLegend(const RenderTarget &target) {
         glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, nullptr);
         glEnableVertexAttribArray(1);
         glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
-                              reinterpret_cast<const void *>(2 * sizeof(float)));
+                              reinterpret_cast<const void*>(2 * sizeof(float)));
         glEnableVertexAttribArray(2);
         glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride,
-                              reinterpret_cast<const void *>(4 * sizeof(float)));
+                              reinterpret_cast<const void*>(4 * sizeof(float)));
     }
     const GLuint p = m_programs.overlay.id();
     glUseProgram(p);
@@ -211,7 +220,7 @@ void GlRenderer::drawLegend(const RenderTarget &target) {
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); // the shader outputs premultiplied colour
-    auto draw = [&](const std::vector<OverlayVertex> &v, int mode, FontTexture *tex) {
+    auto draw = [&](const std::vector<OverlayVertex>& v, int mode, FontTexture* tex) {
         if (v.empty())
             return;
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(OverlayVertex)),

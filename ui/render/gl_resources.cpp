@@ -35,9 +35,9 @@ VertexArray makeVertexArray() {
 
 namespace {
 
-GLuint compile(const std::string &name, GLenum stage, const std::string &source) {
+GLuint compile(const std::string& name, GLenum stage, const std::string& source) {
     const GLuint shader = glCreateShader(stage);
-    const char *text = source.c_str();
+    const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
     glCompileShader(shader);
     GLint ok = 0;
@@ -57,8 +57,8 @@ GLuint compile(const std::string &name, GLenum stage, const std::string &source)
 
 } // namespace
 
-Program makeProgram(const std::string &name, const std::string &vertexSource,
-                    const std::string &fragmentSource) {
+Program makeProgram(const std::string& name, const std::string& vertexSource,
+                    const std::string& fragmentSource) {
     const GLuint vs = compile(name, GL_VERTEX_SHADER, vertexSource);
     GLuint fs = 0;
     try {
@@ -87,7 +87,7 @@ Program makeProgram(const std::string &name, const std::string &vertexSource,
     return program;
 }
 
-void BufferTexture::upload(const void *data, std::size_t bytes, GLenum internalFormat) {
+void BufferTexture::upload(const void* data, std::size_t bytes, GLenum internalFormat) {
     if (!m_buffer) {
         m_buffer = makeBuffer();
         m_texture = makeTexture();
@@ -111,9 +111,24 @@ void BufferTexture::bind(GLuint unit) const {
     glBindTexture(GL_TEXTURE_BUFFER, m_texture.id());
 }
 
+void RenderTexture::ensureSharingDepth(int width, int height, GLuint depthTexture) {
+    ensure(width, height, false);
+    if (m_sharedDepth == depthTexture)
+        return;
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depthTexture, 0);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("cannot share a depth texture (status " + std::to_string(status) +
+                                 ")");
+    m_sharedDepth = depthTexture;
+}
+
 void RenderTexture::ensure(int width, int height, bool withDepth) {
     if (m_fbo && width == m_width && height == m_height && withDepth == m_withDepth)
         return;
+    m_sharedDepth = 0;
     m_fbo = makeFramebuffer();
     m_color = makeTexture();
     m_depth.reset();

@@ -14,16 +14,16 @@ template <void (*Delete)(GLuint)> class Handle {
   public:
     Handle() = default;
     explicit Handle(GLuint id) : m_id(id) {}
-    Handle(Handle &&o) noexcept : m_id(std::exchange(o.m_id, 0)) {}
-    Handle &operator=(Handle &&o) noexcept {
+    Handle(Handle&& o) noexcept : m_id(std::exchange(o.m_id, 0)) {}
+    Handle& operator=(Handle&& o) noexcept {
         if (this != &o) {
             reset();
             m_id = std::exchange(o.m_id, 0);
         }
         return *this;
     }
-    Handle(const Handle &) = delete;
-    Handle &operator=(const Handle &) = delete;
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
     ~Handle() { reset(); }
     GLuint id() const { return m_id; }
     explicit operator bool() const { return m_id != 0; }
@@ -55,14 +55,14 @@ Framebuffer makeFramebuffer();
 VertexArray makeVertexArray();
 
 // Compiles and links; throws std::runtime_error with `name`, the stage and the driver's log.
-Program makeProgram(const std::string &name, const std::string &vertexSource,
-                    const std::string &fragmentSource);
+Program makeProgram(const std::string& name, const std::string& vertexSource,
+                    const std::string& fragmentSource);
 
 // A buffer exposed to shaders as a buffer texture (samplerBuffer / usamplerBuffer), for vertex
 // pulling.
 class BufferTexture {
   public:
-    void upload(const void *data, std::size_t bytes, GLenum internalFormat);
+    void upload(const void* data, std::size_t bytes, GLenum internalFormat);
     void bind(GLuint unit) const;
     bool empty() const { return !m_texture; }
     std::size_t size() const { return m_size; } // bytes of the last upload
@@ -77,6 +77,9 @@ class BufferTexture {
 class RenderTexture {
   public:
     void ensure(int width, int height, bool withDepth);
+    // Colour of its own, depth borrowed from another target of the same size (depth-tested
+    // layers drawn without touching that depth).
+    void ensureSharingDepth(int width, int height, GLuint depthTexture);
     GLuint framebuffer() const { return m_fbo.id(); }
     GLuint color() const { return m_color.id(); }
     GLuint depth() const { return m_depth.id(); }
@@ -89,10 +92,11 @@ class RenderTexture {
     Texture m_depth;
     int m_width = 0, m_height = 0;
     bool m_withDepth = false;
+    GLuint m_sharedDepth = 0;
 };
 
 // Uniform location by name, cached per program by the caller if it matters; -1 when unused.
-inline GLint uniform(const Program &p, const char *name) {
+inline GLint uniform(const Program& p, const char* name) {
     return glGetUniformLocation(p.id(), name);
 }
 

@@ -4,11 +4,11 @@ namespace faultline::ui::gl::shaders {
 
 namespace {
 
-const char *kHeader = "#version 410 core\n";
+const char* kHeader = "#version 410 core\n";
 
 // Colour map lookup shared by spheres and the legend bar. Continuous maps sample a table
 // linearly; band maps pick palette entry floor(t * bands) mod palette size.
-const char *kColorMap = R"(
+const char* kColorMap = R"(
 uniform sampler2D uColorMap;
 uniform int uBandCount;
 vec3 mapColor(float t) {
@@ -25,7 +25,7 @@ vec3 mapColor(float t) {
 
 // Lighting shared by spheres and meshes, in view space. Gamma 2 (square / square root) stands in
 // for sRGB: close enough for shading and cheap on a CPU rasteriser.
-const char *kShading = R"(
+const char* kShading = R"(
 uniform float uSpecular;
 vec3 shade(vec3 srgb, vec3 n, vec3 V) {
     vec3 base = srgb * srgb;
@@ -280,7 +280,7 @@ void main() {
 }
 
 namespace {
-const char *kViewDepth = R"(
+const char* kViewDepth = R"(
 uniform sampler2D uDepth;
 uniform vec2 uNearFar;
 uniform int uPerspective;
@@ -337,13 +337,22 @@ uniform sampler2D uOcclusion;
 uniform int uAmbientOcclusion;
 uniform float uStrength;
 uniform float uWorldRadius;
-layout(location = 0) out vec4 oColor;
+uniform sampler2D uContext;  // hidden spheres as points: colour, coverage in alpha
+uniform float uContextAlpha; // 0: no context layer
+layout(location = 0) out vec4 oColor; // premultiplied
+vec4 withContext(vec4 c, ivec2 px) {
+    if (uContextAlpha <= 0.0)
+        return c;
+    vec4 ctx = texelFetch(uContext, px, 0);
+    float k = ctx.a * uContextAlpha;
+    return c * (1.0 - k) + vec4(ctx.rgb * k, k);
+}
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec4 c = texelFetch(uColor, px, 0);
     float d = texelFetch(uDepth, px, 0).r;
     if (uAmbientOcclusion == 0 || d >= 1.0) {
-        oColor = c;
+        oColor = withContext(c, px);
         return;
     }
     // 4 x 4 blur of the occlusion over pixels at a similar depth (not across silhouettes).
@@ -358,7 +367,7 @@ void main() {
             weight += w;
         }
     float ao = 1.0 - uStrength * sum / max(weight, 1.0);
-    oColor = vec4(c.rgb * ao, c.a);
+    oColor = withContext(vec4(c.rgb * ao, c.a), px);
 }
 )";
 }

@@ -8,7 +8,7 @@ namespace faultline::ui {
 
 namespace {
 // "-0.5" with a typographic minus sign.
-std::string withMinusSign(const std::string &label) {
+std::string withMinusSign(const std::string& label) {
     if (!label.empty() && label[0] == '-')
         return "\xE2\x88\x92" + label.substr(1);
     return label;
@@ -22,8 +22,8 @@ float legendScale(int width, int height, float userScale) {
     return std::max(0.8f, ref / 720.0f) * std::max(userScale, 0.1f);
 }
 
-LegendLayout layoutLegend(const std::vector<core::LegendTick> &ticks, std::string_view title,
-                          const FontAtlas *labelFont, const FontAtlas *titleFont, int width,
+LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::string_view title,
+                          const FontAtlas* labelFont, const FontAtlas* titleFont, int width,
                           int height, float scale) {
     LegendLayout out;
     const float s = scale;
@@ -34,7 +34,7 @@ LegendLayout layoutLegend(const std::vector<core::LegendTick> &ticks, std::strin
 
     std::vector<std::string> labels;
     float labelW = 0;
-    for (const core::LegendTick &t : ticks) {
+    for (const core::LegendTick& t : ticks) {
         labels.push_back(withMinusSign(t.label));
         if (labelFont)
             labelW = std::max(labelW, labelFont->measure(labels.back()));

@@ -31,8 +31,8 @@ inline int legendTitlePixels(float scale) { return static_cast<int>(16.0f * scal
 
 // A vertical bar at the right edge, centred vertically, labels right of it, the title above.
 // Fonts may be null (no text is laid out then; the bar and ticks still are).
-LegendLayout layoutLegend(const std::vector<core::LegendTick> &ticks, std::string_view title,
-                          const FontAtlas *labelFont, const FontAtlas *titleFont, int width,
+LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::string_view title,
+                          const FontAtlas* labelFont, const FontAtlas* titleFont, int width,
                           int height, float scale);
 
 } // namespace faultline::ui

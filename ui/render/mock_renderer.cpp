@@ -8,7 +8,7 @@
 
 namespace faultline::ui {
 
-void MockRenderer::setSpheres(const SphereColumns &s) {
+void MockRenderer::setSpheres(const SphereColumns& s) {
     assert(s.x.size() == s.y.size() && s.x.size() == s.z.size() && s.x.size() == s.radius.size());
     m_x.assign(s.x.begin(), s.x.end());
     m_y.assign(s.y.begin(), s.y.end());
@@ -36,7 +36,7 @@ void MockRenderer::setVisibleMask(std::span<const std::uint8_t> mask) {
     record("upload.visible_rows", m_visible.size());
 }
 
-void MockRenderer::setColorMap(const core::ColorMapSpec &map) {
+void MockRenderer::setColorMap(const core::ColorMapSpec& map) {
     m_map = map;
     ++m_stats.colorMapUploads;
     record("upload.colormap", static_cast<std::size_t>(core::colorMapTexture(map).width));
@@ -51,7 +51,7 @@ void MockRenderer::setMeshes(std::span<const MeshData> meshes) {
     m_meshTriangles = 0;
     m_meshCount = meshes.size();
     m_meshBounds = {};
-    for (const MeshData &m : meshes) {
+    for (const MeshData& m : meshes) {
         assert(m.positions.size() % 3 == 0 && m.indices.size() % 3 == 0);
         m_meshTriangles += m.indices.size() / 3;
         const std::size_t n = m.positions.size() / 3;
@@ -76,9 +76,9 @@ void MockRenderer::setBoxes(std::span<const BoxOverlay> boxes,
     record("upload.boxes", m_boxes.size());
 }
 
-void MockRenderer::setStyle(const RenderStyle &style) { m_style = style; }
+void MockRenderer::setStyle(const RenderStyle& style) { m_style = style; }
 
-void MockRenderer::render(const core::Camera &camera, const RenderTarget &target) {
+void MockRenderer::render(const core::Camera& camera, const RenderTarget& target) {
     (void)camera;
     assert(target.width > 0 && target.height > 0);
     m_lastTarget = target;
@@ -92,7 +92,7 @@ void MockRenderer::render(const core::Camera &camera, const RenderTarget &target
     m_stats.boxes = m_boxes.size();
     m_stats.handles = m_selected ? 6 : 0;
     const bool legend = m_style.showLegend && m_hasValues;
-    m_stats.legendTicks = legend ? core::legendTicks(m_range).size() : 0;
+    m_stats.legendTicks = legend ? core::legendTicks(m_range, 6, m_style.integerValues).size() : 0;
 
     record("clear", target.transparent ? 0 : 1);
     if (!m_visible.empty())
@@ -131,7 +131,7 @@ RgbaImage MockRenderer::readImage() {
 core::BoundingSphere MockRenderer::sceneBounds() const {
     core::BoundingSphere b = core::boundingSphereOf(m_x, m_y, m_z, m_r);
     b = core::enclose(b, m_meshBounds);
-    for (const BoxOverlay &box : m_boxes)
+    for (const BoxOverlay& box : m_boxes)
         b = core::enclose(b, {(box.lo + box.hi) * 0.5, glm::length(box.hi - box.lo) * 0.5});
     return b;
 }

@@ -12,34 +12,34 @@ namespace faultline::ui {
 struct MockCall {
     std::string what;      // "upload.positions", "draw.spheres", "draw.legend", ...
     std::size_t count = 0; // rows, bytes or primitives, as fits the call
-    bool operator==(const MockCall &) const = default;
+    bool operator==(const MockCall&) const = default;
 };
 
 class MockRenderer final : public Renderer {
   public:
     RendererBackend backend() const override { return RendererBackend::Mock; }
-    void setSpheres(const SphereColumns &spheres) override;
+    void setSpheres(const SphereColumns& spheres) override;
     void setSphereValues(std::span<const float> values) override;
     void setVisibleMask(std::span<const std::uint8_t> mask) override;
-    void setColorMap(const core::ColorMapSpec &map) override;
+    void setColorMap(const core::ColorMapSpec& map) override;
     void setColorRange(core::ValueRange range) override;
     void setMeshes(std::span<const MeshData> meshes) override;
     void setBoxes(std::span<const BoxOverlay> boxes,
                   std::optional<BoxHandlesOverlay> selected) override;
-    void setStyle(const RenderStyle &style) override;
-    void render(const core::Camera &camera, const RenderTarget &target) override;
+    void setStyle(const RenderStyle& style) override;
+    void render(const core::Camera& camera, const RenderTarget& target) override;
     RgbaImage readImage() override;
     unsigned int colorTexture() const override { return 0; }
-    const RenderStats &stats() const override { return m_stats; }
+    const RenderStats& stats() const override { return m_stats; }
     core::BoundingSphere sceneBounds() const override;
 
-    const std::vector<MockCall> &calls() const { return m_calls; }
+    const std::vector<MockCall>& calls() const { return m_calls; }
     void clearCalls() { m_calls.clear(); }
     // The last render's draw calls only (a suffix of calls()).
     std::vector<MockCall> lastFrame() const;
-    const std::vector<std::uint32_t> &visibleRows() const { return m_visible; }
+    const std::vector<std::uint32_t>& visibleRows() const { return m_visible; }
     core::ValueRange colorRange() const { return m_range; }
-    const core::ColorMapSpec &colorMap() const { return m_map; }
+    const core::ColorMapSpec& colorMap() const { return m_map; }
 
   private:
     std::vector<MockCall> m_calls;

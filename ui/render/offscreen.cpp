@@ -16,9 +16,9 @@ namespace faultline::ui {
 namespace {
 
 std::string g_lastGlfwError;
-void onGlfwError(int, const char *description) { g_lastGlfwError = description ? description : ""; }
+void onGlfwError(int, const char* description) { g_lastGlfwError = description ? description : ""; }
 
-std::vector<float> columnValues(const core::AttributeColumn &column) {
+std::vector<float> columnValues(const core::AttributeColumn& column) {
     if (!column.isInteger())
         return column.floats;
     return {column.ints.begin(), column.ints.end()};
@@ -26,10 +26,10 @@ std::vector<float> columnValues(const core::AttributeColumn &column) {
 
 } // namespace
 
-std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string &why) {
+std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string& why) {
     glfwSetErrorCallback(onGlfwError);
-    const char *display = std::getenv("DISPLAY");
-    const char *wayland = std::getenv("WAYLAND_DISPLAY");
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
         why = "no display (DISPLAY is not set; run under xvfb-run for headless rendering)";
         return nullptr;
@@ -44,7 +44,7 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string &why) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    GLFWwindow *window = glfwCreateWindow(16, 16, "faultline offscreen", nullptr, nullptr);
+    GLFWwindow* window = glfwCreateWindow(16, 16, "faultline offscreen", nullptr, nullptr);
     if (!window) {
         why = "cannot create an OpenGL 4.1 core context: " + g_lastGlfwError;
         return nullptr;
@@ -61,10 +61,10 @@ OffscreenContext::~OffscreenContext() {
 
 void OffscreenContext::makeCurrent() { glfwMakeContextCurrent(m_window); }
 
-OffscreenContext *sharedOffscreenContext(std::string &why) {
+OffscreenContext* sharedOffscreenContext(std::string& why) {
     static std::mutex mutex;
     // Deliberately leaked: GLFW must not be torn down during static destruction.
-    static OffscreenContext *context = nullptr;
+    static OffscreenContext* context = nullptr;
     static std::string failure;
     static bool tried = false;
     std::lock_guard lock(mutex);
@@ -80,23 +80,23 @@ OffscreenContext *sharedOffscreenContext(std::string &why) {
     return context;
 }
 
-bool showsLegend(const SceneDescription &scene) {
+bool showsLegend(const SceneDescription& scene) {
     return scene.style.showLegend && scene.frame && !scene.colorVariable.empty();
 }
 
-core::Camera fittedCamera(const SceneDescription &scene, int width, int height,
+core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
                           core::ViewPreset preset) {
     core::Aabb box;
-    if (const core::Frame *f = scene.frame; f && f->size() > 0) {
+    if (const core::Frame* f = scene.frame; f && f->size() > 0) {
         box = core::boundsOf(f->x, f->y, f->z, f->radius, scene.visible);
         if (!box.valid) // nothing visible: frame them all
             box = core::boundsOf(f->x, f->y, f->z, f->radius);
     }
-    for (const MeshData &m : scene.meshes) {
+    for (const MeshData& m : scene.meshes) {
         for (std::size_t v = 0; v + 2 < m.positions.size(); v += 3)
             box.extend(glm::dvec3(m.positions[v], m.positions[v + 1], m.positions[v + 2]));
     }
-    for (const BoxOverlay &b : scene.boxes) {
+    for (const BoxOverlay& b : scene.boxes) {
         box.extend(b.lo);
         box.extend(b.hi);
     }
@@ -115,8 +115,8 @@ core::Camera fittedCamera(const SceneDescription &scene, int width, int height,
     return camera;
 }
 
-void loadScene(Renderer &renderer, const SceneDescription &scene) {
-    const core::Frame *f = scene.frame;
+void loadScene(Renderer& renderer, const SceneDescription& scene) {
+    const core::Frame* f = scene.frame;
     RenderStyle style = scene.style;
     if (style.legendTitle.empty())
         style.legendTitle = scene.colorVariable;
@@ -124,14 +124,16 @@ void loadScene(Renderer &renderer, const SceneDescription &scene) {
     if (f) {
         renderer.setSpheres({f->x, f->y, f->z, f->radius});
         if (!scene.colorVariable.empty()) {
-            const core::AttributeColumn *column = f->attribute(scene.colorVariable);
+            const core::AttributeColumn* column = f->attribute(scene.colorVariable);
             if (!column) {
                 std::string names;
-                for (const std::string &n : f->attributeNames())
+                for (const std::string& n : f->attributeNames())
                     names += (names.empty() ? "" : ", ") + n;
                 throw std::invalid_argument("no variable '" + scene.colorVariable +
                                             "' in this frame (it has: " + names + ")");
             }
+            style.integerValues = column->isInteger();
+            renderer.setStyle(style);
             const std::vector<float> values = columnValues(*column);
             renderer.setSphereValues(values);
             renderer.setColorRange(scene.colorRange ? *scene.colorRange
@@ -150,7 +152,7 @@ void loadScene(Renderer &renderer, const SceneDescription &scene) {
     renderer.setBoxes(scene.boxes, scene.selectedBox);
 }
 
-RgbaImage renderSceneToImage(const SceneDescription &scene, const RenderSettings &settings) {
+RgbaImage renderSceneToImage(const SceneDescription& scene, const RenderSettings& settings) {
     if (settings.width <= 0 || settings.height <= 0)
         throw std::invalid_argument("image size must be positive");
     if (!glfwGetCurrentContext()) {
@@ -170,8 +172,8 @@ RgbaImage renderSceneToImage(const SceneDescription &scene, const RenderSettings
     return renderer->readImage();
 }
 
-void renderSceneToPng(const SceneDescription &scene, const RenderSettings &settings,
-                      const std::string &path) {
+void renderSceneToPng(const SceneDescription& scene, const RenderSettings& settings,
+                      const std::string& path) {
     writePng(renderSceneToImage(scene, settings), path);
 }
 

@@ -16,7 +16,7 @@ namespace faultline::ui {
 
 // Everything one picture shows. The frame is borrowed: it must outlive the call.
 struct SceneDescription {
-    const core::Frame *frame = nullptr; // null: meshes and boxes only
+    const core::Frame* frame = nullptr; // null: meshes and boxes only
     std::vector<std::uint8_t> visible;  // a byte per row, 1 = visible; empty: all
     std::string colorVariable;          // empty: every sphere in style.sphereColor
     core::ColorMapSpec colorMap;
@@ -37,38 +37,38 @@ struct RenderSettings {
 
 // The preset's direction, fitted (core::fitBox) to the visible spheres (all of them when none is
 // visible), meshes and boxes of a width x height image, leaving room for the legend.
-core::Camera fittedCamera(const SceneDescription &scene, int width, int height,
+core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
                           core::ViewPreset preset = core::ViewPreset::Iso);
 // Whether the scene's image gets a colour-bar legend.
-bool showsLegend(const SceneDescription &scene);
+bool showsLegend(const SceneDescription& scene);
 
 // Loads the scene into a renderer (any back end): spheres, values, range, map, mask, meshes,
 // boxes, style. Throws std::invalid_argument naming the variable when the frame lacks it.
-void loadScene(Renderer &renderer, const SceneDescription &scene);
+void loadScene(Renderer& renderer, const SceneDescription& scene);
 
 // Renders with the current OpenGL context, or the shared offscreen one when none is current.
 // Throws std::runtime_error when no OpenGL context can be had (no display), with the reason.
-RgbaImage renderSceneToImage(const SceneDescription &scene, const RenderSettings &settings);
-void renderSceneToPng(const SceneDescription &scene, const RenderSettings &settings,
-                      const std::string &path);
+RgbaImage renderSceneToImage(const SceneDescription& scene, const RenderSettings& settings);
+void renderSceneToPng(const SceneDescription& scene, const RenderSettings& settings,
+                      const std::string& path);
 
 class OffscreenContext {
   public:
     // A hidden window with an OpenGL 4.1+ core context, made current on this thread; null and
     // the reason in `why` when none can be made.
-    static std::unique_ptr<OffscreenContext> create(std::string &why);
+    static std::unique_ptr<OffscreenContext> create(std::string& why);
     ~OffscreenContext();
-    OffscreenContext(const OffscreenContext &) = delete;
-    OffscreenContext &operator=(const OffscreenContext &) = delete;
+    OffscreenContext(const OffscreenContext&) = delete;
+    OffscreenContext& operator=(const OffscreenContext&) = delete;
     void makeCurrent();
 
   private:
-    explicit OffscreenContext(GLFWwindow *window) : m_window(window) {}
-    GLFWwindow *m_window = nullptr;
+    explicit OffscreenContext(GLFWwindow* window) : m_window(window) {}
+    GLFWwindow* m_window = nullptr;
 };
 
 // One context for the whole process, made on first use (kept until exit); null and `why` when
 // there is no display.
-OffscreenContext *sharedOffscreenContext(std::string &why);
+OffscreenContext* sharedOffscreenContext(std::string& why);
 
 } // namespace faultline::ui

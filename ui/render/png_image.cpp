@@ -9,7 +9,7 @@
 
 namespace faultline::ui {
 
-void writePng(const RgbaImage &image, const std::string &path) {
+void writePng(const RgbaImage& image, const std::string& path) {
     if (image.empty() || image.pixels.size() != std::size_t(image.width) * image.height * 4)
         throw std::runtime_error("cannot write " + path + ": empty or malformed image");
     if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.pixels.data(),
@@ -17,11 +17,11 @@ void writePng(const RgbaImage &image, const std::string &path) {
         throw std::runtime_error("cannot write " + path);
 }
 
-RgbaImage readPng(const std::string &path) {
+RgbaImage readPng(const std::string& path) {
     int w = 0, h = 0, n = 0;
-    unsigned char *data = stbi_load(path.c_str(), &w, &h, &n, 4);
+    unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 4);
     if (!data) {
-        const char *why = stbi_failure_reason();
+        const char* why = stbi_failure_reason();
         throw std::runtime_error("cannot read image " + path + ": " + (why ? why : "unknown"));
     }
     RgbaImage image{w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * h * 4)};
@@ -29,7 +29,7 @@ RgbaImage readPng(const std::string &path) {
     return image;
 }
 
-double meanAbsDiff(const RgbaImage &a, const RgbaImage &b) {
+double meanAbsDiff(const RgbaImage& a, const RgbaImage& b) {
     if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size())
         return std::numeric_limits<double>::infinity();
     if (a.pixels.empty())

@@ -14,17 +14,17 @@ struct RgbaImage {
     std::vector<std::uint8_t> pixels; // width * height * 4, top row first, straight alpha
 
     bool empty() const { return width <= 0 || height <= 0; }
-    const std::uint8_t *at(int x, int y) const {
+    const std::uint8_t* at(int x, int y) const {
         return pixels.data() + (static_cast<std::size_t>(y) * width + x) * 4;
     }
 };
 
 // Throws std::runtime_error naming the path when the file cannot be written.
-void writePng(const RgbaImage &image, const std::string &path);
+void writePng(const RgbaImage& image, const std::string& path);
 // Throws std::runtime_error naming the path when the file is missing or not an image.
-RgbaImage readPng(const std::string &path);
+RgbaImage readPng(const std::string& path);
 
 // Mean of |a - b| over every channel of every pixel (0..255); infinity when sizes differ.
-double meanAbsDiff(const RgbaImage &a, const RgbaImage &b);
+double meanAbsDiff(const RgbaImage& a, const RgbaImage& b);
 
 } // namespace faultline::ui

@@ -14,7 +14,7 @@ std::unique_ptr<Renderer> createRenderer(RendererBackend backend) {
 }
 
 void compactRows(std::size_t count, std::span<const std::uint8_t> mask,
-                 std::vector<std::uint32_t> &visible, std::vector<std::uint32_t> *hidden) {
+                 std::vector<std::uint32_t>& visible, std::vector<std::uint32_t>* hidden) {
     assert(mask.empty() || mask.size() == count);
     visible.clear();
     if (hidden)

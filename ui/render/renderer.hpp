@@ -60,13 +60,14 @@ struct RenderStyle {
     float specular = 0.35f;
     bool ambientOcclusion = true; // screen-space contact darkening
     float aoStrength = 0.9f;
-    bool contextPoints = false; // hidden spheres as faint small points
-    glm::vec4 contextColor{0.30f, 0.33f, 0.40f, 0.45f};
-    float contextPointSize = 2.5f; // pixels at the output size
-    float lineWidth = 2.0f;        // box edges, pixels at the output size
-    bool showLegend = true;        // drawn only when sphere values are set
-    std::string legendTitle;       // the variable's name
-    float legendScale = 1.0f;      // on top of the automatic size (output height / 720)
+    bool contextPoints = false;                         // hidden spheres as faint small points
+    glm::vec4 contextColor{0.45f, 0.48f, 0.55f, 0.22f}; // alpha: opacity of the ghost layer
+    float contextPointSize = 2.0f;                      // pixels at the output size
+    float lineWidth = 2.0f;                             // box edges, pixels at the output size
+    bool showLegend = true;                             // drawn only when sphere values are set
+    std::string legendTitle;                            // the variable's name
+    bool integerValues = false; // legend ticks at whole numbers (e.g. broken bonds)
+    float legendScale = 1.0f;   // on top of the automatic size (output height / 720)
     OcclusionCulling culling = OcclusionCulling::Auto;
 };
 
@@ -105,28 +106,28 @@ class Renderer {
 
     // A new frame's spheres: uploads centres and radii (once per frame), resets the values (one
     // colour) and the visibility (all visible).
-    virtual void setSpheres(const SphereColumns &spheres) = 0;
+    virtual void setSpheres(const SphereColumns& spheres) = 0;
     // The colour variable, one value per row (NaN: grey); empty: every sphere in one colour.
     virtual void setSphereValues(std::span<const float> values) = 0;
     // 1 = visible, one byte per row; empty: all visible. Only the compact list of visible rows is
     // uploaded, never the positions.
     virtual void setVisibleMask(std::span<const std::uint8_t> mask) = 0;
     // Map and range change a small texture and two uniforms; nothing per sphere is re-sent.
-    virtual void setColorMap(const core::ColorMapSpec &map) = 0;
+    virtual void setColorMap(const core::ColorMapSpec& map) = 0;
     virtual void setColorRange(core::ValueRange range) = 0;
     virtual void setMeshes(std::span<const MeshData> meshes) = 0;
     virtual void setBoxes(std::span<const BoxOverlay> boxes,
                           std::optional<BoxHandlesOverlay> selected) = 0;
-    virtual void setStyle(const RenderStyle &style) = 0;
+    virtual void setStyle(const RenderStyle& style) = 0;
 
     // Draws the scene into the renderer's own target (see colorTexture / readImage).
-    virtual void render(const core::Camera &camera, const RenderTarget &target) = 0;
+    virtual void render(const core::Camera& camera, const RenderTarget& target) = 0;
     // The last render, top row first, straight (not premultiplied) alpha.
     virtual RgbaImage readImage() = 0;
     // The OpenGL texture holding the last render (for ImGui::Image); 0 for the mock.
     virtual unsigned int colorTexture() const = 0;
 
-    virtual const RenderStats &stats() const = 0;
+    virtual const RenderStats& stats() const = 0;
     // Everything set so far (all spheres, meshes, boxes): for clip planes and "fit all".
     virtual core::BoundingSphere sceneBounds() const = 0;
 };
@@ -136,6 +137,6 @@ std::unique_ptr<Renderer> createRenderer(RendererBackend backend);
 
 // Rows whose mask byte is non-zero (all rows when the mask is empty), and the others.
 void compactRows(std::size_t count, std::span<const std::uint8_t> mask,
-                 std::vector<std::uint32_t> &visible, std::vector<std::uint32_t> *hidden);
+                 std::vector<std::uint32_t>& visible, std::vector<std::uint32_t>* hidden);
 
 } // namespace faultline::ui

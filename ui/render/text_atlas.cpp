@@ -18,7 +18,7 @@ struct RangeSpec {
 // Printable ASCII, Latin-1 (micro, degree, superscripts, multiplication), en dash, minus sign.
 constexpr RangeSpec kRanges[] = {{32, 95}, {160, 96}, {0x2013, 1}, {0x2212, 1}};
 
-std::vector<unsigned char> readFile(const std::string &path) {
+std::vector<unsigned char> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in)
         return {};
@@ -28,7 +28,7 @@ std::vector<unsigned char> readFile(const std::string &path) {
 } // namespace
 
 std::string defaultFontPath() {
-    if (const char *env = std::getenv("FAULTLINE_FONT"); env && *env)
+    if (const char* env = std::getenv("FAULTLINE_FONT"); env && *env)
         return env;
     return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 }
@@ -64,7 +64,7 @@ std::vector<std::uint32_t> decodeUtf8(std::string_view s) {
     return out;
 }
 
-std::optional<FontAtlas> FontAtlas::load(const std::string &ttfPath, float pixelHeight) {
+std::optional<FontAtlas> FontAtlas::load(const std::string& ttfPath, float pixelHeight) {
     const std::vector<unsigned char> ttf = readFile(ttfPath);
     if (ttf.empty() || pixelHeight < 4.0f)
         return std::nullopt;
@@ -81,7 +81,7 @@ std::optional<FontAtlas> FontAtlas::load(const std::string &ttfPath, float pixel
     atlas.m_descent = -descent * scale;
 
     int glyphCount = 0;
-    for (const RangeSpec &r : kRanges)
+    for (const RangeSpec& r : kRanges)
         glyphCount += r.count;
     // Square atlas, doubled until everything fits.
     int side = 128;
@@ -92,7 +92,7 @@ std::optional<FontAtlas> FontAtlas::load(const std::string &ttfPath, float pixel
         std::vector<stbtt_packedchar> packed(static_cast<std::size_t>(glyphCount));
         std::vector<stbtt_pack_range> ranges;
         std::size_t offset = 0;
-        for (const RangeSpec &r : kRanges) {
+        for (const RangeSpec& r : kRanges) {
             stbtt_pack_range pr{};
             pr.font_size = pixelHeight;
             pr.first_unicode_codepoint_in_range = r.first;
@@ -113,11 +113,11 @@ std::optional<FontAtlas> FontAtlas::load(const std::string &ttfPath, float pixel
         atlas.m_width = atlas.m_height = side;
         atlas.m_alpha = std::move(pixels);
         offset = 0;
-        for (const RangeSpec &r : kRanges) {
+        for (const RangeSpec& r : kRanges) {
             atlas.m_ranges.push_back({r.first, r.count, offset});
             offset += static_cast<std::size_t>(r.count);
         }
-        for (const stbtt_packedchar &c : packed)
+        for (const stbtt_packedchar& c : packed)
             atlas.m_glyphs.push_back(
                 {c.x0, c.y0, c.x1, c.y1, c.xoff, c.yoff, c.xadvance, c.xoff2, c.yoff2});
         return atlas;
@@ -125,8 +125,8 @@ std::optional<FontAtlas> FontAtlas::load(const std::string &ttfPath, float pixel
     return std::nullopt;
 }
 
-const FontAtlas::Glyph *FontAtlas::find(std::uint32_t cp) const {
-    for (const Range &r : m_ranges) {
+const FontAtlas::Glyph* FontAtlas::find(std::uint32_t cp) const {
+    for (const Range& r : m_ranges) {
         if (cp >= std::uint32_t(r.first) && cp < std::uint32_t(r.first + r.count))
             return &m_glyphs[r.offset + (cp - r.first)];
     }
@@ -136,16 +136,16 @@ const FontAtlas::Glyph *FontAtlas::find(std::uint32_t cp) const {
 float FontAtlas::measure(std::string_view utf8) const {
     float w = 0.0f;
     for (std::uint32_t cp : decodeUtf8(utf8))
-        if (const Glyph *g = find(cp))
+        if (const Glyph* g = find(cp))
             w += g->xadvance;
     return w;
 }
 
-void FontAtlas::layout(std::string_view utf8, float x, float y, std::vector<GlyphQuad> &out) const {
+void FontAtlas::layout(std::string_view utf8, float x, float y, std::vector<GlyphQuad>& out) const {
     float pen = x;
     const float baseline = std::round(y);
     for (std::uint32_t cp : decodeUtf8(utf8)) {
-        const Glyph *g = find(cp);
+        const Glyph* g = find(cp);
         if (!g)
             continue;
         if (g->x1 > g->x0 && g->y1 > g->y0) {

@@ -21,20 +21,20 @@ class FontAtlas {
   public:
     // Bakes printable ASCII, Latin-1 and a few symbols (minus sign, en dash) at `pixelHeight`.
     // nullopt when the file cannot be read or is not a TrueType font.
-    static std::optional<FontAtlas> load(const std::string &ttfPath, float pixelHeight);
+    static std::optional<FontAtlas> load(const std::string& ttfPath, float pixelHeight);
 
     float pixelHeight() const { return m_pixelHeight; }
     float ascent() const { return m_ascent; }   // pixels above the baseline
     float descent() const { return m_descent; } // pixels below the baseline (positive)
     int width() const { return m_width; }
     int height() const { return m_height; }
-    const std::vector<std::uint8_t> &alpha() const { return m_alpha; }
+    const std::vector<std::uint8_t>& alpha() const { return m_alpha; }
 
     // Width in pixels of a UTF-8 string; characters not baked count as '?'.
     float measure(std::string_view utf8) const;
     // Appends a quad per visible glyph, the pen starting at x on the baseline y (pixels, y down).
     // Quads are snapped to whole pixels so small text stays crisp.
-    void layout(std::string_view utf8, float x, float y, std::vector<GlyphQuad> &out) const;
+    void layout(std::string_view utf8, float x, float y, std::vector<GlyphQuad>& out) const;
 
   private:
     struct Glyph {
@@ -51,7 +51,7 @@ class FontAtlas {
     std::vector<std::uint8_t> m_alpha;
     std::vector<Glyph> m_glyphs;
     std::vector<Range> m_ranges;
-    const Glyph *find(std::uint32_t codepoint) const;
+    const Glyph* find(std::uint32_t codepoint) const;
 };
 
 // FAULTLINE_FONT if set, else DejaVu Sans from the usual Debian folder.
