@@ -470,7 +470,7 @@ void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) 
     if (s > 1)
         m_composite.ensure(f.width, f.height, false);
     if (m_style.ambientOcclusion)
-        m_occlusion.ensure(f.width, f.height, false);
+        m_occlusion.ensure((f.width + 1) / 2, (f.height + 1) / 2, false);
 
     m_stats.spheres = m_x.size();
     m_stats.visibleSpheres = m_visible.size();

@@ -63,7 +63,7 @@ void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
     };
     if (m_style.ambientOcclusion) {
         glBindFramebuffer(GL_FRAMEBUFFER, m_occlusion.framebuffer());
-        glViewport(0, 0, f.width, f.height);
+        glViewport(0, 0, m_occlusion.width(), m_occlusion.height());
         const GLuint p = m_programs.occlusion.id();
         glUseProgram(p);
         setDepthUniforms(p);
