@@ -123,7 +123,7 @@ DockLayout DockLayout::defaultLayout() {
     using namespace panel_ids;
     DockLayout l;
     auto left = leaf({kData, kBoxes, kThresholds});
-    auto centre = split(SplitAxis::Vertical, 0.9f, leaf({kViewports}), leaf({kTimeline}));
+    auto centre = split(SplitAxis::Vertical, 0.87f, leaf({kViewports}), leaf({kTimeline}));
     auto right = split(SplitAxis::Vertical, 0.56f, leaf({kHistograms}), leaf({kFaults}));
     l.m_root = split(SplitAxis::Horizontal, 0.2f, std::move(left),
                      split(SplitAxis::Horizontal, 0.75f, std::move(centre), std::move(right)));

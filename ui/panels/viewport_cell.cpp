@@ -111,6 +111,11 @@ void ViewportCells::draw(Workbench& wb, const core::ViewState& view, ImVec2 pos,
         dl->AddText(ImVec2(cx - t1.x * 0.5f, cy - t1.y), IM_COL32(110, 116, 128, 255), line1);
         dl->AddText(ImVec2(cx - t2.x * 0.5f, cy + 4), IM_COL32(110, 116, 128, 255), line2.c_str());
     }
+    if (tex && !d.frame) {
+        const char* hint = "No data: File > Open data, or drop a file here";
+        const ImVec2 t = ImGui::CalcTextSize(hint);
+        dl->AddText(ImVec2(imgPos.x + (imgSize.x - t.x) * 0.5f, imgPos.y + (imgSize.y - t.y) * 0.5f), IM_COL32(110, 116, 128, 255), hint);
+    }
     interact(wb, view, d, imgPos, imgSize);
     const core::CameraState cam = m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace && m_drag.view == view.name
                                       ? m_drag.current
