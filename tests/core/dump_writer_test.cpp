@@ -1,6 +1,8 @@
 #include "core/model/dataset.hpp"
 #include "core/synth/dump_writer.hpp"
 
+#include "test_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,23 +10,9 @@
 #include <sstream>
 
 using namespace faultline::core;
+using faultline::test::slurp;
 
 namespace {
-
-std::string tempPath(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("faultline_dump_writer_" +
-                      std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-    std::filesystem::create_directories(dir);
-    return (dir / name).string();
-}
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 Frame sample(std::int64_t timestep, float shift) {
     Frame f;
@@ -52,7 +40,8 @@ Frame sample(std::int64_t timestep, float shift) {
 } // namespace
 
 TEST(LammpsDumpWriter, WritesTheExactTextOfAFrame) {
-    const std::string path = tempPath("one.lammpstrj");
+    const faultline::test::TempDir dir;
+    const std::string path = dir.file("one.lammpstrj");
     {
         LammpsDumpWriter w(path);
         w.write(sample(40, 0), {"id", "type", "x", "y", "z", "radius", "strain"});
@@ -67,8 +56,9 @@ TEST(LammpsDumpWriter, WritesTheExactTextOfAFrame) {
 }
 
 TEST(LammpsDumpWriter, ReaderGetsEveryValueBackExactlyPlainAndGzip) {
+    const faultline::test::TempDir dir;
     for (int level : {0, 6}) {
-        const std::string path = tempPath(level ? "many.lammpstrj.gz" : "many.lammpstrj");
+        const std::string path = dir.file(level ? "many.lammpstrj.gz" : "many.lammpstrj");
         const Frame a = sample(0, 0.0f), b = sample(100, 0.5f);
         {
             LammpsDumpWriter w(path, level);

@@ -3,6 +3,8 @@
 #include "core/synth/extension_model.hpp"
 #include "core/synth/fault_bands.hpp"
 
+#include "test_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,23 +12,9 @@
 #include <sstream>
 
 using namespace faultline::core;
+using faultline::test::slurp;
 
 namespace {
-
-std::string tempPath(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("faultline_extension_" +
-                      std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-    std::filesystem::create_directories(dir);
-    return (dir / name).string();
-}
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // 960 spheres, about 900 steps: a fraction of a second.
 ExtensionModelOptions tinyOptions() {
@@ -41,9 +29,10 @@ ExtensionModelOptions tinyOptions() {
     return o;
 }
 
-std::string runToDump(ExtensionModelOptions o, int threads, const std::string& name) {
+std::string runToDump(const faultline::test::TempDir& dir, ExtensionModelOptions o, int threads,
+                      const std::string& name) {
     o.threads = threads;
-    const std::string path = tempPath(name);
+    const std::string path = dir.file(name);
     LammpsDumpWriter w(path, 1);
     runExtensionModel(o, [&](const Frame& f, int) { w.write(f, extensionDumpColumns()); });
     w.close();
@@ -53,22 +42,25 @@ std::string runToDump(ExtensionModelOptions o, int threads, const std::string& n
 } // namespace
 
 TEST(ExtensionModel, SameSeedGivesIdenticalBytesWhateverTheThreadCount) {
+    const faultline::test::TempDir dir;
     const ExtensionModelOptions o = tinyOptions();
-    const std::string a = slurp(runToDump(o, 2, "a.lammpstrj.gz"));
-    const std::string b = slurp(runToDump(o, 2, "b.lammpstrj.gz"));
-    const std::string c = slurp(runToDump(o, 1, "c.lammpstrj.gz"));
+    const std::string a = slurp(runToDump(dir, o, 2, "a.lammpstrj.gz"));
+    const std::string b = slurp(runToDump(dir, o, 2, "b.lammpstrj.gz"));
+    const std::string c = slurp(runToDump(dir, o, 1, "c.lammpstrj.gz"));
     ASSERT_GT(a.size(), 1000u);
     EXPECT_TRUE(a == b) << "two runs with the same seed differ";
     EXPECT_TRUE(a == c) << "one thread and two threads differ";
     ExtensionModelOptions other = o;
     other.seed = 2;
-    EXPECT_FALSE(a == slurp(runToDump(other, 2, "d.lammpstrj.gz"))) << "the seed changes nothing";
+    EXPECT_FALSE(a == slurp(runToDump(dir, other, 2, "d.lammpstrj.gz")))
+        << "the seed changes nothing";
 }
 
 TEST(ExtensionModel, DumpReadsBackWithTheContractColumns) {
+    const faultline::test::TempDir dir;
     ExtensionModelOptions o = tinyOptions();
     o.law = BreakingStrainLaw::Weibull;
-    const std::string path = runToDump(o, 2, "read.lammpstrj.gz");
+    const std::string path = runToDump(dir, o, 2, "read.lammpstrj.gz");
     auto ds = Dataset::open({path});
     ASSERT_EQ(ds->frameCount(), 4u);
     const auto first = ds->frame(0);

@@ -7,16 +7,11 @@
 #include <cmath>
 
 using namespace faultline::core;
+using faultline::core::testing::faultOf;
 using faultline::core::testing::frameOf;
 using faultline::core::testing::Sphere;
 
 namespace {
-Fault faultOf(std::string name, std::vector<std::int64_t> ids) {
-    Fault f;
-    f.name = std::move(name);
-    f.add(std::move(ids));
-    return f;
-}
 
 // Members: a 5 x 5 horizontal sheet at z = 0 (ids 1..25, x,y in 1..5). Above it, layers z = 1, 2
 // displaced by (0.3, 0, -0.2) from x0 y0 z0; below, layers z = -1, -2 not displaced. Extra:
@@ -92,8 +87,8 @@ TEST(FaultMetrics, ThrowComparesHangingWallWithFootwall) {
     EXPECT_NEAR(m.slip[1], 0.0, 1e-12);
     EXPECT_NEAR(m.throwVertical, -0.2, 1e-6);
     EXPECT_NEAR(m.netSlip, std::sqrt(0.13), 1e-6);
-    EXPECT_NEAR(m.dipSlip, 0.0, 1e-12);     // down-dip of a flat plane is north
-    EXPECT_NEAR(m.strikeSlip, -0.3, 1e-6);  // strike of a flat plane is west
+    EXPECT_NEAR(m.dipSlip, 0.0, 1e-12);    // down-dip of a flat plane is north
+    EXPECT_NEAR(m.strikeSlip, -0.3, 1e-6); // strike of a flat plane is west
 }
 
 TEST(FaultMetrics, ThrowNeedsDisplacementColumnsAndEnoughSamples) {
@@ -160,8 +155,7 @@ TEST(FaultMetrics, EmptyFaultIsAllUndefined) {
 TEST(FaultMetrics, SeedIsWhereMembersFirstBroke) {
     // ids 1..4 at x = 0, 2, 4, 6; id 9 is not a member and breaks first.
     std::vector<std::shared_ptr<const Frame>> frames;
-    const std::vector<std::vector<float>> broken{
-        {0, 0, 0, 0, 3}, {0, 2, 0, 1, 3}, {1, 2, 5, 1, 3}};
+    const std::vector<std::vector<float>> broken{{0, 0, 0, 0, 3}, {0, 2, 0, 1, 3}, {1, 2, 5, 1, 3}};
     for (const auto& b : broken) {
         Frame f = frameOf({{1, 0, 0, 0}, {2, 2, 0, 0}, {3, 4, 0, 0}, {4, 6, 0, 0}, {9, 0, 5, 0}});
         f.attributes.push_back(makeAttribute("broken_bonds", std::vector<float>(b), true));
@@ -184,8 +178,8 @@ TEST(FaultMetrics, SeedIsWhereMembersFirstBroke) {
 
     MetricsOptions other;
     other.brokenBondsVariable = "damage";
-    const auto none = computeMetricsSeries(frames.size(), [&](std::size_t i) { return frames[i]; },
-                                           faults, other);
+    const auto none = computeMetricsSeries(
+        frames.size(), [&](std::size_t i) { return frames[i]; }, faults, other);
     EXPECT_FALSE(none.seeds[0].found);
 }
 
@@ -199,8 +193,8 @@ TEST(FaultMetrics, SeriesRowsEqualPerFrameMetrics) {
         frames.push_back(std::make_shared<const Frame>(frameOf(s)));
     }
     const std::vector<Fault> faults{faultOf("A", range(1, 36)), faultOf("B", range(1, 12))};
-    const auto series = computeMetricsSeries(frames.size(), [&](std::size_t i) { return frames[i]; },
-                                             faults);
+    const auto series = computeMetricsSeries(
+        frames.size(), [&](std::size_t i) { return frames[i]; }, faults);
     for (std::size_t t = 0; t < frames.size(); ++t) {
         const auto rows = computeFrameMetrics(*frames[t], t, faults);
         for (std::size_t k = 0; k < faults.size(); ++k) {

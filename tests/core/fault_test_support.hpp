@@ -2,6 +2,7 @@
 // planar faults (a slab of known dip and dip direction, optionally sheared), kept tiny on purpose.
 #pragma once
 
+#include "core/faults/fault.hpp"
 #include "core/faults/plane_fit.hpp"
 #include "core/model/frame.hpp"
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace faultline::core::testing {
@@ -30,6 +32,13 @@ inline Frame frameOf(const std::vector<Sphere>& spheres) {
         f.radius.push_back(float(s.r));
     }
     f.finalize();
+    return f;
+}
+
+inline Fault faultOf(std::string name, std::vector<std::int64_t> ids) {
+    Fault f;
+    f.name = std::move(name);
+    f.add(std::move(ids));
     return f;
 }
 
@@ -57,9 +66,7 @@ struct PlantedFault {
                 return false;
         return true;
     }
-    bool contains(const Vec3d& p) const {
-        return inBox(p) && std::fabs(distance(p)) < halfWidth;
-    }
+    bool contains(const Vec3d& p) const { return inBox(p) && std::fabs(distance(p)) < halfWidth; }
 };
 
 struct PlantedModel {

@@ -5,16 +5,11 @@
 #include <gtest/gtest.h>
 
 using namespace faultline::core;
+using faultline::core::testing::faultOf;
 using faultline::core::testing::frameOf;
 using faultline::core::testing::Sphere;
 
 namespace {
-Fault faultOf(std::string name, std::vector<std::int64_t> ids) {
-    Fault f;
-    f.name = std::move(name);
-    f.add(std::move(ids));
-    return f;
-}
 
 // Two lines of spheres: ids 1..5 along y = 0, ids 11..13 along y = 10; id 20 alone, hidden.
 Frame twoLines() {
@@ -41,8 +36,8 @@ TEST(FaultTracking, MatchPicksTheCandidateSharingMostIds) {
     const CandidateSet set = findCandidates(f, vis);
     ASSERT_EQ(set.candidates.size(), 2u);
     // 3 ids in candidate 0 (1..5), 2 in candidate 1 (11..13), one hidden (20), one absent (99)
-    const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 11, 12, 20, 99}),
-                                    faultOf("G", {20, 99}), faultOf("H", {4, 5, 12, 13})};
+    const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 11, 12, 20, 99}), faultOf("G", {20, 99}),
+                                    faultOf("H", {4, 5, 12, 13})};
     const auto m = matchFaults(f, set, faults);
     EXPECT_EQ(m[0].present, 6u);
     EXPECT_EQ(m[0].candidate, 0);
@@ -96,6 +91,7 @@ TEST(FaultTracking, TrackFollowsAGrowingFault) {
         EXPECT_EQ(p.members.front(), 1);
         EXPECT_EQ(p.members.back(), std::int64_t(4 + 2 * t));
     }
-    const auto lean = trackFaults(3, [&](std::size_t i) { return frames[i]; }, visible, faults);
+    const auto lean = trackFaults(
+        3, [&](std::size_t i) { return frames[i]; }, visible, faults);
     EXPECT_TRUE(lean[0].points[2].members.empty());
 }

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace faultline::test {
@@ -45,6 +46,14 @@ template <typename F> std::string inputErrorOf(F f) {
         return e.what();
     }
     return "";
+}
+
+// The whole content of a file, "" when it cannot be read.
+inline std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 inline std::string dataFile(const std::string& name) {
