@@ -3,6 +3,7 @@
 #include "core/io/input_error.hpp"
 #include "core/io/numeric_table.hpp"
 #include "core/io/parsed_columns.hpp"
+#include "core/util/ascii.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,13 +12,6 @@
 namespace faultline::core {
 
 namespace {
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
 
 std::vector<std::string> headerNames(std::string_view line, char separator) {
     std::vector<std::string> names;
@@ -81,7 +75,7 @@ Frame parseTable(const std::string& path, std::string_view text) {
     auto find = [&](std::initializer_list<const char*> wanted) -> int {
         for (const char* w : wanted)
             for (std::size_t c = 0; c < names.size(); ++c)
-                if (lower(names[c]) == w)
+                if (asciiLower(names[c]) == w)
                     return static_cast<int>(c);
         return -1;
     };

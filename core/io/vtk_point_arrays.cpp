@@ -1,5 +1,7 @@
 #include "core/io/vtk_point_arrays.hpp"
 
+#include "core/util/ascii.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -11,13 +13,6 @@
 namespace faultline::core::detail {
 
 namespace {
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
 
 template <typename T>
 void unpackAs(const unsigned char* p, std::size_t count, bool bigEndian, double* out) {
@@ -87,7 +82,7 @@ std::uint64_t vtkPackedBytes(VtkScalar type, std::uint64_t count) {
 }
 
 std::optional<VtkScalar> vtkLegacyScalar(std::string_view name) {
-    const std::string n = lower(name);
+    const std::string n = asciiLower(name);
     if (n == "float" || n == "vtktypefloat32")
         return VtkScalar::Float32;
     if (n == "double" || n == "vtktypefloat64")
@@ -185,7 +180,7 @@ Frame buildVtkFrame(const std::string& path, const std::vector<double>& points,
             failAt(path, a,
                    "array '" + a.name + "' has " + std::to_string(a.values.size()) +
                        " values, expected " + std::to_string(n * a.components));
-        const std::string key = lower(a.name);
+        const std::string key = asciiLower(a.name);
         if (a.components == 1 && !haveRadius && (isRadiusName(key) || isDiameterName(key))) {
             const std::size_t bad = firstNonFiniteAsFloat(a.values.data(), n);
             if (bad < n)

@@ -1,5 +1,7 @@
 #include "core/model/frame.hpp"
 
+#include "core/util/ascii.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -151,9 +153,7 @@ bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& val
         "type", "mol", "molecule", "proc", "procp1", "ix", "iy", "iz", "image", "species",
         "speciestype", "layer", "band", "cluster", "broken_bonds", "bonds", "coordination",
         "contacts", "flag", "group", "index", "count"};
-    std::string lower(name);
-    for (char& c : lower)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string lower = asciiLower(name);
     for (std::string_view known : kCounting)
         if (lower == known || (lower.size() > known.size() &&
                                lower.compare(lower.size() - known.size(), known.size(), known) == 0 &&

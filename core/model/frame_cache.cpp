@@ -1,6 +1,7 @@
 #include "core/model/frame_cache.hpp"
 
 #include "core/model/frame_cache_format.hpp"
+#include "core/util/ascii.hpp"
 
 #include <fcntl.h>
 #include <pwd.h>
@@ -79,8 +80,7 @@ bool isOurFile(const fs::directory_entry& e) {
 bool envSaysOff(const char* value) {
     if (!value)
         return false;
-    std::string v(value);
-    std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string v = asciiLower(value);
     return v == "0" || v == "off" || v == "no" || v == "false";
 }
 

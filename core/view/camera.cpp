@@ -1,5 +1,7 @@
 #include "core/view/camera.hpp"
 
+#include "core/util/ascii.hpp"
+
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -14,13 +16,6 @@ namespace faultline::core {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
 
 double tanHalfFov(const Camera& c) {
     return std::tan(std::clamp(c.fovYDegrees, 1.0, 170.0) * kPi / 360.0);
@@ -40,7 +35,7 @@ std::string_view projectionName(Projection p) {
 }
 
 std::optional<Projection> parseProjection(std::string_view name) {
-    const std::string n = lower(name);
+    const std::string n = asciiLower(name);
     if (n == "perspective")
         return Projection::Perspective;
     if (n == "orthographic" || n == "ortho")
@@ -69,7 +64,7 @@ std::string_view viewPresetName(ViewPreset p) {
 }
 
 std::optional<ViewPreset> parseViewPreset(std::string_view name) {
-    const std::string n = lower(name);
+    const std::string n = asciiLower(name);
     for (ViewPreset p : {ViewPreset::Front, ViewPreset::Back, ViewPreset::Left, ViewPreset::Side,
                          ViewPreset::Top, ViewPreset::Bottom, ViewPreset::Iso}) {
         if (n == viewPresetName(p))
