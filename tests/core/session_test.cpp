@@ -2,6 +2,7 @@
 #include "core/session/journal.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "lattice_dump.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -13,21 +14,9 @@ using faultline::test::TempDir;
 
 namespace {
 
-// A 4x4x4 cubic lattice (ids 1..64, x,y,z in 0..3) over 3 frames; strain = x / 3, layer = z.
+// See lattice_dump.hpp.
 std::string writeLattice(const TempDir& dir) {
-    std::string text;
-    for (int t = 0; t < 3; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t * 100) +
-                "\nITEM: NUMBER OF ATOMS\n64\nITEM: BOX BOUNDS pp pp pp\n0 3\n0 3\n0 3\n"
-                "ITEM: ATOMS id x y z radius strain layer\n";
-        int id = 1;
-        for (int z = 0; z < 4; ++z)
-            for (int y = 0; y < 4; ++y)
-                for (int x = 0; x < 4; ++x)
-                    text += std::to_string(id++) + " " + std::to_string(x) + " " + std::to_string(y) + " " +
-                            std::to_string(z) + " 0.5 " + std::to_string(x / 3.0 + t) + " " + std::to_string(z) + "\n";
-    }
-    return dir.write("lattice.dump", text);
+    return dir.write("lattice.dump", faultline::test::latticeDump());
 }
 
 Json cmd(const char* text) { return Json::parse(text); }

@@ -3,6 +3,7 @@
 // widgets by the names panels mark (ItemRegistry). Shared by the panel tests.
 #pragma once
 
+#include "../core/lattice_dump.hpp"
 #include "core/session/session.hpp"
 #include "ui/workbench/workbench.hpp"
 
@@ -163,21 +164,9 @@ class HeadlessUi {
     std::vector<int> m_releaseAfterFrame;
 };
 
-// A 4x4x4 lattice (ids 1..64, x,y,z in 0..3, radius 0.5) over 3 frames; strain = x/3 + frame,
-// layer = z (an integer column).
+// The lattice of lattice_dump.hpp, written to `path`.
 inline std::string writeLattice(const std::string& path) {
-    std::string text;
-    for (int t = 0; t < 3; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t * 100) +
-                "\nITEM: NUMBER OF ATOMS\n64\nITEM: BOX BOUNDS pp pp pp\n0 3\n0 3\n0 3\n"
-                "ITEM: ATOMS id x y z radius strain layer\n";
-        int id = 1;
-        for (int z = 0; z < 4; ++z)
-            for (int y = 0; y < 4; ++y)
-                for (int x = 0; x < 4; ++x)
-                    text += std::to_string(id++) + " " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) +
-                            " 0.5 " + std::to_string(x / 3.0 + t) + " " + std::to_string(z) + "\n";
-    }
+    const std::string text = latticeDump();
     std::FILE* f = std::fopen(path.c_str(), "wb");
     std::fwrite(text.data(), 1, text.size(), f);
     std::fclose(f);

@@ -1,0 +1,26 @@
+// The small LAMMPS dump the session and workbench tests open: a 4x4x4 cubic lattice of radius
+// 0.5 (ids 1..64, x,y,z in 0..3) over 3 frames; strain = x/3 + frame, layer = z (integers).
+#pragma once
+
+#include <string>
+
+namespace faultline::test {
+
+inline std::string latticeDump() {
+    std::string text;
+    for (int t = 0; t < 3; ++t) {
+        text += "ITEM: TIMESTEP\n" + std::to_string(t * 100) +
+                "\nITEM: NUMBER OF ATOMS\n64\nITEM: BOX BOUNDS pp pp pp\n0 3\n0 3\n0 3\n"
+                "ITEM: ATOMS id x y z radius strain layer\n";
+        int id = 1;
+        for (int z = 0; z < 4; ++z)
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x)
+                    text += std::to_string(id++) + " " + std::to_string(x) + " " +
+                            std::to_string(y) + " " + std::to_string(z) + " 0.5 " +
+                            std::to_string(x / 3.0 + t) + " " + std::to_string(z) + "\n";
+    }
+    return text;
+}
+
+} // namespace faultline::test
