@@ -184,6 +184,11 @@ std::size_t Session::frameOfView(const ViewState& view) const {
     return static_cast<std::size_t>(std::clamp(f, 0LL, count - 1));
 }
 
+std::size_t Session::referenceFrameOfView(const ViewState& view) const {
+    const long long count = m_dataset ? static_cast<long long>(m_dataset->frameCount()) : 1;
+    return referenceFrame(view, frameOfView(view), static_cast<std::size_t>(count));
+}
+
 std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const Frame& frame) const {
     const auto& filter = m_state.faultFilter;
     const bool anyHidden = std::any_of(m_state.faults.begin(), m_state.faults.end(),

@@ -73,6 +73,8 @@ class Session {
     std::shared_ptr<const Frame> currentFrame();
     // The frame a view shows (its binding applied to the current frame, clamped).
     std::size_t frameOfView(const ViewState& view) const;
+    // The reference frame of a view's difference colouring, clamped to the dataset.
+    std::size_t referenceFrameOfView(const ViewState& view) const;
 
     // Visible spheres of the current frame (boxes, thresholds, fault filter), cached by version.
     const VisibilityResult& visibility();

@@ -161,7 +161,12 @@ Json viewToJson(const ViewState& v) {
              {{"variable", v.colorVariable},
               {"map", v.colorMap},
               {"range_mode", v.rangeMode},
-              {"range", v.range}}},
+              {"range", v.range},
+              {"difference",
+               {{"mode", differenceModeName(v.difference.mode)},
+                {"reference",
+                 {{"relative", v.difference.reference.relative},
+                  {"value", v.difference.reference.value}}}}}}},
             {"camera", cameraToJson(v.camera)},
             {"linked_camera", v.linkedCamera}};
 }
@@ -185,6 +190,18 @@ ViewState viewFromJson(const Json& j, const std::string& where, const std::strin
         if (view.rangeMode != "frame" && view.rangeMode != "all" && view.rangeMode != "fixed")
             c.fail("range_mode", "must be frame, all or fixed");
         view.range = c.nums<2>("range", view.range);
+        if (c.has("difference")) {
+            Fields d(c.get("difference"), c.child("difference"), path);
+            const auto mode = parseDifferenceMode(d.str("mode", "none"));
+            if (!mode)
+                d.fail("mode", "must be none, change or displacement");
+            view.difference.mode = *mode;
+            if (d.has("reference")) {
+                Fields r(d.get("reference"), d.child("reference"), path);
+                view.difference.reference.relative = r.boolean("relative", false);
+                view.difference.reference.value = static_cast<long long>(r.num("value", 0.0));
+            }
+        }
     }
     if (v.has("camera"))
         view.camera = cameraFromJson(v.get("camera"), v.child("camera"), path);

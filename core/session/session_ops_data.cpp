@@ -147,10 +147,13 @@ void registerDataOps(OpTable& ops) {
         return inverse;
     });
     addStateOp(ops, "color.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"view", "variable", "map", "range", "range_mode"});
+        args::onlyFields(cmd, {"view", "variable", "map", "range", "range_mode", "difference",
+                               "since_frame", "since_offset"});
         ViewState& v = viewOf(s, cmd);
         Json inverse = {{"op", "color.set"}, {"view", v.name}, {"variable", v.colorVariable},
-                        {"map", v.colorMap}, {"range_mode", v.rangeMode}, {"range", v.range}};
+                        {"map", v.colorMap}, {"range_mode", v.rangeMode}, {"range", v.range},
+                        {"difference", differenceModeName(v.difference.mode)}};
+        inverse[v.difference.reference.relative ? "since_offset" : "since_frame"] = v.difference.reference.value;
         ViewState next = v;
         if (auto var = args::optionalString(cmd, "variable"))
             next.colorVariable = *var;
@@ -173,6 +176,24 @@ void registerDataOps(OpTable& ops) {
                 throw CommandError("color.set: \"range_mode\" must be frame, all or fixed");
             next.rangeMode = *mode;
         }
+        // Difference colouring: "change" of the variable, or "displacement", since a frame.
+        if (auto diff = args::optionalString(cmd, "difference")) {
+            const auto mode = parseDifferenceMode(*diff);
+            if (!mode)
+                throw CommandError("color.set: \"difference\" must be none, change or displacement");
+            next.difference.mode = *mode;
+        }
+        if (cmd.contains("since_frame") && cmd.contains("since_offset"))
+            throw CommandError("color.set: give \"since_frame\" (absolute) or \"since_offset\" (relative), not both");
+        if (auto f = args::optionalInteger(cmd, "since_frame")) {
+            if (*f < 0)
+                throw CommandError("color.set: \"since_frame\" must be >= 0");
+            next.difference.reference = {false, *f};
+        }
+        if (auto o = args::optionalInteger(cmd, "since_offset"))
+            next.difference.reference = {true, *o};
+        if (next.difference.mode == ColorDifference::Mode::Change && next.colorVariable.empty())
+            throw CommandError("color.set: \"difference\":\"change\" needs a \"variable\"");
         v = next;
         return inverse;
     });

@@ -1,4 +1,5 @@
-// Ops on the whole session: session.open (load a *.faultline.json as an undoable command) and
+// Ops on the whole session: session.open (load a *.faultline.json as an undoable command, its
+// data optionally at another place) and
 // session.restore (its inverse: a whole state given inline).
 #include "core/session/session_ops.hpp"
 
@@ -39,13 +40,22 @@ Json replaceWith(Session& s, SessionState next, const std::string& op) {
 
 void registerSessionOps(OpTable& ops) {
     addStateOp(ops, "session.open", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"path"});
+        args::onlyFields(cmd, {"path", "data"});
         const std::string path = s.inputPath(args::string(cmd, "path"));
         SessionState next;
         try {
             next = loadSessionFile(path);
         } catch (const InputError& e) {
             throw CommandError(std::string("session.open: ") + e.what());
+        }
+        // "data": where the session's data is now, when it moved since the session was saved.
+        if (cmd.contains("data")) {
+            std::vector<std::string> data = args::strings(cmd, "data");
+            if (data.empty())
+                throw CommandError("session.open: \"data\" is empty");
+            for (auto& p : data)
+                p = s.inputPath(p);
+            next.dataPaths = std::move(data);
         }
         return replaceWith(s, std::move(next), "session.open");
     });

@@ -3,6 +3,7 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/surface/fault_surface.hpp"
+#include "core/surface/fault_surface_request.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <algorithm>
@@ -10,25 +11,6 @@
 namespace faultline::core::detail {
 
 namespace {
-
-// A fault's members in the current frame, as the surface builder reads them, in its colour.
-struct FaultSpheres {
-    std::vector<float> x, y, z, radius, rgb;
-    SphereSet set() const { return {x, y, z, radius, rgb}; }
-};
-
-FaultSpheres gather(const Frame& frame, const Fault& fault) {
-    FaultSpheres s;
-    for (std::int64_t id : fault.ids)
-        if (auto row = frame.rowOf(id)) {
-            s.x.push_back(frame.x[*row]);
-            s.y.push_back(frame.y[*row]);
-            s.z.push_back(frame.z[*row]);
-            s.radius.push_back(frame.radius[*row]);
-            s.rgb.insert(s.rgb.end(), fault.color.begin(), fault.color.end());
-        }
-    return s;
-}
 
 Json settingsJson(const SurfaceSettings& st) {
     return {{"op", "surface.set"}, {"fault", st.fault}, {"kernel", st.kernel}, {"voxel", st.voxel},
@@ -74,11 +56,8 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     const Fault* fault = s.state().fault(st.fault);
     if (!fault)
         throw CommandError(std::string(op) + ": no fault named \"" + st.fault + "\"");
-    const FaultSpheres spheres = gather(*frame, *fault);
-    SurfaceParams params;
-    params.kernel = *parseKernel(st.kernel);
-    params.iso = static_cast<float>(st.iso);
-    params.voxelSize = static_cast<float>(st.voxel);
+    const FaultSpheres spheres = gatherFaultSpheres(*frame, *fault);
+    const SurfaceParams params = surfaceParamsOf(st);
     try {
         return buildSurface(spheres.set(), params);
     } catch (const std::exception& e) {
@@ -150,7 +129,7 @@ void registerSurfaceOps(OpTable& ops) {
         if (args::optionalBool(cmd, "glyphs").value_or(false))
             if (auto frame = s.currentFrame())
                 for (const auto& name : names) {
-                    const FaultSpheres f = gather(*frame, *s.state().fault(name));
+                    const FaultSpheres f = gatherFaultSpheres(*frame, *s.state().fault(name));
                     for (auto [dst, src] : {std::pair{&glyphs.x, &f.x}, {&glyphs.y, &f.y}, {&glyphs.z, &f.z},
                                             {&glyphs.radius, &f.radius}, {&glyphs.rgb, &f.rgb}})
                         dst->insert(dst->end(), src->begin(), src->end());

@@ -4,6 +4,44 @@
 
 namespace faultline::core {
 
+std::string_view differenceModeName(ColorDifference::Mode mode) {
+    switch (mode) {
+    case ColorDifference::Mode::Change:
+        return "change";
+    case ColorDifference::Mode::Displacement:
+        return "displacement";
+    case ColorDifference::Mode::None:
+        break;
+    }
+    return "none";
+}
+
+std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count) {
+    const FrameBinding& ref = view.difference.reference;
+    const long long f = ref.relative ? static_cast<long long>(shown) + ref.value : ref.value;
+    return static_cast<std::size_t>(std::clamp(f, 0LL, std::max(1LL, static_cast<long long>(count)) - 1));
+}
+
+std::string colorTitle(const ViewState& view, std::size_t referenceFrame) {
+    const std::string since = " since frame " + std::to_string(referenceFrame);
+    switch (view.difference.mode) {
+    case ColorDifference::Mode::Change:
+        return view.colorVariable.empty() ? std::string() : view.colorVariable + " change" + since;
+    case ColorDifference::Mode::Displacement:
+        return "displacement" + since;
+    case ColorDifference::Mode::None:
+        break;
+    }
+    return view.colorVariable;
+}
+
+std::optional<ColorDifference::Mode> parseDifferenceMode(std::string_view name) {
+    for (auto m : {ColorDifference::Mode::None, ColorDifference::Mode::Change, ColorDifference::Mode::Displacement})
+        if (differenceModeName(m) == name)
+            return m;
+    return std::nullopt;
+}
+
 namespace {
 template <typename Vec, typename Key> auto findIn(Vec& items, Key key, std::string_view name) {
     auto it = std::find_if(items.begin(), items.end(), [&](const auto& e) { return e.*key == name; });

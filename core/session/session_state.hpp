@@ -11,6 +11,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace faultline::core {
@@ -35,6 +36,17 @@ struct FrameBinding {
     bool operator==(const FrameBinding&) const = default;
 };
 
+// Difference colouring: a view coloured by how its variable changed, or how far each sphere
+// moved, since a reference frame (absolute, or an offset from the frame the view shows).
+struct ColorDifference {
+    enum class Mode { None, Change, Displacement };
+    Mode mode = Mode::None;
+    FrameBinding reference{false, 0};
+    bool operator==(const ColorDifference&) const = default;
+};
+std::string_view differenceModeName(ColorDifference::Mode mode); // none | change | displacement
+std::optional<ColorDifference::Mode> parseDifferenceMode(std::string_view name);
+
 struct ViewState;
 ViewState mainView();
 
@@ -45,10 +57,17 @@ struct ViewState {
     std::string colorMap = "blue-red";
     std::string rangeMode = "frame";            // frame | all | fixed
     std::array<double, 2> range{0, 1};          // used when rangeMode == fixed
+    ColorDifference difference;
     CameraState camera;
     bool linkedCamera = true;
     bool operator==(const ViewState&) const = default;
 };
+
+// The reference frame of a view's difference colouring when it shows `shown` of `count` frames.
+std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count);
+// What a view's colours mean, for its legend: "strain", "strain change since frame 10",
+// "displacement since frame 0" (empty: one colour).
+std::string colorTitle(const ViewState& view, std::size_t referenceFrame);
 
 inline ViewState mainView() {
     ViewState v;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 using namespace faultline::core;
@@ -82,6 +83,8 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         cmd(R"({"op":"view.add","name":"right","frame":2})"),
         cmd(R"({"op":"view.set","name":"right","offset":-1})"),
         cmd(R"({"op":"color.set","view":"main","variable":"strain","map":"viridis","range":[0,0.5]})"),
+        cmd(R"({"op":"color.set","view":"main","difference":"change","since_offset":-1})"),
+        cmd(R"({"op":"color.set","view":"main","difference":"displacement","since_frame":0})"),
         cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"),
         cmd(R"({"op":"layout.set","layout":{"split":"h"}})"),
         cmd(R"({"op":"view.remove","name":"right"})"),
@@ -104,6 +107,51 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         EXPECT_EQ(dump(s.state()), dump(states[k + 1])) << "redo of " << commands[k].dump();
     }
     EXPECT_FALSE(s.redo());
+}
+
+TEST(Session, DifferenceColouringIsSavedAndItsReferenceFrameResolves) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    s.apply(cmd(R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_offset":-1})"));
+    const ViewState& v = *s.state().view("main");
+    EXPECT_EQ(v.difference.mode, ColorDifference::Mode::Change);
+    EXPECT_EQ(s.referenceFrameOfView(v), 1u);
+    EXPECT_EQ(colorTitle(v, 1), "strain change since frame 1");
+    s.apply(cmd(R"({"op":"color.set","view":"main","since_offset":-10})"));
+    EXPECT_EQ(s.referenceFrameOfView(*s.state().view("main")), 0u); // clamped to the data
+    const std::string file = dir.file("d.faultline.json");
+    saveSessionFile(s.state(), file);
+    EXPECT_EQ(loadSessionFile(file).views, s.state().views);
+    for (const char* bad : {R"({"op":"color.set","difference":"ratio"})",
+                            R"({"op":"color.set","since_frame":1,"since_offset":-1})",
+                            R"({"op":"color.set","since_frame":-1})",
+                            R"({"op":"color.set","variable":"","difference":"change"})"})
+        EXPECT_THROW(s.apply(Json::parse(bad)), CommandError) << bad;
+    EXPECT_EQ(s.state().view("main")->difference.reference, (FrameBinding{true, -10}));
+}
+
+TEST(Session, ASessionOpensWithItsDataAtAnotherPlace) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    const std::string file = dir.file("s.faultline.json");
+    saveSessionFile(s.state(), file);
+    std::filesystem::create_directories(dir.file("moved"));
+    std::filesystem::rename(dir.file("lattice.dump"), dir.file("moved/lattice.dump"));
+    Session t;
+    try {
+        t.apply({{"op", "session.open"}, {"path", file}});
+        ADD_FAILURE() << "opened a session whose data is gone";
+    } catch (const CommandError& e) {
+        EXPECT_NE(std::string(e.what()).find("lattice.dump"), std::string::npos) << e.what();
+    }
+    t.apply({{"op", "session.open"}, {"path", file}, {"data", {dir.file("moved/lattice.dump")}}});
+    ASSERT_NE(t.dataset(), nullptr);
+    EXPECT_EQ(t.state().box("a")->max, (std::array<double, 3>{1, 1, 1}));
+    EXPECT_EQ(t.state().dataPaths, (std::vector<std::string>{dir.file("moved/lattice.dump")}));
 }
 
 TEST(Session, RejectedCommandsChangeNothing) {

@@ -1,0 +1,34 @@
+// FaultSurfaceRequest: what one fault surface is built from (the fault's member spheres in a frame,
+// in the fault's colour, and the session's surface settings as field parameters). The journal's
+// surface ops, the workbench's background builds and figures share it, so all three agree.
+#pragma once
+
+#include "core/faults/fault.hpp"
+#include "core/model/frame.hpp"
+#include "core/session/session_state.hpp"
+#include "core/surface/sphere_set.hpp"
+#include "core/surface/surface_cache.hpp"
+#include "core/surface/surface_params.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace faultline::core {
+
+// A fault's members present in a frame, gathered as columns (ids absent from the frame are
+// skipped), each in the fault's colour.
+struct FaultSpheres {
+    std::vector<float> x, y, z, radius, rgb;
+    SphereSet set() const { return {x, y, z, radius, rgb}; }
+    std::size_t size() const { return x.size(); }
+};
+FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
+
+// The field parameters of a surface setting. Throws CommandError for an unknown kernel.
+SurfaceParams surfaceParamsOf(const SurfaceSettings& settings);
+
+// The SurfaceCache key of a fault's surface in frame `frameIndex`: members and colour (the colour
+// grid depends on it) and every field parameter except iso.
+SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceParams& params);
+
+} // namespace faultline::core
