@@ -25,7 +25,7 @@ std::string shape(const DockNode& n) {
 
 TEST(DockLayout, DefaultPutsTheViewportsInTheCentre) {
     DockLayout l = DockLayout::defaultLayout();
-    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports|timeline)|v(histograms|faults)))");
+    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports|timeline)|v(histograms|faults,surfaces)))");
     for (const auto& p : known())
         EXPECT_TRUE(l.contains(p)) << p;
 }
@@ -45,6 +45,7 @@ TEST(DockLayout, JsonRoundTripKeepsTreeRatiosActiveTabsAndSettings) {
 
 TEST(DockLayout, MovingATabJoinsOrSplitsAndEmptyAreasCollapse) {
     DockLayout l = DockLayout::defaultLayout();
+    ASSERT_TRUE(l.closePanel("surfaces")); // faults alone in its area
     // Onto the centre of the viewports' area: a second tab there.
     ASSERT_TRUE(l.movePanel("faults", l.areaOf("viewports")->id, DropSide::Centre));
     EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports,faults|timeline)|histograms))");
@@ -64,6 +65,7 @@ TEST(DockLayout, MovingATabJoinsOrSplitsAndEmptyAreasCollapse) {
 
 TEST(DockLayout, CloseAndOpenPanels) {
     DockLayout l = DockLayout::defaultLayout();
+    ASSERT_TRUE(l.closePanel("surfaces")); // faults alone in its area
     ASSERT_TRUE(l.closePanel("faults"));
     EXPECT_FALSE(l.contains("faults"));
     EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports|timeline)|histograms))");

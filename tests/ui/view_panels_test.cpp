@@ -222,7 +222,7 @@ TEST_F(JournalTest, EveryCommandIsJournalledAndTheJournalReplays) {
     EXPECT_TRUE(report.ok());
     EXPECT_EQ(replayed.state().boxes, session.state().boxes);
     // The autosave sits next to the journal.
-    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(journal).parent_path() / "autosave.faultline.json"));
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(journal).parent_path() / "recovery.faultline.json"));
 }
 
 TEST_F(PanelTest, SessionsOpenInTheBackgroundAsOneUndoableCommand) {

@@ -11,12 +11,13 @@ inline constexpr const char* kHistograms = "histograms";
 inline constexpr const char* kBoxes = "boxes";
 inline constexpr const char* kThresholds = "thresholds";
 inline constexpr const char* kFaults = "faults";
+inline constexpr const char* kSurfaces = "surfaces";
 inline constexpr const char* kTimeline = "timeline";
 inline constexpr const char* kViewports = "viewports";
 
 inline const std::vector<std::string>& all() {
-    static const std::vector<std::string> ids{kViewports, kData,   kBoxes,   kThresholds,
-                                              kHistograms, kFaults, kTimeline};
+    static const std::vector<std::string> ids{kViewports, kData,   kBoxes,     kThresholds,
+                                              kHistograms, kFaults, kSurfaces, kTimeline};
     return ids;
 }
 

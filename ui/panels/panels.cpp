@@ -10,6 +10,7 @@ std::vector<std::unique_ptr<Panel>> createPanels() {
     p.push_back(makeThresholdsPanel());
     p.push_back(makeHistogramsPanel());
     p.push_back(makeFaultsPanel());
+    p.push_back(makeSurfacesPanel());
     p.push_back(makeTimelinePanel());
     return p;
 }

@@ -15,6 +15,7 @@ std::unique_ptr<Panel> makeHistogramsPanel();
 std::unique_ptr<Panel> makeBoxesPanel();
 std::unique_ptr<Panel> makeThresholdsPanel();
 std::unique_ptr<Panel> makeFaultsPanel();
+std::unique_ptr<Panel> makeSurfacesPanel();
 std::unique_ptr<Panel> makeTimelinePanel();
 std::unique_ptr<Panel> makeViewportsPanel();
 

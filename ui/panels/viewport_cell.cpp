@@ -149,10 +149,13 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
     drawFramePopup(wb, view);
     ImGui::SameLine();
     // Colour.
-    const std::string colour = view.colorVariable.empty() ? std::string("plain colour") : view.colorVariable + " (" + view.colorMap + ")";
+    const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
+    const std::string colour = title.empty() ? std::string("plain colour") : title + " (" + view.colorMap + ")";
     if (ImGui::Button((colour + "##colour").c_str())) {
         m_rangeEdit[0] = d.colorRange[0];
         m_rangeEdit[1] = d.colorRange[1];
+        m_sinceRelative = view.difference.reference.relative;
+        m_sinceEdit = static_cast<int>(view.difference.reference.value);
         ImGui::OpenPopup("##colourpopup");
     }
     wb.mark("view.colour." + view.name);
@@ -232,7 +235,49 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
     const bool hiDone = ImGui::IsItemDeactivatedAfterEdit();
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
         wb.emit({{"op", "color.set"}, {"view", view.name}, {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
+    drawDifference(wb, view);
     ImGui::EndPopup();
+}
+
+// Difference colouring: the variable's change, or the distance moved, since a reference frame.
+void ViewportCells::drawDifference(Workbench& wb, const core::ViewState& view) {
+    using Mode = core::ColorDifference::Mode;
+    ImGui::Separator();
+    ImGui::TextDisabled("Show");
+    const struct {
+        Mode mode;
+        const char* label;
+    } modes[] = {{Mode::None, "the value itself"},
+                 {Mode::Change, "its change since a frame"},
+                 {Mode::Displacement, "displacement since a frame"}};
+    auto since = [&](core::Json cmd) {
+        cmd[m_sinceRelative ? "since_offset" : "since_frame"] = m_sinceEdit;
+        wb.emit(cmd);
+    };
+    for (const auto& m : modes) {
+        const bool needsVariable = m.mode == Mode::Change && view.colorVariable.empty();
+        if (needsVariable)
+            ImGui::BeginDisabled();
+        if (ImGui::RadioButton(m.label, view.difference.mode == m.mode) && view.difference.mode != m.mode)
+            since({{"op", "color.set"}, {"view", view.name}, {"difference", core::differenceModeName(m.mode)}});
+        if (needsVariable)
+            ImGui::EndDisabled();
+    }
+    if (view.difference.mode == Mode::None)
+        return;
+    if (ImGui::RadioButton("frame", !m_sinceRelative))
+        m_sinceRelative = false, m_sinceEdit = std::max(0, m_sinceEdit);
+    ImGui::SameLine();
+    if (ImGui::RadioButton("offset from the frame shown (e.g. -10)", m_sinceRelative))
+        m_sinceRelative = true, m_sinceEdit = -std::abs(m_sinceEdit);
+    ImGui::SetNextItemWidth(110 * wb.scale());
+    ImGui::InputInt("##since", &m_sinceEdit);
+    if (!m_sinceRelative)
+        m_sinceEdit = std::max(0, m_sinceEdit);
+    const bool edited = ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SameLine();
+    if (ImGui::Button("Apply##since") || edited)
+        since({{"op", "color.set"}, {"view", view.name}});
 }
 
 void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {

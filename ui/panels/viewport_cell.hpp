@@ -23,6 +23,7 @@ class ViewportCells {
   private:
     void drawHeader(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
     void drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d);
+    void drawDifference(Workbench& wb, const core::ViewState& view);
     void drawFramePopup(Workbench& wb, const core::ViewState& view);
     void interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
     void drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
@@ -52,6 +53,8 @@ class ViewportCells {
     int m_frameEdit = 0;
     bool m_frameRelative = true;
     double m_rangeEdit[2] = {0, 1};
+    bool m_sinceRelative = false;
+    int m_sinceEdit = 0;
 };
 
 } // namespace faultline::ui

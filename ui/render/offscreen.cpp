@@ -124,7 +124,11 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
     if (f) {
         renderer.setSpheres({f->x, f->y, f->z, f->radius});
         if (!scene.colorVariable.empty()) {
-            const core::AttributeColumn* column = f->attribute(scene.colorVariable);
+            const core::AttributeColumn* column =
+                scene.colorColumn ? scene.colorColumn : f->attribute(scene.colorVariable);
+            if (column && column->size() != f->size())
+                throw std::invalid_argument("the colour column has " + std::to_string(column->size()) +
+                                            " values for " + std::to_string(f->size()) + " spheres");
             if (!column) {
                 std::string names;
                 for (const std::string& n : f->attributeNames())

@@ -19,6 +19,9 @@ struct SceneDescription {
     const core::Frame* frame = nullptr; // null: meshes and boxes only
     std::vector<std::uint8_t> visible;  // a byte per row, 1 = visible; empty: all
     std::string colorVariable;          // empty: every sphere in style.sphereColor
+    // Values instead of colorVariable's column (difference colouring; colorVariable titles the
+    // legend). One per sphere of the frame.
+    const core::AttributeColumn* colorColumn = nullptr;
     core::ColorMapSpec colorMap;
     std::optional<core::ValueRange> colorRange; // empty: the variable's min..max in this frame
     std::vector<MeshData> meshes;

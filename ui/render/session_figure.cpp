@@ -1,7 +1,11 @@
 #include "ui/render/session_figure.hpp"
 
 #include "core/color/colormap.hpp"
+#include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/fault_surface_request.hpp"
+#include "ui/render/surface_mesh.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
@@ -38,7 +42,25 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
     scene.colorVariable = view->colorVariable;
     if (auto map = core::parseColorMap(view->colorMap))
         scene.colorMap = *map;
-    if (!view->colorVariable.empty()) {
+    // Difference colouring: the change since the view's reference frame, matched by id.
+    std::optional<core::AttributeColumn> difference;
+    if (view->difference.mode != core::ColorDifference::Mode::None) {
+        const std::size_t ref = core::referenceFrame(*view, frameIndex, dataset->frameCount());
+        const auto refFrame = dataset->frame(ref);
+        try {
+            difference = view->difference.mode == core::ColorDifference::Mode::Change
+                             ? core::variableChange(*frame, *refFrame, view->colorVariable)
+                             : core::displacementSince(*frame, *refFrame);
+        } catch (const std::invalid_argument& e) {
+            throw CommandError(std::string("render: ") + e.what());
+        }
+        scene.colorVariable = core::colorTitle(*view, ref);
+        scene.colorColumn = &*difference;
+        if (view->rangeMode == "fixed")
+            scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
+        else if (difference->min <= difference->max)
+            scene.colorRange = core::ValueRange{difference->min, difference->max};
+    } else if (!view->colorVariable.empty()) {
         if (view->rangeMode == "fixed") {
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
         } else if (view->rangeMode == "all") {
@@ -59,6 +81,21 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
                                    glm::dvec3(b.max[0], b.max[1], b.max[2]),
                                    b.mode == core::BoxMode::Keep ? glm::vec3(0.15f, 0.45f, 0.85f)
                                                                  : glm::vec3(0.85f, 0.25f, 0.2f)});
+    // Visible fault surfaces, as the workbench shows them.
+    for (const auto& st : session.state().surfaces) {
+        const core::Fault* fault = session.state().fault(st.fault);
+        if (!st.visible || !fault || !fault->visible)
+            continue;
+        const core::FaultSpheres spheres = core::gatherFaultSpheres(*frame, *fault);
+        if (spheres.size() == 0)
+            continue;
+        try {
+            scene.meshes.push_back(toMeshData(core::buildSurface(spheres.set(), core::surfaceParamsOf(st)).mesh));
+        } catch (const std::exception& e) {
+            throw CommandError("render: surface of fault \"" + st.fault + "\": " + e.what());
+        }
+        scene.meshes.back().opacity = static_cast<float>(st.opacity);
+    }
     // The view's camera; one never placed (distance 0) keeps its angles and is fitted to the
     // model, as the viewport does.
     core::CameraState camera = view->camera;

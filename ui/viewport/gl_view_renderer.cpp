@@ -65,13 +65,17 @@ void GlViewRenderer::render(const ViewScene& scene) {
         slot.visibleKey = ~0ull;
         changed = true;
     }
-    if (scene.colorVariable != slot.variable) {
+    if (scene.colorVariable != slot.variable || scene.colorColumn != slot.column) {
         slot.variable = scene.colorVariable;
+        slot.column = scene.colorColumn;
         slot.values.clear();
         std::span<const float> values;
         if (scene.frame && !scene.colorVariable.empty()) {
             const core::Frame& f = *scene.frame;
-            if (const core::AttributeColumn* c = f.attribute(scene.colorVariable)) {
+            const core::AttributeColumn* c = scene.colorColumn ? scene.colorColumn.get() : f.attribute(scene.colorVariable);
+            if (c && c->size() != f.size()) {
+                c = nullptr; // a column of another frame: one colour until the right one comes
+            } else if (c) {
                 if (c->isInteger()) {
                     slot.values.assign(c->ints.begin(), c->ints.end());
                     values = slot.values;
@@ -89,6 +93,23 @@ void GlViewRenderer::render(const ViewScene& scene) {
             }
         }
         r.setSphereValues(values);
+        changed = true;
+    }
+    // Surfaces: re-sent when a mesh or an opacity changes (meshes are shared, never edited).
+    std::vector<std::pair<std::shared_ptr<const MeshData>, float>> surfaceKey;
+    for (const auto& sf : scene.surfaces)
+        if (sf.mesh)
+            surfaceKey.push_back({sf.mesh, sf.opacity});
+    if (surfaceKey != slot.surfaceKey) {
+        slot.surfaceKey = surfaceKey;
+        std::vector<MeshData> meshes;
+        meshes.reserve(scene.surfaces.size());
+        for (const auto& sf : scene.surfaces)
+            if (sf.mesh) {
+                meshes.push_back(*sf.mesh);
+                meshes.back().opacity = sf.opacity;
+            }
+        r.setMeshes(meshes);
         changed = true;
     }
     if (scene.visibleKey != slot.visibleKey) {
@@ -109,7 +130,6 @@ void GlViewRenderer::render(const ViewScene& scene) {
             << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
     if (sig.str() != slot.signature || changed) {
         slot.signature = sig.str();
-        // "gray" is a session map name the renderer does not have: its nearest is viridis.
         const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{core::ColorMapKind::Viridis});
         r.setColorMap(map);
         r.setColorRange({scene.colorRange[0], scene.colorRange[1]});

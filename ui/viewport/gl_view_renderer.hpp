@@ -38,6 +38,8 @@ class GlViewRenderer final : public ViewRenderer {
         std::unique_ptr<Renderer> renderer;
         std::shared_ptr<const core::Frame> frame;
         std::string variable = "\x01"; // what the values were made from
+        std::shared_ptr<const core::AttributeColumn> column;
+        std::vector<std::pair<std::shared_ptr<const MeshData>, float>> surfaceKey;
         std::uint64_t visibleKey = ~0ull;
         std::string signature; // everything else that changes the picture
         std::vector<float> values; // integer columns converted once per frame

@@ -6,6 +6,7 @@
 #include "core/model/frame.hpp"
 #include "core/selection/cutting_box.hpp"
 #include "core/session/session_state.hpp"
+#include "ui/render/renderer.hpp"
 
 #include <array>
 #include <cstdint>
@@ -16,18 +17,28 @@
 
 namespace faultline::ui {
 
+// A fault's surface as a view draws it (opacity from the session's settings).
+struct ViewSurface {
+    std::string fault;
+    std::shared_ptr<const MeshData> mesh;
+    float opacity = 1.0f;
+};
+
 struct ViewScene {
     std::string view;                          // the view's name
     std::shared_ptr<const core::Frame> frame;  // null: no data
     const std::vector<std::uint8_t>* visible = nullptr; // a byte per row; null: all
     std::uint64_t visibleKey = 0;              // changes when the mask changes
-    std::string colorVariable;                 // empty: one colour
+    std::string colorVariable;                 // empty: one colour; else the legend's title
+    // Values to colour by instead of the frame's colorVariable column (difference colouring).
+    std::shared_ptr<const core::AttributeColumn> colorColumn;
     std::string colorMap = "blue-red";
     std::array<double, 2> colorRange{0, 1};    // resolved
     core::CameraState camera;                  // resolved (fitted, previewed)
     std::vector<core::CuttingBox> boxes;       // enabled boxes to outline
     std::optional<std::size_t> selectedBox;    // index into boxes: draw face handles
     std::optional<int> activeFace;             // 0..5 (-x +x -y +y -z +z), highlighted
+    std::vector<ViewSurface> surfaces;         // fault surfaces, drawn with the spheres
     int width = 0, height = 0;                 // pixels
 };
 

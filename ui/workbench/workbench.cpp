@@ -23,6 +23,9 @@ using core::Json;
 
 namespace {
 
+// Prefetch channels of difference colouring's reference frames (one per view, after the views').
+constexpr std::size_t kReferenceChannel = 64;
+
 std::string timestampForFile() {
     const std::time_t t = std::time(nullptr);
     char buf[32];
@@ -111,11 +114,18 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
             m_journalPath.clear();
         }
     }
+    if (!m_options.stateDir.empty()) {
+        m_autosaver.emplace(m_options.stateDir);
+        m_recovery = m_autosaver->pending();
+    }
     loadSettings();
 }
 
 Workbench::~Workbench() {
+    m_surfaces.clear(); // cancels surface builds
     m_jobs.waitAll();
+    if (m_autosaver && !m_recovery && !m_recovering)
+        m_autosaver->saveNow(m_session, true); // a clean exit: nothing to offer next time
     m_session.setJournalSink(nullptr);
     m_session.setDatasetOpener(nullptr);
 }
@@ -193,6 +203,7 @@ void Workbench::frame(double now) {
     drawStatusBar(statusHeight);
     handleDialog();
     drawHelp();
+    drawPrompts();
 
     applyPending();
     syncWithSession();
@@ -250,7 +261,7 @@ void Workbench::applyPending() {
             const std::string op = cmd.value("op", "");
             if (op == "session.save")
                 info("Saved the session to " + cmd.value("path", ""));
-            else if (op == "export.csv")
+            else if (op == "export.csv" || op == "export.vdb" || op == "export.gltf")
                 info("Exported " + cmd.value("path", ""));
         } catch (const core::CommandError& e) {
             error(e.what());
@@ -268,6 +279,8 @@ void Workbench::syncWithSession() {
         m_views.clear();
         m_visibilityCache.clear();
         m_allFramesRange.clear();
+        m_surfaces.clear();
+        m_differences.clear();
         Playback fresh;
         fresh.fps = m_playback.fps;
         fresh.loop = m_playback.loop;
@@ -458,11 +471,38 @@ void Workbench::updateDisplay() {
             for (int k = 0; k < 3; ++k)
                 d.camera.target[k] += basis.right[k] * 0.5 * legend * worldPerPixel;
         }
+        // Difference colouring: the change since a reference frame, once that frame is here.
+        d.colorColumn.reset();
+        d.colorTitle = v.colorVariable;
+        d.differencePending = false;
+        if (v.difference.mode != core::ColorDifference::Mode::None && d.frame && ds) {
+            const std::size_t ref = core::referenceFrame(v, d.shownFrame, ds->frameCount());
+            d.colorTitle = core::colorTitle(v, ref);
+            if (auto refFrame = m_frames.request(ref, kReferenceChannel + channel)) {
+                try {
+                    d.colorColumn = v.difference.mode == core::ColorDifference::Mode::Change
+                                        ? m_differences.change(d.frame, refFrame, v.colorVariable)
+                                        : m_differences.displacement(d.frame, refFrame);
+                } catch (const std::invalid_argument&) {
+                    d.colorTitle.clear(); // the frame lacks the variable: one colour
+                }
+            } else {
+                d.differencePending = true;
+                d.colorTitle.clear();
+            }
+        }
         // Colour range.
         std::array<double, 2> range{0, 1};
         if (v.rangeMode == "fixed") {
             range = v.range;
-        } else if (d.frame && !v.colorVariable.empty()) {
+        } else if (d.colorColumn) {
+            if (d.colorColumn->min <= d.colorColumn->max)
+                range = {d.colorColumn->min, d.colorColumn->max};
+            auto& all = m_allFramesRange.try_emplace(d.colorTitle, range).first->second;
+            all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
+            if (v.rangeMode == "all")
+                range = all;
+        } else if (d.frame && !v.colorVariable.empty() && v.difference.mode == core::ColorDifference::Mode::None) {
             if (auto info = m_columns.info(d.frame, v.colorVariable)) {
                 range = {info->min, info->max};
                 auto& all = m_allFramesRange.try_emplace(v.colorVariable, range).first->second;
@@ -471,11 +511,13 @@ void Workbench::updateDisplay() {
                     range = all;
             }
         }
+        d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now);
         d.colorRange = widen(range);
         next.push_back(std::move(d));
         ++channel;
     }
     m_views = std::move(next);
+    m_surfaces.endFrame();
     std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {
         return std::none_of(m_views.begin(), m_views.end(),
                             [&](const ViewDisplay& d) { return d.frame == e.frame && d.visibility == e.result; });
@@ -496,8 +538,10 @@ void Workbench::renderViews() {
         scene.frame = d.frame;
         scene.visible = d.visibility ? &d.visibility->mask : nullptr;
         scene.visibleKey = d.visibilityKey;
-        scene.colorVariable = v->colorVariable;
+        scene.colorVariable = d.colorTitle;
+        scene.colorColumn = d.colorColumn;
         scene.colorMap = v->colorMap;
+        scene.surfaces = d.surfaces;
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;
         for (const auto& b : m_displayBoxes)

@@ -4,6 +4,7 @@
 // while a drag is under way, previews that the views show at once without a command.
 #pragma once
 
+#include "core/session/autosave.hpp"
 #include "core/session/session.hpp"
 #include "ui/dock/dock_layout.hpp"
 #include "ui/dock/dock_space.hpp"
@@ -13,6 +14,8 @@
 #include "ui/workbench/jobs.hpp"
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/workbench/frame_columns.hpp"
+#include "ui/workbench/surface_store.hpp"
+#include "core/model/difference_column_cache.hpp"
 
 #include <fstream>
 #include <functional>
@@ -54,7 +57,7 @@ struct PanelExtensions {
 struct WorkbenchOptions {
     std::string stateDir;  // autosave and the journal of this run; empty: neither is written
     std::string configDir; // recent files; empty: not remembered
-    double autosaveSeconds = 30.0;
+    double autosaveSeconds = 60.0;
 };
 
 // What one view shows this frame (after previews, frame loading and camera fitting).
@@ -69,6 +72,12 @@ struct ViewDisplay {
     std::uint64_t visibilityKey = 0;
     core::CameraState camera;       // the session's, previewed, fitted when not set yet
     std::array<double, 2> colorRange{0, 1};
+    // Difference colouring: the column shown instead of the variable's (null: the variable's
+    // own, or none while the reference frame loads) and what the legend calls it.
+    std::shared_ptr<const core::AttributeColumn> colorColumn;
+    std::string colorTitle;
+    bool differencePending = false;
+    std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
     bool loading() const { return !frame || shownFrame != wantedFrame; }
 };
 
@@ -117,6 +126,7 @@ class Workbench {
     FrameStore& frames() { return m_frames; }
     ColumnCatalog& columns() { return m_columns; }
     JobRunner& jobs() { return m_jobs; }
+    SurfaceStore& surfaces() { return m_surfaces; }
     Playback& playback() { return m_playback; }
     void play();
     void pause(); // commits the frame shown
@@ -150,7 +160,9 @@ class Workbench {
     // ---- files (workbench_files.cpp) ----
     void openPath(const std::string& path); // data or *.faultline.json, in the background
     void openData(std::vector<std::string> paths);
-    void openSession(const std::string& path);
+    // `data`: where the session's data is now, when it moved (else the paths it names). When
+    // its data is missing the workbench asks where it went.
+    void openSession(const std::string& path, std::vector<std::string> data = {});
     // The generator's demo model: made once in the per-user data folder (a background job with
     // progress and cancel), then opened.
     void openDemo();
@@ -165,6 +177,18 @@ class Workbench {
     bool quitRequested() const { return m_quit; }
     void requestQuit() { m_quit = true; }
     void showHelp() { m_showHelp = true; }
+    // Crash recovery: the session autosaved by a run that did not exit cleanly, offered once at
+    // start (recover or discard); until decided, autosave keeps that file.
+    const std::optional<core::PendingRecovery>& pendingRecovery() const { return m_recovery; }
+    void recover();
+    void discardRecovery();
+    // A session whose data moved: which session and the paths it named (asks where they went).
+    struct MissingData {
+        std::string session;
+        std::vector<std::string> paths;
+    };
+    const std::optional<MissingData>& missingData() const { return m_missingData; }
+    void relocateData(const std::string& pickedFile); // the picked file stands for the data
 
   private:
     void applyPending();
@@ -175,6 +199,7 @@ class Workbench {
     void drawStatusBar(float height);
     void drawDock(float top, float bottom);
     void drawHelp();
+    void drawPrompts();
     void handleShortcuts();
     void handleDialog();
     void autosave(bool force);
@@ -189,6 +214,8 @@ class Workbench {
     FrameStore m_frames;
     ColumnCatalog m_columns;
     JobRunner m_jobs;
+    SurfaceStore m_surfaces{m_jobs};
+    core::DifferenceColumnCache m_differences;
     ItemRegistry m_items;
     DockLayout m_layout;
     core::Json m_adoptedLayout; // the session's layout as last adopted
@@ -227,6 +254,10 @@ class Workbench {
     std::optional<std::string> m_screenshotPath;
     std::string m_journalPath;
     std::ofstream m_journal;
+    std::optional<core::Autosave> m_autosaver;
+    std::optional<core::PendingRecovery> m_recovery;
+    bool m_recovering = false; // the recovered session is loading: keep its file until it opened
+    std::optional<MissingData> m_missingData;
     double m_lastAutosave = 0.0;
     std::uint64_t m_autosavedVersion = 0;
     bool m_quit = false;

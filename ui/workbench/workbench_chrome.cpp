@@ -296,9 +296,71 @@ void Workbench::drawHelp() {
     }
 }
 
+// Questions that wait for the user: recover a crashed run's session; where moved data went.
+void Workbench::drawPrompts() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings;
+    if (m_recovery && !m_dialog.isOpen()) {
+        if (!ImGui::IsPopupOpen("Recover unsaved work?"))
+            ImGui::OpenPopup("Recover unsaved work?");
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, flags)) {
+            ImGui::TextUnformatted("Faultline did not close normally last time.");
+            ImGui::Text("Its session was autosaved%s%s.", m_recovery->savedAt.empty() ? "" : " at ",
+                        m_recovery->savedAt.c_str());
+            ImGui::TextDisabled("%s", m_recovery->sessionPath.c_str());
+            if (ImGui::Button("Recover it")) {
+                ImGui::CloseCurrentPopup();
+                recover();
+            }
+            mark("recovery.recover");
+            ImGui::SameLine();
+            if (ImGui::Button("Discard")) {
+                ImGui::CloseCurrentPopup();
+                discardRecovery();
+            }
+            mark("recovery.discard");
+            ImGui::EndPopup();
+        }
+    }
+    if (m_missingData && !m_dialog.isOpen() && !m_recovery) {
+        if (!ImGui::IsPopupOpen("Where is the data?"))
+            ImGui::OpenPopup("Where is the data?");
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        if (ImGui::BeginPopupModal("Where is the data?", nullptr, flags)) {
+            const auto& md = *m_missingData;
+            ImGui::Text("The data of %s is not where it was saved:", fs::path(md.session).filename().string().c_str());
+            for (std::size_t k = 0; k < md.paths.size() && k < 4; ++k)
+                ImGui::BulletText("%s", md.paths[k].c_str());
+            if (md.paths.size() > 4)
+                ImGui::BulletText("and %zu more", md.paths.size() - 4);
+            ImGui::TextUnformatted(md.paths.size() == 1 ? "Pick the file where it is now."
+                                                        : "Pick one of its files where they are now (the others are looked for beside it).");
+            if (ImGui::Button("Locate...")) {
+                ImGui::CloseCurrentPopup();
+                m_dialog.open("Where is " + fs::path(md.paths.front()).filename().string() + " now?", FileDialog::Mode::Open,
+                              "relocate-data", {}, fs::path(md.session).parent_path().string(),
+                              fs::path(md.paths.front()).filename().string());
+            }
+            mark("relocate.locate");
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel")) {
+                ImGui::CloseCurrentPopup();
+                m_missingData.reset();
+            }
+            ImGui::EndPopup();
+        }
+    }
+}
+
 void Workbench::handleDialog() {
-    if (!m_dialog.draw(m_scale, &m_items))
+    const bool wasOpen = m_dialog.isOpen();
+    const bool accepted = m_dialog.draw(m_scale, &m_items);
+    if (!accepted) {
+        if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
+            m_missingData.reset(); // cancelled: the session stays closed
         return;
+    }
     const std::string& purpose = m_dialog.purpose();
     const std::string path = m_dialog.path();
     if (purpose == "open-data")
@@ -307,11 +369,24 @@ void Workbench::handleDialog() {
         openSession(path);
     else if (purpose == "save-session")
         saveSessionAs(path);
+    else if (purpose == "relocate-data")
+        relocateData(path);
     else if (purpose == "screenshot")
         requestScreenshot(path);
     else if (purpose == "export-faults")
         emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
-    else if (purpose == "export-metrics")
+    else if (purpose.rfind("export-vdb:", 0) == 0)
+        emit({{"op", "export.vdb"}, {"fault", purpose.substr(11)}, {"path", path}});
+    else if (purpose == "export-gltf") {
+        std::vector<std::string> faults;
+        for (const auto& st : state().surfaces)
+            if (st.visible && state().fault(st.fault))
+                faults.push_back(st.fault);
+        if (faults.empty())
+            error("No surface is shown: tick one in the Surfaces panel first");
+        else
+            emit({{"op", "export.gltf"}, {"faults", faults}, {"path", path}});
+    } else if (purpose == "export-metrics")
         emit({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
     else if (purpose == "export-journal") {
         std::ofstream out(path);

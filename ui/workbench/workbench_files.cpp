@@ -71,13 +71,19 @@ void Workbench::openData(std::vector<std::string> paths) {
         [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
 }
 
-void Workbench::openSession(const std::string& pathIn) {
+void Workbench::openSession(const std::string& pathIn, std::vector<std::string> data) {
     const std::string path = absolute(pathIn);
     const std::string name = fs::path(path).filename().string();
     m_jobs.start(
         "Opening " + name,
-        [this, path](JobControl& control) -> std::function<void()> {
+        [this, path, data](JobControl& control) -> std::function<void()> {
             core::SessionState s = core::loadSessionFile(path); // validated
+            if (!data.empty())
+                s.dataPaths = data;
+            // Data that moved: ask where it went instead of failing.
+            for (const auto& p : s.dataPaths)
+                if (p.find_first_of("*?[%") == std::string::npos && !fs::exists(p))
+                    return [this, path, paths = s.dataPaths] { m_missingData = MissingData{path, paths}; };
             std::shared_ptr<core::Dataset> ds;
             if (!s.dataPaths.empty()) {
                 ds = core::Dataset::open(s.dataPaths);
@@ -88,16 +94,63 @@ void Workbench::openSession(const std::string& pathIn) {
                     ds->frame(s.frame);
             }
             control.setProgress(1.0f);
-            return [this, path, s, ds] {
+            return [this, path, s, ds, data] {
                 if (ds)
                     rememberDataset(s.dataPaths, ds);
-                emit({{"op", "session.open"}, {"path", path}}, [this, path] {
+                Json cmd = {{"op", "session.open"}, {"path", path}};
+                if (!data.empty())
+                    cmd["data"] = data;
+                const bool recovering = m_recovering;
+                emit(cmd, [this, path, recovering] {
+                    if (recovering) { // saving asks for a real place, not the recovery file
+                        m_recovering = false;
+                        info("Recovered the autosaved session: File > Save as to keep it");
+                        return;
+                    }
                     m_sessionPath = path;
                     addRecent(path);
                 });
             };
         },
-        [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
+        [this, name](const std::string& why) {
+            m_recovering = false;
+            error("Cannot open " + name + ": " + why);
+        },
+        m_now);
+}
+
+void Workbench::recover() {
+    if (!m_recovery)
+        return;
+    const std::string path = m_recovery->sessionPath;
+    m_recovery.reset();
+    m_recovering = true;
+    m_autosaver->discard();
+    openSession(path);
+}
+
+void Workbench::discardRecovery() {
+    if (!m_recovery)
+        return;
+    m_recovery.reset();
+    m_autosaver->discard();
+}
+
+void Workbench::relocateData(const std::string& pickedFile) {
+    if (!m_missingData)
+        return;
+    // One file: that file. Several (a series): the same names in the picked file's folder.
+    MissingData missing = std::move(*m_missingData);
+    m_missingData.reset();
+    std::vector<std::string> paths;
+    if (missing.paths.size() == 1) {
+        paths.push_back(absolute(pickedFile));
+    } else {
+        const fs::path folder = fs::path(absolute(pickedFile)).parent_path();
+        for (const auto& p : missing.paths)
+            paths.push_back((folder / fs::path(p).filename()).string());
+    }
+    openSession(missing.session, paths);
 }
 
 void Workbench::openDemo() {
@@ -149,18 +202,18 @@ std::optional<std::string> Workbench::takeScreenshotRequest() {
 }
 
 void Workbench::autosave(bool force) {
-    if (m_options.stateDir.empty())
+    // Until the user decided about a recovery, its file stays as it is.
+    if (!m_autosaver || m_recovery || m_recovering)
         return;
     if (!force && m_now - m_lastAutosave < m_options.autosaveSeconds)
         return;
     m_lastAutosave = m_now;
     if (m_session.version() == m_autosavedVersion)
         return;
-    try {
-        core::saveSessionFile(state(), (fs::path(m_options.stateDir) / "autosave.faultline.json").string());
+    if (m_autosaver->saveNow(m_session, false)) { // not a clean exit until the destructor says so
         m_autosavedVersion = m_session.version();
-    } catch (const std::exception& e) {
-        error(std::string("Autosave failed: ") + e.what());
+    } else {
+        error("Autosave failed: " + m_autosaver->lastError());
         m_lastAutosave = m_now + 300; // do not repeat the message every frame
     }
 }

@@ -1,0 +1,189 @@
+// The workbench's fault surfaces (Surfaces panel, background builds, meshes sent to the views),
+// difference colouring in a view, crash recovery at start and sessions whose data moved.
+#include "panel_fixture.hpp"
+
+#include "core/session/autosave.hpp"
+#include "core/session/session_json.hpp"
+#include "ui/panels/panel_ids.hpp"
+#include "ui/render/mock_renderer.hpp"
+#include "ui/viewport/gl_view_renderer.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+using namespace faultline;
+using namespace faultline::test;
+using core::Json;
+
+TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
+    ui::GlViewRenderer renderer(ui::RendererBackend::Mock);
+    wb().setRenderer(&renderer);
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.show.F1");
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("surface.set")[0],
+              (Json{{"op", "surface.set"}, {"fault", "F1"}, {"visible", true}}));
+    headless.settle(wb());
+    const ui::ViewDisplay* d = wb().mainDisplay();
+    ASSERT_EQ(d->surfaces.size(), 1u);
+    EXPECT_GT(d->surfaces[0].mesh->indices.size(), 0u);
+    EXPECT_FLOAT_EQ(d->surfaces[0].opacity, 0.8f);
+    const ui::SurfaceStatus st = wb().surfaces().status(session.state(), "F1", d->shownFrame);
+    EXPECT_EQ(st.state, ui::SurfaceStatus::State::Ready);
+    EXPECT_EQ(st.spheres, 64u);
+    auto* mock = dynamic_cast<ui::MockRenderer*>(renderer.rendererOf("main"));
+    ASSERT_NE(mock, nullptr);
+    EXPECT_EQ(mock->stats().meshTriangles, d->surfaces[0].mesh->indices.size() / 3);
+
+    // Opacity only: the same mesh, no new build. Undo hides the surface again.
+    const std::size_t builds = wb().surfaces().buildsStarted();
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","opacity":0.5})"));
+    headless.settle(wb());
+    EXPECT_EQ(wb().surfaces().buildsStarted(), builds);
+    EXPECT_FLOAT_EQ(wb().mainDisplay()->surfaces[0].opacity, 0.5f);
+    // Scrubbing away and back does not rebuild the first frame's surface.
+    session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
+    headless.settle(wb());
+    session.apply(Json::parse(R"({"op":"frame.set","frame":0})"));
+    headless.settle(wb());
+    EXPECT_EQ(wb().surfaces().buildsStarted(), builds + 1); // frame 1's, once
+    // A hidden fault hides its surface.
+    session.apply(Json::parse(R"({"op":"fault.set","name":"F1","visible":false})"));
+    headless.settle(wb());
+    EXPECT_TRUE(wb().mainDisplay()->surfaces.empty());
+    EXPECT_EQ(mock->stats().meshTriangles, 0u);
+}
+
+TEST_F(PanelTest, SurfaceSettingsAreCommandsAndABadRequestSaysWhy) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","voxel":1e-6})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.settle(wb());
+    const ui::SurfaceStatus st = wb().surfaces().status(session.state(), "F1", 0);
+    EXPECT_EQ(st.state, ui::SurfaceStatus::State::Failed);
+    EXPECT_NE(st.error.find("voxel size"), std::string::npos) << st.error;
+    EXPECT_TRUE(wb().mainDisplay()->surfaces.empty());
+}
+
+TEST_F(PanelTest, AViewColoursByTheChangeSinceAFrame) {
+    openLattice();
+    // strain = x/3 + frame: at frame 2 every sphere's strain rose by 2 since frame 0.
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    session.apply(Json::parse(
+        R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_frame":0})"));
+    headless.settle(wb());
+    const ui::ViewDisplay* d = wb().mainDisplay();
+    ASSERT_NE(d->colorColumn, nullptr);
+    EXPECT_EQ(d->colorTitle, "strain change since frame 0");
+    ASSERT_EQ(d->colorColumn->floats.size(), 64u);
+    for (float v : d->colorColumn->floats)
+        EXPECT_NEAR(v, 2.0f, 1e-5f);
+    // Relative: one frame back.
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","since_offset":-1})"));
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorTitle, "strain change since frame 1");
+    EXPECT_NEAR(wb().mainDisplay()->colorColumn->floats[5], 1.0f, 1e-5f);
+    // Displacement: the lattice does not move.
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","difference":"displacement"})"));
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorTitle, "displacement since frame 1");
+    EXPECT_EQ(wb().mainDisplay()->colorColumn->max, 0.0);
+    // Undo twice: back to the change since frame 0.
+    session.undo();
+    session.undo();
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorTitle, "strain change since frame 0");
+}
+
+namespace {
+class RecoveryTest : public PanelTest {
+  protected:
+    std::string stateDir() override { return dir.file("state"); }
+    void SetUp() override {
+        // A run that crashed: its autosave has a box and no clean exit.
+        core::Session crashed;
+        crashed.apply({{"op", "data.open"}, {"paths", {writeLattice(dir.file("lattice.dump"))}}});
+        crashed.apply(
+            Json::parse(R"({"op":"box.add","name":"unsaved work","min":[0,0,0],"max":[1,1,1]})"));
+        core::Autosave(stateDir()).saveNow(crashed, false);
+        PanelTest::SetUp();
+    }
+};
+} // namespace
+
+TEST_F(RecoveryTest, TheNextStartOffersTheCrashedSessionAndRecoversIt) {
+    ASSERT_TRUE(wb().pendingRecovery().has_value());
+    headless.frames(wb(), 2);
+    headless.click(wb(), "recovery.recover");
+    headless.settle(wb());
+    EXPECT_FALSE(wb().pendingRecovery().has_value());
+    ASSERT_NE(session.state().box("unsaved work"), nullptr);
+    ASSERT_NE(session.dataset(), nullptr);
+    EXPECT_TRUE(wb().sessionPath().empty())
+        << "saving must ask where, not overwrite the recovery file";
+    // From now on the autosave holds this run's session (the recovered one).
+    headless.frames(wb(), 2);
+    EXPECT_NE(core::loadSessionFile(core::Autosave(stateDir()).sessionPath()).box("unsaved work"),
+              nullptr);
+}
+
+TEST_F(RecoveryTest, DiscardingKeepsNothingToOffer) {
+    headless.frames(wb(), 2);
+    headless.click(wb(), "recovery.discard");
+    EXPECT_FALSE(wb().pendingRecovery().has_value());
+    EXPECT_EQ(session.state().box("unsaved work"), nullptr);
+    // The autosave holds this run's session now, without the discarded work.
+    session.apply(Json::parse(R"({"op":"box.add","name":"new","min":[0,0,0],"max":[1,1,1]})"));
+    headless.frames(wb(), 2);
+    const core::SessionState saved =
+        core::loadSessionFile(core::Autosave(stateDir()).sessionPath());
+    EXPECT_EQ(saved.box("unsaved work"), nullptr);
+    EXPECT_NE(saved.box("new"), nullptr);
+}
+
+TEST_F(PanelTest, ASessionWhoseDataMovedAsksWhereItWent) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,1,1]})"));
+    const std::string file = dir.file("s.faultline.json");
+    core::saveSessionFile(session.state(), file);
+    session.apply(Json::parse(R"({"op":"data.close"})"));
+    std::filesystem::create_directories(dir.file("moved"));
+    std::filesystem::rename(dir.file("lattice.dump"), dir.file("moved/lattice.dump"));
+    headless.frames(wb(), 2);
+    wb().openSession(file);
+    headless.settle(wb());
+    ASSERT_TRUE(wb().missingData().has_value());
+    EXPECT_EQ(wb().missingData()->paths.front(), dir.file("lattice.dump"));
+    EXPECT_EQ(session.dataset(), nullptr);
+    headless.clearEmitted();
+    wb().relocateData(dir.file("moved/lattice.dump"));
+    headless.settle(wb());
+    EXPECT_FALSE(wb().missingData().has_value());
+    ASSERT_NE(session.dataset(), nullptr);
+    EXPECT_EQ(session.state().dataPaths.front(), dir.file("moved/lattice.dump"));
+    ASSERT_NE(session.state().box("b"), nullptr);
+    ASSERT_EQ(headless.emitted("session.open").size(), 1u);
+    EXPECT_EQ(headless.emitted("session.open")[0]["data"],
+              Json::array({dir.file("moved/lattice.dump")}));
+}
+
+TEST(WorkbenchAutosave, ACleanExitLeavesNothingToRecoverAndACrashDoes) {
+    TempDir dir;
+    HeadlessUi headless;
+    core::Session session;
+    ui::WorkbenchOptions options;
+    options.stateDir = dir.file("state");
+    options.autosaveSeconds = 0;
+    {
+        ui::Workbench wb(session, options);
+        session.apply(Json::parse(R"({"op":"view.add","name":"second"})"));
+        headless.frames(wb, 2);
+        // Running: the autosave is there and would be offered after a crash.
+        EXPECT_TRUE(core::Autosave(options.stateDir).pending().has_value());
+    }
+    EXPECT_FALSE(core::Autosave(options.stateDir).pending().has_value());
+}

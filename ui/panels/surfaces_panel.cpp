@@ -1,0 +1,219 @@
+// Surfaces panel: a metaball surface per fault (paper eq. 1 / Algorithm 1): show or hide it, its
+// kernel, voxel size, iso-value and opacity, the state of its background build, and exports to
+// OpenVDB and glTF. Settings are surface.set commands; builds run in the workbench's SurfaceStore.
+#include "ui/panels/panel_ids.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/workbench/frame_columns.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace faultline::ui {
+
+namespace {
+
+const char* kKernels[] = {"inverse", "inverse-square", "compact"};
+
+std::string statusText(const SurfaceStatus& st) {
+    using State = SurfaceStatus::State;
+    switch (st.state) {
+    case State::Waiting:
+        return "waiting";
+    case State::Building:
+        return st.progress >= 0 ? "building " + std::to_string(int(st.progress * 100)) + "%"
+                                : "building";
+    case State::Ready:
+        return std::to_string(st.triangles) + " triangles";
+    case State::Failed:
+        return "failed";
+    case State::None:
+        break;
+    }
+    return "";
+}
+
+class SurfacesPanel final : public Panel {
+  public:
+    const char* id() const override { return panel_ids::kSurfaces; }
+    const char* title() const override { return "Surfaces"; }
+
+    void draw(Workbench& wb) override {
+        const core::SessionState& s = wb.state();
+        if (s.faults.empty()) {
+            ImGui::TextWrapped(
+                "No faults yet. Name one in the Faults panel (from the visible spheres or a "
+                "candidate); its metaball surface is built here.");
+            return;
+        }
+        const ViewDisplay* main = wb.mainDisplay();
+        const std::size_t frame = main ? main->shownFrame : 0;
+        drawTable(wb, s, frame);
+        const std::string current = currentFault(wb, s);
+        if (current.empty())
+            return;
+        ImGui::Separator();
+        drawSettings(wb, s, current, frame);
+    }
+
+  private:
+    std::string m_fault; // whose settings are shown
+    float m_iso = 1.0f, m_opacity = 0.8f;
+    double m_voxel = 0.0;
+    std::string m_editing; // fault whose edit fields were loaded
+
+    std::string currentFault(Workbench& wb, const core::SessionState& s) {
+        for (const auto& f : s.faults)
+            if (wb.selectedFaults.count(f.name) && wb.selectedFaults.size() == 1)
+                m_fault = f.name;
+        if (!s.fault(m_fault))
+            m_fault = s.surfaces.empty() ? s.faults.front().name : s.surfaces.front().fault;
+        return m_fault;
+    }
+
+    void drawTable(Workbench& wb, const core::SessionState& s, std::size_t frame) {
+        const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
+                                      ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingStretchProp;
+        const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size(), 6) + 1);
+        if (!ImGui::BeginTable("##surfaces", 3, flags,
+                               ImVec2(0, rows * ImGui::GetFrameHeightWithSpacing())))
+            return;
+        ImGui::TableSetupScrollFreeze(0, 1);
+        ImGui::TableSetupColumn("shown", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("fault", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("surface", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+        ImGui::TableHeadersRow();
+        for (const auto& f : s.faults) {
+            ImGui::PushID(f.name.c_str());
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            const core::SurfaceSettings* st = s.surface(f.name);
+            bool shown = st && st->visible;
+            if (ImGui::Checkbox("##shown", &shown))
+                wb.emit({{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}});
+            wb.mark("surfaces.show." + f.name);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Show the metaball surface through this fault's spheres");
+            ImGui::TableNextColumn();
+            const ImVec4 colour(f.color[0], f.color[1], f.color[2], 1.0f);
+            ImGui::ColorButton("##c", colour,
+                               ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
+                               ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+            ImGui::SameLine();
+            if (ImGui::Selectable(f.name.c_str(), m_fault == f.name,
+                                  ImGuiSelectableFlags_SpanAllColumns))
+                m_fault = f.name;
+            ImGui::TableNextColumn();
+            if (st && st->visible) {
+                const SurfaceStatus status = wb.surfaces().status(s, f.name, frame);
+                if (status.state == SurfaceStatus::State::Building && status.progress >= 0) {
+                    ImGui::ProgressBar(status.progress, ImVec2(-1, 0), statusText(status).c_str());
+                } else if (status.state == SurfaceStatus::State::Failed) {
+                    ImGui::TextColored(ImVec4(0.75f, 0.15f, 0.1f, 1), "failed");
+                    if (ImGui::IsItemHovered())
+                        ImGui::SetTooltip("%s", status.error.c_str());
+                } else {
+                    ImGui::TextUnformatted(statusText(status).c_str());
+                    if (status.state == SurfaceStatus::State::Ready && ImGui::IsItemHovered())
+                        ImGui::SetTooltip("%zu spheres, built in %.2f s", status.spheres,
+                                          status.seconds);
+                }
+            } else {
+                ImGui::TextDisabled(st ? "hidden" : "-");
+            }
+            ImGui::PopID();
+        }
+        ImGui::EndTable();
+    }
+
+    void drawSettings(Workbench& wb, const core::SessionState& s, const std::string& fault,
+                      std::size_t frame) {
+        core::SurfaceSettings st;
+        st.fault = fault;
+        if (const core::SurfaceSettings* saved = s.surface(fault))
+            st = *saved;
+        if (m_editing != fault || !ImGui::IsAnyItemActive()) {
+            m_iso = static_cast<float>(st.iso);
+            m_opacity = static_cast<float>(st.opacity);
+            m_voxel = st.voxel;
+            m_editing = fault;
+        }
+        auto set = [&](core::Json fields) {
+            fields["op"] = "surface.set";
+            fields["fault"] = fault;
+            wb.emit(fields);
+        };
+        ImGui::Text("Surface of %s", fault.c_str());
+        const float w = 170 * wb.scale();
+        ImGui::SetNextItemWidth(w);
+        if (ImGui::BeginCombo("kernel", st.kernel.c_str())) {
+            for (const char* k : kKernels)
+                if (ImGui::Selectable(k, st.kernel == k) && st.kernel != k)
+                    set({{"kernel", k}});
+            ImGui::EndCombo();
+        }
+        wb.mark("surfaces.kernel");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("inverse: sum r/d (Algorithm 1); inverse-square: sum r/d^2 (eq. 1);\n"
+                              "compact: Wyvill's kernel, zero beyond 3 radii (fastest)");
+        ImGui::SetNextItemWidth(w);
+        ImGui::InputDouble("voxel", &m_voxel, 0, 0, m_voxel > 0 ? "%.4g" : "auto");
+        if (ImGui::IsItemDeactivatedAfterEdit() && m_voxel >= 0 && m_voxel != st.voxel)
+            set({{"voxel", m_voxel}});
+        wb.mark("surfaces.voxel");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Voxel edge in world units; 0 = the mean radius / 3. Smaller is finer and slower.");
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderFloat("iso", &m_iso, 0.05f, 8.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+        if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
+            set({{"iso", m_iso}});
+        wb.mark("surfaces.iso");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The field value the surface passes through; a new value re-meshes "
+                              "the cached field.");
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderFloat("opacity", &m_opacity, 0.0f, 1.0f, "%.2f");
+        if (ImGui::IsItemDeactivatedAfterEdit())
+            set({{"opacity", m_opacity}});
+        wb.mark("surfaces.opacity");
+
+        const SurfaceStatus status = wb.surfaces().status(s, fault, frame);
+        if (status.state == SurfaceStatus::State::Failed)
+            ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
+        else if (status.state == SurfaceStatus::State::Ready)
+            ImGui::TextDisabled("%zu spheres, %zu triangles, %.2f s", status.spheres,
+                                status.triangles, status.seconds);
+
+        const bool exists = s.surface(fault) != nullptr;
+        ImGui::BeginDisabled(!wb.dataset());
+        if (ImGui::Button("Export VDB..."))
+            wb.fileDialog().open("Export " + fault + "'s density and colour grids (OpenVDB)",
+                                 FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"},
+                                 exportFolder(wb), fault + ".vdb");
+        ImGui::SameLine();
+        if (ImGui::Button("Export glTF..."))
+            wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
+                                 FileDialog::Mode::Save, "export-gltf", {".glb"}, exportFolder(wb),
+                                 "faults.glb");
+        ImGui::EndDisabled();
+        ImGui::SameLine();
+        ImGui::BeginDisabled(!exists);
+        if (ImGui::Button("Remove"))
+            wb.emit({{"op", "surface.remove"}, {"fault", fault}});
+        ImGui::EndDisabled();
+    }
+
+    static std::string exportFolder(Workbench& wb) {
+        const auto& paths = wb.state().dataPaths;
+        return paths.empty() ? std::string()
+                             : std::filesystem::path(paths.front()).parent_path().string();
+    }
+};
+
+} // namespace
+
+std::unique_ptr<Panel> makeSurfacesPanel() { return std::make_unique<SurfacesPanel>(); }
+
+} // namespace faultline::ui

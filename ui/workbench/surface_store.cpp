@@ -1,0 +1,182 @@
+#include "ui/workbench/surface_store.hpp"
+
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/fault_surface_request.hpp"
+#include "ui/render/surface_mesh.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace faultline::ui {
+
+namespace {
+
+constexpr std::size_t kKeepEntries = 48;
+
+// The build's stages as one progress fraction; cancel from the job.
+class JobInterrupter : public core::Interrupter {
+  public:
+    explicit JobInterrupter(JobControl& control) : m_control(control) {}
+    void start(const char* stage) override {
+        const std::string s = stage;
+        m_base = s == "plan" ? 0.0f : s == "field" ? 0.1f : 0.75f;
+        m_span = s == "plan" ? 0.1f : s == "field" ? 0.65f : 0.25f;
+        m_control.setProgress(m_base);
+    }
+    bool wasInterrupted(int percent) override {
+        if (percent >= 0)
+            m_control.setProgress(m_base + m_span * std::min(percent, 100) / 100.0f);
+        return m_control.cancelled();
+    }
+
+  private:
+    JobControl& m_control;
+    float m_base = 0.0f, m_span = 0.1f;
+};
+
+} // namespace
+
+SurfaceStore::SurfaceStore(JobRunner& jobs)
+    : m_jobs(jobs), m_cache(std::make_shared<core::SurfaceCache>()) {}
+
+std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SessionState& state,
+                                                     const core::SurfaceSettings& settings,
+                                                     std::size_t frameIndex) const {
+    const core::Fault* fault = state.fault(settings.fault);
+    if (!fault || !core::parseKernel(settings.kernel))
+        return std::nullopt;
+    const core::SurfaceParams params = core::surfaceParamsOf(settings);
+    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, *fault, params);
+    return Key{k.frame, k.members, k.params, params.iso};
+}
+
+std::vector<ViewSurface> SurfaceStore::surfacesFor(const core::SessionState& state,
+                                                   std::size_t frameIndex,
+                                                   const std::shared_ptr<const core::Frame>& frame,
+                                                   double now) {
+    std::vector<ViewSurface> out;
+    if (!frame)
+        return out;
+    for (const auto& settings : state.surfaces) {
+        if (!settings.visible)
+            continue;
+        const core::Fault* fault = state.fault(settings.fault);
+        const auto key = keyOf(state, settings, frameIndex);
+        if (!key || !fault->visible)
+            continue;
+        Entry& e = m_entries[*key];
+        e.lastUse = m_tick;
+        if (e.mesh) {
+            out.push_back({settings.fault, e.mesh, static_cast<float>(settings.opacity)});
+            continue;
+        }
+        if (e.job || e.status.state == SurfaceStatus::State::Failed)
+            continue;
+        const bool busy = std::any_of(m_entries.begin(), m_entries.end(),
+                                      [](const auto& kv) { return kv.second.job != nullptr; });
+        if (busy) {
+            e.status.state = SurfaceStatus::State::Waiting;
+            continue;
+        }
+        startBuild(*key, e, settings, *state.fault(settings.fault), frame, now);
+    }
+    return out;
+}
+
+void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceSettings& settings,
+                              const core::Fault& fault, std::shared_ptr<const core::Frame> frame,
+                              double now) {
+    ++m_buildsStarted;
+    entry.status = {};
+    entry.status.state = SurfaceStatus::State::Building;
+    const core::SurfaceParams params = core::surfaceParamsOf(settings);
+    const core::SurfaceKey cacheKey{std::get<0>(key), std::get<1>(key), std::get<2>(key)};
+    auto work = [cache = m_cache, frame = std::move(frame), fault, params, cacheKey, this,
+                 key](JobControl& control) {
+        const auto t0 = std::chrono::steady_clock::now();
+        core::FaultSpheres spheres = core::gatherFaultSpheres(*frame, fault);
+        JobInterrupter interrupter(control);
+        const core::SurfaceResult result = cache->get(
+            cacheKey, params, [&] { return spheres.set(); }, &interrupter);
+        auto mesh = std::make_shared<const MeshData>(toMeshData(result.mesh));
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const std::size_t count = spheres.size();
+        return std::function<void()>([this, key, mesh, seconds, count] {
+            auto it = m_entries.find(key);
+            if (it == m_entries.end())
+                return;
+            Entry& e = it->second;
+            e.job.reset();
+            e.mesh = mesh;
+            e.status.state = SurfaceStatus::State::Ready;
+            e.status.progress = 1.0f;
+            e.status.spheres = count;
+            e.status.triangles = mesh->indices.size() / 3;
+            e.status.seconds = seconds;
+        });
+    };
+    auto fail = [this, key](const std::string& error) {
+        auto it = m_entries.find(key);
+        if (it == m_entries.end())
+            return;
+        it->second.job.reset();
+        it->second.status.state = SurfaceStatus::State::Failed;
+        it->second.status.error = error;
+    };
+    entry.job = m_jobs.start("Surface of " + settings.fault, std::move(work), std::move(fail), now);
+}
+
+SurfaceStatus SurfaceStore::status(const core::SessionState& state, const std::string& fault,
+                                   std::size_t frameIndex) const {
+    const core::SurfaceSettings* settings = state.surface(fault);
+    if (!settings)
+        return {};
+    const auto key = keyOf(state, *settings, frameIndex);
+    if (!key)
+        return {};
+    auto it = m_entries.find(*key);
+    if (it == m_entries.end())
+        return {};
+    SurfaceStatus s = it->second.status;
+    if (it->second.job)
+        s.progress = it->second.job->progress();
+    return s;
+}
+
+void SurfaceStore::endFrame() {
+    for (auto& [key, e] : m_entries)
+        if (e.job && e.lastUse != m_tick && !e.job->cancelRequested()) {
+            e.job->cancel(); // its result is dropped; the entry may be asked for again later
+            e.job.reset();
+            e.status = {};
+        }
+    for (auto& [key, e] : m_entries)
+        if (!e.job && !e.mesh && e.status.state == SurfaceStatus::State::Waiting &&
+            e.lastUse != m_tick)
+            e.status = {};
+    prune();
+    ++m_tick;
+}
+
+void SurfaceStore::prune() {
+    if (m_entries.size() <= kKeepEntries)
+        return;
+    std::vector<std::pair<std::uint64_t, Key>> idle;
+    for (const auto& [key, e] : m_entries)
+        if (!e.job && e.lastUse != m_tick)
+            idle.push_back({e.lastUse, key});
+    std::sort(idle.begin(), idle.end());
+    for (std::size_t k = 0; k + kKeepEntries < m_entries.size() && k < idle.size(); ++k)
+        m_entries.erase(idle[k].second);
+}
+
+void SurfaceStore::clear() {
+    for (auto& [key, e] : m_entries)
+        if (e.job)
+            e.job->cancel();
+    m_entries.clear();
+    m_cache->clear();
+}
+
+} // namespace faultline::ui

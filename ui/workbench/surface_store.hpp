@@ -1,0 +1,75 @@
+// SurfaceStore: the workbench's fault surfaces. Each view asks for the meshes of the visible
+// surfaces in the frame it shows; a mesh not built yet is built in a background job (progress,
+// cancel) through a core::SurfaceCache, so scrubbing back or toggling a fault never rebuilds,
+// an iso-only change re-meshes, and a job nobody asks for any more is cancelled.
+#pragma once
+
+#include "core/model/frame.hpp"
+#include "core/session/session_state.hpp"
+#include "core/surface/surface_cache.hpp"
+#include "ui/render/renderer.hpp"
+#include "ui/viewport/view_renderer.hpp"
+#include "ui/workbench/jobs.hpp"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace faultline::ui {
+
+struct SurfaceStatus {
+    enum class State { None, Waiting, Building, Ready, Failed };
+    State state = State::None;
+    float progress = -1.0f; // Building: 0..1, < 0 unknown
+    std::string error;      // Failed
+    std::size_t spheres = 0, triangles = 0;
+    double seconds = 0.0; // how long the build took
+};
+
+class SurfaceStore {
+  public:
+    explicit SurfaceStore(JobRunner& jobs);
+    SurfaceStore(const SurfaceStore&) = delete;
+    SurfaceStore& operator=(const SurfaceStore&) = delete;
+
+    // The ready surfaces for a view showing `frame` (dataset index frameIndex), one per visible
+    // surface setting whose fault exists; starts (one at a time) the builds still missing.
+    std::vector<ViewSurface> surfacesFor(const core::SessionState& state, std::size_t frameIndex,
+                                         const std::shared_ptr<const core::Frame>& frame,
+                                         double now);
+    // The state of a fault's surface in a frame, as last asked for by surfacesFor.
+    SurfaceStatus status(const core::SessionState& state, const std::string& fault,
+                         std::size_t frameIndex) const;
+    // Once per UI frame, after every view asked: cancels builds nobody asked for this frame.
+    void endFrame();
+    // Forgets every mesh (new data).
+    void clear();
+
+    std::size_t buildsStarted() const { return m_buildsStarted; }
+
+  private:
+    using Key = std::tuple<std::int64_t, std::uint64_t, std::uint64_t,
+                           float>; // frame, members, params, iso
+    struct Entry {
+        std::shared_ptr<Job> job;
+        std::shared_ptr<const MeshData> mesh;
+        SurfaceStatus status;
+        std::uint64_t lastUse = 0;
+    };
+    std::optional<Key> keyOf(const core::SessionState& state, const core::SurfaceSettings& settings,
+                             std::size_t frameIndex) const;
+    void startBuild(const Key& key, Entry& entry, const core::SurfaceSettings& settings,
+                    const core::Fault& fault, std::shared_ptr<const core::Frame> frame, double now);
+    void prune();
+
+    JobRunner& m_jobs;
+    std::shared_ptr<core::SurfaceCache> m_cache; // shared with running jobs
+    std::map<Key, Entry> m_entries;
+    std::uint64_t m_tick = 1;
+    std::size_t m_buildsStarted = 0;
+};
+
+} // namespace faultline::ui
