@@ -57,7 +57,7 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     if (!fault)
         throw CommandError(std::string(op) + ": no fault named \"" + st.fault + "\"");
     const FaultSpheres spheres = gatherFaultSpheres(*frame, *fault);
-    const SurfaceParams params = surfaceParamsOf(st);
+    const SurfaceParams params = surfaceParamsOf(st, *fault);
     try {
         return buildSurface(spheres.set(), params);
     } catch (const std::exception& e) {

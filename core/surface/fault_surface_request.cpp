@@ -19,7 +19,7 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault) {
     return s;
 }
 
-SurfaceParams surfaceParamsOf(const SurfaceSettings& settings) {
+SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault) {
     SurfaceParams params;
     const auto kernel = parseKernel(settings.kernel);
     if (!kernel)
@@ -27,6 +27,7 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings) {
     params.kernel = *kernel;
     params.iso = static_cast<float>(settings.iso);
     params.voxelSize = static_cast<float>(settings.voxel);
+    params.initialColor = fault.color;
     return params;
 }
 

@@ -24,8 +24,10 @@ struct FaultSpheres {
 };
 FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
 
-// The field parameters of a surface setting. Throws CommandError for an unknown kernel.
-SurfaceParams surfaceParamsOf(const SurfaceSettings& settings);
+// The field parameters of a fault's surface setting. Throws CommandError for an unknown kernel.
+// The surface takes the fault's colour (Figure 4's initial colour, and its spheres' colour), so
+// a surface is known by its fault's colour in the views and in exports.
+SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault);
 
 // The SurfaceCache key of a fault's surface in frame `frameIndex`: members and colour (the colour
 // grid depends on it) and every field parameter except iso.

@@ -150,7 +150,10 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
     ImGui::SameLine();
     // Colour.
     const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
-    const std::string colour = title.empty() ? std::string("plain colour") : title + " (" + view.colorMap + ")";
+    // The map's name only when there is room for it (a difference title is long already).
+    const std::string colour = title.empty()       ? std::string("plain colour")
+                               : title.size() > 24 ? title
+                                                   : title + " (" + view.colorMap + ")";
     if (ImGui::Button((colour + "##colour").c_str())) {
         m_rangeEdit[0] = d.colorRange[0];
         m_rangeEdit[1] = d.colorRange[1];

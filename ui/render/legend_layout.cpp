@@ -39,9 +39,26 @@ LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::strin
         if (labelFont)
             labelW = std::max(labelW, labelFont->measure(labels.back()));
     }
-    const float titleW = titleFont && !title.empty() ? titleFont->measure(title) : 0.0f;
-    const float titleH =
-        titleFont && !title.empty() ? titleFont->ascent() + titleFont->descent() : 0.0f;
+    // A long title ("strain change since frame 10") wraps at the space nearest its middle, so
+    // the legend stays a narrow strip instead of reaching over the model.
+    std::vector<std::string_view> titleLines;
+    if (!title.empty())
+        titleLines.push_back(title);
+    const float barBlockW = barW + tickLen + gap + std::max(labelW, 3.0f * barW);
+    if (titleFont && !title.empty() && titleFont->measure(title) > 1.6f * barBlockW) {
+        std::size_t best = std::string_view::npos;
+        for (std::size_t k = title.find(' '); k != std::string_view::npos; k = title.find(' ', k + 1))
+            if (best == std::string_view::npos ||
+                std::abs(double(k) - title.size() / 2.0) < std::abs(double(best) - title.size() / 2.0))
+                best = k;
+        if (best != std::string_view::npos)
+            titleLines = {title.substr(0, best), title.substr(best + 1)};
+    }
+    float titleW = 0.0f;
+    for (auto line : titleLines)
+        titleW = titleFont ? std::max(titleW, titleFont->measure(line)) : 0.0f;
+    const float lineH = titleFont ? titleFont->ascent() + titleFont->descent() : 0.0f;
+    const float titleH = titleFont ? lineH * float(titleLines.size()) : 0.0f;
     const float labelHalf = labelFont ? 0.5f * (labelFont->ascent() + labelFont->descent()) : 0;
 
     const float content = std::max(barW + tickLen + gap + labelW, titleW);
@@ -56,9 +73,11 @@ LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::strin
     out.bar.y0 = out.panel.y0 + pad + titleH + (titleH > 0 ? gap * 2 : 0) + labelHalf;
     out.bar.y1 = out.bar.y0 + barH;
 
-    if (titleFont && !title.empty())
-        titleFont->layout(title, out.bar.x0, out.panel.y0 + pad + titleFont->ascent(),
-                          out.titleGlyphs);
+    if (titleFont)
+        for (std::size_t k = 0; k < titleLines.size(); ++k)
+            titleFont->layout(titleLines[k], out.bar.x0,
+                              out.panel.y0 + pad + titleFont->ascent() + float(k) * lineH,
+                              out.titleGlyphs);
     const float markH = out.outline;
     for (std::size_t i = 0; i < ticks.size(); ++i) {
         const float y = std::round(out.bar.y1 - float(ticks[i].t) * barH);

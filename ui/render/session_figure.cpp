@@ -6,6 +6,7 @@
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/fault_surface_request.hpp"
 #include "ui/render/surface_mesh.hpp"
+#include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
@@ -90,7 +91,7 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
         if (spheres.size() == 0)
             continue;
         try {
-            scene.meshes.push_back(toMeshData(core::buildSurface(spheres.set(), core::surfaceParamsOf(st)).mesh));
+            scene.meshes.push_back(toMeshData(core::buildSurface(spheres.set(), core::surfaceParamsOf(st, *fault)).mesh));
         } catch (const std::exception& e) {
             throw CommandError("render: surface of fault \"" + st.fault + "\": " + e.what());
         }
@@ -102,8 +103,9 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
     if (camera.distance <= 0) {
         const auto& lo = frame->centreMin();
         const auto& hi = frame->centreMax();
-        fit(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]},
-            double(request.width) / double(request.height));
+        const double w = request.width, h = request.height;
+        const double legend = showsLegend(scene) ? std::min(0.4 * w, 115.0 * legendScale(request.width, request.height, 1.0f)) : 0.0;
+        fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, legend);
     }
     scene.camera = toRenderCamera(camera);
 

@@ -82,6 +82,16 @@ void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array
     c.distance = d * 1.06;
 }
 
+void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+                     double width, double height, double legendPixels) {
+    height = std::max(height, 1.0);
+    fit(c, lo, hi, std::max(width - legendPixels, 1.0) / height);
+    const CameraBasis basis = cameraBasis(c);
+    const double worldPerPixel = 2.0 * c.distance * std::tan(glm::radians(c.fovY) / 2.0) / height;
+    for (int k = 0; k < 3; ++k)
+        c.target[k] += basis.right[k] * 0.5 * legendPixels * worldPerPixel;
+}
+
 void applyPreset(core::CameraState& c, const char* preset) {
     if (!std::strcmp(preset, "top"))
         c.azimuth = 0, c.elevation = 89;

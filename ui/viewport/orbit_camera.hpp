@@ -33,6 +33,10 @@ void zoom(core::CameraState& camera, double factor);
 // (width / height) with a small margin; keeps the direction.
 void fit(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
          double aspect);
+// fit() into a width x height view whose right `legendPixels` belong to a colour legend: the
+// box is centred in the rest.
+void fitBesideLegend(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+                     double width, double height, double legendPixels);
 // Standard directions: "top" "front" (from the south) "side" (from the east) "iso".
 void applyPreset(core::CameraState& camera, const char* preset);
 

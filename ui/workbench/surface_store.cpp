@@ -45,7 +45,7 @@ std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SessionState& s
     const core::Fault* fault = state.fault(settings.fault);
     if (!fault || !core::parseKernel(settings.kernel))
         return std::nullopt;
-    const core::SurfaceParams params = core::surfaceParamsOf(settings);
+    const core::SurfaceParams params = core::surfaceParamsOf(settings, *fault);
     const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, *fault, params);
     return Key{k.frame, k.members, k.params, params.iso};
 }
@@ -89,7 +89,7 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
     ++m_buildsStarted;
     entry.status = {};
     entry.status.state = SurfaceStatus::State::Building;
-    const core::SurfaceParams params = core::surfaceParamsOf(settings);
+    const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
     const core::SurfaceKey cacheKey{std::get<0>(key), std::get<1>(key), std::get<2>(key)};
     auto work = [cache = m_cache, frame = std::move(frame), fault, params, cacheKey, this,
                  key](JobControl& control) {

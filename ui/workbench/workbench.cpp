@@ -465,11 +465,7 @@ void Workbench::updateDisplay() {
             double legend = 0;
             if (!v.colorVariable.empty() && m_renderer)
                 legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
-            fit(d.camera, d.bounds.lo, d.bounds.hi, (w - legend) / h);
-            const CameraBasis basis = cameraBasis(d.camera);
-            const double worldPerPixel = 2.0 * d.camera.distance * std::tan(d.camera.fovY * M_PI / 360.0) / h;
-            for (int k = 0; k < 3; ++k)
-                d.camera.target[k] += basis.right[k] * 0.5 * legend * worldPerPixel;
+            fitBesideLegend(d.camera, d.bounds.lo, d.bounds.hi, w, h, legend);
         }
         // Difference colouring: the change since a reference frame, once that frame is here.
         d.colorColumn.reset();
