@@ -140,22 +140,41 @@ std::vector<FrameLocation> indexPerProcessor(const std::string& pattern) {
 
 } // namespace
 
-std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns) {
+std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
+                                       const OpenProgress& progress) {
     auto ds = std::make_shared<Dataset>();
     ds->m_patterns = patterns;
     ds->m_frameCache = FrameCache::processDefault();
+    // Every pattern expanded first, so progress counts files.
+    std::vector<std::vector<std::string>> expanded;
+    std::size_t total = 0, done = 0;
     for (const auto& pattern : patterns) {
         if (pattern.find('%') != std::string::npos) {
-            auto frames = indexPerProcessor(pattern);
-            ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
+            expanded.push_back({});
+            ++total;
             continue;
         }
-        const auto files = expandGlob(pattern);
-        if (files.empty())
+        expanded.push_back(expandGlob(pattern));
+        if (expanded.back().empty())
             throw InputError(pattern, "no file matches this pattern");
-        for (const auto& file : files) {
+        total += expanded.back().size();
+    }
+    auto step = [&] {
+        ++done;
+        if (progress && !progress(double(done) / double(std::max<std::size_t>(total, 1))))
+            throw OpenCancelled();
+    };
+    for (std::size_t k = 0; k < patterns.size(); ++k) {
+        if (patterns[k].find('%') != std::string::npos) {
+            auto frames = indexPerProcessor(patterns[k]);
+            ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
+            step();
+            continue;
+        }
+        for (const auto& file : expanded[k]) {
             auto frames = indexDataFile(file);
             ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
+            step();
         }
     }
     if (ds->m_frames.empty())

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -25,6 +26,12 @@ class FrameCache;
 // A quarter of the physical memory (sysconf), or 2 GiB when it cannot be told.
 std::size_t defaultFrameMemoryBudget();
 
+// Thrown by Dataset::open when its progress callback asked to stop.
+class OpenCancelled : public std::runtime_error {
+  public:
+    OpenCancelled() : std::runtime_error("opening was cancelled") {}
+};
+
 class Dataset {
   public:
     Dataset() = default;
@@ -32,7 +39,11 @@ class Dataset {
     // Expands each pattern ('*', '?', '[..]' globs in natural order; '%' for per-processor
     // pieces) and indexes every file. Throws InputError naming the file at fault. The dataset
     // uses FrameCache::processDefault() as its disk cache.
-    static std::shared_ptr<Dataset> open(const std::vector<std::string>& patterns);
+    // `progress` (optional) hears the fraction of files indexed, and stops the work by returning
+    // false (open then throws OpenCancelled).
+    using OpenProgress = std::function<bool(double fraction)>;
+    static std::shared_ptr<Dataset> open(const std::vector<std::string>& patterns,
+                                         const OpenProgress& progress = {});
 
     // Frames made by a function rather than read from files (synthetic models, tests): `load`
     // returns the finalized frame `index` and may throw like a reader; no disk cache is used.

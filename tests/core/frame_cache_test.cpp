@@ -428,3 +428,19 @@ TEST(Dataset, LoaderErrorsReachEveryWaiter) {
     EXPECT_THROW(ds->frame(1), std::runtime_error); // not cached as a success
     EXPECT_FALSE(ds->isCached(1));
 }
+
+TEST(Dataset, OpeningASeriesReportsEachFileAndCanBeCancelled) {
+    TempDir dir;
+    for (int k = 0; k < 4; ++k)
+        dir.write("s.dump." + std::to_string(k), dumpFrame(k * 10, 5, float(k)));
+    std::vector<double> heard;
+    auto ds = Dataset::open({dir.file("s.dump.*")}, [&](double f) {
+        heard.push_back(f);
+        return true;
+    });
+    EXPECT_EQ(ds->frameCount(), 4u);
+    EXPECT_EQ(heard, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
+    int calls = 0;
+    EXPECT_THROW(Dataset::open({dir.file("s.dump.*")}, [&](double) { return ++calls < 2; }), OpenCancelled);
+    EXPECT_EQ(calls, 2);
+}

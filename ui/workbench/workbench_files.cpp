@@ -56,10 +56,11 @@ void Workbench::openData(std::vector<std::string> paths) {
     m_jobs.start(
         "Opening " + name,
         [this, paths](JobControl& control) -> std::function<void()> {
-            auto ds = core::Dataset::open(paths); // indexes every file
-            control.setProgress(0.5f);
-            if (control.cancelled())
-                return {};
+            // Indexing every file is the first 60 %, reading the frame shown the rest.
+            auto ds = core::Dataset::open(paths, [&control](double f) {
+                control.setProgress(static_cast<float>(0.6 * f));
+                return !control.cancelled();
+            });
             ds->frame(0); // the frame data.open shows
             control.setProgress(1.0f);
             return [this, paths, ds] {
@@ -86,10 +87,10 @@ void Workbench::openSession(const std::string& pathIn, std::vector<std::string> 
                     return [this, path, paths = s.dataPaths] { m_missingData = MissingData{path, paths}; };
             std::shared_ptr<core::Dataset> ds;
             if (!s.dataPaths.empty()) {
-                ds = core::Dataset::open(s.dataPaths);
-                control.setProgress(0.5f);
-                if (control.cancelled())
-                    return {};
+                ds = core::Dataset::open(s.dataPaths, [&control](double f) {
+                    control.setProgress(static_cast<float>(0.6 * f));
+                    return !control.cancelled();
+                });
                 if (s.frame < ds->frameCount())
                     ds->frame(s.frame);
             }
