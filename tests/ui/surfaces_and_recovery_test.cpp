@@ -1,5 +1,6 @@
 // The workbench's fault surfaces (Surfaces panel, background builds, meshes sent to the views),
-// difference colouring in a view, crash recovery at start and sessions whose data moved.
+// difference colouring in a view, crash recovery at start, sessions whose data moved, and the
+// frame memory budget.
 #include "panel_fixture.hpp"
 
 #include "core/session/autosave.hpp"
@@ -186,4 +187,19 @@ TEST(WorkbenchAutosave, ACleanExitLeavesNothingToRecoverAndACrashDoes) {
         EXPECT_TRUE(core::Autosave(options.stateDir).pending().has_value());
     }
     EXPECT_FALSE(core::Autosave(options.stateDir).pending().has_value());
+}
+
+TEST_F(PanelTest, TheFrameMemoryBudgetIsASettingAppliedToTheData) {
+    openLattice();
+    EXPECT_EQ(session.dataset()->cacheBudget(), core::defaultFrameMemoryBudget());
+    wb().setFrameMemoryBudget(std::size_t{256} << 20);
+    EXPECT_EQ(session.dataset()->cacheBudget(), std::size_t{256} << 20);
+    // Data opened later gets it too.
+    session.apply(Json::parse(R"({"op":"data.close"})"));
+    wb().openData({dir.file("lattice.dump")});
+    headless.settle(wb());
+    ASSERT_NE(session.dataset(), nullptr);
+    EXPECT_EQ(session.dataset()->cacheBudget(), std::size_t{256} << 20);
+    wb().setFrameMemoryBudget(0);
+    EXPECT_EQ(session.dataset()->cacheBudget(), core::defaultFrameMemoryBudget());
 }

@@ -98,10 +98,29 @@ class DataPanel final : public Panel {
             if (main && main->frame)
                 keyValue("this frame", bytesText(main->frame->memoryBytes()));
             keyValue("frames cached", bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));
+            // The budget of frames kept in memory (older ones are dropped, prefetch stays inside).
+            ImGui::TextDisabled("budget");
+            ImGui::SameLine(ImGui::GetFontSize() * 8);
+            if (!ImGui::IsItemActive() && !m_editingBudget)
+                m_budgetMb = static_cast<int>(wb.frameMemoryBudget() >> 20);
+            ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
+            ImGui::InputInt("MB##budget", &m_budgetMb, 256, 1024);
+            m_editingBudget = ImGui::IsItemActive();
+            wb.mark("data.budget");
+            if (ImGui::IsItemDeactivatedAfterEdit() || (ImGui::IsItemEdited() && !ImGui::IsItemActive()))
+                wb.setFrameMemoryBudget(static_cast<std::size_t>(std::max(64, m_budgetMb)) << 20);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Memory for frames kept while scrubbing (default: a quarter of RAM)");
+            ImGui::SameLine();
+            if (ImGui::SmallButton("default"))
+                wb.setFrameMemoryBudget(0);
         }
     }
 
   private:
+    int m_budgetMb = 0;
+    bool m_editingBudget = false;
+
     static void keyValue(const char* key, const std::string& value) {
         ImGui::TextDisabled("%s", key);
         ImGui::SameLine(ImGui::GetFontSize() * 8);

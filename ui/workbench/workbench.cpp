@@ -275,6 +275,8 @@ void Workbench::applyPending() {
 
 void Workbench::syncWithSession() {
     if (m_session.dataset() != m_frames.dataset()) {
+        if (m_session.dataset())
+            m_session.dataset()->setCacheBudget(frameMemoryBudget());
         m_frames.setDataset(m_session.dataset());
         m_views.clear();
         m_visibilityCache.clear();

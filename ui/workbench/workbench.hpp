@@ -170,6 +170,9 @@ class Workbench {
     void saveSessionAs(const std::string& path);
     const std::string& sessionPath() const { return m_sessionPath; }
     const std::vector<std::string>& recentFiles() const { return m_recent; }
+    // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
+    std::size_t frameMemoryBudget() const;
+    void setFrameMemoryBudget(std::size_t bytes);
     void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
     std::optional<std::string> takeScreenshotRequest();
     const std::string& journalPath() const { return m_journalPath; }
@@ -251,6 +254,7 @@ class Workbench {
 
     std::string m_sessionPath;
     std::vector<std::string> m_recent;
+    std::size_t m_frameBudget = 0; // 0: core::defaultFrameMemoryBudget()
     std::optional<std::string> m_screenshotPath;
     std::string m_journalPath;
     std::ofstream m_journal;

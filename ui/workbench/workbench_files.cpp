@@ -229,6 +229,17 @@ void Workbench::addRecent(const std::string& path) {
     saveSettings();
 }
 
+std::size_t Workbench::frameMemoryBudget() const {
+    return m_frameBudget ? m_frameBudget : core::defaultFrameMemoryBudget();
+}
+
+void Workbench::setFrameMemoryBudget(std::size_t bytes) {
+    m_frameBudget = bytes;
+    if (auto ds = dataset())
+        ds->setCacheBudget(frameMemoryBudget());
+    saveSettings();
+}
+
 void Workbench::loadSettings() {
     if (m_options.configDir.empty())
         return;
@@ -243,6 +254,8 @@ void Workbench::loadSettings() {
             for (const Json& r : doc["recent"])
                 if (r.is_string() && m_recent.size() < 10)
                     m_recent.push_back(r.get<std::string>());
+        if (doc.contains("frame_memory_mb") && doc["frame_memory_mb"].is_number_unsigned())
+            m_frameBudget = doc["frame_memory_mb"].get<std::size_t>() << 20;
     } catch (const std::exception&) {
         // A damaged settings file only loses the recent list.
     }
@@ -255,7 +268,7 @@ void Workbench::saveSettings() const {
         std::error_code ec;
         fs::create_directories(m_options.configDir, ec);
         core::writeFileAtomically((fs::path(m_options.configDir) / "settings.json").string(),
-                                  Json{{"recent", m_recent}}.dump(2));
+                                  Json{{"recent", m_recent}, {"frame_memory_mb", m_frameBudget >> 20}}.dump(2));
     } catch (const std::exception&) {
         // Not worth interrupting the user for.
     }
