@@ -347,6 +347,7 @@ void Workbench::drawPrompts() {
             if (ImGui::Button("Cancel")) {
                 ImGui::CloseCurrentPopup();
                 m_missingData.reset();
+                m_recovering = false; // a recovered session left closed: autosave goes on
             }
             ImGui::EndPopup();
         }
@@ -358,7 +359,7 @@ void Workbench::handleDialog() {
     const bool accepted = m_dialog.draw(m_scale, &m_items);
     if (!accepted) {
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
-            m_missingData.reset(); // cancelled: the session stays closed
+            m_missingData.reset(), m_recovering = false; // cancelled: the session stays closed
         return;
     }
     const std::string& purpose = m_dialog.purpose();
