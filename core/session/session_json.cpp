@@ -168,7 +168,8 @@ Json viewToJson(const ViewState& v) {
                  {{"relative", v.difference.reference.relative},
                   {"value", v.difference.reference.value}}}}}}},
             {"camera", cameraToJson(v.camera)},
-            {"linked_camera", v.linkedCamera}};
+            {"linked_camera", v.linkedCamera},
+            {"context_points", v.contextPoints}};
 }
 
 ViewState viewFromJson(const Json& j, const std::string& where, const std::string& path) {
@@ -206,6 +207,7 @@ ViewState viewFromJson(const Json& j, const std::string& where, const std::strin
     if (v.has("camera"))
         view.camera = cameraFromJson(v.get("camera"), v.child("camera"), path);
     view.linkedCamera = v.boolean("linked_camera", true);
+    view.contextPoints = v.boolean("context_points", false);
     return view;
 }
 

@@ -127,11 +127,12 @@ void registerDataOps(OpTable& ops) {
         return inverse;
     });
     addStateOp(ops, "view.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"name", "frame", "offset", "linked_camera"});
+        args::onlyFields(cmd, {"name", "frame", "offset", "linked_camera", "context_points"});
         ViewState& v = viewOf(s, cmd, "name");
         if (cmd.contains("frame") && cmd.contains("offset"))
             throw CommandError("view.set: give \"frame\" (absolute) or \"offset\" (relative), not both");
-        Json inverse = {{"op", "view.set"}, {"name", v.name}, {"linked_camera", v.linkedCamera}};
+        Json inverse = {{"op", "view.set"}, {"name", v.name}, {"linked_camera", v.linkedCamera},
+                        {"context_points", v.contextPoints}};
         inverse[v.frame.relative ? "offset" : "frame"] = v.frame.value;
         FrameBinding binding = v.frame;
         if (auto f = args::optionalInteger(cmd, "frame")) {
@@ -142,8 +143,10 @@ void registerDataOps(OpTable& ops) {
         if (auto o = args::optionalInteger(cmd, "offset"))
             binding = {true, *o};
         const bool linked = args::optionalBool(cmd, "linked_camera").value_or(v.linkedCamera);
+        const bool context = args::optionalBool(cmd, "context_points").value_or(v.contextPoints);
         v.frame = binding;
         v.linkedCamera = linked;
+        v.contextPoints = context;
         return inverse;
     });
     addStateOp(ops, "color.set", [](Session& s, const Json& cmd) -> Json {

@@ -60,6 +60,7 @@ struct ViewState {
     ColorDifference difference;
     CameraState camera;
     bool linkedCamera = true;
+    bool contextPoints = false; // hidden spheres drawn as faint small points (context mode)
     bool operator==(const ViewState&) const = default;
 };
 

@@ -82,6 +82,7 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         cmd(R"({"op":"fault.merge","names":["F1b","F3"],"into":"M"})"),
         cmd(R"({"op":"view.add","name":"right","frame":2})"),
         cmd(R"({"op":"view.set","name":"right","offset":-1})"),
+        cmd(R"({"op":"view.set","name":"right","context_points":true})"),
         cmd(R"({"op":"color.set","view":"main","variable":"strain","map":"viridis","range":[0,0.5]})"),
         cmd(R"({"op":"color.set","view":"main","difference":"change","since_offset":-1})"),
         cmd(R"({"op":"color.set","view":"main","difference":"displacement","since_frame":0})"),

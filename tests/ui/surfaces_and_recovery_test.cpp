@@ -203,3 +203,23 @@ TEST_F(PanelTest, TheFrameMemoryBudgetIsASettingAppliedToTheData) {
     wb().setFrameMemoryBudget(0);
     EXPECT_EQ(session.dataset()->cacheBudget(), core::defaultFrameMemoryBudget());
 }
+
+TEST_F(PanelTest, FitVisibleAimsAtTheVisibleSpheresAndContextModeIsAViewSetting) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"box.add","name":"corner","min":[0,0,0],"max":[1,1,1]})"));
+    headless.showPanel(wb(), ui::panel_ids::kViewports);
+    headless.clearEmitted();
+    headless.click(wb(), "viewports.fit_visible");
+    const auto cams = headless.emitted("camera.set");
+    ASSERT_EQ(cams.size(), 1u);
+    // The visible spheres are centres 0..1 with radius 0.5: the box [-0.5, 1.5]^3.
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(cams[0]["target"][a].get<double>(), 0.5, 0.3); // shifted sideways for the legend only
+    const double full = wb().fitCamera(*session.state().view("main"), session.state().view("main")->camera,
+                                       {-0.5, -0.5, -0.5}, {3.5, 3.5, 3.5})
+                            .distance;
+    EXPECT_LT(cams[0]["distance"].get<double>(), 0.6 * full);
+    headless.click(wb(), "viewports.context");
+    ASSERT_EQ(headless.emitted("view.set").size(), 1u);
+    EXPECT_TRUE(session.state().view("main")->contextPoints);
+}

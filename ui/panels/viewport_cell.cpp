@@ -71,6 +71,22 @@ void ViewportCells::fitAll(Workbench& wb) {
     emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
 }
 
+void ViewportCells::fitVisible(Workbench& wb) {
+    emitForViews(wb, [&wb](core::Json& cmd) {
+        const std::string name = cmd["view"].get<std::string>();
+        const ViewDisplay* d = wb.view(name);
+        const core::ViewState* v = wb.state().view(name);
+        if (!d || !v || !d->frame || !d->visibility || d->visibility->visibleCount == 0) {
+            cmd["distance"] = 0.0; // nothing visible: the whole model
+            return;
+        }
+        const auto bounds = visibleBounds(*d->frame, d->visibility->mask);
+        const core::CameraState c = wb.fitCamera(*v, d->camera, bounds.lo, bounds.hi);
+        cmd["target"] = c.target;
+        cmd["distance"] = c.distance;
+    });
+}
+
 void ViewportCells::setOrthographic(Workbench& wb, bool ortho) {
     emitForViews(wb, [&](core::Json& cmd) {
         cmd["orthographic"] = ortho;

@@ -18,6 +18,7 @@ class ViewportCells {
     // Camera commands for every view at once (one undo step): linked views follow the main one.
     void presetAll(Workbench& wb, const char* preset);
     void fitAll(Workbench& wb);
+    void fitVisible(Workbench& wb); // to the visible spheres (boxes, thresholds, faults applied)
     void setOrthographic(Workbench& wb, bool ortho);
 
   private:

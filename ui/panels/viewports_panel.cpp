@@ -64,7 +64,24 @@ class ViewportsPanel final : public Panel {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Fit the model in the views (F)");
         ImGui::SameLine();
+        if (ImGui::Button("Fit visible"))
+            m_cells.fitVisible(wb);
+        wb.mark("viewports.fit_visible");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Fit the visible spheres in the views (boxes, thresholds and faults applied)");
+        ImGui::SameLine();
         const core::ViewState* main = s.view("main");
+        bool context = main && main->contextPoints;
+        if (ImGui::Checkbox("Hidden as points", &context)) {
+            core::Json batch = core::Json::array();
+            for (const auto& v : s.views)
+                batch.push_back({{"op", "view.set"}, {"name", v.name}, {"context_points", context}});
+            wb.emit(batch.size() == 1 ? batch[0] : core::Json{{"op", "batch"}, {"commands", batch}});
+        }
+        wb.mark("viewports.context");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Draw the hidden spheres as faint small points, for context");
+        ImGui::SameLine();
         bool ortho = main && main->camera.orthographic;
         if (ImGui::Checkbox("Orthographic", &ortho))
             m_cells.setOrthographic(wb, ortho);

@@ -41,6 +41,7 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
                                             rowMask.get())
                         .mask;
     scene.colorVariable = view->colorVariable;
+    scene.style.contextPoints = view->contextPoints;
     if (auto map = core::parseColorMap(view->colorMap))
         scene.colorMap = *map;
     // Difference colouring: the change since the view's reference frame, matched by id.

@@ -124,7 +124,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
         << scene.height << '|' << scene.camera.target[0] << ',' << scene.camera.target[1] << ',' << scene.camera.target[2]
         << '|' << scene.camera.distance << '|' << scene.camera.azimuth << '|' << scene.camera.elevation << '|'
         << scene.camera.fovY << '|' << scene.camera.orthographic << '|' << (scene.selectedBox ? int(*scene.selectedBox) : -1)
-        << '|' << (scene.activeFace ? *scene.activeFace : -1);
+        << '|' << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
     for (const auto& b : scene.boxes)
         sig << '|' << b.min[0] << ',' << b.min[1] << ',' << b.min[2] << ',' << b.max[0] << ',' << b.max[1] << ','
             << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
@@ -153,6 +153,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
         style.showLegend = !scene.colorVariable.empty();
+        style.contextPoints = scene.contextPoints;
         r.setStyle(style);
         r.render(toRenderCamera(scene.camera), RenderTarget{scene.width, scene.height, 1, false});
         ++m_draws;

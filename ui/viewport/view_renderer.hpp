@@ -39,6 +39,7 @@ struct ViewScene {
     std::optional<std::size_t> selectedBox;    // index into boxes: draw face handles
     std::optional<int> activeFace;             // 0..5 (-x +x -y +y -z +z), highlighted
     std::vector<ViewSurface> surfaces;         // fault surfaces, drawn with the spheres
+    bool contextPoints = false;                // hidden spheres as faint small points
     int width = 0, height = 0;                 // pixels
 };
 

@@ -75,6 +75,29 @@ ModelBounds modelBounds(const core::Frame& frame) {
     return b;
 }
 
+ModelBounds visibleBounds(const core::Frame& frame, const std::vector<std::uint8_t>& mask) {
+    ModelBounds b;
+    bool any = false;
+    double r = 0;
+    for (std::size_t i = 0; i < frame.size() && i < mask.size(); ++i) {
+        if (!mask[i])
+            continue;
+        const double p[3] = {frame.x[i], frame.y[i], frame.z[i]};
+        for (int a = 0; a < 3; ++a) {
+            b.lo[a] = any ? std::min(b.lo[a], p[a]) : p[a];
+            b.hi[a] = any ? std::max(b.hi[a], p[a]) : p[a];
+        }
+        if (std::isfinite(frame.radius[i]))
+            r = std::max<double>(r, frame.radius[i]);
+        any = true;
+    }
+    if (!any)
+        return modelBounds(frame);
+    for (int a = 0; a < 3; ++a)
+        b.lo[a] -= r, b.hi[a] += r;
+    return b;
+}
+
 std::string bytesText(std::size_t bytes) {
     char buf[32];
     if (bytes >= (std::size_t(1) << 30))

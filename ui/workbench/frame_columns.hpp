@@ -38,6 +38,8 @@ struct ModelBounds {
     std::array<double, 3> lo{0, 0, 0}, hi{1, 1, 1};
 };
 ModelBounds modelBounds(const core::Frame& frame);
+// The same over the rows whose mask byte is non-zero (the visible spheres).
+ModelBounds visibleBounds(const core::Frame& frame, const std::vector<std::uint8_t>& mask);
 
 // "12.5 MB" etc.
 std::string bytesText(std::size_t bytes);

@@ -458,17 +458,8 @@ void Workbench::updateDisplay() {
         }
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         d.camera = cameras[v.name];
-        if (d.camera.distance <= 0 && d.frame) {
-            double w = 16, h = 9;
-            if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
-                w = r->x1 - r->x0, h = r->y1 - r->y0;
-            // Leave the colour legend (drawn at the right edge, about 110 px at 720 px high)
-            // its own strip, and centre the model in the rest.
-            double legend = 0;
-            if (!v.colorVariable.empty() && m_renderer)
-                legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
-            fitBesideLegend(d.camera, d.bounds.lo, d.bounds.hi, w, h, legend);
-        }
+        if (d.camera.distance <= 0 && d.frame)
+            d.camera = fitCamera(v, d.camera, d.bounds.lo, d.bounds.hi);
         // Difference colouring: the change since a reference frame, once that frame is here.
         d.colorColumn.reset();
         d.colorTitle = v.colorVariable;
@@ -522,6 +513,20 @@ void Workbench::updateDisplay() {
     });
 }
 
+core::CameraState Workbench::fitCamera(const core::ViewState& v, core::CameraState camera,
+                                      const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+    double w = 16, h = 9;
+    if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
+        w = r->x1 - r->x0, h = r->y1 - r->y0;
+    // Leave the colour legend (drawn at the right edge, about 110 px at 720 px high) its own
+    // strip, and centre the model in the rest.
+    double legend = 0;
+    if (!v.colorVariable.empty() && m_renderer)
+        legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
+    fitBesideLegend(camera, lo, hi, w, h, legend);
+    return camera;
+}
+
 void Workbench::renderViews() {
     if (!m_renderer)
         return;
@@ -540,6 +545,7 @@ void Workbench::renderViews() {
         scene.colorColumn = d.colorColumn;
         scene.colorMap = v->colorMap;
         scene.surfaces = d.surfaces;
+        scene.contextPoints = v->contextPoints;
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;
         for (const auto& b : m_displayBoxes)

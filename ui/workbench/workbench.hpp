@@ -120,6 +120,9 @@ class Workbench {
     // The frame the main view shows and its visibility (histograms, data panel).
     const ViewDisplay* mainDisplay() const { return m_views.empty() ? nullptr : &m_views.front(); }
     std::size_t displayFrame() const; // the current frame, or the one playing
+    // A view's camera turned to show [lo, hi] whole in its image, beside its legend.
+    core::CameraState fitCamera(const core::ViewState& view, core::CameraState camera,
+                                const std::array<double, 3>& lo, const std::array<double, 3>& hi) const;
     // Boxes and thresholds as shown (the session's with a drag's preview applied).
     const std::vector<core::CuttingBox>& displayBoxes() const { return m_displayBoxes; }
     const std::vector<core::VariableThreshold>& displayThresholds() const { return m_displayThresholds; }
