@@ -18,6 +18,7 @@ enum class ColorMapKind {
     Diverging, // cool-warm through a light grey: for values around a meaningful middle
     Pastel,    // two pastel shades, non-linear (square root) to spread small values
     Bands,     // alternating bands by value, e.g. initial height to show offset layers
+    Gray,      // linear dark -> light grey: for print, or under coloured faults and surfaces
 };
 
 struct ColorMapSpec {
@@ -28,7 +29,8 @@ struct ColorMapSpec {
 
 inline constexpr int kMaxBands = 1024;
 
-// The journal's names: "blue-red", "viridis", "diverging", "pastel", "bands", "bands:N".
+// The journal's names: "blue-red", "viridis", "diverging", "pastel", "bands", "bands:N", "gray"
+// (parse also takes "grey").
 std::string colorMapName(const ColorMapSpec& spec);
 // Case-insensitive; nullopt for an unknown name or a band count outside 1..kMaxBands.
 std::optional<ColorMapSpec> parseColorMap(std::string_view name);

@@ -109,8 +109,9 @@ void GlViewRenderer::render(const ViewScene& scene) {
             << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
     if (sig.str() != slot.signature || changed) {
         slot.signature = sig.str();
-        // "gray" is a session map name the renderer does not have: its nearest is viridis.
-        const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{core::ColorMapKind::Viridis});
+        // The session accepts only names core::parseColorMap knows; the default covers an
+        // empty name.
+        const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{});
         r.setColorMap(map);
         r.setColorRange({scene.colorRange[0], scene.colorRange[1]});
         std::vector<BoxOverlay> boxes;
