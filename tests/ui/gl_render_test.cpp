@@ -224,3 +224,114 @@ TEST_F(GlRender, SphereCoversItsExactDisc) {
         EXPECT_NEAR(covered, M_PI * rPx * rPx, 2.0 * M_PI * rPx) << int(proj);
     }
 }
+
+namespace {
+
+core::Frame spheresAt(const std::vector<glm::vec4>& spheres) {
+    core::Frame f;
+    std::vector<float> index;
+    for (const glm::vec4& s : spheres) {
+        f.ids.push_back(std::int64_t(f.ids.size()) + 1);
+        f.x.push_back(s.x);
+        f.y.push_back(s.y);
+        f.z.push_back(s.z);
+        f.radius.push_back(s.w);
+        index.push_back(float(index.size()));
+    }
+    f.attributes.push_back(core::makeAttribute("index", std::move(index), false));
+    f.finalize();
+    return f;
+}
+
+core::Camera topCamera(glm::dvec3 target, double distance, double fovY = 40.0) {
+    core::Camera cam;
+    core::applyPreset(cam, core::ViewPreset::Top);
+    cam.target = target;
+    cam.distance = distance;
+    cam.fovYDegrees = fovY;
+    return cam;
+}
+
+int maxChannelDiff(const std::uint8_t* a, const std::uint8_t* b) {
+    int d = 0;
+    for (int c = 0; c < 4; ++c)
+        d = std::max(d, std::abs(int(a[c]) - int(b[c])));
+    return d;
+}
+
+} // namespace
+
+TEST_F(GlRender, NearPlaneCutShowsAFlatDisc) {
+    // A sphere of radius 1 under the eye (3 above its centre), a far one that puts the near
+    // plane 2.02 from the eye (far / 10^4), so the plane cuts a cap of height 0.02 off the
+    // first: a flat disc of radius 0.2 (13.7 px) inside the sphere's silhouette (48.6 px). A
+    // third sphere wholly behind the eye must stay culled.
+    const core::Frame f = spheresAt({{0, 0, 0, 1}, {0, 0, -20000, 1}, {0, 0, 5.5, 1}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.ambientOcclusion = false;
+    scene.style.sphereColor = {0.8f, 0.6f, 0.4f};
+    scene.camera = topCamera({0, 0, 0}, 3.0);
+    RenderSettings s = small(100, 100);
+    s.supersample = 1;
+    s.transparent = true;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    writePng(img, std::string(FAULTLINE_UI_OUT_DIR) + "/near_cut_single.png");
+    const std::uint8_t* centre = img.at(50, 50);
+    // The disc: flat, the sphere's colour darkened, opaque.
+    EXPECT_EQ(centre[3], 255);
+    EXPECT_NEAR(centre[0], 0.8 * 0.72 * 255, 2);
+    EXPECT_NEAR(centre[1], 0.6 * 0.72 * 255, 2);
+    EXPECT_NEAR(centre[2], 0.4 * 0.72 * 255, 2);
+    for (int dy = -9; dy <= 9; ++dy)
+        for (int dx = -9; dx <= 9; ++dx)
+            if (dx * dx + dy * dy <= 81) {
+                ASSERT_LE(maxChannelDiff(img.at(50 + dx, 50 + dy), centre), 1) << dx << "," << dy;
+            }
+    // Around it the sphere's lit surface, beyond the near plane; outside it nothing.
+    int surface = 0;
+    for (int x = 68; x <= 94; ++x) {
+        EXPECT_EQ(img.at(x, 50)[3], 255) << x;
+        surface += maxChannelDiff(img.at(x, 50), centre) > 8;
+    }
+    EXPECT_GT(surface, 20);
+    EXPECT_EQ(img.at(2, 2)[3], 0);
+}
+
+TEST_F(GlRender, EyeInsideASphereSeesItsCutFace) {
+    // The eye half a radius from the centre: the near plane cuts the sphere in front of the eye
+    // and the cut fills the view; nothing else is seen.
+    const core::Frame f = spheresAt({{0, 0, 0, 1}, {0.3f, 0.2f, -3, 1}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.sphereColor = {0.5f, 0.7f, 0.9f};
+    scene.camera = topCamera({0, 0, 0}, 0.5);
+    RenderSettings s = small(64, 48);
+    s.transparent = true;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            ASSERT_LE(maxChannelDiff(img.at(x, y), img.at(0, 0)), 1) << x << "," << y;
+    EXPECT_EQ(img.at(0, 0)[3], 255);
+    EXPECT_NEAR(img.at(0, 0)[2], 0.9 * 0.72 * 255, 2);
+}
+
+TEST_F(GlRender, NearPlaneThroughSpheresOfAGrid) {
+    // Spheres coloured by index at rising heights under a wide lens: the near plane (0.97 above
+    // the middle) misses the three lowest and cuts the others ever lower (bigger discs).
+    std::vector<glm::vec4> spheres;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+            spheres.push_back(
+                {2.1f * float(i - 1), 2.1f * float(j - 1), 0.12f * float(i + 3 * j) - 0.3f, 1});
+    spheres.push_back({0, 0, -30000, 1});
+    const core::Frame f = spheresAt(spheres);
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "index";
+    scene.colorMap = {core::ColorMapKind::Viridis};
+    scene.colorRange = core::ValueRange{0.0, 8.0};
+    scene.style.showLegend = false;
+    scene.camera = topCamera({0, 0, 0}, 4.0, 90.0);
+    compareWithReference(renderSceneToImage(scene, small(200, 150)), "near_cut_grid");
+}

@@ -286,6 +286,7 @@ void GlRenderer::useSphereProgram(const FrameSetup& f) {
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
+    glUniform1f(glGetUniformLocation(p, "uNearZ"), float(-f.clip.nearClip));
     glUniform1i(glGetUniformLocation(p, "uColorMode"), m_hasValues ? 1 : 0);
     glUniform3fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.sphereColor));
     glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(core::kNanColor));
