@@ -335,3 +335,81 @@ TEST_F(GlRender, NearPlaneThroughSpheresOfAGrid) {
     scene.camera = topCamera({0, 0, 0}, 4.0, 90.0);
     compareWithReference(renderSceneToImage(scene, small(200, 150)), "near_cut_grid");
 }
+
+namespace {
+
+// A square of side 6 at height z centred on (cx, cy), split into n x n cells of two triangles.
+MeshData square(float cx, float cy, float z, glm::vec3 color, int n = 6) {
+    MeshData m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            m.positions.insert(m.positions.end(), {cx - 3 + 6.0f * float(i) / float(n),
+                                                   cy - 3 + 6.0f * float(j) / float(n), z});
+            m.normals.insert(m.normals.end(), {0, 0, 1});
+            m.colors.insert(m.colors.end(), {color.r, color.g, color.b});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const auto a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + std::uint32_t(n) + 1,
+                       d = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, c, c, b, d});
+        }
+    m.opacity = 0.55f;
+    return m;
+}
+
+void reverseTriangles(MeshData& m) {
+    std::vector<std::uint32_t> out;
+    for (std::size_t t = m.indices.size() / 3; t-- > 0;)
+        out.insert(out.end(), m.indices.begin() + 3 * t, m.indices.begin() + 3 * t + 3);
+    m.indices = out;
+}
+
+} // namespace
+
+TEST_F(GlRender, TransparentSurfacesBlendInDepthOrder) {
+    // A red surface above a blue one, half overlapping, over two spheres, seen from above at a
+    // slant: where they overlap red (nearer) must dominate, whatever order the meshes and their
+    // triangles come in (unsorted, the one drawn last would).
+    const core::Frame f = spheresAt({{0, 0, -2, 1}, {2.5f, 1, -2, 0.8f}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.sphereColor = {0.7f, 0.72f, 0.75f};
+    const MeshData red = square(-1, 0, 1, {0.9f, 0.15f, 0.1f});
+    const MeshData blue = square(1, 0, 0, {0.1f, 0.25f, 0.9f});
+    core::Camera cam = topCamera({0, 0, 0}, 14.0, 40.0);
+    core::orbitTurntable(cam, 0.3, 0.25);
+    scene.camera = cam;
+    const RenderSettings s = small(160, 120);
+
+    scene.meshes = {red, blue};
+    const RgbaImage redFirst = renderSceneToImage(scene, s);
+    scene.meshes = {blue, red};
+    const RgbaImage blueFirst = renderSceneToImage(scene, s);
+    for (MeshData& m : scene.meshes)
+        reverseTriangles(m);
+    const RgbaImage reversed = renderSceneToImage(scene, s);
+    EXPECT_EQ(meanAbsDiff(redFirst, blueFirst), 0.0);
+    EXPECT_EQ(meanAbsDiff(redFirst, reversed), 0.0);
+
+    // A pixel of the overlap (over no sphere): red over blue over white.
+    const std::uint8_t* overlap = redFirst.at(80, 60);
+    EXPECT_GT(int(overlap[0]), int(overlap[2]) + 30);
+    compareWithReference(redFirst, "transparent_overlap");
+}
+
+TEST_F(GlRender, TransparentTrianglesSortOnlyWhenTheViewMoves) {
+    SceneDescription scene;
+    scene.meshes = {square(0, 0, 0, {0.9f, 0.5f, 0.2f}), square(1, 1, 1, {0.2f, 0.5f, 0.9f})};
+    GlRenderer renderer;
+    loadScene(renderer, scene);
+    core::Camera cam = topCamera({0, 0, 0}, 20.0);
+    const RenderTarget target{64, 64, 1, false};
+    renderer.render(cam, target);
+    renderer.render(cam, target);
+    EXPECT_EQ(renderer.stats().meshSorts, 1u);
+    EXPECT_EQ(renderer.stats().meshTriangles, 144u);
+    core::orbitTurntable(cam, 0.1, 0.0);
+    renderer.render(cam, target);
+    EXPECT_EQ(renderer.stats().meshSorts, 2u);
+}

@@ -256,13 +256,13 @@ void main() {
 std::string meshVertex() {
     return std::string(kHeader) + R"(
 layout(location = 0) in vec3 aPos;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec3 aColor;
+layout(location = 1) in vec3 aNormal; // zero: flat shading
+layout(location = 2) in vec4 aColor;  // sRGB, opacity
 uniform mat4 uView;
 uniform mat4 uProj;
 out vec3 vPos;
 out vec3 vNormal;
-out vec3 vColor;
+out vec4 vColor;
 void main() {
     vec4 p = uView * vec4(aPos, 1.0);
     vPos = p.xyz;
@@ -275,19 +275,18 @@ void main() {
 
 std::string meshFragment() {
     return std::string(kHeader) + kShading + R"(
-uniform float uOpacity;
-uniform int uHasNormals;
 uniform int uPerspective;
 in vec3 vPos;
 in vec3 vNormal;
-in vec3 vColor;
+in vec4 vColor;
 layout(location = 0) out vec4 oColor;
 void main() {
     vec3 V = uPerspective == 1 ? -normalize(vPos) : vec3(0.0, 0.0, 1.0);
-    vec3 n = uHasNormals == 1 ? normalize(vNormal) : normalize(cross(dFdx(vPos), dFdy(vPos)));
+    vec3 n = dot(vNormal, vNormal) > 1e-12 ? normalize(vNormal)
+                                           : normalize(cross(dFdx(vPos), dFdy(vPos)));
     if (dot(n, V) < 0.0)
         n = -n; // two-sided: surfaces are seen from both sides
-    oColor = vec4(shade(vColor, n, V), uOpacity);
+    oColor = vec4(shade(vColor.rgb, n, V), vColor.a);
 }
 )";
 }
