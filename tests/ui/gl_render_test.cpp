@@ -276,6 +276,7 @@ TEST_F(GlRender, NearPlaneCutShowsAFlatDisc) {
     s.supersample = 1;
     s.transparent = true;
     const RgbaImage img = renderSceneToImage(scene, s);
+    std::filesystem::create_directories(FAULTLINE_UI_OUT_DIR);
     writePng(img, std::string(FAULTLINE_UI_OUT_DIR) + "/near_cut_single.png");
     const std::uint8_t* centre = img.at(50, 50);
     // The disc: flat, the sphere's colour darkened, opaque.
