@@ -137,9 +137,13 @@ const std::vector<std::string>& colorMapNames() {
     return names;
 }
 
+glm::vec3 nanColor(const ColorMapSpec& spec) {
+    return spec.kind == ColorMapKind::Gray ? hex(0xB88A5C) : kNanColor;
+}
+
 glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
     if (std::isnan(t))
-        return kNanColor;
+        return nanColor(spec);
     t = std::clamp(t, 0.0, 1.0);
     switch (spec.kind) {
     case ColorMapKind::BlueRed:

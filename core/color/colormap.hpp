@@ -37,9 +37,12 @@ std::optional<ColorMapSpec> parseColorMap(std::string_view name);
 // Names to offer in a combo box, in display order.
 const std::vector<std::string>& colorMapNames();
 
-// Colour (sRGB, 0..1) at t in [0, 1]; t is clamped; NaN gives kNanColor.
+// Colour (sRGB, 0..1) at t in [0, 1]; t is clamped; NaN gives nanColor(spec).
 glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t);
 inline constexpr glm::vec3 kNanColor{0.55f, 0.55f, 0.55f};
+// What NaN (no value) looks like under a map: kNanColor, except where that grey would pass for
+// a value (Gray), which gets a muted ochre instead.
+glm::vec3 nanColor(const ColorMapSpec& spec);
 
 // What the GPU samples: continuous maps are `size` texels sampled linearly at t; Bands is a short
 // palette sampled with nearest filtering at index floor(t * bandCount) mod palette size.

@@ -78,6 +78,11 @@ TEST(ColorMap, GrayIsLinearDarkToLight) {
     EXPECT_FALSE(tex.nearest);
     EXPECT_EQ(tex.bandCount, 0);
     EXPECT_EQ(tex.rgba[0], tex.rgba[2]);
+    // No value must not pass for a middle value: NaN is tinted here, grey elsewhere.
+    const glm::vec3 nan = sampleColorMap(m, std::nan(""));
+    EXPECT_EQ(nan, nanColor(m));
+    EXPECT_GT(nan.r - nan.b, 0.15f);
+    EXPECT_EQ(nanColor({ColorMapKind::Viridis}), kNanColor);
 }
 
 TEST(ColorMap, PastelIsNonLinear) {

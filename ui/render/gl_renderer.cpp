@@ -234,7 +234,8 @@ void GlRenderer::useSphereProgram(const FrameSetup& f) {
     glUniform1f(glGetUniformLocation(p, "uNearZ"), float(-f.clip.nearClip));
     glUniform1i(glGetUniformLocation(p, "uColorMode"), m_hasValues ? 1 : 0);
     glUniform3fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.sphereColor));
-    glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(core::kNanColor));
+    const glm::vec3 nan = core::nanColor(m_map);
+    glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(nan));
     glUniform2f(glGetUniformLocation(p, "uRange"), float(m_range.low),
                 float(1.0 / (m_range.high - m_range.low)));
     glUniform1f(glGetUniformLocation(p, "uSpecular"), m_style.specular);
