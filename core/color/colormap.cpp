@@ -48,7 +48,7 @@ constexpr glm::vec3 kPastelHigh = hex(0xF4A09A);                               /
 constexpr std::array<glm::vec3, 2> kBandPalette{hex(0xE3CC9E), hex(0x6B84A6)}; // sand, slate
 // Not black: the lowest values still show their shading; not white: the highest stay visible
 // on a white background. Linear in sRGB, which is close to even steps of lightness.
-constexpr glm::vec3 kGrayLow = hex(0x2A2A2A);
+constexpr glm::vec3 kGrayLow = hex(0x383838);
 constexpr glm::vec3 kGrayHigh = hex(0xE6E6E6);
 
 glm::vec3 lerp(glm::vec3 a, glm::vec3 b, double t) {
