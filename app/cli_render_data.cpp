@@ -46,7 +46,7 @@ const char* kUsage =
     "         [--transparent] [--supersample 1..4] [--context] [--no-ao]\n"
     "         [--threshold VAR:LO:HI]... [--cut XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]...\n"
     "Renders one frame of a data file offscreen (needs a display; use xvfb-run when headless).\n"
-    "Maps: blue-red viridis diverging pastel bands bands:N";
+    "Maps: blue-red viridis diverging pastel bands bands:N gray";
 
 } // namespace
 

@@ -1,7 +1,9 @@
 // Milliseconds per frame of the sphere renderer at 1280x720 (impostors with and without occlusion
-// culling) against drawing every sphere as an instanced 320-triangle icosphere, in one run.
+// culling, and with a transparent surface re-sorted every frame) against drawing every sphere as
+// an instanced 320-triangle icosphere, in one run.
 // Needs a display: xvfb-run -a -s "-screen 0 1920x1080x24" ./build/bench/bench_render
 #include "core/model/frame.hpp"
+#include "core/view/triangle_depth_order.hpp"
 #include "ui/render/gl_renderer.hpp"
 #include "ui/render/offscreen.hpp"
 
@@ -10,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -98,6 +101,70 @@ void impostors(benchmark::State& state, ui::OcclusionCulling culling, bool ao) {
     state.counters["drawn"] = double(s.drawnSpheres);
     state.counters["culled"] = double(s.occlusionCulled + s.frustumCulled);
     state.SetLabel(renderer.rendererName());
+}
+
+// ---- transparent fault surfaces: triangles sorted back to front when the view moves ----
+
+// A wavy dipping sheet through the block of about `triangles` triangles, half transparent.
+ui::MeshData faultSheet(const core::Frame& f, int triangles) {
+    const auto [lo, hi] = std::minmax_element(f.x.begin(), f.x.end());
+    const float x0 = *lo, x1 = *hi;
+    const float y1 = *std::max_element(f.y.begin(), f.y.end());
+    const float z1 = *std::max_element(f.z.begin(), f.z.end());
+    const int n = std::max(2, int(std::sqrt(triangles / 2.0)));
+    ui::MeshData m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float u = float(i) / float(n), v = float(j) / float(n);
+            const float x = x0 + (x1 - x0) * (0.3f + 0.4f * v) + 0.8f * std::sin(9.0f * u);
+            m.positions.insert(m.positions.end(), {x, u * y1, v * z1});
+            m.colors.insert(m.colors.end(), {0.9f, 0.4f + 0.3f * v, 0.2f});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const auto a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + std::uint32_t(n) + 1,
+                       d = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, c, c, b, d});
+        }
+    m.opacity = 0.5f;
+    return m;
+}
+
+// CPU cost of re-sorting a surface's triangles after the camera moved.
+void transparentSort(benchmark::State& state) {
+    const core::Frame& f = block(100000);
+    const ui::MeshData sheet = faultSheet(f, int(state.range(0)));
+    core::TriangleDepthOrder order;
+    order.setTriangles(sheet.positions, sheet.indices);
+    glm::dvec3 eye(-40.0, -60.0, 50.0);
+    for (auto _ : state) {
+        eye.x += 0.01;
+        order.update(eye, glm::dvec3(0, 1, 0), true);
+        benchmark::DoNotOptimize(order.indices().data());
+    }
+    state.counters["triangles"] = double(order.triangleCount());
+}
+
+// A frame of spheres and a transparent surface while the camera turns (a sort every frame).
+void impostorsWithSurface(benchmark::State& state) {
+    if (!haveContext(state))
+        return;
+    const core::Frame& f = block(100000);
+    ui::SceneDescription scene = sceneOf(f);
+    scene.meshes.push_back(faultSheet(f, int(state.range(0))));
+    ui::GlRenderer renderer;
+    ui::loadScene(renderer, scene);
+    core::Camera camera = ui::fittedCamera(scene, kWidth, kHeight);
+    const ui::RenderTarget target{kWidth, kHeight, 1, false};
+    renderer.render(camera, target);
+    glFinish();
+    for (auto _ : state) {
+        core::orbitTurntable(camera, 0.002, 0.0);
+        renderer.render(camera, target);
+        glFinish();
+    }
+    state.counters["triangles"] = double(renderer.stats().meshTriangles);
+    state.counters["sorts"] = double(renderer.stats().meshSorts);
 }
 
 // ---- the baseline: an instanced icosphere of 320 triangles per sphere ----
@@ -259,6 +326,13 @@ BENCHMARK_CAPTURE(impostors, culling_auto_no_ao, ui::OcclusionCulling::Auto, fal
 BENCHMARK_CAPTURE(impostors, culling_off_no_ao, ui::OcclusionCulling::Off, false)
     ->Arg(100000)
     ->Arg(525000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(transparentSort)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(impostorsWithSurface)
+    ->Arg(100000)
+    ->Arg(1000000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

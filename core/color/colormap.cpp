@@ -46,6 +46,10 @@ constexpr glm::vec3 kRed = hex(0xFF1A0D);
 constexpr glm::vec3 kPastelLow = hex(0xAAC8EE);                                // pale blue
 constexpr glm::vec3 kPastelHigh = hex(0xF4A09A);                               // pale coral
 constexpr std::array<glm::vec3, 2> kBandPalette{hex(0xE3CC9E), hex(0x6B84A6)}; // sand, slate
+// Not black: the lowest values still show their shading; not white: the highest stay visible
+// on a white background. Linear in sRGB, which is close to even steps of lightness.
+constexpr glm::vec3 kGrayLow = hex(0x383838);
+constexpr glm::vec3 kGrayHigh = hex(0xE6E6E6);
 
 glm::vec3 lerp(glm::vec3 a, glm::vec3 b, double t) {
     const float f = static_cast<float>(t);
@@ -94,6 +98,8 @@ std::string colorMapName(const ColorMapSpec& spec) {
         return "pastel";
     case ColorMapKind::Bands:
         return spec.bands == ColorMapSpec{}.bands ? "bands" : "bands:" + std::to_string(spec.bands);
+    case ColorMapKind::Gray:
+        return "gray";
     }
     return "blue-red";
 }
@@ -110,6 +116,8 @@ std::optional<ColorMapSpec> parseColorMap(std::string_view name) {
         return ColorMapSpec{ColorMapKind::Pastel};
     if (n == "bands")
         return ColorMapSpec{ColorMapKind::Bands};
+    if (n == "gray" || n == "grey")
+        return ColorMapSpec{ColorMapKind::Gray};
     constexpr std::string_view kBandsPrefix = "bands:";
     if (n.starts_with(kBandsPrefix)) {
         int count = 0;
@@ -124,14 +132,18 @@ std::optional<ColorMapSpec> parseColorMap(std::string_view name) {
 }
 
 const std::vector<std::string>& colorMapNames() {
-    static const std::vector<std::string> names{"blue-red", "viridis", "diverging", "pastel",
-                                                "bands"};
+    static const std::vector<std::string> names{"blue-red", "viridis", "diverging",
+                                                "pastel",   "bands",   "gray"};
     return names;
+}
+
+glm::vec3 nanColor(const ColorMapSpec& spec) {
+    return spec.kind == ColorMapKind::Gray ? hex(0xB88A5C) : kNanColor;
 }
 
 glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
     if (std::isnan(t))
-        return kNanColor;
+        return nanColor(spec);
     t = std::clamp(t, 0.0, 1.0);
     switch (spec.kind) {
     case ColorMapKind::BlueRed:
@@ -154,6 +166,8 @@ glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
         const int band = std::min(static_cast<int>(std::floor(t * count)), count - 1);
         return kBandPalette[static_cast<std::size_t>(band) % kBandPalette.size()];
     }
+    case ColorMapKind::Gray:
+        return lerp(kGrayLow, kGrayHigh, t);
     }
     return kNanColor;
 }

@@ -18,6 +18,7 @@ enum class ColorMapKind {
     Diverging, // cool-warm through a light grey: for values around a meaningful middle
     Pastel,    // two pastel shades, non-linear (square root) to spread small values
     Bands,     // alternating bands by value, e.g. initial height to show offset layers
+    Gray,      // linear dark -> light grey: for print, or under coloured faults and surfaces
 };
 
 struct ColorMapSpec {
@@ -28,16 +29,20 @@ struct ColorMapSpec {
 
 inline constexpr int kMaxBands = 1024;
 
-// The journal's names: "blue-red", "viridis", "diverging", "pastel", "bands", "bands:N".
+// The journal's names: "blue-red", "viridis", "diverging", "pastel", "bands", "bands:N", "gray"
+// (parse also takes "grey").
 std::string colorMapName(const ColorMapSpec& spec);
 // Case-insensitive; nullopt for an unknown name or a band count outside 1..kMaxBands.
 std::optional<ColorMapSpec> parseColorMap(std::string_view name);
 // Names to offer in a combo box, in display order.
 const std::vector<std::string>& colorMapNames();
 
-// Colour (sRGB, 0..1) at t in [0, 1]; t is clamped; NaN gives kNanColor.
+// Colour (sRGB, 0..1) at t in [0, 1]; t is clamped; NaN gives nanColor(spec).
 glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t);
 inline constexpr glm::vec3 kNanColor{0.55f, 0.55f, 0.55f};
+// What NaN (no value) looks like under a map: kNanColor, except where that grey would pass for
+// a value (Gray), which gets a muted ochre instead.
+glm::vec3 nanColor(const ColorMapSpec& spec);
 
 // What the GPU samples: continuous maps are `size` texels sampled linearly at t; Bands is a short
 // palette sampled with nearest filtering at index floor(t * bandCount) mod palette size.

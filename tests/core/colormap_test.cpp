@@ -13,6 +13,8 @@ TEST(ColorMap, ParsesJournalNames) {
     EXPECT_EQ(parseColorMap("diverging")->kind, ColorMapKind::Diverging);
     EXPECT_EQ(parseColorMap("pastel")->kind, ColorMapKind::Pastel);
     EXPECT_EQ(parseColorMap("bands")->kind, ColorMapKind::Bands);
+    EXPECT_EQ(parseColorMap("gray")->kind, ColorMapKind::Gray);
+    EXPECT_EQ(parseColorMap("Grey")->kind, ColorMapKind::Gray);
     EXPECT_EQ(parseColorMap("bands")->bands, 10);
     EXPECT_EQ(parseColorMap("bands:12")->bands, 12);
     EXPECT_FALSE(parseColorMap("bands:0"));
@@ -55,6 +57,32 @@ TEST(ColorMap, DivergingIsGreyInTheMiddle) {
     const glm::vec3 mid = sampleColorMap({ColorMapKind::Diverging}, 0.5);
     EXPECT_NEAR(mid.r, mid.g, 1e-6);
     EXPECT_NEAR(mid.g, mid.b, 1e-6);
+}
+
+TEST(ColorMap, GrayIsLinearDarkToLight) {
+    const ColorMapSpec m{ColorMapKind::Gray};
+    const glm::vec3 lo = sampleColorMap(m, 0.0), mid = sampleColorMap(m, 0.5),
+                    hi = sampleColorMap(m, 1.0);
+    for (const glm::vec3& c : {lo, mid, hi}) {
+        EXPECT_EQ(c.r, c.g);
+        EXPECT_EQ(c.g, c.b);
+    }
+    // Dark but not black (shading must still show), light but not white (white backgrounds).
+    EXPECT_GT(lo.r, 0.1f);
+    EXPECT_LT(lo.r, 0.25f);
+    EXPECT_GT(hi.r, 0.85f);
+    EXPECT_LT(hi.r, 0.95f);
+    EXPECT_NEAR(mid.r, 0.5f * (lo.r + hi.r), 1e-6);
+    EXPECT_LT(sampleColorMap(m, 0.3).r, sampleColorMap(m, 0.31).r);
+    const ColorMapTexture tex = colorMapTexture(m);
+    EXPECT_FALSE(tex.nearest);
+    EXPECT_EQ(tex.bandCount, 0);
+    EXPECT_EQ(tex.rgba[0], tex.rgba[2]);
+    // No value must not pass for a middle value: NaN is tinted here, grey elsewhere.
+    const glm::vec3 nan = sampleColorMap(m, std::nan(""));
+    EXPECT_EQ(nan, nanColor(m));
+    EXPECT_GT(nan.r - nan.b, 0.15f);
+    EXPECT_EQ(nanColor({ColorMapKind::Viridis}), kNanColor);
 }
 
 TEST(ColorMap, PastelIsNonLinear) {

@@ -224,3 +224,193 @@ TEST_F(GlRender, SphereCoversItsExactDisc) {
         EXPECT_NEAR(covered, M_PI * rPx * rPx, 2.0 * M_PI * rPx) << int(proj);
     }
 }
+
+namespace {
+
+core::Frame spheresAt(const std::vector<glm::vec4>& spheres) {
+    core::Frame f;
+    std::vector<float> index;
+    for (const glm::vec4& s : spheres) {
+        f.ids.push_back(std::int64_t(f.ids.size()) + 1);
+        f.x.push_back(s.x);
+        f.y.push_back(s.y);
+        f.z.push_back(s.z);
+        f.radius.push_back(s.w);
+        index.push_back(float(index.size()));
+    }
+    f.attributes.push_back(core::makeAttribute("index", std::move(index), false));
+    f.finalize();
+    return f;
+}
+
+core::Camera topCamera(glm::dvec3 target, double distance, double fovY = 40.0) {
+    core::Camera cam;
+    core::applyPreset(cam, core::ViewPreset::Top);
+    cam.target = target;
+    cam.distance = distance;
+    cam.fovYDegrees = fovY;
+    return cam;
+}
+
+int maxChannelDiff(const std::uint8_t* a, const std::uint8_t* b) {
+    int d = 0;
+    for (int c = 0; c < 4; ++c)
+        d = std::max(d, std::abs(int(a[c]) - int(b[c])));
+    return d;
+}
+
+} // namespace
+
+TEST_F(GlRender, NearPlaneCutShowsAFlatDisc) {
+    // A sphere of radius 1 under the eye (3 above its centre), a far one that puts the near
+    // plane 2.02 from the eye (far / 10^4), so the plane cuts a cap of height 0.02 off the
+    // first: a flat disc of radius 0.2 (13.7 px) inside the sphere's silhouette (48.6 px). A
+    // third sphere wholly behind the eye must stay culled.
+    const core::Frame f = spheresAt({{0, 0, 0, 1}, {0, 0, -20000, 1}, {0, 0, 5.5, 1}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.ambientOcclusion = false;
+    scene.style.sphereColor = {0.8f, 0.6f, 0.4f};
+    scene.camera = topCamera({0, 0, 0}, 3.0);
+    RenderSettings s = small(100, 100);
+    s.supersample = 1;
+    s.transparent = true;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    std::filesystem::create_directories(FAULTLINE_UI_OUT_DIR);
+    writePng(img, std::string(FAULTLINE_UI_OUT_DIR) + "/near_cut_single.png");
+    const std::uint8_t* centre = img.at(50, 50);
+    // The disc: flat, the sphere's colour darkened, opaque.
+    EXPECT_EQ(centre[3], 255);
+    EXPECT_NEAR(centre[0], 0.8 * 0.72 * 255, 2);
+    EXPECT_NEAR(centre[1], 0.6 * 0.72 * 255, 2);
+    EXPECT_NEAR(centre[2], 0.4 * 0.72 * 255, 2);
+    for (int dy = -9; dy <= 9; ++dy)
+        for (int dx = -9; dx <= 9; ++dx)
+            if (dx * dx + dy * dy <= 81) {
+                ASSERT_LE(maxChannelDiff(img.at(50 + dx, 50 + dy), centre), 1) << dx << "," << dy;
+            }
+    // Around it the sphere's lit surface, beyond the near plane; outside it nothing.
+    int surface = 0;
+    for (int x = 68; x <= 94; ++x) {
+        EXPECT_EQ(img.at(x, 50)[3], 255) << x;
+        surface += maxChannelDiff(img.at(x, 50), centre) > 8;
+    }
+    EXPECT_GT(surface, 20);
+    EXPECT_EQ(img.at(2, 2)[3], 0);
+}
+
+TEST_F(GlRender, EyeInsideASphereSeesItsCutFace) {
+    // The eye half a radius from the centre: the near plane cuts the sphere in front of the eye
+    // and the cut fills the view; nothing else is seen.
+    const core::Frame f = spheresAt({{0, 0, 0, 1}, {0.3f, 0.2f, -3, 1}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.sphereColor = {0.5f, 0.7f, 0.9f};
+    scene.camera = topCamera({0, 0, 0}, 0.5);
+    RenderSettings s = small(64, 48);
+    s.transparent = true;
+    const RgbaImage img = renderSceneToImage(scene, s);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            ASSERT_LE(maxChannelDiff(img.at(x, y), img.at(0, 0)), 1) << x << "," << y;
+    EXPECT_EQ(img.at(0, 0)[3], 255);
+    EXPECT_NEAR(img.at(0, 0)[2], 0.9 * 0.72 * 255, 2);
+}
+
+TEST_F(GlRender, NearPlaneThroughSpheresOfAGrid) {
+    // Spheres coloured by index at rising heights under a wide lens: the near plane (0.97 above
+    // the middle) misses the three lowest and cuts the others ever lower (bigger discs).
+    std::vector<glm::vec4> spheres;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+            spheres.push_back(
+                {2.1f * float(i - 1), 2.1f * float(j - 1), 0.12f * float(i + 3 * j) - 0.3f, 1});
+    spheres.push_back({0, 0, -30000, 1});
+    const core::Frame f = spheresAt(spheres);
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.colorVariable = "index";
+    scene.colorMap = {core::ColorMapKind::Viridis};
+    scene.colorRange = core::ValueRange{0.0, 8.0};
+    scene.style.showLegend = false;
+    scene.camera = topCamera({0, 0, 0}, 4.0, 90.0);
+    compareWithReference(renderSceneToImage(scene, small(200, 150)), "near_cut_grid");
+}
+
+namespace {
+
+// A square of side 6 at height z centred on (cx, cy), split into n x n cells of two triangles.
+MeshData square(float cx, float cy, float z, glm::vec3 color, int n = 6) {
+    MeshData m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            m.positions.insert(m.positions.end(), {cx - 3 + 6.0f * float(i) / float(n),
+                                                   cy - 3 + 6.0f * float(j) / float(n), z});
+            m.normals.insert(m.normals.end(), {0, 0, 1});
+            m.colors.insert(m.colors.end(), {color.r, color.g, color.b});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const auto a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + std::uint32_t(n) + 1,
+                       d = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, c, c, b, d});
+        }
+    m.opacity = 0.55f;
+    return m;
+}
+
+void reverseTriangles(MeshData& m) {
+    std::vector<std::uint32_t> out;
+    for (std::size_t t = m.indices.size() / 3; t-- > 0;)
+        out.insert(out.end(), m.indices.begin() + 3 * t, m.indices.begin() + 3 * t + 3);
+    m.indices = out;
+}
+
+} // namespace
+
+TEST_F(GlRender, TransparentSurfacesBlendInDepthOrder) {
+    // A red surface above a blue one, half overlapping, over two spheres, seen from above at a
+    // slant: where they overlap red (nearer) must dominate, whatever order the meshes and their
+    // triangles come in (unsorted, the one drawn last would).
+    const core::Frame f = spheresAt({{0, 0, -2, 1}, {2.5f, 1, -2, 0.8f}});
+    SceneDescription scene;
+    scene.frame = &f;
+    scene.style.sphereColor = {0.7f, 0.72f, 0.75f};
+    const MeshData red = square(-1, 0, 1, {0.9f, 0.15f, 0.1f});
+    const MeshData blue = square(1, 0, 0, {0.1f, 0.25f, 0.9f});
+    core::Camera cam = topCamera({0, 0, 0}, 14.0, 40.0);
+    core::orbitTurntable(cam, 0.3, 0.25);
+    scene.camera = cam;
+    const RenderSettings s = small(160, 120);
+
+    scene.meshes = {red, blue};
+    const RgbaImage redFirst = renderSceneToImage(scene, s);
+    scene.meshes = {blue, red};
+    const RgbaImage blueFirst = renderSceneToImage(scene, s);
+    for (MeshData& m : scene.meshes)
+        reverseTriangles(m);
+    const RgbaImage reversed = renderSceneToImage(scene, s);
+    EXPECT_EQ(meanAbsDiff(redFirst, blueFirst), 0.0);
+    EXPECT_EQ(meanAbsDiff(redFirst, reversed), 0.0);
+
+    // A pixel of the overlap (over no sphere): red over blue over white.
+    const std::uint8_t* overlap = redFirst.at(80, 60);
+    EXPECT_GT(int(overlap[0]), int(overlap[2]) + 30);
+    compareWithReference(redFirst, "transparent_overlap");
+}
+
+TEST_F(GlRender, TransparentTrianglesSortOnlyWhenTheViewMoves) {
+    SceneDescription scene;
+    scene.meshes = {square(0, 0, 0, {0.9f, 0.5f, 0.2f}), square(1, 1, 1, {0.2f, 0.5f, 0.9f})};
+    GlRenderer renderer;
+    loadScene(renderer, scene);
+    core::Camera cam = topCamera({0, 0, 0}, 20.0);
+    const RenderTarget target{64, 64, 1, false};
+    renderer.render(cam, target);
+    renderer.render(cam, target);
+    EXPECT_EQ(renderer.stats().meshSorts, 1u);
+    EXPECT_EQ(renderer.stats().meshTriangles, 144u);
+    core::orbitTurntable(cam, 0.1, 0.0);
+    renderer.render(cam, target);
+    EXPECT_EQ(renderer.stats().meshSorts, 2u);
+}

@@ -30,10 +30,7 @@ bool isSoftware(const std::string& renderer) {
     return false;
 }
 
-void setMat4(GLuint program, const char* name, const glm::dmat4& m) {
-    const glm::mat4 f(m);
-    glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(f));
-}
+using gl::setMat4;
 
 core::BoundingSphere boxSphere(const glm::dvec3& lo, const glm::dvec3& hi) {
     return {(lo + hi) * 0.5, glm::length(hi - lo) * 0.5};
@@ -161,58 +158,6 @@ void GlRenderer::setColorMap(const core::ColorMapSpec& map) {
 
 void GlRenderer::setColorRange(core::ValueRange range) { m_range = core::widenDegenerate(range); }
 
-void GlRenderer::setMeshes(std::span<const MeshData> meshes) {
-    m_meshes.clear();
-    m_meshBounds = {};
-    for (const MeshData& m : meshes) {
-        assert(m.positions.size() % 3 == 0 && m.indices.size() % 3 == 0);
-        const std::size_t n = m.positions.size() / 3;
-        assert(m.normals.empty() || m.normals.size() == m.positions.size());
-        assert(m.colors.empty() || m.colors.size() == m.positions.size());
-        if (n == 0 || m.indices.empty())
-            continue;
-        std::vector<float> interleaved(n * 9);
-        glm::dvec3 lo(m.positions[0], m.positions[1], m.positions[2]), hi = lo;
-        for (std::size_t v = 0; v < n; ++v) {
-            float* out = &interleaved[9 * v];
-            for (int c = 0; c < 3; ++c) {
-                out[c] = m.positions[3 * v + c];
-                out[3 + c] = m.normals.empty() ? 0.0f : m.normals[3 * v + c];
-                out[6 + c] = m.colors.empty() ? 0.7f : m.colors[3 * v + c];
-            }
-            const glm::dvec3 p(out[0], out[1], out[2]);
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
-        }
-        m_meshBounds = core::enclose(m_meshBounds, boxSphere(lo, hi));
-        GpuMesh g;
-        g.vao = gl::makeVertexArray();
-        g.vertices = gl::makeBuffer();
-        g.indices = gl::makeBuffer();
-        g.indexCount = static_cast<GLsizei>(m.indices.size());
-        g.opacity = std::clamp(m.opacity, 0.0f, 1.0f);
-        g.hasNormals = !m.normals.empty();
-        glBindVertexArray(g.vao.id());
-        glBindBuffer(GL_ARRAY_BUFFER, g.vertices.id());
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
-                     interleaved.data(), GL_STATIC_DRAW);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.indices.id());
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(m.indices.size() * sizeof(std::uint32_t)),
-                     m.indices.data(), GL_STATIC_DRAW);
-        for (GLuint a = 0; a < 3; ++a) {
-            glEnableVertexAttribArray(a);
-            glVertexAttribPointer(
-                a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
-                reinterpret_cast<const void*>(std::uintptr_t(a * 3 * sizeof(float))));
-        }
-        glBindVertexArray(0);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-        m_meshes.push_back(std::move(g));
-    }
-    ++m_stats.meshUploads;
-}
-
 void GlRenderer::setBoxes(std::span<const BoxOverlay> boxes,
                           std::optional<BoxHandlesOverlay> selected) {
     m_boxes.assign(boxes.begin(), boxes.end());
@@ -286,9 +231,11 @@ void GlRenderer::useSphereProgram(const FrameSetup& f) {
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
+    glUniform1f(glGetUniformLocation(p, "uNearZ"), float(-f.clip.nearClip));
     glUniform1i(glGetUniformLocation(p, "uColorMode"), m_hasValues ? 1 : 0);
     glUniform3fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.sphereColor));
-    glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(core::kNanColor));
+    const glm::vec3 nan = core::nanColor(m_map);
+    glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(nan));
     glUniform2f(glGetUniformLocation(p, "uRange"), float(m_range.low),
                 float(1.0 / (m_range.high - m_range.low)));
     glUniform1f(glGetUniformLocation(p, "uSpecular"), m_style.specular);
@@ -374,39 +321,6 @@ void GlRenderer::drawContextPoints(const FrameSetup& f) {
     m_stats.contextPoints = m_hidden.size();
 }
 
-void GlRenderer::drawMeshes(const FrameSetup& f, bool transparent) {
-    const GLuint p = m_programs.mesh.id();
-    bool bound = false;
-    for (const GpuMesh& m : m_meshes) {
-        if ((m.opacity < 1.0f) != transparent)
-            continue;
-        if (!bound) {
-            glUseProgram(p);
-            setMat4(p, "uView", f.view);
-            setMat4(p, "uProj", f.projection);
-            glUniform1f(glGetUniformLocation(p, "uSpecular"), m_style.specular * 0.6f);
-            glUniform1i(glGetUniformLocation(p, "uPerspective"), f.perspective ? 1 : 0);
-            if (transparent) {
-                glEnable(GL_BLEND);
-                glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
-                                    GL_ONE_MINUS_SRC_ALPHA);
-                glDepthMask(GL_FALSE);
-            }
-            bound = true;
-        }
-        glUniform1f(glGetUniformLocation(p, "uOpacity"), m.opacity);
-        glUniform1i(glGetUniformLocation(p, "uHasNormals"), m.hasNormals ? 1 : 0);
-        glBindVertexArray(m.vao.id());
-        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
-        m_stats.meshTriangles += static_cast<std::size_t>(m.indexCount) / 3;
-    }
-    glBindVertexArray(m_emptyVao.id());
-    if (bound && transparent) {
-        glDepthMask(GL_TRUE);
-        glDisable(GL_BLEND);
-    }
-}
-
 void GlRenderer::drawBoxEdges(const FrameSetup& f, float widthPx, float alpha, bool depthTest) {
     if (m_segmentCount == 0)
         return;
@@ -460,6 +374,8 @@ void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) 
     f.height = target.height * s;
     f.supersample = s;
     f.perspective = camera.projection == core::Projection::Perspective;
+    f.eye = camera.eye();
+    f.forward = camera.forward();
     const double aspect = double(target.width) / double(target.height);
     f.clip = core::clipRangeFor(camera, sceneBounds());
     f.view = core::viewMatrix(camera);
@@ -489,11 +405,12 @@ void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) 
     glDepthFunc(GL_LESS);
     glBindVertexArray(m_emptyVao.id());
 
+    // Opaque first; transparent surfaces last, blended back to front over everything.
     drawSpheres(f);
-    drawMeshes(f, false);
+    drawOpaqueMeshes(f);
     drawContextPoints(f);
     drawBoxEdges(f, m_style.lineWidth * float(s), 1.0f, true);
-    drawMeshes(f, true);
+    drawTransparentMeshes(f);
 
     composite(f, target);
 

@@ -1,9 +1,11 @@
 // The OpenGL back end: sphere impostors pulled from buffer textures by a compact list of visible
 // rows, meshes, box edges and handles, screen-space contact darkening, supersampling, and a
-// colour-bar legend; optional occlusion culling for software rasterisers.
+// colour-bar legend; optional occlusion culling for software rasterisers; transparent surfaces
+// sorted back to front.
 #pragma once
 
 #include "core/view/occlusion_culling.hpp"
+#include "core/view/triangle_depth_order.hpp"
 #include "ui/render/gl_resources.hpp"
 #include "ui/render/renderer.hpp"
 #include "ui/render/text_atlas.hpp"
@@ -45,12 +47,11 @@ class GlRenderer final : public Renderer {
         gl::Program spheresPerspective, spheresOrthographic, points, mesh, lines, occlusion,
             composite, downsample, overlay;
     };
+    // Vertices interleave position, normal (zero: flat shading) and colour with opacity.
     struct GpuMesh {
         gl::VertexArray vao;
         gl::Buffer vertices, indices;
         GLsizei indexCount = 0;
-        float opacity = 1.0f;
-        bool hasNormals = false;
     };
     struct FontTexture {
         FontAtlas atlas;
@@ -59,6 +60,7 @@ class GlRenderer final : public Renderer {
     // Per-frame matrices and sizes.
     struct FrameSetup {
         glm::dmat4 view{1.0}, projection{1.0};
+        glm::dvec3 eye{0.0}, forward{0.0, 0.0, -1.0}; // world space
         core::ClipRange clip;
         bool perspective = true;
         int width = 0, height = 0; // of the pass being drawn
@@ -88,7 +90,11 @@ class GlRenderer final : public Renderer {
     int m_bandCount = 0;
     core::ValueRange m_range;
 
-    std::vector<GpuMesh> m_meshes;
+    std::vector<GpuMesh> m_meshes; // opaque, one per mesh
+    // Every transparent mesh in one, so triangles of different meshes sort among each other;
+    // its index buffer holds the order for the last view (gl_renderer_meshes.cpp).
+    GpuMesh m_transparent;
+    core::TriangleDepthOrder m_transparentOrder;
     core::BoundingSphere m_meshBounds;
     std::vector<BoxOverlay> m_boxes;
     std::optional<BoxHandlesOverlay> m_selected;
@@ -114,7 +120,12 @@ class GlRenderer final : public Renderer {
     void drawSphereRows(const gl::BufferTexture& rows, std::size_t count);
     void useSphereProgram(const FrameSetup& f);
     void drawContextPoints(const FrameSetup& f);
-    void drawMeshes(const FrameSetup& f, bool transparent);
+    // Meshes (gl_renderer_meshes.cpp)
+    static GpuMesh uploadMesh(std::span<const float> vertices,
+                              std::span<const std::uint32_t> indices, GLenum indexUsage);
+    void useMeshProgram(const FrameSetup& f);
+    void drawOpaqueMeshes(const FrameSetup& f);
+    void drawTransparentMeshes(const FrameSetup& f);
     void drawBoxEdges(const FrameSetup& f, float widthPx, float alpha, bool depthTest);
     // Passes (gl_renderer_overlay.cpp)
     void composite(const FrameSetup& f, const RenderTarget& target);

@@ -1,5 +1,7 @@
 #include "ui/render/gl_resources.hpp"
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <algorithm>
 #include <stdexcept>
 #include <vector>
@@ -56,6 +58,11 @@ GLuint compile(const std::string& name, GLenum stage, const std::string& source)
 }
 
 } // namespace
+
+void setMat4(GLuint program, const char* name, const glm::dmat4& m) {
+    const glm::mat4 f(m);
+    glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(f));
+}
 
 Program makeProgram(const std::string& name, const std::string& vertexSource,
                     const std::string& fragmentSource) {

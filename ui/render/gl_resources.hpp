@@ -3,6 +3,7 @@
 #pragma once
 
 #include <epoxy/gl.h>
+#include <glm/mat4x4.hpp>
 
 #include <string>
 #include <utility>
@@ -53,6 +54,9 @@ Buffer makeBuffer();
 Texture makeTexture();
 Framebuffer makeFramebuffer();
 VertexArray makeVertexArray();
+
+// Sets a mat4 uniform of `program` (which must be in use), in single precision.
+void setMat4(GLuint program, const char* name, const glm::dmat4& m);
 
 // Compiles and links; throws std::runtime_error with `name`, the stage and the driver's log.
 Program makeProgram(const std::string& name, const std::string& vertexSource,

@@ -55,6 +55,7 @@ uniform samplerBuffer uValues;   // colour variable per row
 uniform usamplerBuffer uRows;    // rows to draw, one triangle each
 uniform mat4 uView;
 uniform mat4 uProj;
+uniform float uNearZ;            // view z of the near plane (< 0 in perspective)
 uniform int uColorMode;          // 0: uColor, 1: colour map of the value
 uniform vec3 uColor;
 uniform vec3 uNanColor;
@@ -65,6 +66,39 @@ out vec3 vPos;                   // view-space point on the billboard
 // One equilateral triangle around the unit circle: three vertices per sphere, the fewest, as
 // vertex work bounds the cost of drawing every sphere on a CPU rasteriser.
 const vec2 kCorners[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
+void skip() {
+    vPos = vec3(0.0);
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+}
+#if PERSPECTIVE
+// Screen extent along one axis (scale s: uProj[0][0] or [1][1]) of the part of the sphere beyond
+// the near plane. In the plane through the eye, that axis and the view direction the sphere is a
+// circle (a, z, r); the extremes of a / -z over the circle cut by the near line are the tangent
+// points from the eye that lie beyond the near plane and the two points where the near line
+// crosses the circle.
+vec2 clippedExtent(float a, float z, float r, float s) {
+    vec2 e = vec2(1e30, -1e30);
+    float l2 = a * a + z * z;
+    float t2 = l2 - r * r;
+    if (t2 > 0.0) { // the eye is outside the circle: two tangent points
+        float t = sqrt(t2);
+        for (int i = 0; i < 2; ++i) {
+            float side = i == 0 ? r : -r;
+            vec2 p = (t * vec2(a, z) + side * vec2(-z, a)) * (t / l2);
+            if (p.y <= uNearZ) {
+                float x = s * p.x / -p.y;
+                e = vec2(min(e.x, x), max(e.y, x));
+            }
+        }
+    }
+    float k2 = r * r - (uNearZ - z) * (uNearZ - z);
+    if (k2 > 0.0) { // the near plane cuts the circle
+        float k = sqrt(k2);
+        e = vec2(min(e.x, s * (a - k) / -uNearZ), max(e.y, s * (a + k) / -uNearZ));
+    }
+    return e;
+}
+#endif
 void main() {
     int q = gl_VertexID / 3;
     int k = gl_VertexID - 3 * q;
@@ -79,30 +113,52 @@ void main() {
     }
     vColor = packUnorm4x8(vec4(color, 1.0));
     vSphere = vec4(c, r);
+    if (r <= 0.0 || c.z - r >= uNearZ) { // wholly in front of the near plane (or behind the eye)
+        skip();
+        return;
+    }
 #if PERSPECTIVE
     float d2 = dot(c, c);
     float t2 = d2 - r * r;
-    if (t2 <= 0.0 || r <= 0.0) { // the eye is inside: skip
-        vPos = vec3(0.0);
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    if (t2 > 0.0) {
+        float d = sqrt(d2);
+        vec3 f = c / d;
+        // The plane touching the sphere's near tip, cut by the cone of rays tangent to the
+        // sphere: every ray that meets the sphere crosses this disc first (so depth only grows
+        // from it). Used when the whole triangle around it lies beyond the near plane.
+        float h = r * (d - r) * inversesqrt(t2);
+        vec3 centre = f * (d - r);
+        if (centre.z + 2.0 * h * sqrt(max(1.0 - f.z * f.z, 0.0)) < uNearZ * 1.001) {
+            vec3 u = abs(f.y) < 0.999 ? normalize(vec3(-f.z, 0.0, f.x)) : vec3(1.0, 0.0, 0.0);
+            vec3 w = cross(f, u);
+            vec2 o = kCorners[k] * h;
+            vPos = centre + u * o.x + w * o.y;
+            gl_Position = uProj * vec4(vPos, 1.0);
+            return;
+        }
+    }
+    // Near the eye, or the eye inside: a triangle in the near plane around the screen rectangle
+    // of the sphere's part beyond it (the fragment shader draws the cut face there).
+    vec2 ex = clippedExtent(c.x, c.z, r, uProj[0][0]);
+    vec2 ey = clippedExtent(c.y, c.z, r, uProj[1][1]);
+    vec2 lo = max(vec2(ex.x, ey.x), vec2(-1.0));
+    vec2 hi = min(vec2(ex.y, ey.y), vec2(1.0));
+    if (lo.x > hi.x || lo.y > hi.y) {
+        skip();
         return;
     }
-    float d = sqrt(d2);
-    vec3 f = c / d;
-    // The plane touching the sphere's near tip, cut by the cone of rays tangent to the sphere:
-    // every ray that meets the sphere crosses this disc first (so depth only grows from it).
-    float h = r * (d - r) * inversesqrt(t2);
-    vec3 centre = f * (d - r);
+    vec2 span = 2.05 * (hi - lo) + 1e-3;
+    vec2 ndc = k == 0 ? lo : (k == 1 ? vec2(lo.x + span.x, lo.y) : vec2(lo.x, lo.y + span.y));
+    float n = -uNearZ;
+    vPos = vec3(ndc.x * n / uProj[0][0], ndc.y * n / uProj[1][1], uNearZ);
+    gl_Position = vec4(ndc * n, -n, n); // exactly on the near plane: depth 0
 #else
-    vec3 f = vec3(0.0, 0.0, -1.0);
-    float h = r;
-    vec3 centre = vec3(c.xy, c.z + r);
-#endif
-    vec3 u = abs(f.y) < 0.999 ? normalize(vec3(-f.z, 0.0, f.x)) : vec3(1.0, 0.0, 0.0);
-    vec3 w = cross(f, u);
-    vec2 o = kCorners[k] * h;
-    vPos = centre + u * o.x + w * o.y;
+    // Facing the viewer at the sphere's front, or at the near plane when that cuts the sphere.
+    vec3 centre = vec3(c.xy, min(c.z + r, uNearZ));
+    vPos = centre + vec3(kCorners[k] * r, 0.0);
     gl_Position = uProj * vec4(vPos, 1.0);
+    gl_Position.z = max(gl_Position.z, -gl_Position.w);
+#endif
 }
 )";
 }
@@ -116,35 +172,55 @@ layout(depth_greater) out float gl_FragDepth;
 )" + (perspective ? "#define PERSPECTIVE 1\n" : "#define PERSPECTIVE 0\n") +
            kShading + R"(
 uniform mat4 uProj;
+uniform float uNearZ;
 flat in vec4 vSphere;
 flat in uint vColor;
 in vec3 vPos;
 layout(location = 0) out vec4 oColor;
+// Where the near plane cuts a sphere, the section shows as a flat disc, a little darker than
+// the sphere, so a cut reads as a cut and not as a sphere surface.
+const float kCutShade = 0.72;
 void main() {
     vec3 C = vSphere.xyz;
     float r = vSphere.w;
 #if PERSPECTIVE
-    // Ray from the eye through vPos: |t vPos - C| = r, nearest root.
+    // Ray t vPos from the eye: |t vPos - C| = r. The near plane is at t = uNearZ / vPos.z.
     float a = dot(vPos, vPos);
     float b = dot(vPos, C);
     float disc = b * b - a * (dot(C, C) - r * r);
     if (disc < 0.0)
         discard;
-    vec3 p = vPos * ((b - sqrt(disc)) / a);
+    float root = sqrt(disc);
+    float tNear = uNearZ / vPos.z;
+    float t = (b - root) / a;
+    bool cut = t < tNear;
+    if (cut && (b + root) / a < tNear)
+        discard; // the ray leaves the sphere before the near plane
+    vec3 p = vPos * (cut ? tNear : t);
     vec3 V = -normalize(p);
 #else
     vec2 dxy = vPos.xy - C.xy;
     float q = r * r - dot(dxy, dxy);
     if (q < 0.0)
         discard;
-    vec3 p = vec3(vPos.xy, C.z + sqrt(q));
+    float front = C.z + sqrt(q);
+    bool cut = front > uNearZ;
+    if (cut && C.z - sqrt(q) > uNearZ)
+        discard;
+    vec3 p = vec3(vPos.xy, cut ? uNearZ : front);
     vec3 V = vec3(0.0, 0.0, 1.0);
 #endif
+    vec3 base = unpackUnorm4x8(vColor).rgb;
+    if (cut) {
+        gl_FragDepth = 0.0;
+        oColor = vec4(base * kCutShade, 1.0);
+        return;
+    }
     vec3 n = (p - C) / r;
     float clipZ = uProj[2][2] * p.z + uProj[3][2];
     float clipW = uProj[2][3] * p.z + uProj[3][3];
     gl_FragDepth = 0.5 * (clipZ / clipW) + 0.5;
-    oColor = vec4(shade(unpackUnorm4x8(vColor).rgb, n, V), 1.0);
+    oColor = vec4(shade(base, n, V), 1.0);
 }
 )";
 }
@@ -180,13 +256,13 @@ void main() {
 std::string meshVertex() {
     return std::string(kHeader) + R"(
 layout(location = 0) in vec3 aPos;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec3 aColor;
+layout(location = 1) in vec3 aNormal; // zero: flat shading
+layout(location = 2) in vec4 aColor;  // sRGB, opacity
 uniform mat4 uView;
 uniform mat4 uProj;
 out vec3 vPos;
 out vec3 vNormal;
-out vec3 vColor;
+out vec4 vColor;
 void main() {
     vec4 p = uView * vec4(aPos, 1.0);
     vPos = p.xyz;
@@ -199,19 +275,18 @@ void main() {
 
 std::string meshFragment() {
     return std::string(kHeader) + kShading + R"(
-uniform float uOpacity;
-uniform int uHasNormals;
 uniform int uPerspective;
 in vec3 vPos;
 in vec3 vNormal;
-in vec3 vColor;
+in vec4 vColor;
 layout(location = 0) out vec4 oColor;
 void main() {
     vec3 V = uPerspective == 1 ? -normalize(vPos) : vec3(0.0, 0.0, 1.0);
-    vec3 n = uHasNormals == 1 ? normalize(vNormal) : normalize(cross(dFdx(vPos), dFdy(vPos)));
+    vec3 n = dot(vNormal, vNormal) > 1e-12 ? normalize(vNormal)
+                                           : normalize(cross(dFdx(vPos), dFdy(vPos)));
     if (dot(n, V) < 0.0)
         n = -n; // two-sided: surfaces are seen from both sides
-    oColor = vec4(shade(vColor, n, V), uOpacity);
+    oColor = vec4(shade(vColor.rgb, n, V), vColor.a);
 }
 )";
 }

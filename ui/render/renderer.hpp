@@ -85,6 +85,7 @@ struct RenderStats {
     std::uint64_t visibilityUploads = 0;
     std::uint64_t colorMapUploads = 0;
     std::uint64_t meshUploads = 0;
+    std::uint64_t meshSorts = 0; // transparent triangles re-sorted (the view or meshes changed)
     // The last render.
     std::size_t spheres = 0;        // rows set
     std::size_t visibleSpheres = 0; // rows the mask shows

@@ -18,7 +18,8 @@ core::Camera toRenderCamera(const core::CameraState& c) {
     const CameraBasis b = cameraBasis(c);
     cam.orientation = core::lookRotation(b.forward, glm::dvec3(0, 0, 1));
     cam.fovYDegrees = c.fovY;
-    cam.projection = c.orthographic ? core::Projection::Orthographic : core::Projection::Perspective;
+    cam.projection =
+        c.orthographic ? core::Projection::Orthographic : core::Projection::Perspective;
     return cam;
 }
 
@@ -26,7 +27,8 @@ GlViewRenderer::GlViewRenderer(RendererBackend backend) : m_backend(backend) {
     if (backend == RendererBackend::OpenGL) {
         const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-        m_description = std::string("OpenGL ") + (version ? version : "?") + " on " + (name ? name : "?");
+        m_description =
+            std::string("OpenGL ") + (version ? version : "?") + " on " + (name ? name : "?");
         createRenderer(backend); // fails here, with the reason, when the context cannot do it
     } else {
         m_description = "mock renderer";
@@ -114,23 +116,28 @@ void GlViewRenderer::render(const ViewScene& scene) {
     }
     if (scene.visibleKey != slot.visibleKey) {
         slot.visibleKey = scene.visibleKey;
-        r.setVisibleMask(scene.visible ? std::span<const std::uint8_t>(*scene.visible) : std::span<const std::uint8_t>());
+        r.setVisibleMask(scene.visible ? std::span<const std::uint8_t>(*scene.visible)
+                                       : std::span<const std::uint8_t>());
         changed = true;
     }
     // The rest is cheap to set; compare it as text to know whether to draw again.
     std::ostringstream sig;
     sig.precision(17);
-    sig << scene.colorMap << '|' << scene.colorRange[0] << '|' << scene.colorRange[1] << '|' << scene.width << 'x'
-        << scene.height << '|' << scene.camera.target[0] << ',' << scene.camera.target[1] << ',' << scene.camera.target[2]
-        << '|' << scene.camera.distance << '|' << scene.camera.azimuth << '|' << scene.camera.elevation << '|'
-        << scene.camera.fovY << '|' << scene.camera.orthographic << '|' << (scene.selectedBox ? int(*scene.selectedBox) : -1)
-        << '|' << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
+    sig << scene.colorMap << '|' << scene.colorRange[0] << '|' << scene.colorRange[1] << '|'
+        << scene.width << 'x' << scene.height << '|' << scene.camera.target[0] << ','
+        << scene.camera.target[1] << ',' << scene.camera.target[2] << '|' << scene.camera.distance
+        << '|' << scene.camera.azimuth << '|' << scene.camera.elevation << '|' << scene.camera.fovY
+        << '|' << scene.camera.orthographic << '|'
+        << (scene.selectedBox ? int(*scene.selectedBox) : -1) << '|'
+        << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
     for (const auto& b : scene.boxes)
-        sig << '|' << b.min[0] << ',' << b.min[1] << ',' << b.min[2] << ',' << b.max[0] << ',' << b.max[1] << ','
-            << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
+        sig << '|' << b.min[0] << ',' << b.min[1] << ',' << b.min[2] << ',' << b.max[0] << ','
+            << b.max[1] << ',' << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
     if (sig.str() != slot.signature || changed) {
         slot.signature = sig.str();
-        const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{core::ColorMapKind::Viridis});
+        // The session accepts only names core::parseColorMap knows; the default covers an
+        // empty name.
+        const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{});
         r.setColorMap(map);
         r.setColorRange({scene.colorRange[0], scene.colorRange[1]});
         std::vector<BoxOverlay> boxes;
@@ -138,7 +145,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
             BoxOverlay o;
             o.lo = glm::dvec3(b.min[0], b.min[1], b.min[2]);
             o.hi = glm::dvec3(b.max[0], b.max[1], b.max[2]);
-            o.color = b.mode == core::BoxMode::Keep ? glm::vec3(0.16f, 0.55f, 0.27f) : glm::vec3(0.78f, 0.27f, 0.16f);
+            o.color = b.mode == core::BoxMode::Keep ? glm::vec3(0.16f, 0.55f, 0.27f)
+                                                    : glm::vec3(0.78f, 0.27f, 0.16f);
             boxes.push_back(o);
         }
         std::optional<BoxHandlesOverlay> handles;
