@@ -110,7 +110,8 @@ class FaultsPanel final : public Panel {
         }
         for (const auto& section : wb.extensions().faultSections) {
             ImGui::Spacing();
-            if (ImGui::CollapsingHeader(section.title.c_str()))
+            if (ImGui::CollapsingHeader(section.title.c_str(),
+                                        section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0))
                 section.draw(wb);
         }
     }

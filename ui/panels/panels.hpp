@@ -18,4 +18,7 @@ std::unique_ptr<Panel> makeFaultsPanel();
 std::unique_ptr<Panel> makeTimelinePanel();
 std::unique_ptr<Panel> makeViewportsPanel();
 
+// Sections plugged into panels through PanelExtensions.
+void addFaultMetricsSection(PanelExtensions& extensions); // Faults: metrics over time
+
 } // namespace faultline::ui

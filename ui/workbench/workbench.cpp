@@ -93,6 +93,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     : m_session(session), m_options(std::move(options)) {
     m_layout = DockLayout::defaultLayout();
     m_panels = createPanels();
+    addFaultMetricsSection(m_extensions);
     m_session.setDatasetOpener([this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
     m_frames.setDataset(m_session.dataset());
     if (!m_options.stateDir.empty()) {
@@ -115,6 +116,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
 }
 
 Workbench::~Workbench() {
+    m_extensions = {}; // their jobs are asked to stop (fault metrics) instead of awaited
     m_jobs.waitAll();
     m_session.setJournalSink(nullptr);
     m_session.setDatasetOpener(nullptr);

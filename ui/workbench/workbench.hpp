@@ -42,6 +42,7 @@ struct PanelExtensions {
     struct Section {
         std::string title;
         std::function<void(Workbench&)> draw;
+        bool defaultOpen = false;
     };
     struct FaultColumn {
         std::string title;
