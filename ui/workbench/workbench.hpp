@@ -73,6 +73,9 @@ struct ViewDisplay {
     bool loading() const { return !frame || shownFrame != wantedFrame; }
 };
 
+// What a left drag in a view does: orbit the camera, or outline spheres to build a fault.
+enum class ViewportTool { Orbit, Rectangle, Lasso };
+
 // Playing and scrubbing show frames without a command per frame; pausing commits frame.set.
 struct Playback {
     bool playing = false;
@@ -142,6 +145,7 @@ class Workbench {
     bool editBoxInViewport = true;
     int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
     std::set<std::string> selectedFaults;
+    ViewportTool viewportTool = ViewportTool::Orbit;
 
     void info(std::string text);
     void error(std::string text);
