@@ -86,7 +86,6 @@ class FaultMetricsSection {
                 m_values[k].push_back(field.value(m));
             lines.push_back({shown[k]->name, m_values[k], colorOf(*shown[k])});
         }
-        drawRanges(wb, shown);
         if (pending > 0) {
             const float p = m_cache.progress();
             char text[96];
@@ -102,8 +101,10 @@ class FaultMetricsSection {
 
         // The plot: as tall as the panel allows, but legible.
         const float scale = wb.scale();
-        const float h =
-            std::clamp(ImGui::GetContentRegionAvail().y - 4 * scale, 150 * scale, 300 * scale);
+        const float below =
+            static_cast<float>(shown.size() + 1) * ImGui::GetTextLineHeightWithSpacing();
+        const float h = std::clamp(ImGui::GetContentRegionAvail().y - below - 4 * scale,
+                                   150 * scale, 300 * scale);
         const std::size_t cursor = wb.displayFrame();
         const PlotInput in = seriesPlot(
             "##metricplot", lines, ds->frameCount(), m_scrub.value_or(cursor),
@@ -121,6 +122,7 @@ class FaultMetricsSection {
                 wb.jumpToFrame(static_cast<long long>(*in.frame));
             m_scrub.reset();
         }
+        drawRanges(wb, shown);
         if (m_cache.lastSeconds() > 0 && pending == 0)
             ImGui::TextDisabled("%s%s%s; computed over %zu frames in %.2f s",
                                 std::string(field.label).c_str(), field.unit.empty() ? "" : " in ",
