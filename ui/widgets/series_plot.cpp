@@ -88,9 +88,14 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
         const float frameLabelW =
             ImGui::CalcTextSize(std::to_string(frameCount - 1).c_str()).x + 3 * lineH;
         const int maxXTicks = std::max(2, static_cast<int>((x1 - x0) / frameLabelW));
-        const auto xTicks = frameCount < 2
-                                ? std::vector<core::LegendTick>{{0.0, 0.5, "0"}}
-                                : core::legendTicks({0.0, double(frameCount - 1)}, maxXTicks, true);
+        auto xTicks = frameCount < 2
+                          ? std::vector<core::LegendTick>{{0.0, 0.5, "0"}}
+                          : core::legendTicks({0.0, double(frameCount - 1)}, maxXTicks, true);
+        // The last frame too, where it does not crowd the last round tick.
+        const double last = double(frameCount - 1);
+        if (!xTicks.empty() && xTicks.back().value < last &&
+            toX(frameCount - 1) - toX(static_cast<std::size_t>(xTicks.back().value)) > frameLabelW)
+            xTicks.push_back({last, 1.0, std::to_string(frameCount - 1)});
         for (const auto& t : xTicks) {
             const float xx = toX(static_cast<std::size_t>(std::lround(t.value)));
             dl->AddLine(ImVec2(xx, y1), ImVec2(xx, y1 + 3 * scale), muted);
