@@ -171,7 +171,17 @@ TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     EXPECT_EQ(session.state().fault("F1")->ids, left);
     EXPECT_TRUE(headless.emitted("camera.set").empty());
 
+    // A Ctrl+drag without a tool still orbits, as it did before Ctrl+click picked spheres.
+    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.clearEmitted();
+    withKeys(true, false,
+             [&] { headless.drag(wb(), img.cx(), img.cy(), img.cx() + 60, img.cy(), 4); });
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0]["op"], "camera.set");
+    EXPECT_NEAR(session.state().view("main")->camera.azimuth, 360.0 - 60 * 0.3, 1e-9);
+
     // A right drag still pans with a selection tool on.
+    headless.key(wb(), GLFW_KEY_R);
     headless.clearEmitted();
     headless.drag(wb(), img.cx(), img.cy(), img.cx() + 40, img.cy(), 4, 1);
     ASSERT_EQ(headless.emitted().size(), 1u);

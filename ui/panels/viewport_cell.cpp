@@ -327,6 +327,10 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     }
     if (active && m_drag.view == view.name && m_drag.mode == DragMode::Select) {
         m_selection.drag(io.MousePos, wb.scale());
+        if (m_selection.becameOrbit()) {
+            m_selection.cancel();
+            m_drag.mode = DragMode::Orbit;
+        }
     } else if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
         const double dx = io.MousePos.x - m_drag.startMouse.x, dy = io.MousePos.y - m_drag.startMouse.y;
         if (m_drag.mode == DragMode::BoxFace && box) {

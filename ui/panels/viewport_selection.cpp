@@ -63,8 +63,6 @@ void ViewportSelection::release(Workbench& wb, const ViewDisplay& d, ImVec2 mous
     if (!d.frame || !d.visibility)
         return;
     const bool click = isClick();
-    if (!click && m_tool == ViewportTool::Orbit)
-        return; // Ctrl+drag without a tool: nothing to select
     std::vector<std::int64_t> ids =
         click ? idUnder(d, m_points.front(), pos, size) : idsInShape(d, pos, size);
     const FaultEdit edit = faultEdit(wb.state(), wb.selectedFaults, std::move(ids),

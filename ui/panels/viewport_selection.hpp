@@ -27,6 +27,9 @@ class ViewportSelection {
     void release(Workbench& wb, const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
     bool active() const { return m_active; }
     const std::string& view() const { return m_view; }
+    // A Ctrl+press without a tool that became a drag: the caller orbits instead, as before.
+    bool becameOrbit() const { return m_active && m_tool == ViewportTool::Orbit && !isClick(); }
+    void cancel() { m_active = false, m_points.clear(); }
 
     // The rectangle or lasso being drawn.
     void drawOutline(ImDrawList* dl, float scale) const;
