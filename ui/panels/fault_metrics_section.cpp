@@ -91,12 +91,18 @@ class FaultMetricsSection {
             char text[96];
             std::snprintf(text, sizeof text, "computing %zu fault%s over %zu frames...", pending,
                           pending == 1 ? "" : "s", ds->frameCount());
-            if (!m_cache.lastError().empty())
-                ImGui::TextColored(ImVec4(0.8f, 0.16f, 0.12f, 1), "Metrics failed: %s",
-                                   m_cache.lastError().c_str());
-            else
+            if (m_cache.computing()) {
                 ImGui::ProgressBar(std::max(0.0f, p), ImVec2(-1, 0), text);
-            wb.mark("faults.metrics.progress");
+                wb.mark("faults.metrics.progress");
+            } else if (!m_cache.lastError().empty()) {
+                if (ImGui::Button("Compute again"))
+                    m_cache.retry();
+                wb.mark("faults.metrics.retry");
+                ImGui::SameLine();
+                ImGui::TextColored(ImVec4(0.8f, 0.16f, 0.12f, 1), "Metrics %s%s",
+                                   m_cache.lastError() == "cancelled" ? "" : "failed: ",
+                                   m_cache.lastError().c_str());
+            }
         }
 
         // The plot: as tall as the panel allows, but legible.

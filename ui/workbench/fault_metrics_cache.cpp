@@ -62,6 +62,11 @@ double FaultMetricsCache::lastSeconds() const { return m_state->lastSeconds; }
 std::size_t FaultMetricsCache::lastFrameCount() const { return m_state->lastFrames; }
 const std::string& FaultMetricsCache::lastError() const { return m_state->lastError; }
 
+void FaultMetricsCache::retry() {
+    m_state->failedKeys.clear();
+    m_state->lastError.clear();
+}
+
 void FaultMetricsCache::request(JobRunner& jobs, double now,
                                 const std::shared_ptr<core::Dataset>& dataset,
                                 std::span<const core::Fault* const> faults) {
@@ -74,6 +79,13 @@ void FaultMetricsCache::request(JobRunner& jobs, double now,
         s.series.clear();
         s.failedKeys.clear();
         s.dataset = dataset;
+    }
+    if (s.job && s.job->cancelRequested()) {
+        // Cancelled from the status bar: not started again until retry().
+        s.lastError = "cancelled";
+        s.failedKeys.insert(s.jobKeys.begin(), s.jobKeys.end());
+        s.job.reset();
+        s.jobKeys.clear();
     }
     if (!dataset || dataset->frameCount() == 0)
         return;

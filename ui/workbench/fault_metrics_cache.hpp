@@ -44,8 +44,10 @@ class FaultMetricsCache {
     // Wall time of the last job that finished, in seconds (0 before the first).
     double lastSeconds() const;
     std::size_t lastFrameCount() const;
-    // A failed job's message (cleared when a job starts).
+    // Why the last job gave nothing: its error, or "cancelled" when the user stopped it
+    // (cleared when a job starts). Those faults are not computed again until retry().
     const std::string& lastError() const;
+    void retry();
 
     // The key a fault's series is kept under: its members (not its name, colour or notes).
     static std::uint64_t membersKey(const core::Fault& fault);
