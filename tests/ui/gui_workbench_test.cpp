@@ -12,6 +12,7 @@
 #include <imgui.h>
 #include <stb_image.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +88,10 @@ class Driver {
         for (int k = 1; k <= n; ++k)
             moveTo(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n);
         m_input.down[0] = false;
+        steps(2);
+    }
+    void press(bool down) { // the left button, where the mouse is
+        m_input.down[0] = down;
         steps(2);
     }
     void key(int k, bool ctrl = false, bool shift = false) {
@@ -216,4 +221,57 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
         if (!line.empty() && line[0] == '{')
             ops.push_back(Json::parse(line)["op"].get<std::string>());
     EXPECT_EQ(ops, (std::vector<std::string>{"data.open", "box.add", "threshold.add", "undo", "layout.set", "session.save"}));
+}
+
+TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display)
+        GTEST_SKIP() << "no display (run under xvfb-run for this test)";
+    core::Session session;
+    ui::GuiOptions options;
+    options.width = 1600;
+    options.height = 1000;
+    options.maximize = false;
+    std::unique_ptr<ui::GuiApp> app;
+    try {
+        app = std::make_unique<ui::GuiApp>(session, options);
+    } catch (const std::exception& e) {
+        GTEST_SKIP() << "no OpenGL window here: " << e.what();
+    }
+    Driver ui(*app);
+    ui.steps(3);
+    app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
+    ui.settle();
+    ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
+
+    // The lasso tool; a loop around the middle of the view, drawn while the button is held.
+    ui.click("view.tool.lasso.main");
+    ASSERT_EQ(ui.wb().viewportTool, ui::ViewportTool::Lasso);
+    const ui::ItemRect img = ui.rect("view.image.main");
+    const float cx = img.cx(), cy = img.cy(), r = 0.12f * (img.y1 - img.y0);
+    ui.moveTo(cx + r, cy);
+    ui.press(true);
+    for (int k = 1; k <= 24; ++k)
+        ui.moveTo(cx + r * std::cos(k * 0.25f), cy + r * std::sin(k * 0.25f) * 0.7f);
+    const char* keep = std::getenv("FAULTLINE_GUI_TEST_KEEP");
+    if (keep && *keep) { // the outline while drawing, for a person to judge
+        ui.wb().requestScreenshot(std::string(keep) + "/gui-test-lasso.png");
+        ui.steps(1);
+    }
+    ui.press(false);
+    ASSERT_EQ(session.state().faults.size(), 1u) << ui.wb().lastMessage();
+    const core::Fault& f = session.state().faults[0];
+    EXPECT_EQ(f.name, "F1");
+    EXPECT_GT(f.ids.size(), 50u);
+    EXPECT_LT(f.ids.size(), 22410u);
+    EXPECT_EQ(ui.wb().selectedFaults, std::set<std::string>{"F1"});
+
+    // Its metrics, in the Faults panel.
+    ui.click("tab.faults");
+    ui.settle();
+    EXPECT_TRUE(ui.wb().items().find("faults.metrics.plot").has_value());
+    if (keep && *keep) {
+        ui.wb().requestScreenshot(std::string(keep) + "/gui-test-fault.png");
+        ui.steps(1);
+    }
 }

@@ -3,6 +3,7 @@
 // faults let through (fault.filter). Later analysis plugs in through PanelExtensions.
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/viewport/fault_edit.hpp"
 #include "ui/widgets/section.hpp"
 
 #include <imgui.h>
@@ -17,14 +18,6 @@ namespace {
 constexpr float kPalette[][3] = {{0.90f, 0.30f, 0.20f}, {0.20f, 0.55f, 0.90f}, {0.95f, 0.70f, 0.10f}, {0.40f, 0.75f, 0.30f},
                                  {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
                                  {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
-
-std::string nextFaultName(const core::SessionState& s) {
-    for (int k = 1;; ++k) {
-        std::string n = "F" + std::to_string(k);
-        if (!s.fault(n))
-            return n;
-    }
-}
 
 core::Json colorJson(const float c[3]) { return core::Json::array({c[0], c[1], c[2]}); }
 
@@ -110,7 +103,8 @@ class FaultsPanel final : public Panel {
         }
         for (const auto& section : wb.extensions().faultSections) {
             ImGui::Spacing();
-            if (ImGui::CollapsingHeader(section.title.c_str()))
+            if (ImGui::CollapsingHeader(section.title.c_str(),
+                                        section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0))
                 section.draw(wb);
         }
     }

@@ -19,4 +19,7 @@ std::unique_ptr<Panel> makeSurfacesPanel();
 std::unique_ptr<Panel> makeTimelinePanel();
 std::unique_ptr<Panel> makeViewportsPanel();
 
+// Sections plugged into panels through PanelExtensions.
+void addFaultMetricsSection(PanelExtensions& extensions); // Faults: metrics over time
+
 } // namespace faultline::ui

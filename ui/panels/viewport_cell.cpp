@@ -138,6 +138,9 @@ void ViewportCells::draw(Workbench& wb, const core::ViewState& view, ImVec2 pos,
                                       : (m_wheel && m_wheel->view == view.name ? m_wheel->camera : d.camera);
     dl->PushClipRect(imgPos, imgMax, true);
     drawOverlays(wb, view, d, cam, imgPos, imgSize);
+    m_selection.drawMembers(wb, d, cam, imgPos, imgSize);
+    if (m_selection.view() == view.name)
+        m_selection.drawOutline(dl, wb.scale());
     dl->PopClipRect();
     ImGui::PopID();
 }
@@ -187,6 +190,7 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Linked cameras move together; unlink to look at this view on its own.");
     }
+    drawToolButtons(wb, view);
     if (view.name != "main") {
         const float bw = ImGui::GetFrameHeight();
         ImGui::SameLine();
@@ -196,6 +200,45 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Close this view");
     }
+}
+
+// What the selection tools do, for their tooltips.
+constexpr const char* kSelectHelp =
+    "\nThe visible spheres whose centres fall inside (front and back) go\n"
+    "into the selected fault, or make a new fault when none is selected.\n"
+    "Ctrl+drag: take them out of it. Shift+drag: a new fault.\n"
+    "A click toggles one sphere; right drag pans.";
+
+void ViewportCells::drawToolButtons(Workbench& wb, const core::ViewState& view) {
+    static const struct {
+        ViewportTool tool;
+        const char* label;
+        const char* mark;
+        const char* tip;
+    } kTools[] = {
+        {ViewportTool::Orbit, "Orbit", "orbit",
+         "Left drag orbits, right drag pans (Esc).\n"
+         "Ctrl+click a sphere: into the selected fault, or out of it."},
+        {ViewportTool::Rectangle, "Rectangle", "rectangle", "Drag a rectangle around spheres (R)."},
+        {ViewportTool::Lasso, "Lasso", "lasso", "Draw a loop around spheres (L)."},
+    };
+    ImGui::SameLine();
+    ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(1, ImGui::GetStyle().ItemSpacing.y));
+    for (const auto& t : kTools) {
+        const bool on = wb.viewportTool == t.tool;
+        if (on)
+            ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetColorU32(ImGuiCol_ButtonActive));
+        if (ImGui::Button(t.label))
+            wb.viewportTool = t.tool;
+        if (on)
+            ImGui::PopStyleColor();
+        wb.mark(std::string("view.tool.") + t.mark + "." + view.name);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s%s", t.tip, t.tool == ViewportTool::Orbit ? "" : kSelectHelp);
+        if (t.tool != ViewportTool::Lasso)
+            ImGui::SameLine();
+    }
+    ImGui::PopStyleVar();
 }
 
 void ViewportCells::drawFramePopup(Workbench& wb, const core::ViewState& view) {
@@ -331,8 +374,13 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
         m_drag.start = d.camera;
         m_drag.current = d.camera;
         m_drag.startMouse = io.MousePos;
-        const bool panButton = ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle) || io.KeyShift;
-        if (!panButton && m_hoverFace >= 0 && m_hoverView == view.name && box) {
+        const bool otherButton = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
+                                 ImGui::IsMouseDown(ImGuiMouseButton_Middle);
+        const bool panButton =
+            otherButton || (io.KeyShift && wb.viewportTool == ViewportTool::Orbit);
+        if (!otherButton && m_selection.press(wb, view.name, io.MousePos)) {
+            m_drag.mode = DragMode::Select;
+        } else if (!panButton && m_hoverFace >= 0 && m_hoverView == view.name && box) {
             m_drag.mode = DragMode::BoxFace;
             m_drag.face = m_hoverFace;
             m_drag.boxMin = box->min;
@@ -341,7 +389,13 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
             m_drag.mode = panButton ? DragMode::Pan : DragMode::Orbit;
         }
     }
-    if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
+    if (active && m_drag.view == view.name && m_drag.mode == DragMode::Select) {
+        m_selection.drag(io.MousePos, wb.scale());
+        if (m_selection.becameOrbit()) {
+            m_selection.cancel();
+            m_drag.mode = DragMode::Orbit;
+        }
+    } else if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
         const double dx = io.MousePos.x - m_drag.startMouse.x, dy = io.MousePos.y - m_drag.startMouse.y;
         if (m_drag.mode == DragMode::BoxFace && box) {
             // The face follows the cursor along its axis (exact under perspective).
@@ -369,7 +423,9 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
             ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeAll);
     }
     if (ImGui::IsItemDeactivated() && m_drag.view == view.name) {
-        if (m_drag.mode == DragMode::BoxFace) {
+        if (m_drag.mode == DragMode::Select) {
+            m_selection.release(wb, d, io.MousePos, pos, size);
+        } else if (m_drag.mode == DragMode::BoxFace) {
             if (!m_pendingBox.is_null())
                 wb.emit(m_pendingBox);
         } else if (m_drag.mode != DragMode::None && !(m_drag.current == m_drag.start)) {

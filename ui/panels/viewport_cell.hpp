@@ -1,8 +1,10 @@
-// One view of the Viewports panel: its header (frame binding, colour, camera link) and its
-// image with mouse interaction (orbit, pan, zoom, dragging the selected box's faces) and the
-// overlays drawn over the renderer's image (box outlines, handles, axes, frame label).
+// One view of the Viewports panel: its header (frame binding, colour, camera link, selection
+// tool) and its image with mouse interaction (orbit, pan, zoom, dragging the selected box's
+// faces, picking spheres for faults) and the overlays drawn over the renderer's image (box
+// outlines, handles, axes, frame label, the selection outline and the selected fault's members).
 #pragma once
 
+#include "ui/panels/viewport_selection.hpp"
 #include "ui/workbench/workbench.hpp"
 
 #include <imgui.h>
@@ -26,12 +28,13 @@ class ViewportCells {
     void drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d);
     void drawDifference(Workbench& wb, const core::ViewState& view);
     void drawFramePopup(Workbench& wb, const core::ViewState& view);
+    void drawToolButtons(Workbench& wb, const core::ViewState& view);
     void interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
     void drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
                       ImVec2 pos, ImVec2 size);
     void emitForViews(Workbench& wb, const std::function<void(core::Json&)>& fill);
 
-    enum class DragMode { None, Orbit, Pan, BoxFace };
+    enum class DragMode { None, Orbit, Pan, BoxFace, Select };
     struct Drag {
         DragMode mode = DragMode::None;
         std::string view;
@@ -42,6 +45,7 @@ class ViewportCells {
         core::CameraState current;
     };
     Drag m_drag;
+    ViewportSelection m_selection;
     struct Wheel {
         std::string view;
         core::CameraState camera;

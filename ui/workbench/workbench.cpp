@@ -96,6 +96,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     : m_session(session), m_options(std::move(options)) {
     m_layout = DockLayout::defaultLayout();
     m_panels = createPanels();
+    addFaultMetricsSection(m_extensions);
     m_session.setDatasetOpener([this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
     m_frames.setDataset(m_session.dataset());
     if (!m_options.stateDir.empty()) {
@@ -123,6 +124,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
 
 Workbench::~Workbench() {
     m_surfaces.clear(); // cancels surface builds
+    m_extensions = {};  // their jobs are asked to stop (fault metrics) instead of awaited
     m_jobs.waitAll();
     if (m_autosaver && !m_recovery && !m_recovering)
         m_autosaver->saveNow(m_session, true); // a clean exit: nothing to offer next time

@@ -45,6 +45,7 @@ struct PanelExtensions {
     struct Section {
         std::string title;
         std::function<void(Workbench&)> draw;
+        bool defaultOpen = false;
     };
     struct FaultColumn {
         std::string title;
@@ -80,6 +81,9 @@ struct ViewDisplay {
     std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
     bool loading() const { return !frame || shownFrame != wantedFrame; }
 };
+
+// What a left drag in a view does: orbit the camera, or outline spheres to build a fault.
+enum class ViewportTool { Orbit, Rectangle, Lasso };
 
 // Playing and scrubbing show frames without a command per frame; pausing commits frame.set.
 struct Playback {
@@ -154,6 +158,7 @@ class Workbench {
     bool editBoxInViewport = true;
     int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
     std::set<std::string> selectedFaults;
+    ViewportTool viewportTool = ViewportTool::Orbit;
 
     void info(std::string text);
     void error(std::string text);

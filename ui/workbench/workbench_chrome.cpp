@@ -39,6 +39,14 @@ constexpr Shortcut kShortcuts[] = {
     {"Left drag in a view", "Orbit"},
     {"Right or middle drag, Shift+drag", "Pan"},
     {"Wheel", "Zoom"},
+    {"Ctrl+click a sphere",
+     "Add it to the selected fault, or take it out (a new fault when none is selected)"},
+    {"R / L / Esc", "Rectangle / lasso selection tool / back to orbiting"},
+    {"Drag with a selection tool",
+     "Add the visible spheres inside to the selected fault (a new one if none)"},
+    {"Ctrl+drag / Shift+drag (tool)",
+     "Remove them from the selected fault / make a new fault of them"},
+    {"Click or drag on a metric plot", "Go to that frame (Faults panel, metrics over time)"},
     {"Drag on a histogram", "Set that variable's threshold (drag the edges to adjust)"},
     {"Drag a tab", "Move a panel; drop on an edge to split the area"},
 };
@@ -95,6 +103,12 @@ void Workbench::handleShortcuts() {
         requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
     else if (pressed(GLFW_KEY_F1))
         m_showHelp = true;
+    else if (pressed(GLFW_KEY_R))
+        viewportTool = ViewportTool::Rectangle;
+    else if (pressed(GLFW_KEY_L))
+        viewportTool = ViewportTool::Lasso;
+    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+        viewportTool = ViewportTool::Orbit;
     else if (pressed(GLFW_KEY_F) && dataset())
         emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}}); // 0: fit the model
 }

@@ -1,0 +1,184 @@
+// "Metrics over time" in the Faults panel: a metric of the selected faults (all faults when none
+// is selected) over every frame, from a background job, with the current frame as a cursor;
+// clicking or dragging on the plot goes to that frame like the timeline does.
+#include "core/faults/metric_fields.hpp"
+#include "ui/panels/panels.hpp"
+#include "ui/widgets/series_plot.hpp"
+#include "ui/workbench/fault_metrics_cache.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+namespace faultline::ui {
+
+namespace {
+
+constexpr std::size_t kMaxLines = 12; // more lines than this are unreadable anyway
+
+ImU32 colorOf(const core::Fault& f) {
+    return ImGui::ColorConvertFloat4ToU32(ImVec4(f.color[0], f.color[1], f.color[2], 1.0f));
+}
+
+class FaultMetricsSection {
+  public:
+    void draw(Workbench& wb) {
+        const core::SessionState& s = wb.state();
+        auto ds = wb.dataset();
+        if (!ds) {
+            ImGui::TextDisabled("Open data to follow the faults' metrics over time.");
+            return;
+        }
+        if (s.faults.empty()) {
+            ImGui::TextDisabled("No faults yet.");
+            return;
+        }
+        // The faults on show, in table order.
+        std::vector<const core::Fault*> shown;
+        for (const auto& f : s.faults)
+            if (wb.selectedFaults.empty() || wb.selectedFaults.count(f.name))
+                shown.push_back(&f);
+        const bool all = wb.selectedFaults.empty();
+        const std::size_t total = shown.size();
+        if (shown.size() > kMaxLines)
+            shown.resize(kMaxLines);
+        m_cache.request(wb.jobs(), wb.now(), ds, shown);
+
+        // The metric.
+        const auto fields = core::metricFields();
+        m_metric = std::min(m_metric, fields.size() - 1);
+        const core::MetricField& field = fields[m_metric];
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted("Metric");
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x, 260 * wb.scale()));
+        if (ImGui::BeginCombo("##metric", std::string(field.label).c_str())) {
+            for (std::size_t k = 0; k < fields.size(); ++k) {
+                if (ImGui::Selectable(std::string(fields[k].label).c_str(), k == m_metric))
+                    m_metric = k;
+                wb.mark("faults.metrics.metric." + std::string(fields[k].key));
+            }
+            ImGui::EndCombo();
+        }
+        wb.mark("faults.metrics.metric");
+        ImGui::SameLine();
+        if (all)
+            ImGui::TextDisabled(total > shown.size() ? "first %zu of %zu faults" : "all %zu faults",
+                                shown.size(), total);
+        else
+            ImGui::TextDisabled("%zu selected", shown.size());
+
+        // The values of each fault, and what is still being computed.
+        m_values.assign(shown.size(), {});
+        std::vector<PlotLine> lines;
+        std::size_t pending = 0;
+        for (std::size_t k = 0; k < shown.size(); ++k) {
+            auto series = m_cache.find(ds, *shown[k]);
+            if (!series) {
+                ++pending;
+                continue;
+            }
+            for (const auto& m : series->frames)
+                m_values[k].push_back(field.value(m));
+            lines.push_back({shown[k]->name, m_values[k], colorOf(*shown[k])});
+        }
+        if (pending > 0) {
+            const float p = m_cache.progress();
+            char text[96];
+            std::snprintf(text, sizeof text, "computing %zu fault%s over %zu frames...", pending,
+                          pending == 1 ? "" : "s", ds->frameCount());
+            if (m_cache.computing()) {
+                ImGui::ProgressBar(std::max(0.0f, p), ImVec2(-1, 0), text);
+                wb.mark("faults.metrics.progress");
+            } else if (!m_cache.lastError().empty()) {
+                if (ImGui::Button("Compute again"))
+                    m_cache.retry();
+                wb.mark("faults.metrics.retry");
+                ImGui::SameLine();
+                ImGui::TextColored(ImVec4(0.8f, 0.16f, 0.12f, 1), "Metrics %s%s",
+                                   m_cache.lastError() == "cancelled" ? "" : "failed: ",
+                                   m_cache.lastError().c_str());
+            }
+        }
+
+        // The plot: as tall as the panel allows, but legible.
+        const float scale = wb.scale();
+        const float below =
+            static_cast<float>(shown.size() + 1) * ImGui::GetTextLineHeightWithSpacing();
+        const float h = std::clamp(ImGui::GetContentRegionAvail().y - below - 4 * scale,
+                                   150 * scale, 300 * scale);
+        const std::size_t cursor = wb.displayFrame();
+        const PlotInput in = seriesPlot(
+            "##metricplot", lines, ds->frameCount(), m_scrub.value_or(cursor),
+            ImVec2(std::max(80.0f, ImGui::GetContentRegionAvail().x), h), field.integer, scale);
+        wb.mark("faults.metrics.plot");
+        if (in.frame && !in.released) {
+            m_scrub = in.frame;
+            if (wb.playback().playing)
+                wb.playback().frame = *in.frame;
+            else
+                wb.preview("faults.metrics.scrub", {{"op", "frame.set"}, {"frame", *in.frame}});
+        }
+        if (in.released) {
+            if (in.frame && !wb.playback().playing)
+                wb.jumpToFrame(static_cast<long long>(*in.frame));
+            m_scrub.reset();
+        }
+        drawRanges(wb, shown);
+        if (m_cache.lastSeconds() > 0 && pending == 0)
+            ImGui::TextDisabled("%s%s%s; computed over %zu frames in %.2f s",
+                                std::string(field.label).c_str(), field.unit.empty() ? "" : " in ",
+                                std::string(field.unit).c_str(), m_cache.lastFrameCount(),
+                                m_cache.lastSeconds());
+    }
+
+  private:
+    // "F1  44.2 .. 47.9" per fault: the metric's range over the frames where it is defined.
+    void drawRanges(Workbench& wb, const std::vector<const core::Fault*>& shown) {
+        for (std::size_t k = 0; k < shown.size(); ++k) {
+            if (m_values[k].empty())
+                continue;
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (double v : m_values[k])
+                if (std::isfinite(v))
+                    lo = std::min(lo, v), hi = std::max(hi, v);
+            const ImVec4 c(shown[k]->color[0], shown[k]->color[1], shown[k]->color[2], 1.0f);
+            const float sw = ImGui::GetTextLineHeight() * 0.8f;
+            const ImVec2 p = ImGui::GetCursorScreenPos();
+            ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + 0.1f * sw),
+                                                      ImVec2(p.x + sw, p.y + 1.1f * sw),
+                                                      ImGui::ColorConvertFloat4ToU32(c));
+            ImGui::Dummy(ImVec2(sw, sw));
+            ImGui::SameLine();
+            ImGui::TextUnformatted(shown[k]->name.c_str());
+            ImGui::SameLine();
+            const std::size_t now = std::min(wb.displayFrame(), m_values[k].size() - 1);
+            if (lo > hi)
+                ImGui::TextDisabled("undefined in every frame");
+            else if (std::isfinite(m_values[k][now]))
+                ImGui::TextDisabled("min %.5g   max %.5g   frame %zu: %.5g", lo, hi, now,
+                                    m_values[k][now]);
+            else
+                ImGui::TextDisabled("min %.5g   max %.5g   frame %zu: undefined", lo, hi, now);
+        }
+    }
+
+    FaultMetricsCache m_cache;
+    std::size_t m_metric = 1; // dip
+    std::vector<std::vector<double>> m_values;
+    std::optional<std::size_t> m_scrub;
+};
+
+} // namespace
+
+void addFaultMetricsSection(PanelExtensions& extensions) {
+    auto section = std::make_shared<FaultMetricsSection>();
+    extensions.faultSections.push_back(
+        {"Metrics over time", [section](Workbench& wb) { section->draw(wb); }, true});
+}
+
+} // namespace faultline::ui
