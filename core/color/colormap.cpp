@@ -100,6 +100,8 @@ std::string colorMapName(const ColorMapSpec& spec) {
         return spec.bands == ColorMapSpec{}.bands ? "bands" : "bands:" + std::to_string(spec.bands);
     case ColorMapKind::Gray:
         return "gray";
+    case ColorMapKind::Palette:
+        return "palette";
     }
     return "blue-red";
 }
@@ -168,6 +170,12 @@ glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
     }
     case ColorMapKind::Gray:
         return lerp(kGrayLow, kGrayHigh, t);
+    case ColorMapKind::Palette: {
+        if (spec.palette.empty())
+            return kNanColor;
+        const int count = static_cast<int>(spec.palette.size());
+        return spec.palette[static_cast<std::size_t>(std::min(static_cast<int>(std::floor(t * count)), count - 1))];
+    }
     }
     return kNanColor;
 }
@@ -187,6 +195,14 @@ std::vector<std::uint8_t> colorMapTable(const ColorMapSpec& spec, int size) {
 
 ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size) {
     ColorMapTexture tex;
+    if (spec.kind == ColorMapKind::Palette && !spec.palette.empty()) {
+        tex.width = static_cast<int>(spec.palette.size());
+        tex.nearest = true;
+        tex.bandCount = tex.width;
+        for (const glm::vec3& c : spec.palette)
+            tex.rgba.insert(tex.rgba.end(), {toByte(c.r), toByte(c.g), toByte(c.b), 255});
+        return tex;
+    }
     if (spec.kind == ColorMapKind::Bands) {
         tex.width = static_cast<int>(kBandPalette.size());
         tex.nearest = true;

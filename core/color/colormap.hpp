@@ -19,11 +19,13 @@ enum class ColorMapKind {
     Pastel,    // two pastel shades, non-linear (square root) to spread small values
     Bands,     // alternating bands by value, e.g. initial height to show offset layers
     Gray,      // linear dark -> light grey: for print, or under coloured faults and surfaces
+    Palette, // categories (faults, candidates): value k + 0.5 takes palette[k]; not a journal name
 };
 
 struct ColorMapSpec {
     ColorMapKind kind = ColorMapKind::BlueRed;
     int bands = 10; // Bands only: how many bands cover the range (1..1024)
+    std::vector<glm::vec3> palette{}; // Palette only: one colour per category, range [0, size]
     bool operator==(const ColorMapSpec&) const = default;
 };
 

@@ -173,3 +173,15 @@ TEST(LegendTicks, NiceStep) {
     EXPECT_DOUBLE_EQ(niceStep({0.0, 3.0}, 6, true), 1.0);  // not 0.5
     EXPECT_EQ(legendTicks({0, 12}, 6, true)[1].label, "5");
 }
+
+TEST(ColorMap, APaletteMapsCategoryKPlusAHalfToItsColour) {
+    ColorMapSpec m{ColorMapKind::Palette, 10, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    EXPECT_EQ(sampleColorMap(m, 0.5 / 3), glm::vec3(1, 0, 0));
+    EXPECT_EQ(sampleColorMap(m, 1.5 / 3), glm::vec3(0, 1, 0));
+    EXPECT_EQ(sampleColorMap(m, 2.5 / 3), glm::vec3(0, 0, 1));
+    const ColorMapTexture tex = colorMapTexture(m);
+    EXPECT_EQ(tex.width, 3);
+    EXPECT_TRUE(tex.nearest);
+    EXPECT_EQ(tex.bandCount, 3);
+    EXPECT_EQ(tex.rgba[4 + 1], 255); // the second entry is green
+}

@@ -124,7 +124,7 @@ DockLayout DockLayout::defaultLayout() {
     DockLayout l;
     auto left = leaf({kData, kBoxes, kThresholds});
     auto centre = split(SplitAxis::Vertical, 0.87f, leaf({kViewports}), leaf({kTimeline}));
-    auto right = split(SplitAxis::Vertical, 0.56f, leaf({kHistograms}), leaf({kFaults, kSurfaces}));
+    auto right = split(SplitAxis::Vertical, 0.46f, leaf({kHistograms}), leaf({kFaults, kSurfaces}));
     l.m_root = split(SplitAxis::Horizontal, 0.2f, std::move(left),
                      split(SplitAxis::Horizontal, 0.75f, std::move(centre), std::move(right)));
     forEach(*l.m_root, [&](DockNode& n) { n.id = l.nextId(); });

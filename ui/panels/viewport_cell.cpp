@@ -1,6 +1,7 @@
 #include "ui/panels/viewport_cell.hpp"
 
 #include "core/view/box_handles.hpp"
+#include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/workbench/frame_columns.hpp"
@@ -266,6 +267,8 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
     ImGui::TextDisabled("Colour by");
     if (ImGui::Selectable("plain colour", view.colorVariable.empty()))
         wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", ""}});
+    if (ImGui::Selectable("faults (each in its colour)", view.colorVariable == kFaultsVariable))
+        wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", kFaultsVariable}, {"difference", "none"}});
     if (d.frame)
         for (const auto& [v, info] : wb.columns().of(d.frame))
             if (ImGui::Selectable(v.c_str(), v == view.colorVariable))

@@ -6,6 +6,7 @@
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/fault_surface_request.hpp"
 #include "ui/render/surface_mesh.hpp"
+#include "ui/viewport/category_colors.hpp"
 #include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
@@ -46,7 +47,14 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
         scene.colorMap = *map;
     // Difference colouring: the change since the view's reference frame, matched by id.
     std::optional<core::AttributeColumn> difference;
-    if (view->difference.mode != core::ColorDifference::Mode::None) {
+    CategoryColoring categories; // "faults": each member in its fault's colour
+    if (view->colorVariable == kFaultsVariable && !frame->attribute(kFaultsVariable)) {
+        categories = faultColoring(*frame, session.state().faults);
+        scene.colorColumn = categories.values.get();
+        scene.colorMap = core::ColorMapSpec{core::ColorMapKind::Palette, 10, categories.palette};
+        scene.colorRange = core::ValueRange{0.0, double(categories.palette.size())};
+        scene.style.showLegend = false;
+    } else if (view->difference.mode != core::ColorDifference::Mode::None) {
         const std::size_t ref = core::referenceFrame(*view, frameIndex, dataset->frameCount());
         const auto refFrame = dataset->frame(ref);
         try {

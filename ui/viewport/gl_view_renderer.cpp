@@ -130,6 +130,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         << '|' << scene.camera.orthographic << '|'
         << (scene.selectedBox ? int(*scene.selectedBox) : -1) << '|'
         << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
+    for (const auto& c : scene.palette)
+        sig << '|' << c.r << ',' << c.g << ',' << c.b;
     for (const auto& b : scene.boxes)
         sig << '|' << b.min[0] << ',' << b.min[1] << ',' << b.min[2] << ',' << b.max[0] << ','
             << b.max[1] << ',' << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
@@ -137,7 +139,9 @@ void GlViewRenderer::render(const ViewScene& scene) {
         slot.signature = sig.str();
         // The session accepts only names core::parseColorMap knows; the default covers an
         // empty name.
-        const auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{});
+        auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{});
+        if (!scene.palette.empty())
+            map = core::ColorMapSpec{core::ColorMapKind::Palette, 10, scene.palette};
         r.setColorMap(map);
         r.setColorRange({scene.colorRange[0], scene.colorRange[1]});
         std::vector<BoxOverlay> boxes;
@@ -160,7 +164,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
         r.setBoxes(boxes, handles);
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
-        style.showLegend = !scene.colorVariable.empty();
+        style.showLegend = !scene.colorVariable.empty() && scene.palette.empty();
         style.contextPoints = scene.contextPoints;
         r.setStyle(style);
         r.render(toRenderCamera(scene.camera), RenderTarget{scene.width, scene.height, 1, false});

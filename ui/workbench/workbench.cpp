@@ -97,6 +97,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     m_layout = DockLayout::defaultLayout();
     m_panels = createPanels();
     addFaultMetricsSection(m_extensions);
+    addFaultCandidatesSection(m_extensions);
     m_session.setDatasetOpener([this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
     m_frames.setDataset(m_session.dataset());
     if (!m_options.stateDir.empty()) {
@@ -502,8 +503,16 @@ void Workbench::updateDisplay() {
                     range = all;
             }
         }
+        // Categories instead: the candidates previewed (main view), or the view's "faults".
+        d.palette.clear();
+        if (const CategoryColoring* cat = categoriesFor(v, d)) {
+            d.colorColumn = cat->values;
+            d.palette = cat->palette;
+            d.colorTitle = d.colorColumn->name;
+            range = {0.0, static_cast<double>(d.palette.size())};
+        }
         d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now);
-        d.colorRange = widen(range);
+        d.colorRange = v.rangeMode == "fixed" && d.palette.empty() ? std::array<double, 2>(range) : widen(range);
         next.push_back(std::move(d));
         ++channel;
     }
@@ -513,6 +522,23 @@ void Workbench::updateDisplay() {
         return std::none_of(m_views.begin(), m_views.end(),
                             [&](const ViewDisplay& d) { return d.frame == e.frame && d.visibility == e.result; });
     });
+}
+
+const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const ViewDisplay& d) {
+    if (!d.frame)
+        return nullptr;
+    if (candidatePreview && v.name == "main" && candidatePreview->frame == d.frame)
+        return &candidatePreview->coloring;
+    if (v.colorVariable != kFaultsVariable || d.frame->attribute(kFaultsVariable))
+        return nullptr;
+    const std::uint64_t key = faultColoringKey(state().faults);
+    for (auto& e : m_faultColorings)
+        if (e.frame == d.frame && e.key == key)
+            return &e.coloring;
+    if (m_faultColorings.size() >= 4)
+        m_faultColorings.erase(m_faultColorings.begin());
+    m_faultColorings.push_back({d.frame, key, faultColoring(*d.frame, state().faults)});
+    return &m_faultColorings.back().coloring;
 }
 
 core::CameraState Workbench::fitCamera(const core::ViewState& v, core::CameraState camera,
@@ -547,6 +573,7 @@ void Workbench::renderViews() {
         scene.colorColumn = d.colorColumn;
         scene.colorMap = v->colorMap;
         scene.surfaces = d.surfaces;
+        scene.palette = d.palette;
         scene.contextPoints = v->contextPoints;
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;

@@ -14,7 +14,9 @@
 #include "ui/workbench/jobs.hpp"
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/workbench/frame_columns.hpp"
+#include "ui/viewport/category_colors.hpp"
 #include "ui/workbench/surface_store.hpp"
+#include "core/faults/candidates.hpp"
 #include "core/model/difference_column_cache.hpp"
 
 #include <fstream>
@@ -79,6 +81,7 @@ struct ViewDisplay {
     std::string colorTitle;
     bool differencePending = false;
     std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
+    std::vector<glm::vec3> palette;    // categories (faults, candidates): colorColumn holds k + 0.5
     bool loading() const { return !frame || shownFrame != wantedFrame; }
 };
 
@@ -158,6 +161,16 @@ class Workbench {
     bool editBoxInViewport = true;
     int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
     std::set<std::string> selectedFaults;
+    // Candidates found in the Faults panel, shown in their colours in the main view until
+    // accepted or cleared (UI only: accepting one is a fault.create).
+    struct CandidatePreview {
+        std::shared_ptr<const core::Frame> frame;
+        std::shared_ptr<const core::VisibilityResult> visibility; // of the main view when found
+        core::CandidateOptions options;
+        core::CandidateSet set;
+        CategoryColoring coloring;
+    };
+    std::optional<CandidatePreview> candidatePreview;
     ViewportTool viewportTool = ViewportTool::Orbit;
 
     void info(std::string text);
@@ -211,6 +224,7 @@ class Workbench {
     void drawDock(float top, float bottom);
     void drawHelp();
     void drawPrompts();
+    const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d);
     void handleShortcuts();
     void handleDialog();
     void autosave(bool force);
@@ -227,6 +241,12 @@ class Workbench {
     JobRunner m_jobs;
     SurfaceStore m_surfaces{m_jobs};
     core::DifferenceColumnCache m_differences;
+    struct FaultColoringEntry {
+        std::shared_ptr<const core::Frame> frame;
+        std::uint64_t key = 0;
+        CategoryColoring coloring;
+    };
+    std::vector<FaultColoringEntry> m_faultColorings;
     ItemRegistry m_items;
     DockLayout m_layout;
     core::Json m_adoptedLayout; // the session's layout as last adopted

@@ -1,0 +1,79 @@
+// Spheres in their fault's colour (the view variable "faults") and the Faults panel's candidates:
+// found on request, shown in distinct colours in the main view, accepted one by one or all.
+#include "panel_fixture.hpp"
+
+#include "core/faults/candidates.hpp"
+#include "ui/panels/panel_ids.hpp"
+#include "ui/viewport/category_colors.hpp"
+
+using namespace faultline;
+using namespace faultline::test;
+using core::Json;
+
+namespace {
+
+// Two walls of the lattice, x = 0 and x = 3 (16 spheres each), are all that is visible.
+void twoWalls(core::Session& session) {
+    session.apply(Json::parse(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
+    session.apply(Json::parse(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+}
+
+} // namespace
+
+TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
+    openLattice();
+    twoWalls(session);
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.click(wb(), "candidates.find");
+    ASSERT_TRUE(wb().candidatePreview.has_value());
+    ASSERT_EQ(wb().candidatePreview->set.candidates.size(), 2u);
+    headless.frames(wb(), 2);
+    const ui::ViewDisplay* d = wb().mainDisplay();
+    ASSERT_EQ(d->palette.size(), 3u); // none + two candidates
+    EXPECT_EQ(d->colorTitle, "candidates");
+    // Sphere id 1 (x = 0) and id 4 (x = 3) are in different candidates; id 2 (x = 1) in none.
+    const auto& v = d->colorColumn->floats;
+    const auto row = [&](std::int64_t id) { return *d->frame->rowOf(id); };
+    EXPECT_NE(v[row(1)], v[row(4)]);
+    EXPECT_GT(v[row(1)], 1.0f);
+    EXPECT_FLOAT_EQ(v[row(2)], 0.5f);
+
+    headless.clearEmitted();
+    headless.click(wb(), "candidates.accept.1");
+    const auto created = headless.emitted("fault.create");
+    ASSERT_EQ(created.size(), 1u);
+    EXPECT_EQ(created[0]["name"], "F1");
+    EXPECT_EQ(created[0]["ids"].size(), 16u);
+    ASSERT_NE(session.state().fault("F1"), nullptr);
+    EXPECT_EQ(wb().selectedFaults, (std::set<std::string>{"F1"}));
+    // Accept all: the journal's op with the same parameters, under another prefix.
+    session.undo();
+    headless.frames(wb(), 2);
+    headless.clearEmitted();
+    headless.click(wb(), "candidates.accept_all");
+    ASSERT_EQ(headless.emitted("fault.candidates").size(), 1u);
+    EXPECT_EQ(headless.emitted("fault.candidates")[0]["min_size"], 10);
+    EXPECT_EQ(session.state().faults.size(), 2u);
+    EXPECT_FALSE(wb().candidatePreview.has_value());
+}
+
+TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"A","ids":[1,2],"color":[1,0,0]})"));
+    session.apply(Json::parse(R"({"op":"fault.create","name":"B","ids":[2,3],"color":[0,0,1]})"));
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"faults"})"));
+    headless.frames(wb(), 2);
+    const ui::ViewDisplay* d = wb().mainDisplay();
+    ASSERT_EQ(d->palette.size(), 3u);
+    EXPECT_EQ(d->palette[1], glm::vec3(1, 0, 0));
+    const auto& v = d->colorColumn->floats;
+    const auto row = [&](std::int64_t id) { return *d->frame->rowOf(id); };
+    EXPECT_FLOAT_EQ(v[row(1)], 1.5f); // A
+    EXPECT_FLOAT_EQ(v[row(2)], 1.5f); // A and B: the first listed wins
+    EXPECT_FLOAT_EQ(v[row(3)], 2.5f); // B
+    EXPECT_FLOAT_EQ(v[row(4)], 0.5f); // none
+    // Recolouring a fault recolours at once.
+    session.apply(Json::parse(R"({"op":"fault.set","name":"A","color":[0,1,0]})"));
+    headless.frames(wb(), 2);
+    EXPECT_EQ(wb().mainDisplay()->palette[1], glm::vec3(0, 1, 0));
+}

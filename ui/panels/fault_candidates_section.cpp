@@ -1,0 +1,160 @@
+// Faults panel, "Candidates": linked groups of the visible spheres (k x (r_i + r_j)), found on
+// request and shown in distinct colours in the main view, largest first; the user accepts one as
+// a named fault (fault.create), or all at once (the journal's fault.candidates).
+#include "ui/panels/panels.hpp"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+
+namespace faultline::ui {
+
+namespace {
+
+class FaultCandidatesSection {
+  public:
+    void draw(Workbench& wb) {
+        const ViewDisplay* main = wb.mainDisplay();
+        const bool ready = main && main->frame && main->visibility;
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
+        ImGui::InputDouble("link k", &m_link, 0.0, 0.0, "%.2f");
+        m_link = std::clamp(m_link, 0.5, 5.0);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Two spheres are linked when their centres are closer than k x (r_i + r_j)");
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
+        ImGui::InputInt("min size", &m_minSize, 0, 0);
+        m_minSize = std::max(1, m_minSize);
+        ImGui::BeginDisabled(!ready || main->visibility->visibleCount == 0);
+        if (ImGui::Button("Find in visible"))
+            find(wb, *main);
+        wb.mark("candidates.find");
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip(
+                "Groups of linked visible spheres (narrow them first, e.g. broken bonds >= 1)");
+
+        auto& preview = wb.candidatePreview;
+        if (!preview)
+            return;
+        ImGui::SameLine();
+        if (ImGui::Button("Clear"))
+            return clear(wb);
+        wb.mark("candidates.clear");
+        const auto& cands = preview->set.candidates;
+        if (cands.empty()) {
+            ImGui::TextDisabled("No group of %d or more linked visible spheres.", m_minSize);
+            return;
+        }
+        // Stale once the visible spheres differ (not merely because another command ran).
+        const bool stale = !ready || main->frame != preview->frame ||
+                           (main->visibility != preview->visibility &&
+                            main->visibility->mask != preview->visibility->mask);
+        ImGui::TextDisabled("%zu candidates (%.0f ms)%s", cands.size(), m_millis,
+                            stale ? ": the visible spheres changed, find again"
+                                  : ", shown in the main view");
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
+        ImGui::InputText("prefix", &m_prefix);
+        ImGui::SameLine();
+        ImGui::BeginDisabled(stale || m_prefix.empty());
+        if (ImGui::Button("Accept all")) {
+            wb.emit({{"op", "fault.candidates"},
+                     {"link", preview->options.link},
+                     {"min_size", preview->options.minSize},
+                     {"prefix", m_prefix}},
+                    [&wb] { wb.candidatePreview.reset(); });
+        }
+        wb.mark("candidates.accept_all");
+        ImGui::EndDisabled();
+
+        const float rowH = ImGui::GetFrameHeightWithSpacing();
+        const float h = std::min(rowH * (static_cast<float>(cands.size()) + 0.5f), rowH * 8.0f);
+        if (!ImGui::BeginTable("##candidates", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
+                               ImVec2(0, h)))
+            return;
+        ImGui::TableSetupColumn("c", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
+        ImGui::TableSetupColumn("size", ImGuiTableColumnFlags_WidthStretch);
+        ImGui::TableSetupColumn("accept", ImGuiTableColumnFlags_WidthFixed,
+                                ImGui::CalcTextSize("Accepted").x + 12);
+        ImGuiListClipper clipper;
+        clipper.Begin(static_cast<int>(cands.size()));
+        while (clipper.Step())
+            for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+                ImGui::PushID(k);
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                const glm::vec3 c = preview->coloring.palette[static_cast<std::size_t>(k) + 1];
+                ImGui::ColorButton("##c", ImVec4(c.r, c.g, c.b, 1),
+                                   ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
+                                   ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+                ImGui::TableNextColumn();
+                ImGui::Text("#%d  %zu spheres", k + 1, cands[static_cast<std::size_t>(k)].size());
+                ImGui::TableNextColumn();
+                const bool done = m_accepted.count(k) > 0;
+                ImGui::BeginDisabled(done || stale);
+                if (ImGui::SmallButton(done ? "Accepted" : "Accept"))
+                    accept(wb, k);
+                wb.mark("candidates.accept." + std::to_string(k + 1));
+                ImGui::EndDisabled();
+                ImGui::PopID();
+            }
+        ImGui::EndTable();
+    }
+
+  private:
+    double m_link = 1.1;
+    int m_minSize = 10; // as fault.candidates
+    std::string m_prefix = "F";
+    double m_millis = 0;
+    std::set<int> m_accepted;
+
+    void find(Workbench& wb, const ViewDisplay& main) {
+        core::CandidateOptions options;
+        options.link = m_link;
+        options.minSize = static_cast<std::size_t>(m_minSize);
+        const auto t0 = std::chrono::steady_clock::now();
+        Workbench::CandidatePreview p;
+        p.frame = main.frame;
+        p.visibility = main.visibility;
+        p.options = options;
+        p.set = core::findCandidates(*main.frame, main.visibility->mask, options);
+        p.coloring = candidateColoring(p.set.rowLabel, p.set.candidates.size());
+        m_millis = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                       .count();
+        m_accepted.clear();
+        wb.candidatePreview = std::move(p);
+    }
+
+    void clear(Workbench& wb) {
+        wb.candidatePreview.reset();
+        m_accepted.clear();
+    }
+
+    void accept(Workbench& wb, int k) {
+        const auto& cand = wb.candidatePreview->set.candidates[static_cast<std::size_t>(k)];
+        std::string name;
+        for (int n = 1;; ++n)
+            if (!wb.state().fault(name = m_prefix + std::to_string(n)))
+                break;
+        const auto color = core::candidateColor(static_cast<std::size_t>(k));
+        wb.emit({{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}},
+                [this, &wb, k, name] {
+                    m_accepted.insert(k);
+                    wb.selectedFaults = {name};
+                });
+    }
+};
+
+} // namespace
+
+void addFaultCandidatesSection(PanelExtensions& extensions) {
+    auto section = std::make_shared<FaultCandidatesSection>();
+    extensions.faultSections.push_back(
+        {"Candidates", [section](Workbench& wb) { section->draw(wb); }, true});
+}
+
+} // namespace faultline::ui
