@@ -69,6 +69,25 @@ std::string faultsCsv(std::span<const Fault> faults) {
     return out;
 }
 
+std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultTrack> tracks) {
+    std::string out = "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall\n";
+    for (std::size_t f = 0; f < tracks.size() && f < faults.size(); ++f)
+        for (const FaultTrackPoint& p : tracks[f].points) {
+            const CandidateMatch& m = p.match;
+            out += std::to_string(p.frame) + ',';
+            appendField(out, faults[f].name);
+            out += ',' + std::to_string(m.present) + ',' + std::to_string(m.candidate) + ',' +
+                   std::to_string(m.candidateSize) + ',' + std::to_string(m.shared) + ',';
+            appendReal(out, m.jaccard);
+            out += ',';
+            appendReal(out, m.precision);
+            out += ',';
+            appendReal(out, m.recall);
+            out += '\n';
+        }
+    return out;
+}
+
 std::string faultMetricsCsvHeader() {
     return "frame,fault,count,dip,dip_direction,strike,thickness,area,throw,net_slip,dip_slip,"
            "strike_slip,throw_status,hw_samples,fw_samples,centroid_x,centroid_y,centroid_z,"

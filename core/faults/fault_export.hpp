@@ -1,4 +1,4 @@
-// Fault tables for `export.csv` (what=faults, what=fault_metrics) and JSON for the same data.
+// Fault tables for `export.csv` (what=faults, fault_metrics, fault_tracks) and JSON for the same data.
 // Text only: writing the file (atomically) is the caller's job.
 #pragma once
 
@@ -30,6 +30,10 @@ std::string faultMetricsCsvHeader();
 // {"frames": N, "faults": [{"name", "seed": {...}|null, "frames": [{...per frame...}]}]},
 // with the CSV's column names as keys; NaN becomes null.
 nlohmann::json faultMetricsJson(const FaultMetricsSeries& series);
+
+// Header frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall; a row
+// per (fault, frame), fault-major; candidate -1 when no candidate shares an id.
+std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultTrack> tracks);
 
 // [{"name", "frames": [{"frame","present","candidate","candidate_size","shared","jaccard",
 //   "precision","recall"}]}]; candidate -1 when no candidate shares an id.

@@ -4,9 +4,32 @@
 
 #include "core/faults/fault_export.hpp"
 #include "core/faults/metrics.hpp"
+#include "core/faults/tracking.hpp"
+#include "core/selection/visibility.hpp"
 #include "core/session/atomic_file.hpp"
 
 namespace faultline::core::detail {
+
+namespace {
+
+// Each fault's membership through time: per frame, the candidate of the visible spheres (as
+// the session's boxes, thresholds and fault filter say) that shares most ids with it.
+std::string trackedFaultsCsv(Session& s, const CandidateOptions& options) {
+    auto ds = s.dataset();
+    if (!ds)
+        throw CommandError("export.csv: fault_tracks needs open data");
+    const SessionState& st = s.state();
+    const auto tracks = trackFaults(
+        ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
+        [&s, &st](const Frame& frame, std::size_t) {
+            const auto rowMask = s.faultRowMask(frame);
+            return computeVisibility(frame, st.boxes, st.thresholds, rowMask.get()).mask;
+        },
+        st.faults, options);
+    return faultTracksCsv(st.faults, tracks);
+}
+
+} // namespace
 
 void registerOutputOps(OpTable& ops) {
     addAction(ops, "session.save", [](Session& s, const Json& cmd) -> Json {
@@ -20,8 +43,10 @@ void registerOutputOps(OpTable& ops) {
         return nullptr;
     });
     addAction(ops, "export.csv", [](Session& s, const Json& cmd) -> Json {
-        // what = faults: "id,fault", a row per member; fault_metrics: a row per frame and fault.
-        args::onlyFields(cmd, {"what", "path"});
+        // what = faults: "id,fault", a row per member; fault_metrics: a row per frame and fault;
+        // fault_tracks: per frame and fault, the candidate that matches it best ("link",
+        // "min_size" as fault.candidates).
+        args::onlyFields(cmd, {"what", "path", "link", "min_size"});
         const std::string what = args::string(cmd, "what");
         const std::string path = s.outputPath(args::string(cmd, "path"));
         std::string text;
@@ -34,8 +59,16 @@ void registerOutputOps(OpTable& ops) {
             const FaultMetricsSeries series = computeMetricsSeries(
                 ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, s.state().faults);
             text = faultMetricsCsv(series);
+        } else if (what == "fault_tracks") {
+            CandidateOptions options;
+            options.link = args::optionalNumber(cmd, "link").value_or(1.1);
+            const long long minSize = args::optionalInteger(cmd, "min_size").value_or(10);
+            if (!(options.link > 0) || minSize < 1)
+                throw CommandError("export.csv: \"link\" must be > 0 and \"min_size\" >= 1");
+            options.minSize = static_cast<std::size_t>(minSize);
+            text = trackedFaultsCsv(s, options);
         } else {
-            throw CommandError("export.csv: \"what\" must be faults or fault_metrics");
+            throw CommandError("export.csv: \"what\" must be faults, fault_metrics or fault_tracks");
         }
         try {
             writeFileAtomically(path, text);

@@ -155,6 +155,31 @@ TEST(Session, ASessionOpensWithItsDataAtAnotherPlace) {
     EXPECT_EQ(t.state().dataPaths, (std::vector<std::string>{dir.file("moved/lattice.dump")}));
 }
 
+TEST(Session, FaultTracksFollowEachFaultThroughTimeAsCsv) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    // Two walls visible (x = 0 and x = 3, 16 spheres each); W is the west wall but one sphere.
+    s.apply(cmd(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
+    s.apply(cmd(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+    std::vector<std::int64_t> west;
+    for (std::int64_t id = 5; id <= 64; id += 4)
+        west.push_back(id);
+    s.apply({{"op", "fault.create"}, {"name", "W"}, {"ids", west}});
+    s.apply({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", dir.file("t.csv")}, {"min_size", 5}});
+    std::ifstream in(dir.file("t.csv"));
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);)
+        lines.push_back(l);
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_EQ(lines[0], "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall");
+    // Candidates tie at 16: the one with the smaller ids (west, id 1) comes first.
+    EXPECT_EQ(lines[1], "0,W,15,0,16,15,0.9375,0.9375,1");
+    EXPECT_EQ(lines[3], "2,W,15,0,16,15,0.9375,0.9375,1");
+    EXPECT_THROW(s.apply({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", dir.file("u.csv")}, {"link", 0}}),
+                 CommandError);
+}
+
 TEST(Session, RejectedCommandsChangeNothing) {
     TempDir dir;
     Session s;

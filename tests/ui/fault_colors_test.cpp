@@ -77,3 +77,18 @@ TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
     headless.frames(wb(), 2);
     EXPECT_EQ(wb().mainDisplay()->palette[1], glm::vec3(0, 1, 0));
 }
+
+TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
+    openLattice();
+    twoWalls(session);
+    session.apply(Json::parse(R"({"op":"fault.create","name":"W","from":"visible"})"));
+    wb().selectedFaults = {"W"};
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.clearEmitted();
+    headless.click(wb(), "faults.split");
+    ASSERT_EQ(headless.emitted("fault.split").size(), 1u);
+    ASSERT_NE(session.state().fault("W.1"), nullptr);
+    ASSERT_NE(session.state().fault("W.2"), nullptr);
+    EXPECT_EQ(session.state().fault("W.1")->ids.size(), 16u);
+    EXPECT_EQ(wb().selectedFaults, (std::set<std::string>{"W.1"}));
+}

@@ -56,6 +56,16 @@ class FaultsPanel final : public Panel {
         }
         ImGui::EndDisabled();
         ImGui::SameLine();
+        ImGui::BeginDisabled(selected.size() != 1);
+        if (ImGui::Button("Split")) {
+            const std::string name = *selected.begin();
+            wb.emit({{"op", "fault.split"}, {"name", name}}, [&wb, name] { wb.selectedFaults = {name + ".1"}; });
+        }
+        wb.mark("faults.split");
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("Split the selected fault into its connected pieces (name.1 the largest, name.2, ...)");
+        ImGui::SameLine();
         ImGui::BeginDisabled(selected.empty());
         if (ImGui::Button("Delete")) {
             core::Json batch = core::Json::array();

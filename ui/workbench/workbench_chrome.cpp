@@ -141,6 +141,9 @@ void Workbench::drawMenus() {
                 m_dialog.open("Export fault members as CSV (id,fault)", FileDialog::Mode::Save, "export-faults", {".csv"}, dataFolder, "faults.csv");
             if (ImGui::MenuItem("Fault metrics (CSV)...", nullptr, false, faults))
                 m_dialog.open("Export fault metrics as CSV", FileDialog::Mode::Save, "export-metrics", {".csv"}, dataFolder, "fault_metrics.csv");
+            if (ImGui::MenuItem("Fault tracks through time (CSV)...", nullptr, false, faults))
+                m_dialog.open("Export each fault's best-matching candidate per frame as CSV", FileDialog::Mode::Save,
+                              "export-tracks", {".csv"}, dataFolder, "fault_tracks.csv");
             if (ImGui::MenuItem("Journal of this session...", nullptr, false, !m_session.journal().empty()))
                 m_dialog.open("Export the journal (replay with faultline replay)", FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder, "analysis.jsonl");
             if (ImGui::MenuItem("Screenshot (PNG)..."))
@@ -401,9 +404,11 @@ void Workbench::handleDialog() {
             error("No surface is shown: tick one in the Surfaces panel first");
         else
             emit({{"op", "export.gltf"}, {"faults", faults}, {"path", path}});
-    } else if (purpose == "export-metrics")
+    } else if (purpose == "export-metrics") {
         emit({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
-    else if (purpose == "export-journal") {
+    } else if (purpose == "export-tracks") {
+        emit({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", path}});
+    } else if (purpose == "export-journal") {
         std::ofstream out(path);
         for (const auto& cmd : m_session.journal())
             out << cmd.dump() << "\n";
