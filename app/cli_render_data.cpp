@@ -19,7 +19,7 @@ namespace faultline::app {
 
 namespace {
 
-std::vector<double> parseNumbers(const std::string& text, char sep, std::size_t count,
+[[maybe_unused]] std::vector<double> parseNumbers(const std::string& text, char sep, std::size_t count,
                                  const std::string& option) {
     std::vector<double> out;
     std::stringstream ss(text);
@@ -39,7 +39,7 @@ std::vector<double> parseNumbers(const std::string& text, char sep, std::size_t 
     return out;
 }
 
-const char* kUsage =
+[[maybe_unused]] const char* kUsage =
     "usage: faultline render-data FILE --out OUT.png [--frame N] [--color VAR] [--map NAME]\n"
     "         [--range LO,HI] [--size WxH] [--view front|back|left|side|top|bottom|iso] [--ortho]\n"
     "         [--zoom F]\n"
