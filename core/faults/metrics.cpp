@@ -139,7 +139,16 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
                 m.brokenCentroid[a] = sum[a] / double(m.broken);
     }
 
-    const PlaneFit fit = fitPlane(points);
+    // A section model (a slab of several sphere layers, thin along one axis): fault planes
+    // contain that axis, else the fit would find the slab's own plane.
+    const Vec3d extent{double(frame.centreMax()[0]) - frame.centreMin()[0],
+                       double(frame.centreMax()[1]) - frame.centreMin()[1],
+                       double(frame.centreMax()[2]) - frame.centreMin()[2]};
+    // A single layer (extent within a radius) is left alone: there the layer may be the fault.
+    int section = sectionAxis(extent);
+    if (section >= 0 && !(extent[section] > m.meanRadius))
+        section = -1;
+    const PlaneFit fit = fitPlane(points, section);
     m.centroid = fit.centroid;
     m.planeValid = fit.valid;
     m.normal = fit.normal;

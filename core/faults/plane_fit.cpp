@@ -134,7 +134,16 @@ Vec3d downDipVector(const Vec3d& canonical) {
     return d;
 }
 
-PlaneFit fitPlane(std::span<const Vec3d> points) {
+int sectionAxis(const Vec3d& extent, double ratio) {
+    const double largest = std::max({extent[0], extent[1], extent[2]});
+    int thin = -1;
+    for (int a = 0; a < 3; ++a)
+        if (extent[a] < ratio * largest && (thin < 0 || extent[a] < extent[thin]))
+            thin = a;
+    return largest > 0 ? thin : -1;
+}
+
+PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis) {
     PlaneFit fit;
     fit.count = points.size();
     fit.centroid = {kNaN, kNaN, kNaN};
@@ -164,8 +173,23 @@ PlaneFit fitPlane(std::span<const Vec3d> points) {
             cov[i][j] /= static_cast<double>(points.size());
             cov[j][i] = cov[i][j];
         }
+    double axisVariance = -1.0;
+    if (containsAxis >= 0 && containsAxis < 3) {
+        // The axis becomes the direction of the largest spread, uncoupled from the others, so
+        // the smallest eigenvector (the normal) lies in the plane of the other two axes.
+        const int a = containsAxis;
+        axisVariance = cov[a][a];
+        const double trace = cov[0][0] + cov[1][1] + cov[2][2];
+        for (int i = 0; i < 3; ++i)
+            cov[a][i] = cov[i][a] = 0.0;
+        cov[a][a] = 4.0 * trace + 1.0;
+    }
     const SymmetricEigen3 eig = eigenSymmetric3(cov);
     fit.eigenvalues = eig.values;
+    if (axisVariance >= 0.0) { // report the real spread along the axis, not the stand-in
+        fit.eigenvalues[2] = axisVariance;
+        std::sort(fit.eigenvalues.begin(), fit.eigenvalues.end());
+    }
     const double largest = eig.values[2];
     if (!(largest > 0) || !(eig.values[1] - eig.values[0] > 1e-9 * largest))
         return fit;

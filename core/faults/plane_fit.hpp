@@ -53,6 +53,13 @@ struct PlaneFit {
 // (two-pass, so large coordinate offsets do not cost precision), smallest eigenvector.
 // Invalid (NaN orientation) when fewer than 3 points or when the two smallest eigenvalues
 // are equal within 1e-9 of the largest (a line or a point: the normal is not determined).
-PlaneFit fitPlane(std::span<const Vec3d> points);
+// `containsAxis` (0 x, 1 y, 2 z): the plane is made to contain that axis direction (its normal
+// has no component along it): for section models, thin along one axis, where the thinnest
+// spread of a fault's spheres is the model's own thickness, not the fault's.
+PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis = -1);
+
+// The axis a model is thin along (extent below `ratio` of its largest extent), or -1: such a
+// model is a section, and faults in it are planes containing that axis.
+int sectionAxis(const Vec3d& extent, double ratio = 0.1);
 
 } // namespace faultline::core

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 using namespace faultline::core;
 using faultline::core::testing::angleDiff;
@@ -135,4 +136,27 @@ TEST(PlaneFit, TooFewOrCollinearPointsHaveNoPlane) {
     EXPECT_EQ(two.centroid, (Vec3d{1, 0, 0}));
     EXPECT_TRUE(std::isnan(two.orientation.dip));
     EXPECT_FALSE(fitPlane(std::vector<Vec3d>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {5, 5, 5}}).valid);
+}
+
+TEST(PlaneFit, InASectionModelTheFaultPlaneContainsTheThinAxis) {
+    // A band dipping 45 degrees to the east in x-z, 6 units thick, in a slab 4 units thick in y
+    // (the slab is thinner than the band: an unconstrained fit finds the slab's plane).
+    std::vector<Vec3d> points;
+    for (int u = 0; u < 60; ++u)          // down dip
+        for (int w = -3; w <= 3; ++w)     // across the band
+            for (int y = 0; y <= 4; ++y) { // through the slab
+                const double s = u * 1.0, t = w * 1.0;
+                points.push_back({s / std::sqrt(2.0) + t / std::sqrt(2.0), double(y), -s / std::sqrt(2.0) + t / std::sqrt(2.0)});
+            }
+    const PlaneFit free = fitPlane(points);
+    EXPECT_NEAR(free.orientation.dip, 90.0, 1e-6); // the slab
+    EXPECT_EQ(sectionAxis({100.0, 4.0, 50.0}), 1);
+    EXPECT_EQ(sectionAxis({100.0, 40.0, 50.0}), -1);
+    const PlaneFit fit = fitPlane(points, 1);
+    ASSERT_TRUE(fit.valid);
+    EXPECT_NEAR(fit.orientation.dip, 45.0, 1e-6);
+    EXPECT_NEAR(fit.orientation.dipDirection, 90.0, 1e-6); // east
+    EXPECT_NEAR(fit.normal[1], 0.0, 1e-12);
+    EXPECT_LT(fit.eigenvalues[2], 1e3); // the real spreads, not the stand-in
+    EXPECT_LE(fit.eigenvalues[0], fit.eigenvalues[1]);
 }

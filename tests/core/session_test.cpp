@@ -22,6 +22,13 @@ std::string writeLattice(const TempDir& dir) {
 
 Json cmd(const char* text) { return Json::parse(text); }
 
+// The lattice with only two walls visible, x = 0 and x = 3 (16 spheres each, three spacings apart).
+void openTwoWalls(Session& s, const TempDir& dir) {
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(Json::parse(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
+    s.apply(Json::parse(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+}
+
 // States compared through their saved form, so a failure prints a readable difference.
 std::string dump(const SessionState& s) { return sessionToJson(s, "").dump(); }
 
@@ -158,10 +165,7 @@ TEST(Session, ASessionOpensWithItsDataAtAnotherPlace) {
 TEST(Session, FaultTracksFollowEachFaultThroughTimeAsCsv) {
     TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
-    // Two walls visible (x = 0 and x = 3, 16 spheres each); W is the west wall but one sphere.
-    s.apply(cmd(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
-    s.apply(cmd(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+    openTwoWalls(s, dir); // W is the west wall but one sphere
     std::vector<std::int64_t> west;
     for (std::int64_t id = 5; id <= 64; id += 4)
         west.push_back(id);
@@ -368,10 +372,7 @@ TEST(Journal, FailingCommandStopsTheReplay) {
 TEST(Session, CandidatesAndSplitUndoExactly) {
     TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
-    // Two slabs three spacings apart: x = 0 and x = 3 (16 spheres each).
-    s.apply(cmd(R"({"op":"box.add","name":"west","min":[0,0,0],"max":[0,3,3]})"));
-    s.apply(cmd(R"({"op":"box.add","name":"east","min":[3,0,0],"max":[3,3,3]})"));
+    openTwoWalls(s, dir);
     const SessionState before = s.state();
     s.apply(cmd(R"({"op":"fault.candidates","link":1.1,"min_size":5,"prefix":"K"})"));
     ASSERT_EQ(s.state().faults.size(), 2u);

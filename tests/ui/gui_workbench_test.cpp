@@ -113,6 +113,22 @@ class Driver {
     SyntheticInput m_input;
 };
 
+// The real window (1600 x 1000, not maximised) on `session`; null when this machine has no
+// OpenGL window to give (the caller skips).
+std::unique_ptr<ui::GuiApp> openWindow(core::Session& session, const std::string& stateDir, std::string& why) {
+    ui::GuiOptions options;
+    options.width = 1600;
+    options.height = 1000;
+    options.maximize = false;
+    options.workbench.stateDir = stateDir;
+    try {
+        return std::make_unique<ui::GuiApp>(session, options);
+    } catch (const std::exception& e) {
+        why = e.what();
+        return nullptr;
+    }
+}
+
 std::string readFile(const std::string& path) {
     std::ifstream in(path);
     std::stringstream s;
@@ -128,17 +144,10 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
         GTEST_SKIP() << "no display (run under xvfb-run for this test)";
     TempDir dir;
     core::Session session;
-    ui::GuiOptions options;
-    options.width = 1600;
-    options.height = 1000;
-    options.maximize = false;
-    options.workbench.stateDir = dir.file("state");
-    std::unique_ptr<ui::GuiApp> app;
-    try {
-        app = std::make_unique<ui::GuiApp>(session, options);
-    } catch (const std::exception& e) {
-        GTEST_SKIP() << "no OpenGL window here: " << e.what();
-    }
+    std::string why;
+    std::unique_ptr<ui::GuiApp> app = openWindow(session, dir.file("state"), why);
+    if (!app)
+        GTEST_SKIP() << "no OpenGL window here: " << why;
     Driver ui(*app);
     ui.steps(3);
 
@@ -228,16 +237,10 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
     if (!display || !*display)
         GTEST_SKIP() << "no display (run under xvfb-run for this test)";
     core::Session session;
-    ui::GuiOptions options;
-    options.width = 1600;
-    options.height = 1000;
-    options.maximize = false;
-    std::unique_ptr<ui::GuiApp> app;
-    try {
-        app = std::make_unique<ui::GuiApp>(session, options);
-    } catch (const std::exception& e) {
-        GTEST_SKIP() << "no OpenGL window here: " << e.what();
-    }
+    std::string why;
+    std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
+    if (!app)
+        GTEST_SKIP() << "no OpenGL window here: " << why;
     Driver ui(*app);
     ui.steps(3);
     app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
