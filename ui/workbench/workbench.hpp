@@ -180,7 +180,8 @@ class Workbench {
 
     // ---- files (workbench_files.cpp) ----
     void openPath(const std::string& path); // data or *.faultline.json, in the background
-    void openData(std::vector<std::string> paths);
+    // `then` runs once the data is open (after its data.open was applied).
+    void openData(std::vector<std::string> paths, std::function<void()> then = {});
     // `data`: where the session's data is now, when it moved (else the paths it names). When
     // its data is missing the workbench asks where it went.
     void openSession(const std::string& path, std::vector<std::string> data = {});

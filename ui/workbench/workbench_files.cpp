@@ -48,14 +48,14 @@ void Workbench::openPath(const std::string& path) {
         openData({path});
 }
 
-void Workbench::openData(std::vector<std::string> paths) {
+void Workbench::openData(std::vector<std::string> paths, std::function<void()> then) {
     for (auto& p : paths)
         p = absolute(p);
     const std::string name = shortName(paths);
     // The work runs on its own thread; the closure it returns runs on the UI thread.
     m_jobs.start(
         "Opening " + name,
-        [this, paths](JobControl& control) -> std::function<void()> {
+        [this, paths, then](JobControl& control) -> std::function<void()> {
             // Indexing every file is the first 60 %, reading the frame shown the rest.
             auto ds = core::Dataset::open(paths, [&control](double f) {
                 control.setProgress(static_cast<float>(0.6 * f));
@@ -63,10 +63,13 @@ void Workbench::openData(std::vector<std::string> paths) {
             });
             ds->frame(0); // the frame data.open shows
             control.setProgress(1.0f);
-            return [this, paths, ds] {
+            return [this, paths, ds, then] {
                 rememberDataset(paths, ds);
-                emit({{"op", "data.open"}, {"paths", paths}},
-                     [this, paths] { addRecent(paths.size() == 1 ? paths.front() : std::string()); });
+                emit({{"op", "data.open"}, {"paths", paths}}, [this, paths, then] {
+                    addRecent(paths.size() == 1 ? paths.front() : std::string());
+                    if (then)
+                        then();
+                });
             };
         },
         [this, name](const std::string& why) { error("Cannot open " + name + ": " + why); }, m_now);
@@ -155,18 +158,26 @@ void Workbench::relocateData(const std::string& pickedFile) {
 }
 
 void Workbench::openDemo() {
+    // The demo opens where its faults are: the last frame, coloured by broken bonds.
+    auto showFaults = [this] {
+        if (!m_session.dataset())
+            return;
+        emit({{"op", "frame.set"}, {"frame", m_session.dataset()->frameCount() - 1}});
+        if (state().view("main") && state().view("main")->colorVariable.empty())
+            emit({{"op", "color.set"}, {"view", "main"}, {"variable", "broken_bonds"}, {"map", "blue-red"}});
+    };
     if (auto path = core::existingDemoModel()) {
-        openData({*path});
+        openData({*path}, showFaults);
         return;
     }
     m_jobs.start(
         "Making the demo model (once)",
-        [this](JobControl& control) -> std::function<void()> {
+        [this, showFaults](JobControl& control) -> std::function<void()> {
             const std::string path = core::ensureDemoModel([&control](double fraction) {
                 control.setProgress(static_cast<float>(fraction));
                 return !control.cancelled();
             });
-            return [this, path] { openData({path}); };
+            return [this, path, showFaults] { openData({path}, showFaults); };
         },
         [this](const std::string& why) { error("Cannot make the demo model: " + why); }, m_now);
 }
