@@ -111,6 +111,17 @@ void Session::apply(const Json& cmd) {
         m_journalSink(cmd);
 }
 
+void Session::recordAction(const Json& cmd) {
+    const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string() ? cmd["op"].get<std::string>()
+                                                                                          : std::string();
+    auto it = m_ops.find(op);
+    if (it == m_ops.end() || it->second.changesState)
+        throw CommandError("recordAction: \"" + op + "\" is not an action");
+    m_journal.push_back(cmd);
+    if (m_journalSink)
+        m_journalSink(cmd);
+}
+
 bool Session::undo() {
     if (m_undo.empty())
         return false;

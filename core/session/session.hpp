@@ -30,6 +30,10 @@ class Session {
 
     // Runs one command (including {"op":"undo"} and {"op":"redo"}) and records it in the journal.
     void apply(const Json& cmd);
+    // Records an action (an op that changes no state, such as an export) that the caller carried
+    // out itself, e.g. on a worker thread, so the journal replays it. Throws CommandError for an
+    // unknown op or one that changes state.
+    void recordAction(const Json& cmd);
     bool canUndo() const { return !m_undo.empty(); }
     bool canRedo() const { return !m_redo.empty(); }
     bool undo(); // false when there is nothing to undo

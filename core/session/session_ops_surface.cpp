@@ -75,6 +75,21 @@ SurfaceSettings settingsOf(Session& s, const std::string& fault, const char* op)
     return st;
 }
 
+FaultSurfaceRequest requestOf(Session& s, const std::string& fault, const char* op) {
+    const SurfaceSettings st = settingsOf(s, fault, op);
+    const Fault* f = s.state().fault(fault);
+    if (!f)
+        throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
+    return {*f, st};
+}
+
+std::shared_ptr<const Frame> frameOf(Session& s, const char* op) {
+    auto frame = s.currentFrame();
+    if (!frame)
+        throw CommandError(std::string(op) + ": no data is open");
+    return frame;
+}
+
 } // namespace
 
 void registerSurfaceOps(OpTable& ops) {
@@ -101,13 +116,10 @@ void registerSurfaceOps(OpTable& ops) {
     });
     addAction(ops, "export.vdb", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"fault", "path"});
-        const SurfaceSettings st = settingsOf(s, args::string(cmd, "fault"), "export.vdb");
-        const SurfaceResult result = build(s, st, "export.vdb");
+        const FaultSurfaceRequest request = requestOf(s, args::string(cmd, "fault"), "export.vdb");
         const std::string path = s.outputPath(args::string(cmd, "path"));
-        const VdbSurface surface{st.fault, result.field.get(), result.iso};
         try {
-            std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-            exportVdb(path, std::span<const VdbSurface>(&surface, 1));
+            writeFaultVdb(*frameOf(s, "export.vdb"), request, path);
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.vdb: ") + e.what());
         }
@@ -118,26 +130,13 @@ void registerSurfaceOps(OpTable& ops) {
         const auto names = args::strings(cmd, "faults");
         if (names.empty())
             throw CommandError("export.gltf: \"faults\" names no fault");
-        std::vector<SurfaceResult> results;
+        std::vector<FaultSurfaceRequest> requests;
         for (const auto& name : names)
-            results.push_back(build(s, settingsOf(s, name, "export.gltf"), "export.gltf"));
-        std::vector<GltfSurface> surfaces;
-        for (std::size_t k = 0; k < names.size(); ++k)
-            surfaces.push_back({names[k], &results[k].mesh});
-        // Optionally the member spheres as instanced glyphs, in their fault's colour.
-        FaultSpheres glyphs;
-        if (args::optionalBool(cmd, "glyphs").value_or(false))
-            if (auto frame = s.currentFrame())
-                for (const auto& name : names) {
-                    const FaultSpheres f = gatherFaultSpheres(*frame, *s.state().fault(name));
-                    for (auto [dst, src] : {std::pair{&glyphs.x, &f.x}, {&glyphs.y, &f.y}, {&glyphs.z, &f.z},
-                                            {&glyphs.radius, &f.radius}, {&glyphs.rgb, &f.rgb}})
-                        dst->insert(dst->end(), src->begin(), src->end());
-                }
+            requests.push_back(requestOf(s, name, "export.gltf"));
         const std::string path = s.outputPath(args::string(cmd, "path"));
         try {
-            std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-            exportGlb(path, surfaces, glyphs.set());
+            writeFaultsGlb(*frameOf(s, "export.gltf"), requests, path,
+                           args::optionalBool(cmd, "glyphs").value_or(false));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.gltf: ") + e.what());
         }

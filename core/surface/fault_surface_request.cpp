@@ -1,8 +1,12 @@
 #include "core/surface/fault_surface_request.hpp"
 
 #include "core/session/session.hpp"
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/surface_export.hpp"
 
 #include <bit>
+#include <filesystem>
+#include <stdexcept>
 
 namespace faultline::core {
 
@@ -36,6 +40,56 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
     for (float c : fault.color)
         members = (members ^ std::bit_cast<std::uint32_t>(c)) * 0x100000001b3ull;
     return {static_cast<std::int64_t>(frameIndex), members, fieldParamsHash(params)};
+}
+
+namespace {
+
+SurfaceResult buildFor(const Frame& frame, const FaultSurfaceRequest& r, Interrupter* interrupter) {
+    const FaultSpheres spheres = gatherFaultSpheres(frame, r.fault);
+    try {
+        return buildSurface(spheres.set(), surfaceParamsOf(r.settings, r.fault), interrupter);
+    } catch (const SurfaceCancelled&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw std::runtime_error("fault \"" + r.fault.name + "\": " + e.what());
+    }
+}
+
+void makeFolder(const std::string& path) {
+    const auto folder = std::filesystem::path(path).parent_path();
+    if (!folder.empty())
+        std::filesystem::create_directories(folder);
+}
+
+} // namespace
+
+void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const std::string& path,
+                   Interrupter* interrupter) {
+    const SurfaceResult result = buildFor(frame, request, interrupter);
+    const VdbSurface surface{request.fault.name, result.field.get(), result.iso};
+    makeFolder(path);
+    exportVdb(path, std::span<const VdbSurface>(&surface, 1));
+}
+
+void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests, const std::string& path,
+                    bool glyphs, Interrupter* interrupter) {
+    std::vector<SurfaceResult> results;
+    for (const auto& r : requests)
+        results.push_back(buildFor(frame, r, interrupter));
+    std::vector<GltfSurface> surfaces;
+    for (std::size_t k = 0; k < requests.size(); ++k)
+        surfaces.push_back({requests[k].fault.name, &results[k].mesh});
+    // Optionally the member spheres as instanced glyphs, in their fault's colour.
+    FaultSpheres all;
+    if (glyphs)
+        for (const auto& r : requests) {
+            const FaultSpheres f = gatherFaultSpheres(frame, r.fault);
+            for (auto [dst, src] : {std::pair{&all.x, &f.x}, {&all.y, &f.y}, {&all.z, &f.z},
+                                    {&all.radius, &f.radius}, {&all.rgb, &f.rgb}})
+                dst->insert(dst->end(), src->begin(), src->end());
+        }
+    makeFolder(path);
+    exportGlb(path, surfaces, all.set());
 }
 
 } // namespace faultline::core

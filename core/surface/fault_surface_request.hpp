@@ -6,11 +6,14 @@
 #include "core/faults/fault.hpp"
 #include "core/model/frame.hpp"
 #include "core/session/session_state.hpp"
+#include "core/surface/interrupter.hpp"
 #include "core/surface/sphere_set.hpp"
 #include "core/surface/surface_cache.hpp"
 #include "core/surface/surface_params.hpp"
 
 #include <cstddef>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace faultline::core {
@@ -32,5 +35,20 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& faul
 // The SurfaceCache key of a fault's surface in frame `frameIndex`: members and colour (the colour
 // grid depends on it) and every field parameter except iso.
 SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceParams& params);
+
+// One fault's surface as an export wants it: the fault and its surface settings.
+struct FaultSurfaceRequest {
+    Fault fault;
+    SurfaceSettings settings;
+};
+
+// Build the surfaces in `frame` and write them: a .vdb with one fault's density and colour
+// grids; a .glb with one node per fault and, with `glyphs`, the members as instanced spheres.
+// Folders are made as needed. Throws what buildSurface throws (the message names the fault)
+// and std::runtime_error when writing fails. Safe on a worker thread (it touches no session).
+void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const std::string& path,
+                   Interrupter* interrupter = nullptr);
+void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests, const std::string& path,
+                    bool glyphs, Interrupter* interrupter = nullptr);
 
 } // namespace faultline::core

@@ -9,6 +9,7 @@
 #include "ui/render/mock_renderer.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -222,4 +223,28 @@ TEST_F(PanelTest, FitVisibleAimsAtTheVisibleSpheresAndContextModeIsAViewSetting)
     headless.click(wb(), "viewports.context");
     ASSERT_EQ(headless.emitted("view.set").size(), 1u);
     EXPECT_TRUE(session.state().view("main")->contextPoints);
+}
+
+TEST_F(PanelTest, SurfacesExportInTheBackgroundAndTheJournalRecordsIt) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact"})"));
+    wb().exportSurfaces({"F1"}, dir.file("out/F1.vdb"), true);
+    wb().exportSurfaces({"F1"}, dir.file("out/faults.glb"), false);
+    headless.settle(wb());
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/F1.vdb"))) << wb().lastMessage();
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/faults.glb"))) << wb().lastMessage();
+    std::vector<std::string> ops;
+    for (const auto& c : session.journal())
+        ops.push_back(c.value("op", ""));
+    EXPECT_NE(std::find(ops.begin(), ops.end(), "export.vdb"), ops.end());
+    EXPECT_NE(std::find(ops.begin(), ops.end(), "export.gltf"), ops.end());
+    // A fault that cannot be built says why, and records nothing.
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","voxel":1e-6})"));
+    const std::size_t before = session.journal().size();
+    wb().exportSurfaces({"F1"}, dir.file("out/bad.vdb"), true);
+    headless.settle(wb());
+    EXPECT_TRUE(wb().lastMessageIsError());
+    EXPECT_NE(wb().lastMessage().find("F1"), std::string::npos) << wb().lastMessage();
+    EXPECT_EQ(session.journal().size(), before);
 }

@@ -188,6 +188,9 @@ class Workbench {
     // The generator's demo model: made once in the per-user data folder (a background job with
     // progress and cancel), then opened.
     void openDemo();
+    // Fault surfaces to a .vdb (one fault) or a .glb (several), built and written in a background
+    // job; the journal records the export.vdb / export.gltf once it is done.
+    void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb);
     void saveSession(); // to the session's file, else asks for one
     void saveSessionAs(const std::string& path);
     const std::string& sessionPath() const { return m_sessionPath; }

@@ -394,7 +394,7 @@ void Workbench::handleDialog() {
     else if (purpose == "export-faults")
         emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
     else if (purpose.rfind("export-vdb:", 0) == 0)
-        emit({{"op", "export.vdb"}, {"fault", purpose.substr(11)}, {"path", path}});
+        exportSurfaces({purpose.substr(11)}, path, true);
     else if (purpose == "export-gltf") {
         std::vector<std::string> faults;
         for (const auto& st : state().surfaces)
@@ -403,7 +403,7 @@ void Workbench::handleDialog() {
         if (faults.empty())
             error("No surface is shown: tick one in the Surfaces panel first");
         else
-            emit({{"op", "export.gltf"}, {"faults", faults}, {"path", path}});
+            exportSurfaces(faults, path, false);
     } else if (purpose == "export-metrics") {
         emit({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
     } else if (purpose == "export-tracks") {

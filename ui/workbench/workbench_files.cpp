@@ -5,7 +5,9 @@
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/session_json.hpp"
+#include "core/surface/fault_surface_request.hpp"
 #include "core/synth/demo_model.hpp"
+#include "ui/workbench/job_interrupter.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -180,6 +182,45 @@ void Workbench::openDemo() {
             return [this, path, showFaults] { openData({path}, showFaults); };
         },
         [this](const std::string& why) { error("Cannot make the demo model: " + why); }, m_now);
+}
+
+void Workbench::exportSurfaces(std::vector<std::string> faults, const std::string& pathIn, bool vdb) {
+    const std::string path = absolute(pathIn);
+    std::shared_ptr<const core::Frame> frame;
+    try {
+        frame = m_session.currentFrame();
+    } catch (const std::exception& e) {
+        return error(std::string("Cannot export: ") + e.what());
+    }
+    if (!frame || faults.empty())
+        return error("Cannot export: no data or no fault");
+    std::vector<core::FaultSurfaceRequest> requests;
+    for (const auto& name : faults) {
+        const core::Fault* f = state().fault(name);
+        if (!f)
+            return error("Cannot export: no fault named " + name);
+        core::SurfaceSettings st;
+        st.fault = name;
+        if (const core::SurfaceSettings* saved = state().surface(name))
+            st = *saved;
+        requests.push_back({*f, st});
+    }
+    const Json cmd = vdb ? Json{{"op", "export.vdb"}, {"fault", faults.front()}, {"path", path}}
+                         : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
+    m_jobs.start(
+        "Exporting " + fs::path(path).filename().string(),
+        [this, frame, requests, path, vdb, cmd](JobControl& control) -> std::function<void()> {
+            JobInterrupter interrupter(control);
+            if (vdb)
+                core::writeFaultVdb(*frame, requests.front(), path, &interrupter);
+            else
+                core::writeFaultsGlb(*frame, requests, path, false, &interrupter);
+            return [this, cmd, path] {
+                m_session.recordAction(cmd); // replayed like any export
+                info("Exported " + path);
+            };
+        },
+        [this](const std::string& why) { error("Export failed: " + why); }, m_now);
 }
 
 void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds) {
