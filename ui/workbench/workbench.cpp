@@ -115,10 +115,8 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
         } else {
             m_journalPath.clear();
         }
-    }
-    if (!m_options.stateDir.empty()) {
         m_autosaver.emplace(m_options.stateDir);
-        m_recovery = m_autosaver->pending();
+        m_recovery = m_autosaver->pending(); // a crashed run's session, offered at start
     }
     loadSettings();
 }
@@ -264,7 +262,7 @@ void Workbench::applyPending() {
             const std::string op = cmd.value("op", "");
             if (op == "session.save")
                 info("Saved the session to " + cmd.value("path", ""));
-            else if (op == "export.csv" || op == "export.vdb" || op == "export.gltf")
+            else if (op == "export.csv")
                 info("Exported " + cmd.value("path", ""));
         } catch (const core::CommandError& e) {
             error(e.what());
@@ -463,56 +461,8 @@ void Workbench::updateDisplay() {
         d.camera = cameras[v.name];
         if (d.camera.distance <= 0 && d.frame)
             d.camera = fitCamera(v, d.camera, d.bounds.lo, d.bounds.hi);
-        // Difference colouring: the change since a reference frame, once that frame is here.
-        d.colorColumn.reset();
-        d.colorTitle = v.colorVariable;
-        d.differencePending = false;
-        if (v.difference.mode != core::ColorDifference::Mode::None && d.frame && ds) {
-            const std::size_t ref = core::referenceFrame(v, d.shownFrame, ds->frameCount());
-            d.colorTitle = core::colorTitle(v, ref);
-            if (auto refFrame = m_frames.request(ref, kReferenceChannel + channel)) {
-                try {
-                    d.colorColumn = v.difference.mode == core::ColorDifference::Mode::Change
-                                        ? m_differences.change(d.frame, refFrame, v.colorVariable)
-                                        : m_differences.displacement(d.frame, refFrame);
-                } catch (const std::invalid_argument&) {
-                    d.colorTitle.clear(); // the frame lacks the variable: one colour
-                }
-            } else {
-                d.differencePending = true;
-                d.colorTitle.clear();
-            }
-        }
-        // Colour range.
-        std::array<double, 2> range{0, 1};
-        if (v.rangeMode == "fixed") {
-            range = v.range;
-        } else if (d.colorColumn) {
-            if (d.colorColumn->min <= d.colorColumn->max)
-                range = {d.colorColumn->min, d.colorColumn->max};
-            auto& all = m_allFramesRange.try_emplace(d.colorTitle, range).first->second;
-            all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-            if (v.rangeMode == "all")
-                range = all;
-        } else if (d.frame && !v.colorVariable.empty() && v.difference.mode == core::ColorDifference::Mode::None) {
-            if (auto info = m_columns.info(d.frame, v.colorVariable)) {
-                range = {info->min, info->max};
-                auto& all = m_allFramesRange.try_emplace(v.colorVariable, range).first->second;
-                all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-                if (v.rangeMode == "all")
-                    range = all;
-            }
-        }
-        // Categories instead: the candidates previewed (main view), or the view's "faults".
-        d.palette.clear();
-        if (const CategoryColoring* cat = categoriesFor(v, d)) {
-            d.colorColumn = cat->values;
-            d.palette = cat->palette;
-            d.colorTitle = d.colorColumn->name;
-            range = {0.0, static_cast<double>(d.palette.size())};
-        }
+        resolveColors(v, d, channel);
         d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now);
-        d.colorRange = v.rangeMode == "fixed" && d.palette.empty() ? std::array<double, 2>(range) : widen(range);
         next.push_back(std::move(d));
         ++channel;
     }
@@ -524,6 +474,55 @@ void Workbench::updateDisplay() {
     });
 }
 
+// What a view's spheres are coloured by and over which range: categories (the candidates
+// previewed, or "faults"), a difference since a reference frame (once that frame is here), or
+// the variable's own column (the renderer reads it from the frame).
+void Workbench::resolveColors(const core::ViewState& v, ViewDisplay& d, std::size_t channel) {
+    d.colorColumn.reset();
+    d.palette.clear();
+    d.colorTitle = v.colorVariable;
+    d.colorRange = {0, 1};
+    if (!d.frame)
+        return;
+    if (const CategoryColoring* cat = categoriesFor(v, d)) {
+        d.colorColumn = cat->values;
+        d.palette = cat->palette;
+        d.colorTitle = d.colorColumn->name;
+        d.colorRange = {0.0, static_cast<double>(d.palette.size())};
+        return;
+    }
+    std::array<double, 2> range{0, 1};
+    std::string rangeKey = v.colorVariable; // whose all-frames range accumulates
+    if (v.difference.mode != core::ColorDifference::Mode::None) {
+        const std::size_t ref = core::referenceFrame(v, d.shownFrame, dataset()->frameCount());
+        d.colorTitle.clear(); // one colour until the reference frame is here
+        if (auto refFrame = m_frames.request(ref, kReferenceChannel + channel)) {
+            try {
+                d.colorColumn = v.difference.mode == core::ColorDifference::Mode::Change
+                                    ? m_differences.change(d.frame, refFrame, v.colorVariable)
+                                    : m_differences.displacement(d.frame, refFrame);
+                d.colorTitle = rangeKey = core::colorTitle(v, ref);
+                if (d.colorColumn->min <= d.colorColumn->max)
+                    range = {d.colorColumn->min, d.colorColumn->max};
+            } catch (const std::invalid_argument&) {
+                // the frame lacks the variable: one colour
+            }
+        }
+    } else if (!v.colorVariable.empty()) {
+        if (auto info = m_columns.info(d.frame, v.colorVariable))
+            range = {info->min, info->max};
+    }
+    if (!d.colorTitle.empty()) {
+        auto& all = m_allFramesRange.try_emplace(rangeKey, range).first->second;
+        all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
+        if (v.rangeMode == "all")
+            range = all;
+    }
+    if (v.rangeMode == "fixed")
+        range = v.range;
+    d.colorRange = widen(range);
+}
+
 const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const ViewDisplay& d) {
     if (!d.frame)
         return nullptr;
@@ -531,7 +530,11 @@ const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const
         return &candidatePreview->coloring;
     if (v.colorVariable != kFaultsVariable || d.frame->attribute(kFaultsVariable))
         return nullptr;
-    const std::uint64_t key = faultColoringKey(state().faults);
+    if (m_faultsKeyVersion != m_session.version()) { // hashing every member id: once per change
+        m_faultsKeyVersion = m_session.version();
+        m_faultsKey = faultColoringKey(state().faults);
+    }
+    const std::uint64_t key = m_faultsKey;
     for (auto& e : m_faultColorings)
         if (e.frame == d.frame && e.key == key)
             return &e.coloring;

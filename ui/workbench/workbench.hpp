@@ -75,11 +75,10 @@ struct ViewDisplay {
     std::uint64_t visibilityKey = 0;
     core::CameraState camera;       // the session's, previewed, fitted when not set yet
     std::array<double, 2> colorRange{0, 1};
-    // Difference colouring: the column shown instead of the variable's (null: the variable's
-    // own, or none while the reference frame loads) and what the legend calls it.
+    // The column shown instead of the variable's (difference or categories; null: the
+    // variable's own, or one colour while a reference frame loads) and what the legend calls it.
     std::shared_ptr<const core::AttributeColumn> colorColumn;
     std::string colorTitle;
-    bool differencePending = false;
     std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
     std::vector<glm::vec3> palette;    // categories (faults, candidates): colorColumn holds k + 0.5
     bool loading() const { return !frame || shownFrame != wantedFrame; }
@@ -228,6 +227,7 @@ class Workbench {
     void drawDock(float top, float bottom);
     void drawHelp();
     void drawPrompts();
+    void resolveColors(const core::ViewState& view, ViewDisplay& d, std::size_t channel);
     const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d);
     void handleShortcuts();
     void handleDialog();
@@ -251,6 +251,7 @@ class Workbench {
         CategoryColoring coloring;
     };
     std::vector<FaultColoringEntry> m_faultColorings;
+    std::uint64_t m_faultsKey = 0, m_faultsKeyVersion = ~0ull; // faultColoringKey, at a session version
     ItemRegistry m_items;
     DockLayout m_layout;
     core::Json m_adoptedLayout; // the session's layout as last adopted
