@@ -56,12 +56,10 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     const Fault* fault = s.state().fault(st.fault);
     if (!fault)
         throw CommandError(std::string(op) + ": no fault named \"" + st.fault + "\"");
-    const FaultSpheres spheres = gatherFaultSpheres(*frame, *fault);
-    const SurfaceParams params = surfaceParamsOf(st, *fault);
     try {
-        return buildSurface(spheres.set(), params);
+        return buildFaultSurface(*frame, {*fault, st});
     } catch (const std::exception& e) {
-        throw CommandError(std::string(op) + ": fault \"" + st.fault + "\": " + e.what());
+        throw CommandError(std::string(op) + ": " + e.what());
     }
 }
 

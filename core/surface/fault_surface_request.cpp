@@ -44,17 +44,6 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
 
 namespace {
 
-SurfaceResult buildFor(const Frame& frame, const FaultSurfaceRequest& r, Interrupter* interrupter) {
-    const FaultSpheres spheres = gatherFaultSpheres(frame, r.fault);
-    try {
-        return buildSurface(spheres.set(), surfaceParamsOf(r.settings, r.fault), interrupter);
-    } catch (const SurfaceCancelled&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw std::runtime_error("fault \"" + r.fault.name + "\": " + e.what());
-    }
-}
-
 void makeFolder(const std::string& path) {
     const auto folder = std::filesystem::path(path).parent_path();
     if (!folder.empty())
@@ -63,19 +52,37 @@ void makeFolder(const std::string& path) {
 
 } // namespace
 
+SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r,
+                                Interrupter* interrupter, SurfaceReuse reuse) {
+    const FaultSpheres spheres = gatherFaultSpheres(frame, r.fault);
+    try {
+        const SurfaceParams params = surfaceParamsOf(r.settings, r.fault);
+        if (reuse.cache)
+            return reuse.cache->get(
+                surfaceKeyOf(reuse.frameIndex, r.fault, params), params,
+                [&] { return spheres.set(); }, interrupter);
+        return buildSurface(spheres.set(), params, interrupter);
+    } catch (const SurfaceCancelled&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw std::runtime_error("fault \"" + r.fault.name + "\": " + e.what());
+    }
+}
+
 void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const std::string& path,
-                   Interrupter* interrupter) {
-    const SurfaceResult result = buildFor(frame, request, interrupter);
+                   Interrupter* interrupter, SurfaceReuse reuse) {
+    const SurfaceResult result = buildFaultSurface(frame, request, interrupter, reuse);
     const VdbSurface surface{request.fault.name, result.field.get(), result.iso};
     makeFolder(path);
     exportVdb(path, std::span<const VdbSurface>(&surface, 1));
 }
 
-void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests, const std::string& path,
-                    bool glyphs, Interrupter* interrupter) {
+void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests,
+                    const std::string& path, bool glyphs, Interrupter* interrupter,
+                    SurfaceReuse reuse) {
     std::vector<SurfaceResult> results;
     for (const auto& r : requests)
-        results.push_back(buildFor(frame, r, interrupter));
+        results.push_back(buildFaultSurface(frame, r, interrupter, reuse));
     std::vector<GltfSurface> surfaces;
     for (std::size_t k = 0; k < requests.size(); ++k)
         surfaces.push_back({requests[k].fault.name, &results[k].mesh});
@@ -84,8 +91,11 @@ void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> req
     if (glyphs)
         for (const auto& r : requests) {
             const FaultSpheres f = gatherFaultSpheres(frame, r.fault);
-            for (auto [dst, src] : {std::pair{&all.x, &f.x}, {&all.y, &f.y}, {&all.z, &f.z},
-                                    {&all.radius, &f.radius}, {&all.rgb, &f.rgb}})
+            for (auto [dst, src] : {std::pair{&all.x, &f.x},
+                                    {&all.y, &f.y},
+                                    {&all.z, &f.z},
+                                    {&all.radius, &f.radius},
+                                    {&all.rgb, &f.rgb}})
                 dst->insert(dst->end(), src->begin(), src->end());
         }
     makeFolder(path);

@@ -42,13 +42,25 @@ struct FaultSurfaceRequest {
     SurfaceSettings settings;
 };
 
+// Where a build may reuse earlier work: a SurfaceCache and the frame's index in its dataset.
+struct SurfaceReuse {
+    SurfaceCache* cache = nullptr;
+    std::size_t frameIndex = 0;
+};
+
+// The fault's surface in `frame`: built, or taken from (and kept in) reuse.cache. Throws what
+// buildSurface throws, with the fault named in the message (SurfaceCancelled as it is).
+SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& request,
+                                Interrupter* interrupter = nullptr, SurfaceReuse reuse = {});
+
 // Build the surfaces in `frame` and write them: a .vdb with one fault's density and colour
 // grids; a .glb with one node per fault and, with `glyphs`, the members as instanced spheres.
 // Folders are made as needed. Throws what buildSurface throws (the message names the fault)
 // and std::runtime_error when writing fails. Safe on a worker thread (it touches no session).
 void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const std::string& path,
-                   Interrupter* interrupter = nullptr);
-void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests, const std::string& path,
-                    bool glyphs, Interrupter* interrupter = nullptr);
+                   Interrupter* interrupter = nullptr, SurfaceReuse reuse = {});
+void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> requests,
+                    const std::string& path, bool glyphs, Interrupter* interrupter = nullptr,
+                    SurfaceReuse reuse = {});
 
 } // namespace faultline::core

@@ -3,7 +3,6 @@
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
-#include "core/surface/fault_surface.hpp"
 #include "core/surface/fault_surface_request.hpp"
 #include "ui/render/surface_mesh.hpp"
 #include "ui/viewport/category_colors.hpp"
@@ -96,13 +95,12 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
         const core::Fault* fault = session.state().fault(st.fault);
         if (!st.visible || !fault || !fault->visible)
             continue;
-        const core::FaultSpheres spheres = core::gatherFaultSpheres(*frame, *fault);
-        if (spheres.size() == 0)
-            continue;
+        if (std::none_of(fault->ids.begin(), fault->ids.end(), [&](std::int64_t id) { return frame->rowOf(id).has_value(); }))
+            continue; // none of its members in this frame: nothing to draw
         try {
-            scene.meshes.push_back(toMeshData(core::buildSurface(spheres.set(), core::surfaceParamsOf(st, *fault)).mesh));
+            scene.meshes.push_back(toMeshData(core::buildFaultSurface(*frame, {*fault, st}).mesh));
         } catch (const std::exception& e) {
-            throw CommandError("render: surface of fault \"" + st.fault + "\": " + e.what());
+            throw CommandError(std::string("render: surface of ") + e.what());
         }
         scene.meshes.back().opacity = static_cast<float>(st.opacity);
     }

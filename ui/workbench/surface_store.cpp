@@ -69,19 +69,18 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
     ++m_buildsStarted;
     entry.status = {};
     entry.status.state = SurfaceStatus::State::Building;
-    const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
-    const core::SurfaceKey cacheKey{std::get<0>(key), std::get<1>(key), std::get<2>(key)};
-    auto work = [cache = m_cache, frame = std::move(frame), fault, params, cacheKey, this,
+    auto work = [cache = m_cache, frame = std::move(frame),
+                 request = core::FaultSurfaceRequest{fault, settings},
+                 frameIndex = static_cast<std::size_t>(std::get<0>(key)), this,
                  key](JobControl& control) {
         const auto t0 = std::chrono::steady_clock::now();
-        core::FaultSpheres spheres = core::gatherFaultSpheres(*frame, fault);
         JobInterrupter interrupter(control);
-        const core::SurfaceResult result = cache->get(
-            cacheKey, params, [&] { return spheres.set(); }, &interrupter);
+        const core::SurfaceResult result =
+            core::buildFaultSurface(*frame, request, &interrupter, {cache.get(), frameIndex});
         auto mesh = std::make_shared<const MeshData>(toMeshData(result.mesh));
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const std::size_t count = spheres.size();
+        const std::size_t count = result.field ? result.field->sphereCount() : 0;
         return std::function<void()>([this, key, mesh, seconds, count] {
             auto it = m_entries.find(key);
             if (it == m_entries.end())

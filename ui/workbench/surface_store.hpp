@@ -49,6 +49,8 @@ class SurfaceStore {
     void clear();
 
     std::size_t buildsStarted() const { return m_buildsStarted; }
+    // What was built, for exports of the surfaces shown (shared with their jobs).
+    const std::shared_ptr<core::SurfaceCache>& cache() const { return m_cache; }
 
   private:
     using Key = std::tuple<std::int64_t, std::uint64_t, std::uint64_t,

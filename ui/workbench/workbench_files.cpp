@@ -209,12 +209,15 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
                          : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
-        [this, frame, requests, path, vdb, cmd](JobControl& control) -> std::function<void()> {
+        [this, frame, requests, path, vdb, cmd, cache = m_surfaces.cache(),
+         frameIndex = state().frame](JobControl& control) -> std::function<void()> {
+            // Surfaces shown in the views come from their cache, not built again.
             JobInterrupter interrupter(control);
+            const core::SurfaceReuse reuse{cache.get(), frameIndex};
             if (vdb)
-                core::writeFaultVdb(*frame, requests.front(), path, &interrupter);
+                core::writeFaultVdb(*frame, requests.front(), path, &interrupter, reuse);
             else
-                core::writeFaultsGlb(*frame, requests, path, false, &interrupter);
+                core::writeFaultsGlb(*frame, requests, path, false, &interrupter, reuse);
             return [this, cmd, path] {
                 m_session.recordAction(cmd); // replayed like any export
                 info("Exported " + path);
