@@ -25,6 +25,7 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     twoWalls(session);
     headless.showPanel(wb(), ui::panel_ids::kFaults);
     headless.click(wb(), "candidates.find");
+    headless.settle(wb()); // found in a background job
     ASSERT_TRUE(wb().candidatePreview.has_value());
     ASSERT_EQ(wb().candidatePreview->set.candidates.size(), 2u);
     headless.frames(wb(), 2);

@@ -29,8 +29,9 @@ class FaultCandidatesSection {
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
         ImGui::InputInt("min size", &m_minSize, 0, 0);
         m_minSize = std::max(1, m_minSize);
-        ImGui::BeginDisabled(!ready || main->visibility->visibleCount == 0);
-        if (ImGui::Button("Find in visible"))
+        const bool finding = m_finding && !m_finding->finished();
+        ImGui::BeginDisabled(!ready || main->visibility->visibleCount == 0 || finding);
+        if (ImGui::Button(finding ? "Finding..." : "Find in visible"))
             find(wb, *main);
         wb.mark("candidates.find");
         ImGui::EndDisabled();
@@ -111,22 +112,39 @@ class FaultCandidatesSection {
     std::string m_prefix = "F";
     double m_millis = 0;
     std::set<int> m_accepted;
+    std::shared_ptr<Job> m_finding;
 
+    // Clustering a million visible spheres takes a while: a background job (progress in the
+    // status bar, cancel there); the preview appears when it is done.
     void find(Workbench& wb, const ViewDisplay& main) {
         core::CandidateOptions options;
         options.link = m_link;
         options.minSize = static_cast<std::size_t>(m_minSize);
-        const auto t0 = std::chrono::steady_clock::now();
-        Workbench::CandidatePreview p;
-        p.frame = main.frame;
-        p.visibility = main.visibility;
-        p.options = options;
-        p.set = core::findCandidates(*main.frame, main.visibility->mask, options);
-        p.coloring = candidateColoring(p.set.rowLabel, p.set.candidates.size());
-        m_millis = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                       .count();
-        m_accepted.clear();
-        wb.candidatePreview = std::move(p);
+        if (m_finding && !m_finding->finished())
+            m_finding->cancel();
+        m_finding = wb.jobs().start(
+            "Finding fault candidates",
+            [this, &wb, options, frame = main.frame,
+             visibility = main.visibility](JobControl&) -> std::function<void()> {
+                const auto t0 = std::chrono::steady_clock::now();
+                Workbench::CandidatePreview p;
+                p.frame = frame;
+                p.visibility = visibility;
+                p.options = options;
+                p.set = core::findCandidates(*frame, visibility->mask, options);
+                p.coloring = candidateColoring(p.set.rowLabel, p.set.candidates.size());
+                const double ms =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+                auto shared = std::make_shared<Workbench::CandidatePreview>(std::move(p));
+                return [this, &wb, shared, ms] {
+                    m_millis = ms;
+                    m_accepted.clear();
+                    wb.candidatePreview = std::move(*shared);
+                };
+            },
+            [&wb](const std::string& why) { wb.error("Cannot find candidates: " + why); },
+            wb.now());
     }
 
     void clear(Workbench& wb) {
