@@ -248,7 +248,7 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
     ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
 
     // The lasso tool; a loop around the middle of the view, drawn while the button is held.
-    ui.click("view.tool.lasso.main");
+    ui.click("viewports.tool.lasso");
     ASSERT_EQ(ui.wb().viewportTool, ui::ViewportTool::Lasso);
     const ui::ItemRect img = ui.rect("view.image.main");
     const float cx = img.cx(), cy = img.cy(), r = 0.12f * (img.y1 - img.y0);

@@ -111,7 +111,7 @@ class SelectionTest : public PanelTest {
 
 TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     // 1. Rectangle tool, a drag around the spheres with x in {0, 1}: a new fault of them.
-    headless.click(wb(), "view.tool.rectangle.main");
+    headless.click(wb(), "viewports.tool.rectangle");
     EXPECT_EQ(wb().viewportTool, ui::ViewportTool::Rectangle);
     const auto left = column({0, 1});
     auto [lo, hi] = boundsOf(left);

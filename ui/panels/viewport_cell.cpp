@@ -191,7 +191,6 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Linked cameras move together; unlink to look at this view on its own.");
     }
-    drawToolButtons(wb, view);
     if (view.name != "main") {
         const float bw = ImGui::GetFrameHeight();
         ImGui::SameLine();
@@ -210,7 +209,7 @@ constexpr const char* kSelectHelp =
     "Ctrl+drag: take them out of it. Shift+drag: a new fault.\n"
     "A click toggles one sphere; right drag pans.";
 
-void ViewportCells::drawToolButtons(Workbench& wb, const core::ViewState& view) {
+void ViewportCells::drawToolButtons(Workbench& wb) {
     static const struct {
         ViewportTool tool;
         const char* label;
@@ -223,7 +222,6 @@ void ViewportCells::drawToolButtons(Workbench& wb, const core::ViewState& view) 
         {ViewportTool::Rectangle, "Rectangle", "rectangle", "Drag a rectangle around spheres (R)."},
         {ViewportTool::Lasso, "Lasso", "lasso", "Draw a loop around spheres (L)."},
     };
-    ImGui::SameLine();
     ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(1, ImGui::GetStyle().ItemSpacing.y));
     for (const auto& t : kTools) {
         const bool on = wb.viewportTool == t.tool;
@@ -233,7 +231,7 @@ void ViewportCells::drawToolButtons(Workbench& wb, const core::ViewState& view) 
             wb.viewportTool = t.tool;
         if (on)
             ImGui::PopStyleColor();
-        wb.mark(std::string("view.tool.") + t.mark + "." + view.name);
+        wb.mark(std::string("viewports.tool.") + t.mark);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("%s%s", t.tip, t.tool == ViewportTool::Orbit ? "" : kSelectHelp);
         if (t.tool != ViewportTool::Lasso)

@@ -21,6 +21,8 @@ class ViewportCells {
     void presetAll(Workbench& wb, const char* preset);
     void fitAll(Workbench& wb);
     void fitVisible(Workbench& wb); // to the visible spheres (boxes, thresholds, faults applied)
+    // Orbit / Rectangle / Lasso: what a left drag does in every view (the tool is the workbench's).
+    void drawToolButtons(Workbench& wb);
     void setOrthographic(Workbench& wb, bool ortho);
 
   private:
@@ -28,7 +30,7 @@ class ViewportCells {
     void drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d);
     void drawDifference(Workbench& wb, const core::ViewState& view);
     void drawFramePopup(Workbench& wb, const core::ViewState& view);
-    void drawToolButtons(Workbench& wb, const core::ViewState& view);
+
     void interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
     void drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
                       ImVec2 pos, ImVec2 size);

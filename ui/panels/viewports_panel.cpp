@@ -85,6 +85,10 @@ class ViewportsPanel final : public Panel {
         bool ortho = main && main->camera.orthographic;
         if (ImGui::Checkbox("Orthographic", &ortho))
             m_cells.setOrthographic(wb, ortho);
+        ImGui::SameLine();
+        ImGui::TextDisabled("|");
+        ImGui::SameLine();
+        m_cells.drawToolButtons(wb);
 
         // Cells: one to three side by side, four as two by two.
         const ImVec2 origin = ImGui::GetCursorScreenPos();
