@@ -1,18 +1,18 @@
 #include "core/surface/fault_surface.hpp"
 
 #include "core/surface/detail/field_level.hpp"
+#include "core/surface/detail/surface_nets.hpp"
 #include "core/surface/detail/vdb_grids.hpp"
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"
 
-#include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -101,6 +101,55 @@ std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
     return sides;
 }
 
+using FloatLeaf = openvdb::FloatTree::LeafNodeType;
+using VecLeaf = openvdb::Vec3STree::LeafNodeType;
+
+// The density's gradient at every voxel of the given leaves by central differences, one-sided
+// where a neighbour is not a stored voxel (a tile holds a stand-in value, not the field).
+openvdb::Vec3SGrid::Ptr centralDifferences(const openvdb::FloatGrid &density,
+                                           const std::vector<const FloatLeaf *> &leaves, float h) {
+    std::vector<VecLeaf *> out(leaves.size(), nullptr);
+    const float inv2h = 0.5f / h, invh = 1.0f / h;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const auto &r) {
+        auto acc = density.getConstAccessor();
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+            const float *v = leaves[b]->buffer().data();
+            const openvdb::Coord o = leaves[b]->origin();
+            auto *leaf = new VecLeaf(o, openvdb::Vec3s(0.0f), true);
+            for (int i = 0; i < kBlockDim; ++i)
+                for (int j = 0; j < kBlockDim; ++j)
+                    for (int k = 0; k < kBlockDim; ++k) {
+                        const float centre = v[blockOffset(i, j, k)];
+                        openvdb::Vec3s grad;
+                        for (int axis = 0; axis < 3; ++axis) {
+                            auto sample = [&](int dir, float &value) {
+                                int n[3] = {i, j, k};
+                                n[axis] += dir;
+                                if (n[axis] >= 0 && n[axis] < kBlockDim) {
+                                    value = v[blockOffset(n[0], n[1], n[2])];
+                                    return true;
+                                }
+                                return acc.probeValue(o.offsetBy(n[0], n[1], n[2]), value);
+                            };
+                            float up = 0.0f, down = 0.0f;
+                            const bool hasUp = sample(1, up), hasDown = sample(-1, down);
+                            grad[axis] = hasUp && hasDown ? (up - down) * inv2h
+                                         : hasUp          ? (up - centre) * invh
+                                         : hasDown        ? (centre - down) * invh
+                                                          : 0.0f;
+                        }
+                        leaf->setValueOnly(blockOffset(i, j, k), grad);
+                    }
+            out[b] = leaf;
+        }
+    });
+    auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    grid->setTransform(density.transform().copy());
+    for (auto *leaf : out)
+        grid->tree().addLeaf(leaf);
+    return grid;
+}
+
 } // namespace
 
 void ensureOpenVdbInitialized() {
@@ -118,6 +167,7 @@ float SurfaceField::isoMax() const { return m_impl->isoMax; }
 const SurfaceStats &SurfaceField::stats() const { return m_impl->stats; }
 std::size_t SurfaceField::memoryBytes() const {
     return m_impl->density->memUsage() + m_impl->color->memUsage() +
+           (m_impl->gradient ? m_impl->gradient->memUsage() : 0) +
            m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);
 }
 
@@ -145,8 +195,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     if (interrupter)
         interrupter->start("field");
     field.prepare(plan.blocks, interrupter);
-    using FloatLeaf = openvdb::FloatTree::LeafNodeType;
-    using ColorLeaf = openvdb::Vec3STree::LeafNodeType;
+    using ColorLeaf = VecLeaf;
     std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
     std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
     const float clamp = clampValue(impl->isoMax);
@@ -193,10 +242,12 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
                                          clamp, false);
     const std::vector<BlockSide> sides =
         blockSides(plan.blocks, densityLeaves, impl->isoMin, impl->isoMax);
+    std::vector<const FloatLeaf *> kept;
     for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
         if (sides[b] == BlockSide::Crossing) {
             impl->density->tree().addLeaf(densityLeaves[b]);
             impl->color->tree().addLeaf(colorLeaves[b]);
+            kept.push_back(densityLeaves[b]);
             continue;
         }
         // No edge of this block or into it can cross any supported iso: a tile will do.
@@ -205,6 +256,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         delete densityLeaves[b];
         delete colorLeaves[b];
     }
+    impl->gradient = centralDifferences(*impl->density, kept, h);
     impl->stats.fieldSeconds = secondsSince(t0);
     impl->stats.blocks = plan.blocks.size();
     impl->stats.activeVoxels = impl->density->activeVoxelCount();
@@ -236,87 +288,25 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
     const auto &impl = surface.impl();
     if (interrupter)
         interrupter->start("mesh");
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> triangles;
-    std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*impl.density, points, triangles, quads, iso, 0.0);
+    SurfaceMesh mesh;
+    const bool analytic = normalSource == NormalSource::Analytic || !impl.gradient;
+    detail::surfaceNets(*impl.density, *impl.color, analytic ? nullptr : impl.gradient.get(), iso,
+                        surface.voxelSize(), mesh);
     if (interrupter && interrupter->wasInterrupted(50))
         throw SurfaceCancelled();
-
-    SurfaceMesh mesh;
-    mesh.positions.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
-        mesh.positions[i] = {points[i][0], points[i][1], points[i][2]};
-    std::vector<Vec3f> gradients(points.size());
-    if (normalSource == NormalSource::Analytic) {
+    if (analytic) {
+        std::vector<Vec3f> gradients(mesh.positions.size());
         impl.field->evaluatePoints(mesh.positions, nullptr, gradients.data());
-    } else {
-        const auto &grid = *impl.density;
-        const float h = surface.voxelSize();
-        const float inv = 1.0f / h;
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto &r) {
-            auto acc = grid.getConstAccessor();
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                // Index space (world = index * h): central differences half a voxel apart.
-                const openvdb::Vec3R p(points[i][0] * inv, points[i][1] * inv, points[i][2] * inv);
-                for (int k = 0; k < 3; ++k) {
-                    openvdb::Vec3R d(0.0);
-                    d[k] = 0.5;
-                    float up = 0.0f, down = 0.0f;
-                    openvdb::tools::BoxSampler::sample(acc, p + d, up);
-                    openvdb::tools::BoxSampler::sample(acc, p - d, down);
-                    gradients[i][k] = (up - down) * inv;
-                }
-            }
+        mesh.normals.resize(gradients.size());
+        tbb::parallel_for(std::size_t{0}, gradients.size(), [&](std::size_t i) {
+            const Vec3f &g = gradients[i];
+            const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+            mesh.normals[i] = len > 0.0f ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len}
+                                         : Vec3f{0.0f, 0.0f, 1.0f};
         });
     }
-    mesh.normals.resize(points.size());
-    mesh.colors.resize(points.size());
-    tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-        const Vec3f &g = gradients[i];
-        const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        mesh.normals[i] =
-            len > 0.0f ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len} : Vec3f{0.0f, 0.0f, 1.0f};
-    });
-    {
-        // Trilinear in the colour grid over the evaluated (active) voxels only: corners in
-        // never-evaluated tiles hold no colour.
-        const auto &grid = *impl.color;
-        const float inv = 1.0f / surface.voxelSize();
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto &r) {
-            auto acc = grid.getConstAccessor();
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                const openvdb::Vec3f p = points[i] * inv;
-                const openvdb::Coord base(static_cast<int>(std::floor(p[0])),
-                                          static_cast<int>(std::floor(p[1])),
-                                          static_cast<int>(std::floor(p[2])));
-                const openvdb::Vec3f t = p - base.asVec3s();
-                openvdb::Vec3s sum(0.0f);
-                float weight = 0.0f;
-                for (int c = 0; c < 8; ++c) {
-                    const openvdb::Coord at = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-                    openvdb::Vec3s value;
-                    if (!acc.probeValue(at, value))
-                        continue;
-                    const float w = ((c & 1) ? t[0] : 1.0f - t[0]) *
-                                    (((c >> 1) & 1) ? t[1] : 1.0f - t[1]) *
-                                    (((c >> 2) & 1) ? t[2] : 1.0f - t[2]);
-                    sum += w * value;
-                    weight += w;
-                }
-                const openvdb::Vec3s c = weight > 0.0f ? sum / weight : grid.background();
-                for (int k = 0; k < 3; ++k)
-                    mesh.colors[i][k] = std::clamp(c[k], 0.0f, 1.0f);
-            }
-        });
-    }
-    mesh.indices.reserve(3 * triangles.size() + 6 * quads.size());
-    for (const auto &t : triangles)
-        mesh.indices.insert(mesh.indices.end(), {t[0], t[1], t[2]});
-    for (const auto &q : quads)
-        mesh.indices.insert(mesh.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
-    // OpenVDB orients polygons for level sets (inside below iso); our density is inside above
-    // iso. Make the winding agree with the outward normals.
+    // The mesher winds counter-clockwise from outside; a sample of triangles against the normals
+    // confirms it (and would flip a mesh whose normals all point the other way).
     double agreement = 0.0;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3 * 17) {
         const auto &a = mesh.positions[mesh.indices[t]];
@@ -330,8 +320,9 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
         agreement += n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
     }
     if (agreement < 0.0)
-        for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
-            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+        tbb::parallel_for(std::size_t{0}, mesh.indices.size() / 3, [&](std::size_t t) {
+            std::swap(mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]);
+        });
     if (interrupter)
         interrupter->end();
     return mesh;

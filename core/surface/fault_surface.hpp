@@ -68,14 +68,15 @@ struct SurfaceResult {
 SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
                            Interrupter *interrupter = nullptr);
 
-// Where vertex normals come from: the analytic gradient of the sum (Algorithm 1 line 8: exact
-// near field plus the interpolated smooth levels), or central differences of the stored density
-// grid (several times faster, for interactive re-meshing; same field within the tolerance).
+// Where vertex normals come from: the field's gradient (Algorithm 1 line 8) either evaluated
+// analytically at each vertex (exact near field plus the interpolated smooth levels), or by
+// central differences at the stored voxels, computed once per field and interpolated trilinearly
+// (the default: re-meshing then touches no sphere; normals agree within a fraction of a degree).
 enum class NormalSource { Analytic, Grid };
 
 // The iso-surface of an existing field at another iso-value (no field recomputation). Throws
 // SurfaceRequestError when iso lies outside [isoMin, isoMax] (a rebuild is needed).
 SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr,
-                   NormalSource normals = NormalSource::Analytic);
+                   NormalSource normals = NormalSource::Grid);
 
 } // namespace faultline::core

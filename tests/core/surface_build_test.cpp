@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <random>
 
 namespace fc = faultline::core;
 
@@ -103,6 +105,58 @@ TEST(FaultSurface, RemeshWithinTheRangeNeedsNoNewField) {
         const auto &a = mesh.normals[i];
         const auto &b = fast.normals[i];
         EXPECT_GT(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 0.999);
+    }
+}
+
+// Leaves are meshed separately; where they meet, every edge of the mesh must still be shared by
+// a triangle on each side, wound the other way (no holes, no flipped patches), at the build's
+// iso and at re-meshed ones, for the long-tailed and the compact kernel.
+TEST(FaultSurface, MeshesAreClosedAcrossLeavesAndWoundOutwards) {
+    Spheres s;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> at(0.0f, 4.0f), radius(0.3f, 0.6f);
+    for (int n = 0; n < 60; ++n) {
+        s.x.push_back(at(random));
+        s.y.push_back(at(random) * 0.5f);
+        s.z.push_back(at(random));
+        s.r.push_back(radius(random));
+        s.rgb.insert(s.rgb.end(), {0.2f, 0.4f, 0.8f});
+    }
+    for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Compact}) {
+        fc::SurfaceParams params;
+        params.kernel = kernel;
+        params.iso = kernel == fc::MetaballKernel::Compact ? 0.3f : 12.0f;
+        params.voxelSize = 0.09f;
+        params.isoRangeFactor = 1.2f;
+        const auto built = fc::buildSurface(s.set(), params);
+        for (float iso : {params.iso, params.iso * 1.15f, params.iso / 1.15f}) {
+            const auto mesh = fc::remesh(*built.field, iso);
+            ASSERT_GT(mesh.triangleCount(), 1000u);
+            std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+            for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
+                for (int e = 0; e < 3; ++e)
+                    ++directed[{mesh.indices[t + e], mesh.indices[t + (e + 1) % 3]}];
+            std::size_t open = 0;
+            for (const auto &[edge, count] : directed) {
+                const auto back = directed.find({edge.second, edge.first});
+                open += back == directed.end() || back->second != count;
+            }
+            EXPECT_EQ(open, 0u) << fc::kernelName(kernel) << " at iso " << iso;
+            // Counter-clockwise from outside: the face normal agrees with the vertex normals.
+            std::size_t agree = 0;
+            for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+                const auto &a = mesh.positions[mesh.indices[t]];
+                const auto &b = mesh.positions[mesh.indices[t + 1]];
+                const auto &c = mesh.positions[mesh.indices[t + 2]];
+                const float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                const float v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                const float face[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                       u[0] * v[1] - u[1] * v[0]};
+                const auto &n = mesh.normals[mesh.indices[t]];
+                agree += face[0] * n[0] + face[1] * n[1] + face[2] * n[2] > 0.0f;
+            }
+            EXPECT_GT(double(agree), 0.99 * double(mesh.triangleCount()));
+        }
     }
 }
 

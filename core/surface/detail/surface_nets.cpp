@@ -1,0 +1,321 @@
+#include "core/surface/detail/surface_nets.hpp"
+
+#include "core/surface/detail/field_level.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace faultline::core::detail {
+
+namespace {
+
+using FloatLeaf = openvdb::FloatTree::LeafNodeType;
+using VecLeaf = openvdb::Vec3STree::LeafNodeType;
+using Vec3f = std::array<float, 3>;
+
+// A leaf's voxels with one voxel of its neighbours on every side: padded index p = local + 1.
+constexpr int kPad = 10;
+// Cells by their lowest corner, from one voxel below the leaf to its last voxel.
+constexpr int kCells = 9;
+constexpr int kNone = -1;
+constexpr int kOwnedElsewhere = -2; // a foreign cell's entry is kOwnedElsewhere - (its slot)
+
+inline int padOffset(int i, int j, int k) { return (i * kPad + j) * kPad + k; }
+inline int cellOffset(int i, int j, int k) { return (i * kCells + j) * kCells + k; }
+inline int leafOffset(int i, int j, int k) { return (i * 8 + j) * 8 + k; }
+// Which of the 3 x 3 x 3 leaves (0: below, 1: this one, 2: above) holds padded index p, and
+// where in that leaf.
+inline int sideOf(int p) { return p == 0 ? 0 : p == kPad - 1 ? 2 : 1; }
+inline int localOf(int p) { return p == 0 ? 7 : p == kPad - 1 ? 0 : p - 1; }
+inline int neighbourIndex(int si, int sj, int sk) { return (si * 3 + sj) * 3 + sk; }
+
+constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+constexpr int kCornerOffset[8] = {0, kPad* kPad,     kPad,     kPad* kPad + kPad,
+                                  1, kPad* kPad + 1, kPad + 1, kPad* kPad + kPad + 1};
+constexpr int kEdge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                              {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+
+struct Foreign {
+    std::uint32_t leaf; // the leaf that owns the cell's vertex
+    std::int32_t cell;  // the cell's offset in that leaf's cell table
+};
+
+struct LeafWork {
+    std::vector<std::int32_t> cells; // kCells^3: local vertex, kNone, or a foreign slot
+    std::vector<Foreign> foreign;
+    std::vector<Vec3f> positions, colors, gradients;
+    std::vector<std::array<std::int32_t, 4>> quads; // cell offsets, counter-clockwise outside
+    std::uint32_t vertexBase = 0;
+    std::size_t quadBase = 0;
+};
+
+} // namespace
+
+void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color,
+                 const openvdb::Vec3SGrid* gradient, float iso, float h, SurfaceMesh& mesh) {
+    std::vector<const FloatLeaf*> leaves;
+    for (auto it = density.tree().cbeginLeaf(); it; ++it)
+        leaves.push_back(&*it);
+    std::unordered_map<std::uint64_t, std::uint32_t> leafIndex;
+    leafIndex.reserve(leaves.size() * 2);
+    for (std::size_t n = 0; n < leaves.size(); ++n) {
+        const auto o = leaves[n]->origin();
+        leafIndex.emplace(packKey({o.x() >> 3, o.y() >> 3, o.z() >> 3}),
+                          static_cast<std::uint32_t>(n));
+    }
+    const openvdb::Vec3s background = color.background();
+    std::vector<LeafWork> work(leaves.size());
+
+    // Pass 1, per leaf: vertices of the cells it owns (a cell belongs to the leaf of its first
+    // stored corner), and quads of the crossing edges that start in it.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const auto& range) {
+        auto densityAcc = density.getConstAccessor();
+        auto colorAcc = color.getConstAccessor();
+        std::optional<openvdb::Vec3SGrid::ConstAccessor> gradientAcc;
+        if (gradient)
+            gradientAcc.emplace(gradient->getConstAccessor());
+        float value[kPad * kPad * kPad];
+        bool stored[kPad * kPad * kPad];
+        for (std::size_t n = range.begin(); n != range.end(); ++n) {
+            const openvdb::Coord origin = leaves[n]->origin();
+            const FloatLeaf* nd[27];
+            const VecLeaf* nc[27];
+            const VecLeaf* ng[27];
+            std::int64_t nleaf[27];
+            float tile[27];
+            for (int s = 0; s < 27; ++s) {
+                const openvdb::Coord o =
+                    origin.offsetBy(8 * (s / 9 - 1), 8 * ((s / 3) % 3 - 1), 8 * (s % 3 - 1));
+                nd[s] = densityAcc.probeConstLeaf(o);
+                tile[s] = nd[s] ? 0.0f : densityAcc.getValue(o);
+                nc[s] = nd[s] ? colorAcc.probeConstLeaf(o) : nullptr;
+                ng[s] = nd[s] && gradientAcc ? gradientAcc->probeConstLeaf(o) : nullptr;
+                const auto it = leafIndex.find(packKey({o.x() >> 3, o.y() >> 3, o.z() >> 3}));
+                nleaf[s] = nd[s] && it != leafIndex.end() ? std::int64_t(it->second) : -1;
+            }
+            const float* data[27];
+            for (int q = 0; q < 27; ++q)
+                data[q] = nd[q] ? nd[q]->buffer().data() : nullptr;
+            float lo = std::numeric_limits<float>::max(), hi = -lo;
+            for (int i = 0; i < kPad; ++i)
+                for (int j = 0; j < kPad; ++j) {
+                    const int si = sideOf(i), sj = sideOf(j), li = localOf(i), lj = localOf(j);
+                    for (int part = 0; part < 3; ++part) {
+                        // z runs over the leaf below (one voxel), this one (8), the one above (1).
+                        const int s = neighbourIndex(si, sj, part);
+                        const int k0 = part == 0 ? 0 : part == 1 ? 1 : kPad - 1;
+                        const int count = part == 1 ? 8 : 1;
+                        const int local0 = part == 0 ? 7 : 0;
+                        float* out = &value[padOffset(i, j, k0)];
+                        bool* on = &stored[padOffset(i, j, k0)];
+                        if (data[s]) {
+                            const int off = leafOffset(li, lj, local0);
+                            const auto& mask = nd[s]->getValueMask();
+                            for (int k = 0; k < count; ++k) {
+                                out[k] = data[s][off + k];
+                                on[k] = mask.isOn(off + k);
+                            }
+                        } else {
+                            for (int k = 0; k < count; ++k) {
+                                out[k] = tile[s];
+                                on[k] = false;
+                            }
+                        }
+                    }
+                }
+            for (int p = 0; p < kPad * kPad * kPad; ++p) {
+                lo = std::min(lo, value[p]);
+                hi = std::max(hi, value[p]);
+            }
+            if (!(lo <= iso && hi > iso))
+                continue; // nothing crosses in or next to this leaf
+            LeafWork& w = work[n];
+            w.cells.assign(kCells * kCells * kCells, kNone);
+            for (int ci = 0; ci < kCells; ++ci)
+                for (int cj = 0; cj < kCells; ++cj)
+                    for (int ck = 0; ck < kCells; ++ck) {
+                        const int base = padOffset(ci, cj, ck);
+                        float f[8];
+                        int inside = 0;
+                        for (int c = 0; c < 8; ++c) {
+                            f[c] = value[base + kCornerOffset[c]];
+                            inside |= (f[c] > iso ? 1 : 0) << c;
+                        }
+                        if (inside == 0 || inside == 255)
+                            continue;
+                        int first = -1;
+                        for (int c = 0; c < 8 && first < 0; ++c)
+                            if (stored[base + kCornerOffset[c]])
+                                first = c;
+                        if (first < 0)
+                            continue;
+                        const int q[3] = {ci + kCorner[first][0], cj + kCorner[first][1],
+                                          ck + kCorner[first][2]};
+                        const int owner = neighbourIndex(sideOf(q[0]), sideOf(q[1]), sideOf(q[2]));
+                        const int cell = cellOffset(ci, cj, ck);
+                        if (owner != neighbourIndex(1, 1, 1)) {
+                            if (nleaf[owner] < 0)
+                                continue;
+                            // The owner's cell table starts one voxel below its origin.
+                            const int oi = ci - 8 * (sideOf(q[0]) - 1);
+                            const int oj = cj - 8 * (sideOf(q[1]) - 1);
+                            const int ok = ck - 8 * (sideOf(q[2]) - 1);
+                            w.cells[cell] = kOwnedElsewhere - static_cast<int>(w.foreign.size());
+                            w.foreign.push_back(
+                                {static_cast<std::uint32_t>(nleaf[owner]), cellOffset(oi, oj, ok)});
+                            continue;
+                        }
+                        // The vertex: mean of the edge crossings, in cell units.
+                        float sum[3] = {0.0f, 0.0f, 0.0f};
+                        int crossings = 0;
+                        for (const auto& e : kEdge) {
+                            const float fa = f[e[0]], fb = f[e[1]];
+                            if ((fa > iso) == (fb > iso))
+                                continue;
+                            const float t = (iso - fa) / (fb - fa);
+                            for (int k = 0; k < 3; ++k)
+                                sum[k] += float(kCorner[e[0]][k]) +
+                                          t * float(kCorner[e[1]][k] - kCorner[e[0]][k]);
+                            ++crossings;
+                        }
+                        const float t[3] = {sum[0] / float(crossings), sum[1] / float(crossings),
+                                            sum[2] / float(crossings)};
+                        // Colour and gradient: trilinear over the cell's stored corners.
+                        openvdb::Vec3s colorSum(0.0f), gradientSum(0.0f);
+                        float weight = 0.0f;
+                        for (int c = 0; c < 8; ++c) {
+                            const int p[3] = {ci + kCorner[c][0], cj + kCorner[c][1],
+                                              ck + kCorner[c][2]};
+                            if (!stored[padOffset(p[0], p[1], p[2])])
+                                continue;
+                            const int s = neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
+                            const int off = leafOffset(localOf(p[0]), localOf(p[1]), localOf(p[2]));
+                            float wgt = 1.0f;
+                            for (int k = 0; k < 3; ++k)
+                                wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
+                            if (nc[s])
+                                colorSum += wgt * nc[s]->getValue(off);
+                            if (ng[s])
+                                gradientSum += wgt * ng[s]->getValue(off);
+                            weight += wgt;
+                        }
+                        const openvdb::Vec3s rgb = weight > 0.0f ? colorSum / weight : background;
+                        w.cells[cell] = static_cast<std::int32_t>(w.positions.size());
+                        w.positions.push_back({(float(origin.x() - 1 + ci) + t[0]) * h,
+                                               (float(origin.y() - 1 + cj) + t[1]) * h,
+                                               (float(origin.z() - 1 + ck) + t[2]) * h});
+                        w.colors.push_back({std::clamp(rgb[0], 0.0f, 1.0f),
+                                            std::clamp(rgb[1], 0.0f, 1.0f),
+                                            std::clamp(rgb[2], 0.0f, 1.0f)});
+                        if (gradient)
+                            w.gradients.push_back(weight > 0.0f ? Vec3f{gradientSum[0] / weight,
+                                                                        gradientSum[1] / weight,
+                                                                        gradientSum[2] / weight}
+                                                                : Vec3f{0.0f, 0.0f, 0.0f});
+                    }
+            // Edges from this leaf's voxels (padded 1..8) towards +axis.
+            for (int i = 1; i < kPad - 1; ++i)
+                for (int j = 1; j < kPad - 1; ++j)
+                    for (int k = 1; k < kPad - 1; ++k) {
+                        const int v[3] = {i, j, k};
+                        const bool in = value[padOffset(i, j, k)] > iso;
+                        for (int a = 0; a < 3; ++a) {
+                            int u[3] = {i, j, k};
+                            ++u[a];
+                            if ((value[padOffset(u[0], u[1], u[2])] > iso) == in)
+                                continue;
+                            const int b = (a + 1) % 3, c = (a + 2) % 3;
+                            // Cells around the edge, counter-clockwise seen from +a.
+                            std::array<std::int32_t, 4> quad;
+                            const int around[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
+                            for (int m = 0; m < 4; ++m) {
+                                int cc[3] = {v[0], v[1], v[2]};
+                                cc[b] += around[m][0];
+                                cc[c] += around[m][1];
+                                quad[m] = cellOffset(cc[0], cc[1], cc[2]);
+                            }
+                            // Outward is from high density to low: +a when this end is inside.
+                            if (!in)
+                                std::swap(quad[1], quad[3]);
+                            w.quads.push_back(quad);
+                        }
+                    }
+        }
+    });
+
+    // Global numbering: a prefix sum over the leaves, so the mesh does not depend on threads.
+    std::size_t vertices = 0, quads = 0;
+    for (auto& w : work) {
+        w.vertexBase = static_cast<std::uint32_t>(vertices);
+        w.quadBase = quads;
+        vertices += w.positions.size();
+        quads += w.quads.size();
+    }
+    mesh.positions.resize(vertices);
+    mesh.colors.resize(vertices);
+    mesh.normals.resize(gradient ? vertices : 0);
+    mesh.indices.assign(6 * quads, 0);
+    std::vector<char> keep(quads, 1);
+    tbb::parallel_for(std::size_t{0}, work.size(), [&](std::size_t n) {
+        const LeafWork& w = work[n];
+        std::copy(w.positions.begin(), w.positions.end(), mesh.positions.begin() + w.vertexBase);
+        std::copy(w.colors.begin(), w.colors.end(), mesh.colors.begin() + w.vertexBase);
+        if (gradient)
+            for (std::size_t v = 0; v < w.gradients.size(); ++v) {
+                const Vec3f& g = w.gradients[v];
+                const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                mesh.normals[w.vertexBase + v] = len > 0.0f
+                                                     ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len}
+                                                     : Vec3f{0.0f, 0.0f, 1.0f};
+            }
+        auto vertexOf = [&](std::int32_t cell) -> std::int64_t {
+            const std::int32_t entry = w.cells[cell];
+            if (entry >= 0)
+                return std::int64_t(w.vertexBase) + entry;
+            if (entry == kNone)
+                return -1;
+            const Foreign& f = w.foreign[kOwnedElsewhere - entry];
+            const LeafWork& owner = work[f.leaf];
+            if (owner.cells.empty() || owner.cells[f.cell] < 0)
+                return -1;
+            return std::int64_t(owner.vertexBase) + owner.cells[f.cell];
+        };
+        for (std::size_t q = 0; q < w.quads.size(); ++q) {
+            std::int64_t v[4];
+            bool whole = true;
+            for (int m = 0; m < 4; ++m) {
+                v[m] = vertexOf(w.quads[q][m]);
+                whole = whole && v[m] >= 0;
+            }
+            std::uint32_t* out = &mesh.indices[6 * (w.quadBase + q)];
+            if (!whole) {
+                keep[w.quadBase + q] = 0;
+                continue;
+            }
+            const std::uint32_t a = std::uint32_t(v[0]), b = std::uint32_t(v[1]),
+                                c = std::uint32_t(v[2]), d = std::uint32_t(v[3]);
+            out[0] = a, out[1] = b, out[2] = c, out[3] = a, out[4] = c, out[5] = d;
+        }
+    });
+    // Quads that lost a corner (only where the plan's tiles were wrong): dropped, not garbled.
+    if (std::find(keep.begin(), keep.end(), 0) != keep.end()) {
+        std::size_t to = 0;
+        for (std::size_t q = 0; q < quads; ++q)
+            if (keep[q]) {
+                std::copy_n(&mesh.indices[6 * q], 6, &mesh.indices[6 * to]);
+                ++to;
+            }
+        mesh.indices.resize(6 * to);
+    }
+}
+
+} // namespace faultline::core::detail
