@@ -1,6 +1,7 @@
 #include "core/surface/metaball_field.hpp"
 
 #include "core/surface/detail/field_level.hpp"
+#include "core/surface/detail/simd8.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -17,6 +18,7 @@ using detail::FieldLevel;
 using detail::floorDiv;
 using detail::NearList;
 using detail::packKey;
+namespace simd8 = detail::simd8;
 
 namespace {
 
@@ -73,115 +75,178 @@ inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
 
 // Sum over a sphere list of w (gamma_below - gamma_own) within own's cutoff (a coarse level's
 // window), or of w gamma_below over all of them (top level).
-template <int P>
-[[gnu::always_inline]] inline float
-windowSumBody(float x, float y, float z, const float *px, const float *py, const float *pz,
-              const float *pw, std::size_t count, const SoftenedKernel &below,
-              const SoftenedKernel &own, float minD2, bool top) {
-    const float invBelow = 1.0f / below.a2, invOwn = 1.0f / own.a2;
-    const float belowA2 = below.a2, ownA2 = own.a2;
-    float acc = 0.0f;
-    if (top) {
-#pragma omp simd reduction(+ : acc)
-        for (std::size_t q = 0; q < count; ++q) {
-            const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
-            const float d2 = dx * dx + dy * dy + dz * dz;
-            const float inner = softInner(below, invBelow, d2);
-            const float outer = inversePower<P>(d2, minD2);
-            acc += pw[q] * (d2 < belowA2 ? inner : outer);
+struct WindowKernels {
+    simd8::v8f belowInv, belowA2, ownInv, ownA2, minD2, one;
+    simd8::v8f below[5], own[5]; // scale * coef
+    WindowKernels(const SoftenedKernel &b, const SoftenedKernel &o, float minD2In) {
+        using simd8::splat;
+        belowInv = splat(1.0f / b.a2), belowA2 = splat(b.a2);
+        ownInv = splat(1.0f / o.a2), ownA2 = splat(o.a2);
+        minD2 = splat(minD2In), one = splat(1.0f);
+        for (int k = 0; k < 5; ++k) {
+            below[k] = splat(b.scale * b.coef[k]);
+            own[k] = splat(o.scale * o.coef[k]);
         }
-        return acc;
     }
-#pragma omp simd reduction(+ : acc)
-    for (std::size_t q = 0; q < count; ++q) {
-        const float dx = x - px[q], dy = y - py[q], dz = z - pz[q];
-        const float d2 = dx * dx + dy * dy + dz * dz;
-        const float inner = softInner(below, invBelow, d2);
-        const float outer = inversePower<P>(d2, minD2);
-        const float v = (d2 < belowA2 ? inner : outer) - softInner(own, invOwn, d2);
-        acc += d2 < ownA2 ? pw[q] * v : 0.0f;
+};
+
+template <int P, bool Top>
+[[gnu::always_inline]] inline simd8::v8f windowTerm(const WindowKernels &k, simd8::v8f x,
+                                                      simd8::v8f y, simd8::v8f z, simd8::v8f px,
+                                                      simd8::v8f py, simd8::v8f pz,
+                                                      simd8::v8f w) {
+    using simd8::v8f;
+    const v8f dx = x - px, dy = y - py, dz = z - pz;
+    const v8f d2 = dx * dx + dy * dy + dz * dz;
+    const v8f tb = d2 * k.belowInv - k.one;
+    const v8f inner =
+        k.below[0] + tb * (k.below[1] + tb * (k.below[2] + tb * (k.below[3] + tb * k.below[4])));
+    const v8f clamped = simd8::max(d2, k.minD2);
+    v8f outer;
+    if constexpr (P == 2)
+        outer = k.one / clamped;
+    else
+        outer = simd8::inverseSqrt(clamped);
+    v8f v = d2 < k.belowA2 ? inner : outer;
+    if constexpr (!Top) {
+        const v8f to = d2 * k.ownInv - k.one;
+        v -= k.own[0] + to * (k.own[1] + to * (k.own[2] + to * (k.own[3] + to * k.own[4])));
+        v = d2 < k.ownA2 ? v : v8f{};
     }
-    return acc;
+    return w * v;
+}
+
+template <int P, bool Top>
+[[gnu::always_inline]] inline float windowSumBody(float x, float y, float z, const float *px,
+                                                  const float *py, const float *pz,
+                                                  const float *pw, std::size_t count,
+                                                  const SoftenedKernel &below,
+                                                  const SoftenedKernel &own, float minD2) {
+    using simd8::load;
+    using simd8::v8f;
+    const WindowKernels k(below, own, minD2);
+    const v8f vx = simd8::splat(x), vy = simd8::splat(y), vz = simd8::splat(z);
+    v8f acc0{}, acc1{};
+    std::size_t q = 0;
+    for (; q + 16 <= count; q += 16) {
+        acc0 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q), load(py + q), load(pz + q),
+                                   load(pw + q));
+        acc1 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q + 8), load(py + q + 8),
+                                   load(pz + q + 8), load(pw + q + 8));
+    }
+    for (; q + 8 <= count; q += 8)
+        acc0 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q), load(py + q), load(pz + q),
+                                   load(pw + q));
+    if (q < count) {
+        // Padding lanes have weight 0 (and a clamped, finite kernel).
+        const std::size_t n = count - q;
+        acc1 += windowTerm<P, Top>(k, vx, vy, vz, simd8::loadPartial(px + q, n),
+                                   simd8::loadPartial(py + q, n), simd8::loadPartial(pz + q, n),
+                                   simd8::loadPartial(pw + q, n));
+    }
+    return simd8::sum(acc0 + acc1);
 }
 
 FAULTLINE_HOT float windowSum1(float x, float y, float z, const float *px, const float *py,
                                const float *pz, const float *pw, std::size_t count,
                                const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
                                bool top) {
-    return windowSumBody<1>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+    return top ? windowSumBody<1, true>(x, y, z, px, py, pz, pw, count, below, own, minD2)
+               : windowSumBody<1, false>(x, y, z, px, py, pz, pw, count, below, own, minD2);
 }
 FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const float *py,
                                const float *pz, const float *pw, std::size_t count,
                                const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
                                bool top) {
-    return windowSumBody<2>(x, y, z, px, py, pz, pw, count, below, own, minD2, top);
+    return top ? windowSumBody<2, true>(x, y, z, px, py, pz, pw, count, below, own, minD2)
+               : windowSumBody<2, false>(x, y, z, px, py, pz, pw, count, below, own, minD2);
 }
 
-// Exact near field (k - gamma_a0 within a0, or the compact kernel with P = 0) and Figure 4
-// colour at one voxel. Returns the field; rgbn gets the colour sum and count.
+// Exact near field at one voxel: k - gamma_a0 within a0, or the compact kernel (P = 0), over a
+// list padded to whole vectors with weightless entries far away.
 template <int P>
-[[gnu::always_inline]] inline float
-nearSumBody(float x, float y, float z, const NearList &list, float invC2, float a2, float minD2,
-            const SoftenedKernel &soft, float reachAdd, float rgbn[4]) {
+[[gnu::always_inline]] inline float nearValueBody(float x, float y, float z, const NearList &list,
+                                                  float invC2, float a2, float minD2,
+                                                  const SoftenedKernel &soft) {
+    using simd8::load;
+    using simd8::splat;
+    using simd8::v8f;
+    const v8f vx = splat(x), vy = splat(y), vz = splat(z), one = splat(1.0f);
+    const v8f va2 = splat(a2), vmin = splat(minD2), vinvC2 = splat(invC2),
+              vinvSoft = splat(1.0f / soft.a2);
+    v8f c[5];
+    for (int k = 0; k < 5; ++k)
+        c[k] = splat(soft.scale * soft.coef[k]);
+    auto term = [&](std::size_t q) [[gnu::always_inline]] {
+        const v8f dx = vx - load(list.x.data() + q), dy = vy - load(list.y.data() + q),
+                  dz = vz - load(list.z.data() + q);
+        const v8f r = load(list.r.data() + q);
+        const v8f d2 = dx * dx + dy * dy + dz * dz;
+        if constexpr (P == 0) {
+            const v8f t = one - d2 * (vinvC2 / (r * r));
+            return t > v8f{} ? r * (t * t * t) : v8f{};
+        } else {
+            const v8f clamped = simd8::max(d2, vmin);
+            v8f k;
+            if constexpr (P == 2)
+                k = one / clamped;
+            else
+                k = simd8::inverseSqrt(clamped);
+            const v8f t = d2 * vinvSoft - one;
+            const v8f v = k - (c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * c[4]))));
+            return d2 < va2 ? r * v : v8f{};
+        }
+    };
     const std::size_t count = list.size();
-    const float *lx = list.x.data();
-    const float *ly = list.y.data();
-    const float *lz = list.z.data();
-    const float *lr = list.r.data();
-    const float invSoft = 1.0f / soft.a2;
-    float f = 0.0f;
-    if constexpr (P == 0) {
-#pragma omp simd reduction(+ : f)
-        for (std::size_t q = 0; q < count; ++q) {
-            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-            const float d2 = dx * dx + dy * dy + dz * dz;
-            f += lr[q] * compactValue(d2, invC2 / (lr[q] * lr[q]));
-        }
-    } else {
-#pragma omp simd reduction(+ : f)
-        for (std::size_t q = 0; q < count; ++q) {
-            const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-            const float d2 = dx * dx + dy * dy + dz * dz;
-            const float v = inversePower<P>(d2, minD2) - softInner(soft, invSoft, d2);
-            f += d2 < a2 ? lr[q] * v : 0.0f;
-        }
+    v8f acc0{}, acc1{};
+    std::size_t q = 0;
+    for (; q + 16 <= count; q += 16) {
+        acc0 += term(q);
+        acc1 += term(q + 8);
     }
-    float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
-    const float *red = list.red.data();
-    const float *green = list.green.data();
-    const float *blue = list.blue.data();
-#pragma omp simd reduction(+ : cr, cg, cb, n)
-    for (std::size_t q = 0; q < count; ++q) {
-        const float dx = x - lx[q], dy = y - ly[q], dz = z - lz[q];
-        const float d2 = dx * dx + dy * dy + dz * dz;
-        const float reach = lr[q] + reachAdd;
-        const float in = d2 < reach * reach ? 1.0f : 0.0f;
-        cr += in * red[q];
-        cg += in * green[q];
-        cb += in * blue[q];
-        n += in;
-    }
-    rgbn[0] = cr;
-    rgbn[1] = cg;
-    rgbn[2] = cb;
-    rgbn[3] = n;
-    return f;
+    for (; q < count; q += 8)
+        acc0 += term(q);
+    return simd8::sum(acc0 + acc1);
 }
 
-FAULTLINE_HOT float nearSum0(float x, float y, float z, const NearList &list, float invC2, float a2,
-                             float minD2, const SoftenedKernel &soft, float reachAdd,
-                             float rgbn[4]) {
-    return nearSumBody<0>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+FAULTLINE_HOT float nearValue0(float x, float y, float z, const NearList &list, float invC2,
+                               float a2, float minD2, const SoftenedKernel &soft) {
+    return nearValueBody<0>(x, y, z, list, invC2, a2, minD2, soft);
 }
-FAULTLINE_HOT float nearSum1(float x, float y, float z, const NearList &list, float invC2, float a2,
-                             float minD2, const SoftenedKernel &soft, float reachAdd,
-                             float rgbn[4]) {
-    return nearSumBody<1>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+FAULTLINE_HOT float nearValue1(float x, float y, float z, const NearList &list, float invC2,
+                               float a2, float minD2, const SoftenedKernel &soft) {
+    return nearValueBody<1>(x, y, z, list, invC2, a2, minD2, soft);
 }
-FAULTLINE_HOT float nearSum2(float x, float y, float z, const NearList &list, float invC2, float a2,
-                             float minD2, const SoftenedKernel &soft, float reachAdd,
-                             float rgbn[4]) {
-    return nearSumBody<2>(x, y, z, list, invC2, a2, minD2, soft, reachAdd, rgbn);
+FAULTLINE_HOT float nearValue2(float x, float y, float z, const NearList &list, float invC2,
+                               float a2, float minD2, const SoftenedKernel &soft) {
+    return nearValueBody<2>(x, y, z, list, invC2, a2, minD2, soft);
+}
+
+// Figure 4 colour at one voxel: the mean colour of the spheres whose radius + reachAdd holds it.
+// Returns the number of them; rgb gets the colour sum.
+inline float colorSum(float x, float y, float z, const NearList &list, float reachAdd,
+                      float rgb[3]) {
+    float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+    for (std::size_t q = 0; q < list.size(); ++q) {
+        const float dx = x - list.x[q], dy = y - list.y[q], dz = z - list.z[q];
+        const float reach = list.r[q] + reachAdd;
+        if (dx * dx + dy * dy + dz * dz < reach * reach) {
+            cr += list.red[q];
+            cg += list.green[q];
+            cb += list.blue[q];
+            n += 1.0f;
+        }
+    }
+    rgb[0] = cr, rgb[1] = cg, rgb[2] = cb;
+    return n;
+}
+
+// Pads a near list to whole vectors with weightless spheres far from everything.
+void padToVectors(NearList &list) {
+    while (list.x.size() % 8 != 0) {
+        list.x.push_back(1e18f), list.y.push_back(1e18f), list.z.push_back(1e18f);
+        list.r.push_back(0.0f);
+    }
 }
 
 } // namespace
@@ -294,7 +359,6 @@ double MetaballField::reach(double iso) const {
     return m_kernel.p == 2 ? std::sqrt(ratio) : ratio;
 }
 
-float MetaballField::nearReach() const { return std::max(m_a0, maxRadius() + m_params.colorReach); }
 
 std::size_t MetaballField::coarseNodeCount() const {
     std::size_t n = 0;
@@ -480,26 +544,37 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                             }
                             m_tree.gatherRanges(box, level.cutoff, ranges);
                         }
+                        // The window's spheres in one contiguous list, padded with weightless
+                        // entries to whole vectors: one long loop per node.
+                        thread_local std::vector<float> wx, wy, wz, ww;
+                        wx.clear(), wy.clear(), wz.clear(), ww.clear();
+                        for (const auto &[first, last] : level.top ? decltype(ranges){} : ranges) {
+                            wx.insert(wx.end(), s.x.begin() + first, s.x.begin() + last);
+                            wy.insert(wy.end(), s.y.begin() + first, s.y.begin() + last);
+                            wz.insert(wz.end(), s.z.begin() + first, s.z.begin() + last);
+                            ww.insert(ww.end(), s.r.begin() + first, s.r.begin() + last);
+                        }
+                        while (ww.size() % 16 != 0) {
+                            wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
+                            ww.push_back(0.0f);
+                        }
                         for (int n = 0; n < count; ++n) {
                             const int off = needed[n];
                             const int i = off >> 6, j = (off >> 3) & 7, z = off & 7;
                             const float x = (brick.origin[0] + i) * level.spacing;
                             const float y = (brick.origin[1] + j) * level.spacing;
                             const float w = (brick.origin[2] + z) * level.spacing;
-                            float sum = 0.0f;
-                            for (const auto &[first, last] : ranges) {
-                                const float *px = s.x.data() + first;
-                                const float *py = s.y.data() + first;
-                                const float *pz = s.z.data() + first;
-                                const float *pw = s.r.data() + first;
-                                const std::size_t len = last - first;
-                                sum += kernel.p == 2
-                                           ? windowSum2(x, y, w, px, py, pz, pw, len, below, own,
-                                                        kernel.minD2, level.top)
-                                           : windowSum1(x, y, w, px, py, pz, pw, len, below, own,
-                                                        kernel.minD2, level.top);
-                            }
-                            brick.values[off] = sum;
+                            // The top level sums every sphere: straight from the tree's arrays.
+                            const float *px = level.top ? s.x.data() : wx.data();
+                            const float *py = level.top ? s.y.data() : wy.data();
+                            const float *pz = level.top ? s.z.data() : wz.data();
+                            const float *pw = level.top ? s.r.data() : ww.data();
+                            const std::size_t len = level.top ? s.size() : ww.size();
+                            brick.values[off] =
+                                kernel.p == 2 ? windowSum2(x, y, w, px, py, pz, pw, len, below,
+                                                           own, kernel.minD2, level.top)
+                                              : windowSum1(x, y, w, px, py, pz, pw, len, below,
+                                                           own, kernel.minD2, level.top);
                         }
                     }
             if (above) {
@@ -529,36 +604,38 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
 }
 
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
-    thread_local NearList list;
+    thread_local NearList list, colors;
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
-    // One neighbour list per 4^3 octant: shorter lists than one for the whole block.
+    // One neighbour list per 4^3 octant (shorter lists than one for the whole block), and a
+    // far shorter one for the colour: only spheres whose radius + reach can hold a voxel.
     constexpr int kHalf = kBlockDim / 2;
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
                         o[2] + ((octant >> 2) & 1) * kHalf};
+        const Box box =
+            voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h);
         list.clear();
-        m_tree.gather(voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h),
-                      nearReach(), list, true);
+        m_tree.gather(box, m_a0, list, false);
+        padToVectors(list);
+        colors.clear();
+        m_tree.gather(box, maxRadius() + m_params.colorReach, colors, true);
         for (int i = 0; i < kHalf; ++i)
             for (int j = 0; j < kHalf; ++j)
                 for (int k = 0; k < kHalf; ++k) {
-                    float rgbn[4];
                     const float x = (lo[0] + i) * m_h, y = (lo[1] + j) * m_h, z = (lo[2] + k) * m_h;
-                    const float f = compact ? nearSum0(x, y, z, list, invC2, a2, m_kernel.minD2,
-                                                       m_soft0, m_params.colorReach, rgbn)
-                                    : m_kernel.p == 2
-                                        ? nearSum2(x, y, z, list, invC2, a2, m_kernel.minD2,
-                                                   m_soft0, m_params.colorReach, rgbn)
-                                        : nearSum1(x, y, z, list, invC2, a2, m_kernel.minD2,
-                                                   m_soft0, m_params.colorReach, rgbn);
+                    const float f =
+                        compact           ? nearValue0(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0)
+                        : m_kernel.p == 2 ? nearValue2(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0)
+                                          : nearValue1(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0);
+                    float rgb[3];
+                    const float n = colorSum(x, y, z, colors, m_params.colorReach, rgb);
                     const int off =
                         blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k);
                     density[off] = f;
-                    color[off] = rgbn[3] > 0.0f ? Vec3f{rgbn[0] / rgbn[3], rgbn[1] / rgbn[3],
-                                                        rgbn[2] / rgbn[3]}
-                                                : m_params.initialColor;
+                    color[off] = n > 0.0f ? Vec3f{rgb[0] / n, rgb[1] / n, rgb[2] / n}
+                                          : m_params.initialColor;
                 }
     }
     if (!m_levels.empty())

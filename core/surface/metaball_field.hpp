@@ -97,7 +97,6 @@ class MetaballField {
     std::size_t coarseNodeCount() const;
 
   private:
-    float nearReach() const;
     void sumNear(const detail::NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
                  Vec3f *color) const;
 
