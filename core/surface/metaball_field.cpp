@@ -9,6 +9,8 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <map>
+#include <optional>
 
 namespace faultline::core {
 
@@ -264,6 +266,16 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         // The tolerance at the lowest iso; the estimate is already pessimistic (kErrorPerScale
         // is 1.5x the worst error measured, and errors of levels and spheres are added).
         const double budget = params.tolerance * params.iso / params.isoRangeFactor;
+        // Among the (kappa, coarse kappa) pairs that meet the budget, the cheapest by a work
+        // model: the near field costs about a_0^3 per voxel, each coarse level about
+        // (a_1 / ratio_1)^3 per voxel, with the weights measured on bench_surface's fault zone.
+        // With none, the most accurate pair.
+        struct Choice {
+            int kappa = 0, coarse = 0, ratio = 0;
+            double error = 0.0, cost = 0.0;
+        };
+        std::optional<Choice> best, mostAccurate;
+        std::map<double, double> densest; // cutoff -> densest weight within it (shared)
         for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
             if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
                 continue;
@@ -274,14 +286,32 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
                 std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
             m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
             m_kappa = kappa;
-            m_coarseKappa =
-                std::max(m_tuning.coarseKappa > 0 ? m_tuning.coarseKappa : kappa, kappa / 2 + 1);
-            const auto scale = errorScale();
-            m_estimatedError = kErrorPerScale[kappa] * scale[0] +
-                               kCoarseErrorShare * kErrorPerScale[m_coarseKappa] * scale[1];
-            if (m_estimatedError <= budget)
-                break;
+            for (int coarse = std::max(kKappaMin, kappa / 2 + 1); coarse <= kKappaMax; ++coarse) {
+                if (m_tuning.coarseKappa > 0 &&
+                    coarse != std::max(m_tuning.coarseKappa, kappa / 2 + 1))
+                    continue;
+                m_coarseKappa = coarse;
+                const auto scale = errorScale(&densest);
+                Choice c{kappa, coarse, m_ratio1,
+                         kErrorPerScale[kappa] * scale[0] +
+                             kCoarseErrorShare * kErrorPerScale[coarse] * scale[1],
+                         5.0 * std::pow(double(kappa * m_ratio1), 3) +
+                             56.0 * std::pow(double(coarse), 3)};
+                if (!mostAccurate || c.error < mostAccurate->error)
+                    mostAccurate = c;
+                if (c.error <= budget && (!best || c.cost < best->cost))
+                    best = c;
+                // A larger coarse kappa is more accurate and dearer: the first that fits will do.
+                if (c.error <= budget)
+                    break;
+            }
         }
+        const Choice chosen = best ? *best : *mostAccurate;
+        m_kappa = chosen.kappa;
+        m_coarseKappa = chosen.coarse;
+        m_ratio1 = chosen.ratio;
+        m_a0 = static_cast<float>(m_kappa) * static_cast<float>(m_ratio1) * m_h;
+        m_estimatedError = chosen.error;
         m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
     } else {
         m_a0 = params.compactReach * maxRadius();
@@ -325,7 +355,7 @@ double MetaballField::cutoff(int l) const {
     return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
 }
 
-std::array<double, 2> MetaballField::errorScale() const {
+std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo) const {
     // The densest weight within each cutoff over cutoff^p: the size of what each level
     // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
     const auto &s = m_tree.spheres();
@@ -338,10 +368,17 @@ std::array<double, 2> MetaballField::errorScale() const {
     std::array<double, 2> scale{0.0, 0.0};
     for (int l = 0;; ++l) {
         const double a = cutoff(l);
+        const auto known = memo ? memo->find(a) : std::map<double, double>::iterator{};
         double densest = 0.0;
-        for (std::size_t q = 0; q < samples; ++q) {
-            const std::size_t i = q * n / samples;
-            densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
+        if (memo && known != memo->end()) {
+            densest = known->second;
+        } else {
+            for (std::size_t q = 0; q < samples; ++q) {
+                const std::size_t i = q * n / samples;
+                densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
+            }
+            if (memo)
+                memo->emplace(a, densest);
         }
         scale[l == 0 ? 0 : 1] += densest / (m_kernel.p == 2 ? a * a : a);
         if (a * a > 4.0 * span2)
@@ -608,8 +645,16 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
-    // One neighbour list per 4^3 octant (shorter lists than one for the whole block), and a
-    // far shorter one for the colour: only spheres whose radius + reach can hold a voxel.
+    // One tree walk per block for the spheres within a0, then one list per 4^3 octant filtered
+    // from it (shorter lists than the block's); the colour has its own far shorter list: only
+    // spheres whose radius + reach can hold a voxel of the block.
+    const Box blockBox =
+        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    thread_local NearList block;
+    block.clear();
+    m_tree.gather(blockBox, m_a0, block, false);
+    colors.clear();
+    m_tree.gather(blockBox, maxRadius() + m_params.colorReach, colors, true);
     constexpr int kHalf = kBlockDim / 2;
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
@@ -617,18 +662,28 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
         const Box box =
             voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h);
         list.clear();
-        m_tree.gather(box, m_a0, list, false);
+        for (std::size_t q = 0; q < block.size(); ++q) {
+            float d2 = 0.0f;
+            const float c[3] = {block.x[q], block.y[q], block.z[q]};
+            for (int k = 0; k < 3; ++k) {
+                const float gap = std::max({box.lo[k] - c[k], c[k] - box.hi[k], 0.0f});
+                d2 += gap * gap;
+            }
+            if (d2 <= a2) {
+                list.x.push_back(c[0]), list.y.push_back(c[1]), list.z.push_back(c[2]);
+                list.r.push_back(block.r[q]);
+            }
+        }
         padToVectors(list);
-        colors.clear();
-        m_tree.gather(box, maxRadius() + m_params.colorReach, colors, true);
         for (int i = 0; i < kHalf; ++i)
             for (int j = 0; j < kHalf; ++j)
                 for (int k = 0; k < kHalf; ++k) {
                     const float x = (lo[0] + i) * m_h, y = (lo[1] + j) * m_h, z = (lo[2] + k) * m_h;
-                    const float f =
-                        compact           ? nearValue0(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0)
-                        : m_kernel.p == 2 ? nearValue2(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0)
-                                          : nearValue1(x, y, z, list, invC2, a2, m_kernel.minD2, m_soft0);
+                    const float minD2 = m_kernel.minD2;
+                    const float f = compact ? nearValue0(x, y, z, list, invC2, a2, minD2, m_soft0)
+                                    : m_kernel.p == 2
+                                        ? nearValue2(x, y, z, list, invC2, a2, minD2, m_soft0)
+                                        : nearValue1(x, y, z, list, invC2, a2, minD2, m_soft0);
                     float rgb[3];
                     const float n = colorSum(x, y, z, colors, m_params.colorReach, rgb);
                     const int off =

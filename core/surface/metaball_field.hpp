@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <unordered_map>
@@ -84,11 +85,13 @@ class MetaballField {
     // Cutoff of the exact near field and the number of coarse levels (for reports and tests).
     float nearCutoff() const { return m_a0; }
     int kappa() const { return m_kappa; }
+    int coarseKappa() const { return m_coarseKappa; }
     // A priori estimate of the largest |f - f_exact| (from kErrorPerScale and errorScale()).
     double estimatedError() const { return m_estimatedError; }
     // The densest weight within each level's cutoff over cutoff^p: the size of what level 1
     // ([0]) and the coarser levels ([1]) interpolate.
-    std::array<double, 2> errorScale() const;
+    // memo: densest weight per cutoff, shared between calls for several kappas.
+    std::array<double, 2> errorScale(std::map<double, double> *memo = nullptr) const;
     // Cutoff a_l: level 0 sums k - gamma_{a_0} exactly; level l >= 1 sums gamma_{a_{l-1}} -
     // gamma_{a_l} within a_l on a grid of spacing ratio * voxel * 2^(l-1).
     double cutoff(int level) const;

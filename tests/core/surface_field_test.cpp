@@ -99,6 +99,31 @@ TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
     EXPECT_EQ(c.colorMismatches, 0u);
 }
 
+// The field picks the near cutoff (kappa) and the coarse levels' cutoffs (coarse kappa) apart, as
+// the cheapest pair whose error estimate fits the budget. Where they differ, the field must still
+// match Algorithm 1 within the tolerance.
+TEST(MetaballField, ACheaperNearCutoffThanTheCoarseLevelsStillMatchesAlgorithm1) {
+    const Spheres s = slab(14, 14, 4, 3);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::InverseSquare;
+    fc::MultilevelTuning tuning;
+    tuning.topLevelPairs = 1e5;
+    bool mixed = false;
+    for (float iso : {8.0f, 12.0f, 16.0f}) {
+        params.iso = iso;
+        fc::MetaballField probe(s.set(), params, 0.25f, tuning);
+        if (probe.kappa() == probe.coarseKappa())
+            continue;
+        mixed = true;
+        const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                                             iso * params.isoRangeFactor, tuning);
+        EXPECT_GT(c.voxels, 10000u);
+        EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor)
+            << "iso " << iso << " kappa " << probe.kappa() << " coarse " << probe.coarseKappa();
+    }
+    EXPECT_TRUE(mixed) << "no iso here made the near and coarse cutoffs differ";
+}
+
 TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     const Spheres s = slab(9, 8, 3, 2);
     fc::SurfaceParams params;
