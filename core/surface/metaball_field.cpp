@@ -437,6 +437,11 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
     for (int opened = 0; opened < maxOpen && !heap.empty(); ++opened) {
         if (low > isoMax || high < isoMin)
             break; // decided
+        // Far from deciding either way after a few openings: the rest would be wasted (most
+        // cells where the surface may pass). Giving up only keeps a cell; it never drops one.
+        if (opened == m_tuning.probeOpen && high > m_tuning.giveUpRatio * isoMin &&
+            low * m_tuning.giveUpRatio < isoMax)
+            break;
         std::pop_heap(heap.begin(), heap.end());
         const Item item = heap.back();
         heap.pop_back();
@@ -447,10 +452,16 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
         const auto &node = nodes[item.node];
         if (node.leaf()) {
             for (std::uint32_t i = node.begin; i < node.end; ++i) {
-                Box p;
-                p.lo = p.hi = {s.x[i], s.y[i], s.z[i]};
-                low += double(s.r[i]) * k.value(detail::maxDistance2(p, box), s.r[i]);
-                high += double(s.r[i]) * k.value(detail::minDistance2(p, box), s.r[i]);
+                const float c[3] = {s.x[i], s.y[i], s.z[i]};
+                float near2 = 0.0f, far2 = 0.0f;
+                for (int a = 0; a < 3; ++a) {
+                    const float gap = std::max({box.lo[a] - c[a], c[a] - box.hi[a], 0.0f});
+                    const float span = std::max(box.hi[a] - c[a], c[a] - box.lo[a]);
+                    near2 += gap * gap;
+                    far2 += span * span;
+                }
+                low += double(s.r[i]) * k.value(far2, s.r[i]);
+                high += double(s.r[i]) * k.value(near2, s.r[i]);
             }
             continue;
         }

@@ -45,6 +45,8 @@ struct MultilevelTuning {
     int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: same as kappa
     int minRatio = 2;             // level-1 spacing at least this many voxels
     int maxOpen = 256;            // planning: tree nodes opened per block bound
+    int probeOpen = 40;           // planning: after this many openings, give up on a bound
+    double giveUpRatio = 2.0;     // whose high is over ratio * isoMin and low under isoMax / ratio
 };
 
 class MetaballField {

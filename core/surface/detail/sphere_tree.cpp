@@ -10,25 +10,6 @@ namespace {
 constexpr std::uint32_t kLeafSize = 8;
 }
 
-float minDistance2(const Box &a, const Box &b) {
-    float d2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-        const float below = a.lo[k] - b.hi[k], above = b.lo[k] - a.hi[k];
-        const float gap = below > 0.0f ? below : (above > 0.0f ? above : 0.0f);
-        d2 += gap * gap;
-    }
-    return d2;
-}
-
-float maxDistance2(const Box &a, const Box &b) {
-    float d2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-        const float span = std::max(a.hi[k] - b.lo[k], b.hi[k] - a.lo[k]);
-        d2 += span * span;
-    }
-    return d2;
-}
-
 void NearList::clear() {
     for (auto *v : {&x, &y, &z, &r, &red, &green, &blue})
         v->clear();

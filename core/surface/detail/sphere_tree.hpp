@@ -4,6 +4,7 @@
 
 #include "core/surface/sphere_set.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -16,9 +17,26 @@ struct Box {
     std::array<float, 3> hi{0, 0, 0};
 };
 
-// Squared smallest and largest distances between points of two boxes.
-float minDistance2(const Box &a, const Box &b);
-float maxDistance2(const Box &a, const Box &b);
+// Squared smallest and largest distances between points of two boxes (inline: surface planning
+// calls them millions of times).
+inline float minDistance2(const Box &a, const Box &b) {
+    float d2 = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        const float below = a.lo[k] - b.hi[k], above = b.lo[k] - a.hi[k];
+        const float gap = below > 0.0f ? below : (above > 0.0f ? above : 0.0f);
+        d2 += gap * gap;
+    }
+    return d2;
+}
+
+inline float maxDistance2(const Box &a, const Box &b) {
+    float d2 = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        const float span = std::max(a.hi[k] - b.lo[k], b.hi[k] - a.lo[k]);
+        d2 += span * span;
+    }
+    return d2;
+}
 
 // Spheres in tree order (structure of arrays), weights w = radius.
 struct PackedSpheres {
