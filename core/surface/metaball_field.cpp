@@ -524,8 +524,34 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         level.cutoff = static_cast<float>(cutoff(l));
         level.own = SoftenedKernel(m_kernel.p, level.cutoff, m_tuning.softeningOrder);
         // Top: summing all spheres is cheap, or every sphere lies within the cutoff of every
-        // point the voxels need.
-        if (static_cast<double>(level.neededCount()) * n <= m_tuning.topLevelPairs ||
+        // point the voxels need, or summing them all here costs less than this level's windowed
+        // sums and those of the levels above would (about one such level per doubling of the
+        // cutoff up to the span).
+        const double needed = static_cast<double>(level.neededCount());
+        bool cheaperOnTop = false;
+        if (needed * n > m_tuning.topLevelPairs && !level.bricks.empty()) {
+            double window = 0.0;
+            int samples = 0;
+            const std::size_t stride = std::max<std::size_t>(1, level.bricks.size() / 32);
+            for (std::size_t bi = 0; bi < level.bricks.size(); bi += stride) {
+                const Brick &b = level.bricks[bi];
+                for (int off = 0; off < 512; ++off)
+                    if (b.needed(off)) {
+                        const Vec3f p{(b.origin[0] + (off >> 6)) * level.spacing,
+                                      (b.origin[1] + ((off >> 3) & 7)) * level.spacing,
+                                      (b.origin[2] + (off & 7)) * level.spacing};
+                        window += weightWithin(p, level.cutoff) * n / totalWeight();
+                        ++samples;
+                        break;
+                    }
+            }
+            const double levelsLeft =
+                1.0 + std::max(0.0, std::log2(std::sqrt(span2) / double(level.cutoff)));
+            // A node's group list holds about twice its window (measured on the bench zone).
+            constexpr double kListOverWindow = 2.0;
+            cheaperOnTop = samples > 0 && n <= kListOverWindow * window / samples * levelsLeft;
+        }
+        if (needed * n <= m_tuning.topLevelPairs || cheaperOnTop ||
             double(aBelow) * aBelow >= span2 || l >= 30) {
             level.top = true;
             break;
