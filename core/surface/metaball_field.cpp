@@ -529,7 +529,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         // cutoff up to the span).
         const double needed = static_cast<double>(level.neededCount());
         bool cheaperOnTop = false;
-        if (needed * n > m_tuning.topLevelPairs && !level.bricks.empty()) {
+        if (m_tuning.topByCost && needed * n > m_tuning.topLevelPairs && !level.bricks.empty()) {
             double window = 0.0;
             int samples = 0;
             const std::size_t stride = std::max<std::size_t>(1, level.bricks.size() / 32);

@@ -40,6 +40,7 @@ struct FieldLevel;
 struct MultilevelTuning {
     double nearCutoffRadii = 3.0; // exact near field within about this many mean radii
     double topLevelPairs = 2.0e7; // stop coarsening once the top sum costs at most this
+    bool topByCost = true;        // also stop once the top sum costs less than going on
     int kappa = 0;                // cutoff / coarse spacing; 0 picks it from the error estimate
     int softeningOrder = 4;       // gamma_a is C^order
     int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: same as kappa

@@ -89,7 +89,8 @@ TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
     params.colorReach = 0.1f;
     const float iso = 6.0f;
     fc::MultilevelTuning tuning;
-    tuning.topLevelPairs = 1e5; // force several coarse levels on a small set
+    tuning.topLevelPairs = 1e5;
+    tuning.topByCost = false; // force several coarse levels on a small set
     int levels = 0;
     const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
                                          iso * params.isoRangeFactor, tuning, &levels);
@@ -108,6 +109,7 @@ TEST(MetaballField, ACheaperNearCutoffThanTheCoarseLevelsStillMatchesAlgorithm1)
     params.kernel = fc::MetaballKernel::InverseSquare;
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5;
+    tuning.topByCost = false;
     bool mixed = false;
     for (float iso : {8.0f, 12.0f, 16.0f}) {
         params.iso = iso;
@@ -124,6 +126,27 @@ TEST(MetaballField, ACheaperNearCutoffThanTheCoarseLevelsStillMatchesAlgorithm1)
     EXPECT_TRUE(mixed) << "no iso here made the near and coarse cutoffs differ";
 }
 
+// Coarsening stops where summing every sphere costs less than the windowed levels would: the
+// field then has fewer levels and still matches Algorithm 1.
+TEST(MetaballField, ATopLevelChosenByCostStillMatchesAlgorithm1) {
+    const Spheres s = slab(12, 12, 3, 4);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::InverseSquare;
+    const float iso = 7.0f;
+    params.iso = iso;
+    fc::MultilevelTuning byCost, byCount;
+    byCost.topLevelPairs = byCount.topLevelPairs = 1e5;
+    byCount.topByCost = false;
+    int levelsByCost = 0, levelsByCount = 0;
+    const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                                         iso * params.isoRangeFactor, byCost, &levelsByCost);
+    compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                         iso * params.isoRangeFactor, byCount, &levelsByCount);
+    EXPECT_LT(levelsByCost, levelsByCount);
+    EXPECT_GT(c.voxels, 10000u);
+    EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor);
+}
+
 TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     const Spheres s = slab(9, 8, 3, 2);
     fc::SurfaceParams params;
@@ -131,6 +154,7 @@ TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     const float iso = 40.0f;
     fc::MultilevelTuning tuning;
     tuning.topLevelPairs = 1e5;
+    tuning.topByCost = false;
     int levels = 0;
     const Check c = compareWithReference(s, params, 0.2f, iso / params.isoRangeFactor,
                                          iso * params.isoRangeFactor, tuning, &levels);
