@@ -209,16 +209,11 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         const auto &o = plan.blocks[b];
         const openvdb::Coord origin(o[0], o[1], o[2]);
         float density[kBlockVoxels];
-        Vec3f color[kBlockVoxels];
-        field.evaluateBlock(o, density, color);
+        field.evaluateBlock(o, density, nullptr);
         auto *dl = new FloatLeaf(origin, 0.0f, true);
-        auto *cl = new ColorLeaf(origin, initial, true);
-        for (int n = 0; n < kBlockVoxels; ++n) {
+        for (int n = 0; n < kBlockVoxels; ++n)
             dl->setValueOnly(n, std::min(density[n], clamp));
-            cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
-        }
         densityLeaves[b] = dl;
-        colorLeaves[b] = cl;
         const std::size_t d = ++done;
         if (interrupter && (d & 63) == 0 &&
             interrupter->wasInterrupted(static_cast<int>(100 * d / plan.blocks.size())))
@@ -242,6 +237,18 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
                                          clamp, false);
     const std::vector<BlockSide> sides =
         blockSides(plan.blocks, densityLeaves, impl->isoMin, impl->isoMax);
+    // Colour (Figure 4) only where the mesh can be: the blocks that keep their voxels.
+    tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
+        if (sides[b] != BlockSide::Crossing)
+            return;
+        const auto &o = plan.blocks[b];
+        Vec3f color[kBlockVoxels];
+        field.evaluateColor(o, color);
+        auto *cl = new ColorLeaf(openvdb::Coord(o[0], o[1], o[2]), initial, true);
+        for (int n = 0; n < kBlockVoxels; ++n)
+            cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
+        colorLeaves[b] = cl;
+    });
     std::vector<const FloatLeaf *> kept;
     for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
         if (sides[b] == BlockSide::Crossing) {
@@ -254,7 +261,6 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         if (sides[b] == BlockSide::Above)
             impl->density->tree().addTile(1, densityLeaves[b]->origin(), clamp, false);
         delete densityLeaves[b];
-        delete colorLeaves[b];
     }
     impl->gradient = centralDifferences(*impl->density, kept, h);
     impl->stats.fieldSeconds = secondsSince(t0);

@@ -677,8 +677,25 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
     }
 }
 
+void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
+    thread_local NearList colors;
+    const Box blockBox =
+        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    colors.clear();
+    m_tree.gather(blockBox, maxRadius() + m_params.colorReach, colors, true);
+    for (int i = 0; i < kBlockDim; ++i)
+        for (int j = 0; j < kBlockDim; ++j)
+            for (int k = 0; k < kBlockDim; ++k) {
+                float rgb[3];
+                const float n = colorSum((o[0] + i) * m_h, (o[1] + j) * m_h, (o[2] + k) * m_h,
+                                         colors, m_params.colorReach, rgb);
+                color[blockOffset(i, j, k)] = n > 0.0f ? Vec3f{rgb[0] / n, rgb[1] / n, rgb[2] / n}
+                                                       : m_params.initialColor;
+            }
+}
+
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
-    thread_local NearList list, colors;
+    thread_local NearList list;
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
@@ -690,8 +707,8 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
     thread_local NearList block;
     block.clear();
     m_tree.gather(blockBox, m_a0, block, false);
-    colors.clear();
-    m_tree.gather(blockBox, maxRadius() + m_params.colorReach, colors, true);
+    if (color)
+        evaluateColor(o, color);
     constexpr int kHalf = kBlockDim / 2;
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
@@ -721,13 +738,8 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
                                     : m_kernel.p == 2
                                         ? nearValue2(x, y, z, list, invC2, a2, minD2, m_soft0)
                                         : nearValue1(x, y, z, list, invC2, a2, minD2, m_soft0);
-                    float rgb[3];
-                    const float n = colorSum(x, y, z, colors, m_params.colorReach, rgb);
-                    const int off =
-                        blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k);
-                    density[off] = f;
-                    color[off] = n > 0.0f ? Vec3f{rgb[0] / n, rgb[1] / n, rgb[2] / n}
-                                          : m_params.initialColor;
+                    density[blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k)] =
+                        f;
                 }
     }
     if (!m_levels.empty())

@@ -80,7 +80,10 @@ class MetaballField {
     void prepare(std::span<const Coord3> blockOrigins, Interrupter *interrupter);
 
     // Density and colour of the 512 voxels of a prepared block (blockOffset order).
+    // color may be null: density only (colour later, for the blocks that keep it).
     void evaluateBlock(const Coord3 &origin, float *density, Vec3f *color) const;
+    // Figure 4 colour of the 512 voxels of a block (needs no prepare()).
+    void evaluateColor(const Coord3 &origin, Vec3f *color) const;
 
     // Value and analytic gradient at points inside or next to prepared blocks.
     void evaluatePoints(std::span<const Vec3f> points, float *values, Vec3f *gradients) const;
