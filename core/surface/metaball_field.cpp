@@ -179,7 +179,7 @@ template <int P>
     v8f c[5];
     for (int k = 0; k < 5; ++k)
         c[k] = splat(soft.scale * soft.coef[k]);
-    auto term = [&](std::size_t q) [[gnu::always_inline]] {
+    auto term = [&](std::size_t q) {
         const v8f dx = vx - load(list.x.data() + q), dy = vy - load(list.y.data() + q),
                   dz = vz - load(list.z.data() + q);
         const v8f r = load(list.r.data() + q);
