@@ -85,6 +85,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             gradientAcc.emplace(gradient->getConstAccessor());
         float value[kPad * kPad * kPad];
         bool stored[kPad * kPad * kPad];
+        unsigned char in[kPad * kPad * kPad];
         for (std::size_t n = range.begin(); n != range.end(); ++n) {
             const openvdb::Coord origin = leaves[n]->origin();
             const FloatLeaf* nd[27];
@@ -138,20 +139,23 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             }
             if (!(lo <= iso && hi > iso))
                 continue; // nothing crosses in or next to this leaf
+            // Which voxels are inside, once: the cells and the edges below only read these bits.
+            for (int p = 0; p < kPad * kPad * kPad; ++p)
+                in[p] = value[p] > iso ? 1 : 0;
             LeafWork& w = work[n];
             w.cells.assign(kCells * kCells * kCells, kNone);
             for (int ci = 0; ci < kCells; ++ci)
                 for (int cj = 0; cj < kCells; ++cj)
                     for (int ck = 0; ck < kCells; ++ck) {
                         const int base = padOffset(ci, cj, ck);
-                        float f[8];
                         int inside = 0;
-                        for (int c = 0; c < 8; ++c) {
-                            f[c] = value[base + kCornerOffset[c]];
-                            inside |= (f[c] > iso ? 1 : 0) << c;
-                        }
+                        for (int c = 0; c < 8; ++c)
+                            inside |= in[base + kCornerOffset[c]] << c;
                         if (inside == 0 || inside == 255)
                             continue;
+                        float f[8];
+                        for (int c = 0; c < 8; ++c)
+                            f[c] = value[base + kCornerOffset[c]];
                         int first = -1;
                         for (int c = 0; c < 8 && first < 0; ++c)
                             if (stored[base + kCornerOffset[c]])
@@ -227,11 +231,11 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 for (int j = 1; j < kPad - 1; ++j)
                     for (int k = 1; k < kPad - 1; ++k) {
                         const int v[3] = {i, j, k};
-                        const bool in = value[padOffset(i, j, k)] > iso;
+                        const bool inHere = in[padOffset(i, j, k)] != 0;
                         for (int a = 0; a < 3; ++a) {
                             int u[3] = {i, j, k};
                             ++u[a];
-                            if ((value[padOffset(u[0], u[1], u[2])] > iso) == in)
+                            if ((in[padOffset(u[0], u[1], u[2])] != 0) == inHere)
                                 continue;
                             const int b = (a + 1) % 3, c = (a + 2) % 3;
                             // Cells around the edge, counter-clockwise seen from +a.
@@ -244,7 +248,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 quad[m] = cellOffset(cc[0], cc[1], cc[2]);
                             }
                             // Outward is from high density to low: +a when this end is inside.
-                            if (!in)
+                            if (!inHere)
                                 std::swap(quad[1], quad[3]);
                             w.quads.push_back(quad);
                         }
