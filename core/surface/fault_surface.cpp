@@ -104,52 +104,6 @@ std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
 using FloatLeaf = openvdb::FloatTree::LeafNodeType;
 using VecLeaf = openvdb::Vec3STree::LeafNodeType;
 
-// The density's gradient at every voxel of the given leaves by central differences, one-sided
-// where a neighbour is not a stored voxel (a tile holds a stand-in value, not the field).
-openvdb::Vec3SGrid::Ptr centralDifferences(const openvdb::FloatGrid &density,
-                                           const std::vector<const FloatLeaf *> &leaves, float h) {
-    std::vector<VecLeaf *> out(leaves.size(), nullptr);
-    const float inv2h = 0.5f / h, invh = 1.0f / h;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const auto &r) {
-        auto acc = density.getConstAccessor();
-        for (std::size_t b = r.begin(); b != r.end(); ++b) {
-            const float *v = leaves[b]->buffer().data();
-            const openvdb::Coord o = leaves[b]->origin();
-            auto *leaf = new VecLeaf(o, openvdb::Vec3s(0.0f), true);
-            for (int i = 0; i < kBlockDim; ++i)
-                for (int j = 0; j < kBlockDim; ++j)
-                    for (int k = 0; k < kBlockDim; ++k) {
-                        const float centre = v[blockOffset(i, j, k)];
-                        openvdb::Vec3s grad;
-                        for (int axis = 0; axis < 3; ++axis) {
-                            auto sample = [&](int dir, float &value) {
-                                int n[3] = {i, j, k};
-                                n[axis] += dir;
-                                if (n[axis] >= 0 && n[axis] < kBlockDim) {
-                                    value = v[blockOffset(n[0], n[1], n[2])];
-                                    return true;
-                                }
-                                return acc.probeValue(o.offsetBy(n[0], n[1], n[2]), value);
-                            };
-                            float up = 0.0f, down = 0.0f;
-                            const bool hasUp = sample(1, up), hasDown = sample(-1, down);
-                            grad[axis] = hasUp && hasDown ? (up - down) * inv2h
-                                         : hasUp          ? (up - centre) * invh
-                                         : hasDown        ? (centre - down) * invh
-                                                          : 0.0f;
-                        }
-                        leaf->setValueOnly(blockOffset(i, j, k), grad);
-                    }
-            out[b] = leaf;
-        }
-    });
-    auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-    grid->setTransform(density.transform().copy());
-    for (auto *leaf : out)
-        grid->tree().addLeaf(leaf);
-    return grid;
-}
-
 } // namespace
 
 void ensureOpenVdbInitialized() {
@@ -167,7 +121,6 @@ float SurfaceField::isoMax() const { return m_impl->isoMax; }
 const SurfaceStats &SurfaceField::stats() const { return m_impl->stats; }
 std::size_t SurfaceField::memoryBytes() const {
     return m_impl->density->memUsage() + m_impl->color->memUsage() +
-           (m_impl->gradient ? m_impl->gradient->memUsage() : 0) +
            m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);
 }
 
@@ -249,12 +202,10 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
             cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
         colorLeaves[b] = cl;
     });
-    std::vector<const FloatLeaf *> kept;
     for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
         if (sides[b] == BlockSide::Crossing) {
             impl->density->tree().addLeaf(densityLeaves[b]);
             impl->color->tree().addLeaf(colorLeaves[b]);
-            kept.push_back(densityLeaves[b]);
             continue;
         }
         // No edge of this block or into it can cross any supported iso: a tile will do.
@@ -262,7 +213,6 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
             impl->density->tree().addTile(1, densityLeaves[b]->origin(), clamp, false);
         delete densityLeaves[b];
     }
-    impl->gradient = centralDifferences(*impl->density, kept, h);
     impl->stats.fieldSeconds = secondsSince(t0);
     impl->stats.blocks = plan.blocks.size();
     impl->stats.activeVoxels = impl->density->activeVoxelCount();
@@ -295,9 +245,8 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
     if (interrupter)
         interrupter->start("mesh");
     SurfaceMesh mesh;
-    const bool analytic = normalSource == NormalSource::Analytic || !impl.gradient;
-    detail::surfaceNets(*impl.density, *impl.color, analytic ? nullptr : impl.gradient.get(), iso,
-                        surface.voxelSize(), mesh);
+    const bool analytic = normalSource == NormalSource::Analytic;
+    detail::surfaceNets(*impl.density, *impl.color, !analytic, iso, surface.voxelSize(), mesh);
     if (interrupter && interrupter->wasInterrupted(50))
         throw SurfaceCancelled();
     if (analytic) {

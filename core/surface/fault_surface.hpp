@@ -70,8 +70,8 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
 
 // Where vertex normals come from: the field's gradient (Algorithm 1 line 8) either evaluated
 // analytically at each vertex (exact near field plus the interpolated smooth levels), or by
-// central differences at the stored voxels, computed once per field and interpolated trilinearly
-// (the default: re-meshing then touches no sphere; normals agree within a fraction of a degree).
+// central differences at the stored voxels, interpolated trilinearly (the default: re-meshing
+// then touches no sphere; normals agree within a fraction of a degree).
 enum class NormalSource { Analytic, Grid };
 
 // The iso-surface of an existing field at another iso-value (no field recomputation). Throws

@@ -19,9 +19,9 @@ struct SurfacePlan {
     std::size_t estimatedBytes = 0;
 };
 
-// Bytes a build needs per evaluated block (density 2 KiB, colour and gradient 6 KiB each, mesh
-// share), for the budget check.
-inline constexpr std::size_t kBytesPerBlock = 22 * 1024;
+// Bytes a build needs per evaluated block (density 2 KiB, colour 6 KiB, mesh share), for the
+// budget check.
+inline constexpr std::size_t kBytesPerBlock = 16 * 1024;
 
 // Throws SurfaceRequestError when the surface would need more than `budgetBytes`, saying how much
 // it would need, or when the region does not fit OpenVDB's index range.

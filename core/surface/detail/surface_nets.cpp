@@ -21,8 +21,10 @@ using FloatLeaf = openvdb::FloatTree::LeafNodeType;
 using VecLeaf = openvdb::Vec3STree::LeafNodeType;
 using Vec3f = std::array<float, 3>;
 
-// A leaf's voxels with one voxel of its neighbours on every side: padded index p = local + 1.
-constexpr int kPad = 10;
+// A leaf's voxels with two voxels of its neighbours on every side (cells reach one voxel below
+// the leaf, central differences at their corners one more): padded index p = local + kMargin.
+constexpr int kMargin = 2;
+constexpr int kPad = 8 + 2 * kMargin;
 // Cells by their lowest corner, from one voxel below the leaf to its last voxel.
 constexpr int kCells = 9;
 constexpr int kNone = -1;
@@ -33,8 +35,10 @@ inline int cellOffset(int i, int j, int k) { return (i * kCells + j) * kCells + 
 inline int leafOffset(int i, int j, int k) { return (i * 8 + j) * 8 + k; }
 // Which of the 3 x 3 x 3 leaves (0: below, 1: this one, 2: above) holds padded index p, and
 // where in that leaf.
-inline int sideOf(int p) { return p == 0 ? 0 : p == kPad - 1 ? 2 : 1; }
-inline int localOf(int p) { return p == 0 ? 7 : p == kPad - 1 ? 0 : p - 1; }
+inline int sideOf(int p) { return p < kMargin ? 0 : p >= kMargin + 8 ? 2 : 1; }
+inline int localOf(int p) {
+    return p < kMargin ? p + 8 - kMargin : p >= kMargin + 8 ? p - kMargin - 8 : p - kMargin;
+}
 inline int neighbourIndex(int si, int sj, int sk) { return (si * 3 + sj) * 3 + sk; }
 
 constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
@@ -61,7 +65,7 @@ struct LeafWork {
 } // namespace
 
 void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color,
-                 const openvdb::Vec3SGrid* gradient, float iso, float h, SurfaceMesh& mesh) {
+                 bool normals, float iso, float h, SurfaceMesh& mesh) {
     std::vector<const FloatLeaf*> leaves;
     for (auto it = density.tree().cbeginLeaf(); it; ++it)
         leaves.push_back(&*it);
@@ -72,6 +76,13 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
         leafIndex.emplace(packKey({o.x() >> 3, o.y() >> 3, o.z() >> 3}),
                           static_cast<std::uint32_t>(n));
     }
+    // The colour leaf beside each density leaf (same topology), looked up once.
+    std::vector<const VecLeaf*> colorOf(leaves.size(), nullptr);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const auto& range) {
+        auto colorAcc = color.getConstAccessor();
+        for (std::size_t n = range.begin(); n != range.end(); ++n)
+            colorOf[n] = colorAcc.probeConstLeaf(leaves[n]->origin());
+    });
     const openvdb::Vec3s background = color.background();
     std::vector<LeafWork> work(leaves.size());
 
@@ -79,10 +90,6 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
     // stored corner), and quads of the crossing edges that start in it.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const auto& range) {
         auto densityAcc = density.getConstAccessor();
-        auto colorAcc = color.getConstAccessor();
-        std::optional<openvdb::Vec3SGrid::ConstAccessor> gradientAcc;
-        if (gradient)
-            gradientAcc.emplace(gradient->getConstAccessor());
         float value[kPad * kPad * kPad];
         bool stored[kPad * kPad * kPad];
         unsigned char in[kPad * kPad * kPad];
@@ -90,18 +97,17 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             const openvdb::Coord origin = leaves[n]->origin();
             const FloatLeaf* nd[27];
             const VecLeaf* nc[27];
-            const VecLeaf* ng[27];
             std::int64_t nleaf[27];
             float tile[27];
             for (int s = 0; s < 27; ++s) {
                 const openvdb::Coord o =
                     origin.offsetBy(8 * (s / 9 - 1), 8 * ((s / 3) % 3 - 1), 8 * (s % 3 - 1));
-                nd[s] = densityAcc.probeConstLeaf(o);
-                tile[s] = nd[s] ? 0.0f : densityAcc.getValue(o);
-                nc[s] = nd[s] ? colorAcc.probeConstLeaf(o) : nullptr;
-                ng[s] = nd[s] && gradientAcc ? gradientAcc->probeConstLeaf(o) : nullptr;
                 const auto it = leafIndex.find(packKey({o.x() >> 3, o.y() >> 3, o.z() >> 3}));
-                nleaf[s] = nd[s] && it != leafIndex.end() ? std::int64_t(it->second) : -1;
+                const bool leaf = it != leafIndex.end();
+                nd[s] = leaf ? leaves[it->second] : nullptr;
+                nc[s] = leaf ? colorOf[it->second] : nullptr;
+                nleaf[s] = leaf ? std::int64_t(it->second) : -1;
+                tile[s] = leaf ? 0.0f : densityAcc.getValue(o);
             }
             const float* data[27];
             for (int q = 0; q < 27; ++q)
@@ -111,11 +117,12 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 for (int j = 0; j < kPad; ++j) {
                     const int si = sideOf(i), sj = sideOf(j), li = localOf(i), lj = localOf(j);
                     for (int part = 0; part < 3; ++part) {
-                        // z runs over the leaf below (one voxel), this one (8), the one above (1).
+                        // z runs over the leaf below (kMargin voxels), this one (8), the one
+                        // above (kMargin).
                         const int s = neighbourIndex(si, sj, part);
-                        const int k0 = part == 0 ? 0 : part == 1 ? 1 : kPad - 1;
-                        const int count = part == 1 ? 8 : 1;
-                        const int local0 = part == 0 ? 7 : 0;
+                        const int k0 = part == 0 ? 0 : part == 1 ? kMargin : kMargin + 8;
+                        const int count = part == 1 ? 8 : kMargin;
+                        const int local0 = part == 0 ? 8 - kMargin : 0;
                         float* out = &value[padOffset(i, j, k0)];
                         bool* on = &stored[padOffset(i, j, k0)];
                         if (data[s]) {
@@ -144,10 +151,14 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 in[p] = value[p] > iso ? 1 : 0;
             LeafWork& w = work[n];
             w.cells.assign(kCells * kCells * kCells, kNone);
+            // A leaf the surface crosses holds about 8^2 cells of it: grow once, not per vertex.
+            w.positions.reserve(128), w.colors.reserve(128), w.quads.reserve(192);
+            if (normals)
+                w.gradients.reserve(128);
             for (int ci = 0; ci < kCells; ++ci)
                 for (int cj = 0; cj < kCells; ++cj)
                     for (int ck = 0; ck < kCells; ++ck) {
-                        const int base = padOffset(ci, cj, ck);
+                        const int base = padOffset(ci + kMargin - 1, cj + kMargin - 1, ck + kMargin - 1);
                         int inside = 0;
                         for (int c = 0; c < 8; ++c)
                             inside |= in[base + kCornerOffset[c]] << c;
@@ -162,8 +173,9 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 first = c;
                         if (first < 0)
                             continue;
-                        const int q[3] = {ci + kCorner[first][0], cj + kCorner[first][1],
-                                          ck + kCorner[first][2]};
+                        const int q[3] = {ci + kMargin - 1 + kCorner[first][0],
+                                          cj + kMargin - 1 + kCorner[first][1],
+                                          ck + kMargin - 1 + kCorner[first][2]};
                         const int owner = neighbourIndex(sideOf(q[0]), sideOf(q[1]), sideOf(q[2]));
                         const int cell = cellOffset(ci, cj, ck);
                         if (owner != neighbourIndex(1, 1, 1)) {
@@ -193,13 +205,17 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         }
                         const float t[3] = {sum[0] / float(crossings), sum[1] / float(crossings),
                                             sum[2] / float(crossings)};
-                        // Colour and gradient: trilinear over the cell's stored corners.
+                        // Colour and gradient: trilinear over the cell's stored corners; the
+                        // gradient at a corner by central differences (one-sided next to a tile,
+                        // whose value stands in for the field and is not it).
                         openvdb::Vec3s colorSum(0.0f), gradientSum(0.0f);
                         float weight = 0.0f;
                         for (int c = 0; c < 8; ++c) {
-                            const int p[3] = {ci + kCorner[c][0], cj + kCorner[c][1],
-                                              ck + kCorner[c][2]};
-                            if (!stored[padOffset(p[0], p[1], p[2])])
+                            const int p[3] = {ci + kMargin - 1 + kCorner[c][0],
+                                              cj + kMargin - 1 + kCorner[c][1],
+                                              ck + kMargin - 1 + kCorner[c][2]};
+                            const int at = padOffset(p[0], p[1], p[2]);
+                            if (!stored[at])
                                 continue;
                             const int s = neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
                             const int off = leafOffset(localOf(p[0]), localOf(p[1]), localOf(p[2]));
@@ -208,8 +224,18 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
                             if (nc[s])
                                 colorSum += wgt * nc[s]->getValue(off);
-                            if (ng[s])
-                                gradientSum += wgt * ng[s]->getValue(off);
+                            if (normals) {
+                                constexpr int kStep[3] = {kPad * kPad, kPad, 1};
+                                for (int a = 0; a < 3; ++a) {
+                                    const int up = at + kStep[a], down = at - kStep[a];
+                                    const float g = stored[up] && stored[down]
+                                                        ? 0.5f * (value[up] - value[down])
+                                                    : stored[up]   ? value[up] - value[at]
+                                                    : stored[down] ? value[at] - value[down]
+                                                                   : 0.0f;
+                                    gradientSum[a] += wgt * g / h;
+                                }
+                            }
                             weight += wgt;
                         }
                         const openvdb::Vec3s rgb = weight > 0.0f ? colorSum / weight : background;
@@ -220,16 +246,16 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         w.colors.push_back({std::clamp(rgb[0], 0.0f, 1.0f),
                                             std::clamp(rgb[1], 0.0f, 1.0f),
                                             std::clamp(rgb[2], 0.0f, 1.0f)});
-                        if (gradient)
+                        if (normals)
                             w.gradients.push_back(weight > 0.0f ? Vec3f{gradientSum[0] / weight,
                                                                         gradientSum[1] / weight,
                                                                         gradientSum[2] / weight}
                                                                 : Vec3f{0.0f, 0.0f, 0.0f});
                     }
-            // Edges from this leaf's voxels (padded 1..8) towards +axis.
-            for (int i = 1; i < kPad - 1; ++i)
-                for (int j = 1; j < kPad - 1; ++j)
-                    for (int k = 1; k < kPad - 1; ++k) {
+            // Edges from this leaf's voxels towards +axis.
+            for (int i = kMargin; i < kMargin + 8; ++i)
+                for (int j = kMargin; j < kMargin + 8; ++j)
+                    for (int k = kMargin; k < kMargin + 8; ++k) {
                         const int v[3] = {i, j, k};
                         const bool inHere = in[padOffset(i, j, k)] != 0;
                         for (int a = 0; a < 3; ++a) {
@@ -245,7 +271,8 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 int cc[3] = {v[0], v[1], v[2]};
                                 cc[b] += around[m][0];
                                 cc[c] += around[m][1];
-                                quad[m] = cellOffset(cc[0], cc[1], cc[2]);
+                                quad[m] = cellOffset(cc[0] - kMargin + 1, cc[1] - kMargin + 1,
+                                                     cc[2] - kMargin + 1);
                             }
                             // Outward is from high density to low: +a when this end is inside.
                             if (!inHere)
@@ -266,14 +293,14 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
     }
     mesh.positions.resize(vertices);
     mesh.colors.resize(vertices);
-    mesh.normals.resize(gradient ? vertices : 0);
+    mesh.normals.resize(normals ? vertices : 0);
     mesh.indices.assign(6 * quads, 0);
     std::vector<char> keep(quads, 1);
     tbb::parallel_for(std::size_t{0}, work.size(), [&](std::size_t n) {
         const LeafWork& w = work[n];
         std::copy(w.positions.begin(), w.positions.end(), mesh.positions.begin() + w.vertexBase);
         std::copy(w.colors.begin(), w.colors.end(), mesh.colors.begin() + w.vertexBase);
-        if (gradient)
+        if (normals)
             for (std::size_t v = 0; v < w.gradients.size(); ++v) {
                 const Vec3f& g = w.gradients[v];
                 const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);

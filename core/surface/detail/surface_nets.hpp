@@ -1,7 +1,7 @@
 // Surface nets on the stored leaves of a sparse density grid: one vertex per cell that the
 // iso-surface crosses (the mean of its edge crossings, as OpenVDB's volumeToMesh places them at
 // adaptivity 0), one quad per crossing edge. Vertex colour and gradient are trilinear in the
-// cell over its stored voxels. Leaves are meshed in parallel and joined by a prefix sum, so the
+// cell over its stored voxels; the gradient at a voxel by central differences of the density. Leaves are meshed in parallel and joined by a prefix sum, so the
 // result does not depend on the thread count.
 #pragma once
 
@@ -13,10 +13,10 @@ namespace faultline::core::detail {
 
 // Meshes `density` at `iso` (inside where density > iso; triangles counter-clockwise seen from
 // outside). Voxel (i, j, k) sits at world (i, j, k) * h. Fills positions, colors, indices, and
-// normals from `gradient` (-gradient normalised) when it is given; otherwise normals is empty.
+// with `normals` the normals (-gradient normalised); otherwise normals is left empty.
 // Only edges between voxels of stored leaves and their neighbours are looked at: tiles must lie
 // on one side of every iso asked for (the surface plan's margin guarantees it).
 void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color,
-                 const openvdb::Vec3SGrid* gradient, float iso, float h, SurfaceMesh& mesh);
+                 bool normals, float iso, float h, SurfaceMesh& mesh);
 
 } // namespace faultline::core::detail

@@ -18,9 +18,6 @@ struct SurfaceField::Impl {
     std::unique_ptr<MetaballField> field; // for analytic normals at new vertices
     openvdb::FloatGrid::Ptr density;
     openvdb::Vec3SGrid::Ptr color;
-    // Central differences of the density at every stored voxel (one-sided where a neighbour
-    // is a tile): re-meshing interpolates normals from it instead of evaluating the field.
-    openvdb::Vec3SGrid::Ptr gradient;
 };
 
 // openvdb::initialize(), once per process.
