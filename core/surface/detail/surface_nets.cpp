@@ -158,7 +158,8 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             for (int ci = 0; ci < kCells; ++ci)
                 for (int cj = 0; cj < kCells; ++cj)
                     for (int ck = 0; ck < kCells; ++ck) {
-                        const int base = padOffset(ci + kMargin - 1, cj + kMargin - 1, ck + kMargin - 1);
+                        const int base =
+                            padOffset(ci + kMargin - 1, cj + kMargin - 1, ck + kMargin - 1);
                         int inside = 0;
                         for (int c = 0; c < 8; ++c)
                             inside |= in[base + kCornerOffset[c]] << c;
