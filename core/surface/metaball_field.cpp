@@ -4,6 +4,7 @@
 #include "core/surface/detail/simd8.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <atomic>
@@ -379,10 +380,16 @@ std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo) 
         if (memo && known != memo->end()) {
             densest = known->second;
         } else {
-            for (std::size_t q = 0; q < samples; ++q) {
-                const std::size_t i = q * n / samples;
-                densest = std::max(densest, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
-            }
+            densest = tbb::parallel_reduce(
+                tbb::blocked_range<std::size_t>(0, samples), 0.0,
+                [&](const tbb::blocked_range<std::size_t> &range, double most) {
+                    for (std::size_t q = range.begin(); q != range.end(); ++q) {
+                        const std::size_t i = q * n / samples;
+                        most = std::max(most, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
+                    }
+                    return most;
+                },
+                [](double x, double y) { return std::max(x, y); });
             if (memo)
                 memo->emplace(a, densest);
         }
