@@ -112,7 +112,6 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             const float* data[27];
             for (int q = 0; q < 27; ++q)
                 data[q] = nd[q] ? nd[q]->buffer().data() : nullptr;
-            float lo = std::numeric_limits<float>::max(), hi = -lo;
             for (int i = 0; i < kPad; ++i)
                 for (int j = 0; j < kPad; ++j) {
                     const int si = sideOf(i), sj = sideOf(j), li = localOf(i), lj = localOf(j);
@@ -140,15 +139,14 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         }
                     }
                 }
-            for (int p = 0; p < kPad * kPad * kPad; ++p) {
-                lo = std::min(lo, value[p]);
-                hi = std::max(hi, value[p]);
-            }
-            if (!(lo <= iso && hi > iso))
-                continue; // nothing crosses in or next to this leaf
             // Which voxels are inside, once: the cells and the edges below only read these bits.
-            for (int p = 0; p < kPad * kPad * kPad; ++p)
+            int insideCount = 0;
+            for (int p = 0; p < kPad * kPad * kPad; ++p) {
                 in[p] = value[p] > iso ? 1 : 0;
+                insideCount += in[p];
+            }
+            if (insideCount == 0 || insideCount == kPad * kPad * kPad)
+                continue; // nothing crosses in or next to this leaf
             LeafWork& w = work[n];
             w.cells.assign(kCells * kCells * kCells, kNone);
             // A leaf the surface crosses holds about 8^2 cells of it: grow once, not per vertex.
