@@ -84,18 +84,29 @@ inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
 
 // Sum over a sphere list of w (gamma_below - gamma_own) within own's cutoff (a coarse level's
 // window), or of w gamma_below over all of them (top level).
+// A softened kernel's polynomial as coefficients of powers of d^2 (no t = d^2 / a^2 - 1 to form
+// per pair): C_k = scale / a^2k * sum_j coef_j binomial(j, k) (-1)^(j-k).
+inline void powerCoefficients(const SoftenedKernel &kernel, simd8::v8f out[5]) {
+    for (int k = 0; k < 5; ++k) {
+        double c = 0.0, binomial = 1.0; // binomial(j, k) for j = k first
+        for (int j = k; j < 5; ++j) {
+            c += kernel.coef[j] * binomial * ((j - k) % 2 ? -1.0 : 1.0);
+            binomial = binomial * (j + 1) / (j + 1 - k);
+        }
+        out[k] = simd8::splat(
+            static_cast<float>(double(kernel.scale) * c / std::pow(double(kernel.a2), k)));
+    }
+}
+
 struct WindowKernels {
-    simd8::v8f belowInv, belowA2, ownInv, ownA2, minD2, one;
-    simd8::v8f below[5], own[5]; // scale * coef
+    simd8::v8f belowA2, ownA2, minD2, one;
+    simd8::v8f below[5], own[5]; // coefficients of d^2^k
     WindowKernels(const SoftenedKernel &b, const SoftenedKernel &o, float minD2In) {
         using simd8::splat;
-        belowInv = splat(1.0f / b.a2), belowA2 = splat(b.a2);
-        ownInv = splat(1.0f / o.a2), ownA2 = splat(o.a2);
+        belowA2 = splat(b.a2), ownA2 = splat(o.a2);
         minD2 = splat(minD2In), one = splat(1.0f);
-        for (int k = 0; k < 5; ++k) {
-            below[k] = splat(b.scale * b.coef[k]);
-            own[k] = splat(o.scale * o.coef[k]);
-        }
+        powerCoefficients(b, below);
+        powerCoefficients(o, own);
     }
 };
 
@@ -107,9 +118,8 @@ template <int P, bool Top>
     using simd8::v8f;
     const v8f dx = x - px, dy = y - py, dz = z - pz;
     const v8f d2 = dx * dx + dy * dy + dz * dz;
-    const v8f tb = d2 * k.belowInv - k.one;
     const v8f inner =
-        k.below[0] + tb * (k.below[1] + tb * (k.below[2] + tb * (k.below[3] + tb * k.below[4])));
+        k.below[0] + d2 * (k.below[1] + d2 * (k.below[2] + d2 * (k.below[3] + d2 * k.below[4])));
     const v8f clamped = simd8::max(d2, k.minD2);
     v8f outer;
     if constexpr (P == 2)
@@ -118,8 +128,7 @@ template <int P, bool Top>
         outer = simd8::inverseSqrt(clamped);
     v8f v = d2 < k.belowA2 ? inner : outer;
     if constexpr (!Top) {
-        const v8f to = d2 * k.ownInv - k.one;
-        v -= k.own[0] + to * (k.own[1] + to * (k.own[2] + to * (k.own[3] + to * k.own[4])));
+        v -= k.own[0] + d2 * (k.own[1] + d2 * (k.own[2] + d2 * (k.own[3] + d2 * k.own[4])));
         v = d2 < k.ownA2 ? v : v8f{};
     }
     return w * v;
