@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -102,7 +101,7 @@ std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
 }
 
 using FloatLeaf = openvdb::FloatTree::LeafNodeType;
-using VecLeaf = openvdb::Vec3STree::LeafNodeType;
+using ColorLeaf = openvdb::Vec3STree::LeafNodeType;
 
 } // namespace
 
@@ -148,7 +147,6 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     if (interrupter)
         interrupter->start("field");
     field.prepare(plan.blocks, interrupter);
-    using ColorLeaf = VecLeaf;
     std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
     std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
     const float clamp = clampValue(impl->isoMax);
@@ -254,10 +252,7 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
         impl.field->evaluatePoints(mesh.positions, nullptr, gradients.data());
         mesh.normals.resize(gradients.size());
         tbb::parallel_for(std::size_t{0}, gradients.size(), [&](std::size_t i) {
-            const Vec3f &g = gradients[i];
-            const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-            mesh.normals[i] = len > 0.0f ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len}
-                                         : Vec3f{0.0f, 0.0f, 1.0f};
+            mesh.normals[i] = detail::normalFromGradient(gradients[i]);
         });
     }
     // The mesher winds counter-clockwise from outside; a sample of triangles against the normals

@@ -627,11 +627,18 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                         }
                         if (count == 0)
                             continue;
-                        thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
-                        ranges.clear();
-                        if (level.top) {
-                            ranges.emplace_back(0u, static_cast<std::uint32_t>(s.size()));
-                        } else {
+                        // The spheres every node of the group sums, contiguous: all of them at
+                        // the top level (straight from the tree's arrays), else the window's,
+                        // copied once per group and padded with weightless entries to whole
+                        // vectors.
+                        const float *px = s.x.data(), *py = s.y.data(), *pz = s.z.data(),
+                                    *pw = s.r.data();
+                        std::size_t len = s.size();
+                        if (!level.top) {
+                            thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>>
+                                ranges;
+                            thread_local std::vector<float> wx, wy, wz, ww;
+                            ranges.clear();
                             Box box;
                             const int g[3] = {gi, gj, gz};
                             for (int k = 0; k < 3; ++k) {
@@ -639,20 +646,19 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                                 box.hi[k] = (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
                             }
                             m_tree.gatherRanges(box, level.cutoff, ranges);
-                        }
-                        // The window's spheres in one contiguous list, padded with weightless
-                        // entries to whole vectors: one long loop per node.
-                        thread_local std::vector<float> wx, wy, wz, ww;
-                        wx.clear(), wy.clear(), wz.clear(), ww.clear();
-                        for (const auto &[first, last] : level.top ? decltype(ranges){} : ranges) {
-                            wx.insert(wx.end(), s.x.begin() + first, s.x.begin() + last);
-                            wy.insert(wy.end(), s.y.begin() + first, s.y.begin() + last);
-                            wz.insert(wz.end(), s.z.begin() + first, s.z.begin() + last);
-                            ww.insert(ww.end(), s.r.begin() + first, s.r.begin() + last);
-                        }
-                        while (ww.size() % 16 != 0) {
-                            wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
-                            ww.push_back(0.0f);
+                            wx.clear(), wy.clear(), wz.clear(), ww.clear();
+                            for (const auto &[first, last] : ranges) {
+                                wx.insert(wx.end(), s.x.begin() + first, s.x.begin() + last);
+                                wy.insert(wy.end(), s.y.begin() + first, s.y.begin() + last);
+                                wz.insert(wz.end(), s.z.begin() + first, s.z.begin() + last);
+                                ww.insert(ww.end(), s.r.begin() + first, s.r.begin() + last);
+                            }
+                            while (ww.size() % 16 != 0) {
+                                wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
+                                ww.push_back(0.0f);
+                            }
+                            px = wx.data(), py = wy.data(), pz = wz.data(), pw = ww.data();
+                            len = ww.size();
                         }
                         for (int n = 0; n < count; ++n) {
                             const int off = needed[n];
@@ -660,12 +666,6 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                             const float x = (brick.origin[0] + i) * level.spacing;
                             const float y = (brick.origin[1] + j) * level.spacing;
                             const float w = (brick.origin[2] + z) * level.spacing;
-                            // The top level sums every sphere: straight from the tree's arrays.
-                            const float *px = level.top ? s.x.data() : wx.data();
-                            const float *py = level.top ? s.y.data() : wy.data();
-                            const float *pz = level.top ? s.z.data() : wz.data();
-                            const float *pw = level.top ? s.r.data() : ww.data();
-                            const std::size_t len = level.top ? s.size() : ww.size();
                             brick.values[off] =
                                 kernel.p == 2 ? windowSum2(x, y, w, px, py, pz, pw, len, below,
                                                            own, kernel.minD2, level.top)

@@ -41,9 +41,10 @@ struct MultilevelTuning {
     double nearCutoffRadii = 3.0; // exact near field within about this many mean radii
     double topLevelPairs = 2.0e7; // stop coarsening once the top sum costs at most this
     bool topByCost = true;        // also stop once the top sum costs less than going on
-    int kappa = 0;                // cutoff / coarse spacing; 0 picks it from the error estimate
+    int kappa = 0;                // near cutoff / level-1 spacing; 0: chosen with coarseKappa
     int softeningOrder = 4;       // gamma_a is C^order
-    int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: same as kappa
+    int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: the cheapest pair
+                                  // (kappa, coarseKappa) whose error estimate fits the budget
     int minRatio = 2;             // level-1 spacing at least this many voxels
     int maxOpen = 256;            // planning: tree nodes opened per block bound
     int probeOpen = 40;           // planning: after this many openings, give up on a bound

@@ -8,8 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
-#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -301,11 +299,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
         std::copy(w.colors.begin(), w.colors.end(), mesh.colors.begin() + w.vertexBase);
         if (normals)
             for (std::size_t v = 0; v < w.gradients.size(); ++v) {
-                const Vec3f& g = w.gradients[v];
-                const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-                mesh.normals[w.vertexBase + v] = len > 0.0f
-                                                     ? Vec3f{-g[0] / len, -g[1] / len, -g[2] / len}
-                                                     : Vec3f{0.0f, 0.0f, 1.0f};
+                mesh.normals[w.vertexBase + v] = normalFromGradient(w.gradients[v]);
             }
         auto vertexOf = [&](std::int32_t cell) -> std::int64_t {
             const std::int32_t entry = w.cells[cell];
