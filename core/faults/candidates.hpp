@@ -13,6 +13,12 @@
 
 namespace faultline::core {
 
+// Defaults of the journal's fault.candidates, shared by export.csv fault_tracks and the Faults
+// panel: link k, smallest candidate kept, names prefix + "1".."n".
+inline constexpr double kDefaultCandidateLink = 1.1;
+inline constexpr std::size_t kDefaultCandidateMinSize = 10;
+inline constexpr std::string_view kDefaultCandidatePrefix = "C";
+
 struct CandidateOptions {
     double link = 1.1;        // k: neighbours when distance < k (r_i + r_j); must be > 0
     std::size_t minSize = 1;  // components with fewer spheres are dropped

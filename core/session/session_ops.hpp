@@ -2,6 +2,7 @@
 // command and builds its inverse. Not for use outside core/session.
 #pragma once
 
+#include "core/faults/candidates.hpp"
 #include "core/io/input_error.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
@@ -27,6 +28,10 @@ inline void addNotYet(OpTable& ops, const char* name, const char* feature) {
                  },
                  false};
 }
+
+// "link" and "min_size" of fault.candidates and export.csv fault_tracks, with the journal's
+// defaults; a CommandError naming `op` when they are out of range.
+CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op);
 
 // InputError from a payload (a restore op) as a CommandError.
 template <typename F> auto asCommand(const char* op, F f) -> decltype(f()) {

@@ -9,7 +9,6 @@ namespace faultline::core::detail {
 
 namespace {
 
-constexpr long long kDefaultCandidateMinSize = 10;
 
 // Distinct, legible colours for new faults, in order.
 constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.90f, 0.30f, 0.20f},
@@ -66,6 +65,17 @@ Json faultFilterJson(const FaultFilter& f) {
 }
 
 } // namespace
+
+CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
+    CandidateOptions options;
+    options.link = args::optionalNumber(cmd, "link").value_or(kDefaultCandidateLink);
+    const long long minSize = args::optionalInteger(cmd, "min_size")
+                                  .value_or(static_cast<long long>(kDefaultCandidateMinSize));
+    if (!(options.link > 0) || minSize < 1)
+        throw CommandError(std::string(op) + ": \"link\" must be > 0 and \"min_size\" >= 1");
+    options.minSize = static_cast<std::size_t>(minSize);
+    return options;
+}
 
 void registerFaultOps(OpTable& ops) {
     addStateOp(ops, "fault.create", [](Session& s, const Json& cmd) -> Json {
@@ -227,19 +237,16 @@ void registerFaultOps(OpTable& ops) {
     addStateOp(ops, "fault.candidates", [](Session& s, const Json& cmd) -> Json {
         // Connected components of the visible spheres, each accepted as a fault, largest first.
         args::onlyFields(cmd, {"link", "min_size", "prefix"});
-        CandidateOptions options;
-        options.link = args::optionalNumber(cmd, "link").value_or(1.1);
-        const long long minSize = args::optionalInteger(cmd, "min_size").value_or(kDefaultCandidateMinSize);
-        if (!(options.link > 0) || minSize < 1)
-            throw CommandError("fault.candidates: \"link\" must be > 0 and \"min_size\" >= 1");
-        options.minSize = static_cast<std::size_t>(minSize);
-        const std::string prefix = args::optionalString(cmd, "prefix").value_or("C");
+        const CandidateOptions options = candidateOptionsFrom(cmd, "fault.candidates");
+        const std::string prefix =
+            args::optionalString(cmd, "prefix").value_or(std::string(kDefaultCandidatePrefix));
         auto frame = s.currentFrame();
         if (!frame)
             throw CommandError("fault.candidates: no data is open");
         const CandidateSet set = findCandidates(*frame, s.visibility().mask, options);
         if (set.candidates.empty())
-            throw CommandError("fault.candidates: no group of at least " + std::to_string(minSize) +
+            throw CommandError("fault.candidates: no group of at least " +
+                               std::to_string(options.minSize) +
                                " linked visible spheres");
         Json batch = Json::array();
         for (const Fault& f : faultsFromCandidates(set.candidates, prefix)) {

@@ -60,13 +60,7 @@ void registerOutputOps(OpTable& ops) {
                 ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, s.state().faults);
             text = faultMetricsCsv(series);
         } else if (what == "fault_tracks") {
-            CandidateOptions options;
-            options.link = args::optionalNumber(cmd, "link").value_or(1.1);
-            const long long minSize = args::optionalInteger(cmd, "min_size").value_or(10);
-            if (!(options.link > 0) || minSize < 1)
-                throw CommandError("export.csv: \"link\" must be > 0 and \"min_size\" >= 1");
-            options.minSize = static_cast<std::size_t>(minSize);
-            text = trackedFaultsCsv(s, options);
+            text = trackedFaultsCsv(s, candidateOptionsFrom(cmd, "export.csv"));
         } else {
             throw CommandError("export.csv: \"what\" must be faults, fault_metrics or fault_tracks");
         }

@@ -55,6 +55,7 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     ASSERT_EQ(headless.emitted("fault.candidates").size(), 1u);
     EXPECT_EQ(headless.emitted("fault.candidates")[0]["min_size"], 10);
     EXPECT_EQ(session.state().faults.size(), 2u);
+    EXPECT_NE(session.state().fault("C1"), nullptr); // the journal's default prefix, not F's
     EXPECT_FALSE(wb().candidatePreview.has_value());
 }
 

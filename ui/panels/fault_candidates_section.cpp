@@ -2,6 +2,7 @@
 // request and shown in distinct colours in the main view, largest first; the user accepts one as
 // a named fault (fault.create), or all at once (the journal's fault.candidates).
 #include "ui/panels/panels.hpp"
+#include "ui/viewport/fault_edit.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -107,9 +108,11 @@ class FaultCandidatesSection {
     }
 
   private:
-    double m_link = 1.1;
-    int m_minSize = 10; // as fault.candidates
-    std::string m_prefix = "F";
+    // The journal's defaults. Accept all's prefix is not the "F" of faults made by hand (and of a
+    // single accepted candidate): fault.candidates refuses names that exist.
+    double m_link = core::kDefaultCandidateLink;
+    int m_minSize = static_cast<int>(core::kDefaultCandidateMinSize);
+    std::string m_prefix{core::kDefaultCandidatePrefix};
     double m_millis = 0;
     std::set<int> m_accepted;
     std::shared_ptr<Job> m_finding;
@@ -154,10 +157,7 @@ class FaultCandidatesSection {
 
     void accept(Workbench& wb, int k) {
         const auto& cand = wb.candidatePreview->set.candidates[static_cast<std::size_t>(k)];
-        std::string name;
-        for (int n = 1;; ++n)
-            if (!wb.state().fault(name = m_prefix + std::to_string(n)))
-                break;
+        const std::string name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
         wb.emit({{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}},
                 [this, &wb, k, name] {
