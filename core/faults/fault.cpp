@@ -40,4 +40,14 @@ std::vector<std::int64_t> Fault::remove(std::vector<std::int64_t> less) {
     return removed;
 }
 
+std::uint64_t hashMemberIds(std::span<const std::int64_t> ids) {
+    std::uint64_t h = 0xcbf29ce484222325ull ^ ids.size();
+    for (std::int64_t id : ids) {
+        h ^= static_cast<std::uint64_t>(id);
+        h *= 0x100000001b3ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
 } // namespace faultline::core

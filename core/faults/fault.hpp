@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,9 @@ struct Fault {
 
 // Sorts and removes duplicates.
 void normalizeIds(std::vector<std::int64_t>& ids);
+
+// Order-sensitive hash of member ids (pass them sorted, as Fault::ids keeps them): the key of
+// whatever is cached per membership (surfaces, metric series, colourings).
+std::uint64_t hashMemberIds(std::span<const std::int64_t> ids);
 
 } // namespace faultline::core

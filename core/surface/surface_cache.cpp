@@ -6,16 +6,6 @@ namespace {
 constexpr std::size_t kMeshesPerEntry = 4;
 }
 
-std::uint64_t hashMemberIds(std::span<const std::int64_t> ids) {
-    std::uint64_t h = 0xcbf29ce484222325ull ^ ids.size();
-    for (std::int64_t id : ids) {
-        h ^= static_cast<std::uint64_t>(id);
-        h *= 0x100000001b3ull;
-        h ^= h >> 29;
-    }
-    return h;
-}
-
 SurfaceCache::SurfaceCache(std::size_t budgetBytes) : m_budget(budgetBytes) {}
 
 std::size_t SurfaceCache::meshBytes(const SurfaceMesh &mesh) {

@@ -2,6 +2,7 @@
 // toggling a fault never rebuilds what was built, and a new iso-value only re-meshes.
 #pragma once
 
+#include "core/faults/fault.hpp"
 #include "core/surface/fault_surface.hpp"
 
 #include <cstdint>
@@ -12,9 +13,6 @@
 #include <vector>
 
 namespace faultline::core {
-
-// Order-sensitive hash of member ids (pass them sorted, as Fault::ids keeps them).
-std::uint64_t hashMemberIds(std::span<const std::int64_t> ids);
 
 struct SurfaceKey {
     std::int64_t frame = 0;

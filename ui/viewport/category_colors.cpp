@@ -63,9 +63,7 @@ std::uint64_t faultColoringKey(std::span<const core::Fault> faults) {
         mix(std::hash<std::string>{}(f.name));
         for (float c : f.color)
             mix(std::bit_cast<std::uint32_t>(c));
-        mix(f.ids.size());
-        for (std::int64_t id : f.ids)
-            mix(static_cast<std::uint64_t>(id));
+        mix(core::hashMemberIds(f.ids));
     }
     return h;
 }

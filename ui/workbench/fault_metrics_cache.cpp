@@ -27,18 +27,7 @@ FaultMetricsCache::~FaultMetricsCache() {
 }
 
 std::uint64_t FaultMetricsCache::membersKey(const core::Fault& fault) {
-    // FNV-1a over the sorted ids, then the count.
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](std::uint64_t v) {
-        for (int b = 0; b < 8; ++b) {
-            h ^= (v >> (8 * b)) & 0xffu;
-            h *= 1099511628211ull;
-        }
-    };
-    for (std::int64_t id : fault.ids)
-        mix(static_cast<std::uint64_t>(id));
-    mix(fault.ids.size());
-    return h;
+    return core::hashMemberIds(fault.ids);
 }
 
 std::shared_ptr<const FaultMetricsCache::Series>
