@@ -1,13 +1,13 @@
 // Ops on what is shown: data.open/close, frame.set, view.*, color.set, camera.set, layout.set.
 #include "core/session/session_ops.hpp"
 
+#include "core/color/colormap.hpp"
+
 #include <algorithm>
 
 namespace faultline::core::detail {
 
 namespace {
-
-const char* kColorMaps[] = {"blue-red", "viridis", "diverging", "pastel", "bands", "gray"};
 
 Json openInverse(Session& s) {
     if (!s.dataset())
@@ -161,9 +161,13 @@ void registerDataOps(OpTable& ops) {
         if (auto var = args::optionalString(cmd, "variable"))
             next.colorVariable = *var;
         if (auto map = args::optionalString(cmd, "map")) {
-            if (std::find(std::begin(kColorMaps), std::end(kColorMaps), *map) == std::end(kColorMaps))
-                throw CommandError("color.set: unknown map \"" + *map +
-                                   "\" (blue-red, viridis, diverging, pastel, bands, gray)");
+            // The renderers' own parser decides, so the two cannot disagree on a name.
+            if (!parseColorMap(*map)) {
+                std::string known;
+                for (const std::string& name : colorMapNames())
+                    known += (known.empty() ? "" : ", ") + name;
+                throw CommandError("color.set: unknown map \"" + *map + "\" (" + known + ")");
+            }
             next.colorMap = *map;
         }
         if (cmd.contains("range")) {
