@@ -77,12 +77,11 @@ std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultT
             out += std::to_string(p.frame) + ',';
             appendField(out, faults[f].name);
             out += ',' + std::to_string(m.present) + ',' + std::to_string(m.candidate) + ',' +
-                   std::to_string(m.candidateSize) + ',' + std::to_string(m.shared) + ',';
-            appendReal(out, m.jaccard);
-            out += ',';
-            appendReal(out, m.precision);
-            out += ',';
-            appendReal(out, m.recall);
+                   std::to_string(m.candidateSize) + ',' + std::to_string(m.shared);
+            for (double v : {m.jaccard, m.precision, m.recall}) {
+                out += ',';
+                appendReal(out, v);
+            }
             out += '\n';
         }
     return out;

@@ -136,8 +136,6 @@ void FaultMetricsCache::request(JobRunner& jobs, double now,
                     one->frames.reserve(series->frameCount);
                     for (std::size_t f = 0; f < series->frameCount; ++f)
                         one->frames.push_back(series->at(f, k));
-                    if (k < series->seeds.size())
-                        one->seed = series->seeds[k];
                     state->series[keys[k]] = std::move(one);
                 }
                 state->lastSeconds = seconds;

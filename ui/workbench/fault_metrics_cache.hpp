@@ -17,10 +17,9 @@ namespace faultline::ui {
 
 class FaultMetricsCache {
   public:
-    // One fault's metrics, frame by frame (frames[k].frame == k), and its seed.
+    // One fault's metrics, frame by frame (frames[k].frame == k).
     struct Series {
         std::vector<core::FaultFrameMetrics> frames;
-        core::FaultSeed seed;
     };
 
     FaultMetricsCache();
