@@ -58,13 +58,14 @@ struct BoundKernel {
 };
 
 // Hot loops: bodies templated on the kernel power (no branch inside the loops), instantiated in
-// functions compiled for AVX2 too and picked at run time by CPU feature.
+// functions compiled for x86-64-v3 too (AVX2 with FMA: "avx2" alone leaves every a * b + c as
+// two instructions) and picked at run time by CPU feature.
 // clang (the sanitizer build) does not keep the 8-wide helpers' vectors in one ABI across the
 // clones and computes garbage: it builds the baseline only (speed does not matter there).
 #if defined(__clang__)
 #define FAULTLINE_HOT
 #else
-#define FAULTLINE_HOT __attribute__((target_clones("avx2", "default")))
+#define FAULTLINE_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 
 template <int P> inline float inversePower(float d2, float minD2) {
@@ -98,6 +99,7 @@ inline void powerCoefficients(const SoftenedKernel &kernel, simd8::v8f out[5]) {
     }
 }
 
+// Built once per level: the coefficients cost ten pow() calls.
 struct WindowKernels {
     simd8::v8f belowA2, ownA2, minD2, one;
     simd8::v8f below[5], own[5]; // coefficients of d^2^k
@@ -138,11 +140,9 @@ template <int P, bool Top>
 [[gnu::always_inline]] inline float windowSumBody(float x, float y, float z, const float *px,
                                                   const float *py, const float *pz,
                                                   const float *pw, std::size_t count,
-                                                  const SoftenedKernel &below,
-                                                  const SoftenedKernel &own, float minD2) {
+                                                  const WindowKernels &k) {
     using simd8::load;
     using simd8::v8f;
-    const WindowKernels k(below, own, minD2);
     const v8f vx = simd8::splat(x), vy = simd8::splat(y), vz = simd8::splat(z);
     v8f acc0{}, acc1{};
     std::size_t q = 0;
@@ -167,17 +167,15 @@ template <int P, bool Top>
 
 FAULTLINE_HOT float windowSum1(float x, float y, float z, const float *px, const float *py,
                                const float *pz, const float *pw, std::size_t count,
-                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
-                               bool top) {
-    return top ? windowSumBody<1, true>(x, y, z, px, py, pz, pw, count, below, own, minD2)
-               : windowSumBody<1, false>(x, y, z, px, py, pz, pw, count, below, own, minD2);
+                               const WindowKernels &kernels, bool top) {
+    return top ? windowSumBody<1, true>(x, y, z, px, py, pz, pw, count, kernels)
+               : windowSumBody<1, false>(x, y, z, px, py, pz, pw, count, kernels);
 }
 FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const float *py,
                                const float *pz, const float *pw, std::size_t count,
-                               const SoftenedKernel &below, const SoftenedKernel &own, float minD2,
-                               bool top) {
-    return top ? windowSumBody<2, true>(x, y, z, px, py, pz, pw, count, below, own, minD2)
-               : windowSumBody<2, false>(x, y, z, px, py, pz, pw, count, below, own, minD2);
+                               const WindowKernels &kernels, bool top) {
+    return top ? windowSumBody<2, true>(x, y, z, px, py, pz, pw, count, kernels)
+               : windowSumBody<2, false>(x, y, z, px, py, pz, pw, count, kernels);
 }
 
 // Exact near field at one voxel: k - gamma_a0 within a0, or the compact kernel (P = 0), over a
@@ -605,12 +603,11 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         FieldLevel &level = *m_levels[li];
         const FieldLevel *above =
             li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get() : nullptr;
+        const WindowKernels kernels(level.below, level.own, kernel.minD2);
         tbb::parallel_for(std::size_t{0}, level.bricks.size(), [&](std::size_t bi) {
             if (cancelled.load(std::memory_order_relaxed))
                 return;
             Brick &brick = level.bricks[bi];
-            thread_local NearList list;
-            const SoftenedKernel below = level.below, own = level.own;
             // Nodes in 4^3 groups, each with its own sphere ranges: the window (a ball of radius
             // a_l) fills more of a small group's box than of the whole brick's.
             constexpr int kGroup = 4;
@@ -667,10 +664,9 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                             const float y = (brick.origin[1] + j) * level.spacing;
                             const float w = (brick.origin[2] + z) * level.spacing;
                             brick.values[off] =
-                                kernel.p == 2 ? windowSum2(x, y, w, px, py, pz, pw, len, below,
-                                                           own, kernel.minD2, level.top)
-                                              : windowSum1(x, y, w, px, py, pz, pw, len, below,
-                                                           own, kernel.minD2, level.top);
+                                kernel.p == 2
+                                    ? windowSum2(x, y, w, px, py, pz, pw, len, kernels, level.top)
+                                    : windowSum1(x, y, w, px, py, pz, pw, len, kernels, level.top);
                         }
                     }
             if (above) {

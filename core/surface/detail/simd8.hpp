@@ -1,5 +1,5 @@
 // Eight floats at a time with GCC vector extensions: the hot field loops are written once and
-// compiled for AVX2 (one register) and for the baseline (two SSE registers) by target_clones.
+// compiled for AVX2 + FMA (one register) and for the baseline (two SSE registers) by target_clones.
 // Explicit accumulators keep the sums in registers, which the auto-vectoriser did not.
 #pragma once
 
