@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <cstring>
 
 namespace faultline::core {
 
@@ -238,23 +239,35 @@ FAULTLINE_HOT float nearValue2(float x, float y, float z, const NearList &list, 
     return nearValueBody<2>(x, y, z, list, invC2, a2, minD2, soft);
 }
 
-// Figure 4 colour at one voxel: the mean colour of the spheres whose radius + reachAdd holds it.
-// Returns the number of them; rgb gets the colour sum.
-inline float colorSum(float x, float y, float z, const NearList &list, float reachAdd,
-                      float rgb[3]) {
-    float cr = 0.0f, cg = 0.0f, cb = 0.0f, n = 0.0f;
+// Figure 4 colour along a row of 8 voxels (z indices k0 .. k0 + 7): per voxel, the sum of the colours of
+// the spheres whose radius + reachAdd holds it, and their number.
+FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList &list,
+                            float reachAdd, float red[8], float green[8], float blue[8],
+                            float count[8]) {
+    using simd8::splat;
+    using simd8::v8f;
+    v8f z;
+    for (int l = 0; l < 8; ++l)
+        z[l] = static_cast<float>(k0 + l) * h;
+    v8f cr{}, cg{}, cb{}, n{};
+    const v8f zero{}, one = splat(1.0f);
     for (std::size_t q = 0; q < list.size(); ++q) {
-        const float dx = x - list.x[q], dy = y - list.y[q], dz = z - list.z[q];
+        const float dx = x - list.x[q], dy = y - list.y[q];
         const float reach = list.r[q] + reachAdd;
-        if (dx * dx + dy * dy + dz * dz < reach * reach) {
-            cr += list.red[q];
-            cg += list.green[q];
-            cb += list.blue[q];
-            n += 1.0f;
-        }
+        const float dxy2 = dx * dx + dy * dy, reach2 = reach * reach;
+        if (dxy2 >= reach2)
+            continue; // the sphere misses the whole row
+        const v8f dz = z - splat(list.z[q]);
+        const auto in = splat(dxy2) + dz * dz < splat(reach2);
+        cr += in ? splat(list.red[q]) : zero;
+        cg += in ? splat(list.green[q]) : zero;
+        cb += in ? splat(list.blue[q]) : zero;
+        n += in ? one : zero;
     }
-    rgb[0] = cr, rgb[1] = cg, rgb[2] = cb;
-    return n;
+    std::memcpy(red, &cr, sizeof cr);
+    std::memcpy(green, &cg, sizeof cg);
+    std::memcpy(blue, &cb, sizeof cb);
+    std::memcpy(count, &n, sizeof n);
 }
 
 // Pads a near list to whole vectors with weightless spheres far from everything.
@@ -701,15 +714,21 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
         voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
     colors.clear();
     m_tree.gather(blockBox, maxRadius() + m_params.colorReach, colors, true);
+    static_assert(kBlockDim == 8, "colorRow fills rows of 8 voxels");
+    if (colors.size() == 0) {
+        std::fill(color, color + kBlockVoxels, m_params.initialColor);
+        return;
+    }
     for (int i = 0; i < kBlockDim; ++i)
-        for (int j = 0; j < kBlockDim; ++j)
-            for (int k = 0; k < kBlockDim; ++k) {
-                float rgb[3];
-                const float n = colorSum((o[0] + i) * m_h, (o[1] + j) * m_h, (o[2] + k) * m_h,
-                                         colors, m_params.colorReach, rgb);
-                color[blockOffset(i, j, k)] = n > 0.0f ? Vec3f{rgb[0] / n, rgb[1] / n, rgb[2] / n}
-                                                       : m_params.initialColor;
-            }
+        for (int j = 0; j < kBlockDim; ++j) {
+            float red[8], green[8], blue[8], n[8];
+            colorRow((o[0] + i) * m_h, (o[1] + j) * m_h, o[2], m_h, colors,
+                     m_params.colorReach, red, green, blue, n);
+            for (int k = 0; k < kBlockDim; ++k)
+                color[blockOffset(i, j, k)] =
+                    n[k] > 0.0f ? Vec3f{red[k] / n[k], green[k] / n[k], blue[k] / n[k]}
+                                : m_params.initialColor;
+        }
 }
 
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
