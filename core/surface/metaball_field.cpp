@@ -301,36 +301,43 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
             int kappa = 0, coarse = 0, ratio = 0;
             double error = 0.0, cost = 0.0;
         };
-        std::optional<Choice> best, mostAccurate;
-        std::map<double, double> densest; // cutoff -> densest weight within it (shared)
+        std::vector<Choice> candidates;
         for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
             if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
                 continue;
             // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
             // the near cutoff about nearCutoffRadii radii.
             const double target = m_tuning.nearCutoffRadii * mean;
-            m_ratio1 =
+            const int ratio =
                 std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
-            m_a0 = static_cast<float>(kappa) * static_cast<float>(m_ratio1) * m_h;
-            m_kappa = kappa;
             for (int coarse = std::max(kKappaMin, kappa / 2 + 1); coarse <= kKappaMax; ++coarse) {
                 if (m_tuning.coarseKappa > 0 &&
                     coarse != std::max(m_tuning.coarseKappa, kappa / 2 + 1))
                     continue;
-                m_coarseKappa = coarse;
-                const auto scale = errorScale(&densest);
-                Choice c{kappa, coarse, m_ratio1,
-                         kErrorPerScale[kappa] * scale[0] +
-                             kCoarseErrorShare * kErrorPerScale[coarse] * scale[1],
-                         5.0 * std::pow(double(kappa * m_ratio1), 3) +
-                             56.0 * std::pow(double(coarse), 3)};
-                if (!mostAccurate || c.error < mostAccurate->error)
-                    mostAccurate = c;
-                if (c.error <= budget && (!best || c.cost < best->cost))
-                    best = c;
-                // A larger coarse kappa is more accurate and dearer: the first that fits will do.
-                if (c.error <= budget)
-                    break;
+                candidates.push_back({kappa, coarse, ratio, 0.0,
+                                      5.0 * std::pow(double(kappa * ratio), 3) +
+                                          56.0 * std::pow(double(coarse), 3)});
+            }
+        }
+        // Cheapest first: the first whose estimate fits is the choice, and the dearer ones need
+        // no estimate (each costs tree walks at up to eight cutoffs).
+        std::stable_sort(candidates.begin(), candidates.end(),
+                         [](const Choice &a, const Choice &b) { return a.cost < b.cost; });
+        std::optional<Choice> best, mostAccurate;
+        std::map<double, double> densest; // cutoff -> densest weight within it (shared)
+        for (Choice &c : candidates) {
+            m_kappa = c.kappa;
+            m_coarseKappa = c.coarse;
+            m_ratio1 = c.ratio;
+            m_a0 = static_cast<float>(c.kappa) * static_cast<float>(c.ratio) * m_h;
+            const auto scale = errorScale(&densest);
+            c.error = kErrorPerScale[c.kappa] * scale[0] +
+                      kCoarseErrorShare * kErrorPerScale[c.coarse] * scale[1];
+            if (!mostAccurate || c.error < mostAccurate->error)
+                mostAccurate = c;
+            if (c.error <= budget) {
+                best = c;
+                break;
             }
         }
         const Choice chosen = best ? *best : *mostAccurate;
@@ -732,7 +739,6 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
 }
 
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
-    thread_local NearList list;
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
@@ -746,25 +752,35 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
     m_tree.gather(blockBox, m_a0, block, false);
     if (color)
         evaluateColor(o, color);
+    // Each sphere's gap to the lower and upper half of the block along each axis gives its
+    // distance to all eight octants in one pass.
     constexpr int kHalf = kBlockDim / 2;
+    thread_local NearList octants[8];
+    for (auto &l : octants)
+        l.clear();
+    for (std::size_t q = 0; q < block.size(); ++q) {
+        const float c[3] = {block.x[q], block.y[q], block.z[q]};
+        float gap2[3][2];
+        for (int k = 0; k < 3; ++k) {
+            const float lowHi = (o[k] + kHalf - 1) * m_h, highLo = (o[k] + kHalf) * m_h;
+            const float low = std::max({blockBox.lo[k] - c[k], c[k] - lowHi, 0.0f});
+            const float high = std::max({highLo - c[k], c[k] - blockBox.hi[k], 0.0f});
+            gap2[k][0] = low * low;
+            gap2[k][1] = high * high;
+        }
+        for (int octant = 0; octant < 8; ++octant) {
+            if (gap2[0][octant & 1] + gap2[1][(octant >> 1) & 1] + gap2[2][(octant >> 2) & 1] >
+                a2)
+                continue;
+            NearList &l = octants[octant];
+            l.x.push_back(c[0]), l.y.push_back(c[1]), l.z.push_back(c[2]);
+            l.r.push_back(block.r[q]);
+        }
+    }
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
                         o[2] + ((octant >> 2) & 1) * kHalf};
-        const Box box =
-            voxelBox(lo, {lo[0] + kHalf - 1, lo[1] + kHalf - 1, lo[2] + kHalf - 1}, m_h);
-        list.clear();
-        for (std::size_t q = 0; q < block.size(); ++q) {
-            float d2 = 0.0f;
-            const float c[3] = {block.x[q], block.y[q], block.z[q]};
-            for (int k = 0; k < 3; ++k) {
-                const float gap = std::max({box.lo[k] - c[k], c[k] - box.hi[k], 0.0f});
-                d2 += gap * gap;
-            }
-            if (d2 <= a2) {
-                list.x.push_back(c[0]), list.y.push_back(c[1]), list.z.push_back(c[2]);
-                list.r.push_back(block.r[q]);
-            }
-        }
+        NearList &list = octants[octant];
         padToVectors(list);
         for (int i = 0; i < kHalf; ++i)
             for (int j = 0; j < kHalf; ++j)
