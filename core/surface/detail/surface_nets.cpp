@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <unordered_map>
 #include <vector>
 
@@ -29,6 +31,8 @@ constexpr int kNone = -1;
 constexpr int kOwnedElsewhere = -2; // a foreign cell's entry is kOwnedElsewhere - (its slot)
 
 inline int padOffset(int i, int j, int k) { return (i * kPad + j) * kPad + k; }
+// One voxel along x, y, z in the padded arrays.
+constexpr int kPadStep[3] = {kPad * kPad, kPad, 1};
 inline int cellOffset(int i, int j, int k) { return (i * kCells + j) * kCells + k; }
 inline int leafOffset(int i, int j, int k) { return (i * 8 + j) * 8 + k; }
 // Which of the 3 x 3 x 3 leaves (0: below, 1: this one, 2: above) holds padded index p, and
@@ -222,9 +226,8 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             if (nc[s])
                                 colorSum += wgt * nc[s]->getValue(off);
                             if (normals) {
-                                constexpr int kStep[3] = {kPad * kPad, kPad, 1};
                                 for (int a = 0; a < 3; ++a) {
-                                    const int up = at + kStep[a], down = at - kStep[a];
+                                    const int up = at + kPadStep[a], down = at - kPadStep[a];
                                     const float g = stored[up] && stored[down]
                                                         ? 0.5f * (value[up] - value[down])
                                                     : stored[up]   ? value[up] - value[at]
@@ -249,16 +252,30 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                                                         gradientSum[2] / weight}
                                                                 : Vec3f{0.0f, 0.0f, 0.0f});
                     }
-            // Edges from this leaf's voxels towards +axis.
+            // Edges from this leaf's voxels towards +axis, a row of 8 along z at a time: the
+            // bytes of (row XOR the row one step along the axis) that differ are the edges
+            // the surface crosses (most rows have none).
+            static_assert(sizeof(in[0]) == 1 && std::endian::native == std::endian::little,
+                          "rows of 8 inside flags are read as 64 bits, first flag lowest");
             for (int i = kMargin; i < kMargin + 8; ++i)
-                for (int j = kMargin; j < kMargin + 8; ++j)
-                    for (int k = kMargin; k < kMargin + 8; ++k) {
+                for (int j = kMargin; j < kMargin + 8; ++j) {
+                    const int row = padOffset(i, j, kMargin);
+                    std::uint64_t here, diff[3];
+                    std::memcpy(&here, &in[row], 8);
+                    for (int a = 0; a < 3; ++a) {
+                        std::uint64_t next;
+                        std::memcpy(&next, &in[row + kPadStep[a]], 8);
+                        diff[a] = here ^ next;
+                    }
+                    std::uint64_t any = diff[0] | diff[1] | diff[2];
+                    while (any != 0) {
+                        const int byte = std::countr_zero(any) / 8;
+                        any &= ~(std::uint64_t{0xFF} << (8 * byte));
+                        const int k = kMargin + byte;
                         const int v[3] = {i, j, k};
-                        const bool inHere = in[padOffset(i, j, k)] != 0;
+                        const bool inHere = in[row + byte] != 0;
                         for (int a = 0; a < 3; ++a) {
-                            int u[3] = {i, j, k};
-                            ++u[a];
-                            if ((in[padOffset(u[0], u[1], u[2])] != 0) == inHere)
+                            if (((diff[a] >> (8 * byte)) & 0xFF) == 0)
                                 continue;
                             const int b = (a + 1) % 3, c = (a + 2) % 3;
                             // Cells around the edge, counter-clockwise seen from +a.
@@ -277,6 +294,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             w.quads.push_back(quad);
                         }
                     }
+                }
         }
     });
 
