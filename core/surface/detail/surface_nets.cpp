@@ -156,7 +156,23 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             if (normals)
                 w.gradients.reserve(128);
             for (int ci = 0; ci < kCells; ++ci)
-                for (int cj = 0; cj < kCells; ++cj)
+                for (int cj = 0; cj < kCells; ++cj) {
+                    // A row of cells along z whose corners (four rows of 10 flags) are all
+                    // inside or all outside holds no vertex.
+                    std::uint64_t any = 0, all = ~std::uint64_t{0};
+                    std::uint16_t anyTail = 0, allTail = 0xFFFF;
+                    for (int d = 0; d < 4; ++d) {
+                        const int row = padOffset(ci + kMargin - 1 + (d & 1),
+                                                  cj + kMargin - 1 + (d >> 1), kMargin - 1);
+                        std::uint64_t head;
+                        std::uint16_t tail;
+                        std::memcpy(&head, &in[row], 8);
+                        std::memcpy(&tail, &in[row + 8], 2);
+                        any |= head, all &= head;
+                        anyTail |= tail, allTail &= tail;
+                    }
+                    if ((any | anyTail) == 0 || (all == 0x0101010101010101ull && allTail == 0x0101))
+                        continue;
                     for (int ck = 0; ck < kCells; ++ck) {
                         const int base =
                             padOffset(ci + kMargin - 1, cj + kMargin - 1, ck + kMargin - 1);
@@ -252,6 +268,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                                                         gradientSum[2] / weight}
                                                                 : Vec3f{0.0f, 0.0f, 0.0f});
                     }
+                }
             // Edges from this leaf's voxels towards +axis, a row of 8 along z at a time: the
             // bytes of (row XOR the row one step along the axis) that differ are the edges
             // the surface crosses (most rows have none).
