@@ -57,6 +57,7 @@ void report(benchmark::State &state, const fc::SurfaceResult &r) {
     state.counters["blocks"] = double(s.blocks);
     state.counters["voxels"] = double(s.activeVoxels);
     state.counters["levels"] = s.levels;
+    state.counters["charge_levels"] = s.anterpolatedLevels;
     state.counters["coarse_nodes"] = double(s.coarseNodes);
     state.counters["triangles"] = double(r.mesh.triangleCount());
     state.counters["plan_ms"] = 1e3 * s.planSeconds;

@@ -216,6 +216,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     impl->stats.activeVoxels = impl->density->activeVoxelCount();
     impl->stats.coarseNodes = field.coarseNodeCount();
     impl->stats.levels = field.levelCount();
+    impl->stats.anterpolatedLevels = field.anterpolatedLevels();
     impl->stats.nearCutoff = field.nearCutoff();
     impl->stats.kappa = field.kappa();
     impl->stats.estimatedError = field.estimatedError();

@@ -27,9 +27,10 @@ struct SurfaceStats {
     std::size_t activeVoxels = 0;
     std::size_t coarseNodes = 0; // nodes on the multilevel grids
     int levels = 0;
+    int anterpolatedLevels = 0; // coarse levels that sum grid charges instead of spheres
     float nearCutoff = 0.0f;
     int kappa = 0;               // near cutoff / level-1 spacing
-    double estimatedError = 0.0; // a priori bound on |f - f_exact| the parameters were chosen by
+    double estimatedError = 0.0; // a priori bound on |f - f_exact| of the levels built
     double planSeconds = 0.0, fieldSeconds = 0.0, meshSeconds = 0.0;
 };
 

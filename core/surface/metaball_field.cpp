@@ -3,6 +3,7 @@
 #include "core/surface/detail/field_level.hpp"
 #include "core/surface/detail/simd8.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -278,6 +279,101 @@ void padToVectors(NearList &list) {
     }
 }
 
+// Multilevel summation's anterpolation: every sphere's weight spread over a level's nodes with
+// the interpolation's own Lagrange weights. Summing a smooth kernel over these charges sums,
+// over the spheres, its interpolant at their centres: an error of the same size as
+// interpolating the level's values, and far fewer terms where a node spacing holds many
+// spheres. Dense over the centres' box, so for coarse levels only.
+struct ChargeGrid {
+    detail::Int3 lo{0, 0, 0}, dims{0, 0, 0};
+    std::vector<float> q; // x slowest, z fastest
+    // The nonzero charges as a window list padded to whole 16s (the top level sums them all).
+    std::vector<float> x, y, z, w;
+    std::size_t nonzero = 0;
+    float at(int i, int j, int k) const {
+        return q[(static_cast<std::size_t>(i) * dims[1] + j) * dims[2] + k];
+    }
+};
+
+// Larger grids are not made (a level that coarse holds few spheres per node anyway); up to the
+// second size every thread spreads into a grid of its own.
+constexpr std::size_t kMaxChargeNodes = std::size_t{1} << 22;
+constexpr std::size_t kParallelChargeNodes = std::size_t{1} << 18;
+
+std::optional<ChargeGrid> anterpolate(const detail::PackedSpheres &s, const Box &centres,
+                                      float spacing) {
+    ChargeGrid g;
+    std::size_t total = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double lo = std::floor(centres.lo[k] / spacing) - detail::kTapsBelow;
+        const double hi = std::floor(centres.hi[k] / spacing) + detail::kTapsAbove;
+        if (hi - lo + 1 > double(kMaxChargeNodes))
+            return std::nullopt;
+        g.lo[k] = static_cast<int>(lo);
+        g.dims[k] = static_cast<int>(hi - lo + 1);
+        total *= static_cast<std::size_t>(g.dims[k]);
+        if (total > kMaxChargeNodes)
+            return std::nullopt;
+    }
+    auto spread = [&](std::size_t i, std::vector<float> &q) {
+        float w[3][detail::kTaps];
+        int b[3];
+        const float c[3] = {s.x[i], s.y[i], s.z[i]};
+        for (int k = 0; k < 3; ++k) {
+            const float u = c[k] / spacing;
+            const float fl = std::floor(u);
+            b[k] = std::clamp(static_cast<int>(fl) - detail::kTapsBelow - g.lo[k], 0,
+                              g.dims[k] - detail::kTaps);
+            detail::lagrangeWeights(u - fl, w[k]);
+        }
+        for (int a = 0; a < detail::kTaps; ++a)
+            for (int e = 0; e < detail::kTaps; ++e) {
+                const float wae = s.r[i] * w[0][a] * w[1][e];
+                float *row =
+                    &q[(static_cast<std::size_t>(b[0] + a) * g.dims[1] + b[1] + e) * g.dims[2] +
+                       b[2]];
+                for (int f = 0; f < detail::kTaps; ++f)
+                    row[f] += wae * w[2][f];
+            }
+    };
+    if (total <= kParallelChargeNodes) {
+        // A private grid per thread, summed after.
+        tbb::enumerable_thread_specific<std::vector<float>> local(
+            [&] { return std::vector<float>(total, 0.0f); });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.size(), 2048),
+                          [&](const tbb::blocked_range<std::size_t> &range) {
+                              std::vector<float> &q = local.local();
+                              for (std::size_t i = range.begin(); i != range.end(); ++i)
+                                  spread(i, q);
+                          });
+        g.q.assign(total, 0.0f);
+        for (const auto &q : local)
+            for (std::size_t n = 0; n < total; ++n)
+                g.q[n] += q[n];
+    } else {
+        g.q.assign(total, 0.0f);
+        for (std::size_t i = 0; i < s.size(); ++i)
+            spread(i, g.q);
+    }
+    for (int i = 0; i < g.dims[0]; ++i)
+        for (int j = 0; j < g.dims[1]; ++j)
+            for (int k = 0; k < g.dims[2]; ++k) {
+                const float q = g.at(i, j, k);
+                if (q == 0.0f)
+                    continue;
+                g.x.push_back(static_cast<float>(g.lo[0] + i) * spacing);
+                g.y.push_back(static_cast<float>(g.lo[1] + j) * spacing);
+                g.z.push_back(static_cast<float>(g.lo[2] + k) * spacing);
+                g.w.push_back(q);
+            }
+    g.nonzero = g.x.size();
+    while (g.w.size() % 16 != 0) {
+        g.x.push_back(0.0f), g.y.push_back(0.0f), g.z.push_back(0.0f);
+        g.w.push_back(0.0f);
+    }
+    return g;
+}
+
 } // namespace
 
 MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
@@ -346,6 +442,8 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         m_ratio1 = chosen.ratio;
         m_a0 = static_cast<float>(m_kappa) * static_cast<float>(m_ratio1) * m_h;
         m_estimatedError = chosen.error;
+        m_budget = budget;
+        errorScale(&densest, &m_errorTerms);
         m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
     } else {
         m_a0 = params.compactReach * maxRadius();
@@ -389,7 +487,8 @@ double MetaballField::cutoff(int l) const {
     return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
 }
 
-std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo) const {
+std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo,
+                                                std::vector<double> *terms) const {
     // The densest weight within each cutoff over cutoff^p: the size of what each level
     // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
     const auto &s = m_tree.spheres();
@@ -400,6 +499,8 @@ std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo) 
     for (int k = 0; k < 3; ++k)
         span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
     std::array<double, 2> scale{0.0, 0.0};
+    if (terms)
+        terms->clear();
     for (int l = 0;; ++l) {
         const double a = cutoff(l);
         const auto known = memo ? memo->find(a) : std::map<double, double>::iterator{};
@@ -420,7 +521,10 @@ std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo) 
             if (memo)
                 memo->emplace(a, densest);
         }
-        scale[l == 0 ? 0 : 1] += densest / (m_kernel.p == 2 ? a * a : a);
+        const double term = densest / (m_kernel.p == 2 ? a * a : a);
+        scale[l == 0 ? 0 : 1] += term;
+        if (terms)
+            terms->push_back(term);
         if (a * a > 4.0 * span2)
             break;
     }
@@ -610,6 +714,37 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         m_levels.push_back(std::move(next));
     }
 
+    // The error of this hierarchy: level 1's interpolation and each coarser level's (the top
+    // level's values are exact sums, with nothing above to interpolate). Then from the top down,
+    // a level sums grid charges instead of spheres while that (a second interpolation error of
+    // the same size, on the spheres' side) fits the budget and the charges are few enough.
+    const int levelCount = static_cast<int>(m_levels.size());
+    std::vector<std::optional<ChargeGrid>> charges(m_levels.size());
+    m_anterpolated = 0;
+    if (!m_errorTerms.empty()) {
+        // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
+        auto term = [&](int l) {
+            return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
+        };
+        const double perCoarseTerm = kCoarseErrorShare * kErrorPerScale[m_coarseKappa];
+        double estimate = kErrorPerScale[m_kappa] * term(0);
+        for (int l = 1; l < levelCount; ++l)
+            estimate += perCoarseTerm * term(l);
+        if (m_tuning.anterpolateFrom > 0)
+            for (int l = levelCount; l >= std::max(2, m_tuning.anterpolateFrom); --l) {
+                const double extra = perCoarseTerm * term(l - 1);
+                if (estimate + extra > m_budget)
+                    break;
+                auto grid = anterpolate(m_tree.spheres(), centreBox(), m_levels[l - 1]->spacing);
+                if (!grid || double(grid->nonzero) > m_tuning.chargeShare * double(sphereCount()))
+                    break;
+                charges[l - 1] = std::move(grid);
+                estimate += extra;
+                ++m_anterpolated;
+            }
+        m_estimatedError = estimate;
+    }
+
     // Compute from the coarsest level down: each level adds its window sum to the cubic
     // interpolation of the level above.
     std::size_t totalBricks = 0;
@@ -651,7 +786,61 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                         const float *px = s.x.data(), *py = s.y.data(), *pz = s.z.data(),
                                     *pw = s.r.data();
                         std::size_t len = s.size();
-                        if (!level.top) {
+                        const ChargeGrid *grid = charges[li] ? &*charges[li] : nullptr;
+                        if (grid && level.top) {
+                            px = grid->x.data(), py = grid->y.data(), pz = grid->z.data();
+                            pw = grid->w.data();
+                            len = grid->w.size();
+                        } else if (grid) {
+                            // The charges within the cutoff of the group's nodes.
+                            thread_local std::vector<float> wx, wy, wz, ww;
+                            wx.clear(), wy.clear(), wz.clear(), ww.clear();
+                            const int g[3] = {gi, gj, gz};
+                            const int reach =
+                                static_cast<int>(std::ceil(level.cutoff / level.spacing));
+                            int from[3], to[3], glo[3];
+                            for (int k = 0; k < 3; ++k) {
+                                glo[k] = brick.origin[k] + g[k];
+                                from[k] = std::max(glo[k] - reach, grid->lo[k]) - grid->lo[k];
+                                to[k] = std::min(glo[k] + kGroup - 1 + reach,
+                                                 grid->lo[k] + grid->dims[k] - 1) -
+                                        grid->lo[k];
+                            }
+                            // Node distance to the group's box along one axis, squared, world.
+                            auto gap2 = [&](int k, int local) {
+                                const int node = grid->lo[k] + local;
+                                const int gap =
+                                    std::max({glo[k] - node, node - (glo[k] + kGroup - 1), 0});
+                                const float d = static_cast<float>(gap) * level.spacing;
+                                return d * d;
+                            };
+                            const float a2 = level.cutoff * level.cutoff;
+                            for (int a = from[0]; a <= to[0]; ++a) {
+                                const float da = gap2(0, a);
+                                if (da >= a2)
+                                    continue;
+                                for (int b = from[1]; b <= to[1]; ++b) {
+                                    const float dab = da + gap2(1, b);
+                                    if (dab >= a2)
+                                        continue;
+                                    for (int c = from[2]; c <= to[2]; ++c) {
+                                        const float q = grid->at(a, b, c);
+                                        if (q == 0.0f || dab + gap2(2, c) >= a2)
+                                            continue;
+                                        wx.push_back(float(grid->lo[0] + a) * level.spacing);
+                                        wy.push_back(float(grid->lo[1] + b) * level.spacing);
+                                        wz.push_back(float(grid->lo[2] + c) * level.spacing);
+                                        ww.push_back(q);
+                                    }
+                                }
+                            }
+                            while (ww.size() % 16 != 0) {
+                                wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
+                                ww.push_back(0.0f);
+                            }
+                            px = wx.data(), py = wy.data(), pz = wz.data(), pw = ww.data();
+                            len = ww.size();
+                        } else if (!level.top) {
                             thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>>
                                 ranges;
                             thread_local std::vector<float> wx, wy, wz, ww;

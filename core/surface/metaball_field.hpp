@@ -46,6 +46,10 @@ struct MultilevelTuning {
     int coarseKappa = 0;          // cutoff / spacing on levels >= 2; 0: the cheapest pair
                                   // (kappa, coarseKappa) whose error estimate fits the budget
     int minRatio = 2;             // level-1 spacing at least this many voxels
+    int anterpolateFrom = 3;      // levels from this one up may sum grid charges instead of
+                                  // spheres (multilevel summation's anterpolation) where the
+                                  // error budget has room for it; 0: never
+    double chargeShare = 0.5;     // ... and where the charges number at most this many spheres
     int maxOpen = 256;            // planning: tree nodes opened per block bound
     int probeOpen = 40;           // planning: after this many openings, give up on a bound
     double giveUpRatio = 2.0;     // whose high is over ratio * isoMin and low under isoMax / ratio
@@ -93,17 +97,23 @@ class MetaballField {
     float nearCutoff() const { return m_a0; }
     int kappa() const { return m_kappa; }
     int coarseKappa() const { return m_coarseKappa; }
-    // A priori estimate of the largest |f - f_exact| (from kErrorPerScale and errorScale()).
+    // A priori estimate of the largest |f - f_exact| (from kErrorPerScale and errorScale()): the
+    // one the cutoffs were chosen by, then after prepare() that of the levels it built (with
+    // their grid charges).
     double estimatedError() const { return m_estimatedError; }
     // The densest weight within each level's cutoff over cutoff^p: the size of what level 1
     // ([0]) and the coarser levels ([1]) interpolate.
     // memo: densest weight per cutoff, shared between calls for several kappas.
-    std::array<double, 2> errorScale(std::map<double, double> *memo = nullptr) const;
+    // terms: each cutoff's own term, [l] for a_l.
+    std::array<double, 2> errorScale(std::map<double, double> *memo = nullptr,
+                                     std::vector<double> *terms = nullptr) const;
     // Cutoff a_l: level 0 sums k - gamma_{a_0} exactly; level l >= 1 sums gamma_{a_{l-1}} -
     // gamma_{a_l} within a_l on a grid of spacing ratio * voxel * 2^(l-1).
     double cutoff(int level) const;
     double weightWithin(const Vec3f &point, double radius) const;
     int levelCount() const { return static_cast<int>(m_levels.size()); }
+    // How many of the coarsest levels sum grid charges instead of spheres (after prepare()).
+    int anterpolatedLevels() const { return m_anterpolated; }
     std::size_t coarseNodeCount() const;
 
   private:
@@ -119,9 +129,12 @@ class MetaballField {
     int m_kappa = 0;
     int m_coarseKappa = 0;
     double m_estimatedError = 0.0;
+    double m_budget = 0.0;            // the error the field may make
+    std::vector<double> m_errorTerms; // errorScale()'s terms for the chosen cutoffs
     int m_ratio1 = 1;                                          // level-1 spacing in voxels
     SoftenedKernel m_soft0;                                    // gamma_a0
     std::vector<std::unique_ptr<detail::FieldLevel>> m_levels; // level 1 .. L
+    int m_anterpolated = 0;
     std::unordered_map<std::uint64_t, std::uint32_t> m_blocks; // prepared block -> index
     std::vector<Coord3> m_blockOrigins;
 };

@@ -45,13 +45,18 @@ struct Check {
 // Evaluates every planned block and compares every voxel with Algorithm 1.
 Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, float voxel,
                            float isoMin, float isoMax, const fc::MultilevelTuning &tuning,
-                           int *levels = nullptr) {
+                           int *levels = nullptr, int *chargeLevels = nullptr,
+                           double *estimate = nullptr) {
     const auto set = s.set();
     fc::MetaballField field(set, params, voxel, tuning);
     const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
     field.prepare(plan.blocks, nullptr);
     if (levels)
         *levels = field.levelCount();
+    if (chargeLevels)
+        *chargeLevels = field.anterpolatedLevels();
+    if (estimate)
+        *estimate = field.estimatedError();
     Check check;
     const double clamp = 4.0 * isoMax;
     std::vector<float> density(fc::kBlockVoxels);
@@ -145,6 +150,37 @@ TEST(MetaballField, ATopLevelChosenByCostStillMatchesAlgorithm1) {
     EXPECT_LT(levelsByCost, levelsByCount);
     EXPECT_GT(c.voxels, 10000u);
     EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor);
+}
+
+// Coarse levels that sum grid charges (multilevel summation's anterpolation) instead of spheres
+// add an interpolation error on the spheres' side; the estimate counts it and still bounds the
+// error against Algorithm 1.
+TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
+    const Spheres s = slab(14, 14, 3, 5);
+    for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Inverse}) {
+        fc::SurfaceParams params;
+        params.kernel = kernel;
+        params.tolerance = 2e-3f; // room in the budget for charges on every coarse level
+        const float iso = kernel == fc::MetaballKernel::Inverse ? 40.0f : 7.0f;
+        params.iso = iso;
+        fc::MultilevelTuning tuning;
+        tuning.topLevelPairs = 1e5;
+        tuning.topByCost = false;
+        tuning.anterpolateFrom = 2;
+        tuning.chargeShare = 1e9; // a small set: charges even where they outnumber the spheres
+        int levels = 0, chargeLevels = 0;
+        double estimate = 0.0;
+        const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
+                                             iso * params.isoRangeFactor, tuning, &levels,
+                                             &chargeLevels, &estimate);
+        EXPECT_GE(levels, 3);
+        EXPECT_GE(chargeLevels, 1);
+        EXPECT_GT(c.voxels, 10000u);
+        EXPECT_LE(c.maxError, estimate);
+        EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor)
+            << "voxels " << c.voxels;
+        EXPECT_EQ(c.colorMismatches, 0u);
+    }
 }
 
 TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
