@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <cstring>
@@ -419,23 +420,34 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         // no estimate (each costs tree walks at up to eight cutoffs).
         std::stable_sort(candidates.begin(), candidates.end(),
                          [](const Choice &a, const Choice &b) { return a.cost < b.cost; });
-        std::optional<Choice> best, mostAccurate;
+        std::optional<Choice> best;
         std::map<double, double> densest; // cutoff -> densest weight within it (shared)
-        for (Choice &c : candidates) {
+        auto estimate = [&](Choice &c, double stopAbove) {
             m_kappa = c.kappa;
             m_coarseKappa = c.coarse;
             m_ratio1 = c.ratio;
             m_a0 = static_cast<float>(c.kappa) * static_cast<float>(c.ratio) * m_h;
-            const auto scale = errorScale(&densest);
-            c.error = kErrorPerScale[c.kappa] * scale[0] +
-                      kCoarseErrorShare * kErrorPerScale[c.coarse] * scale[1];
-            if (!mostAccurate || c.error < mostAccurate->error)
-                mostAccurate = c;
+            const std::array<double, 2> weights{kErrorPerScale[c.kappa],
+                                                kCoarseErrorShare * kErrorPerScale[c.coarse]};
+            const auto scale = errorScale(&densest, nullptr, weights, stopAbove);
+            c.error = weights[0] * scale[0] + weights[1] * scale[1];
+        };
+        for (Choice &c : candidates) {
+            // Over the budget part way through the levels: no need for the rest of them.
+            estimate(c, budget);
             if (c.error <= budget) {
                 best = c;
                 break;
             }
         }
+        // With none that fits, the most accurate (every estimate in full).
+        std::optional<Choice> mostAccurate;
+        if (!best)
+            for (Choice &c : candidates) {
+                estimate(c, std::numeric_limits<double>::infinity());
+                if (!mostAccurate || c.error < mostAccurate->error)
+                    mostAccurate = c;
+            }
         const Choice chosen = best ? *best : *mostAccurate;
         m_kappa = chosen.kappa;
         m_coarseKappa = chosen.coarse;
@@ -488,7 +500,9 @@ double MetaballField::cutoff(int l) const {
 }
 
 std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo,
-                                                std::vector<double> *terms) const {
+                                                std::vector<double> *terms,
+                                                const std::array<double, 2> &weights,
+                                                double stopAbove) const {
     // The densest weight within each cutoff over cutoff^p: the size of what each level
     // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
     const auto &s = m_tree.spheres();
@@ -525,6 +539,8 @@ std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo,
         scale[l == 0 ? 0 : 1] += term;
         if (terms)
             terms->push_back(term);
+        if (weights[0] * scale[0] + weights[1] * scale[1] > stopAbove)
+            break;
         if (a * a > 4.0 * span2)
             break;
     }

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <span>
@@ -105,8 +106,11 @@ class MetaballField {
     // ([0]) and the coarser levels ([1]) interpolate.
     // memo: densest weight per cutoff, shared between calls for several kappas.
     // terms: each cutoff's own term, [l] for a_l.
-    std::array<double, 2> errorScale(std::map<double, double> *memo = nullptr,
-                                     std::vector<double> *terms = nullptr) const;
+    // Stops early (a partial sum) once weights . scale exceeds stopAbove.
+    std::array<double, 2> errorScale(
+        std::map<double, double> *memo = nullptr, std::vector<double> *terms = nullptr,
+        const std::array<double, 2> &weights = {0.0, 0.0},
+        double stopAbove = std::numeric_limits<double>::infinity()) const;
     // Cutoff a_l: level 0 sums k - gamma_{a_0} exactly; level l >= 1 sums gamma_{a_{l-1}} -
     // gamma_{a_l} within a_l on a grid of spacing ratio * voxel * 2^(l-1).
     double cutoff(int level) const;
