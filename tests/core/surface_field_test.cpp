@@ -183,6 +183,31 @@ TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
     }
 }
 
+// The suggested iso wraps the spheres: every centre is inside, a point four radii above the slab
+// is outside (half the slab's width above, for the long-tailed inverse kernel); for each kernel,
+// and for a slab four times as large (whose tails add up to a far larger field: no fixed iso
+// would do for both).
+TEST(MetaballField, WrappingIsoHugsTheSpheres) {
+    for (int size : {6, 12})
+        for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Inverse,
+                            fc::MetaballKernel::Compact}) {
+            const Spheres s = slab(size, size, 3, 7);
+            fc::SurfaceParams params;
+            params.kernel = kernel;
+            const double iso = fc::wrappingIso(s.set(), params);
+            ASSERT_GT(iso, 0.0);
+            for (std::size_t i = 0; i < s.x.size(); ++i)
+                EXPECT_GT(fc::referenceSample(s.set(), params, {s.x[i], s.y[i], s.z[i]}).value,
+                          iso);
+            const double top = 1.8 + 0.15;
+            const double above = kernel == fc::MetaballKernel::Inverse ? size / 2.0 : 2.0;
+            EXPECT_LT(
+                fc::referenceSample(s.set(), params, {size / 2.0, size / 2.0, top + above}).value,
+                iso)
+                << "size " << size << " kernel " << fc::kernelName(kernel);
+        }
+}
+
 TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
     const Spheres s = slab(9, 8, 3, 2);
     fc::SurfaceParams params;

@@ -26,8 +26,14 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     headless.clearEmitted();
     headless.click(wb(), "surfaces.show.F1");
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
-    EXPECT_EQ(headless.emitted("surface.set")[0],
-              (Json{{"op", "surface.set"}, {"fault", "F1"}, {"visible", true}}));
+    Json shown = headless.emitted("surface.set")[0];
+    // A new surface starts at the iso-value that wraps the fault's spheres (written out, so the
+    // journal replays the same surface).
+    ASSERT_TRUE(shown.contains("iso")) << shown.dump();
+    const double wrapping = shown["iso"].get<double>();
+    EXPECT_GT(wrapping, 0.0);
+    shown.erase("iso");
+    EXPECT_EQ(shown, (Json{{"op", "surface.set"}, {"fault", "F1"}, {"visible", true}}));
     headless.settle(wb());
     const ui::ViewDisplay* d = wb().mainDisplay();
     ASSERT_EQ(d->surfaces.size(), 1u);
@@ -39,6 +45,15 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     auto* mock = dynamic_cast<ui::MockRenderer*>(renderer.rendererOf("main"));
     ASSERT_NE(mock, nullptr);
     EXPECT_EQ(mock->stats().meshTriangles, d->surfaces[0].mesh->indices.size() / 3);
+
+    // Wrap puts a changed iso back to the wrapping one.
+    session.apply(Json{{"op", "surface.set"}, {"fault", "F1"}, {"iso", 0.7 * wrapping}});
+    headless.settle(wb());
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.wrap");
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_DOUBLE_EQ(headless.emitted("surface.set")[0]["iso"].get<double>(), wrapping);
+    headless.settle(wb());
 
     // Opacity only: the same mesh, no new build. Undo hides the surface again.
     const std::size_t builds = wb().surfaces().buildsStarted();

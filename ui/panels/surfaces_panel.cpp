@@ -5,10 +5,15 @@
 #include "ui/panels/panels.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
+#include "core/surface/fault_surface_request.hpp"
+#include "core/surface/metaball_reference.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace faultline::ui {
 
@@ -32,6 +37,24 @@ std::string statusText(const SurfaceStatus& st) {
         break;
     }
     return "";
+}
+
+// The iso-value that wraps the fault's spheres in the shown frame about half a radius out, to
+// three significant digits (the kernels' values grow with the number of spheres: no fixed
+// default suits every fault).
+std::optional<double> wrappingIso(Workbench& wb, const core::Fault& fault,
+                                  const core::SurfaceSettings& settings) {
+    const ViewDisplay* main = wb.mainDisplay();
+    if (!main || !main->frame)
+        return std::nullopt;
+    const core::FaultSpheres spheres = core::gatherFaultSpheres(*main->frame, fault);
+    if (spheres.size() == 0)
+        return std::nullopt;
+    const double iso = core::wrappingIso(spheres.set(), core::surfaceParamsOf(settings, fault));
+    if (!(iso > 0) || !std::isfinite(iso))
+        return std::nullopt;
+    const double unit = std::pow(10.0, std::floor(std::log10(iso)) - 2);
+    return std::round(iso / unit) * unit;
 }
 
 class SurfacesPanel final : public Panel {
@@ -90,8 +113,14 @@ class SurfacesPanel final : public Panel {
             ImGui::TableNextColumn();
             const core::SurfaceSettings* st = s.surface(f.name);
             bool shown = st && st->visible;
-            if (ImGui::Checkbox("##shown", &shown))
-                wb.emit({{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}});
+            if (ImGui::Checkbox("##shown", &shown)) {
+                core::Json cmd{{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}};
+                // A new surface starts at the iso that wraps this fault's spheres.
+                if (!st && shown)
+                    if (const auto iso = wrappingIso(wb, f, core::SurfaceSettings{}))
+                        cmd["iso"] = *iso;
+                wb.emit(cmd);
+            }
             wb.mark("surfaces.show." + f.name);
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("Show the metaball surface through this fault's spheres");
@@ -166,13 +195,25 @@ class SurfacesPanel final : public Panel {
             ImGui::SetTooltip(
                 "Voxel edge in world units; 0 = the mean radius / 3. Smaller is finer and slower.");
         ImGui::SetNextItemWidth(w);
-        ImGui::SliderFloat("iso", &m_iso, 0.05f, 8.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+        // Two decades either side of the setting (the field's scale depends on the fault).
+        const float anchor = static_cast<float>(st.iso);
+        ImGui::SliderFloat("iso", &m_iso, anchor / 100.0f, anchor * 100.0f, "%.3g",
+                           ImGuiSliderFlags_Logarithmic);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
             set({{"iso", m_iso}});
         wb.mark("surfaces.iso");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The field value the surface passes through; a new value re-meshes "
-                              "the cached field.");
+                              "the cached field (Ctrl+click to type one).");
+        ImGui::SameLine();
+        if (ImGui::Button("Wrap"))
+            if (const core::Fault* f = s.fault(fault))
+                if (const auto iso = wrappingIso(wb, *f, st))
+                    set({{"iso", *iso}});
+        wb.mark("surfaces.wrap");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The iso-value whose surface wraps this fault's spheres about half a "
+                              "radius out (with this kernel)");
         ImGui::SetNextItemWidth(w);
         ImGui::SliderFloat("opacity", &m_opacity, 0.0f, 1.0f, "%.2f");
         if (ImGui::IsItemDeactivatedAfterEdit())
