@@ -25,6 +25,7 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     headless.showPanel(wb(), ui::panel_ids::kSurfaces);
     headless.clearEmitted();
     headless.click(wb(), "surfaces.show.F1");
+    headless.settle(wb()); // the wrapping iso-value is found in the background
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
     Json shown = headless.emitted("surface.set")[0];
     // A new surface starts at the iso-value that wraps the fault's spheres (written out, so the
@@ -51,6 +52,7 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     headless.settle(wb());
     headless.clearEmitted();
     headless.click(wb(), "surfaces.wrap");
+    headless.settle(wb());
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
     EXPECT_DOUBLE_EQ(headless.emitted("surface.set")[0]["iso"].get<double>(), wrapping);
     headless.settle(wb());

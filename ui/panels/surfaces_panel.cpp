@@ -39,15 +39,11 @@ std::string statusText(const SurfaceStatus& st) {
     return "";
 }
 
-// The iso-value that wraps the fault's spheres in the shown frame about half a radius out, to
-// three significant digits (the kernels' values grow with the number of spheres: no fixed
-// default suits every fault).
-std::optional<double> wrappingIso(Workbench& wb, const core::Fault& fault,
+// The iso-value that wraps the fault's spheres in a frame, to three significant digits (the
+// kernels' values grow with the number of spheres: no fixed default suits every fault).
+std::optional<double> wrappingIso(const core::Frame& frame, const core::Fault& fault,
                                   const core::SurfaceSettings& settings) {
-    const ViewDisplay* main = wb.mainDisplay();
-    if (!main || !main->frame)
-        return std::nullopt;
-    const core::FaultSpheres spheres = core::gatherFaultSpheres(*main->frame, fault);
+    const core::FaultSpheres spheres = core::gatherFaultSpheres(frame, fault);
     if (spheres.size() == 0)
         return std::nullopt;
     const double iso = core::wrappingIso(spheres.set(), core::surfaceParamsOf(settings, fault));
@@ -81,10 +77,36 @@ class SurfacesPanel final : public Panel {
     }
 
   private:
-    std::string m_fault; // whose settings are shown
+    std::shared_ptr<Job> m_wrapping; // finding an iso-value for `cmd` (sums every member)
+    std::string m_fault;             // whose settings are shown
     float m_iso = 1.0f, m_opacity = 0.8f;
     double m_voxel = 0.0;
     std::string m_editing; // fault whose edit fields were loaded
+
+    // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
+    // frame, found in the background (about 600 field sums over all of them).
+    void emitWithWrappingIso(Workbench& wb, const core::Fault& fault,
+                             const core::SurfaceSettings& settings, core::Json cmd) {
+        const ViewDisplay* main = wb.mainDisplay();
+        if (!main || !main->frame) {
+            wb.emit(cmd);
+            return;
+        }
+        if (m_wrapping && !m_wrapping->finished())
+            m_wrapping->cancel();
+        m_wrapping = wb.jobs().start(
+            "Finding the iso-value that wraps " + fault.name,
+            [&wb, frame = main->frame, fault, settings,
+             cmd](JobControl&) mutable -> std::function<void()> {
+                if (const auto iso = wrappingIso(*frame, fault, settings))
+                    cmd["iso"] = *iso;
+                else if (!cmd.contains("visible"))
+                    return {}; // Wrap with no spheres in this frame: nothing to set
+                return [&wb, cmd] { wb.emit(cmd); };
+            },
+            [&wb](const std::string& why) { wb.error("Cannot find an iso-value: " + why); },
+            wb.now());
+    }
 
     std::string currentFault(Workbench& wb, const core::SessionState& s) {
         for (const auto& f : s.faults)
@@ -114,12 +136,12 @@ class SurfacesPanel final : public Panel {
             const core::SurfaceSettings* st = s.surface(f.name);
             bool shown = st && st->visible;
             if (ImGui::Checkbox("##shown", &shown)) {
-                core::Json cmd{{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}};
+                const core::Json cmd{{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}};
                 // A new surface starts at the iso that wraps this fault's spheres.
                 if (!st && shown)
-                    if (const auto iso = wrappingIso(wb, f, core::SurfaceSettings{}))
-                        cmd["iso"] = *iso;
-                wb.emit(cmd);
+                    emitWithWrappingIso(wb, f, core::SurfaceSettings{}, cmd);
+                else
+                    wb.emit(cmd);
             }
             wb.mark("surfaces.show." + f.name);
             if (ImGui::IsItemHovered())
@@ -208,8 +230,7 @@ class SurfacesPanel final : public Panel {
         ImGui::SameLine();
         if (ImGui::Button("Wrap"))
             if (const core::Fault* f = s.fault(fault))
-                if (const auto iso = wrappingIso(wb, *f, st))
-                    set({{"iso", *iso}});
+                emitWithWrappingIso(wb, *f, st, {{"op", "surface.set"}, {"fault", fault}});
         wb.mark("surfaces.wrap");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The iso-value whose surface wraps this fault's spheres about half a "
