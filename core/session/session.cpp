@@ -201,8 +201,13 @@ std::size_t Session::referenceFrameOfView(const ViewState& view) const {
 }
 
 std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const Frame& frame) const {
-    const auto& filter = m_state.faultFilter;
-    const bool anyHidden = std::any_of(m_state.faults.begin(), m_state.faults.end(),
+    return faultRowMask(m_state, frame);
+}
+
+std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const SessionState& state,
+                                                                 const Frame& frame) {
+    const auto& filter = state.faultFilter;
+    const bool anyHidden = std::any_of(state.faults.begin(), state.faults.end(),
                                        [](const Fault& f) { return !f.visible; });
     if (filter.mode == FaultFilter::Mode::All && !anyHidden)
         return nullptr;
@@ -215,17 +220,17 @@ std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const Frame& fr
     };
     switch (filter.mode) {
     case FaultFilter::Mode::All:
-        for (const auto& f : m_state.faults)
+        for (const auto& f : state.faults)
             if (!f.visible)
                 mark(f, 0);
         break;
     case FaultFilter::Mode::Labelled:
-        for (const auto& f : m_state.faults)
+        for (const auto& f : state.faults)
             if (f.visible)
                 mark(f, 1);
         break;
     case FaultFilter::Mode::Only:
-        if (const Fault* f = m_state.fault(filter.fault))
+        if (const Fault* f = state.fault(filter.fault))
             mark(*f, 1);
         break;
     }

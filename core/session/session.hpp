@@ -84,6 +84,9 @@ class Session {
     const VisibilityResult& visibility();
     // Fault filter as a row mask of `frame` (null when the filter lets everything through).
     std::unique_ptr<std::vector<std::uint8_t>> faultRowMask(const Frame& frame) const;
+    // The same for a copy of a state (worker threads).
+    static std::unique_ptr<std::vector<std::uint8_t>> faultRowMask(const SessionState& state,
+                                                                   const Frame& frame);
 
     // For op implementations only: the state to change, and the dataset to swap.
     SessionState& mutableState() { return m_state; }

@@ -7,22 +7,22 @@
 #include "core/faults/tracking.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/atomic_file.hpp"
+#include "core/session/csv_exports.hpp"
 
-namespace faultline::core::detail {
+namespace faultline::core {
 
 namespace {
 
 // Each fault's membership through time: per frame, the candidate of the visible spheres (as
 // the session's boxes, thresholds and fault filter say) that shares most ids with it.
-std::string trackedFaultsCsv(Session& s, const CandidateOptions& options) {
-    auto ds = s.dataset();
+std::string trackedFaultsCsv(const SessionState& st, const std::shared_ptr<Dataset>& ds,
+                             const CandidateOptions& options) {
     if (!ds)
         throw CommandError("export.csv: fault_tracks needs open data");
-    const SessionState& st = s.state();
     const auto tracks = trackFaults(
         ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
-        [&s, &st](const Frame& frame, std::size_t) {
-            const auto rowMask = s.faultRowMask(frame);
+        [&st](const Frame& frame, std::size_t) {
+            const auto rowMask = Session::faultRowMask(st, frame);
             return computeVisibility(frame, st.boxes, st.thresholds, rowMask.get()).mask;
         },
         st.faults, options);
@@ -30,6 +30,27 @@ std::string trackedFaultsCsv(Session& s, const CandidateOptions& options) {
 }
 
 } // namespace
+
+std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& ds,
+                          const Json& cmd) {
+    const std::string what = args::string(cmd, "what");
+    if (what == "faults")
+        return faultsCsv(state.faults);
+    if (what == "fault_metrics") {
+        if (!ds)
+            throw CommandError("export.csv: fault_metrics needs open data");
+        const FaultMetricsSeries series = computeMetricsSeries(
+            ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, state.faults);
+        return faultMetricsCsv(series);
+    }
+    if (what == "fault_tracks")
+        return trackedFaultsCsv(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"));
+    throw CommandError("export.csv: \"what\" must be faults, fault_metrics or fault_tracks");
+}
+
+} // namespace faultline::core
+
+namespace faultline::core::detail {
 
 void registerOutputOps(OpTable& ops) {
     addAction(ops, "session.save", [](Session& s, const Json& cmd) -> Json {
@@ -47,23 +68,8 @@ void registerOutputOps(OpTable& ops) {
         // fault_tracks: per frame and fault, the candidate that matches it best ("link",
         // "min_size" as fault.candidates).
         args::onlyFields(cmd, {"what", "path", "link", "min_size"});
-        const std::string what = args::string(cmd, "what");
         const std::string path = s.outputPath(args::string(cmd, "path"));
-        std::string text;
-        if (what == "faults") {
-            text = faultsCsv(s.state().faults);
-        } else if (what == "fault_metrics") {
-            auto ds = s.dataset();
-            if (!ds)
-                throw CommandError("export.csv: fault_metrics needs open data");
-            const FaultMetricsSeries series = computeMetricsSeries(
-                ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, s.state().faults);
-            text = faultMetricsCsv(series);
-        } else if (what == "fault_tracks") {
-            text = trackedFaultsCsv(s, candidateOptionsFrom(cmd, "export.csv"));
-        } else {
-            throw CommandError("export.csv: \"what\" must be faults, fault_metrics or fault_tracks");
-        }
+        const std::string text = exportCsvText(s.state(), s.dataset(), cmd);
         try {
             writeFileAtomically(path, text);
         } catch (const std::exception& e) {

@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 using namespace faultline;
 using namespace faultline::test;
@@ -263,5 +265,35 @@ TEST_F(PanelTest, SurfacesExportInTheBackgroundAndTheJournalRecordsIt) {
     headless.settle(wb());
     EXPECT_TRUE(wb().lastMessageIsError());
     EXPECT_NE(wb().lastMessage().find("F1"), std::string::npos) << wb().lastMessage();
+    EXPECT_EQ(session.journal().size(), before);
+}
+
+// Tracks and metrics read every frame: the workbench writes them on a worker thread (the UI keeps
+// drawing), records the export.csv when the file is written, and writes what the op writes.
+TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    for (const char* what : {"fault_tracks", "fault_metrics"}) {
+        const std::string mine = dir.file(std::string("out/") + what + ".csv");
+        const std::string ops = dir.file(std::string("out/") + what + "-op.csv");
+        wb().exportCsv({{"op", "export.csv"}, {"what", what}, {"path", mine}});
+        EXPECT_TRUE(wb().jobs().busy() || std::filesystem::exists(mine));
+        headless.settle(wb());
+        ASSERT_TRUE(std::filesystem::exists(mine)) << wb().lastMessage();
+        EXPECT_EQ(session.journal().back().value("op", ""), "export.csv");
+        EXPECT_EQ(session.journal().back().value("what", ""), what);
+        session.apply(Json{{"op", "export.csv"}, {"what", what}, {"path", ops}});
+        std::ifstream a(mine), b(ops);
+        const std::string ta((std::istreambuf_iterator<char>(a)), {}),
+            tb((std::istreambuf_iterator<char>(b)), {});
+        EXPECT_FALSE(ta.empty());
+        EXPECT_EQ(ta, tb) << what;
+    }
+    // A bad request says why and records nothing.
+    const std::size_t before = session.journal().size();
+    wb().exportCsv({{"op", "export.csv"}, {"what", "nonsense"}, {"path", dir.file("out/x.csv")}});
+    headless.settle(wb());
+    EXPECT_TRUE(wb().lastMessageIsError());
+    EXPECT_NE(wb().lastMessage().find("what"), std::string::npos) << wb().lastMessage();
     EXPECT_EQ(session.journal().size(), before);
 }

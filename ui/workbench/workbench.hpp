@@ -187,6 +187,9 @@ class Workbench {
     // The generator's demo model: made once in the per-user data folder (a background job with
     // progress and cancel), then opened.
     void openDemo();
+    // export.csv (tracks and metrics read every frame) on a worker thread with a copy of the state;
+    // journalled when written.
+    void exportCsv(core::Json cmd);
     // Fault surfaces to a .vdb (one fault) or a .glb (several), built and written in a background
     // job; the journal records the export.vdb / export.gltf once it is done.
     void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb);

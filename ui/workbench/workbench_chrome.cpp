@@ -405,9 +405,9 @@ void Workbench::handleDialog() {
         else
             exportSurfaces(faults, path, false);
     } else if (purpose == "export-metrics") {
-        emit({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
+        exportCsv({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
     } else if (purpose == "export-tracks") {
-        emit({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", path}});
+        exportCsv({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", path}});
     } else if (purpose == "export-journal") {
         std::ofstream out(path);
         for (const auto& cmd : m_session.journal())

@@ -4,6 +4,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
+#include "core/session/csv_exports.hpp"
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface_request.hpp"
 #include "core/synth/demo_model.hpp"
@@ -218,6 +219,22 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
                 core::writeFaultVdb(*frame, requests.front(), path, &interrupter, reuse);
             else
                 core::writeFaultsGlb(*frame, requests, path, false, &interrupter, reuse);
+            return [this, cmd, path] {
+                m_session.recordAction(cmd); // replayed like any export
+                info("Exported " + path);
+            };
+        },
+        [this](const std::string& why) { error("Export failed: " + why); }, m_now);
+}
+
+void Workbench::exportCsv(core::Json cmd) {
+    const std::string path = absolute(cmd.value("path", std::string()));
+    cmd["path"] = path;
+    m_jobs.start(
+        "Exporting " + fs::path(path).filename().string(),
+        [this, snapshot = state(), data = m_session.dataset(), cmd,
+         path](JobControl&) -> std::function<void()> {
+            core::writeFileAtomically(path, core::exportCsvText(snapshot, data, cmd));
             return [this, cmd, path] {
                 m_session.recordAction(cmd); // replayed like any export
                 info("Exported " + path);

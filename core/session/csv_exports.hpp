@@ -1,0 +1,20 @@
+// The text export.csv writes, as a pure function of a session state and its data: the op runs it
+// in place, the workbench on a worker thread with a copy of the state (tracks and metrics read
+// every frame, far more than a UI frame may take).
+#pragma once
+
+#include "core/model/dataset.hpp"
+#include "core/session/command_args.hpp"
+#include "core/session/session_state.hpp"
+
+#include <memory>
+#include <string>
+
+namespace faultline::core {
+
+// cmd: {"what": faults | fault_metrics | fault_tracks, "link", "min_size" (tracks)}; the other
+// fields are not looked at. Throws CommandError (what is wrong, or that data is needed).
+std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& data,
+                          const Json& cmd);
+
+} // namespace faultline::core
