@@ -59,6 +59,22 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     EXPECT_DOUBLE_EQ(headless.emitted("surface.set")[0]["iso"].get<double>(), wrapping);
     headless.settle(wb());
 
+    // Another kernel comes with the iso-value that wraps the spheres with it (the compact
+    // kernel's field is far smaller than inverse-square's).
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.kernel");
+    headless.frames(wb(), 2);
+    headless.click(wb(), "surfaces.kernel.compact");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    const Json compact = headless.emitted("surface.set")[0];
+    EXPECT_EQ(compact.value("kernel", ""), "compact");
+    ASSERT_TRUE(compact.contains("iso")) << compact.dump();
+    EXPECT_LT(compact["iso"].get<double>(), 0.5 * wrapping);
+    EXPECT_EQ(session.state().surface("F1")->kernel, "compact");
+    session.apply(Json::parse(R"({"op":"undo"})"));
+    headless.settle(wb());
+
     // Opacity only: the same mesh, no new build. Undo hides the surface again.
     const std::size_t builds = wb().surfaces().buildsStarted();
     session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","opacity":0.5})"));

@@ -100,7 +100,7 @@ class SurfacesPanel final : public Panel {
              cmd](JobControl&) mutable -> std::function<void()> {
                 if (const auto iso = wrappingIso(*frame, fault, settings))
                     cmd["iso"] = *iso;
-                else if (!cmd.contains("visible"))
+                else if (cmd.size() <= 2)
                     return {}; // Wrap with no spheres in this frame: nothing to set
                 return [&wb, cmd] { wb.emit(cmd); };
             },
@@ -199,15 +199,26 @@ class SurfacesPanel final : public Panel {
         const float w = 170 * wb.scale();
         ImGui::SetNextItemWidth(w);
         if (ImGui::BeginCombo("kernel", st.kernel.c_str())) {
-            for (const char* k : kKernels)
-                if (ImGui::Selectable(k, st.kernel == k) && st.kernel != k)
-                    set({{"kernel", k}});
+            for (const char* k : kKernels) {
+                const bool picked = ImGui::Selectable(k, st.kernel == k);
+                wb.mark(std::string("surfaces.kernel.") + k);
+                if (picked && st.kernel != k) {
+                    // The kernels' fields differ by orders of magnitude: a new kernel comes with
+                    // the iso-value that wraps the spheres with it.
+                    core::SurfaceSettings next = st;
+                    next.kernel = k;
+                    if (const core::Fault* f = s.fault(fault))
+                        emitWithWrappingIso(
+                            wb, *f, next, {{"op", "surface.set"}, {"fault", fault}, {"kernel", k}});
+                }
+            }
             ImGui::EndCombo();
         }
         wb.mark("surfaces.kernel");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("inverse: sum r/d (Algorithm 1); inverse-square: sum r/d^2 (eq. 1);\n"
-                              "compact: Wyvill's kernel, zero beyond 3 radii (fastest)");
+                              "compact: Wyvill's kernel, zero beyond 3 radii (fastest).\n"
+                              "A new kernel takes the iso-value that wraps the spheres with it.");
         ImGui::SetNextItemWidth(w);
         ImGui::InputDouble("voxel", &m_voxel, 0, 0, m_voxel > 0 ? "%.4g" : "auto");
         if (ImGui::IsItemDeactivatedAfterEdit() && m_voxel >= 0 && m_voxel != st.voxel)
