@@ -296,8 +296,8 @@ struct ChargeGrid {
     }
 };
 
-// Larger grids are not made (a level that coarse holds few spheres per node anyway); up to the
-// second size every thread spreads into a grid of its own.
+// Larger grids are not made (a level that fine for the spheres' box holds few spheres per node
+// anyway); up to the second size every thread spreads into a grid of its own.
 constexpr std::size_t kMaxChargeNodes = std::size_t{1} << 22;
 constexpr std::size_t kParallelChargeNodes = std::size_t{1} << 18;
 
