@@ -149,14 +149,21 @@ void ViewportSelection::drawMembers(Workbench& wb, const ViewDisplay& d,
         ImGui::ColorConvertFloat4ToU32(ImVec4(f->color[0], f->color[1], f->color[2], 1.0f));
     const ImU32 ring = IM_COL32(20, 20, 20, 220);
     const float r = 3.0f * wb.scale();
+    MemberRows& m = m_members;
+    const std::uint64_t version = wb.session().version();
+    if (m.version != version || m.frame != d.frame || m.visibility != d.visibility ||
+        m.fault != f->name) {
+        m.version = version, m.frame = d.frame, m.visibility = d.visibility;
+        m.fault = f->name;
+        m.rows.clear();
+        for (std::int64_t id : f->ids)
+            if (const auto row = d.frame->rowOf(id); row && d.visibility->mask[*row])
+                m.rows.push_back(static_cast<std::uint32_t>(*row));
+    }
     std::size_t drawn = 0;
     glm::dvec2 p;
-    for (std::int64_t id : f->ids) {
-        const auto row = d.frame->rowOf(id);
-        if (!row || !d.visibility->mask[*row])
-            continue;
-        if (!core::projectToScreen(mapping, d.frame->x[*row], d.frame->y[*row], d.frame->z[*row],
-                                   p))
+    for (const std::uint32_t row : m.rows) {
+        if (!core::projectToScreen(mapping, d.frame->x[row], d.frame->y[row], d.frame->z[row], p))
             continue;
         const ImVec2 c(pos.x + static_cast<float>(p.x), pos.y + static_cast<float>(p.y));
         ImGui::GetWindowDrawList()->AddCircleFilled(c, r + 1.0f, ring, 8);

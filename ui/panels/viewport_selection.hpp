@@ -11,6 +11,7 @@
 
 #include <imgui.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +42,16 @@ class ViewportSelection {
     bool isClick() const; // the mouse barely moved: pick one sphere
     std::vector<std::int64_t> idsInShape(const ViewDisplay& d, ImVec2 pos, ImVec2 size) const;
     std::vector<std::int64_t> idUnder(const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
+
+    // The selected fault's visible member rows, kept while the session, frame and visibility
+    // stay the same: looking a million ids up every UI frame took tens of milliseconds.
+    struct MemberRows {
+        std::uint64_t version = ~std::uint64_t{0};
+        std::shared_ptr<const void> frame, visibility; // held: no address reuse can fool the key
+        std::string fault;
+        std::vector<std::uint32_t> rows;
+    };
+    mutable MemberRows m_members;
 
     bool m_active = false;
     std::string m_view;
