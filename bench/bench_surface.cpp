@@ -177,10 +177,9 @@ void BM_SampledErrorAgainstAlgorithm1(benchmark::State &state, std::size_t count
         estimate = field.estimatedError();
         const double clamp = 4.0 * p.iso * p.isoRangeFactor;
         float density[fc::kBlockVoxels];
-        fc::Vec3f color[fc::kBlockVoxels];
         for (std::size_t b = 0; b < plan.blocks.size(); b += 64, ++sampled) {
             const auto &o = plan.blocks[b];
-            field.evaluateBlock(o, density, color);
+            field.evaluateBlock(o, density, nullptr);
             const auto dense = fc::algorithm1Dense(z.set(), p, o, {8, 8, 8}, voxel);
             for (int i = 0; i < 8; ++i)
                 for (int j = 0; j < 8; ++j)

@@ -20,8 +20,8 @@ inline constexpr std::size_t kDefaultCandidateMinSize = 10;
 inline constexpr std::string_view kDefaultCandidatePrefix = "C";
 
 struct CandidateOptions {
-    double link = 1.1;        // k: neighbours when distance < k (r_i + r_j); must be > 0
-    std::size_t minSize = 1;  // components with fewer spheres are dropped
+    double link = kDefaultCandidateLink; // k: neighbours when distance < k (r_i + r_j); > 0
+    std::size_t minSize = 1;             // components with fewer spheres are dropped
 };
 
 struct Candidate {

@@ -9,7 +9,6 @@
 #include <functional>
 #include <list>
 #include <mutex>
-#include <span>
 #include <vector>
 
 namespace faultline::core {

@@ -4,9 +4,9 @@
 
 namespace faultline::ui {
 
-std::string nextFaultName(const core::SessionState& state, const std::string& prefix) {
+std::string nextFaultName(const core::SessionState& state) {
     for (int k = 1;; ++k) {
-        std::string n = prefix + std::to_string(k);
+        std::string n = "F" + std::to_string(k);
         if (!state.fault(n))
             return n;
     }

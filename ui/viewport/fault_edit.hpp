@@ -27,8 +27,8 @@ struct FaultEdit {
     std::string message;    // why nothing happens, or what did
 };
 
-// The first free name prefix + 1, 2, ... (F1, F2, ... by default)
-std::string nextFaultName(const core::SessionState& state, const std::string& prefix = "F");
+// The first free name F1, F2, ...
+std::string nextFaultName(const core::SessionState& state);
 
 // `ids` are the picked spheres (any order). Adding sends only the ids not yet members and
 // removing only members, so the journal holds what changed.

@@ -26,16 +26,14 @@ FaultMetricsCache::~FaultMetricsCache() {
         m_state->job->cancel();
 }
 
-std::uint64_t FaultMetricsCache::membersKey(const core::Fault& fault) {
-    return core::hashMemberIds(fault.ids);
-}
-
+// A fault's series is kept under core::hashMemberIds of its members (not its name, colour or
+// notes).
 std::shared_ptr<const FaultMetricsCache::Series>
 FaultMetricsCache::find(const std::shared_ptr<core::Dataset>& dataset,
                         const core::Fault& fault) const {
     if (!dataset || dataset != m_state->dataset)
         return nullptr;
-    auto it = m_state->series.find(membersKey(fault));
+    auto it = m_state->series.find(core::hashMemberIds(fault.ids));
     return it == m_state->series.end() ? nullptr : it->second;
 }
 
@@ -81,7 +79,7 @@ void FaultMetricsCache::request(JobRunner& jobs, double now,
     std::vector<core::Fault> missing;
     std::set<std::uint64_t> wanted, missingKeys;
     for (const core::Fault* f : faults) {
-        const std::uint64_t key = membersKey(*f);
+        const std::uint64_t key = core::hashMemberIds(f->ids);
         wanted.insert(key);
         if (!s.series.count(key) && !s.failedKeys.count(key) && missingKeys.insert(key).second)
             missing.push_back(*f);
@@ -100,7 +98,7 @@ void FaultMetricsCache::request(JobRunner& jobs, double now,
 
     std::vector<std::uint64_t> keys;
     for (const auto& f : missing)
-        keys.push_back(membersKey(f));
+        keys.push_back(core::hashMemberIds(f.ids));
     s.jobKeys = std::set<std::uint64_t>(keys.begin(), keys.end());
     s.lastError.clear();
     std::weak_ptr<State> weak = m_state;

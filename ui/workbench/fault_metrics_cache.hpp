@@ -48,9 +48,6 @@ class FaultMetricsCache {
     const std::string& lastError() const;
     void retry();
 
-    // The key a fault's series is kept under: its members (not its name, colour or notes).
-    static std::uint64_t membersKey(const core::Fault& fault);
-
   private:
     struct State; // shared with the job's completion, which may run after a reset
     std::shared_ptr<State> m_state;
