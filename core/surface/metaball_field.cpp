@@ -14,7 +14,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <cstring>
 
 namespace faultline::core {
 
@@ -37,6 +36,18 @@ constexpr int kKappaMin = 3, kKappaMax = 8;
 // Coarse levels interpolate sums over many spheres, far smoother than one sphere's kernel: their
 // measured error is this fraction of the one-sphere model.
 constexpr double kCoarseErrorShare = 1.0;
+
+// Error per unit of errorScale() term: [0] for level 1's (at kappa), [1] for each coarser
+// level's (at the coarse kappa). The a priori estimate is weights[0] * term_0 + weights[1] *
+// (sum of the coarse terms).
+std::array<double, 2> errorWeights(int kappa, int coarseKappa) {
+    return {kErrorPerScale[kappa], kCoarseErrorShare * kErrorPerScale[coarseKappa]};
+}
+
+// The largest error the field may make: the tolerance at the lowest supported iso.
+double errorBudget(const SurfaceParams &params) {
+    return params.tolerance * params.iso / params.isoRangeFactor;
+}
 
 Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
     Box b;
@@ -266,10 +277,8 @@ FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList &l
         cb += in ? splat(list.blue[q]) : zero;
         n += in ? one : zero;
     }
-    std::memcpy(red, &cr, sizeof cr);
-    std::memcpy(green, &cg, sizeof cg);
-    std::memcpy(blue, &cb, sizeof cb);
-    std::memcpy(count, &n, sizeof n);
+    simd8::store(red, cr), simd8::store(green, cg), simd8::store(blue, cb);
+    simd8::store(count, n);
 }
 
 // Pads a near list to whole vectors with weightless spheres far from everything.
@@ -280,19 +289,70 @@ void padToVectors(NearList &list) {
     }
 }
 
+// What a coarse node's window sum adds up: contiguous columns, padded with weightless entries to
+// whole 16s (the sums take two vectors at a time).
+struct WindowList {
+    std::vector<float> x, y, z, w;
+    void clear() { x.clear(), y.clear(), z.clear(), w.clear(); }
+    void push(float px, float py, float pz, float pw) {
+        x.push_back(px), y.push_back(py), z.push_back(pz), w.push_back(pw);
+    }
+    void pad() {
+        while (w.size() % 16 != 0)
+            push(0.0f, 0.0f, 0.0f, 0.0f);
+    }
+};
+
 // Multilevel summation's anterpolation: every sphere's weight spread over a level's nodes with
 // the interpolation's own Lagrange weights. Summing a smooth kernel over these charges sums,
 // over the spheres, its interpolant at their centres: an error of the same size as
 // interpolating the level's values, and far fewer terms where a node spacing holds many
 // spheres. Dense over the centres' box, so for coarse levels only.
 struct ChargeGrid {
+    float spacing = 1.0f;
     detail::Int3 lo{0, 0, 0}, dims{0, 0, 0};
     std::vector<float> q; // x slowest, z fastest
-    // The nonzero charges as a window list padded to whole 16s (the top level sums them all).
-    std::vector<float> x, y, z, w;
     std::size_t nonzero = 0;
     float at(int i, int j, int k) const {
         return q[(static_cast<std::size_t>(i) * dims[1] + j) * dims[2] + k];
+    }
+    // The nonzero charges within `cutoff` of the nodes [first, first + size) (all of them for
+    // a cutoff of infinity), padded.
+    void gather(const detail::Int3 &first, int size, float cutoff, WindowList &out) const {
+        out.clear();
+        int from[3], to[3];
+        for (int k = 0; k < 3; ++k) {
+            const float reach = std::min(cutoff / spacing, float(dims[k]));
+            from[k] = std::max(first[k] - static_cast<int>(std::ceil(reach)), lo[k]) - lo[k];
+            to[k] = std::min(first[k] + size - 1 + static_cast<int>(std::ceil(reach)),
+                             lo[k] + dims[k] - 1) -
+                    lo[k];
+        }
+        // A node's distance to the nodes' box along one axis, squared, world.
+        auto gap2 = [&](int k, int local) {
+            const int node = lo[k] + local;
+            const int gap = std::max({first[k] - node, node - (first[k] + size - 1), 0});
+            const float d = static_cast<float>(gap) * spacing;
+            return d * d;
+        };
+        const float a2 = cutoff * cutoff;
+        for (int a = from[0]; a <= to[0]; ++a) {
+            const float da = gap2(0, a);
+            if (da >= a2)
+                continue;
+            for (int b = from[1]; b <= to[1]; ++b) {
+                const float dab = da + gap2(1, b);
+                if (dab >= a2)
+                    continue;
+                for (int c = from[2]; c <= to[2]; ++c) {
+                    const float charge = at(a, b, c);
+                    if (charge != 0.0f && dab + gap2(2, c) < a2)
+                        out.push(float(lo[0] + a) * spacing, float(lo[1] + b) * spacing,
+                                 float(lo[2] + c) * spacing, charge);
+                }
+            }
+        }
+        out.pad();
     }
 };
 
@@ -356,22 +416,9 @@ std::optional<ChargeGrid> anterpolate(const detail::PackedSpheres &s, const Box 
         for (std::size_t i = 0; i < s.size(); ++i)
             spread(i, g.q);
     }
-    for (int i = 0; i < g.dims[0]; ++i)
-        for (int j = 0; j < g.dims[1]; ++j)
-            for (int k = 0; k < g.dims[2]; ++k) {
-                const float q = g.at(i, j, k);
-                if (q == 0.0f)
-                    continue;
-                g.x.push_back(static_cast<float>(g.lo[0] + i) * spacing);
-                g.y.push_back(static_cast<float>(g.lo[1] + j) * spacing);
-                g.z.push_back(static_cast<float>(g.lo[2] + k) * spacing);
-                g.w.push_back(q);
-            }
-    g.nonzero = g.x.size();
-    while (g.w.size() % 16 != 0) {
-        g.x.push_back(0.0f), g.y.push_back(0.0f), g.z.push_back(0.0f);
-        g.w.push_back(0.0f);
-    }
+    g.spacing = spacing;
+    g.nonzero = static_cast<std::size_t>(
+        std::count_if(g.q.begin(), g.q.end(), [](float q) { return q != 0.0f; }));
     return g;
 }
 
@@ -389,7 +436,7 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
     if (params.kernel != MetaballKernel::Compact) {
         // The tolerance at the lowest iso; the estimate is already pessimistic (kErrorPerScale
         // is 1.5x the worst error measured, and errors of levels and spheres are added).
-        const double budget = params.tolerance * params.iso / params.isoRangeFactor;
+        const double budget = errorBudget(params);
         // Among the (kappa, coarse kappa) pairs that meet the budget, the cheapest by a work
         // model: the near field costs about a_0^3 per voxel, each coarse level about
         // (a_1 / ratio_1)^3 per voxel, with the weights measured on bench_surface's fault zone.
@@ -427,8 +474,7 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
             m_coarseKappa = c.coarse;
             m_ratio1 = c.ratio;
             m_a0 = static_cast<float>(c.kappa) * static_cast<float>(c.ratio) * m_h;
-            const std::array<double, 2> weights{kErrorPerScale[c.kappa],
-                                                kCoarseErrorShare * kErrorPerScale[c.coarse]};
+            const std::array<double, 2> weights = errorWeights(c.kappa, c.coarse);
             const auto scale = errorScale(&densest, nullptr, weights, stopAbove);
             c.error = weights[0] * scale[0] + weights[1] * scale[1];
         };
@@ -454,7 +500,6 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         m_ratio1 = chosen.ratio;
         m_a0 = static_cast<float>(m_kappa) * static_cast<float>(m_ratio1) * m_h;
         m_estimatedError = chosen.error;
-        m_budget = budget;
         errorScale(&densest, &m_errorTerms);
         m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
     } else {
@@ -612,16 +657,9 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
         const auto &node = nodes[item.node];
         if (node.leaf()) {
             for (std::uint32_t i = node.begin; i < node.end; ++i) {
-                const float c[3] = {s.x[i], s.y[i], s.z[i]};
-                float near2 = 0.0f, far2 = 0.0f;
-                for (int a = 0; a < 3; ++a) {
-                    const float gap = std::max({box.lo[a] - c[a], c[a] - box.hi[a], 0.0f});
-                    const float span = std::max(box.hi[a] - c[a], c[a] - box.lo[a]);
-                    near2 += gap * gap;
-                    far2 += span * span;
-                }
-                low += double(s.r[i]) * k.value(far2, s.r[i]);
-                high += double(s.r[i]) * k.value(near2, s.r[i]);
+                const Box centre{{s.x[i], s.y[i], s.z[i]}, {s.x[i], s.y[i], s.z[i]}};
+                low += double(s.r[i]) * k.value(detail::maxDistance2(centre, box), s.r[i]);
+                high += double(s.r[i]) * k.value(detail::minDistance2(centre, box), s.r[i]);
             }
             continue;
         }
@@ -742,14 +780,14 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         auto term = [&](int l) {
             return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
         };
-        const double perCoarseTerm = kCoarseErrorShare * kErrorPerScale[m_coarseKappa];
-        double estimate = kErrorPerScale[m_kappa] * term(0);
+        const auto weights = errorWeights(m_kappa, m_coarseKappa);
+        double estimate = weights[0] * term(0);
         for (int l = 1; l < levelCount; ++l)
-            estimate += perCoarseTerm * term(l);
+            estimate += weights[1] * term(l);
         if (m_tuning.anterpolateFrom > 0)
             for (int l = levelCount; l >= std::max(2, m_tuning.anterpolateFrom); --l) {
-                const double extra = perCoarseTerm * term(l - 1);
-                if (estimate + extra > m_budget)
+                const double extra = weights[1] * term(l - 1);
+                if (estimate + extra > errorBudget(m_params))
                     break;
                 auto grid = anterpolate(m_tree.spheres(), centreBox(), m_levels[l - 1]->spacing);
                 if (!grid || double(grid->nonzero) > m_tuning.chargeShare * double(sphereCount()))
@@ -760,6 +798,12 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
             }
         m_estimatedError = estimate;
     }
+
+    // A top level with charges sums all of them: one list for all its nodes.
+    WindowList topCharges;
+    if (!charges.empty() && charges.back())
+        charges.back()->gather(charges.back()->lo, 1, std::numeric_limits<float>::infinity(),
+                               topCharges);
 
     // Compute from the coarsest level down: each level adds its window sum to the cubic
     // interpolation of the level above.
@@ -795,92 +839,50 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                         }
                         if (count == 0)
                             continue;
-                        // The spheres every node of the group sums, contiguous: all of them at
-                        // the top level (straight from the tree's arrays), else the window's,
-                        // copied once per group and padded with weightless entries to whole
-                        // vectors.
+                        // What every node of the group sums, contiguous: all spheres at the top
+                        // level (straight from the tree's arrays) or all its charges, else the
+                        // spheres or charges of the window, gathered once per group and padded.
                         const float *px = s.x.data(), *py = s.y.data(), *pz = s.z.data(),
                                     *pw = s.r.data();
                         std::size_t len = s.size();
                         const ChargeGrid *grid = charges[li] ? &*charges[li] : nullptr;
+                        const int g[3] = {gi, gj, gz};
+                        thread_local WindowList window;
                         if (grid && level.top) {
-                            px = grid->x.data(), py = grid->y.data(), pz = grid->z.data();
-                            pw = grid->w.data();
-                            len = grid->w.size();
-                        } else if (grid) {
-                            // The charges within the cutoff of the group's nodes.
-                            thread_local std::vector<float> wx, wy, wz, ww;
-                            wx.clear(), wy.clear(), wz.clear(), ww.clear();
-                            const int g[3] = {gi, gj, gz};
-                            const int reach =
-                                static_cast<int>(std::ceil(level.cutoff / level.spacing));
-                            int from[3], to[3], glo[3];
-                            for (int k = 0; k < 3; ++k) {
-                                glo[k] = brick.origin[k] + g[k];
-                                from[k] = std::max(glo[k] - reach, grid->lo[k]) - grid->lo[k];
-                                to[k] = std::min(glo[k] + kGroup - 1 + reach,
-                                                 grid->lo[k] + grid->dims[k] - 1) -
-                                        grid->lo[k];
-                            }
-                            // Node distance to the group's box along one axis, squared, world.
-                            auto gap2 = [&](int k, int local) {
-                                const int node = grid->lo[k] + local;
-                                const int gap =
-                                    std::max({glo[k] - node, node - (glo[k] + kGroup - 1), 0});
-                                const float d = static_cast<float>(gap) * level.spacing;
-                                return d * d;
-                            };
-                            const float a2 = level.cutoff * level.cutoff;
-                            for (int a = from[0]; a <= to[0]; ++a) {
-                                const float da = gap2(0, a);
-                                if (da >= a2)
-                                    continue;
-                                for (int b = from[1]; b <= to[1]; ++b) {
-                                    const float dab = da + gap2(1, b);
-                                    if (dab >= a2)
-                                        continue;
-                                    for (int c = from[2]; c <= to[2]; ++c) {
-                                        const float q = grid->at(a, b, c);
-                                        if (q == 0.0f || dab + gap2(2, c) >= a2)
-                                            continue;
-                                        wx.push_back(float(grid->lo[0] + a) * level.spacing);
-                                        wy.push_back(float(grid->lo[1] + b) * level.spacing);
-                                        wz.push_back(float(grid->lo[2] + c) * level.spacing);
-                                        ww.push_back(q);
-                                    }
+                            px = topCharges.x.data(), py = topCharges.y.data();
+                            pz = topCharges.z.data(), pw = topCharges.w.data();
+                            len = topCharges.w.size();
+                        } else if (grid || !level.top) {
+                            if (grid) {
+                                grid->gather({brick.origin[0] + g[0], brick.origin[1] + g[1],
+                                              brick.origin[2] + g[2]},
+                                             kGroup, level.cutoff, window);
+                            } else {
+                                thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>>
+                                    ranges;
+                                ranges.clear();
+                                Box box;
+                                for (int k = 0; k < 3; ++k) {
+                                    box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
+                                    box.hi[k] =
+                                        (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
                                 }
+                                m_tree.gatherRanges(box, level.cutoff, ranges);
+                                window.clear();
+                                for (const auto &[first, last] : ranges) {
+                                    auto copy = [&](const std::vector<float> &from,
+                                                    std::vector<float> &to) {
+                                        to.insert(to.end(), from.begin() + first,
+                                                  from.begin() + last);
+                                    };
+                                    copy(s.x, window.x), copy(s.y, window.y);
+                                    copy(s.z, window.z), copy(s.r, window.w);
+                                }
+                                window.pad();
                             }
-                            while (ww.size() % 16 != 0) {
-                                wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
-                                ww.push_back(0.0f);
-                            }
-                            px = wx.data(), py = wy.data(), pz = wz.data(), pw = ww.data();
-                            len = ww.size();
-                        } else if (!level.top) {
-                            thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>>
-                                ranges;
-                            thread_local std::vector<float> wx, wy, wz, ww;
-                            ranges.clear();
-                            Box box;
-                            const int g[3] = {gi, gj, gz};
-                            for (int k = 0; k < 3; ++k) {
-                                box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
-                                box.hi[k] = (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
-                            }
-                            m_tree.gatherRanges(box, level.cutoff, ranges);
-                            wx.clear(), wy.clear(), wz.clear(), ww.clear();
-                            for (const auto &[first, last] : ranges) {
-                                wx.insert(wx.end(), s.x.begin() + first, s.x.begin() + last);
-                                wy.insert(wy.end(), s.y.begin() + first, s.y.begin() + last);
-                                wz.insert(wz.end(), s.z.begin() + first, s.z.begin() + last);
-                                ww.insert(ww.end(), s.r.begin() + first, s.r.begin() + last);
-                            }
-                            while (ww.size() % 16 != 0) {
-                                wx.push_back(0.0f), wy.push_back(0.0f), wz.push_back(0.0f);
-                                ww.push_back(0.0f);
-                            }
-                            px = wx.data(), py = wy.data(), pz = wz.data(), pw = ww.data();
-                            len = ww.size();
+                            px = window.x.data(), py = window.y.data(), pz = window.z.data();
+                            pw = window.w.data();
+                            len = window.w.size();
                         }
                         for (int n = 0; n < count; ++n) {
                             const int off = needed[n];

@@ -133,7 +133,6 @@ class MetaballField {
     int m_kappa = 0;
     int m_coarseKappa = 0;
     double m_estimatedError = 0.0;
-    double m_budget = 0.0;            // the error the field may make
     std::vector<double> m_errorTerms; // errorScale()'s terms for the chosen cutoffs
     int m_ratio1 = 1;                                          // level-1 spacing in voxels
     SoftenedKernel m_soft0;                                    // gamma_a0

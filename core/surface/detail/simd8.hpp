@@ -22,6 +22,8 @@ typedef float v8f __attribute__((vector_size(32)));
     return v;
 }
 
+[[gnu::always_inline]] inline void store(float* p, v8f v) { std::memcpy(p, &v, sizeof v); }
+
 // The first n (< 8) floats of p, zeros after them.
 [[gnu::always_inline]] inline v8f loadPartial(const float* p, std::size_t n) {
     v8f v{};
