@@ -2,10 +2,16 @@
 
 #include "core/session/session.hpp"
 #include "core/surface/fault_surface.hpp"
+#include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_export.hpp"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 namespace faultline::core {
@@ -40,6 +46,39 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
     for (float c : fault.color)
         members = (members ^ std::bit_cast<std::uint32_t>(c)) * 0x100000001b3ull;
     return {static_cast<std::int64_t>(frameIndex), members, fieldParamsHash(params)};
+}
+
+double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
+    const std::size_t n = s.size();
+    if (n == 0)
+        return 0.0;
+    const std::size_t samples = std::min<std::size_t>(n, 96);
+    constexpr int kDirections = 6;
+    std::vector<double> lowest(samples, 0.0);
+    tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
+        const std::size_t i = q * n / samples;
+        double low = std::numeric_limits<double>::infinity();
+        for (int d = 0; d < kDirections; ++d) {
+            std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
+            p[d / 2] += (d % 2 ? -1.5 : 1.5) * s.radius[i];
+            low = std::min(low, referenceSample(s, params, p).value);
+        }
+        lowest[q] = low;
+    });
+    std::sort(lowest.begin(), lowest.end());
+    return lowest[samples / 4];
+}
+
+std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
+                                       const SurfaceSettings& settings) {
+    const FaultSpheres spheres = gatherFaultSpheres(frame, fault);
+    if (spheres.size() == 0)
+        return std::nullopt;
+    const double iso = wrappingIso(spheres.set(), surfaceParamsOf(settings, fault));
+    if (!(iso > 0) || !std::isfinite(iso))
+        return std::nullopt;
+    const double unit = std::pow(10.0, std::floor(std::log10(iso)) - 2);
+    return std::round(iso / unit) * unit;
 }
 
 namespace {

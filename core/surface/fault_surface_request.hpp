@@ -12,6 +12,7 @@
 #include "core/surface/surface_params.hpp"
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,6 +32,18 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
 // The surface takes the fault's colour (Figure 4's initial colour, and its spheres' colour), so
 // a surface is known by its fault's colour in the views and in exports.
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault);
+
+// An iso-value whose surface wraps the spheres closely: over a sample of the spheres, the field
+// 1.5 radii from the centre on the side where it is lowest (outwards, for spheres at the edge of
+// the set); the lower quartile of those, so that most of the spheres are inside. The kernels'
+// values grow with the number of spheres (the tails add up), so no fixed default iso suits
+// every fault; with the long-tailed inverse kernel the surface is rounder and looser than with
+// inverse-square. Sums every sphere for each sample point: about 600 x N kernel evaluations.
+double wrappingIso(const SphereSet& spheres, const SurfaceParams& params);
+// wrappingIso for a fault's spheres in a frame with these settings, to three significant digits
+// (what the Surfaces panel writes into a surface.set); none when no member is in the frame.
+std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
+                                       const SurfaceSettings& settings);
 
 // The SurfaceCache key of a fault's surface in frame `frameIndex`: members and colour (the colour
 // grid depends on it) and every field parameter except iso.

@@ -28,12 +28,4 @@ std::vector<float> algorithm1Dense(const SphereSet &spheres, const SurfaceParams
                                    const std::array<int, 3> &origin, const std::array<int, 3> &dims,
                                    float voxelSize);
 
-// An iso-value whose surface wraps the spheres closely: over a sample of the spheres, the field
-// 1.5 radii from the centre on the side where it is lowest (outwards, for spheres at the edge of
-// the set); the lower quartile of those, so that most of the spheres are inside. The kernels'
-// values grow with the number of spheres (the tails add up), so no fixed default iso suits
-// every fault; with the long-tailed inverse kernel the surface is rounder and looser than with
-// inverse-square. Sums every sphere for each sample point: about 600 x N kernel evaluations.
-double wrappingIso(const SphereSet &spheres, const SurfaceParams &params);
-
 } // namespace faultline::core

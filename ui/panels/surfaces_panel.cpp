@@ -6,12 +6,10 @@
 #include "ui/workbench/frame_columns.hpp"
 
 #include "core/surface/fault_surface_request.hpp"
-#include "core/surface/metaball_reference.hpp"
 
 #include <imgui.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -37,20 +35,6 @@ std::string statusText(const SurfaceStatus& st) {
         break;
     }
     return "";
-}
-
-// The iso-value that wraps the fault's spheres in a frame, to three significant digits (the
-// kernels' values grow with the number of spheres: no fixed default suits every fault).
-std::optional<double> wrappingIso(const core::Frame& frame, const core::Fault& fault,
-                                  const core::SurfaceSettings& settings) {
-    const core::FaultSpheres spheres = core::gatherFaultSpheres(frame, fault);
-    if (spheres.size() == 0)
-        return std::nullopt;
-    const double iso = core::wrappingIso(spheres.set(), core::surfaceParamsOf(settings, fault));
-    if (!(iso > 0) || !std::isfinite(iso))
-        return std::nullopt;
-    const double unit = std::pow(10.0, std::floor(std::log10(iso)) - 2);
-    return std::round(iso / unit) * unit;
 }
 
 class SurfacesPanel final : public Panel {
@@ -84,9 +68,11 @@ class SurfacesPanel final : public Panel {
     std::string m_editing; // fault whose edit fields were loaded
 
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
-    // frame, found in the background (about 600 field sums over all of them).
+    // frame, found in the background (about 600 field sums over all of them). Without one (no
+    // member in the frame) `cmd` goes as it is, unless it asks for nothing else.
     void emitWithWrappingIso(Workbench& wb, const core::Fault& fault,
-                             const core::SurfaceSettings& settings, core::Json cmd) {
+                             const core::SurfaceSettings& settings, core::Json cmd,
+                             bool onlyIso = false) {
         const ViewDisplay* main = wb.mainDisplay();
         if (!main || !main->frame) {
             wb.emit(cmd);
@@ -96,12 +82,12 @@ class SurfacesPanel final : public Panel {
             m_wrapping->cancel();
         m_wrapping = wb.jobs().start(
             "Finding the iso-value that wraps " + fault.name,
-            [&wb, frame = main->frame, fault, settings,
-             cmd](JobControl&) mutable -> std::function<void()> {
-                if (const auto iso = wrappingIso(*frame, fault, settings))
+            [&wb, frame = main->frame, fault, settings, cmd,
+             onlyIso](JobControl&) mutable -> std::function<void()> {
+                if (const auto iso = core::faultWrappingIso(*frame, fault, settings))
                     cmd["iso"] = *iso;
-                else if (cmd.size() <= 2)
-                    return {}; // Wrap with no spheres in this frame: nothing to set
+                else if (onlyIso)
+                    return {};
                 return [&wb, cmd] { wb.emit(cmd); };
             },
             [&wb](const std::string& why) { wb.error("Cannot find an iso-value: " + why); },
@@ -241,7 +227,7 @@ class SurfacesPanel final : public Panel {
         ImGui::SameLine();
         if (ImGui::Button("Wrap"))
             if (const core::Fault* f = s.fault(fault))
-                emitWithWrappingIso(wb, *f, st, {{"op", "surface.set"}, {"fault", fault}});
+                emitWithWrappingIso(wb, *f, st, {{"op", "surface.set"}, {"fault", fault}}, true);
         wb.mark("surfaces.wrap");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The iso-value whose surface wraps this fault's spheres about half a "
