@@ -869,11 +869,11 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                                 }
                                 m_tree.gatherRanges(box, level.cutoff, ranges);
                                 window.clear();
-                                for (const auto &[first, last] : ranges) {
+                                for (const auto &range : ranges) {
                                     auto copy = [&](const std::vector<float> &from,
                                                     std::vector<float> &to) {
-                                        to.insert(to.end(), from.begin() + first,
-                                                  from.begin() + last);
+                                        to.insert(to.end(), from.begin() + range.first,
+                                                  from.begin() + range.second);
                                     };
                                     copy(s.x, window.x), copy(s.y, window.y);
                                     copy(s.z, window.z), copy(s.r, window.w);
