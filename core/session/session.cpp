@@ -106,20 +106,76 @@ void Session::apply(const Json& cmd) {
             m_redo.clear();
         }
     }
-    m_journal.push_back(cmd);
-    if (m_journalSink)
-        m_journalSink(cmd);
+    journalLine(cmd);
 }
 
-void Session::recordAction(const Json& cmd) {
+void Session::checkAction(const Json& cmd) const {
     const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string() ? cmd["op"].get<std::string>()
                                                                                           : std::string();
     auto it = m_ops.find(op);
     if (it == m_ops.end() || it->second.changesState)
         throw CommandError("recordAction: \"" + op + "\" is not an action");
+}
+
+void Session::recordAction(const Json& cmd) {
+    checkAction(cmd);
+    journalLine(cmd);
+}
+
+void Session::journalLine(const Json& cmd) {
+    if (!m_waiting.empty()) {
+        m_waiting.push_back({0, true, cmd});
+        return;
+    }
     m_journal.push_back(cmd);
     if (m_journalSink)
         m_journalSink(cmd);
+}
+
+void Session::flushJournal() {
+    while (!m_waiting.empty() && m_waiting.front().settled) {
+        std::optional<Json> cmd = std::move(m_waiting.front().cmd);
+        m_waiting.pop_front();
+        if (cmd) {
+            m_journal.push_back(*cmd);
+            if (m_journalSink)
+                m_journalSink(*cmd);
+        }
+    }
+}
+
+std::uint64_t Session::reserveAction() {
+    m_waiting.push_back({m_nextPlace, false, std::nullopt});
+    return m_nextPlace++;
+}
+
+void Session::settleAction(std::uint64_t place, const Json& cmd) {
+    checkAction(cmd);
+    for (auto& line : m_waiting)
+        if (line.place == place && !line.settled) {
+            line.settled = true;
+            line.cmd = cmd;
+            break;
+        }
+    flushJournal();
+}
+
+void Session::dropAction(std::uint64_t place) {
+    for (auto& line : m_waiting)
+        if (line.place == place)
+            line.settled = true;
+    flushJournal();
+}
+
+void Session::dropPendingActions() {
+    for (auto& line : m_waiting)
+        line.settled = true;
+    flushJournal();
+}
+
+std::size_t Session::pendingActions() const {
+    return static_cast<std::size_t>(
+        std::count_if(m_waiting.begin(), m_waiting.end(), [](const JournalLine& l) { return l.place != 0 && !l.settled; }));
 }
 
 bool Session::undo() {

@@ -8,9 +8,12 @@
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"
 
+#include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +37,17 @@ class Session {
     // out itself, e.g. on a worker thread, so the journal replays it. Throws CommandError for an
     // unknown op or one that changes state.
     void recordAction(const Json& cmd);
+    // An action carried out in the background (an export) keeps its place in the journal from
+    // the moment it is asked for: lines recorded after it wait until it is settled, so a replay
+    // runs it on the state it read, not on what the user changed while it ran.
+    std::uint64_t reserveAction();
+    // It worked: records `cmd` in the reserved place (checked as recordAction checks it).
+    void settleAction(std::uint64_t place, const Json& cmd);
+    // It failed or was cancelled: the place records nothing.
+    void dropAction(std::uint64_t place);
+    // Gives up every place still open (shutdown), so the lines waiting behind them are written.
+    void dropPendingActions();
+    std::size_t pendingActions() const;
     bool canUndo() const { return !m_undo.empty(); }
     bool canRedo() const { return !m_redo.empty(); }
     bool undo(); // false when there is nothing to undo
@@ -105,8 +119,19 @@ class Session {
     std::shared_ptr<Dataset> m_dataset;
     std::vector<Json> m_undo; // inverses, most recent last
     std::vector<Json> m_redo; // commands that redo, most recent last
+    void journalLine(const Json& cmd); // after any reserved places
+    void flushJournal();               // the lines no open place holds back
+    void checkAction(const Json& cmd) const;
+
     std::vector<Json> m_journal;
     std::function<void(const Json&)> m_journalSink;
+    struct JournalLine {
+        std::uint64_t place = 0; // a reserved action's place; 0: a line recorded behind one
+        bool settled = false;
+        std::optional<Json> cmd;
+    };
+    std::deque<JournalLine> m_waiting; // from the oldest open place on
+    std::uint64_t m_nextPlace = 1;
     struct OpEntry {
         OpHandler handler;
         bool changesState;

@@ -239,6 +239,41 @@ TEST(Session, NewCommandClearsRedo) {
     EXPECT_EQ(s.journal().size(), 3u);
 }
 
+// A background export holds its place in the journal from when it was asked for: commands given
+// while it ran come after it, so a replay exports the state it read. A failed one leaves no line.
+TEST(Session, BackgroundActionsKeepTheirPlaceInTheJournal) {
+    Session s;
+    std::vector<std::string> sunk;
+    s.setJournalSink([&](const Json& c) { sunk.push_back(c.value("op", "") + ":" + c.value("name", c.value("path", ""))); });
+    const auto vdb = s.reserveAction();
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    const auto csv = s.reserveAction();
+    s.apply(cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,1,1]})"));
+    EXPECT_TRUE(sunk.empty());
+    EXPECT_EQ(s.pendingActions(), 2u);
+    EXPECT_EQ(s.state().boxes.size(), 2u); // the commands themselves ran at once
+    // The later export ends first: it waits for the one before it.
+    s.settleAction(csv, cmd(R"({"op":"export.csv","what":"faults","path":"f.csv"})"));
+    EXPECT_TRUE(sunk.empty());
+    s.settleAction(vdb, cmd(R"({"op":"export.vdb","fault":"F1","path":"F1.vdb"})"));
+    EXPECT_EQ(sunk, (std::vector<std::string>{"export.vdb:F1.vdb", "box.add:a", "export.csv:f.csv", "box.add:b"}));
+    EXPECT_EQ(s.journal().size(), 4u);
+    // One that fails records nothing; what waited behind it is written then.
+    const auto failed = s.reserveAction();
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(sunk.size(), 4u);
+    s.dropAction(failed);
+    EXPECT_EQ(sunk.back(), "undo:");
+    EXPECT_EQ(s.pendingActions(), 0u);
+    // Only actions settle a place; shutting down gives up what is left.
+    const auto wrong = s.reserveAction();
+    EXPECT_THROW(s.settleAction(wrong, cmd(R"({"op":"box.remove","name":"a"})")), CommandError);
+    s.apply(cmd(R"({"op":"box.remove","name":"a"})"));
+    s.dropPendingActions();
+    EXPECT_EQ(sunk.back(), "box.remove:a");
+    EXPECT_EQ(s.journal().size(), 6u);
+}
+
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
     TempDir dir;
     Session s;

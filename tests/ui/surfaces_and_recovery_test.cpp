@@ -305,6 +305,15 @@ TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
         EXPECT_FALSE(ta.empty());
         EXPECT_EQ(ta, tb) << what;
     }
+    // The frame changes while an export runs: the journal has the export first (it read the
+    // frame before), so a replay writes the same file.
+    wb().exportSurfaces({"F1"}, dir.file("out/late.vdb"), true);
+    session.apply(Json{{"op", "frame.set"}, {"frame", 1}});
+    headless.settle(wb());
+    ASSERT_TRUE(std::filesystem::exists(dir.file("out/late.vdb"))) << wb().lastMessage();
+    ASSERT_GE(session.journal().size(), 2u);
+    EXPECT_EQ(session.journal()[session.journal().size() - 2].value("op", ""), "export.vdb");
+    EXPECT_EQ(session.journal().back().value("op", ""), "frame.set");
     // A bad request says why and records nothing.
     const std::size_t before = session.journal().size();
     wb().exportCsv({{"op", "export.csv"}, {"what", "nonsense"}, {"path", dir.file("out/x.csv")}});

@@ -127,6 +127,7 @@ Workbench::~Workbench() {
     m_jobs.waitAll();
     if (m_autosaver && !m_recovery && !m_recovering)
         m_autosaver->saveNow(m_session, true); // a clean exit: nothing to offer next time
+    m_session.dropPendingActions(); // exports not handed over: what waited behind them is written
     m_session.setJournalSink(nullptr);
     m_session.setDatasetOpener(nullptr);
 }

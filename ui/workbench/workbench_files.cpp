@@ -22,6 +22,18 @@ using core::Json;
 
 namespace {
 
+// A background export's place in the journal (Session::reserveAction): given up when the job
+// ends without settling it (failed or cancelled). Held only by closures that live and die on
+// the UI thread.
+struct JournalPlace {
+    explicit JournalPlace(core::Session& s) : session(s), place(s.reserveAction()) {}
+    ~JournalPlace() { session.dropAction(place); }
+    JournalPlace(const JournalPlace&) = delete;
+    JournalPlace& operator=(const JournalPlace&) = delete;
+    core::Session& session;
+    std::uint64_t place;
+};
+
 bool isSessionFile(const std::string& path) {
     const std::string suffix = ".faultline.json";
     return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -208,10 +220,11 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
     }
     const Json cmd = vdb ? Json{{"op", "export.vdb"}, {"fault", faults.front()}, {"path", path}}
                          : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
+    auto place = std::make_shared<JournalPlace>(m_session);
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
-        [this, frame, requests, path, vdb, cmd, cache = m_surfaces.cache(),
-         frameIndex = state().frame](JobControl& control) -> std::function<void()> {
+        [this, frame, requests, path, vdb, cmd, cache = m_surfaces.cache(), frameIndex = state().frame,
+         at = place->place](JobControl& control) -> std::function<void()> {
             // Surfaces shown in the views come from their cache, not built again.
             JobInterrupter interrupter(control);
             const core::SurfaceReuse reuse{cache.get(), frameIndex};
@@ -219,28 +232,29 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
                 core::writeFaultVdb(*frame, requests.front(), path, &interrupter, reuse);
             else
                 core::writeFaultsGlb(*frame, requests, path, false, &interrupter, reuse);
-            return [this, cmd, path] {
-                m_session.recordAction(cmd); // replayed like any export
+            return [this, cmd, path, at] {
+                m_session.settleAction(at, cmd); // replayed like any export, where it was asked for
                 info("Exported " + path);
             };
         },
-        [this](const std::string& why) { error("Export failed: " + why); }, m_now);
+        [this, place](const std::string& why) { error("Export failed: " + why); }, m_now);
 }
 
 void Workbench::exportCsv(core::Json cmd) {
     const std::string path = absolute(cmd.value("path", std::string()));
     cmd["path"] = path;
+    auto place = std::make_shared<JournalPlace>(m_session);
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
-        [this, snapshot = state(), data = m_session.dataset(), cmd,
-         path](JobControl&) -> std::function<void()> {
+        [this, snapshot = state(), data = m_session.dataset(), cmd, path,
+         at = place->place](JobControl&) -> std::function<void()> {
             core::writeFileAtomically(path, core::exportCsvText(snapshot, data, cmd));
-            return [this, cmd, path] {
-                m_session.recordAction(cmd); // replayed like any export
+            return [this, cmd, path, at] {
+                m_session.settleAction(at, cmd); // replayed like any export, where it was asked for
                 info("Exported " + path);
             };
         },
-        [this](const std::string& why) { error("Export failed: " + why); }, m_now);
+        [this, place](const std::string& why) { error("Export failed: " + why); }, m_now);
 }
 
 void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds) {
