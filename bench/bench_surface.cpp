@@ -222,7 +222,7 @@ BENCHMARK_CAPTURE(BM_Remesh, inverse_square_50k_grid_normals, 50000, 0.25f, fc::
 BENCHMARK_CAPTURE(BM_Surface, inverse_square_2k, fc::MetaballKernel::InverseSquare, 2000, 0.25f)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Iterations(2);
+    ->Iterations(20);
 BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_square_2k, 2000, 0.25f)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
