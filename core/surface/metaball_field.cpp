@@ -1,9 +1,9 @@
 #include "core/surface/metaball_field.hpp"
 
+#include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
 #include "core/surface/detail/simd8.hpp"
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -19,10 +19,12 @@ namespace faultline::core {
 
 using detail::Box;
 using detail::Brick;
+using detail::ChargeGrid;
 using detail::FieldLevel;
 using detail::floorDiv;
 using detail::NearList;
 using detail::packKey;
+using detail::WindowList;
 namespace simd8 = detail::simd8;
 
 namespace {
@@ -287,139 +289,6 @@ void padToVectors(NearList &list) {
         list.x.push_back(1e18f), list.y.push_back(1e18f), list.z.push_back(1e18f);
         list.r.push_back(0.0f);
     }
-}
-
-// What a coarse node's window sum adds up: contiguous columns, padded with weightless entries to
-// whole 16s (the sums take two vectors at a time).
-struct WindowList {
-    std::vector<float> x, y, z, w;
-    void clear() { x.clear(), y.clear(), z.clear(), w.clear(); }
-    void push(float px, float py, float pz, float pw) {
-        x.push_back(px), y.push_back(py), z.push_back(pz), w.push_back(pw);
-    }
-    void pad() {
-        while (w.size() % 16 != 0)
-            push(0.0f, 0.0f, 0.0f, 0.0f);
-    }
-};
-
-// Multilevel summation's anterpolation: every sphere's weight spread over a level's nodes with
-// the interpolation's own Lagrange weights. Summing a smooth kernel over these charges sums,
-// over the spheres, its interpolant at their centres: an error of the same size as
-// interpolating the level's values, and far fewer terms where a node spacing holds many
-// spheres. Dense over the centres' box, so for coarse levels only.
-struct ChargeGrid {
-    float spacing = 1.0f;
-    detail::Int3 lo{0, 0, 0}, dims{0, 0, 0};
-    std::vector<float> q; // x slowest, z fastest
-    std::size_t nonzero = 0;
-    float at(int i, int j, int k) const {
-        return q[(static_cast<std::size_t>(i) * dims[1] + j) * dims[2] + k];
-    }
-    // The nonzero charges within `cutoff` of the nodes [first, first + size) (all of them for
-    // a cutoff of infinity), padded.
-    void gather(const detail::Int3 &first, int size, float cutoff, WindowList &out) const {
-        out.clear();
-        int from[3], to[3];
-        for (int k = 0; k < 3; ++k) {
-            const float reach = std::min(cutoff / spacing, float(dims[k]));
-            from[k] = std::max(first[k] - static_cast<int>(std::ceil(reach)), lo[k]) - lo[k];
-            to[k] = std::min(first[k] + size - 1 + static_cast<int>(std::ceil(reach)),
-                             lo[k] + dims[k] - 1) -
-                    lo[k];
-        }
-        // A node's distance to the nodes' box along one axis, squared, world.
-        auto gap2 = [&](int k, int local) {
-            const int node = lo[k] + local;
-            const int gap = std::max({first[k] - node, node - (first[k] + size - 1), 0});
-            const float d = static_cast<float>(gap) * spacing;
-            return d * d;
-        };
-        const float a2 = cutoff * cutoff;
-        for (int a = from[0]; a <= to[0]; ++a) {
-            const float da = gap2(0, a);
-            if (da >= a2)
-                continue;
-            for (int b = from[1]; b <= to[1]; ++b) {
-                const float dab = da + gap2(1, b);
-                if (dab >= a2)
-                    continue;
-                for (int c = from[2]; c <= to[2]; ++c) {
-                    const float charge = at(a, b, c);
-                    if (charge != 0.0f && dab + gap2(2, c) < a2)
-                        out.push(float(lo[0] + a) * spacing, float(lo[1] + b) * spacing,
-                                 float(lo[2] + c) * spacing, charge);
-                }
-            }
-        }
-        out.pad();
-    }
-};
-
-// Larger grids are not made (a level that fine for the spheres' box holds few spheres per node
-// anyway); up to the second size every thread spreads into a grid of its own.
-constexpr std::size_t kMaxChargeNodes = std::size_t{1} << 22;
-constexpr std::size_t kParallelChargeNodes = std::size_t{1} << 18;
-
-std::optional<ChargeGrid> anterpolate(const detail::PackedSpheres &s, const Box &centres,
-                                      float spacing) {
-    ChargeGrid g;
-    std::size_t total = 1;
-    for (int k = 0; k < 3; ++k) {
-        const double lo = std::floor(centres.lo[k] / spacing) - detail::kTapsBelow;
-        const double hi = std::floor(centres.hi[k] / spacing) + detail::kTapsAbove;
-        if (hi - lo + 1 > double(kMaxChargeNodes))
-            return std::nullopt;
-        g.lo[k] = static_cast<int>(lo);
-        g.dims[k] = static_cast<int>(hi - lo + 1);
-        total *= static_cast<std::size_t>(g.dims[k]);
-        if (total > kMaxChargeNodes)
-            return std::nullopt;
-    }
-    auto spread = [&](std::size_t i, std::vector<float> &q) {
-        float w[3][detail::kTaps];
-        int b[3];
-        const float c[3] = {s.x[i], s.y[i], s.z[i]};
-        for (int k = 0; k < 3; ++k) {
-            const float u = c[k] / spacing;
-            const float fl = std::floor(u);
-            b[k] = std::clamp(static_cast<int>(fl) - detail::kTapsBelow - g.lo[k], 0,
-                              g.dims[k] - detail::kTaps);
-            detail::lagrangeWeights(u - fl, w[k]);
-        }
-        for (int a = 0; a < detail::kTaps; ++a)
-            for (int e = 0; e < detail::kTaps; ++e) {
-                const float wae = s.r[i] * w[0][a] * w[1][e];
-                float *row =
-                    &q[(static_cast<std::size_t>(b[0] + a) * g.dims[1] + b[1] + e) * g.dims[2] +
-                       b[2]];
-                for (int f = 0; f < detail::kTaps; ++f)
-                    row[f] += wae * w[2][f];
-            }
-    };
-    if (total <= kParallelChargeNodes) {
-        // A private grid per thread, summed after.
-        tbb::enumerable_thread_specific<std::vector<float>> local(
-            [&] { return std::vector<float>(total, 0.0f); });
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.size(), 2048),
-                          [&](const tbb::blocked_range<std::size_t> &range) {
-                              std::vector<float> &q = local.local();
-                              for (std::size_t i = range.begin(); i != range.end(); ++i)
-                                  spread(i, q);
-                          });
-        g.q.assign(total, 0.0f);
-        for (const auto &q : local)
-            for (std::size_t n = 0; n < total; ++n)
-                g.q[n] += q[n];
-    } else {
-        g.q.assign(total, 0.0f);
-        for (std::size_t i = 0; i < s.size(); ++i)
-            spread(i, g.q);
-    }
-    g.spacing = spacing;
-    g.nonzero = static_cast<std::size_t>(
-        std::count_if(g.q.begin(), g.q.end(), [](float q) { return q != 0.0f; }));
-    return g;
 }
 
 } // namespace

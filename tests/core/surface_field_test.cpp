@@ -1,4 +1,5 @@
 // The multilevel metaball field against the paper's Algorithm 1 (dense all-pairs sum).
+#include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
 #include "core/surface/fault_surface_request.hpp"
 #include "core/surface/metaball_field.hpp"
@@ -181,6 +182,48 @@ TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
         EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor)
             << "voxels " << c.voxels;
         EXPECT_EQ(c.colorMismatches, 0u);
+    }
+}
+
+// Anterpolated charges keep the spheres' moments up to the interpolation's degree (5 per axis):
+// total weight, centre of weight, second moments. Small grids (a grid per thread) and large ones
+// (spread in place by slabs) alike.
+TEST(ChargeGrid, ChargesKeepTheSpheresMoments) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    fc::detail::PackedSpheres s;
+    fc::detail::Box box;
+    for (int i = 0; i < 20000; ++i) {
+        const float p[3] = {-30.0f + 60.0f * u(rng), -5.0f + 10.0f * u(rng), 20.0f * u(rng)};
+        s.x.push_back(p[0]), s.y.push_back(p[1]), s.z.push_back(p[2]);
+        s.r.push_back(0.3f + 0.4f * u(rng));
+        for (int k = 0; k < 3; ++k) {
+            box.lo[k] = i == 0 ? p[k] : std::min(box.lo[k], p[k]);
+            box.hi[k] = i == 0 ? p[k] : std::max(box.hi[k], p[k]);
+        }
+    }
+    for (float spacing : {2.0f, 0.25f}) {
+        const auto g = fc::detail::anterpolate(s, box, spacing);
+        ASSERT_TRUE(g.has_value());
+        const std::size_t nodes = std::size_t(g->dims[0]) * g->dims[1] * g->dims[2];
+        EXPECT_EQ(nodes > (std::size_t{1} << 18), spacing < 1.0f) << nodes;
+        double want[5] = {}, got[5] = {};
+        auto moments = [](double w, double x, double y, double z, double *m) {
+            m[0] += w, m[1] += w * x, m[2] += w * y * z, m[3] += w * x * x, m[4] += w * z * z * z;
+        };
+        for (std::size_t i = 0; i < s.size(); ++i)
+            moments(s.r[i], s.x[i], s.y[i], s.z[i], want);
+        for (int a = 0; a < g->dims[0]; ++a)
+            for (int b = 0; b < g->dims[1]; ++b)
+                for (int c = 0; c < g->dims[2]; ++c)
+                    moments(g->at(a, b, c), (g->lo[0] + a) * spacing, (g->lo[1] + b) * spacing,
+                            (g->lo[2] + c) * spacing, got);
+        for (int m = 0; m < 5; ++m)
+            EXPECT_NEAR(got[m], want[m], 2e-4 * std::max(1.0, std::abs(want[m]))
+                                             * (m == 4 ? 20.0 : 1.0))
+                << "spacing " << spacing << " moment " << m;
+        // Spread twice, the same charges (no race between the threads' slabs).
+        EXPECT_EQ(fc::detail::anterpolate(s, box, spacing)->q, g->q);
     }
 }
 
