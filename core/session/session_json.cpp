@@ -406,7 +406,7 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         Fields sf(surfaces[k], top.child("surfaces", k), path);
         SurfaceSettings st;
         st.fault = sf.str("fault");
-        if (!s.fault(st.fault))
+        if (!s.fault(st.fault) && !isVisibleSpheres(st.fault))
             sf.fail("fault", "names no fault of this session");
         st.kernel = sf.str("kernel", st.kernel);
         if (st.kernel != "inverse" && st.kernel != "inverse-square" && st.kernel != "compact")

@@ -84,6 +84,8 @@ void registerFaultOps(OpTable& ops) {
         f.name = args::string(cmd, "name");
         if (f.name.empty() || s.state().fault(f.name))
             throw CommandError("fault.create: a fault named \"" + f.name + "\" exists already");
+        if (isVisibleSpheres(f.name))
+            throw CommandError("fault.create: \"" + f.name + "\" names the visible spheres' surface; choose another name");
         if (cmd.contains("from") == cmd.contains("ids"))
             throw CommandError("fault.create: give either \"from\": \"visible\" or \"ids\"");
         if (cmd.contains("from")) {
@@ -131,7 +133,7 @@ void registerFaultOps(OpTable& ops) {
         next.notes = args::optionalString(cmd, "notes").value_or(f.notes);
         next.visible = args::optionalBool(cmd, "visible").value_or(f.visible);
         if (auto rename = args::optionalString(cmd, "rename")) {
-            if (rename->empty() || (*rename != f.name && s.state().fault(*rename)))
+            if (rename->empty() || (*rename != f.name && s.state().fault(*rename)) || isVisibleSpheres(*rename))
                 throw CommandError("fault.set: cannot rename to \"" + *rename + "\"");
             next.name = *rename;
         }

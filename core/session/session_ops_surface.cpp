@@ -17,10 +17,25 @@ Json settingsJson(const SurfaceSettings& st) {
             {"iso", st.iso}, {"visible", st.visible}, {"opacity", st.opacity}};
 }
 
+// What a surface named `name` is built from in the current frame: the fault, or the visible
+// spheres (kVisibleSpheres).
+Fault sourceOf(Session& s, const std::string& name, const char* op) {
+    if (isVisibleSpheres(name)) {
+        auto frame = s.currentFrame();
+        if (!frame)
+            throw CommandError(std::string(op) + ": no data is open");
+        return visibleSpheresFault(*frame, s.visibility());
+    }
+    const Fault* fault = s.state().fault(name);
+    if (!fault)
+        throw CommandError(std::string(op) + ": no fault named \"" + name + "\"");
+    return *fault;
+}
+
 // The settings a command asks for, over the fault's current ones.
 SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
     const std::string fault = args::string(cmd, "fault");
-    if (!s.state().fault(fault))
+    if (!s.state().fault(fault) && !isVisibleSpheres(fault))
         throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
     SurfaceSettings st;
     st.fault = fault;
@@ -53,11 +68,9 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     auto frame = s.currentFrame();
     if (!frame)
         throw CommandError(std::string(op) + ": no data is open");
-    const Fault* fault = s.state().fault(st.fault);
-    if (!fault)
-        throw CommandError(std::string(op) + ": no fault named \"" + st.fault + "\"");
+    const Fault fault = sourceOf(s, st.fault, op);
     try {
-        return buildFaultSurface(*frame, {*fault, st});
+        return buildFaultSurface(*frame, {fault, st});
     } catch (const std::exception& e) {
         throw CommandError(std::string(op) + ": " + e.what());
     }
@@ -66,7 +79,7 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
 SurfaceSettings settingsOf(Session& s, const std::string& fault, const char* op) {
     if (const SurfaceSettings* st = s.state().surface(fault))
         return *st;
-    if (!s.state().fault(fault))
+    if (!s.state().fault(fault) && !isVisibleSpheres(fault))
         throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
     SurfaceSettings st; // never built: the defaults
     st.fault = fault;
@@ -75,10 +88,7 @@ SurfaceSettings settingsOf(Session& s, const std::string& fault, const char* op)
 
 FaultSurfaceRequest requestOf(Session& s, const std::string& fault, const char* op) {
     const SurfaceSettings st = settingsOf(s, fault, op);
-    const Fault* f = s.state().fault(fault);
-    if (!f)
-        throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
-    return {*f, st};
+    return {sourceOf(s, fault, op), st};
 }
 
 std::shared_ptr<const Frame> frameOf(Session& s, const char* op) {

@@ -84,8 +84,14 @@ struct FaultFilter {
     bool operator==(const FaultFilter&) const = default;
 };
 
+// The surface source that is not a fault: the spheres visible in the frame (thresholds, boxes,
+// fault filter), as the views show them. Surface settings and journals name it like a fault:
+// {"op":"surface.build","fault":"*visible",...}; no fault may take this name.
+inline constexpr std::string_view kVisibleSpheres = "*visible";
+inline bool isVisibleSpheres(std::string_view name) { return name == kVisibleSpheres; }
+
 struct SurfaceSettings {
-    std::string fault;
+    std::string fault; // a fault's name, or kVisibleSpheres
     std::string kernel = "inverse-square"; // inverse | inverse-square | compact
     double voxel = 0;                      // 0: radius / 3
     double iso = 1.0;

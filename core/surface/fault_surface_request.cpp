@@ -29,6 +29,20 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault) {
     return s;
 }
 
+Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility) {
+    Fault f;
+    f.name = "visible spheres"; // in exports (grid and node names) and messages
+    f.color = {0.78f, 0.8f, 0.84f};
+    const std::size_t rows = std::min(frame.size(), visibility.mask.size());
+    f.ids.reserve(visibility.visibleCount);
+    for (std::size_t row = 0; row < rows; ++row)
+        if (visibility.mask[row])
+            f.ids.push_back(frame.ids[row]);
+    if (!std::is_sorted(f.ids.begin(), f.ids.end()))
+        std::sort(f.ids.begin(), f.ids.end());
+    return f;
+}
+
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault) {
     SurfaceParams params;
     const auto kernel = parseKernel(settings.kernel);

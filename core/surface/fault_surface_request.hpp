@@ -5,6 +5,7 @@
 
 #include "core/faults/fault.hpp"
 #include "core/model/frame.hpp"
+#include "core/selection/visibility.hpp"
 #include "core/session/session_state.hpp"
 #include "core/surface/interrupter.hpp"
 #include "core/surface/sphere_set.hpp"
@@ -27,6 +28,11 @@ struct FaultSpheres {
     std::size_t size() const { return x.size(); }
 };
 FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
+
+// The surface source kVisibleSpheres (session_state.hpp) in a frame: the visible rows' ids as a
+// fault in a neutral colour, named "visible spheres" in exports and messages, so that builds,
+// caches and exports take it as they take a fault.
+Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility);
 
 // The field parameters of a fault's surface setting. Throws CommandError for an unknown kernel.
 // The surface takes the fault's colour (Figure 4's initial colour, and its spheres' colour), so

@@ -274,6 +274,41 @@ TEST(Session, BackgroundActionsKeepTheirPlaceInTheJournal) {
     EXPECT_EQ(s.journal().size(), 6u);
 }
 
+// The issue's other surface source: the visible spheres, named "*visible" where a fault's name
+// goes. It follows thresholds (and boxes, time); no fault may take the name.
+TEST(Session, TheVisibleSpheresHaveASurfaceOfTheirOwn) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":9})")); // x >= 2
+    ASSERT_EQ(s.visibility().visibleCount, 32u);
+    s.apply(cmd(R"({"op":"surface.build","fault":"*visible","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    ASSERT_NE(s.state().surface("*visible"), nullptr);
+    s.apply({{"op", "export.vdb"}, {"fault", "*visible"}, {"path", dir.file("out/visible.vdb")}});
+    s.apply({{"op", "export.gltf"}, {"faults", {"*visible"}}, {"path", dir.file("out/visible.glb")}});
+    EXPECT_GT(std::filesystem::file_size(dir.file("out/visible.vdb")), 1000u);
+    EXPECT_GT(std::filesystem::file_size(dir.file("out/visible.glb")), 1000u);
+    // Saved and restored like a fault's surface.
+    const std::string file = dir.file("out/v.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", file}});
+    EXPECT_EQ(loadSessionFile(file), s.state());
+    auto rejects = [&](const char* text, const std::string& message) {
+        try {
+            s.apply(cmd(text));
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const CommandError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    rejects(R"({"op":"fault.create","name":"*visible","from":"visible"})", "names the visible spheres' surface");
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
+    rejects(R"({"op":"fault.set","name":"F1","rename":"*visible"})", "cannot rename");
+    // Nothing visible: refused before any work, saying why.
+    s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":50,"high":60})"));
+    rejects(R"({"op":"surface.build","fault":"*visible","iso":0.4})", "empty sphere set");
+    rejects(R"({"op":"export.vdb","fault":"*visible","path":"x.vdb"})", "empty sphere set");
+}
+
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
     TempDir dir;
     Session s;

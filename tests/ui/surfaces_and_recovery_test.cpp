@@ -94,6 +94,41 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     EXPECT_EQ(mock->stats().meshTriangles, 0u);
 }
 
+// The Surfaces panel offers the visible spheres' surface even before any fault exists: ticked,
+// it starts at the wrapping iso, is built from what the main view shows and follows a threshold.
+TEST_F(PanelTest, TheVisibleSpheresSurfaceFollowsTheThresholds) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.show.visible");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    const Json shown = headless.emitted("surface.set")[0];
+    EXPECT_EQ(shown.value("fault", ""), "*visible");
+    EXPECT_GT(shown.value("iso", 0.0), 0.0) << shown.dump();
+    headless.settle(wb());
+    const ui::ViewDisplay* d = wb().mainDisplay();
+    ASSERT_EQ(d->surfaces.size(), 1u);
+    const auto all = d->surfaces[0].mesh;
+    auto status = [&] {
+        const ui::ViewDisplay* m = wb().mainDisplay();
+        return wb().surfaces().status(session.state(), "*visible", m->shownFrame, m->frame,
+                                      m->visibility);
+    };
+    EXPECT_EQ(status().spheres, 64u);
+    // Half the spheres visible: a new surface through those.
+    session.apply(Json::parse(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":9})"));
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
+    EXPECT_NE(wb().mainDisplay()->surfaces[0].mesh, all);
+    EXPECT_EQ(status().spheres, 32u);
+    // Its VDB export writes what the op writes, and the journal records it.
+    wb().exportSurfaces({"*visible"}, dir.file("out/visible.vdb"), true);
+    headless.settle(wb());
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/visible.vdb"))) << wb().lastMessage();
+    EXPECT_EQ(session.journal().back().value("fault", ""), "*visible");
+}
+
 TEST_F(PanelTest, SurfaceSettingsAreCommandsAndABadRequestSaysWhy) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));

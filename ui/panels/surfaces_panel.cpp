@@ -1,6 +1,7 @@
-// Surfaces panel: a metaball surface per fault (paper eq. 1 / Algorithm 1): show or hide it, its
-// kernel, voxel size, iso-value and opacity, the state of its background build, and exports to
-// OpenVDB and glTF. Settings are surface.set commands; builds run in the workbench's SurfaceStore.
+// Surfaces panel: a metaball surface per fault, and one of the visible spheres (paper eq. 1 /
+// Algorithm 1): show or hide it, its kernel, voxel size, iso-value and opacity, the state of its
+// background build, and exports to OpenVDB and glTF. Settings are surface.set commands; builds
+// run in the workbench's SurfaceStore.
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/workbench/frame_columns.hpp"
@@ -10,6 +11,8 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <array>
 #include <filesystem>
 #include <optional>
 
@@ -19,6 +22,11 @@ namespace {
 
 const char* kKernels[] = {"inverse", "inverse-square", "compact"};
 
+// How the panel names a surface source.
+std::string sourceLabel(const std::string& name) {
+    return core::isVisibleSpheres(name) ? "visible spheres" : name;
+}
+
 std::string statusText(const SurfaceStatus& st) {
     using State = SurfaceStatus::State;
     switch (st.state) {
@@ -27,8 +35,17 @@ std::string statusText(const SurfaceStatus& st) {
     case State::Building:
         return st.progress >= 0 ? "building " + std::to_string(int(st.progress * 100)) + "%"
                                 : "building";
-    case State::Ready:
-        return std::to_string(st.triangles) + " triangles";
+    case State::Ready: {
+        char text[48];
+        const double n = static_cast<double>(st.triangles);
+        if (n >= 1e6)
+            std::snprintf(text, sizeof text, "%.3gM triangles", n / 1e6);
+        else if (n >= 1e4)
+            std::snprintf(text, sizeof text, "%.3gk triangles", n / 1e3);
+        else
+            std::snprintf(text, sizeof text, "%zu triangles", st.triangles);
+        return text;
+    }
     case State::Failed:
         return "failed";
     case State::None:
@@ -44,15 +61,13 @@ class SurfacesPanel final : public Panel {
 
     void draw(Workbench& wb) override {
         const core::SessionState& s = wb.state();
-        if (s.faults.empty()) {
-            ImGui::TextWrapped(
-                "No faults yet. Name one in the Faults panel (from the visible spheres or a "
-                "candidate); its metaball surface is built here.");
-            return;
-        }
         const ViewDisplay* main = wb.mainDisplay();
         const std::size_t frame = main ? main->shownFrame : 0;
         drawTable(wb, s, frame);
+        if (s.faults.empty())
+            ImGui::TextWrapped(
+                "No faults yet. Name one in the Faults panel (from the visible spheres or a "
+                "candidate) for a surface of its own.");
         const std::string current = currentFault(wb, s);
         if (current.empty())
             return;
@@ -63,6 +78,7 @@ class SurfacesPanel final : public Panel {
   private:
     std::shared_ptr<Job> m_wrapping; // finding an iso-value for `cmd` (sums every member)
     std::string m_fault;             // whose settings are shown
+    std::string m_selected;          // the fault last picked in the Faults panel
     float m_iso = 1.0f, m_opacity = 0.8f;
     double m_voxel = 0.0;
     std::string m_editing; // fault whose edit fields were loaded
@@ -70,14 +86,19 @@ class SurfacesPanel final : public Panel {
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
     // frame, found in the background (about 600 field sums over all of them). Without one (no
     // member in the frame) `cmd` goes as it is, unless it asks for nothing else.
-    void emitWithWrappingIso(Workbench& wb, const core::Fault& fault,
+    void emitWithWrappingIso(Workbench& wb, const std::string& source,
                              const core::SurfaceSettings& settings, core::Json cmd,
                              bool onlyIso = false) {
         const ViewDisplay* main = wb.mainDisplay();
-        if (!main || !main->frame) {
-            wb.emit(cmd);
+        const core::Fault* found =
+            main ? wb.surfaces().sourceOf(wb.state(), source, main->frame, main->visibility)
+                 : nullptr;
+        if (!main || !main->frame || !found) {
+            if (!onlyIso)
+                wb.emit(cmd);
             return;
         }
+        const core::Fault fault = *found;
         if (m_wrapping && !m_wrapping->finished())
             m_wrapping->cancel();
         m_wrapping = wb.jobs().start(
@@ -96,72 +117,95 @@ class SurfacesPanel final : public Panel {
 
     std::string currentFault(Workbench& wb, const core::SessionState& s) {
         for (const auto& f : s.faults)
-            if (wb.selectedFaults.count(f.name) && wb.selectedFaults.size() == 1)
-                m_fault = f.name;
-        if (!s.fault(m_fault))
-            m_fault = s.surfaces.empty() ? s.faults.front().name : s.surfaces.front().fault;
+            if (wb.selectedFaults.count(f.name) && wb.selectedFaults.size() == 1 &&
+                m_selected != f.name) {
+                m_fault = f.name; // a fault picked in the Faults panel (once: a click here wins)
+                m_selected = f.name;
+            }
+        if (!s.fault(m_fault) && !core::isVisibleSpheres(m_fault))
+            m_fault = !s.surfaces.empty() ? s.surfaces.front().fault
+                      : !s.faults.empty() ? s.faults.front().name
+                                          : std::string(core::kVisibleSpheres);
         return m_fault;
     }
 
     void drawTable(Workbench& wb, const core::SessionState& s, std::size_t frame) {
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingStretchProp;
-        const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size(), 6) + 1);
+        const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size() + 1, 6) + 1);
         if (!ImGui::BeginTable("##surfaces", 3, flags,
                                ImVec2(0, rows * ImGui::GetFrameHeightWithSpacing())))
             return;
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableSetupColumn("shown", ImGuiTableColumnFlags_WidthFixed);
-        ImGui::TableSetupColumn("fault", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-        ImGui::TableSetupColumn("surface", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+        ImGui::TableSetupColumn("of", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+        ImGui::TableSetupColumn("surface", ImGuiTableColumnFlags_WidthStretch, 1.0f);
         ImGui::TableHeadersRow();
-        for (const auto& f : s.faults) {
-            ImGui::PushID(f.name.c_str());
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            const core::SurfaceSettings* st = s.surface(f.name);
-            bool shown = st && st->visible;
-            if (ImGui::Checkbox("##shown", &shown)) {
-                const core::Json cmd{{"op", "surface.set"}, {"fault", f.name}, {"visible", shown}};
-                // A new surface starts at the iso that wraps this fault's spheres.
-                if (!st && shown)
-                    emitWithWrappingIso(wb, f, core::SurfaceSettings{}, cmd);
-                else
-                    wb.emit(cmd);
-            }
-            wb.mark("surfaces.show." + f.name);
-            if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("Show the metaball surface through this fault's spheres");
-            ImGui::TableNextColumn();
-            const ImVec4 colour(f.color[0], f.color[1], f.color[2], 1.0f);
-            ImGui::ColorButton("##c", colour,
-                               ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
-                               ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
-            ImGui::SameLine();
-            if (ImGui::Selectable(f.name.c_str(), m_fault == f.name,
-                                  ImGuiSelectableFlags_SpanAllColumns))
-                m_fault = f.name;
-            ImGui::TableNextColumn();
-            if (st && st->visible) {
-                const SurfaceStatus status = wb.surfaces().status(s, f.name, frame);
-                if (status.state == SurfaceStatus::State::Building && status.progress >= 0) {
-                    ImGui::ProgressBar(status.progress, ImVec2(-1, 0), statusText(status).c_str());
-                } else if (status.state == SurfaceStatus::State::Failed) {
-                    ImGui::TextColored(ImVec4(0.75f, 0.15f, 0.1f, 1), "failed");
-                    if (ImGui::IsItemHovered())
-                        ImGui::SetTooltip("%s", status.error.c_str());
-                } else {
-                    ImGui::TextUnformatted(statusText(status).c_str());
-                    if (status.state == SurfaceStatus::State::Ready && ImGui::IsItemHovered())
-                        ImGui::SetTooltip("%zu spheres, built in %.2f s", status.spheres,
-                                          status.seconds);
-                }
-            } else {
-                ImGui::TextDisabled(st ? "hidden" : "-");
-            }
-            ImGui::PopID();
-        }
+        for (const auto& f : s.faults)
+            drawRow(wb, s, frame, f.name, f.color);
+        drawRow(wb, s, frame, std::string(core::kVisibleSpheres), {0.78f, 0.8f, 0.84f});
         ImGui::EndTable();
+    }
+
+    void drawRow(Workbench& wb, const core::SessionState& s, std::size_t frame,
+                 const std::string& name, const std::array<float, 3>& color) {
+        const bool visibleSpheres = core::isVisibleSpheres(name);
+        ImGui::PushID(name.c_str());
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        const core::SurfaceSettings* st = s.surface(name);
+        bool shown = st && st->visible;
+        if (ImGui::Checkbox("##shown", &shown)) {
+            const core::Json cmd{{"op", "surface.set"}, {"fault", name}, {"visible", shown}};
+            // A new surface starts at the iso that wraps its spheres.
+            if (!st && shown)
+                emitWithWrappingIso(wb, name, core::SurfaceSettings{}, cmd);
+            else
+                wb.emit(cmd);
+        }
+        wb.mark(visibleSpheres ? std::string("surfaces.show.visible") : "surfaces.show." + name);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(visibleSpheres
+                                  ? "Show the metaball surface through the visible spheres (it "
+                                    "follows thresholds, boxes and time)"
+                                  : "Show the metaball surface through this fault's spheres");
+        ImGui::TableNextColumn();
+        const ImVec4 colour(color[0], color[1], color[2], 1.0f);
+        ImGui::ColorButton("##c", colour,
+                           ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
+                           ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+        ImGui::SameLine();
+        if (ImGui::Selectable(sourceLabel(name).c_str(), m_fault == name,
+                              ImGuiSelectableFlags_SpanAllColumns))
+            m_fault = name;
+        if (visibleSpheres)
+            wb.mark("surfaces.pick.visible");
+        ImGui::TableNextColumn();
+        if (st && st->visible) {
+            const SurfaceStatus status = statusOf(wb, s, name, frame);
+            if (status.state == SurfaceStatus::State::Building && status.progress >= 0) {
+                ImGui::ProgressBar(status.progress, ImVec2(-1, 0), statusText(status).c_str());
+            } else if (status.state == SurfaceStatus::State::Failed) {
+                ImGui::TextColored(ImVec4(0.75f, 0.15f, 0.1f, 1), "failed");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%s", status.error.c_str());
+            } else {
+                ImGui::TextUnformatted(statusText(status).c_str());
+                if (status.state == SurfaceStatus::State::Ready && ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%zu spheres, built in %.2f s", status.spheres,
+                                      status.seconds);
+            }
+        } else {
+            ImGui::TextDisabled(st ? "hidden" : "-");
+        }
+        ImGui::PopID();
+    }
+
+    static SurfaceStatus statusOf(Workbench& wb, const core::SessionState& s,
+                                  const std::string& name, std::size_t frame) {
+        const ViewDisplay* main = wb.mainDisplay();
+        return wb.surfaces().status(s, name, frame, main ? main->frame : nullptr,
+                                    main ? main->visibility : nullptr);
     }
 
     void drawSettings(Workbench& wb, const core::SessionState& s, const std::string& fault,
@@ -181,7 +225,7 @@ class SurfacesPanel final : public Panel {
             fields["fault"] = fault;
             wb.emit(fields);
         };
-        ImGui::Text("Surface of %s", fault.c_str());
+        ImGui::Text("Surface of %s", sourceLabel(fault).c_str());
         const float w = 170 * wb.scale();
         ImGui::SetNextItemWidth(w);
         if (ImGui::BeginCombo("kernel", st.kernel.c_str())) {
@@ -193,9 +237,8 @@ class SurfacesPanel final : public Panel {
                     // the iso-value that wraps the spheres with it.
                     core::SurfaceSettings next = st;
                     next.kernel = k;
-                    if (const core::Fault* f = s.fault(fault))
-                        emitWithWrappingIso(
-                            wb, *f, next, {{"op", "surface.set"}, {"fault", fault}, {"kernel", k}});
+                    emitWithWrappingIso(wb, fault, next,
+                                        {{"op", "surface.set"}, {"fault", fault}, {"kernel", k}});
                 }
             }
             ImGui::EndCombo();
@@ -226,11 +269,10 @@ class SurfacesPanel final : public Panel {
                               "the cached field (Ctrl+click to type one).");
         ImGui::SameLine();
         if (ImGui::Button("Wrap"))
-            if (const core::Fault* f = s.fault(fault))
-                emitWithWrappingIso(wb, *f, st, {{"op", "surface.set"}, {"fault", fault}}, true);
+            emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
         wb.mark("surfaces.wrap");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("The iso-value whose surface wraps this fault's spheres about half a "
+            ImGui::SetTooltip("The iso-value whose surface wraps these spheres about half a "
                               "radius out (with this kernel)");
         ImGui::SetNextItemWidth(w);
         ImGui::SliderFloat("opacity", &m_opacity, 0.0f, 1.0f, "%.2f");
@@ -238,7 +280,7 @@ class SurfacesPanel final : public Panel {
             set({{"opacity", m_opacity}});
         wb.mark("surfaces.opacity");
 
-        const SurfaceStatus status = wb.surfaces().status(s, fault, frame);
+        const SurfaceStatus status = statusOf(wb, s, fault, frame);
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
         else if (status.state == SurfaceStatus::State::Ready)
@@ -248,9 +290,13 @@ class SurfacesPanel final : public Panel {
         const bool exists = s.surface(fault) != nullptr;
         ImGui::BeginDisabled(!wb.dataset());
         if (ImGui::Button("Export VDB..."))
-            wb.fileDialog().open("Export " + fault + "'s density and colour grids (OpenVDB)",
+            wb.fileDialog().open("Export the density and colour grids of the " +
+                                     (core::isVisibleSpheres(fault) ? "visible spheres"
+                                                                    : fault + " surface") +
+                                     " (OpenVDB)",
                                  FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"},
-                                 exportFolder(wb), fault + ".vdb");
+                                 exportFolder(wb),
+                                 (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
         ImGui::SameLine();
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",

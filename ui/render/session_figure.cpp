@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 
 namespace faultline::ui {
 
@@ -91,8 +92,16 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
                                    b.mode == core::BoxMode::Keep ? glm::vec3(0.15f, 0.45f, 0.85f)
                                                                  : glm::vec3(0.85f, 0.25f, 0.2f)});
     // Visible fault surfaces, as the workbench shows them.
+    std::optional<core::Fault> visibleSpheres; // the visible spheres' surface source, if shown
     for (const auto& st : session.state().surfaces) {
         const core::Fault* fault = session.state().fault(st.fault);
+        if (st.visible && core::isVisibleSpheres(st.fault)) {
+            core::VisibilityResult visibility;
+            visibility.mask = scene.visible;
+            visibility.visibleCount = static_cast<std::size_t>(std::count(scene.visible.begin(), scene.visible.end(), 1));
+            visibleSpheres = core::visibleSpheresFault(*frame, visibility);
+            fault = &*visibleSpheres;
+        }
         if (!st.visible || !fault || !fault->visible)
             continue;
         if (std::none_of(fault->ids.begin(), fault->ids.end(), [&](std::int64_t id) { return frame->rowOf(id).has_value(); }))

@@ -19,30 +19,48 @@ constexpr std::size_t kKeepEntries = 48;
 SurfaceStore::SurfaceStore(JobRunner& jobs)
     : m_jobs(jobs), m_cache(std::make_shared<core::SurfaceCache>()) {}
 
-std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SessionState& state,
-                                                     const core::SurfaceSettings& settings,
+std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SurfaceSettings& settings,
+                                                     const core::Fault& fault,
                                                      std::size_t frameIndex) const {
-    const core::Fault* fault = state.fault(settings.fault);
-    if (!fault || !core::parseKernel(settings.kernel))
+    if (!core::parseKernel(settings.kernel))
         return std::nullopt;
-    const core::SurfaceParams params = core::surfaceParamsOf(settings, *fault);
-    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, *fault, params);
+    const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
+    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, fault, params);
     return Key{k.frame, k.members, k.params, params.iso};
 }
 
-std::vector<ViewSurface> SurfaceStore::surfacesFor(const core::SessionState& state,
-                                                   std::size_t frameIndex,
-                                                   const std::shared_ptr<const core::Frame>& frame,
-                                                   double now) {
+const core::Fault* SurfaceStore::sourceOf(
+    const core::SessionState& state, const std::string& name,
+    const std::shared_ptr<const core::Frame>& frame,
+    const std::shared_ptr<const core::VisibilityResult>& visibility) const {
+    if (!core::isVisibleSpheres(name))
+        return state.fault(name);
+    if (!frame || !visibility)
+        return nullptr;
+    for (auto& v : m_visibleSources)
+        if (v.frame == frame && v.visibility == visibility)
+            return &v.fault;
+    if (m_visibleSources.size() >= 4)
+        m_visibleSources.erase(m_visibleSources.begin());
+    m_visibleSources.push_back({frame, visibility, core::visibleSpheresFault(*frame, *visibility)});
+    return &m_visibleSources.back().fault;
+}
+
+std::vector<ViewSurface> SurfaceStore::surfacesFor(
+    const core::SessionState& state, std::size_t frameIndex,
+    const std::shared_ptr<const core::Frame>& frame, double now,
+    const std::shared_ptr<const core::VisibilityResult>& visibility) {
     std::vector<ViewSurface> out;
     if (!frame)
         return out;
     for (const auto& settings : state.surfaces) {
         if (!settings.visible)
             continue;
-        const core::Fault* fault = state.fault(settings.fault);
-        const auto key = keyOf(state, settings, frameIndex);
-        if (!key || !fault->visible)
+        const core::Fault* fault = sourceOf(state, settings.fault, frame, visibility);
+        if (!fault || !fault->visible)
+            continue;
+        const auto key = keyOf(settings, *fault, frameIndex);
+        if (!key)
             continue;
         Entry& e = m_entries[*key];
         e.lastUse = m_tick;
@@ -58,7 +76,7 @@ std::vector<ViewSurface> SurfaceStore::surfacesFor(const core::SessionState& sta
             e.status.state = SurfaceStatus::State::Waiting;
             continue;
         }
-        startBuild(*key, e, settings, *state.fault(settings.fault), frame, now);
+        startBuild(*key, e, settings, *fault, frame, now);
     }
     return out;
 }
@@ -103,15 +121,20 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
         it->second.status.state = SurfaceStatus::State::Failed;
         it->second.status.error = error;
     };
-    entry.job = m_jobs.start("Surface of " + settings.fault, std::move(work), std::move(fail), now);
+    entry.job = m_jobs.start("Surface of " + fault.name, std::move(work), std::move(fail), now);
 }
 
-SurfaceStatus SurfaceStore::status(const core::SessionState& state, const std::string& fault,
-                                   std::size_t frameIndex) const {
+SurfaceStatus SurfaceStore::status(
+    const core::SessionState& state, const std::string& fault, std::size_t frameIndex,
+    const std::shared_ptr<const core::Frame>& frame,
+    const std::shared_ptr<const core::VisibilityResult>& visibility) const {
     const core::SurfaceSettings* settings = state.surface(fault);
     if (!settings)
         return {};
-    const auto key = keyOf(state, *settings, frameIndex);
+    const core::Fault* source = sourceOf(state, fault, frame, visibility);
+    if (!source)
+        return {};
+    const auto key = keyOf(*settings, *source, frameIndex);
     if (!key)
         return {};
     auto it = m_entries.find(*key);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/model/frame.hpp"
+#include "core/selection/visibility.hpp"
 #include "core/session/session_state.hpp"
 #include "core/surface/surface_cache.hpp"
 #include "ui/render/renderer.hpp"
@@ -37,12 +38,24 @@ class SurfaceStore {
 
     // The ready surfaces for a view showing `frame` (dataset index frameIndex), one per visible
     // surface setting whose fault exists; starts (one at a time) the builds still missing.
-    std::vector<ViewSurface> surfacesFor(const core::SessionState& state, std::size_t frameIndex,
-                                         const std::shared_ptr<const core::Frame>& frame,
-                                         double now);
-    // The state of a fault's surface in a frame, as last asked for by surfacesFor.
+    // `visibility` (the view's) gives the visible spheres' surface (core::kVisibleSpheres).
+    std::vector<ViewSurface> surfacesFor(
+        const core::SessionState& state, std::size_t frameIndex,
+        const std::shared_ptr<const core::Frame>& frame, double now,
+        const std::shared_ptr<const core::VisibilityResult>& visibility = nullptr);
+    // The state of a fault's surface in a frame, as last asked for by surfacesFor (with the
+    // view's frame and visibility for the visible spheres' surface).
     SurfaceStatus status(const core::SessionState& state, const std::string& fault,
-                         std::size_t frameIndex) const;
+                         std::size_t frameIndex,
+                         const std::shared_ptr<const core::Frame>& frame = nullptr,
+                         const std::shared_ptr<const core::VisibilityResult>& visibility =
+                             nullptr) const;
+    // What a surface setting is built from in a view showing `frame`: the fault, or the visible
+    // spheres (kept while the frame and visibility stay the same). Null when there is none.
+    const core::Fault* sourceOf(
+        const core::SessionState& state, const std::string& name,
+        const std::shared_ptr<const core::Frame>& frame,
+        const std::shared_ptr<const core::VisibilityResult>& visibility) const;
     // Once per UI frame, after every view asked: cancels builds nobody asked for this frame.
     void endFrame();
     // Forgets every mesh (new data).
@@ -61,7 +74,7 @@ class SurfaceStore {
         SurfaceStatus status;
         std::uint64_t lastUse = 0;
     };
-    std::optional<Key> keyOf(const core::SessionState& state, const core::SurfaceSettings& settings,
+    std::optional<Key> keyOf(const core::SurfaceSettings& settings, const core::Fault& fault,
                              std::size_t frameIndex) const;
     void startBuild(const Key& key, Entry& entry, const core::SurfaceSettings& settings,
                     const core::Fault& fault, std::shared_ptr<const core::Frame> frame, double now);
@@ -70,6 +83,12 @@ class SurfaceStore {
     JobRunner& m_jobs;
     std::shared_ptr<core::SurfaceCache> m_cache; // shared with running jobs
     std::map<Key, Entry> m_entries;
+    struct VisibleSource {
+        std::shared_ptr<const core::Frame> frame;
+        std::shared_ptr<const core::VisibilityResult> visibility;
+        core::Fault fault;
+    };
+    mutable std::vector<VisibleSource> m_visibleSources; // most recent last, a few views' worth
     std::uint64_t m_tick = 1;
     std::size_t m_buildsStarted = 0;
 };

@@ -463,7 +463,7 @@ void Workbench::updateDisplay() {
         if (d.camera.distance <= 0 && d.frame)
             d.camera = fitCamera(v, d.camera, d.bounds.lo, d.bounds.hi);
         resolveColors(v, d, channel);
-        d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now);
+        d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now, d.visibility);
         next.push_back(std::move(d));
         ++channel;
     }
