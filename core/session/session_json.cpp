@@ -309,9 +309,11 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     doc["faults"] = faults;
     doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)}, {"fault", s.faultFilter.fault}};
     Json surfaces = Json::array();
-    for (const auto& sf : s.surfaces)
-        surfaces.push_back({{"fault", sf.fault}, {"kernel", sf.kernel}, {"voxel", sf.voxel},
-                            {"iso", sf.iso}, {"visible", sf.visible}, {"opacity", sf.opacity}});
+    for (const auto& sf : s.surfaces) {
+        Json j = surfaceSettingsFields(sf);
+        j["fault"] = sf.fault;
+        surfaces.push_back(std::move(j));
+    }
     doc["surfaces"] = surfaces;
     doc["dock_layout"] = s.dockLayout.is_null() ? Json::object() : s.dockLayout;
     return doc;
@@ -408,15 +410,11 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         st.fault = sf.str("fault");
         if (!s.fault(st.fault) && !isVisibleSpheres(st.fault))
             sf.fail("fault", "names no fault of this session");
-        st.kernel = sf.str("kernel", st.kernel);
-        if (st.kernel != "inverse" && st.kernel != "inverse-square" && st.kernel != "compact")
-            sf.fail("kernel", "must be inverse, inverse-square or compact");
-        st.voxel = sf.num("voxel", 0.0);
-        st.iso = sf.num("iso", 1.0);
-        if (st.voxel < 0 || st.iso <= 0)
-            sf.fail("voxel", "voxel must be >= 0 and iso > 0");
-        st.visible = sf.boolean("visible", true);
-        st.opacity = sf.num("opacity", 0.8);
+        try {
+            readSurfaceSettingsFields(surfaces[k], st);
+        } catch (const std::invalid_argument& e) {
+            sf.fail("", e.what());
+        }
         s.surfaces.push_back(st);
     }
     if (top.has("dock_layout")) {

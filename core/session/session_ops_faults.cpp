@@ -160,8 +160,7 @@ void registerFaultOps(OpTable& ops) {
             throw CommandError("fault.delete: no fault named \"" + name + "\"");
         Json inverse = {{"op", "fault.restore"}, {"fault", faultToJson(*it)}, {"index", it - state.faults.begin()}};
         if (SurfaceSettings* surface = state.surface(name)) {
-            inverse["surface"] = {{"kernel", surface->kernel}, {"voxel", surface->voxel}, {"iso", surface->iso},
-                                  {"visible", surface->visible}, {"opacity", surface->opacity}};
+            inverse["surface"] = surfaceSettingsFields(*surface);
             state.surfaces.erase(state.surfaces.begin() + (surface - state.surfaces.data()));
         }
         if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
@@ -178,14 +177,15 @@ void registerFaultOps(OpTable& ops) {
         if (state.fault(f.name))
             throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");
         if (cmd.contains("surface")) {
-            const Json& sj = cmd["surface"];
             SurfaceSettings st;
             st.fault = f.name;
-            st.kernel = sj.value("kernel", st.kernel);
-            st.voxel = sj.value("voxel", st.voxel);
-            st.iso = sj.value("iso", st.iso);
-            st.visible = sj.value("visible", st.visible);
-            st.opacity = sj.value("opacity", st.opacity);
+            if (!cmd["surface"].is_object())
+                throw CommandError("fault.restore: \"surface\" must be an object");
+            try {
+                readSurfaceSettingsFields(cmd["surface"], st);
+            } catch (const std::invalid_argument& e) {
+                throw CommandError(std::string("fault.restore: surface ") + e.what());
+            }
             state.surfaces.push_back(st);
         }
         const long long index = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(state.faults.size()));

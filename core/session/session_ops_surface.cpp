@@ -13,9 +13,16 @@ namespace faultline::core::detail {
 namespace {
 
 Json settingsJson(const SurfaceSettings& st) {
-    return {{"op", "surface.set"}, {"fault", st.fault}, {"kernel", st.kernel}, {"voxel", st.voxel},
-            {"iso", st.iso}, {"visible", st.visible}, {"opacity", st.opacity}};
+    Json j = surfaceSettingsFields(st);
+    j["op"] = "surface.set";
+    j["fault"] = st.fault;
+    return j;
 }
+
+// surface.build's and surface.set's fields.
+constexpr std::initializer_list<const char*> kSurfaceFields{
+    "fault", "kernel", "voxel", "iso", "visible", "opacity", "color_by", "map", "range", "color_reach",
+    "initial_color"};
 
 // What a surface named `name` is built from in the current frame: the fault, or the visible
 // spheres (kVisibleSpheres).
@@ -41,15 +48,11 @@ SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
     st.fault = fault;
     if (const SurfaceSettings* old = s.state().surface(fault))
         st = *old;
-    st.kernel = args::optionalString(cmd, "kernel").value_or(st.kernel);
-    if (!parseKernel(st.kernel))
-        throw CommandError(std::string(op) + ": \"kernel\" must be inverse, inverse-square or compact");
-    st.voxel = args::optionalNumber(cmd, "voxel").value_or(st.voxel);
-    st.iso = args::optionalNumber(cmd, "iso").value_or(st.iso);
-    st.visible = args::optionalBool(cmd, "visible").value_or(st.visible);
-    st.opacity = args::optionalNumber(cmd, "opacity").value_or(st.opacity);
-    if (st.voxel < 0 || !(st.iso > 0) || st.opacity < 0 || st.opacity > 1)
-        throw CommandError(std::string(op) + ": voxel >= 0 (0: radius / 3), iso > 0, opacity in [0, 1]");
+    try {
+        readSurfaceSettingsFields(cmd, st);
+    } catch (const std::invalid_argument& e) {
+        throw CommandError(std::string(op) + ": " + e.what());
+    }
     return st;
 }
 
@@ -102,13 +105,13 @@ std::shared_ptr<const Frame> frameOf(Session& s, const char* op) {
 
 void registerSurfaceOps(OpTable& ops) {
     addStateOp(ops, "surface.build", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"fault", "kernel", "voxel", "iso", "visible", "opacity"});
+        args::onlyFields(cmd, kSurfaceFields);
         const SurfaceSettings st = settingsFrom(s, cmd, "surface.build");
         build(s, st, "surface.build"); // a request that cannot be built is refused here
         return storeSettings(s, st);
     });
     addStateOp(ops, "surface.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"fault", "kernel", "voxel", "iso", "visible", "opacity"});
+        args::onlyFields(cmd, kSurfaceFields);
         return storeSettings(s, settingsFrom(s, cmd, "surface.set"));
     });
     addStateOp(ops, "surface.remove", [](Session& s, const Json& cmd) -> Json {

@@ -97,8 +97,24 @@ struct SurfaceSettings {
     double iso = 1.0;
     bool visible = true;
     double opacity = 0.8;
+    // Figure 4 colour: a voxel takes the colour of each sphere whose radius + colorReach holds
+    // it (averaged), else the initial colour. The spheres take the fault's colour or, with
+    // colorBy, a colour map of that variable over colorRange (none: its range in the frame).
+    std::string colorBy; // "": the fault's colour
+    std::string colorMap = "viridis";
+    std::optional<std::array<double, 2>> colorRange;
+    std::optional<double> colorReach; // none: twice the spheres' mean radius (a surface at a
+                                      // wrapping iso lies up to 3 radii out in concave parts)
+    std::optional<std::array<double, 3>> initialColor; // none: the fault's; white with colorBy
+                                                       // (no sphere in reach, not a low value)
     bool operator==(const SurfaceSettings&) const = default;
 };
+
+// The settings' fields as journals and session files write them (no "op", no "fault"), and
+// back: fields absent from `fields` keep their value in `into`. Throws std::invalid_argument
+// naming the field that is wrong.
+nlohmann::json surfaceSettingsFields(const SurfaceSettings& settings);
+void readSurfaceSettingsFields(const nlohmann::json& fields, SurfaceSettings& into);
 
 struct SessionState {
     std::vector<std::string> dataPaths; // absolute in memory; saved relative to the session file

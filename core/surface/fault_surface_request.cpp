@@ -1,5 +1,6 @@
 #include "core/surface/fault_surface_request.hpp"
 
+#include "core/color/colormap.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/metaball_reference.hpp"
@@ -11,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -43,6 +45,47 @@ Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility
     return f;
 }
 
+FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest& request) {
+    const SurfaceSettings& st = request.settings;
+    FaultSpheres s = gatherFaultSpheres(frame, request.fault);
+    if (st.colorBy.empty())
+        return s;
+    // An attribute, or one of the fixed columns (as a view colours by them).
+    const AttributeColumn* column = frame.attribute(st.colorBy);
+    const std::vector<float>* fixed = st.colorBy == "x"        ? &frame.x
+                                      : st.colorBy == "y"      ? &frame.y
+                                      : st.colorBy == "z"      ? &frame.z
+                                      : st.colorBy == "radius" ? &frame.radius
+                                                               : nullptr;
+    if (!column && !fixed)
+        throw CommandError("no variable \"" + st.colorBy + "\" to colour by in this frame");
+    auto value = [&](std::size_t row) { return column ? column->value(row) : double((*fixed)[row]); };
+    const auto map = parseColorMap(st.colorMap);
+    if (!map)
+        throw CommandError("unknown colour map \"" + st.colorMap + "\"");
+    ValueRange range{0.0, 1.0};
+    if (st.colorRange) {
+        range = {(*st.colorRange)[0], (*st.colorRange)[1]};
+    } else if (column) {
+        range = {column->min, column->max};
+    } else {
+        range = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+        for (float v : *fixed)
+            if (std::isfinite(v))
+                range = {std::min(range.low, double(v)), std::max(range.high, double(v))};
+    }
+    range = widenDegenerate(range);
+    std::size_t k = 0;
+    for (std::int64_t id : request.fault.ids)
+        if (auto row = frame.rowOf(id)) {
+            const double v = value(*row);
+            const glm::vec3 c = std::isnan(v) ? nanColor(*map) : sampleColorMap(*map, std::clamp(normalizeValue(v, range), 0.0, 1.0));
+            s.rgb[3 * k] = c.r, s.rgb[3 * k + 1] = c.g, s.rgb[3 * k + 2] = c.b;
+            ++k;
+        }
+    return s;
+}
+
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault) {
     SurfaceParams params;
     const auto kernel = parseKernel(settings.kernel);
@@ -51,14 +94,31 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& faul
     params.kernel = *kernel;
     params.iso = static_cast<float>(settings.iso);
     params.voxelSize = static_cast<float>(settings.voxel);
+    params.colorReach = static_cast<float>(settings.colorReach.value_or(0.0)); // see buildFaultSurface
     params.initialColor = fault.color;
+    if (settings.initialColor) {
+        for (int k = 0; k < 3; ++k)
+            params.initialColor[k] = static_cast<float>((*settings.initialColor)[k]);
+    } else if (!settings.colorBy.empty()) {
+        params.initialColor = {1.0f, 1.0f, 1.0f};
+    }
     return params;
 }
 
-SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceParams& params) {
+SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceSettings& settings,
+                        const SurfaceParams& params) {
     std::uint64_t members = hashMemberIds(fault.ids);
+    auto mix = [&](std::uint64_t v) { members = (members ^ v) * 0x100000001b3ull; };
     for (float c : fault.color)
-        members = (members ^ std::bit_cast<std::uint32_t>(c)) * 0x100000001b3ull;
+        mix(std::bit_cast<std::uint32_t>(c));
+    mix(settings.colorReach ? 1 : 0); // none: from the mean radius (params hold 0)
+    if (!settings.colorBy.empty()) {
+        mix(std::hash<std::string>{}(settings.colorBy));
+        mix(std::hash<std::string>{}(settings.colorMap));
+        if (settings.colorRange)
+            for (double r : *settings.colorRange)
+                mix(std::bit_cast<std::uint64_t>(r));
+    }
     return {static_cast<std::int64_t>(frameIndex), members, fieldParamsHash(params)};
 }
 
@@ -107,14 +167,19 @@ void makeFolder(const std::string& path) {
 
 SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r,
                                 Interrupter* interrupter, SurfaceReuse reuse) {
-    const FaultSpheres spheres = gatherFaultSpheres(frame, r.fault);
     try {
+        const FaultSpheres spheres = gatherSurfaceSpheres(frame, r);
         const SurfaceParams params = surfaceParamsOf(r.settings, r.fault);
+        // No colour reach set: twice the spheres' mean radius (the key's members and frame fix
+        // it).
+        SurfaceParams built = params;
+        if (!r.settings.colorReach && spheres.size() > 0)
+            built.colorReach = static_cast<float>(2.0 * meanRadius(spheres.set()));
         if (reuse.cache)
             return reuse.cache->get(
-                surfaceKeyOf(reuse.frameIndex, r.fault, params), params,
+                surfaceKeyOf(reuse.frameIndex, r.fault, r.settings, params), built,
                 [&] { return spheres.set(); }, interrupter);
-        return buildSurface(spheres.set(), params, interrupter);
+        return buildSurface(spheres.set(), built, interrupter);
     } catch (const SurfaceCancelled&) {
         throw;
     } catch (const std::exception& e) {
@@ -139,11 +204,11 @@ void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> req
     std::vector<GltfSurface> surfaces;
     for (std::size_t k = 0; k < requests.size(); ++k)
         surfaces.push_back({requests[k].fault.name, &results[k].mesh});
-    // Optionally the member spheres as instanced glyphs, in their fault's colour.
+    // Optionally the member spheres as instanced glyphs, in the colours their surface gives them.
     FaultSpheres all;
     if (glyphs)
         for (const auto& r : requests) {
-            const FaultSpheres f = gatherFaultSpheres(frame, r.fault);
+            const FaultSpheres f = gatherSurfaceSpheres(frame, r);
             for (auto [dst, src] : {std::pair{&all.x, &f.x},
                                     {&all.y, &f.y},
                                     {&all.z, &f.z},

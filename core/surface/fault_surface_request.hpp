@@ -35,8 +35,10 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
 Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility);
 
 // The field parameters of a fault's surface setting. Throws CommandError for an unknown kernel.
-// The surface takes the fault's colour (Figure 4's initial colour, and its spheres' colour), so
-// a surface is known by its fault's colour in the views and in exports.
+// Figure 4's initial colour is the setting's, else the fault's colour (so a plain surface is
+// known by its fault's colour in the views and in exports), else with a variable's colours white
+// (the map's low end would read as a low value); a voxel takes the colour of the spheres within
+// their radius + colorReach.
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault);
 
 // An iso-value whose surface wraps the spheres closely: over a sample of the spheres, the field
@@ -51,15 +53,22 @@ double wrappingIso(const SphereSet& spheres, const SurfaceParams& params);
 std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
                                        const SurfaceSettings& settings);
 
-// The SurfaceCache key of a fault's surface in frame `frameIndex`: members and colour (the colour
-// grid depends on it) and every field parameter except iso.
-SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceParams& params);
+// The SurfaceCache key of a fault's surface in frame `frameIndex`: members and their colours (the
+// fault's, or a variable's through a map and range: the colour grid depends on them) and every
+// field parameter except iso.
+SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceSettings& settings,
+                        const SurfaceParams& params);
 
 // One fault's surface as an export wants it: the fault and its surface settings.
 struct FaultSurfaceRequest {
     Fault fault;
     SurfaceSettings settings;
 };
+
+// The members present in a frame in the colours their surface gives them (Figure 4): the
+// fault's, or the setting's colour map of its colorBy variable. Throws CommandError when the
+// frame has no such variable or the map is unknown.
+FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest& request);
 
 // Where a build may reuse earlier work: a SurfaceCache and the frame's index in its dataset.
 struct SurfaceReuse {

@@ -2,6 +2,8 @@
 #include "core/session/journal.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "core/surface/fault_surface.hpp"
+#include "core/surface/fault_surface_request.hpp"
 #include "lattice_dump.hpp"
 #include "test_files.hpp"
 
@@ -307,6 +309,65 @@ TEST(Session, TheVisibleSpheresHaveASurfaceOfTheirOwn) {
     s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":50,"high":60})"));
     rejects(R"({"op":"surface.build","fault":"*visible","iso":0.4})", "empty sphere set");
     rejects(R"({"op":"export.vdb","fault":"*visible","path":"x.vdb"})", "empty sphere set");
+}
+
+// Figure 4 with a variable: the spheres take a colour map of it, the voxels within radius +
+// color_reach their average. On the lattice (strain = x / 3 at frame 0) the surface darkens
+// towards x = 0 in the gray map; the settings undo, save and refuse bad values like the others.
+TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    const SurfaceSettings plain = *s.state().surface("F1");
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color_by":"strain","map":"gray","range":[0,1],"color_reach":1.0})"));
+    const SurfaceSettings byStrain = *s.state().surface("F1");
+    EXPECT_EQ(byStrain.colorBy, "strain");
+    const auto frame = s.currentFrame();
+    const SurfaceResult r = buildFaultSurface(*frame, {*s.state().fault("F1"), byStrain});
+    double west = 0, east = 0;
+    int nw = 0, ne = 0;
+    for (std::size_t v = 0; v < r.mesh.positions.size(); ++v) {
+        const double grey = r.mesh.colors[v][0];
+        EXPECT_NEAR(r.mesh.colors[v][1], grey, 1e-3); // a gray map: r = g = b
+        if (r.mesh.positions[v][0] < 0.3)
+            west += grey, ++nw;
+        else if (r.mesh.positions[v][0] > 2.7)
+            east += grey, ++ne;
+    }
+    ASSERT_GT(nw, 0);
+    ASSERT_GT(ne, 0);
+    EXPECT_GT(east / ne - west / nw, 0.5) << west / nw << " vs " << east / ne;
+    // Its own cache entry: colours are part of the key.
+    const SurfaceParams params = surfaceParamsOf(byStrain, *s.state().fault("F1"));
+    EXPECT_NE(surfaceKeyOf(0, *s.state().fault("F1"), byStrain, params).members,
+              surfaceKeyOf(0, *s.state().fault("F1"), plain, params).members);
+    // Saved and restored; undone to the fault's plain colour.
+    const std::string file = dir.file("c.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", file}});
+    EXPECT_EQ(loadSessionFile(file), s.state());
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(*s.state().surface("F1"), plain);
+    // Deleting the fault and undoing that keeps the colouring.
+    s.apply(cmd(R"({"op":"redo"})"));
+    s.apply(cmd(R"({"op":"fault.delete","name":"F1"})"));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(*s.state().surface("F1"), byStrain);
+    auto rejects = [&](const char* text, const std::string& message) {
+        try {
+            s.apply(cmd(text));
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const CommandError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    rejects(R"({"op":"surface.build","fault":"F1","color_by":"nope"})", "no variable \"nope\"");
+    rejects(R"({"op":"surface.set","fault":"F1","range":[1,0]})", "\"range\" must be [low, high]");
+    rejects(R"({"op":"surface.set","fault":"F1","initial_color":[2,0,0]})", "\"initial_color\"");
+    rejects(R"({"op":"surface.set","fault":"F1","map":"rainbow"})", "\"map\" names no colour map");
+    rejects(R"({"op":"surface.set","fault":"F1","color_reach":-1})", "\"color_reach\" must be >= 0");
+    EXPECT_EQ(*s.state().surface("F1"), byStrain);
 }
 
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {

@@ -129,6 +129,49 @@ TEST_F(PanelTest, TheVisibleSpheresSurfaceFollowsTheThresholds) {
     EXPECT_EQ(session.journal().back().value("fault", ""), "*visible");
 }
 
+// Figure 4 in the panel: colour a surface by a variable, or like the main view in one click; the
+// mesh's vertex colours follow (strain = x / 3 on the lattice).
+TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5,"color_reach":1})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.settle(wb());
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.color_by");
+    headless.frames(wb(), 2);
+    headless.click(wb(), "surfaces.color_by.strain");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("surface.set")[0],
+              (Json{{"op", "surface.set"}, {"fault", "F1"}, {"color_by", "strain"}, {"range", nullptr}}));
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
+    const auto& mesh = *wb().mainDisplay()->surfaces[0].mesh;
+    auto spread = [](const ui::MeshData& m) {
+        float lo = 1, hi = 0;
+        for (std::size_t k = 0; k < m.colors.size(); k += 3) {
+            lo = std::min(lo, m.colors[k + 1]);
+            hi = std::max(hi, m.colors[k + 1]);
+        }
+        return hi - lo;
+    };
+    EXPECT_GT(spread(mesh), 0.3f); // viridis over the strain range: far from one colour
+    // Like the view: the main view's variable, map and range.
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"layer","map":"gray"})"));
+    headless.settle(wb());
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.like_view");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    const Json like = headless.emitted("surface.set")[0];
+    EXPECT_EQ(like.value("color_by", ""), "layer");
+    EXPECT_EQ(like.value("map", ""), "gray");
+    ASSERT_TRUE(like.contains("range")) << like.dump();
+    EXPECT_EQ(like["range"], Json::array({wb().mainDisplay()->colorRange[0], wb().mainDisplay()->colorRange[1]}));
+    EXPECT_EQ(session.state().surface("F1")->colorBy, "layer");
+}
+
 TEST_F(PanelTest, SurfaceSettingsAreCommandsAndABadRequestSaysWhy) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));

@@ -6,7 +6,9 @@
 #include "ui/panels/panels.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
+#include "core/color/colormap.hpp"
 #include "core/surface/fault_surface_request.hpp"
+#include "ui/viewport/category_colors.hpp"
 
 #include <imgui.h>
 
@@ -82,6 +84,8 @@ class SurfacesPanel final : public Panel {
     float m_iso = 1.0f, m_opacity = 0.8f;
     double m_voxel = 0.0;
     std::string m_editing; // fault whose edit fields were loaded
+    double m_reach = 0.0;
+    std::string m_editingReach;
 
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
     // frame, found in the background (about 600 field sums over all of them). Without one (no
@@ -280,6 +284,8 @@ class SurfacesPanel final : public Panel {
             set({{"opacity", m_opacity}});
         wb.mark("surfaces.opacity");
 
+        drawColour(wb, s, st, set);
+
         const SurfaceStatus status = statusOf(wb, s, fault, frame);
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
@@ -308,6 +314,74 @@ class SurfacesPanel final : public Panel {
         if (ImGui::Button("Remove"))
             wb.emit({{"op", "surface.remove"}, {"fault", fault}});
         ImGui::EndDisabled();
+    }
+
+    // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and
+    // the reach w within which a voxel takes a sphere's colour.
+    template <typename Set>
+    void drawColour(Workbench& wb, const core::SessionState& s, const core::SurfaceSettings& st,
+                    const Set& set) {
+        const ViewDisplay* main = wb.mainDisplay();
+        const float w = 170 * wb.scale();
+        const std::string plain = core::isVisibleSpheres(st.fault) ? "one colour" : "fault colour";
+        ImGui::SetNextItemWidth(w);
+        if (ImGui::BeginCombo("colour", st.colorBy.empty() ? plain.c_str() : st.colorBy.c_str())) {
+            if (ImGui::Selectable(plain.c_str(), st.colorBy.empty()) && !st.colorBy.empty())
+                set({{"color_by", ""}});
+            if (main && main->frame)
+                for (const auto& [v, info] : wb.columns().of(main->frame)) {
+                    const bool picked = ImGui::Selectable(v.c_str(), v == st.colorBy);
+                    wb.mark("surfaces.color_by." + v);
+                    if (picked && v != st.colorBy)
+                        set({{"color_by", v}, {"range", nullptr}});
+                }
+            ImGui::EndCombo();
+        }
+        wb.mark("surfaces.color_by");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Figure 4: each voxel takes the colour of the spheres within their "
+                              "radius + reach, averaged");
+        ImGui::SameLine();
+        // The main view's variable, map and range: the surface in the glyphs' colours.
+        const core::ViewState* view = s.view("main");
+        const bool viewColours = view && main && !view->colorVariable.empty() &&
+                                 view->colorVariable != kFaultsVariable &&
+                                 view->difference.mode == core::ColorDifference::Mode::None;
+        ImGui::BeginDisabled(!viewColours);
+        if (ImGui::Button("Like the view"))
+            set({{"color_by", view->colorVariable},
+                 {"map", view->colorMap},
+                 {"range", {main->colorRange[0], main->colorRange[1]}}});
+        ImGui::EndDisabled();
+        wb.mark("surfaces.like_view");
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("Colour the surface by the main view's variable, map and range");
+        if (!st.colorBy.empty()) {
+            ImGui::SetNextItemWidth(w);
+            if (ImGui::BeginCombo("map", st.colorMap.c_str())) {
+                for (const std::string& m : core::colorMapNames())
+                    if (ImGui::Selectable(m.c_str(), m == st.colorMap) && m != st.colorMap)
+                        set({{"map", m}});
+                ImGui::EndCombo();
+            }
+            if (st.colorRange)
+                ImGui::TextDisabled("range %.4g .. %.4g", (*st.colorRange)[0], (*st.colorRange)[1]);
+            else
+                ImGui::TextDisabled("range: the frame's min to max");
+            if (m_editingReach != st.fault || !ImGui::IsAnyItemActive()) {
+                m_reach = st.colorReach.value_or(-1.0);
+                m_editingReach = st.fault;
+            }
+            ImGui::SetNextItemWidth(w);
+            ImGui::InputDouble("reach", &m_reach, 0, 0, m_reach >= 0 ? "%.3g" : "auto");
+            if (ImGui::IsItemDeactivatedAfterEdit() && m_reach != st.colorReach.value_or(-1.0))
+                set({{"color_reach", m_reach >= 0 ? core::Json(m_reach) : core::Json(nullptr)}});
+            wb.mark("surfaces.reach");
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("w: a voxel takes a sphere's colour within radius + w of its "
+                                  "centre, else white. auto (or a negative value): twice the "
+                                  "mean radius");
+        }
     }
 
     static std::string exportFolder(Workbench& wb) {

@@ -25,7 +25,7 @@ std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SurfaceSettings
     if (!core::parseKernel(settings.kernel))
         return std::nullopt;
     const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
-    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, fault, params);
+    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, fault, settings, params);
     return Key{k.frame, k.members, k.params, params.iso};
 }
 
