@@ -347,6 +347,12 @@ TEST_F(PanelTest, SurfacesExportInTheBackgroundAndTheJournalRecordsIt) {
     headless.settle(wb());
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/F1.vdb"))) << wb().lastMessage();
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/faults.glb"))) << wb().lastMessage();
+    // With the spheres as glyphs: a larger file, and the journal says so.
+    wb().exportSurfaces({"F1"}, dir.file("out/glyphs.glb"), false, true);
+    headless.settle(wb());
+    EXPECT_GT(std::filesystem::file_size(dir.file("out/glyphs.glb")),
+              std::filesystem::file_size(dir.file("out/faults.glb")));
+    EXPECT_EQ(session.journal().back().value("glyphs", false), true);
     std::vector<std::string> ops;
     for (const auto& c : session.journal())
         ops.push_back(c.value("op", ""));

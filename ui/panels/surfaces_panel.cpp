@@ -85,6 +85,7 @@ class SurfacesPanel final : public Panel {
     double m_voxel = 0.0;
     std::string m_editing; // fault whose edit fields were loaded
     double m_reach = 0.0;
+    bool m_gltfGlyphs = false; // glTF exports carry the spheres as instanced glyphs too
     std::string m_editingReach;
 
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
@@ -306,14 +307,20 @@ class SurfacesPanel final : public Panel {
         ImGui::SameLine();
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
-                                 FileDialog::Mode::Save, "export-gltf", {".glb"}, exportFolder(wb),
-                                 "faults.glb");
+                                 FileDialog::Mode::Save,
+                                 m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf", {".glb"},
+                                 exportFolder(wb), "faults.glb");
         ImGui::EndDisabled();
         ImGui::SameLine();
         ImGui::BeginDisabled(!exists);
         if (ImGui::Button("Remove"))
             wb.emit({{"op", "surface.remove"}, {"fault", fault}});
         ImGui::EndDisabled();
+        ImGui::Checkbox("glTF with the spheres", &m_gltfGlyphs);
+        wb.mark("surfaces.gltf_glyphs");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The glTF export also carries each surface's spheres as instanced "
+                              "glyphs, in the surface's colours");
     }
 
     // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and

@@ -190,9 +190,11 @@ class Workbench {
     // export.csv (tracks and metrics read every frame) on a worker thread with a copy of the state;
     // journalled when written.
     void exportCsv(core::Json cmd);
-    // Fault surfaces to a .vdb (one fault) or a .glb (several), built and written in a background
-    // job; the journal records the export.vdb / export.gltf once it is done.
-    void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb);
+    // Fault surfaces to a .vdb (one fault) or a .glb (several; with `glyphs`, their spheres as
+    // instanced glyphs too), built and written in a background job; the journal records the
+    // export.vdb / export.gltf where it was asked for, once it is done.
+    void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb,
+                        bool glyphs = false);
     void saveSession(); // to the session's file, else asks for one
     void saveSessionAs(const std::string& path);
     const std::string& sessionPath() const { return m_sessionPath; }

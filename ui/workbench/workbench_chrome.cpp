@@ -395,7 +395,7 @@ void Workbench::handleDialog() {
         emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
     else if (purpose.rfind("export-vdb:", 0) == 0)
         exportSurfaces({purpose.substr(11)}, path, true);
-    else if (purpose == "export-gltf") {
+    else if (purpose == "export-gltf" || purpose == "export-gltf+glyphs") {
         std::vector<std::string> faults;
         for (const auto& st : state().surfaces)
             if (st.visible && (state().fault(st.fault) || core::isVisibleSpheres(st.fault)))
@@ -403,7 +403,7 @@ void Workbench::handleDialog() {
         if (faults.empty())
             error("No surface is shown: tick one in the Surfaces panel first");
         else
-            exportSurfaces(faults, path, false);
+            exportSurfaces(faults, path, false, purpose == "export-gltf+glyphs");
     } else if (purpose == "export-metrics") {
         exportCsv({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
     } else if (purpose == "export-tracks") {

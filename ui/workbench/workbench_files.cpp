@@ -197,7 +197,8 @@ void Workbench::openDemo() {
         [this](const std::string& why) { error("Cannot make the demo model: " + why); }, m_now);
 }
 
-void Workbench::exportSurfaces(std::vector<std::string> faults, const std::string& pathIn, bool vdb) {
+void Workbench::exportSurfaces(std::vector<std::string> faults, const std::string& pathIn, bool vdb,
+                               bool glyphs) {
     const std::string path = absolute(pathIn);
     std::shared_ptr<const core::Frame> frame;
     try {
@@ -224,12 +225,15 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
             st = *saved;
         requests.push_back({*f, st});
     }
-    const Json cmd = vdb ? Json{{"op", "export.vdb"}, {"fault", faults.front()}, {"path", path}}
-                         : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
+    Json cmd = vdb ? Json{{"op", "export.vdb"}, {"fault", faults.front()}, {"path", path}}
+                   : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
+    if (!vdb && glyphs)
+        cmd["glyphs"] = true;
     auto place = std::make_shared<JournalPlace>(m_session);
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
-        [this, frame, requests, path, vdb, cmd, cache = m_surfaces.cache(), frameIndex = state().frame,
+        [this, frame, requests, path, vdb, cmd, cache = m_surfaces.cache(),
+         frameIndex = state().frame, glyphs,
          at = place->place](JobControl& control) -> std::function<void()> {
             // Surfaces shown in the views come from their cache, not built again.
             JobInterrupter interrupter(control);
@@ -237,7 +241,7 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
             if (vdb)
                 core::writeFaultVdb(*frame, requests.front(), path, &interrupter, reuse);
             else
-                core::writeFaultsGlb(*frame, requests, path, false, &interrupter, reuse);
+                core::writeFaultsGlb(*frame, requests, path, glyphs, &interrupter, reuse);
             return [this, cmd, path, at] {
                 m_session.settleAction(at, cmd); // replayed like any export, where it was asked for
                 info("Exported " + path);
