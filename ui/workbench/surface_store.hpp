@@ -51,7 +51,8 @@ class SurfaceStore {
                          const std::shared_ptr<const core::VisibilityResult>& visibility =
                              nullptr) const;
     // What a surface setting is built from in a view showing `frame`: the fault, or the visible
-    // spheres (kept while the frame and visibility stay the same). Null when there is none.
+    // spheres (kept while the frame and visibility stay the same). Null when there is none; valid
+    // until the next call (copy it to keep it).
     const core::Fault* sourceOf(
         const core::SessionState& state, const std::string& name,
         const std::shared_ptr<const core::Frame>& frame,
