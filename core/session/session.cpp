@@ -125,6 +125,8 @@ void Session::recordAction(const Json& cmd) {
 void Session::journalLine(const Json& cmd) {
     if (!m_waiting.empty()) {
         m_waiting.push_back({0, true, cmd});
+        if (m_heldSink)
+            m_heldSink(cmd);
         return;
     }
     m_journal.push_back(cmd);

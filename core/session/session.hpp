@@ -63,7 +63,14 @@ class Session {
     // Every command applied, in order, as given (the journal). `sink`, when set, receives each
     // line as it is applied (the GUI appends it to the session's journal file).
     const std::vector<Json>& journal() const { return m_journal; }
-    void setJournalSink(std::function<void(const Json&)> sink) { m_journalSink = std::move(sink); }
+    // `held`, when set, also receives each line the moment it is recorded behind an unsettled
+    // background action (reserveAction), before `sink` gets it in its place: the GUI writes it as
+    // a comment, so a crash during a long export loses none of the user's commands.
+    void setJournalSink(std::function<void(const Json&)> sink,
+                        std::function<void(const Json&)> held = nullptr) {
+        m_journalSink = std::move(sink);
+        m_heldSink = std::move(held);
+    }
 
     // Paths in commands are relative to baseDir (the journal's folder); outputs (exports,
     // renders, saves) go under outputDir when set, else baseDir.
@@ -125,6 +132,7 @@ class Session {
 
     std::vector<Json> m_journal;
     std::function<void(const Json&)> m_journalSink;
+    std::function<void(const Json&)> m_heldSink;
     struct JournalLine {
         std::uint64_t place = 0; // a reserved action's place; 0: a line recorded behind one
         bool settled = false;

@@ -253,6 +253,8 @@ Fault faultFromJson(const Json& j, const std::string& where, const std::string& 
     fault.name = f.str("name");
     if (fault.name.empty())
         f.fail("name", "must not be empty");
+    if (isVisibleSpheres(fault.name))
+        f.fail("name", "\"" + fault.name + "\" names the visible spheres' surface, not a fault");
     const auto color = f.nums<3>("color", std::array<double, 3>{1, 0.5, 0});
     for (int c = 0; c < 3; ++c) {
         if (color[c] < 0 || color[c] > 1)
@@ -408,7 +410,7 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         Fields sf(surfaces[k], top.child("surfaces", k), path);
         SurfaceSettings st;
         st.fault = sf.str("fault");
-        if (!s.fault(st.fault) && !isVisibleSpheres(st.fault))
+        if (!s.hasSurfaceSource(st.fault))
             sf.fail("fault", "names no fault of this session");
         try {
             readSurfaceSettingsFields(surfaces[k], st);

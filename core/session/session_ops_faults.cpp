@@ -174,7 +174,7 @@ void registerFaultOps(OpTable& ops) {
         args::onlyFields(cmd, {"fault", "index", "surface"});
         Fault f = asCommand("fault.restore", [&] { return faultFromJson(args::require(cmd, "fault"), "fault", "fault.restore"); });
         auto& state = s.mutableState();
-        if (state.fault(f.name))
+        if (state.fault(f.name) || isVisibleSpheres(f.name))
             throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");
         if (cmd.contains("surface")) {
             SurfaceSettings st;

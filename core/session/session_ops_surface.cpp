@@ -42,7 +42,7 @@ Fault sourceOf(Session& s, const std::string& name, const char* op) {
 // The settings a command asks for, over the fault's current ones.
 SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
     const std::string fault = args::string(cmd, "fault");
-    if (!s.state().fault(fault) && !isVisibleSpheres(fault))
+    if (!s.state().hasSurfaceSource(fault))
         throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
     SurfaceSettings st;
     st.fault = fault;
@@ -82,7 +82,7 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
 SurfaceSettings settingsOf(Session& s, const std::string& fault, const char* op) {
     if (const SurfaceSettings* st = s.state().surface(fault))
         return *st;
-    if (!s.state().fault(fault) && !isVisibleSpheres(fault))
+    if (!s.state().hasSurfaceSource(fault))
         throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
     SurfaceSettings st; // never built: the defaults
     st.fault = fault;

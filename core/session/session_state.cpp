@@ -1,6 +1,7 @@
 #include "core/session/session_state.hpp"
 
 #include "core/color/colormap.hpp"
+#include "core/surface/surface_params.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -78,10 +79,6 @@ SurfaceSettings* SessionState::surface(std::string_view fault) {
     return findIn(surfaces, &SurfaceSettings::fault, fault);
 }
 
-} // namespace faultline::core
-
-namespace faultline::core {
-
 nlohmann::json surfaceSettingsFields(const SurfaceSettings& st) {
     nlohmann::json j = {{"kernel", st.kernel}, {"voxel", st.voxel},      {"iso", st.iso},
                         {"visible", st.visible}, {"opacity", st.opacity}, {"color_by", st.colorBy},
@@ -153,7 +150,7 @@ void readSurfaceSettingsFields(const nlohmann::json& j, SurfaceSettings& st) {
     }
     numbers.operator()<3>("initial_color", st.initialColor,
                           "must be [r, g, b] with components in [0, 1], or null");
-    if (st.kernel != "inverse" && st.kernel != "inverse-square" && st.kernel != "compact")
+    if (!parseKernel(st.kernel))
         bad("kernel", "must be inverse, inverse-square or compact");
     if (st.voxel < 0)
         bad("voxel", "must be >= 0 (0: radius / 3)");
@@ -161,8 +158,10 @@ void readSurfaceSettingsFields(const nlohmann::json& j, SurfaceSettings& st) {
         bad("iso", "must be > 0");
     if (st.opacity < 0 || st.opacity > 1)
         bad("opacity", "must lie in [0, 1]");
-    if (!parseColorMap(st.colorMap) || parseColorMap(st.colorMap)->kind == ColorMapKind::Palette)
+    const auto map = parseColorMap(st.colorMap);
+    if (!map || map->kind == ColorMapKind::Palette)
         bad("map", "names no colour map");
+    st.colorMap = colorMapName(*map); // one name per map ("grey" is "gray"): one cache entry
     if (st.colorRange && !((*st.colorRange)[0] < (*st.colorRange)[1]))
         bad("range", "must be [low, high] with low < high, or null");
     if (st.colorReach && *st.colorReach < 0)

@@ -103,8 +103,9 @@ struct SurfaceSettings {
     std::string colorBy; // "": the fault's colour
     std::string colorMap = "viridis";
     std::optional<std::array<double, 2>> colorRange;
-    std::optional<double> colorReach; // none: twice the spheres' mean radius (a surface at a
-                                      // wrapping iso lies up to 3 radii out in concave parts)
+    std::optional<double> colorReach; // none: with colorBy twice the spheres' mean radius (a
+                                      // surface at a wrapping iso lies up to 3 radii out where it
+                                      // is concave), else 0 (one colour needs no reach)
     std::optional<std::array<double, 3>> initialColor; // none: the fault's; white with colorBy
                                                        // (no sphere in reach, not a low value)
     bool operator==(const SurfaceSettings&) const = default;
@@ -135,6 +136,10 @@ struct SessionState {
     const VariableThreshold* threshold(std::string_view variable) const;
     Fault* fault(std::string_view name);
     const Fault* fault(std::string_view name) const;
+    // A fault, or kVisibleSpheres: what a surface can be built from.
+    bool hasSurfaceSource(std::string_view name) const {
+        return fault(name) || isVisibleSpheres(name);
+    }
     SurfaceSettings* surface(std::string_view fault);
     const SurfaceSettings* surface(std::string_view fault) const;
     bool operator==(const SessionState&) const = default;

@@ -27,6 +27,8 @@ double secondsSince(Clock::time_point t) {
 // Stored densities are clamped here: above every supported iso-value, finite near centres.
 float clampValue(float isoMax) { return 4.0f * isoMax; }
 
+constexpr float kMaxColorReachRadii = 100.0f;
+
 void validate(const SphereSet &s, const SurfaceParams &p) {
     if (s.size() == 0)
         throw SurfaceRequestError("cannot build a surface from an empty sphere set");
@@ -43,11 +45,18 @@ void validate(const SphereSet &s, const SurfaceParams &p) {
         p.colorReach < 0.0f)
         throw SurfaceRequestError("tolerance, iso range, compact reach must be positive and the "
                                   "colour reach not negative");
+    float largest = 0.0f;
     for (std::size_t i = 0; i < s.size(); ++i) {
         if (bad(s.x[i]) || bad(s.y[i]) || bad(s.z[i]) || !(s.radius[i] > 0.0f) || bad(s.radius[i]))
             throw SurfaceRequestError("sphere " + std::to_string(i) +
                                       " has a non-finite centre or a radius that is not positive");
+        largest = std::max(largest, s.radius[i]);
     }
+    // Beyond that every voxel would average nearly every sphere (and gather them all).
+    if (bad(p.colorReach) || p.colorReach > kMaxColorReachRadii * largest)
+        throw SurfaceRequestError("colour reach " + std::to_string(p.colorReach) + " is over " +
+                                  std::to_string(static_cast<int>(kMaxColorReachRadii)) +
+                                  " times the largest radius (" + std::to_string(largest) + ")");
 }
 
 enum class BlockSide { Below, Above, Crossing };

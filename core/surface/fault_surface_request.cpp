@@ -34,7 +34,7 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault) {
 Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility) {
     Fault f;
     f.name = "visible spheres"; // in exports (grid and node names) and messages
-    f.color = {0.78f, 0.8f, 0.84f};
+    f.color = kVisibleSpheresColor;
     const std::size_t rows = std::min(frame.size(), visibility.mask.size());
     f.ids.reserve(visibility.visibleCount);
     for (std::size_t row = 0; row < rows; ++row)
@@ -94,7 +94,8 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& faul
     params.kernel = *kernel;
     params.iso = static_cast<float>(settings.iso);
     params.voxelSize = static_cast<float>(settings.voxel);
-    params.colorReach = static_cast<float>(settings.colorReach.value_or(0.0)); // see buildFaultSurface
+    // (Clamped into float's range: validation refuses what is far too large.)
+    params.colorReach = static_cast<float>(std::min(settings.colorReach.value_or(0.0), 1e30));
     params.initialColor = fault.color;
     if (settings.initialColor) {
         for (int k = 0; k < 3; ++k)
@@ -171,9 +172,9 @@ SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r
         const FaultSpheres spheres = gatherSurfaceSpheres(frame, r);
         const SurfaceParams params = surfaceParamsOf(r.settings, r.fault);
         // No colour reach set: twice the spheres' mean radius (the key's members and frame fix
-        // it).
+        // it) when a variable colours them; one colour needs none.
         SurfaceParams built = params;
-        if (!r.settings.colorReach && spheres.size() > 0)
+        if (!r.settings.colorReach && !r.settings.colorBy.empty() && spheres.size() > 0)
             built.colorReach = static_cast<float>(2.0 * meanRadius(spheres.set()));
         if (reuse.cache)
             return reuse.cache->get(

@@ -12,6 +12,7 @@
 #include "core/surface/surface_cache.hpp"
 #include "core/surface/surface_params.hpp"
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -33,6 +34,7 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
 // fault in a neutral colour, named "visible spheres" in exports and messages, so that builds,
 // caches and exports take it as they take a fault.
 Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility);
+inline constexpr std::array<float, 3> kVisibleSpheresColor{0.78f, 0.8f, 0.84f};
 
 // The field parameters of a fault's surface setting. Throws CommandError for an unknown kernel.
 // Figure 4's initial colour is the setting's, else the fault's colour (so a plain surface is

@@ -245,13 +245,18 @@ TEST(Session, NewCommandClearsRedo) {
 // while it ran come after it, so a replay exports the state it read. A failed one leaves no line.
 TEST(Session, BackgroundActionsKeepTheirPlaceInTheJournal) {
     Session s;
-    std::vector<std::string> sunk;
-    s.setJournalSink([&](const Json& c) { sunk.push_back(c.value("op", "") + ":" + c.value("name", c.value("path", ""))); });
+    std::vector<std::string> sunk, held;
+    s.setJournalSink(
+        [&](const Json& c) {
+            sunk.push_back(c.value("op", "") + ":" + c.value("name", c.value("path", "")));
+        },
+        [&](const Json& c) { held.push_back(c.value("op", "")); });
     const auto vdb = s.reserveAction();
     s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
     const auto csv = s.reserveAction();
     s.apply(cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,1,1]})"));
     EXPECT_TRUE(sunk.empty());
+    EXPECT_EQ(held, (std::vector<std::string>{"box.add", "box.add"})); // at once, for crash safety
     EXPECT_EQ(s.pendingActions(), 2u);
     EXPECT_EQ(s.state().boxes.size(), 2u); // the commands themselves ran at once
     // The later export ends first: it waits for the one before it.
@@ -367,7 +372,12 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     rejects(R"({"op":"surface.set","fault":"F1","initial_color":[2,0,0]})", "\"initial_color\"");
     rejects(R"({"op":"surface.set","fault":"F1","map":"rainbow"})", "\"map\" names no colour map");
     rejects(R"({"op":"surface.set","fault":"F1","color_reach":-1})", "\"color_reach\" must be >= 0");
+    // A reach that would make every voxel average every sphere is refused before any work.
+    rejects(R"({"op":"surface.build","fault":"F1","color_reach":1e9})", "colour reach");
     EXPECT_EQ(*s.state().surface("F1"), byStrain);
+    // One name per map: "grey" is stored as "gray" (one cache entry, not two).
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","map":"grey"})"));
+    EXPECT_EQ(s.state().surface("F1")->colorMap, "gray");
 }
 
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
@@ -415,6 +425,11 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
            "boxes[0].max: must be an array of 3 numbers");
     refuse(R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
            "views[0].camera.fov_y: must lie in (0, 180)");
+    refuse(R"({"format":"faultline-session","schema":1,"faults":[{"name":"*visible"}]})",
+           "faults[0].name: \"*visible\" names the visible spheres' surface, not a fault");
+    refuse(
+        R"({"format":"faultline-session","schema":1,"surfaces":[{"fault":"*visible","range":[2,1]}]})",
+        "surfaces[0]: \"range\" must be [low, high] with low < high, or null");
     refuse(std::string(100, '[') + std::string(100, ']'), "JSON nested deeper than 64 levels");
     // Found by fuzz_journal: a number beyond double escaped as a library exception.
     refuse(R"({"format":"faultline-session","schema":1e999})", "invalid JSON: number overflow parsing '1e999'");

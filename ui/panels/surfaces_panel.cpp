@@ -121,13 +121,15 @@ class SurfacesPanel final : public Panel {
     }
 
     std::string currentFault(Workbench& wb, const core::SessionState& s) {
-        for (const auto& f : s.faults)
-            if (wb.selectedFaults.count(f.name) && wb.selectedFaults.size() == 1 &&
-                m_selected != f.name) {
-                m_fault = f.name; // a fault picked in the Faults panel (once: a click here wins)
-                m_selected = f.name;
-            }
-        if (!s.fault(m_fault) && !core::isVisibleSpheres(m_fault))
+        // A fault picked in the Faults panel shows its settings (once: a click here wins).
+        const std::string picked =
+            wb.selectedFaults.size() == 1 ? *wb.selectedFaults.begin() : std::string();
+        if (picked != m_selected) {
+            m_selected = picked;
+            if (s.fault(picked))
+                m_fault = picked;
+        }
+        if (!s.hasSurfaceSource(m_fault))
             m_fault = !s.surfaces.empty() ? s.surfaces.front().fault
                       : !s.faults.empty() ? s.faults.front().name
                                           : std::string(core::kVisibleSpheres);
@@ -148,7 +150,7 @@ class SurfacesPanel final : public Panel {
         ImGui::TableHeadersRow();
         for (const auto& f : s.faults)
             drawRow(wb, s, frame, f.name, f.color);
-        drawRow(wb, s, frame, std::string(core::kVisibleSpheres), {0.78f, 0.8f, 0.84f});
+        drawRow(wb, s, frame, std::string(core::kVisibleSpheres), core::kVisibleSpheresColor);
         ImGui::EndTable();
     }
 
@@ -381,6 +383,8 @@ class SurfacesPanel final : public Panel {
             }
             ImGui::SetNextItemWidth(w);
             ImGui::InputDouble("reach", &m_reach, 0, 0, m_reach >= 0 ? "%.3g" : "auto");
+            if (m_reach < 0)
+                m_reach = -1.0; // auto
             if (ImGui::IsItemDeactivatedAfterEdit() && m_reach != st.colorReach.value_or(-1.0))
                 set({{"color_reach", m_reach >= 0 ? core::Json(m_reach) : core::Json(nullptr)}});
             wb.mark("surfaces.reach");

@@ -43,6 +43,7 @@ const core::Fault* SurfaceStore::sourceOf(
     if (m_visibleSources.size() >= 4)
         m_visibleSources.erase(m_visibleSources.begin());
     m_visibleSources.push_back({frame, visibility, core::visibleSpheresFault(*frame, *visibility)});
+    // (A few views' worth; an export's own visibility passes through.)
     return &m_visibleSources.back().fault;
 }
 
@@ -178,6 +179,7 @@ void SurfaceStore::clear() {
         if (e.job)
             e.job->cancel();
     m_entries.clear();
+    m_visibleSources.clear(); // they hold frames of the data being closed
     m_cache->clear();
 }
 

@@ -108,10 +108,17 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
         if (m_journal) {
             m_journal << "// faultline workbench journal; run again with: faultline replay " << m_journalPath << "\n";
             m_journal.flush();
-            m_session.setJournalSink([this](const Json& cmd) {
-                m_journal << cmd.dump() << "\n";
-                m_journal.flush();
-            });
+            m_session.setJournalSink(
+                [this](const Json& cmd) {
+                    m_journal << cmd.dump() << "\n";
+                    m_journal.flush();
+                },
+                [this](const Json& cmd) {
+                    // Written again below once the exports asked for before it are; after a
+                    // crash in between, uncomment it.
+                    m_journal << "// held behind a running export: " << cmd.dump() << "\n";
+                    m_journal.flush();
+                });
         } else {
             m_journalPath.clear();
         }

@@ -398,7 +398,7 @@ void Workbench::handleDialog() {
     else if (purpose == "export-gltf" || purpose == "export-gltf+glyphs") {
         std::vector<std::string> faults;
         for (const auto& st : state().surfaces)
-            if (st.visible && (state().fault(st.fault) || core::isVisibleSpheres(st.fault)))
+            if (st.visible && state().hasSurfaceSource(st.fault))
                 faults.push_back(st.fault);
         if (faults.empty())
             error("No surface is shown: tick one in the Surfaces panel first");

@@ -209,12 +209,9 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
     if (!frame || faults.empty())
         return error("Cannot export: no data or no fault");
     std::vector<core::FaultSurfaceRequest> requests;
-    // The visible spheres of the current frame, as the export.vdb / export.gltf ops take them
-    // (the main view's, when it shows that frame: the same, already gathered).
-    const ViewDisplay* main = mainDisplay();
-    const auto visibility = main && main->frame == frame && main->visibility
-                                ? main->visibility
-                                : std::make_shared<const core::VisibilityResult>(m_session.visibility());
+    // The visible spheres of the current frame as the export.vdb / export.gltf ops take them
+    // (not a view's: it may show a drag's preview), so a replay exports the same.
+    const auto visibility = std::make_shared<const core::VisibilityResult>(m_session.visibility());
     for (const auto& name : faults) {
         const core::Fault* f = m_surfaces.sourceOf(state(), name, frame, visibility);
         if (!f)
