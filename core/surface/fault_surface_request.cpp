@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -191,7 +192,20 @@ SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r
 void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const std::string& path,
                    Interrupter* interrupter, SurfaceReuse reuse) {
     const SurfaceResult result = buildFaultSurface(frame, request, interrupter, reuse);
-    const VdbSurface surface{request.fault.name, result.field.get(), result.iso};
+    VdbSurface surface{request.fault.name, result.field.get(), result.iso, {}};
+    // What the colour grid's colours mean.
+    const SurfaceSettings& st = request.settings;
+    if (st.colorBy.empty()) {
+        surface.notes.push_back({"color_by", "one colour"});
+    } else {
+        char range[64] = "the frame's min to max";
+        if (st.colorRange)
+            std::snprintf(range, sizeof range, "%.9g %.9g", (*st.colorRange)[0],
+                          (*st.colorRange)[1]);
+        surface.notes.push_back({"color_by", st.colorBy});
+        surface.notes.push_back({"color_map", st.colorMap});
+        surface.notes.push_back({"color_range", range});
+    }
     makeFolder(path);
     exportVdb(path, std::span<const VdbSurface>(&surface, 1));
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace faultline::core {
 
@@ -15,10 +17,13 @@ struct VdbSurface {
     std::string name; // the fault's name: grids "<name>.density" and "<name>.color"
     const SurfaceField *field = nullptr;
     float iso = 0.0f;
+    // More string metadata on both grids (what the colour grid's colours mean).
+    std::vector<std::pair<std::string, std::string>> notes;
 };
 
 // Writes the grids with metadata (faultline.fault, iso, kernel, voxel_size, sphere_count,
-// tolerance, iso_min, iso_max). Throws std::runtime_error naming the path when writing fails.
+// tolerance, iso_min, iso_max, color_reach, and the notes). Throws std::runtime_error naming the
+// path when writing fails.
 void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> surfaces);
 
 struct GltfSurface {

@@ -29,6 +29,9 @@ void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> su
             grid->insertMeta("tolerance", openvdb::FloatMetadata(impl.params.tolerance));
             grid->insertMeta("iso_min", openvdb::FloatMetadata(s.field->isoMin()));
             grid->insertMeta("iso_max", openvdb::FloatMetadata(s.field->isoMax()));
+            grid->insertMeta("color_reach", openvdb::FloatMetadata(impl.params.colorReach));
+            for (const auto& [key, value] : s.notes)
+                grid->insertMeta(key, openvdb::StringMetadata(value));
             grid->setSaveFloatAsHalf(false);
             grids.push_back(grid);
         }

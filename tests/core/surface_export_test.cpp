@@ -1,5 +1,6 @@
 // Surface exports read back: .vdb through OpenVDB's own reader, .glb through tinygltf.
 #include "core/surface/fault_surface.hpp"
+#include "core/surface/fault_surface_request.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <gtest/gtest.h>
@@ -32,7 +33,7 @@ TEST(SurfaceExport, VdbHoldsNamedGridsAndMetadata) {
     params.voxelSize = 0.1f;
     const auto result = fc::buildSurface(s.set(), params);
     const auto path = tempPath("F1.vdb");
-    const fc::VdbSurface entry{"F1", result.field.get(), 2.0f};
+    const fc::VdbSurface entry{"F1", result.field.get(), 2.0f, {}};
     fc::exportVdb(path, {&entry, 1});
 
     openvdb::initialize();
@@ -56,6 +57,44 @@ TEST(SurfaceExport, VdbHoldsNamedGridsAndMetadata) {
     EXPECT_EQ(color->metaValue<std::string>("faultline.fault"), "F1");
     EXPECT_DOUBLE_EQ(density->voxelSize()[0], 0.1f);
     EXPECT_EQ(density->activeVoxelCount(), result.field->stats().activeVoxels);
+    std::filesystem::remove(path);
+}
+
+// A fault's VDB says what its colour grid's colours mean (the variable, map and range).
+TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
+    fc::Frame frame;
+    for (int i = 0; i < 4; ++i) {
+        frame.ids.push_back(i + 1);
+        frame.x.push_back(0.8f * i), frame.y.push_back(0), frame.z.push_back(0);
+        frame.radius.push_back(0.5f);
+    }
+    fc::AttributeColumn strain;
+    strain.name = "strain";
+    strain.floats = {0.0f, 0.1f, 0.2f, 0.3f};
+    frame.attributes.push_back(strain);
+    frame.finalize();
+    fc::FaultSurfaceRequest request;
+    request.fault.name = "F1";
+    request.fault.ids = {1, 2, 3, 4};
+    request.settings.fault = "F1";
+    request.settings.kernel = "compact";
+    request.settings.iso = 0.5;
+    request.settings.colorBy = "strain";
+    request.settings.colorMap = "gray";
+    request.settings.colorRange = std::array<double, 2>{0.0, 0.5};
+    const auto path = tempPath("colours.vdb");
+    fc::writeFaultVdb(frame, request, path.string());
+    openvdb::initialize();
+    openvdb::io::File file(path.string());
+    file.open();
+    auto grids = file.getGrids();
+    file.close();
+    auto color = openvdb::findGridByName(*grids, "F1.color");
+    ASSERT_TRUE(color);
+    EXPECT_EQ(color->metaValue<std::string>("color_by"), "strain");
+    EXPECT_EQ(color->metaValue<std::string>("color_map"), "gray");
+    EXPECT_EQ(color->metaValue<std::string>("color_range"), "0 0.5");
+    EXPECT_FLOAT_EQ(color->metaValue<float>("color_reach"), 1.0f); // twice the mean radius
     std::filesystem::remove(path);
 }
 
