@@ -114,12 +114,7 @@ void Session::checkAction(const Json& cmd) const {
                                                                                           : std::string();
     auto it = m_ops.find(op);
     if (it == m_ops.end() || it->second.changesState)
-        throw CommandError("recordAction: \"" + op + "\" is not an action");
-}
-
-void Session::recordAction(const Json& cmd) {
-    checkAction(cmd);
-    journalLine(cmd);
+        throw CommandError("settleAction: \"" + op + "\" is not an action");
 }
 
 void Session::journalLine(const Json& cmd) {

@@ -33,15 +33,13 @@ class Session {
 
     // Runs one command (including {"op":"undo"} and {"op":"redo"}) and records it in the journal.
     void apply(const Json& cmd);
-    // Records an action (an op that changes no state, such as an export) that the caller carried
-    // out itself, e.g. on a worker thread, so the journal replays it. Throws CommandError for an
-    // unknown op or one that changes state.
-    void recordAction(const Json& cmd);
-    // An action carried out in the background (an export) keeps its place in the journal from
-    // the moment it is asked for: lines recorded after it wait until it is settled, so a replay
-    // runs it on the state it read, not on what the user changed while it ran.
+    // An action (an op that changes no state, such as an export) that the caller carries out
+    // itself in the background keeps its place in the journal from the moment it is asked for:
+    // lines recorded after it wait until it is settled, so a replay runs it on the state it read,
+    // not on what the user changed while it ran.
     std::uint64_t reserveAction();
-    // It worked: records `cmd` in the reserved place (checked as recordAction checks it).
+    // It worked: records `cmd` in the reserved place. Throws CommandError for an unknown op or
+    // one that changes state.
     void settleAction(std::uint64_t place, const Json& cmd);
     // It failed or was cancelled: the place records nothing.
     void dropAction(std::uint64_t place);

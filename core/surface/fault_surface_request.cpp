@@ -1,6 +1,7 @@
 #include "core/surface/fault_surface_request.hpp"
 
 #include "core/color/colormap.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/metaball_reference.hpp"
@@ -51,35 +52,29 @@ FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest&
     FaultSpheres s = gatherFaultSpheres(frame, request.fault);
     if (st.colorBy.empty())
         return s;
-    // An attribute, or one of the fixed columns (as a view colours by them).
-    const AttributeColumn* column = frame.attribute(st.colorBy);
-    const std::vector<float>* fixed = st.colorBy == "x"        ? &frame.x
-                                      : st.colorBy == "y"      ? &frame.y
-                                      : st.colorBy == "z"      ? &frame.z
-                                      : st.colorBy == "radius" ? &frame.radius
-                                                               : nullptr;
-    if (!column && !fixed)
+    // An attribute, or one of the built-in columns (as a view colours by them).
+    const auto column = findColumn(frame, st.colorBy);
+    if (!column)
         throw CommandError("no variable \"" + st.colorBy + "\" to colour by in this frame");
-    auto value = [&](std::size_t row) { return column ? column->value(row) : double((*fixed)[row]); };
     const auto map = parseColorMap(st.colorMap);
     if (!map)
         throw CommandError("unknown colour map \"" + st.colorMap + "\"");
     ValueRange range{0.0, 1.0};
     if (st.colorRange) {
         range = {(*st.colorRange)[0], (*st.colorRange)[1]};
-    } else if (column) {
-        range = {column->min, column->max};
+    } else if (const AttributeColumn* attribute = frame.attribute(st.colorBy)) {
+        range = {attribute->min, attribute->max}; // cached by the frame
     } else {
         range = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-        for (float v : *fixed)
-            if (std::isfinite(v))
-                range = {std::min(range.low, double(v)), std::max(range.high, double(v))};
+        for (std::size_t row = 0; row < column->size; ++row)
+            if (const double v = column->value(row); std::isfinite(v))
+                range = {std::min(range.low, v), std::max(range.high, v)};
     }
     range = widenDegenerate(range);
     std::size_t k = 0;
     for (std::int64_t id : request.fault.ids)
         if (auto row = frame.rowOf(id)) {
-            const double v = value(*row);
+            const double v = column->value(*row);
             const glm::vec3 c = std::isnan(v) ? nanColor(*map) : sampleColorMap(*map, std::clamp(normalizeValue(v, range), 0.0, 1.0));
             s.rgb[3 * k] = c.r, s.rgb[3 * k + 1] = c.g, s.rgb[3 * k + 2] = c.b;
             ++k;

@@ -38,9 +38,9 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
     SceneDescription scene;
     scene.frame = frame.get();
     const auto rowMask = session.faultRowMask(*frame);
-    scene.visible = core::computeVisibility(*frame, session.state().boxes, session.state().thresholds,
-                                            rowMask.get())
-                        .mask;
+    core::VisibilityResult visibility = core::computeVisibility(
+        *frame, session.state().boxes, session.state().thresholds, rowMask.get());
+    scene.visible = visibility.mask;
     scene.colorVariable = view->colorVariable;
     scene.style.contextPoints = view->contextPoints;
     if (auto map = core::parseColorMap(view->colorMap))
@@ -96,9 +96,6 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
     for (const auto& st : session.state().surfaces) {
         const core::Fault* fault = session.state().fault(st.fault);
         if (st.visible && core::isVisibleSpheres(st.fault)) {
-            core::VisibilityResult visibility;
-            visibility.mask = scene.visible;
-            visibility.visibleCount = static_cast<std::size_t>(std::count(scene.visible.begin(), scene.visible.end(), 1));
             visibleSpheres = core::visibleSpheresFault(*frame, visibility);
             fault = &*visibleSpheres;
         }
