@@ -24,6 +24,16 @@ std::string writeLattice(const TempDir& dir) {
 
 Json cmd(const char* text) { return Json::parse(text); }
 
+// `text` is refused with a CommandError whose message holds `message`.
+void expectRefused(Session& s, const char* text, const std::string& message) {
+    try {
+        s.apply(cmd(text));
+        ADD_FAILURE() << "accepted " << text;
+    } catch (const CommandError& e) {
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+}
+
 // The lattice with only two walls visible, x = 0 and x = 3 (16 spheres each, three spacings apart).
 void openTwoWalls(Session& s, const TempDir& dir) {
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
@@ -300,12 +310,7 @@ TEST(Session, TheVisibleSpheresHaveASurfaceOfTheirOwn) {
     s.apply({{"op", "session.save"}, {"path", file}});
     EXPECT_EQ(loadSessionFile(file), s.state());
     auto rejects = [&](const char* text, const std::string& message) {
-        try {
-            s.apply(cmd(text));
-            ADD_FAILURE() << "accepted " << text;
-        } catch (const CommandError& e) {
-            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-        }
+        expectRefused(s, text, message);
     };
     rejects(R"({"op":"fault.create","name":"*visible","from":"visible"})", "names the visible spheres' surface");
     s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
@@ -360,12 +365,7 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     s.apply(cmd(R"({"op":"undo"})"));
     EXPECT_EQ(*s.state().surface("F1"), byStrain);
     auto rejects = [&](const char* text, const std::string& message) {
-        try {
-            s.apply(cmd(text));
-            ADD_FAILURE() << "accepted " << text;
-        } catch (const CommandError& e) {
-            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-        }
+        expectRefused(s, text, message);
     };
     rejects(R"({"op":"surface.build","fault":"F1","color_by":"nope"})", "no variable \"nope\"");
     rejects(R"({"op":"surface.set","fault":"F1","range":[1,0]})", "\"range\" must be [low, high]");

@@ -33,6 +33,15 @@ class PanelTest : public ::testing::Test {
         ASSERT_NE(wb().mainDisplay()->frame, nullptr);
         headless.clearEmitted();
     }
+    // Opens a combo (marked `combo`) and picks its item (marked `item`), with nothing emitted
+    // before; then lets the background work settle.
+    void pickFromCombo(const std::string& combo, const std::string& item) {
+        headless.clearEmitted();
+        headless.click(wb(), combo);
+        headless.frames(wb(), 2);
+        headless.click(wb(), item);
+        headless.settle(wb());
+    }
     std::size_t visible() const {
         const ui::ViewDisplay* d = m_wb->mainDisplay();
         return d && d->visibility ? d->visibility->visibleCount : 0;

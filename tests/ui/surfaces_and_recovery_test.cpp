@@ -61,11 +61,7 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
 
     // Another kernel comes with the iso-value that wraps the spheres with it (the compact
     // kernel's field is far smaller than inverse-square's).
-    headless.clearEmitted();
-    headless.click(wb(), "surfaces.kernel");
-    headless.frames(wb(), 2);
-    headless.click(wb(), "surfaces.kernel.compact");
-    headless.settle(wb());
+    pickFromCombo("surfaces.kernel", "surfaces.kernel.compact");
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
     const Json compact = headless.emitted("surface.set")[0];
     EXPECT_EQ(compact.value("kernel", ""), "compact");
@@ -137,11 +133,7 @@ TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5,"color_reach":1})"));
     headless.showPanel(wb(), ui::panel_ids::kSurfaces);
     headless.settle(wb());
-    headless.clearEmitted();
-    headless.click(wb(), "surfaces.color_by");
-    headless.frames(wb(), 2);
-    headless.click(wb(), "surfaces.color_by.strain");
-    headless.settle(wb());
+    pickFromCombo("surfaces.color_by", "surfaces.color_by.strain");
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
     EXPECT_EQ(headless.emitted("surface.set")[0],
               (Json{{"op", "surface.set"}, {"fault", "F1"}, {"color_by", "strain"}, {"range", nullptr}}));
