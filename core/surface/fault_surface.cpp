@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <unordered_map>
@@ -61,23 +62,71 @@ void validate(const SphereSet &s, const SurfaceParams &p) {
 
 enum class BlockSide { Below, Above, Crossing };
 
+// Smallest and largest stored value of a block, and of each of its six faces (face 2 * axis for
+// the layer at index 0 along the axis, 2 * axis + 1 for the layer at 7).
+struct BlockRange {
+    float lo, hi;
+    float faceLo[6], faceHi[6];
+};
+
+// Taken while the block's values are still in cache. Eight lanes of running minima and maxima:
+// no chain of dependent comparisons.
+BlockRange blockRange(const float* v) {
+    static_assert(kBlockDim == 8, "a row of z is eight lanes");
+    BlockRange r;
+    for (int f = 0; f < 6; ++f) {
+        r.faceLo[f] = std::numeric_limits<float>::infinity();
+        r.faceHi[f] = -std::numeric_limits<float>::infinity();
+    }
+    float lo[8], hi[8];
+    for (int l = 0; l < 8; ++l)
+        lo[l] = hi[l] = v[l];
+    for (int i = 0; i < kBlockDim; ++i)
+        for (int j = 0; j < kBlockDim; ++j) {
+            const float* row = v + blockOffset(i, j, 0);
+            float rowLo = row[0], rowHi = row[0];
+            for (int l = 0; l < 8; ++l) {
+                lo[l] = std::min(lo[l], row[l]);
+                hi[l] = std::max(hi[l], row[l]);
+                rowLo = std::min(rowLo, row[l]);
+                rowHi = std::max(rowHi, row[l]);
+            }
+            auto face = [&](int f, float a, float b) {
+                r.faceLo[f] = std::min(r.faceLo[f], a);
+                r.faceHi[f] = std::max(r.faceHi[f], b);
+            };
+            if (i == 0)
+                face(0, rowLo, rowHi);
+            if (i == kBlockDim - 1)
+                face(1, rowLo, rowHi);
+            if (j == 0)
+                face(2, rowLo, rowHi);
+            if (j == kBlockDim - 1)
+                face(3, rowLo, rowHi);
+            face(4, row[0], row[0]);
+            face(5, row[7], row[7]);
+        }
+    r.lo = lo[0], r.hi = hi[0];
+    for (int l = 1; l < 8; ++l) {
+        r.lo = std::min(r.lo, lo[l]);
+        r.hi = std::max(r.hi, hi[l]);
+    }
+    return r;
+}
+
 // Which evaluated blocks hold, with the facing layers of their evaluated neighbours, only values
 // on one side of [isoMin, isoMax]: no mesh edge for a supported iso touches them.
-std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
-                                  const std::vector<openvdb::FloatTree::LeafNodeType *> &leaves,
-                                  float isoMin, float isoMax) {
+std::vector<BlockSide> blockSides(const std::vector<Coord3>& blocks,
+                                  const std::vector<BlockRange>& ranges, float isoMin,
+                                  float isoMax) {
     std::unordered_map<std::uint64_t, std::size_t> index;
+    index.reserve(blocks.size());
     auto key = [](const Coord3 &o) { return detail::packKey({o[0] >> 3, o[1] >> 3, o[2] >> 3}); };
     for (std::size_t b = 0; b < blocks.size(); ++b)
         index.emplace(key(blocks[b]), b);
     std::vector<BlockSide> sides(blocks.size(), BlockSide::Crossing);
     tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
-        const float *v = leaves[b]->buffer().data();
-        float lo = v[0], hi = v[0];
-        for (int n = 1; n < kBlockVoxels; ++n) {
-            lo = std::min(lo, v[n]);
-            hi = std::max(hi, v[n]);
-        }
+        float lo = ranges[b].lo, hi = ranges[b].hi;
         for (int axis = 0; axis < 3; ++axis)
             for (int dir : {-1, 1}) {
                 Coord3 o = blocks[b];
@@ -85,22 +134,10 @@ std::vector<BlockSide> blockSides(const std::vector<Coord3> &blocks,
                 auto it = index.find(key(o));
                 if (it == index.end())
                     continue; // a tile: on this block's side by the plan's margin
-                const float *u = leaves[it->second]->buffer().data();
-                const int layer = dir < 0 ? kBlockDim - 1 : 0;
-                for (int i = 0; i < kBlockDim; ++i)
-                    for (int j = 0; j < kBlockDim; ++j) {
-                        int c[3] = {i, j, 0};
-                        c[axis] = layer;
-                        if (axis == 0)
-                            c[1] = i, c[2] = j;
-                        else if (axis == 1)
-                            c[0] = i, c[2] = j;
-                        else
-                            c[0] = i, c[1] = j;
-                        const float value = u[blockOffset(c[0], c[1], c[2])];
-                        lo = std::min(lo, value);
-                        hi = std::max(hi, value);
-                    }
+                // The neighbour's layer that faces this block.
+                const int face = 2 * axis + (dir < 0 ? 1 : 0);
+                lo = std::min(lo, ranges[it->second].faceLo[face]);
+                hi = std::max(hi, ranges[it->second].faceHi[face]);
             }
         sides[b] = hi < isoMin   ? BlockSide::Below
                    : lo > isoMax ? BlockSide::Above
@@ -158,6 +195,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     field.prepare(plan.blocks, interrupter);
     std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
     std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
+    std::vector<BlockRange> ranges(plan.blocks.size());
     const float clamp = clampValue(impl->isoMax);
     const openvdb::Vec3s initial(params.initialColor[0], params.initialColor[1],
                                  params.initialColor[2]);
@@ -172,7 +210,10 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         field.evaluateBlock(o, density, nullptr);
         auto *dl = new FloatLeaf(origin, 0.0f, true);
         for (int n = 0; n < kBlockVoxels; ++n)
-            dl->setValueOnly(n, std::min(density[n], clamp));
+            density[n] = std::min(density[n], clamp);
+        ranges[b] = blockRange(density);
+        for (int n = 0; n < kBlockVoxels; ++n)
+            dl->setValueOnly(n, density[n]);
         densityLeaves[b] = dl;
         const std::size_t d = ++done;
         if (interrupter && (d & 63) == 0 &&
@@ -196,7 +237,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
                                                             openvdb::Coord(hi[0], hi[1], hi[2])),
                                          clamp, false);
     const std::vector<BlockSide> sides =
-        blockSides(plan.blocks, densityLeaves, impl->isoMin, impl->isoMax);
+        blockSides(plan.blocks, ranges, impl->isoMin, impl->isoMax);
     // Colour (Figure 4) only where the mesh can be: the blocks that keep their voxels.
     tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
         if (sides[b] != BlockSide::Crossing)

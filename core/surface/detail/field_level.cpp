@@ -29,12 +29,13 @@ void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
                     brick.lo[k] = std::min(brick.lo[k], l[k]);
                     brick.hi[k] = std::max(brick.hi[k], h[k]);
                 }
+                // mask[i] holds the 8 x 8 (j, z) nodes of plane i, a byte per row of z.
+                const std::uint64_t row = ((std::uint64_t{1} << (h[2] - l[2] + 1)) - 1) << l[2];
+                std::uint64_t plane = 0;
+                for (int j = l[1]; j <= h[1]; ++j)
+                    plane |= row << (8 * j);
                 for (int i = l[0]; i <= h[0]; ++i)
-                    for (int j = l[1]; j <= h[1]; ++j)
-                        for (int z = l[2]; z <= h[2]; ++z) {
-                            const int n = Brick::offset(i, j, z);
-                            brick.mask[n >> 6] |= std::uint64_t{1} << (n & 63);
-                        }
+                    brick.mask[i] |= plane;
             }
 }
 
