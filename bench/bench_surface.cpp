@@ -3,7 +3,8 @@
 //    against OpenVDB's ParticlesToLevelSet + volumeToMesh at the same voxel size;
 //  - the compact kernel on the same set; re-meshing at a new iso-value;
 //  - 2,000 spheres: the paper's Algorithm 1 (dense grid, every sphere against every voxel)
-//    against the multilevel field, with the largest disagreement reported as a counter;
+//    against the multilevel field, with the largest disagreement reported as a counter: value
+//    only with inverse-square, and as the paper has it (r/d, value and gradient);
 //  - 26,000 spheres at voxel 0.5 (the ParaView comparison in the issue).
 #include "bench/fault_zone.hpp"
 #include "core/surface/fault_surface.hpp"
@@ -121,10 +122,13 @@ void BM_Remesh(benchmark::State &state, std::size_t count, float voxel, fc::Norm
 }
 
 // Algorithm 1 on the dense box around every evaluated block; the counter is the largest
-// |multilevel - Algorithm 1| over the kept voxels as a fraction of the iso-value.
-void BM_Algorithm1Dense(benchmark::State &state, std::size_t count, float voxel) {
+// |multilevel - Algorithm 1| over the kept voxels as a fraction of the iso-value. Without
+// `gradient` only the value at each voxel: a stricter baseline than Algorithm 1 itself, which
+// also takes the gradient (line 8) at every point.
+void BM_Algorithm1Dense(benchmark::State &state, fc::MetaballKernel kernel, std::size_t count,
+                        float voxel, bool gradient) {
     const auto &z = zone(count);
-    const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
+    const auto p = params(z, kernel, voxel);
     fc::MetaballField field(z.set(), p, voxel);
     const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor, p.iso * p.isoRangeFactor,
                                       p.memoryBudgetBytes, nullptr);
@@ -136,8 +140,9 @@ void BM_Algorithm1Dense(benchmark::State &state, std::size_t count, float voxel)
         }
     const std::array<int, 3> dims{hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
     std::vector<float> dense;
+    std::vector<std::array<float, 3>> gradients;
     for (auto _ : state)
-        dense = fc::algorithm1Dense(z.set(), p, lo, dims, voxel);
+        dense = fc::algorithm1Dense(z.set(), p, lo, dims, voxel, gradient ? &gradients : nullptr);
     field.prepare(plan.blocks, nullptr);
     double worst = 0.0;
     const double clamp = 4.0 * p.iso * p.isoRangeFactor;
@@ -223,7 +228,18 @@ BENCHMARK_CAPTURE(BM_Surface, inverse_square_2k, fc::MetaballKernel::InverseSqua
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(20);
-BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_square_2k, 2000, 0.25f)
+BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_square_2k, fc::MetaballKernel::InverseSquare, 2000,
+                  0.25f, false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+// The paper's own kernel (r/d) with the gradient Algorithm 1 takes at every point.
+BENCHMARK_CAPTURE(BM_Surface, inverse_2k, fc::MetaballKernel::Inverse, 2000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(20);
+BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_2k_with_gradient, fc::MetaballKernel::Inverse, 2000,
+                  0.25f, true)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -23,9 +23,11 @@ FieldSample referenceSample(const SphereSet &spheres, const SurfaceParams &param
                             const std::array<double, 3> &point);
 
 // Field on a dense box of voxels [origin, origin + dims) (world = index * voxelSize), x fastest;
-// every sphere against every voxel, in parallel. What the benchmark compares against.
+// every sphere against every voxel, in parallel. What the benchmark compares against. With
+// `gradient`, also the analytic gradient at every voxel (Algorithm 1 line 8), in the same order.
 std::vector<float> algorithm1Dense(const SphereSet &spheres, const SurfaceParams &params,
                                    const std::array<int, 3> &origin, const std::array<int, 3> &dims,
-                                   float voxelSize);
+                                   float voxelSize,
+                                   std::vector<std::array<float, 3>> *gradient = nullptr);
 
 } // namespace faultline::core
