@@ -35,6 +35,10 @@ namespace {
 // (tests/core/surface_field_test.cpp checks the result against Algorithm 1).
 constexpr double kErrorPerScale[] = {0, 0, 0, 8.4e-3, 2.1e-3, 6e-4, 3e-4, 1.5e-4, 8e-5};
 constexpr int kKappaMin = 3, kKappaMax = 8;
+// Up to this many spheres, field bounds over a box and the weight within a ball sum every sphere
+// (8 at a time) instead of walking the tree: cheaper, and the bounds are tighter (fewer blocks
+// to evaluate).
+constexpr std::size_t kDirectBoundsSpheres = 4096;
 // Coarse levels interpolate sums over many spheres, far smoother than one sphere's kernel: their
 // measured error is this fraction of the one-sphere model.
 constexpr double kCoarseErrorShare = 1.0;
@@ -192,6 +196,104 @@ FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const
                                const WindowKernels &kernels, bool top) {
     return top ? windowSumBody<2, true>(x, y, z, px, py, pz, pw, count, kernels)
                : windowSumBody<2, false>(x, y, z, px, py, pz, pw, count, kernels);
+}
+
+// Bounds of f over a box from every sphere on its own (no tree): the tightest bounds of their
+// kind, and for a few thousand spheres cheaper than opening tree nodes one at a time.
+// P: kernel power, 0 for the compact kernel. Sums lo (f at each sphere's farthest point of the
+// box) and hi (at its nearest).
+template <int P>
+[[gnu::always_inline]] inline simd8::v8f boundKernel(simd8::v8f d2, simd8::v8f r, simd8::v8f minD2,
+                                                     simd8::v8f invReach2) {
+    using simd8::v8f;
+    if constexpr (P == 0) {
+        const v8f t = simd8::splat(1.0f) - d2 * (invReach2 / (r * r));
+        return t > v8f{} ? r * (t * t * t) : v8f{};
+    } else if constexpr (P == 2) {
+        return r / simd8::max(d2, minD2);
+    } else {
+        return r * simd8::inverseSqrt(simd8::max(d2, minD2));
+    }
+}
+
+// Adds one axis's share of the squared distances from centres c to the nearest and farthest
+// points of [lo, hi].
+[[gnu::always_inline]] inline void boundAxis(simd8::v8f c, simd8::v8f lo, simd8::v8f hi,
+                                             simd8::v8f& near2, simd8::v8f& far2) {
+    using simd8::max;
+    const simd8::v8f gap = max(max(lo - c, c - hi), simd8::v8f{});
+    const simd8::v8f span = max(c - lo, hi - c);
+    near2 += gap * gap;
+    far2 += span * span;
+}
+
+template <int P>
+[[gnu::always_inline]] inline void directBoundsBody(const float* px, const float* py,
+                                                    const float* pz, const float* pr,
+                                                    std::size_t count, const Box& box, float minD2,
+                                                    float invReach2, double& low, double& high) {
+    using simd8::splat;
+    using simd8::v8f;
+    const v8f lox = splat(box.lo[0]), loy = splat(box.lo[1]), loz = splat(box.lo[2]);
+    const v8f hix = splat(box.hi[0]), hiy = splat(box.hi[1]), hiz = splat(box.hi[2]);
+    const v8f vmin = splat(minD2), vinv = splat(invReach2);
+    v8f lo{}, hi{};
+    for (std::size_t q = 0; q < count; q += 8) {
+        // Weightless lanes past the end add nothing.
+        const std::size_t n = std::min<std::size_t>(8, count - q);
+        const v8f x = n == 8 ? simd8::load(px + q) : simd8::loadPartial(px + q, n);
+        const v8f y = n == 8 ? simd8::load(py + q) : simd8::loadPartial(py + q, n);
+        const v8f z = n == 8 ? simd8::load(pz + q) : simd8::loadPartial(pz + q, n);
+        const v8f r = n == 8 ? simd8::load(pr + q) : simd8::loadPartial(pr + q, n);
+        v8f near2{}, far2{};
+        boundAxis(x, lox, hix, near2, far2);
+        boundAxis(y, loy, hiy, near2, far2);
+        boundAxis(z, loz, hiz, near2, far2);
+        lo += boundKernel<P>(far2, r, vmin, vinv);
+        hi += boundKernel<P>(near2, r, vmin, vinv);
+    }
+    for (int l = 0; l < 8; ++l) {
+        low += lo[l];
+        high += hi[l];
+    }
+}
+
+FAULTLINE_HOT void directBounds0(const float* px, const float* py, const float* pz, const float* pr,
+                                 std::size_t count, const Box& box, float minD2, float invReach2,
+                                 double& low, double& high) {
+    directBoundsBody<0>(px, py, pz, pr, count, box, minD2, invReach2, low, high);
+}
+FAULTLINE_HOT void directBounds1(const float* px, const float* py, const float* pz, const float* pr,
+                                 std::size_t count, const Box& box, float minD2, float invReach2,
+                                 double& low, double& high) {
+    directBoundsBody<1>(px, py, pz, pr, count, box, minD2, invReach2, low, high);
+}
+FAULTLINE_HOT void directBounds2(const float* px, const float* py, const float* pz, const float* pr,
+                                 std::size_t count, const Box& box, float minD2, float invReach2,
+                                 double& low, double& high) {
+    directBoundsBody<2>(px, py, pz, pr, count, box, minD2, invReach2, low, high);
+}
+
+// Sum of the weights of the spheres whose centres lie within sqrt(a2) of p, 8 at a time.
+FAULTLINE_HOT double directWeightWithin(const float* px, const float* py, const float* pz,
+                                        const float* pr, std::size_t count, const Vec3f& p,
+                                        float a2) {
+    using simd8::splat;
+    using simd8::v8f;
+    const v8f x = splat(p[0]), y = splat(p[1]), z = splat(p[2]), va2 = splat(a2);
+    v8f sum{};
+    for (std::size_t q = 0; q < count; q += 8) {
+        const std::size_t n = std::min<std::size_t>(8, count - q);
+        const v8f dx = (n == 8 ? simd8::load(px + q) : simd8::loadPartial(px + q, n)) - x;
+        const v8f dy = (n == 8 ? simd8::load(py + q) : simd8::loadPartial(py + q, n)) - y;
+        const v8f dz = (n == 8 ? simd8::load(pz + q) : simd8::loadPartial(pz + q, n)) - z;
+        const v8f r = n == 8 ? simd8::load(pr + q) : simd8::loadPartial(pr + q, n);
+        sum += dx * dx + dy * dy + dz * dz < va2 ? r : v8f{};
+    }
+    double total = 0.0;
+    for (int l = 0; l < 8; ++l)
+        total += sum[l];
+    return total;
 }
 
 // Exact near field at one voxel: k - gamma_a0 within a0, or the compact kernel (P = 0), over a
@@ -381,6 +483,8 @@ double MetaballField::weightWithin(const Vec3f &p, double a) const {
     const float a2 = static_cast<float>(a * a);
     const auto &nodes = m_tree.nodes();
     const auto &s = m_tree.spheres();
+    if (s.size() <= kDirectBoundsSpheres)
+        return directWeightWithin(s.x.data(), s.y.data(), s.z.data(), s.r.data(), s.size(), p, a2);
     double sum = 0.0;
     std::int32_t stack[128];
     int top = 0;
@@ -484,6 +588,18 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
     const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
     const auto &nodes = m_tree.nodes();
     const auto &s = m_tree.spheres();
+    if (s.size() <= kDirectBoundsSpheres) {
+        double low = 0.0, high = 0.0;
+        const float invReach2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+        const auto direct = m_params.kernel == MetaballKernel::Compact ? directBounds0
+                            : m_kernel.p == 1                          ? directBounds1
+                                                                       : directBounds2;
+        direct(s.x.data(), s.y.data(), s.z.data(), s.r.data(), s.size(), box, m_kernel.minD2,
+               invReach2, low, high);
+        // Sums of floats in another order than the tree's doubles: widen them by far more than
+        // their rounding so that they stay bounds.
+        return {low * (1.0 - 1e-5), high * (1.0 + 1e-5)};
+    }
     struct Item {
         double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
         double low, high;
