@@ -128,6 +128,7 @@ class MetaballField {
     SurfaceParams m_params;
     MultilevelTuning m_tuning;
     float m_h;
+    double m_meanRadius = 0.0;
     InverseKernel m_kernel;
     float m_a0 = 0.0f; // near cutoff
     int m_kappa = 0;
