@@ -613,9 +613,10 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
                                                                        : directBounds2;
         direct(s.x.data(), s.y.data(), s.z.data(), s.r.data(), s.size(), box, m_kernel.minD2,
                invReach2, low, high);
-        // Sums of floats in another order than the tree's doubles: widen them by far more than
-        // their rounding so that they stay bounds.
-        return {low * (1.0 - 1e-5), high * (1.0 + 1e-5)};
+        // Float sums of positive terms, at most 512 per lane: each is within 512 roundings
+        // (3.1e-5) of the exact sum, and each term within a few. Widened by more than that, they
+        // stay bounds.
+        return {low * (1.0 - 1e-4), high * (1.0 + 1e-4)};
     }
     struct Item {
         double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
