@@ -65,6 +65,39 @@ FieldSample referenceSample(const SphereSet &s, const SurfaceParams &params,
     return out;
 }
 
+namespace {
+
+// Algorithm 1's sum at one point: the value, and with Gradient its gradient (line 8) into g.
+template <bool Gradient>
+float algorithm1Point(const SphereSet &s, const SurfaceParams &params, const InverseKernel &inv,
+                      float px, float py, float pz, float g[3]) {
+    float f = 0.0f;
+    for (std::size_t n = 0; n < s.size(); ++n) {
+        const float dx = px - s.x[n], dy = py - s.y[n], dz = pz - s.z[n];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        float slope = 0.0f; // d f_n / d(d^2)
+        if (params.kernel == MetaballKernel::Compact) {
+            const float big = params.compactReach * s.radius[n];
+            const float invR2 = 1.0f / (big * big);
+            f += s.radius[n] * compactValue(d2, invR2);
+            if constexpr (Gradient)
+                slope = s.radius[n] * compactSlope(d2, invR2);
+        } else {
+            f += s.radius[n] * inv.value(d2);
+            if constexpr (Gradient)
+                slope = d2 < inv.minD2 ? 0.0f : s.radius[n] * inv.slope(d2);
+        }
+        if constexpr (Gradient) {
+            g[0] += 2.0f * slope * dx;
+            g[1] += 2.0f * slope * dy;
+            g[2] += 2.0f * slope * dz;
+        }
+    }
+    return f;
+}
+
+} // namespace
+
 std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &params,
                                    const std::array<int, 3> &origin, const std::array<int, 3> &dims,
                                    float h, std::vector<std::array<float, 3>> *gradient) {
@@ -74,7 +107,6 @@ std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &para
         gradient->assign(field.size(), {0.0f, 0.0f, 0.0f});
     const float minD = kMinDistanceFactor * static_cast<float>(meanRadius(s));
     const InverseKernel inv{params.kernel == MetaballKernel::Inverse ? 1 : 2, minD * minD};
-    const bool compact = params.kernel == MetaballKernel::Compact;
     tbb::parallel_for(std::size_t{0}, nz, [&](std::size_t k) {
         const float pz = (origin[2] + static_cast<int>(k)) * h;
         for (std::size_t j = 0; j < ny; ++j) {
@@ -82,41 +114,11 @@ std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &para
             const std::size_t row = (k * ny + j) * nx;
             for (std::size_t i = 0; i < nx; ++i) {
                 const float px = (origin[0] + static_cast<int>(i)) * h;
-                float f = 0.0f;
-                if (!gradient) {
-                    for (std::size_t n = 0; n < s.size(); ++n) {
-                        const float dx = px - s.x[n], dy = py - s.y[n], dz = pz - s.z[n];
-                        const float d2 = dx * dx + dy * dy + dz * dz;
-                        if (compact) {
-                            const float big = params.compactReach * s.radius[n];
-                            f += s.radius[n] * compactValue(d2, 1.0f / (big * big));
-                        } else {
-                            f += s.radius[n] * inv.value(d2);
-                        }
-                    }
-                    field[row + i] = f;
-                    continue;
-                }
-                float g[3] = {0.0f, 0.0f, 0.0f};
-                for (std::size_t n = 0; n < s.size(); ++n) {
-                    const float dx = px - s.x[n], dy = py - s.y[n], dz = pz - s.z[n];
-                    const float d2 = dx * dx + dy * dy + dz * dz;
-                    float slope = 0.0f; // d f_n / d(d^2)
-                    if (compact) {
-                        const float big = params.compactReach * s.radius[n];
-                        const float invR2 = 1.0f / (big * big);
-                        f += s.radius[n] * compactValue(d2, invR2);
-                        slope = s.radius[n] * compactSlope(d2, invR2);
-                    } else {
-                        f += s.radius[n] * inv.value(d2);
-                        slope = d2 < inv.minD2 ? 0.0f : s.radius[n] * inv.slope(d2);
-                    }
-                    g[0] += 2.0f * slope * dx;
-                    g[1] += 2.0f * slope * dy;
-                    g[2] += 2.0f * slope * dz;
-                }
-                field[row + i] = f;
-                (*gradient)[row + i] = {g[0], g[1], g[2]};
+                if (gradient)
+                    field[row + i] = algorithm1Point<true>(s, params, inv, px, py, pz,
+                                                           (*gradient)[row + i].data());
+                else
+                    field[row + i] = algorithm1Point<false>(s, params, inv, px, py, pz, nullptr);
             }
         }
     });
