@@ -12,9 +12,11 @@
 #include "core/surface/surface_plan.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace fb = faultline::bench;

@@ -253,11 +253,11 @@ template <int P>
     v8f lo{}, hi{};
     for (std::size_t q = 0; q < count; q += 8) {
         // Weightless lanes past the end add nothing.
-        const std::size_t n = std::min<std::size_t>(8, count - q);
-        const v8f x = n == 8 ? simd8::load(px + q) : simd8::loadPartial(px + q, n);
-        const v8f y = n == 8 ? simd8::load(py + q) : simd8::loadPartial(py + q, n);
-        const v8f z = n == 8 ? simd8::load(pz + q) : simd8::loadPartial(pz + q, n);
-        const v8f r = n == 8 ? simd8::load(pr + q) : simd8::loadPartial(pr + q, n);
+        const std::size_t n = count - q;
+        const v8f x = simd8::loadUpTo(px + q, n);
+        const v8f y = simd8::loadUpTo(py + q, n);
+        const v8f z = simd8::loadUpTo(pz + q, n);
+        const v8f r = simd8::loadUpTo(pr + q, n);
         v8f near2{}, far2{};
         boundAxis(x, lox, hix, near2, far2);
         boundAxis(y, loy, hiy, near2, far2);
@@ -296,11 +296,11 @@ FAULTLINE_HOT double directWeightWithin(const float* px, const float* py, const 
     const v8f x = splat(p[0]), y = splat(p[1]), z = splat(p[2]), va2 = splat(a2);
     v8f sum{};
     for (std::size_t q = 0; q < count; q += 8) {
-        const std::size_t n = std::min<std::size_t>(8, count - q);
-        const v8f dx = (n == 8 ? simd8::load(px + q) : simd8::loadPartial(px + q, n)) - x;
-        const v8f dy = (n == 8 ? simd8::load(py + q) : simd8::loadPartial(py + q, n)) - y;
-        const v8f dz = (n == 8 ? simd8::load(pz + q) : simd8::loadPartial(pz + q, n)) - z;
-        const v8f r = n == 8 ? simd8::load(pr + q) : simd8::loadPartial(pr + q, n);
+        const std::size_t n = count - q;
+        const v8f dx = simd8::loadUpTo(px + q, n) - x;
+        const v8f dy = simd8::loadUpTo(py + q, n) - y;
+        const v8f dz = simd8::loadUpTo(pz + q, n) - z;
+        const v8f r = simd8::loadUpTo(pr + q, n);
         sum += dx * dx + dy * dy + dz * dz < va2 ? r : v8f{};
     }
     double total = 0.0;

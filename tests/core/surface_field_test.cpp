@@ -188,8 +188,8 @@ TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
 
 // At a small near cutoff (here 1.7, about 20 spheres' weight within it, as at the default voxel
 // of a third of a radius) the spheres' interpolation errors no longer cancel: the a priori
-// estimate, which the field chooses its cutoffs by, must still bound the error. It was 1.4x
-// under it before the estimate counted the spheres within the cutoff.
+// estimate, which the field chooses its cutoffs by, must still bound the error. The error was
+// 1.4x over it before the estimate counted the spheres within the cutoff.
 TEST(MetaballField, TheEstimateBoundsTheErrorWithFewSpheresInTheNearCutoff) {
     const Spheres s = slab(10, 10, 3, 1);
     fc::SurfaceParams params;

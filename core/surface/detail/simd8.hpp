@@ -32,6 +32,11 @@ typedef float v8f __attribute__((vector_size(32)));
     return v;
 }
 
+// The first min(n, 8) floats of p, zeros after them.
+[[gnu::always_inline]] inline v8f loadUpTo(const float* p, std::size_t n) {
+    return n >= 8 ? load(p) : loadPartial(p, n);
+}
+
 [[gnu::always_inline]] inline v8f max(v8f a, v8f b) { return a < b ? b : a; }
 
 [[gnu::always_inline]] inline v8f inverseSqrt(v8f x) {
