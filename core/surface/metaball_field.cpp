@@ -41,9 +41,11 @@ constexpr int kKappaMin = 3, kKappaMax = 8;
 // (8 at a time) instead of walking the tree: cheaper, and the bounds are tighter (fewer blocks
 // to evaluate).
 constexpr std::size_t kDirectBoundsSpheres = 4096;
-// Coarse levels interpolate sums over many spheres, far smoother than one sphere's kernel: their
-// measured error is this fraction of the one-sphere model.
-constexpr double kCoarseErrorShare = 1.0;
+// The coarse levels' part of the estimate, scaled by this for r/d ([0]) and r/d^2 ([1]). Against
+// sets of about 2,000 spheres, whose far field is large (bench/calibrate_field_error coarse),
+// the largest error measured was 0.40 of the unscaled part with r/d and 0.65 with r/d^2: the
+// scale keeps the estimate at least 1.5x over both.
+constexpr double kCoarseErrorShare[2] = {0.6, 1.0};
 // The table holds for r/d^2. With r/d the largest error measured (bench/calibrate_field_error)
 // is at most 0.48 of that estimate over every kappa and cutoff: this share keeps 1.5x over it.
 constexpr double kInverseErrorShare = 0.72;
@@ -60,7 +62,7 @@ constexpr double kFewSpheres = 64.0;
 std::array<double, 2> errorWeights(int kappa, int coarseKappa, int power) {
     const double share = power == 1 ? kInverseErrorShare : 1.0;
     return {share * kErrorPerScale[kappa],
-            share * kCoarseErrorShare * kErrorPerScale[coarseKappa]};
+            share * kCoarseErrorShare[power - 1] * kErrorPerScale[coarseKappa]};
 }
 
 // The largest error the field may make: the tolerance at the lowest supported iso.
@@ -426,10 +428,7 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         // model: the near field costs about a_0^3 per voxel, each coarse level about
         // (a_1 / ratio_1)^3 per voxel, with the weights measured on bench_surface's fault zone.
         // With none, the most accurate pair.
-        struct Choice {
-            int kappa = 0, coarse = 0, ratio = 0;
-            double error = 0.0, cost = 0.0;
-        };
+        using Choice = CutoffChoice;
         std::vector<Choice> candidates;
         for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
             if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
@@ -452,44 +451,48 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         // no estimate (each costs tree walks at up to eight cutoffs).
         std::stable_sort(candidates.begin(), candidates.end(),
                          [](const Choice &a, const Choice &b) { return a.cost < b.cost; });
-        std::optional<Choice> best;
-        std::map<double, double> densest; // cutoff -> densest weight within it (shared)
+        std::optional<std::size_t> best;
         auto estimate = [&](Choice &c, double stopAbove) {
-            m_kappa = c.kappa;
-            m_coarseKappa = c.coarse;
-            m_ratio1 = c.ratio;
-            m_a0 = static_cast<float>(c.kappa) * static_cast<float>(c.ratio) * m_h;
+            applyChoice(c);
             const std::array<double, 2> weights = errorWeights(c.kappa, c.coarse, m_kernel.p);
-            const auto scale = errorScale(&densest, nullptr, weights, stopAbove);
+            const auto scale = errorScale(&m_densest, nullptr, weights, stopAbove);
             c.error = weights[0] * scale[0] + weights[1] * scale[1];
         };
-        for (Choice &c : candidates) {
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
             // Over the budget part way through the levels: no need for the rest of them.
-            estimate(c, budget);
-            if (c.error <= budget) {
-                best = c;
+            estimate(candidates[i], budget);
+            if (candidates[i].error <= budget) {
+                best = i;
                 break;
             }
         }
         // With none that fits, the most accurate (every estimate in full).
-        std::optional<Choice> mostAccurate;
-        if (!best)
-            for (Choice &c : candidates) {
-                estimate(c, std::numeric_limits<double>::infinity());
-                if (!mostAccurate || c.error < mostAccurate->error)
-                    mostAccurate = c;
+        std::size_t chosen = 0;
+        if (best) {
+            chosen = *best;
+            // The cheaper ones may still fit with fewer levels than this estimate assumes.
+            m_cheaper.assign(candidates.begin(), candidates.begin() + std::ptrdiff_t(chosen));
+        } else {
+            for (std::size_t i = 0; i < candidates.size(); ++i) {
+                estimate(candidates[i], std::numeric_limits<double>::infinity());
+                if (candidates[i].error < candidates[chosen].error)
+                    chosen = i;
             }
-        const Choice chosen = best ? *best : *mostAccurate;
-        m_kappa = chosen.kappa;
-        m_coarseKappa = chosen.coarse;
-        m_ratio1 = chosen.ratio;
-        m_a0 = static_cast<float>(m_kappa) * static_cast<float>(m_ratio1) * m_h;
-        m_estimatedError = chosen.error;
-        errorScale(&densest, &m_errorTerms);
-        m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
+        }
+        applyChoice(candidates[chosen]);
+        m_estimatedError = candidates[chosen].error;
+        errorScale(&m_densest, &m_errorTerms);
     } else {
         m_a0 = params.compactReach * maxRadius();
     }
+}
+
+void MetaballField::applyChoice(const CutoffChoice &c) {
+    m_kappa = c.kappa;
+    m_coarseKappa = c.coarse;
+    m_ratio1 = c.ratio;
+    m_a0 = static_cast<float>(c.kappa) * static_cast<float>(c.ratio) * m_h;
+    m_soft0 = SoftenedKernel(m_kernel.p, m_a0, m_tuning.softeningOrder);
 }
 
 double MetaballField::weightWithin(const Vec3f &p, double a) const {
@@ -521,6 +524,13 @@ double MetaballField::weightWithin(const Vec3f &p, double a) const {
         }
     }
     return sum;
+}
+
+std::array<double, 2> MetaballField::estimatedErrorParts() const {
+    if (m_errorTerms.empty())
+        return {0.0, 0.0};
+    const double level1 = errorWeights(m_kappa, m_coarseKappa, m_kernel.p)[0] * m_errorTerms[0];
+    return {level1, m_estimatedError - level1};
 }
 
 double MetaballField::cutoff(int l) const {
@@ -679,17 +689,7 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
     return {low, high};
 }
 
-void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
-    m_blocks.clear();
-    m_blockOrigins.assign(blocks.begin(), blocks.end());
-    for (std::size_t i = 0; i < blocks.size(); ++i)
-        m_blocks.emplace(packKey({floorDiv(blocks[i][0], 8), floorDiv(blocks[i][1], 8),
-                                  floorDiv(blocks[i][2], 8)}),
-                         static_cast<std::uint32_t>(i));
-    m_levels.clear();
-    if (m_params.kernel == MetaballKernel::Compact || blocks.empty())
-        return;
-
+void MetaballField::planLevels(std::span<const Coord3> blocks) {
     // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
     auto level1 = std::make_unique<FieldLevel>();
     level1->spacing = m_ratio1 * m_h;
@@ -715,6 +715,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
             span2 += (hi - lo) * (hi - lo);
         }
     }
+    m_levels.clear();
     m_levels.push_back(std::move(level1));
     const double n = static_cast<double>(sphereCount());
     for (int l = 1;; ++l) {
@@ -770,6 +771,64 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         }
         m_levels.push_back(std::move(next));
     }
+}
+
+double MetaballField::levelsEstimate() const {
+    if (m_errorTerms.empty())
+        return 0.0;
+    // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
+    auto term = [&](int l) {
+        return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
+    };
+    const auto weights = errorWeights(m_kappa, m_coarseKappa, m_kernel.p);
+    double estimate = weights[0] * term(0);
+    for (int l = 1; l < levelCount(); ++l)
+        estimate += weights[1] * term(l);
+    return estimate;
+}
+
+void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
+    m_blocks.clear();
+    m_blockOrigins.assign(blocks.begin(), blocks.end());
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+        m_blocks.emplace(packKey({floorDiv(blocks[i][0], 8), floorDiv(blocks[i][1], 8),
+                                  floorDiv(blocks[i][2], 8)}),
+                         static_cast<std::uint32_t>(i));
+    m_levels.clear();
+    if (m_params.kernel == MetaballKernel::Compact || blocks.empty())
+        return;
+
+    // The constructor's estimate assumed coarse levels up to twice the span; with the levels
+    // these blocks need (often fewer), a cheaper pair of cutoffs may fit the budget. The cheapest
+    // that does is the choice (level 1's term alone, a lower bound, skips most without planning).
+    // Only for a few thousand spheres: each try costs a plan and the weight within its cutoffs,
+    // under a millisecond there, but about 15 ms at 50,000 spheres, for no cheaper choice on the
+    // bench's sets.
+    const CutoffChoice chosen{m_kappa, m_coarseKappa, m_ratio1, m_estimatedError, 0.0};
+    const double budget = errorBudget(m_params);
+    bool cheaper = false;
+    if (sphereCount() > kDirectBoundsSpheres)
+        m_cheaper.clear();
+    for (const CutoffChoice &c : m_cheaper) {
+        applyChoice(c);
+        std::vector<double> terms;
+        errorScale(&m_densest, &terms);
+        const auto weights = errorWeights(c.kappa, c.coarse, m_kernel.p);
+        if (weights[0] * terms[0] > budget)
+            continue;
+        std::swap(terms, m_errorTerms);
+        planLevels(blocks);
+        if (levelsEstimate() <= budget) {
+            cheaper = true;
+            break;
+        }
+        std::swap(terms, m_errorTerms);
+    }
+    if (!cheaper) {
+        applyChoice(chosen);
+        planLevels(blocks);
+    }
+    m_cheaper.clear(); // prepared once
 
     // The error of this hierarchy: level 1's interpolation and each coarser level's (the top
     // level's values are exact sums, with nothing above to interpolate). Then from the top down,
@@ -779,14 +838,11 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
     std::vector<std::optional<ChargeGrid>> charges(m_levels.size());
     m_anterpolated = 0;
     if (!m_errorTerms.empty()) {
-        // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
         auto term = [&](int l) {
             return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
         };
         const auto weights = errorWeights(m_kappa, m_coarseKappa, m_kernel.p);
-        double estimate = weights[0] * term(0);
-        for (int l = 1; l < levelCount; ++l)
-            estimate += weights[1] * term(l);
+        double estimate = levelsEstimate();
         if (m_tuning.anterpolateFrom > 0)
             for (int l = levelCount; l >= std::max(2, m_tuning.anterpolateFrom); --l) {
                 const double extra = weights[1] * term(l - 1);

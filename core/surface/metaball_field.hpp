@@ -95,6 +95,9 @@ class MetaballField {
     void evaluatePoints(std::span<const Vec3f> points, float *values, Vec3f *gradients) const;
 
     // Cutoff of the exact near field and the number of coarse levels (for reports and tests).
+    // The constructor chooses the cutoffs by an estimate that assumes coarse levels up to twice
+    // the spheres' span; prepare() may then choose cheaper ones that fit the budget with the
+    // levels the blocks actually need.
     float nearCutoff() const { return m_a0; }
     int kappa() const { return m_kappa; }
     int coarseKappa() const { return m_coarseKappa; }
@@ -102,6 +105,9 @@ class MetaballField {
     // one the cutoffs were chosen by, then after prepare() that of the levels it built (with
     // their grid charges).
     double estimatedError() const { return m_estimatedError; }
+    // That estimate in two parts: level 1's interpolation ([0]) and the coarser levels' ([1],
+    // with their grid charges' share).
+    std::array<double, 2> estimatedErrorParts() const;
     // The densest weight within each level's cutoff over cutoff^p: the size of what level 1
     // ([0]) and the coarser levels ([1]) interpolate.
     // memo: densest weight per cutoff, shared between calls for several kappas.
@@ -121,6 +127,17 @@ class MetaballField {
     std::size_t coarseNodeCount() const;
 
   private:
+    // A pair of cutoffs (kappa, coarse kappa) at a level-1 spacing of ratio voxels, with the
+    // work model's cost and (once estimated) the error estimate.
+    struct CutoffChoice {
+        int kappa = 0, coarse = 0, ratio = 0;
+        double error = 0.0, cost = 0.0;
+    };
+    void applyChoice(const CutoffChoice &choice);
+    // Marks the nodes of levels 1 .. top the blocks need (m_levels, without values).
+    void planLevels(std::span<const Coord3> blockOrigins);
+    // The a priori estimate for the planned levels: level 1's term and each coarser level's.
+    double levelsEstimate() const;
     void sumNear(const detail::NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
                  Vec3f *color) const;
 
@@ -135,6 +152,8 @@ class MetaballField {
     int m_coarseKappa = 0;
     double m_estimatedError = 0.0;
     std::vector<double> m_errorTerms; // errorScale()'s terms for the chosen cutoffs
+    std::map<double, double> m_densest; // cutoff -> densest weight within it (errorScale memo)
+    std::vector<CutoffChoice> m_cheaper; // cheaper than the constructor's choice, cheapest first
     int m_ratio1 = 1;                                          // level-1 spacing in voxels
     SoftenedKernel m_soft0;                                    // gamma_a0
     std::vector<std::unique_ptr<detail::FieldLevel>> m_levels; // level 1 .. L

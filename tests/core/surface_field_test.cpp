@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -49,7 +50,7 @@ struct Check {
 Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, float voxel,
                            float isoMin, float isoMax, const fc::MultilevelTuning &tuning,
                            int *levels = nullptr, int *chargeLevels = nullptr,
-                           double *estimate = nullptr) {
+                           double *estimate = nullptr, std::array<int, 2> *cutoffs = nullptr) {
     const auto set = s.set();
     fc::MetaballField field(set, params, voxel, tuning);
     const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
@@ -60,6 +61,8 @@ Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, fl
         *chargeLevels = field.anterpolatedLevels();
     if (estimate)
         *estimate = field.estimatedError();
+    if (cutoffs)
+        *cutoffs = {field.kappa(), field.coarseKappa()};
     Check check;
     const double clamp = 4.0 * isoMax;
     std::vector<float> density(fc::kBlockVoxels);
@@ -402,4 +405,27 @@ TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
         EXPECT_NE(what.find("budget is 64.0 MiB"), std::string::npos) << what;
         EXPECT_NE(what.find("needs"), std::string::npos) << what;
     }
+}
+
+// The constructor chooses the cutoffs by an estimate with coarse levels up to twice the span;
+// prepare() may then take cheaper ones that fit with the levels it planned. Where it does, the
+// field must still match Algorithm 1 within the tolerance, and within its estimate.
+TEST(MetaballField, CheaperCutoffsChosenAfterPlanningStillMatchAlgorithm1) {
+    const Spheres s = slab(16, 16, 3, 11);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Inverse;
+    params.iso = 60.0f;
+    const float voxel = 0.25f;
+    const fc::MetaballField probe(s.set(), params, voxel);
+    std::array<int, 2> cutoffs{};
+    double estimate = 0.0;
+    const Check c = compareWithReference(s, params, voxel, params.iso / params.isoRangeFactor,
+                                         params.iso * params.isoRangeFactor, {}, nullptr, nullptr,
+                                         &estimate, &cutoffs);
+    // The constructor chose kappa 4, coarse kappa 5 here; prepare() kappa 3, coarse kappa 4.
+    EXPECT_NE(cutoffs, (std::array<int, 2>{probe.kappa(), probe.coarseKappa()}))
+        << "prepare() kept kappa " << cutoffs[0] << ", coarse kappa " << cutoffs[1];
+    EXPECT_GT(c.voxels, 100000u);
+    EXPECT_LE(c.maxError, params.tolerance * params.iso / params.isoRangeFactor);
+    EXPECT_LE(c.maxError, estimate);
 }
