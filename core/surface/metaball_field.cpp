@@ -690,36 +690,47 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
 }
 
 void MetaballField::planLevels(std::span<const Coord3> blocks) {
-    // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
-    auto level1 = std::make_unique<FieldLevel>();
-    level1->spacing = m_ratio1 * m_h;
-    level1->ratio = m_ratio1;
-    for (const auto &o : blocks) {
-        detail::Int3 lo, hi;
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
-            hi[k] = floorDiv(o[k] + kBlockDim, m_ratio1) + detail::kTapsAbove;
+    // Which nodes each level needs depends only on the level-1 spacing: levels already marked
+    // for this ratio (by an earlier choice of cutoffs in this prepare()) are reused, only the
+    // cutoffs and the top are decided again.
+    if (m_markedRatio != m_ratio1) {
+        m_levels.clear();
+        m_spareLevels.clear();
+        m_markedRatio = m_ratio1;
+        // Mark the level-1 nodes every block needs (one voxel of margin, for mesh vertices).
+        auto level1 = std::make_unique<FieldLevel>();
+        level1->spacing = m_ratio1 * m_h;
+        level1->ratio = m_ratio1;
+        for (const auto &o : blocks) {
+            detail::Int3 lo, hi;
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
+                hi[k] = floorDiv(o[k] + kBlockDim, m_ratio1) + detail::kTapsAbove;
+            }
+            level1->mark(lo, hi);
         }
-        level1->mark(lo, hi);
-    }
-    double span2 = 0.0;
-    {
+        m_span2 = 0.0;
         const auto &cb = centreBox();
-        const FieldLevel &l1 = *level1;
         for (int k = 0; k < 3; ++k) {
             double lo = cb.lo[k], hi = cb.hi[k];
-            for (const auto &b : l1.bricks) {
-                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * l1.spacing);
-                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * l1.spacing);
+            for (const auto &b : level1->bricks) {
+                lo = std::min(lo, double(b.origin[k] + b.lo[k]) * level1->spacing);
+                hi = std::max(hi, double(b.origin[k] + b.hi[k]) * level1->spacing);
             }
-            span2 += (hi - lo) * (hi - lo);
+            m_span2 += (hi - lo) * (hi - lo);
         }
+        m_levels.push_back(std::move(level1));
     }
-    m_levels.clear();
-    m_levels.push_back(std::move(level1));
+    // Levels above the last choice's top wait in m_spareLevels.
+    for (auto &spare : m_spareLevels)
+        m_levels.push_back(std::move(spare));
+    m_spareLevels.clear();
+    for (auto &level : m_levels)
+        level->top = false;
     const double n = static_cast<double>(sphereCount());
+    const double span2 = m_span2;
     for (int l = 1;; ++l) {
-        FieldLevel &level = *m_levels.back();
+        FieldLevel &level = *m_levels[l - 1];
         const float aBelow = static_cast<float>(cutoff(l - 1));
         level.below =
             l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
@@ -756,8 +767,13 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
         if (needed * n <= m_tuning.topLevelPairs || cheaperOnTop ||
             double(aBelow) * aBelow >= span2 || l >= 30) {
             level.top = true;
+            for (std::size_t above = l; above < m_levels.size(); ++above)
+                m_spareLevels.push_back(std::move(m_levels[above]));
+            m_levels.resize(l);
             break;
         }
+        if (static_cast<std::size_t>(l) < m_levels.size())
+            continue; // marked before
         auto next = std::make_unique<FieldLevel>();
         next->spacing = 2.0f * level.spacing;
         next->ratio = 2;
@@ -795,6 +811,8 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
                                   floorDiv(blocks[i][2], 8)}),
                          static_cast<std::uint32_t>(i));
     m_levels.clear();
+    m_spareLevels.clear();
+    m_markedRatio = 0;
     if (m_params.kernel == MetaballKernel::Compact || blocks.empty())
         return;
 
@@ -829,6 +847,7 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
         planLevels(blocks);
     }
     m_cheaper.clear(); // prepared once
+    m_spareLevels.clear();
 
     // The error of this hierarchy: level 1's interpolation and each coarser level's (the top
     // level's values are exact sums, with nothing above to interpolate). Then from the top down,

@@ -157,6 +157,11 @@ class MetaballField {
     int m_ratio1 = 1;                                          // level-1 spacing in voxels
     SoftenedKernel m_soft0;                                    // gamma_a0
     std::vector<std::unique_ptr<detail::FieldLevel>> m_levels; // level 1 .. L
+    // While prepare() tries cutoffs: the levels marked above the last try's top, the level-1
+    // ratio they were marked for, and the squared span their nodes and the centres cover.
+    std::vector<std::unique_ptr<detail::FieldLevel>> m_spareLevels;
+    int m_markedRatio = 0;
+    double m_span2 = 0.0;
     int m_anterpolated = 0;
     std::unordered_map<std::uint64_t, std::uint32_t> m_blocks; // prepared block -> index
     std::vector<Coord3> m_blockOrigins;
