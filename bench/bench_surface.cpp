@@ -243,6 +243,18 @@ BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_2k_with_gradient, fc::MetaballKern
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
+// The same at the default voxel (a third of the radius): Algorithm 1's dense grid grows with the
+// voxel count, the multilevel field's coarse levels do not.
+BENCHMARK_CAPTURE(BM_Surface, inverse_2k_default_voxel, fc::MetaballKernel::Inverse, 2000,
+                  kRadius / 3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(10);
+BENCHMARK_CAPTURE(BM_Algorithm1Dense, inverse_2k_with_gradient_default_voxel,
+                  fc::MetaballKernel::Inverse, 2000, kRadius / 3, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 BENCHMARK_CAPTURE(BM_SampledErrorAgainstAlgorithm1, inverse_square_50k, 50000, 0.25f)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
