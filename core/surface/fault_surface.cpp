@@ -201,20 +201,38 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
                                  params.initialColor[2]);
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
-    tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
-        if (cancelled.load(std::memory_order_relaxed))
-            return;
+    // A block's stored values, clamped, in a new leaf.
+    auto storeBlock = [&](std::size_t b, float *density) {
         const auto &o = plan.blocks[b];
-        const openvdb::Coord origin(o[0], o[1], o[2]);
-        float density[kBlockVoxels];
-        field.evaluateBlock(o, density, nullptr);
-        auto *dl = new FloatLeaf(origin, 0.0f, true);
+        auto *dl = new FloatLeaf(openvdb::Coord(o[0], o[1], o[2]), 0.0f, true);
         for (int n = 0; n < kBlockVoxels; ++n)
             density[n] = std::min(density[n], clamp);
         ranges[b] = blockRange(density);
         for (int n = 0; n < kBlockVoxels; ++n)
             dl->setValueOnly(n, density[n]);
         densityLeaves[b] = dl;
+    };
+    // Blocks that bounds put wholly on one side of the iso range skip their near sums; their
+    // ranges are those bounds. One of them is evaluated after all if a neighbour's facing layer
+    // makes it part of the mesh.
+    std::vector<char> skipped(plan.blocks.size(), 0);
+    tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
+        if (cancelled.load(std::memory_order_relaxed))
+            return;
+        float density[kBlockVoxels];
+        FieldBounds bounds;
+        if (field.evaluateBlockUnlessOneSided(plan.blocks[b], density, impl->isoMin, impl->isoMax,
+                                              &bounds) != 0) {
+            skipped[b] = 1;
+            const float lo = std::min(static_cast<float>(bounds.low), clamp);
+            const float hi = std::min(static_cast<float>(bounds.high), clamp);
+            BlockRange &r = ranges[b];
+            r.lo = lo, r.hi = hi;
+            std::fill(std::begin(r.faceLo), std::end(r.faceLo), lo);
+            std::fill(std::begin(r.faceHi), std::end(r.faceHi), hi);
+        } else {
+            storeBlock(b, density);
+        }
         const std::size_t d = ++done;
         if (interrupter && (d & 63) == 0 &&
             interrupter->wasInterrupted(static_cast<int>(100 * d / plan.blocks.size())))
@@ -238,6 +256,16 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
                                          clamp, false);
     const std::vector<BlockSide> sides =
         blockSides(plan.blocks, ranges, impl->isoMin, impl->isoMax);
+    // A skipped block next to values on the other side of an iso holds mesh corners: evaluate it.
+    // (Its neighbours were judged by its bounds, which lie on the same side as its values: a
+    // neighbour that is wholly on one side stays so, at worst one is kept as crossing.)
+    tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
+        if (!skipped[b] || sides[b] != BlockSide::Crossing)
+            return;
+        float density[kBlockVoxels];
+        field.evaluateBlock(plan.blocks[b], density, nullptr);
+        storeBlock(b, density);
+    });
     // Colour (Figure 4) only where the mesh can be: the blocks that keep their voxels.
     tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
         if (sides[b] != BlockSide::Crossing)
@@ -258,7 +286,9 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         }
         // No edge of this block or into it can cross any supported iso: a tile will do.
         if (sides[b] == BlockSide::Above)
-            impl->density->tree().addTile(1, densityLeaves[b]->origin(), clamp, false);
+            impl->density->tree().addTile(
+                1, openvdb::Coord(plan.blocks[b][0], plan.blocks[b][1], plan.blocks[b][2]), clamp,
+                false);
         delete densityLeaves[b];
     }
     impl->stats.fieldSeconds = secondsSince(t0);

@@ -1024,19 +1024,82 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
 }
 
 void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
-    const float a2 = m_a0 * m_a0;
-    const bool compact = m_params.kernel == MetaballKernel::Compact;
-    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
     // One tree walk per block for the spheres within a0, then one list per 4^3 octant filtered
     // from it (shorter lists than the block's); the colour has its own far shorter list: only
     // spheres whose radius + reach can hold a voxel of the block.
-    const Box blockBox =
-        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
     thread_local NearList block;
-    block.clear();
-    m_tree.gather(blockBox, m_a0, block, false);
+    gatherNear(o, block);
     if (color)
         evaluateColor(o, color);
+    nearValues(o, block, density);
+    if (!m_levels.empty())
+        detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
+}
+
+int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, float isoMin,
+                                               float isoMax, FieldBounds *bounds) const {
+    if (m_params.kernel == MetaballKernel::Compact || m_levels.empty()) {
+        evaluateBlock(o, density, nullptr);
+        return 0;
+    }
+    // The coarse levels' part, exactly as evaluateBlock adds it.
+    float smooth[kBlockVoxels] = {};
+    detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, smooth);
+    float smoothLo = smooth[0], smoothHi = smooth[0];
+    for (float v : smooth) {
+        smoothLo = std::min(smoothLo, v);
+        smoothHi = std::max(smoothHi, v);
+    }
+    // The near part, k - gamma_a0 within a0, lies in [0, k(dmin) - gamma_a0(dmax)] over the
+    // block for each sphere: gamma is positive and decreasing in d, and below k where the
+    // softening's order is even (its Taylor remainder is then positive).
+    thread_local NearList block;
+    gatherNear(o, block);
+    const Box box =
+        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    const float a2 = m_a0 * m_a0;
+    // With an even order also at least k(dmax) - gamma_a0(dmin) where the block lies within a0.
+    const bool evenOrder = m_tuning.softeningOrder % 2 == 0;
+    double nearLo = 0.0, nearHi = 0.0;
+    for (std::size_t q = 0; q < block.size(); ++q) {
+        const Box centre{{block.x[q], block.y[q], block.z[q]}, {block.x[q], block.y[q], block.z[q]}};
+        const float near2 = detail::minDistance2(centre, box);
+        if (near2 >= a2)
+            continue;
+        const float far2 = detail::maxDistance2(centre, box);
+        nearHi += double(block.r[q]) *
+                  (double(m_kernel.value(near2)) - m_soft0.inner(std::min(far2, a2)));
+        if (evenOrder && far2 < a2)
+            nearLo += double(block.r[q]) *
+                      std::max(0.0, double(m_kernel.value(far2)) - m_soft0.inner(near2));
+    }
+    // Float rounding of 512 sums: within 1e-4 of the larger of them.
+    const double slack = 1e-4 * (std::abs(double(smoothHi)) + nearHi);
+    const double low = double(smoothLo) + nearLo - slack, high = double(smoothHi) + nearHi + slack;
+    const int side = high < isoMin ? -1 : evenOrder && low > isoMax ? 1 : 0;
+    if (side != 0) {
+        *bounds = {low, high};
+        return side;
+    }
+    nearValues(o, block, density);
+    for (int n = 0; n < kBlockVoxels; ++n)
+        density[n] += smooth[n];
+    return 0;
+}
+
+void MetaballField::gatherNear(const Coord3 &o, NearList &block) const {
+    const Box blockBox =
+        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    block.clear();
+    m_tree.gather(blockBox, m_a0, block, false);
+}
+
+void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *density) const {
+    const float a2 = m_a0 * m_a0;
+    const bool compact = m_params.kernel == MetaballKernel::Compact;
+    const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
+    const Box blockBox =
+        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
     // Each sphere's gap to the lower and upper half of the block along each axis gives its
     // distance to all eight octants in one pass.
     constexpr int kHalf = kBlockDim / 2;
@@ -1080,8 +1143,6 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
                         f;
                 }
     }
-    if (!m_levels.empty())
-        detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
 }
 
 namespace {

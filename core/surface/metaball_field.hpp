@@ -88,6 +88,12 @@ class MetaballField {
     // Density and colour of the 512 voxels of a prepared block (blockOffset order).
     // color may be null: density only (colour later, for the blocks that keep it).
     void evaluateBlock(const Coord3 &origin, float *density, Vec3f *color) const;
+    // Density of a prepared block, unless bounds (the coarse levels' part exactly, each near
+    // sphere's range over the block) put all of it below isoMin (returns -1) or above isoMax
+    // (returns 1): then only `bounds` is set, and density holds nothing. Returns 0 when the
+    // density was evaluated. Saves the near sums of blocks next to the surface that it misses.
+    int evaluateBlockUnlessOneSided(const Coord3 &origin, float *density, float isoMin,
+                                    float isoMax, FieldBounds *bounds) const;
     // Figure 4 colour of the 512 voxels of a block (needs no prepare()).
     void evaluateColor(const Coord3 &origin, Vec3f *color) const;
 
@@ -138,6 +144,9 @@ class MetaballField {
     void planLevels(std::span<const Coord3> blockOrigins);
     // The a priori estimate for the planned levels: level 1's term and each coarser level's.
     double levelsEstimate() const;
+    // The spheres within the near cutoff of a block, and the block's near sums from them.
+    void gatherNear(const Coord3 &origin, detail::NearList &list) const;
+    void nearValues(const Coord3 &origin, const detail::NearList &list, float *density) const;
     void sumNear(const detail::NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
                  Vec3f *color) const;
 

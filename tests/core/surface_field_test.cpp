@@ -429,3 +429,42 @@ TEST(MetaballField, CheaperCutoffsChosenAfterPlanningStillMatchAlgorithm1) {
     EXPECT_LE(c.maxError, params.tolerance * params.iso / params.isoRangeFactor);
     EXPECT_LE(c.maxError, estimate);
 }
+
+// Blocks that bounds put wholly on one side of the iso range skip their near sums. Where a block
+// is skipped, its true values must lie within the bounds and on that side; where it is not, the
+// values must be evaluateBlock's, bit for bit.
+TEST(MetaballField, OneSidedBlocksSkipOnlyWhatTheirValuesConfirm) {
+    const Spheres s = slab(14, 14, 4, 5);
+    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
+        fc::SurfaceParams params;
+        params.kernel = kernel;
+        params.iso = kernel == fc::MetaballKernel::Inverse ? 40.0f : 8.0f;
+        const float voxel = 0.25f;
+        fc::MetaballField field(s.set(), params, voxel);
+        const float isoMin = params.iso / params.isoRangeFactor;
+        const float isoMax = params.iso * params.isoRangeFactor;
+        const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
+        field.prepare(plan.blocks, nullptr);
+        std::vector<float> exact(fc::kBlockVoxels), maybe(fc::kBlockVoxels);
+        int skipped = 0;
+        for (const auto &o : plan.blocks) {
+            field.evaluateBlock(o, exact.data(), nullptr);
+            const auto [lo, hi] = std::minmax_element(exact.begin(), exact.end());
+            fc::FieldBounds bounds;
+            const int side =
+                field.evaluateBlockUnlessOneSided(o, maybe.data(), isoMin, isoMax, &bounds);
+            if (side == 0) {
+                EXPECT_EQ(maybe, exact);
+                continue;
+            }
+            ++skipped;
+            EXPECT_LE(bounds.low, *lo);
+            EXPECT_GE(bounds.high, *hi);
+            if (side < 0)
+                EXPECT_LT(*hi, isoMin);
+            else
+                EXPECT_GT(*lo, isoMax);
+        }
+        EXPECT_GT(skipped, 0) << fc::kernelName(kernel);
+    }
+}
