@@ -79,6 +79,11 @@ Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
     return b;
 }
 
+// The voxel centres of the block at origin o.
+Box blockBox(const Coord3 &o, float h) {
+    return voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, h);
+}
+
 // Kernel value bound for one sphere (or a node of spheres) at squared distance d2.
 struct BoundKernel {
     MetaballKernel kernel;
@@ -792,15 +797,16 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
 double MetaballField::levelsEstimate() const {
     if (m_errorTerms.empty())
         return 0.0;
-    // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
-    auto term = [&](int l) {
-        return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
-    };
     const auto weights = errorWeights(m_kappa, m_coarseKappa, m_kernel.p);
-    double estimate = weights[0] * term(0);
+    double estimate = weights[0] * errorTerm(0);
     for (int l = 1; l < levelCount(); ++l)
-        estimate += weights[1] * term(l);
+        estimate += weights[1] * errorTerm(l);
     return estimate;
+}
+
+double MetaballField::errorTerm(int l) const {
+    // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
+    return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
 }
 
 void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
@@ -857,14 +863,11 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
     std::vector<std::optional<ChargeGrid>> charges(m_levels.size());
     m_anterpolated = 0;
     if (!m_errorTerms.empty()) {
-        auto term = [&](int l) {
-            return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
-        };
         const auto weights = errorWeights(m_kappa, m_coarseKappa, m_kernel.p);
         double estimate = levelsEstimate();
         if (m_tuning.anterpolateFrom > 0)
             for (int l = levelCount; l >= std::max(2, m_tuning.anterpolateFrom); --l) {
-                const double extra = weights[1] * term(l - 1);
+                const double extra = weights[1] * errorTerm(l - 1);
                 if (estimate + extra > errorBudget(m_params))
                     break;
                 auto grid = anterpolate(m_tree.spheres(), centreBox(), m_levels[l - 1]->spacing);
@@ -1002,10 +1005,9 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
 
 void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
     thread_local NearList colors;
-    const Box blockBox =
-        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    const Box box = blockBox(o, m_h);
     colors.clear();
-    m_tree.gather(blockBox, maxRadius() + m_params.colorReach, colors, true);
+    m_tree.gather(box, maxRadius() + m_params.colorReach, colors, true);
     static_assert(kBlockDim == 8, "colorRow fills rows of 8 voxels");
     if (colors.size() == 0) {
         std::fill(color, color + kBlockVoxels, m_params.initialColor);
@@ -1055,8 +1057,7 @@ int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, 
     // softening's order is even (its Taylor remainder is then positive).
     thread_local NearList block;
     gatherNear(o, block);
-    const Box box =
-        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    const Box box = blockBox(o, m_h);
     const float a2 = m_a0 * m_a0;
     // With an even order also at least k(dmax) - gamma_a0(dmin) where the block lies within a0.
     const bool evenOrder = m_tuning.softeningOrder % 2 == 0;
@@ -1088,18 +1089,16 @@ int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, 
 }
 
 void MetaballField::gatherNear(const Coord3 &o, NearList &block) const {
-    const Box blockBox =
-        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    const Box box = blockBox(o, m_h);
     block.clear();
-    m_tree.gather(blockBox, m_a0, block, false);
+    m_tree.gather(box, m_a0, block, false);
 }
 
 void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *density) const {
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
-    const Box blockBox =
-        voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, m_h);
+    const Box box = blockBox(o, m_h);
     // Each sphere's gap to the lower and upper half of the block along each axis gives its
     // distance to all eight octants in one pass.
     constexpr int kHalf = kBlockDim / 2;
@@ -1111,8 +1110,8 @@ void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *de
         float gap2[3][2];
         for (int k = 0; k < 3; ++k) {
             const float lowHi = (o[k] + kHalf - 1) * m_h, highLo = (o[k] + kHalf) * m_h;
-            const float low = std::max({blockBox.lo[k] - c[k], c[k] - lowHi, 0.0f});
-            const float high = std::max({highLo - c[k], c[k] - blockBox.hi[k], 0.0f});
+            const float low = std::max({box.lo[k] - c[k], c[k] - lowHi, 0.0f});
+            const float high = std::max({highLo - c[k], c[k] - box.hi[k], 0.0f});
             gap2[k][0] = low * low;
             gap2[k][1] = high * high;
         }

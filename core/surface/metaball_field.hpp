@@ -144,6 +144,8 @@ class MetaballField {
     void planLevels(std::span<const Coord3> blockOrigins);
     // The a priori estimate for the planned levels: level 1's term and each coarser level's.
     double levelsEstimate() const;
+    // errorScale()'s term of cutoff a_l for the chosen cutoffs (non-empty m_errorTerms).
+    double errorTerm(int l) const;
     // The spheres within the near cutoff of a block, and the block's near sums from them.
     void gatherNear(const Coord3 &origin, detail::NearList &list) const;
     void nearValues(const Coord3 &origin, const detail::NearList &list, float *density) const;
