@@ -475,8 +475,12 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         std::size_t chosen = 0;
         if (best) {
             chosen = *best;
-            // The cheaper ones may still fit with fewer levels than this estimate assumes.
-            m_cheaper.assign(candidates.begin(), candidates.begin() + std::ptrdiff_t(chosen));
+            // The cheaper ones may still fit with fewer levels than this estimate assumes:
+            // prepare() tries them again with the levels planned, for a few thousand spheres
+            // (each try costs a plan and the weight within its cutoffs, under a millisecond
+            // there, but about 15 ms at 50,000 spheres, for no cheaper choice on the bench's sets).
+            if (sphereCount() <= kDirectBoundsSpheres)
+                m_cheaper.assign(candidates.begin(), candidates.begin() + std::ptrdiff_t(chosen));
         } else {
             for (std::size_t i = 0; i < candidates.size(); ++i) {
                 estimate(candidates[i], std::numeric_limits<double>::infinity());
@@ -825,14 +829,9 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
     // The constructor's estimate assumed coarse levels up to twice the span; with the levels
     // these blocks need (often fewer), a cheaper pair of cutoffs may fit the budget. The cheapest
     // that does is the choice (level 1's term alone, a lower bound, skips most without planning).
-    // Only for a few thousand spheres: each try costs a plan and the weight within its cutoffs,
-    // under a millisecond there, but about 15 ms at 50,000 spheres, for no cheaper choice on the
-    // bench's sets.
     const CutoffChoice chosen{m_kappa, m_coarseKappa, m_ratio1, m_estimatedError, 0.0};
     const double budget = errorBudget(m_params);
     bool cheaper = false;
-    if (sphereCount() > kDirectBoundsSpheres)
-        m_cheaper.clear();
     for (const CutoffChoice &c : m_cheaper) {
         applyChoice(c);
         std::vector<double> terms;
