@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 constexpr const char* kUsage =
     "usage: faultline generate --demo\n"
     "       faultline generate [--kind extension] [--size small|medium|large] [options] --out DIR\n"
-    "       faultline generate --kind planes [--faults N] [options] --out DIR\n"
+    "       faultline generate --kind planes [--faults N | --network] [options] --out DIR\n"
     "\n"
     "  --demo              build the demo model once into the per-user data folder and print its\n"
     "                      path (later runs reuse it)\n"
@@ -50,6 +50,10 @@ constexpr const char* kUsage =
     "  --stretch-width W   stretch the base uniformly over this fraction instead (default 0)\n"
     "  --columns NX --layers NY --rows NZ    lattice size (overrides --size)\n"
     "planes options:\n"
+    "  --network           a fault network instead of random faults: an X crossing, a fault\n"
+    "                      ending against another at depth (V), a listric fault (70 to 30\n"
+    "                      degrees), 0.3% noise spheres; ~154k spheres. The truth JSON lists\n"
+    "                      the ids two zones share (\"shared\") and the noise ids\n"
     "  --faults N          number of faults (default 3)\n"
     "  --dip D             dip of every fault in degrees (default: random 45-75)\n"
     "  --dip-direction A   dip direction of every fault, degrees clockwise from north\n"
@@ -96,7 +100,7 @@ void checkKnown(const Args& args) {
         "--friction",      "--extension",     "--velocity",      "--discontinuities",
         "--stretch-width", "--columns",       "--layers",        "--rows",
         "--faults",        "--dip",           "--dip-direction", "--throw"};
-    static const std::vector<std::string> flags = {"--demo", "--gzip"};
+    static const std::vector<std::string> flags = {"--demo", "--gzip", "--network"};
     for (std::size_t i = 0; i < args.size(); ++i) {
         if (std::find(valued.begin(), valued.end(), args[i]) != valued.end()) {
             if (i + 1 >= args.size())
@@ -207,6 +211,11 @@ int runExtension(const Parsed& a, const fs::path& out) {
 
 int runPlanes(const Parsed& a, const fs::path& out) {
     core::PlanesModelOptions o;
+    if (a.flag("--network")) {
+        if (a.value("--size") || a.value("--faults") || a.value("--dip") || a.value("--dip-direction") || a.value("--throw"))
+            throw std::invalid_argument("--network sets the faults and the size; drop --size, --faults, --dip, --dip-direction and --throw");
+        o = core::planesNetworkOptions();
+    }
     if (auto v = a.value("--size")) {
         const auto size = parseSize(*v);
         o = core::planesOptionsFor(size);

@@ -1,5 +1,7 @@
-// Fault candidates: connected components of the visible spheres of a frame, two spheres being
-// neighbours when |c_i - c_j| < link * (r_i + r_j). Largest first; the user accepts them as faults.
+// Fault candidates: groups of the visible spheres of a frame that the user accepts as faults.
+// Network (the default): faults followed by their orientation, apart where they cross or end
+// against each other (fault_network.hpp). Connected: components of spheres linked when
+// |c_i - c_j| < link * (r_i + r_j). Largest first.
 #pragma once
 
 #include "core/faults/fault.hpp"
@@ -19,9 +21,20 @@ inline constexpr double kDefaultCandidateLink = 1.1;
 inline constexpr std::size_t kDefaultCandidateMinSize = 10;
 inline constexpr std::string_view kDefaultCandidatePrefix = "C";
 
+inline constexpr double kDefaultCandidateAngle = 20.0; // degrees
+
+enum class CandidateMethod { Network, Connected };
+
 struct CandidateOptions {
     double link = kDefaultCandidateLink; // k: neighbours when distance < k (r_i + r_j); > 0
-    std::size_t minSize = 1;             // components with fewer spheres are dropped
+    std::size_t minSize = 1;             // groups with fewer spheres are dropped
+    CandidateMethod method = CandidateMethod::Network;
+    // Network only. angle: largest change of orientation between linked spheres of one fault
+    // (and between two pieces joined across a crossing fault), degrees in (0, 90). radius: the
+    // neighbourhood whose plane fit gives a sphere its orientation, world units; 0 picks
+    // 4 mean sphere diameters.
+    double angle = kDefaultCandidateAngle;
+    double radius = 0;
 };
 
 struct Candidate {
@@ -37,12 +50,21 @@ struct CandidateSet {
     std::vector<std::int32_t> rowLabel;
 };
 
-// Components of the spheres whose visible[row] != 0 (visible.size() == frame.size(), asserted).
-// A sphere with a non-finite centre or radius has no neighbours. Uniform cell grid (cell =
-// the largest neighbour distance among visible spheres), lock-free union-find, parallel (TBB).
-// Throws std::invalid_argument when options.link is not a finite number > 0.
+// Candidates among the spheres whose visible[row] != 0 (visible.size() == frame.size(),
+// asserted). Connected: a sphere with a non-finite centre or radius stands alone; uniform cell
+// grid, lock-free union-find, parallel (TBB). Network: such spheres and scattered ones that
+// join no fault are left out. Throws std::invalid_argument when link is not a finite number
+// > 0, or (network) angle is not in (0, 90) or radius is negative.
 CandidateSet findCandidates(const Frame& frame, std::span<const std::uint8_t> visible,
                             const CandidateOptions& options = {});
+
+// Per frame row a group number in [0, groupCount) or -1: groups as candidates, ranked.
+CandidateSet candidatesFromGroups(const Frame& frame, std::span<const std::int32_t> groupOfRow,
+                                  std::size_t groupCount, std::size_t minSize);
+
+// "network" | "connected", and back; parseCandidateMethod throws std::invalid_argument.
+std::string_view candidateMethodName(CandidateMethod method);
+CandidateMethod parseCandidateMethod(std::string_view name);
 
 // The n-th of a sequence of distinct colours (golden-angle hues), for showing candidates.
 std::array<float, 3> candidateColor(std::size_t index);

@@ -74,6 +74,21 @@ CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
     if (!(options.link > 0) || minSize < 1)
         throw CommandError(std::string(op) + ": \"link\" must be > 0 and \"min_size\" >= 1");
     options.minSize = static_cast<std::size_t>(minSize);
+    if (auto method = args::optionalString(cmd, "method")) {
+        try {
+            options.method = parseCandidateMethod(*method);
+        } catch (const std::invalid_argument& e) {
+            throw CommandError(std::string(op) + ": \"method\" " + e.what());
+        }
+    }
+    options.angle = args::optionalNumber(cmd, "angle").value_or(kDefaultCandidateAngle);
+    options.radius = args::optionalNumber(cmd, "radius").value_or(0.0);
+    if (!(options.angle > 0 && options.angle < 90))
+        throw CommandError(std::string(op) + ": \"angle\" must lie between 0 and 90 degrees");
+    if (!(options.radius >= 0))
+        throw CommandError(std::string(op) + ": \"radius\" must be >= 0 (0: automatic)");
+    if (options.method == CandidateMethod::Connected && (cmd.contains("angle") || cmd.contains("radius")))
+        throw CommandError(std::string(op) + ": \"angle\" and \"radius\" belong to the network method");
     return options;
 }
 
@@ -237,8 +252,9 @@ void registerFaultOps(OpTable& ops) {
         return inverse;
     });
     addStateOp(ops, "fault.candidates", [](Session& s, const Json& cmd) -> Json {
-        // Connected components of the visible spheres, each accepted as a fault, largest first.
-        args::onlyFields(cmd, {"link", "min_size", "prefix"});
+        // Candidates of the visible spheres (network by default, or connected components),
+        // each accepted as a fault, largest first.
+        args::onlyFields(cmd, {"link", "min_size", "prefix", "method", "angle", "radius"});
         const CandidateOptions options = candidateOptionsFrom(cmd, "fault.candidates");
         const std::string prefix =
             args::optionalString(cmd, "prefix").value_or(std::string(kDefaultCandidatePrefix));
@@ -248,8 +264,10 @@ void registerFaultOps(OpTable& ops) {
         const CandidateSet set = findCandidates(*frame, s.visibility().mask, options);
         if (set.candidates.empty())
             throw CommandError("fault.candidates: no group of at least " +
-                               std::to_string(options.minSize) +
-                               " linked visible spheres");
+                               std::to_string(options.minSize) + " visible spheres" +
+                               (options.method == CandidateMethod::Network
+                                    ? " that follows a fault (try \"method\": \"connected\")"
+                                    : " linked"));
         Json batch = Json::array();
         for (const Fault& f : faultsFromCandidates(set.candidates, prefix)) {
             if (s.state().fault(f.name))
@@ -260,17 +278,17 @@ void registerFaultOps(OpTable& ops) {
         return s.execute({{"op", "batch"}, {"commands", batch}});
     });
     addStateOp(ops, "fault.split", [](Session& s, const Json& cmd) -> Json {
-        // A fault's members in the current frame, split into connected pieces: name.1 (largest),
-        // name.2, ... Members absent from this frame stay with the largest piece.
-        args::onlyFields(cmd, {"name", "link"});
+        // A fault's members in the current frame, split into pieces: the faults it holds (as
+        // fault.candidates' network method sees them: apart at junctions), or its connected
+        // pieces with "method": "connected". name.1 (largest), name.2, ... Members absent from
+        // this frame, and members that follow no fault, stay with the largest piece.
+        args::onlyFields(cmd, {"name", "link", "method", "angle", "radius"});
         const Fault& fault = faultOf(s, cmd, "fault.split");
         auto frame = s.currentFrame();
         if (!frame)
             throw CommandError("fault.split: no data is open");
-        CandidateOptions options;
-        options.link = args::optionalNumber(cmd, "link").value_or(1.1);
-        if (!(options.link > 0))
-            throw CommandError("fault.split: \"link\" must be > 0");
+        CandidateOptions options = candidateOptionsFrom(cmd, "fault.split");
+        options.minSize = options.method == CandidateMethod::Network ? kDefaultCandidateMinSize : 1;
         std::vector<std::uint8_t> members(frame->size(), 0);
         std::vector<std::int64_t> absent;
         for (std::int64_t id : fault.ids) {
@@ -281,8 +299,13 @@ void registerFaultOps(OpTable& ops) {
         }
         const CandidateSet set = findCandidates(*frame, members, options);
         if (set.candidates.size() < 2)
-            throw CommandError("fault.split: \"" + fault.name + "\" is one connected piece at link " +
-                               std::to_string(options.link));
+            throw CommandError("fault.split: \"" + fault.name + "\" is one " +
+                               (options.method == CandidateMethod::Network
+                                    ? std::string("fault (no junction splits it)")
+                                    : "connected piece at link " + std::to_string(options.link)));
+        for (std::int64_t id : fault.ids)
+            if (auto row = frame->rowOf(id); row && set.rowLabel[*row] < 0)
+                absent.push_back(id);
         const std::string name = fault.name;
         Json batch = Json::array({{{"op", "fault.delete"}, {"name", name}}});
         for (std::size_t k = 0; k < set.candidates.size(); ++k) {

@@ -82,6 +82,92 @@ double discGap(const PlaneFaultSpec& a, const Vec& na, const PlaneFaultSpec& b, 
     return best;
 }
 
+// Where a point lies relative to a fault's surface: signed distance h (positive on the side the
+// upward normal points to, the hanging wall), distance rho from the centre within the surface,
+// and the dip of the surface at the nearest point (degrees).
+struct SurfaceCoords {
+    double h = 0, rho = 0, dip = 0;
+};
+
+class FaultSurface {
+  public:
+    explicit FaultSurface(const PlaneFaultSpec& s) : m_spec(s) {
+        m_normal = planeNormalOf(s.dip, s.dipDirection);
+        if (!s.listricDip)
+            return;
+        // The listric trace in the vertical section along the dip direction: (u, z) from arc
+        // length -L (top) to +L (bottom), the dip varying evenly with arc length.
+        const double a = s.dipDirection * kDeg;
+        m_alongDip = {std::sin(a), std::cos(a), 0};
+        m_alongStrike = {-std::cos(a), std::sin(a), 0};
+        const double length = s.radius * 1.25, step = 0.25;
+        const int half = static_cast<int>(std::ceil(length / step));
+        auto dipAt = [&](double arc) {
+            const double f = std::clamp((arc + s.radius) / (2 * s.radius), 0.0, 1.0);
+            return s.dip + (*s.listricDip - s.dip) * f;
+        };
+        std::vector<std::array<double, 3>> down{{0, 0, 0}}, up{{0, 0, 0}}; // u, z, arc
+        for (int k = 1; k <= half; ++k) {
+            const auto& pd = down.back();
+            const double dd = dipAt(pd[2] + step / 2) * kDeg;
+            down.push_back({pd[0] + std::cos(dd) * step, pd[1] - std::sin(dd) * step, pd[2] + step});
+            const auto& pu = up.back();
+            const double du = dipAt(pu[2] - step / 2) * kDeg;
+            up.push_back({pu[0] - std::cos(du) * step, pu[1] + std::sin(du) * step, pu[2] - step});
+        }
+        m_trace.assign(up.rbegin(), up.rend());
+        m_trace.insert(m_trace.end(), down.begin() + 1, down.end());
+        m_traceDip.resize(m_trace.size());
+        for (std::size_t k = 0; k < m_trace.size(); ++k)
+            m_traceDip[k] = dipAt(m_trace[k][2]);
+    }
+
+    SurfaceCoords at(const Vec& p) const {
+        const Vec d = sub(p, m_spec.centre);
+        SurfaceCoords c;
+        if (!m_spec.listricDip) {
+            c.h = dotv(d, m_normal);
+            const Vec inPlane = addScaled(d, -c.h, m_normal);
+            c.rho = std::sqrt(dotv(inPlane, inPlane));
+            c.dip = m_spec.dip;
+            return c;
+        }
+        const double u = dotv(d, m_alongDip), z = d[2], w = dotv(d, m_alongStrike);
+        double best = 1e300;
+        for (std::size_t k = 0; k + 1 < m_trace.size(); ++k) {
+            const auto& p0 = m_trace[k];
+            const auto& p1 = m_trace[k + 1];
+            const double eu = p1[0] - p0[0], ez = p1[1] - p0[1];
+            const double t = std::clamp(((u - p0[0]) * eu + (z - p0[1]) * ez) / (eu * eu + ez * ez), 0.0, 1.0);
+            const double qu = u - (p0[0] + t * eu), qz = z - (p0[1] + t * ez);
+            const double dist2 = qu * qu + qz * qz;
+            if (dist2 < best) {
+                best = dist2;
+                const double dip = (m_traceDip[k] + t * (m_traceDip[k + 1] - m_traceDip[k])) * kDeg;
+                c.h = qu * std::sin(dip) + qz * std::cos(dip); // along the upward normal
+                c.dip = dip / kDeg;
+                const double arc = p0[2] + t * (p1[2] - p0[2]);
+                c.rho = std::sqrt(arc * arc + w * w);
+            }
+        }
+        return c;
+    }
+
+    // The direction a hanging wall slides at a point whose surface dip is `dip`.
+    Vec downDipAt(double dip) const { return downDip(dip, m_spec.dipDirection); }
+
+  private:
+    static Vec planeNormalOf(double dip, double dipDirection) {
+        const double d = dip * kDeg, a = dipDirection * kDeg;
+        return {std::sin(d) * std::sin(a), std::sin(d) * std::cos(a), std::cos(d)};
+    }
+    PlaneFaultSpec m_spec;
+    Vec m_normal{0, 0, 1};
+    Vec m_alongDip{1, 0, 0}, m_alongStrike{0, 1, 0};
+    std::vector<std::array<double, 3>> m_trace; // u, z, arc length
+    std::vector<double> m_traceDip;
+};
+
 void check(const PlanesModelOptions& o) {
     auto need = [](bool ok, const std::string& what) {
         if (!ok)
@@ -101,7 +187,10 @@ void check(const PlanesModelOptions& o) {
         need(f.dip > 0 && f.dip <= 90, "a fault's dip must be in (0, 90]");
         need(f.radius > 0 && f.throwLength >= 0, "a fault needs radius > 0 and throw >= 0");
         need(f.appearsAt >= 0 && f.appearsAt < 1, "a fault's start must be in [0, 1)");
+        need(f.endsAgainst < static_cast<int>(o.faults.size()), "a fault ends against a fault that is not there");
+        need(!f.listricDip || (*f.listricDip > 0 && *f.listricDip <= 90), "a listric dip must be in (0, 90]");
     }
+    need(o.noiseFraction >= 0 && o.noiseFraction < 0.5, "the noise fraction must be in [0, 0.5)");
 }
 
 } // namespace
@@ -196,6 +285,50 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
             std::min(lat.rowOf[i] * options.layerBands / options.rows, options.layerBands - 1);
     }
 
+    // Each sphere's place relative to each fault's surface, from its initial position, and
+    // whether the fault may hold it (ends-against side, clip box).
+    struct Placed {
+        std::vector<SurfaceCoords> at;
+        std::vector<std::uint8_t> allowed;
+    };
+    std::vector<FaultSurface> surfaces;
+    for (const auto& f : model.faults)
+        surfaces.emplace_back(f.spec);
+    std::vector<Placed> placed(model.faults.size());
+    for (std::size_t k = 0; k < model.faults.size(); ++k) {
+        placed[k].at.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            placed[k].at[i] = surfaces[k].at(lat.positions[i]);
+    }
+    for (std::size_t k = 0; k < model.faults.size(); ++k) {
+        const PlaneFaultSpec& s = model.faults[k].spec;
+        placed[k].allowed.assign(n, 1);
+        const double side = s.endsAgainst >= 0 ? surfaces[std::size_t(s.endsAgainst)].at(s.centre).h : 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec& p = lat.positions[i];
+            for (int a = 0; a < 3; ++a)
+                if (p[a] < s.clipLo[a] || p[a] > s.clipHi[a])
+                    placed[k].allowed[i] = 0;
+            if (s.endsAgainst >= 0 && placed[std::size_t(s.endsAgainst)].at[i].h * side < 0)
+                placed[k].allowed[i] = 0;
+        }
+    }
+    // Noise: scattered spheres in no fault's final zone.
+    std::vector<std::uint8_t> isNoise(n, 0);
+    if (options.noiseFraction > 0) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const bool draw = rng.uniform() < options.noiseFraction;
+            bool member = false;
+            for (std::size_t k = 0; k < model.faults.size() && !member; ++k)
+                member = placed[k].allowed[i] && placed[k].at[i].rho <= model.faults[k].spec.radius &&
+                         std::fabs(placed[k].at[i].h) <= options.halfThickness;
+            if (draw && !member) {
+                isNoise[i] = 1;
+                model.noise.push_back(static_cast<std::int64_t>(i) + 1);
+            }
+        }
+    }
+
     const double fadeDistance = options.halfThickness + 0.5 * options.minGap;
     const int frames = options.frames;
     for (int fr = 0; fr < frames; ++fr) {
@@ -203,21 +336,24 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
         std::vector<Vec> pos = lat.positions;
         std::vector<float> strain = backgroundStrain;
         std::vector<std::int32_t> broken(n, 0);
-        for (auto& f : model.faults) {
+        for (std::size_t i = 0; i < n; ++i)
+            if (isNoise[i]) {
+                strain[i] = zoneStrain[i];
+                broken[i] = zoneBroken[i];
+            }
+        for (std::size_t k = 0; k < model.faults.size(); ++k) {
+            PlaneFault& f = model.faults[k];
             const PlaneFaultSpec& s = f.spec;
             const double grown = std::clamp((t - s.appearsAt) / (1.0 - s.appearsAt), 0.0, 1.0);
             const double radius = grown * s.radius, slip = grown * f.slip;
-            const Vec dd = downDip(s.dip, s.dipDirection);
             std::vector<std::int64_t> members;
             if (radius > 0) {
                 for (std::size_t i = 0; i < n; ++i) {
-                    const Vec d = sub(lat.positions[i], s.centre);
-                    const double h = dotv(d, f.normal);
-                    const Vec inPlane = addScaled(d, -h, f.normal);
-                    const double rho = std::sqrt(dotv(inPlane, inPlane));
-                    if (rho > radius)
+                    const SurfaceCoords& c = placed[k].at[i];
+                    if (c.rho > radius || !placed[k].allowed[i])
                         continue;
-                    const double taper = 1.0 - (rho / radius) * (rho / radius);
+                    const double taper = 1.0 - (c.rho / radius) * (c.rho / radius);
+                    const double h = c.h;
                     if (std::fabs(h) <= options.halfThickness) {
                         members.push_back(static_cast<std::int64_t>(i) + 1);
                         strain[i] = std::max(strain[i],
@@ -228,7 +364,7 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
                     // nears another zone), fading out before the gap to any other zone.
                     if (h > 0 && h < fadeDistance) {
                         const double fade = 1.0 - h / fadeDistance;
-                        pos[i] = addScaled(pos[i], slip * taper * fade, dd);
+                        pos[i] = addScaled(pos[i], slip * taper * fade, surfaces[k].downDipAt(c.dip));
                     }
                 }
             }
@@ -283,7 +419,45 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
         frame.finalize();
         model.frames.push_back(std::move(frame));
     }
+    std::vector<std::int64_t> all;
+    for (const auto& f : model.faults)
+        if (!f.members.empty())
+            all.insert(all.end(), f.members.back().begin(), f.members.back().end());
+    std::sort(all.begin(), all.end());
+    for (std::size_t i = 1; i < all.size(); ++i)
+        if (all[i] == all[i - 1] && (model.shared.empty() || model.shared.back() != all[i]))
+            model.shared.push_back(all[i]);
     return model;
+}
+
+PlanesModelOptions planesNetworkOptions() {
+    PlanesModelOptions o;
+    o.columns = 64;
+    o.layers = 60;
+    o.rows = 40;
+    o.frames = 4;
+    o.noiseFraction = 0.003;
+    const double hi = 1e300;
+    auto fault = [&](double dip, double dipDirection, std::array<double, 3> centre, double yLo, double yHi) {
+        PlaneFaultSpec f;
+        f.dip = dip;
+        f.dipDirection = dipDirection;
+        f.centre = centre;
+        f.radius = 80;
+        f.throwLength = 2;
+        f.clipLo = {-hi, yLo, -hi};
+        f.clipHi = {hi, yHi, hi};
+        return f;
+    };
+    o.faults.push_back(fault(60, 90, {34, 28, 36}, -hi, 56));  // F1: X with F2
+    o.faults.push_back(fault(60, 270, {34, 28, 36}, -hi, 56)); // F2
+    o.faults.push_back(fault(60, 90, {84, 28, 40}, -hi, 56));  // F3: F4 ends against it
+    o.faults.push_back(fault(65, 270, {104, 28, 52}, -hi, 56));
+    o.faults.back().endsAgainst = 2;                            // F4: a V with F3 at depth
+    o.faults.push_back(fault(70, 90, {50, 80, 36}, 62, hi));    // F5: listric, 70 to 30
+    o.faults.back().listricDip = 30;
+    o.faults.back().radius = 45;
+    return o;
 }
 
 std::string planesTruthJson(const PlanesModel& model) {
@@ -311,10 +485,16 @@ std::string planesTruthJson(const PlanesModel& model) {
         jf["slip"] = f.slip;
         jf["radius"] = f.spec.radius;
         jf["first_frame"] = f.firstFrame;
+        if (f.spec.endsAgainst >= 0)
+            jf["ends_against"] = model.faults[std::size_t(f.spec.endsAgainst)].name;
+        if (f.spec.listricDip)
+            jf["listric_dip"] = *f.spec.listricDip;
         jf["members"] = f.members;
         faults.push_back(std::move(jf));
     }
     j["faults"] = std::move(faults);
+    j["shared"] = model.shared;
+    j["noise"] = model.noise;
     return j.dump(1);
 }
 

@@ -23,6 +23,15 @@ struct PlaneFaultSpec {
     double throwLength = 6; // final vertical throw at the centre, in radii
     double radius = 20;     // final radius of the patch in its plane
     double appearsAt = 0;   // fraction of the run (0..1) at which the fault starts to grow
+    // Networks. endsAgainst: index of another fault (0-based) this one ends against: members
+    // lie only on the side of that fault's surface where this fault's centre lies (a T or Y
+    // junction; two faults ending against each other at depth make a V). listricDip: when set,
+    // the dip runs from `dip` at the top of the patch to this at its bottom (a listric fault,
+    // curved along dip, straight along strike). clip: members only inside [clipLo, clipHi].
+    int endsAgainst = -1;
+    std::optional<double> listricDip;
+    std::array<double, 3> clipLo{-1e300, -1e300, -1e300};
+    std::array<double, 3> clipHi{1e300, 1e300, 1e300};
 };
 
 struct PlanesModelOptions {
@@ -42,10 +51,18 @@ struct PlanesModelOptions {
     double halfThickness = 1.5; // a sphere is a member when its centre lies this close to the patch
     double minGap = 6.0;        // random faults keep at least this far apart (zone to zone)
     int layerBands = 10;
+    // Scattered spheres that look broken (strain and broken bonds of a zone) but belong to no
+    // fault, as a fraction of all spheres.
+    double noiseFraction = 0;
 };
 
 // small: ~7k spheres, medium: ~34k, large: ~270k.
 PlanesModelOptions planesOptionsFor(ModelSize size);
+
+// A fault network in ~154k spheres (128 x 98 x 69 radii): a conjugate pair crossing in an X
+// (F1, F2), a fault (F4) ending at depth against another (F3) in a V/Y, a listric fault (F5,
+// dip 70 to 30), 0.3% scattered noise spheres; throw 2 radii each.
+PlanesModelOptions planesNetworkOptions();
 
 struct PlaneFault {
     std::string name; // F1, F2, ...
@@ -63,6 +80,8 @@ struct PlanesModel {
     PlanesModelOptions options;
     std::vector<Frame> frames; // columns as extensionDumpColumns()
     std::vector<PlaneFault> faults;
+    std::vector<std::int64_t> shared; // ids in two or more faults' final members, sorted
+    std::vector<std::int64_t> noise;  // scattered broken spheres in no fault, sorted
 };
 
 // Upward unit normal of a plane with this dip and dip direction (degrees).
@@ -75,7 +94,8 @@ std::array<double, 3> planeNormal(double dip, double dipDirection);
 PlanesModel generatePlanesModel(const PlanesModelOptions& options);
 
 // The ground truth as JSON text: per fault its plane (point, normal), dip, dip_direction,
-// strike, throw, slip, radius and member ids per frame.
+// strike, throw, slip, radius, ends_against and listric_dip when set, and member ids per frame;
+// "shared" (ids of two zones) and "noise" ids.
 std::string planesTruthJson(const PlanesModel& model);
 
 struct PlanesModelFiles {

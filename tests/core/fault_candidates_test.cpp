@@ -22,6 +22,14 @@ std::vector<std::vector<std::int64_t>> idsOf(const CandidateSet& set) {
     return out;
 }
 std::vector<std::uint8_t> allVisible(const Frame& f) { return std::vector<std::uint8_t>(f.size(), 1); }
+// These tests are about the connected method: linking by distance alone.
+CandidateOptions connected(double link = kDefaultCandidateLink, std::size_t minSize = 1) {
+    CandidateOptions o;
+    o.method = CandidateMethod::Connected;
+    o.link = link;
+    o.minSize = minSize;
+    return o;
+}
 
 // O(n^2) reference: the same neighbour rule, components as sorted id lists in a set.
 std::set<std::vector<std::int64_t>> bruteForce(const Frame& f, const std::vector<std::uint8_t>& vis,
@@ -60,7 +68,7 @@ std::set<std::vector<std::int64_t>> bruteForce(const Frame& f, const std::vector
 TEST(FaultCandidates, TwoSeparatedClustersGiveTwoCandidatesLargestFirst) {
     const Frame f = frameOf({{10, 0, 0, 0}, {11, 1, 0, 0}, {12, 2, 0, 0}, // a line of 3
                              {20, 10, 0, 0}, {21, 10, 1, 0}});             // a pair, far away
-    const CandidateSet set = findCandidates(f, allVisible(f));
+    const CandidateSet set = findCandidates(f, allVisible(f), connected());
     ASSERT_EQ(set.candidates.size(), 2u);
     EXPECT_EQ(set.candidates[0].ids, (std::vector<std::int64_t>{10, 11, 12}));
     EXPECT_EQ(set.candidates[1].ids, (std::vector<std::int64_t>{20, 21}));
@@ -70,21 +78,21 @@ TEST(FaultCandidates, TwoSeparatedClustersGiveTwoCandidatesLargestFirst) {
 TEST(FaultCandidates, LinkDistanceIsStrict) {
     // radius 0.5 each: neighbours when distance < link x 1.0
     const Frame touching = frameOf({{1, 0, 0, 0}, {2, 1, 0, 0}});
-    EXPECT_EQ(findCandidates(touching, allVisible(touching), {1.0, 1}).candidates.size(), 2u);
-    EXPECT_EQ(findCandidates(touching, allVisible(touching), {1.001, 1}).candidates.size(), 1u);
+    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.0, 1)).candidates.size(), 2u);
+    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.001, 1)).candidates.size(), 1u);
 
     const Frame inside = frameOf({{1, 0, 0, 0}, {2, 0, 1.0999, 0}});
     const Frame outside = frameOf({{1, 0, 0, 0}, {2, 0, 0, 1.1001}});
-    EXPECT_EQ(findCandidates(inside, allVisible(inside)).candidates.size(), 1u); // default 1.1
-    EXPECT_EQ(findCandidates(outside, allVisible(outside)).candidates.size(), 2u);
+    EXPECT_EQ(findCandidates(inside, allVisible(inside), connected()).candidates.size(), 1u); // default 1.1
+    EXPECT_EQ(findCandidates(outside, allVisible(outside), connected()).candidates.size(), 2u);
 }
 
 TEST(FaultCandidates, LinkDistanceUsesBothRadii) {
     // 1.1 x (1.0 + 0.25) = 1.375
     const Frame near = frameOf({{1, 0, 0, 0, 1.0}, {2, 1.3, 0, 0, 0.25}});
     const Frame far = frameOf({{1, 0, 0, 0, 1.0}, {2, 1.45, 0, 0, 0.25}});
-    EXPECT_EQ(findCandidates(near, allVisible(near)).candidates.size(), 1u);
-    EXPECT_EQ(findCandidates(far, allVisible(far)).candidates.size(), 2u);
+    EXPECT_EQ(findCandidates(near, allVisible(near), connected()).candidates.size(), 1u);
+    EXPECT_EQ(findCandidates(far, allVisible(far), connected()).candidates.size(), 2u);
 }
 
 TEST(FaultCandidates, MinSizeDropsSmallComponentsAndHiddenSpheresAreUnlabelled) {
@@ -98,20 +106,20 @@ TEST(FaultCandidates, MinSizeDropsSmallComponentsAndHiddenSpheresAreUnlabelled) 
     const Frame f = frameOf(s);
     std::vector<std::uint8_t> vis(f.size(), 1);
     vis.back() = 0;
-    const CandidateSet set = findCandidates(f, vis, {1.1, 3});
+    const CandidateSet set = findCandidates(f, vis, connected(1.1, 3));
     ASSERT_EQ(set.candidates.size(), 2u);
     EXPECT_EQ(set.candidates[0].size(), 5u);
     EXPECT_EQ(set.candidates[1].ids, (std::vector<std::int64_t>{200, 201, 202}));
     EXPECT_EQ(set.rowLabel[8], -1); // too small
     EXPECT_EQ(set.rowLabel[9], -1); // hidden
-    EXPECT_EQ(findCandidates(f, vis, {1.1, 6}).candidates.size(), 0u);
-    EXPECT_EQ(findCandidates(f, vis, {1.1, 0}).candidates.size(), 3u); // 0 acts as 1
+    EXPECT_EQ(findCandidates(f, vis, connected(1.1, 6)).candidates.size(), 0u);
+    EXPECT_EQ(findCandidates(f, vis, connected(1.1, 0)).candidates.size(), 3u); // 0 acts as 1
 }
 
 TEST(FaultCandidates, HiddenSphereBreaksAChain) {
     const Frame f = frameOf({{1, 0, 0, 0}, {2, 1, 0, 0}, {3, 2, 0, 0}});
     const std::vector<std::uint8_t> vis{1, 0, 1};
-    const CandidateSet set = findCandidates(f, vis);
+    const CandidateSet set = findCandidates(f, vis, connected());
     EXPECT_EQ(idsOf(set), (std::vector<std::vector<std::int64_t>>{{1}, {3}}));
 }
 
@@ -121,32 +129,32 @@ TEST(FaultCandidates, EqualSizesAreOrderedBySmallestIdWhateverTheRowOrder) {
     std::vector<Sphere> b(a.rbegin(), a.rend());
     const Frame fa = frameOf(a), fb = frameOf(b);
     const auto expected = std::vector<std::vector<std::int64_t>>{{3, 90}, {7, 50}, {60, 61}};
-    EXPECT_EQ(idsOf(findCandidates(fa, allVisible(fa))), expected);
-    EXPECT_EQ(idsOf(findCandidates(fb, allVisible(fb))), expected);
+    EXPECT_EQ(idsOf(findCandidates(fa, allVisible(fa), connected())), expected);
+    EXPECT_EQ(idsOf(findCandidates(fb, allVisible(fb), connected())), expected);
 }
 
 TEST(FaultCandidates, NonFiniteSpheresStandAlone) {
     const Frame f = frameOf({{1, 0, 0, 0}, {2, NAN, 0, 0}, {3, 1, 0, 0}, {4, 0.5, 0, 0, NAN}});
-    const CandidateSet set = findCandidates(f, allVisible(f));
+    const CandidateSet set = findCandidates(f, allVisible(f), connected());
     EXPECT_EQ(idsOf(set), (std::vector<std::vector<std::int64_t>>{{1, 3}, {2}, {4}}));
 }
 
 TEST(FaultCandidates, NothingVisibleGivesNothing) {
     const Frame f = frameOf({{1, 0, 0, 0}});
-    const CandidateSet set = findCandidates(f, std::vector<std::uint8_t>{0});
+    const CandidateSet set = findCandidates(f, std::vector<std::uint8_t>{0}, connected());
     EXPECT_TRUE(set.candidates.empty());
     EXPECT_EQ(set.rowLabel, (std::vector<std::int32_t>{-1}));
 }
 
 TEST(FaultCandidates, BadLinkFactorIsRejected) {
     const Frame f = frameOf({{1, 0, 0, 0}});
-    EXPECT_THROW(findCandidates(f, allVisible(f), {0.0, 1}), std::invalid_argument);
-    EXPECT_THROW(findCandidates(f, allVisible(f), {NAN, 1}), std::invalid_argument);
+    EXPECT_THROW(findCandidates(f, allVisible(f), connected(0.0, 1)), std::invalid_argument);
+    EXPECT_THROW(findCandidates(f, allVisible(f), connected(NAN, 1)), std::invalid_argument);
 }
 
 TEST(FaultCandidates, ZeroRadiiLinkNothing) {
     const Frame f = frameOf({{1, 0, 0, 0, 0.0}, {2, 0, 0, 0, 0.0}});
-    EXPECT_EQ(findCandidates(f, allVisible(f)).candidates.size(), 2u);
+    EXPECT_EQ(findCandidates(f, allVisible(f), connected()).candidates.size(), 2u);
 }
 
 TEST(FaultCandidates, RandomPolydisperseSpheresMatchBruteForce) {
@@ -160,7 +168,7 @@ TEST(FaultCandidates, RandomPolydisperseSpheresMatchBruteForce) {
     for (auto& v : vis)
         v = rng() % 4 != 0;
     for (double k : {0.8, 1.1, 1.6}) {
-        const CandidateSet set = findCandidates(f, vis, {k, 1});
+        const CandidateSet set = findCandidates(f, vis, connected(k, 1));
         const auto expected = bruteForce(f, vis, k);
         const auto got = idsOf(set);
         EXPECT_EQ(std::set<std::vector<std::int64_t>>(got.begin(), got.end()), expected) << k;
@@ -182,7 +190,7 @@ TEST(FaultCandidates, RandomPolydisperseSpheresMatchBruteForce) {
 
 TEST(FaultCandidates, AcceptingAllNamesThemWithThePrefixLargestFirst) {
     const Frame f = frameOf({{10, 0, 0, 0}, {11, 1, 0, 0}, {20, 10, 0, 0}});
-    const CandidateSet set = findCandidates(f, allVisible(f));
+    const CandidateSet set = findCandidates(f, allVisible(f), connected());
     const std::vector<Fault> faults = faultsFromCandidates(set.candidates, "C");
     ASSERT_EQ(faults.size(), 2u);
     EXPECT_EQ(faults[0].name, "C1");

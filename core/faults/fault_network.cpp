@@ -1,0 +1,573 @@
+#include "core/faults/fault_network.hpp"
+
+#include "core/faults/plane_fit.hpp"
+#include "core/faults/sphere_cells.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+namespace faultline::core::detail {
+
+namespace {
+
+// A sphere is grown through only when its neighbourhood is this planar (1 - l1 / l2).
+constexpr float kPlanarityMin = 0.6f;
+// Fewer neighbours than this within the radius: no orientation (scattered spheres).
+constexpr std::uint32_t kMinNeighbours = 8;
+// The running normal along a growth path keeps this share of its past at each step.
+constexpr float kRefKeep = 0.75f;
+// Regions smaller than this take no part in joining, and parts facing each other are fitted
+// only with at least this many spheres each.
+constexpr std::size_t kMinPiece = 4;
+constexpr std::size_t kMinFacing = 12;
+// The neighbourhood radius is grown to this many times the zones' typical thickness.
+constexpr double kRadiusOverThickness = 2.5;
+
+using F3 = std::array<float, 3>;
+
+float dotf(const F3& a, const F3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+F3 normalized(const F3& v) {
+    const float len = std::sqrt(dotf(v, v));
+    return len > 0 ? F3{v[0] / len, v[1] / len, v[2] / len} : F3{0, 0, 1};
+}
+
+// Union-find over regions (sequential), smaller index as root: deterministic.
+struct RegionSets {
+    std::vector<std::uint32_t> parent;
+    explicit RegionSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    std::uint32_t find(std::uint32_t x) {
+        while (parent[x] != x)
+            x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(std::uint32_t a, std::uint32_t b) {
+        a = find(a);
+        b = find(b);
+        if (a != b)
+            parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+// The thin axis of a section model, or -1: thinner than the neighbourhood's diameter and than a
+// quarter of the model's longest side, so a neighbourhood cannot see a plane's tilt along it.
+int thinAxis(const Frame& frame, double radius) {
+    int axis = 0;
+    double extent[3];
+    for (int a = 0; a < 3; ++a)
+        extent[a] = double(frame.centreMax()[a]) - frame.centreMin()[a];
+    for (int a = 1; a < 3; ++a)
+        if (extent[a] < extent[axis])
+            axis = a;
+    const double longest = std::max({extent[0], extent[1], extent[2]});
+    return extent[axis] < 2 * radius && extent[axis] < 0.25 * longest ? axis : -1;
+}
+
+struct Graph {
+    // Linked spheres (distance below link (ri + rj)) in CSR form over the slots of the link
+    // cells: neighbours of slot i are adj[start[i] .. start[i + 1]); component per slot.
+    std::vector<std::uint32_t> start, adj;
+    std::vector<std::uint32_t> component;
+};
+
+Graph linkGraph(const SphereCells& cells, double link) {
+    const std::size_t n = cells.size();
+    Graph g;
+    std::vector<std::uint32_t> linkCount(n, 0);
+    const std::size_t cellCount = cells.cellCount();
+    const std::size_t chunks = std::min<std::size_t>(cellCount, 256);
+    std::vector<std::vector<std::uint32_t>> chunkLinks(chunks);
+    const float k = float(link);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+        const std::size_t c0 = chunk * cellCount / chunks, c1 = (chunk + 1) * cellCount / chunks;
+        std::vector<std::uint32_t>& links = chunkLinks[chunk];
+        for (std::size_t c = c0; c < c1; ++c)
+            for (std::uint32_t i = cells.cellBegin(c); i < cells.cellEnd(c); ++i)
+                cells.forEachNeighbourCell(c, [&](std::size_t other) {
+                    for (std::uint32_t j = cells.cellBegin(other); j < cells.cellEnd(other); ++j) {
+                        const float dx = cells.x[j] - cells.x[i], dy = cells.y[j] - cells.y[i],
+                                    dz = cells.z[j] - cells.z[i];
+                        const float limit = k * (cells.r[i] + cells.r[j]);
+                        if (j != i && dx * dx + dy * dy + dz * dz < limit * limit) {
+                            links.push_back(j);
+                            ++linkCount[i];
+                        }
+                    }
+                });
+    });
+    g.start.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        g.start[i + 1] = g.start[i] + linkCount[i];
+    g.adj.reserve(g.start[n]);
+    for (auto& links : chunkLinks) { // chunks hold consecutive slots, in order
+        g.adj.insert(g.adj.end(), links.begin(), links.end());
+        std::vector<std::uint32_t>().swap(links);
+    }
+    constexpr std::uint32_t kNone = ~0u;
+    g.component.assign(n, kNone);
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t s = 0, label = 0; s < n; ++s) {
+        if (g.component[s] != kNone)
+            continue;
+        g.component[s] = label;
+        stack.assign(1, s);
+        while (!stack.empty()) {
+            const std::uint32_t i = stack.back();
+            stack.pop_back();
+            for (std::uint32_t e = g.start[i]; e < g.start[i + 1]; ++e)
+                if (g.component[g.adj[e]] == kNone) {
+                    g.component[g.adj[e]] = label;
+                    stack.push_back(g.adj[e]);
+                }
+        }
+        ++label;
+    }
+    return g;
+}
+
+struct Orientations {
+    std::vector<F3> normal;       // per link slot
+    std::vector<float> planarity; // per link slot; 0 without an orientation
+    std::vector<float> thickness; // per link slot: sqrt(12 l1), the width of an even slab
+};
+
+// Step 1: per sphere, the plane of its neighbourhood: the spheres within `radius` that are
+// linked to it through other spheres (so a fault nearby but apart does not tilt it).
+Orientations orient(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
+                    std::span<const std::uint32_t> component, double radius, int thin) {
+    const std::size_t n = wide.size();
+    Orientations o;
+    o.normal.assign(n, F3{0, 0, 1});
+    o.planarity.assign(n, 0.0f);
+    o.thickness.assign(n, 0.0f);
+    const float r2 = float(radius * radius);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, wide.cellCount(), 16), [&](const auto& range) {
+            std::vector<float> bx, by, bz;
+            std::vector<std::uint32_t> bcomp;
+            for (std::size_t c = range.begin(); c != range.end(); ++c) {
+                bx.clear(), by.clear(), bz.clear(), bcomp.clear();
+                wide.forEachNeighbourCell(c, [&](std::size_t other) {
+                    for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j) {
+                        bx.push_back(wide.x[j]);
+                        by.push_back(wide.y[j]);
+                        bz.push_back(wide.z[j]);
+                        bcomp.push_back(component[wideToLink[j]]);
+                    }
+                });
+                const std::size_t m = bx.size();
+                for (std::uint32_t i = wide.cellBegin(c); i < wide.cellEnd(c); ++i) {
+                    const float xi = wide.x[i], yi = wide.y[i], zi = wide.z[i];
+                    const std::uint32_t ci = component[wideToLink[i]];
+                    double s[3] = {0, 0, 0}, ss[6] = {0, 0, 0, 0, 0, 0};
+                    std::uint32_t count = 0;
+                    for (std::size_t q = 0; q < m; ++q) {
+                        const float dx = bx[q] - xi, dy = by[q] - yi, dz = bz[q] - zi;
+                        if (dx * dx + dy * dy + dz * dz > r2 || bcomp[q] != ci)
+                            continue;
+                        ++count;
+                        s[0] += dx, s[1] += dy, s[2] += dz;
+                        ss[0] += dx * dx, ss[1] += dx * dy, ss[2] += dx * dz;
+                        ss[3] += dy * dy, ss[4] += dy * dz, ss[5] += dz * dz;
+                    }
+                    if (count < kMinNeighbours)
+                        continue;
+                    const double inv = 1.0 / count;
+                    const double mx = s[0] * inv, my = s[1] * inv, mz = s[2] * inv;
+                    Mat3d cov{
+                        {{ss[0] * inv - mx * mx, ss[1] * inv - mx * my, ss[2] * inv - mx * mz},
+                         {0, ss[3] * inv - my * my, ss[4] * inv - my * mz},
+                         {0, 0, ss[5] * inv - mz * mz}}};
+                    cov[1][0] = cov[0][1], cov[2][0] = cov[0][2], cov[2][1] = cov[1][2];
+                    if (thin >=
+                        0) { // the plane contains the thin axis: its normal has no part along it
+                        const double big = 1e3 * (cov[0][0] + cov[1][1] + cov[2][2] + 1.0);
+                        for (int a = 0; a < 3; ++a)
+                            cov[thin][a] = cov[a][thin] = 0;
+                        cov[thin][thin] = big;
+                    }
+                    const SymmetricEigen3 e = eigenSymmetric3(cov);
+                    if (!(e.values[1] > 0))
+                        continue;
+                    const std::uint32_t li = wideToLink[i];
+                    o.planarity[li] = float(1.0 - std::max(0.0, e.values[0]) / e.values[1]);
+                    o.thickness[li] = float(std::sqrt(12.0 * std::max(0.0, e.values[0])));
+                    o.normal[li] = normalized(
+                        F3{float(e.vectors[0][0]), float(e.vectors[0][1]), float(e.vectors[0][2])});
+                }
+            }
+        });
+    return o;
+}
+
+// Step 2: regions grown from the most planar spheres. Per slot its region or -1, and the
+// running normal it was admitted with.
+std::size_t grow(const Graph& g, const Orientations& o, double angle,
+                 std::vector<std::int32_t>& region, std::vector<F3>& ref) {
+    const std::size_t n = o.normal.size();
+    region.assign(n, -1);
+    ref = o.normal;
+    std::vector<std::uint32_t> seeds;
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (o.planarity[i] >= kPlanarityMin)
+            seeds.push_back(i);
+    std::stable_sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return o.planarity[a] > o.planarity[b];
+    });
+    const float cosTol = float(std::cos(angle * std::numbers::pi / 180.0));
+    std::vector<std::uint32_t> queue;
+    std::int32_t regions = 0;
+    for (std::uint32_t s : seeds) {
+        if (region[s] >= 0)
+            continue;
+        const std::int32_t label = regions++;
+        region[s] = label;
+        queue.assign(1, s);
+        for (std::size_t head = 0; head < queue.size(); ++head) {
+            const std::uint32_t i = queue[head];
+            const F3 ri = ref[i];
+            for (std::uint32_t e = g.start[i]; e < g.start[i + 1]; ++e) {
+                const std::uint32_t j = g.adj[e];
+                if (region[j] >= 0 || o.planarity[j] < kPlanarityMin)
+                    continue;
+                const float c = dotf(o.normal[j], ri);
+                if (std::fabs(c) < cosTol)
+                    continue;
+                const float sign = c < 0 ? -1.0f : 1.0f;
+                region[j] = label;
+                ref[j] = normalized(F3{kRefKeep * ri[0] + (1 - kRefKeep) * sign * o.normal[j][0],
+                                       kRefKeep * ri[1] + (1 - kRefKeep) * sign * o.normal[j][1],
+                                       kRefKeep * ri[2] + (1 - kRefKeep) * sign * o.normal[j][2]});
+                queue.push_back(j);
+            }
+        }
+    }
+    return static_cast<std::size_t>(regions);
+}
+
+// Step 3: regions that face each other and are coplanar there become one group.
+// Regions are per link slot; the wide cells find who faces whom.
+void join(const SphereCells& cells, std::span<const std::uint32_t> wideToLink,
+          std::vector<std::int32_t>& linkRegion, std::size_t regionCount, double angle,
+          double meanRadius, int thin) {
+    const std::size_t n = cells.size();
+    std::vector<std::int32_t> region(n);
+    for (std::size_t i = 0; i < n; ++i)
+        region[i] = linkRegion[wideToLink[i]];
+    std::vector<std::size_t> size(regionCount, 0);
+    for (std::int32_t g : region)
+        if (g >= 0)
+            ++size[std::size_t(g)];
+    // Regions of each cell (sorted), and cells of each region.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> cellRegion; // (cell, region)
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (region[i] >= 0 && size[std::size_t(region[i])] >= kMinPiece)
+            cellRegion.emplace_back(cells.cellOf(i), std::uint32_t(region[i]));
+    std::sort(cellRegion.begin(), cellRegion.end());
+    cellRegion.erase(std::unique(cellRegion.begin(), cellRegion.end()), cellRegion.end());
+    std::vector<std::uint32_t> cellStart(cells.cellCount() + 1, 0);
+    for (const auto& [c, g] : cellRegion)
+        ++cellStart[c + 1];
+    for (std::size_t c = 0; c < cells.cellCount(); ++c)
+        cellStart[c + 1] += cellStart[c];
+    auto regionsOf = [&](std::size_t c) {
+        return std::span(cellRegion.data() + cellStart[c], cellRegion.data() + cellStart[c + 1]);
+    };
+    auto cellHas = [&](std::size_t c, std::uint32_t g) {
+        const auto rs = regionsOf(c);
+        return std::binary_search(rs.begin(), rs.end(), std::pair{std::uint32_t(c), g});
+    };
+    std::vector<std::vector<std::uint32_t>> cellsOfRegion(regionCount);
+    for (const auto& [c, g] : cellRegion)
+        cellsOfRegion[g].push_back(c);
+
+    // Regions within two cells (two to three neighbourhood radii) of each other: a crossing
+    // fault's zone and the unsettled spheres on both sides of it fit in that gap.
+    constexpr int kReach = 2;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::size_t c = 0; c < cells.cellCount(); ++c)
+        cells.forEachNeighbourCell(
+            c,
+            [&](std::size_t other) {
+                if (other < c)
+                    return;
+                for (const auto& [c1, a] : regionsOf(c))
+                    for (const auto& [c2, b] : regionsOf(other))
+                        if (a != b)
+                            pairs.emplace_back(std::min(a, b), std::max(a, b));
+            },
+            kReach);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+
+    // The part of region a in cells within reach of a cell of region b.
+    auto facing = [&](std::uint32_t a, std::uint32_t b) {
+        std::vector<Vec3d> points;
+        for (std::uint32_t c : cellsOfRegion[a]) {
+            bool near = false;
+            cells.forEachNeighbourCell(
+                c, [&](std::size_t other) { near = near || cellHas(other, b); }, kReach);
+            if (!near)
+                continue;
+            for (std::uint32_t i = cells.cellBegin(c); i < cells.cellEnd(c); ++i)
+                if (region[i] == std::int32_t(a))
+                    points.push_back({cells.x[i], cells.y[i], cells.z[i]});
+        }
+        return points;
+    };
+    const double cosTol = std::cos(angle * std::numbers::pi / 180.0);
+    std::vector<std::uint8_t> joins(pairs.size(), 0);
+    tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t p) {
+        const auto [a, b] = pairs[p];
+        std::vector<Vec3d> pa = facing(a, b), pb = facing(b, a);
+        if (pa.size() < kMinFacing || pb.size() < kMinFacing)
+            return;
+        const PlaneFit fa = fitPlane(pa, thin), fb = fitPlane(pb, thin);
+        auto planar = [](const PlaneFit& f) {
+            return f.valid &&
+                   std::max(f.eigenvalues[0], 0.0) <= (1.0 - kPlanarityMin) * f.eigenvalues[1];
+        };
+        if (!planar(fa) || !planar(fb))
+            return;
+        const double c =
+            fa.normal[0] * fb.normal[0] + fa.normal[1] * fb.normal[1] + fa.normal[2] * fb.normal[2];
+        if (std::fabs(c) < cosTol)
+            return;
+        // Aligned: each part's centroid lies on the other's plane, within the parts' own
+        // spread (a fault offset a little by the one that cuts it still joins).
+        const double spread = std::sqrt(std::max({fa.eigenvalues[0], fb.eigenvalues[0], 0.0}));
+        const double tolerance = 1.5 * spread + meanRadius;
+        const Vec3d d{fb.centroid[0] - fa.centroid[0], fb.centroid[1] - fa.centroid[1],
+                      fb.centroid[2] - fa.centroid[2]};
+        const double offA =
+            std::fabs(fa.normal[0] * d[0] + fa.normal[1] * d[1] + fa.normal[2] * d[2]);
+        const double offB =
+            std::fabs(fb.normal[0] * d[0] + fb.normal[1] * d[1] + fb.normal[2] * d[2]);
+        if (std::max(offA, offB) <= tolerance)
+            joins[p] = 1;
+    });
+    RegionSets sets(regionCount);
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+        if (joins[p])
+            sets.unite(pairs[p].first, pairs[p].second);
+    for (std::int32_t& g : linkRegion)
+        if (g >= 0)
+            g = std::int32_t(sets.find(std::uint32_t(g)));
+}
+
+// Step 3b: where faults cross, the spheres of both zones can look like a plane of their own
+// (the bisector of the two). Such a region is smaller than a fault next to it and most of its
+// spheres lie on that fault's surfaces: it is dissolved, and its spheres are left over.
+void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint32_t> wideToLink,
+                             std::vector<std::int32_t>& linkRegion, const std::vector<F3>& linkRef,
+                             std::size_t regionCount, double radius, double onSurface) {
+    const std::size_t n = cells.size();
+    std::vector<std::int32_t> region(n);
+    std::vector<F3> ref(n);
+    std::vector<std::size_t> size(regionCount, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        region[i] = linkRegion[wideToLink[i]];
+        ref[i] = linkRef[wideToLink[i]];
+        if (region[i] >= 0)
+            ++size[std::size_t(region[i])];
+    }
+    // Regions with a neighbour (within one cell) more than twice their size.
+    std::vector<std::uint8_t> suspect(regionCount, 0);
+    for (std::size_t c = 0; c < cells.cellCount(); ++c) {
+        std::size_t largest = 0;
+        cells.forEachNeighbourCell(c, [&](std::size_t other) {
+            for (std::uint32_t j = cells.cellBegin(other); j < cells.cellEnd(other); ++j)
+                if (region[j] >= 0)
+                    largest = std::max(largest, size[std::size_t(region[j])]);
+        });
+        for (std::uint32_t i = cells.cellBegin(c); i < cells.cellEnd(c); ++i)
+            if (region[i] >= 0 && 2 * size[std::size_t(region[i])] < largest)
+                suspect[std::size_t(region[i])] = 1;
+    }
+    std::vector<std::uint32_t> slots;
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (region[i] >= 0 && suspect[std::size_t(region[i])])
+            slots.push_back(i);
+    if (slots.empty())
+        return;
+    const float r2 = float(radius * radius), tol = float(onSurface);
+    std::vector<std::uint8_t> explained(slots.size(), 0);
+    tbb::parallel_for(std::size_t(0), slots.size(), [&](std::size_t q) {
+        const std::uint32_t i = slots[q];
+        const std::int32_t own = region[i];
+        bool found = false;
+        cells.forEachNeighbourCell(cells.cellOf(i), [&](std::size_t other) {
+            for (std::uint32_t j = cells.cellBegin(other); j < cells.cellEnd(other) && !found;
+                 ++j) {
+                const std::int32_t g = region[j];
+                if (g < 0 || g == own || size[std::size_t(g)] <= size[std::size_t(own)])
+                    continue;
+                const F3 d{cells.x[i] - cells.x[j], cells.y[i] - cells.y[j],
+                           cells.z[i] - cells.z[j]};
+                found = dotf(d, d) <= r2 && std::fabs(dotf(ref[j], d)) <= tol;
+            }
+        });
+        explained[q] = found;
+    });
+    std::vector<std::size_t> onOthers(regionCount, 0);
+    for (std::size_t q = 0; q < slots.size(); ++q)
+        onOthers[std::size_t(region[slots[q]])] += explained[q];
+    for (std::int32_t& g : linkRegion)
+        if (g >= 0 && suspect[std::size_t(g)] &&
+            2 * onOthers[std::size_t(g)] > size[std::size_t(g)])
+            g = -1;
+}
+
+// Step 4: spheres a few links from a group go to the group whose surface passes nearest.
+// Everything per link slot; the wide cells find the grouped spheres within the radius.
+void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
+                     std::span<const std::uint32_t> linkToWide, const Graph& g,
+                     const std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
+                     double meanRadius) {
+    const std::size_t n = wide.size();
+    const int hops = std::max(2, int(std::ceil(radius / (2 * meanRadius))));
+    std::vector<std::uint8_t> reached(n, 0);
+    std::vector<std::uint32_t> frontier, next, left;
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (group[i] >= 0)
+            frontier.push_back(i), reached[i] = 1;
+    for (int h = 0; h < hops && !frontier.empty(); ++h) {
+        next.clear();
+        for (std::uint32_t i : frontier)
+            for (std::uint32_t e = g.start[i]; e < g.start[i + 1]; ++e)
+                if (const std::uint32_t j = g.adj[e]; !reached[j]) {
+                    reached[j] = 1;
+                    next.push_back(j);
+                    left.push_back(j);
+                }
+        frontier.swap(next);
+    }
+    std::vector<std::int32_t> wideGroup(n);
+    std::vector<F3> wideRef(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        wideGroup[i] = group[wideToLink[i]];
+        wideRef[i] = ref[wideToLink[i]];
+    }
+    const float r2 = float(radius * radius);
+    std::vector<std::int32_t> chosen(left.size(), -1);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, left.size(), 256), [&](const auto& range) {
+        for (std::size_t q = range.begin(); q != range.end(); ++q) {
+            const std::uint32_t u = linkToWide[left[q]];
+            float best = 0;
+            std::int32_t bestGroup = -1;
+            wide.forEachNeighbourCell(wide.cellOf(u), [&](std::size_t other) {
+                for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j) {
+                    const std::int32_t gj = wideGroup[j];
+                    if (gj < 0)
+                        continue;
+                    const F3 d{wide.x[u] - wide.x[j], wide.y[u] - wide.y[j], wide.z[u] - wide.z[j]};
+                    const float d2 = dotf(d, d);
+                    if (d2 > r2)
+                        continue;
+                    const float score = std::fabs(dotf(wideRef[j], d)) + 0.1f * std::sqrt(d2);
+                    if (bestGroup < 0 || score < best || (score == best && gj < bestGroup)) {
+                        best = score;
+                        bestGroup = gj;
+                    }
+                }
+            });
+            chosen[q] = bestGroup;
+        }
+    });
+    for (std::size_t q = 0; q < left.size(); ++q)
+        group[left[q]] = chosen[q];
+}
+
+} // namespace
+
+NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_t> visible,
+                                 const CandidateOptions& options) {
+    NetworkGroups out;
+    out.groupOfRow.assign(frame.size(), -1);
+    const std::vector<std::uint32_t> rows = linkableRows(frame, visible);
+    if (rows.empty())
+        return out;
+    double rsum = 0, rmax = 0;
+    for (std::uint32_t r : rows) {
+        rsum += frame.radius[r];
+        rmax = std::max(rmax, double(frame.radius[r]));
+    }
+    const double meanRadius = rsum / double(rows.size());
+    double radius = options.radius > 0 ? options.radius : 8.0 * meanRadius;
+    if (!(radius > 0) || !(meanRadius > 0))
+        return out; // spheres without size link nothing
+    const int thin = thinAxis(frame, radius);
+    const SphereCells linkCells(frame, rows, options.link * 2.0 * rmax);
+    const Graph graph = linkGraph(linkCells, options.link);
+    std::vector<std::uint32_t> rowToLink(frame.size());
+    for (std::uint32_t i = 0; i < linkCells.size(); ++i)
+        rowToLink[linkCells.row[i]] = i;
+    // Cells one neighbourhood wide, and their slots' link slots both ways.
+    std::vector<std::uint32_t> wideToLink(rows.size()), linkToWide(rows.size());
+    auto wideCells = [&](double cell) {
+        SphereCells cells(frame, rows, cell);
+        for (std::uint32_t i = 0; i < cells.size(); ++i) {
+            wideToLink[i] = rowToLink[cells.row[i]];
+            linkToWide[wideToLink[i]] = i;
+        }
+        return cells;
+    };
+    SphereCells wide = wideCells(radius);
+
+    Orientations o = orient(wide, wideToLink, graph.component, radius, thin);
+    double zoneThickness = 2 * meanRadius;
+    if (options.radius <= 0 && thin < 0) {
+        // Zones thicker than the neighbourhood look barely planar: measure their thickness and
+        // look again with a neighbourhood that spans it. Not in sections: there a zone is a
+        // band whose roughness reads as thickness, and a wider neighbourhood spans both arms of
+        // a graben.
+        std::vector<float> t;
+        for (std::size_t i = 0; i < o.thickness.size(); ++i)
+            if (o.planarity[i] > 0.3f)
+                t.push_back(o.thickness[i]);
+        if (!t.empty()) {
+            std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+            zoneThickness = std::max(zoneThickness, double(t[t.size() / 2]));
+            const double wanted = std::min(kRadiusOverThickness * t[t.size() / 2], 3.0 * radius);
+            if (wanted > 1.2 * radius) {
+                radius = wanted;
+                wide = wideCells(radius);
+                o = orient(wide, wideToLink, graph.component, radius, thin);
+            }
+        }
+    }
+    // A sphere lies on a zone's surface when it is this close to the zone's mid-plane.
+    const double onSurface = std::max(0.5 * zoneThickness, 1.5 * meanRadius);
+    std::vector<std::int32_t> region;
+    std::vector<F3> ref;
+    const std::size_t regionCount = grow(graph, o, options.angle, region, ref);
+    join(wide, wideToLink, region, regionCount, options.angle, meanRadius, thin);
+    dissolveJunctionRegions(wide, wideToLink, region, ref, regionCount, radius, onSurface);
+
+    // Groups below min_size are dissolved, so their spheres can join a fault next to them.
+    std::vector<std::size_t> size(regionCount, 0);
+    for (std::int32_t g : region)
+        if (g >= 0)
+            ++size[std::size_t(g)];
+    const std::size_t minSize = std::max<std::size_t>(options.minSize, 1);
+    for (std::int32_t& g : region)
+        if (g >= 0 && size[std::size_t(g)] < minSize)
+            g = -1;
+    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius);
+
+    std::vector<std::int32_t> dense(regionCount, -1);
+    for (std::size_t i = 0; i < linkCells.size(); ++i)
+        if (const std::int32_t g = region[i]; g >= 0) {
+            if (dense[std::size_t(g)] < 0)
+                dense[std::size_t(g)] = std::int32_t(out.groupCount++);
+            out.groupOfRow[linkCells.row[i]] = dense[std::size_t(g)];
+        }
+    return out;
+}
+
+} // namespace faultline::core::detail

@@ -1,0 +1,223 @@
+// Fault networks: faults that cross (X), end against each other (V, T), and curve (listric) come
+// out as one candidate each, with their members and orientation, and noise is left out.
+#include "core/faults/candidates.hpp"
+#include "core/faults/metrics.hpp"
+#include "core/selection/visibility.hpp"
+#include "core/synth/planes_model.hpp"
+
+#include "fault_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numbers>
+
+using namespace faultline::core;
+using namespace faultline::core::testing;
+
+namespace {
+
+std::vector<std::int64_t> without(const std::vector<std::int64_t>& ids,
+                                  const std::vector<std::int64_t>& excluded) {
+    std::vector<std::int64_t> out;
+    std::set_difference(ids.begin(), ids.end(), excluded.begin(), excluded.end(),
+                        std::back_inserter(out));
+    return out;
+}
+
+std::size_t sharedCount(const std::vector<std::int64_t>& a, const std::vector<std::int64_t>& b) {
+    std::vector<std::int64_t> common;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+    return common.size();
+}
+
+// Each planted fault (ids shared by two zones left out) against the candidate holding most
+// of it: that candidate's precision and recall, and the candidate's index.
+struct Found {
+    int candidate = -1;
+    double precision = 0, recall = 0;
+};
+
+Found bestMatch(const CandidateSet& set, const std::vector<std::int64_t>& planted,
+                const std::vector<std::int64_t>& excluded) {
+    const auto truth = without(planted, excluded);
+    Found f;
+    std::size_t best = 0;
+    for (std::size_t c = 0; c < set.candidates.size(); ++c)
+        if (const std::size_t k = sharedCount(truth, set.candidates[c].ids); k > best) {
+            best = k;
+            f.candidate = int(c);
+        }
+    if (f.candidate >= 0) {
+        const auto found = without(set.candidates[std::size_t(f.candidate)].ids, excluded);
+        f.precision = double(best) / double(found.size());
+        f.recall = double(best) / double(truth.size());
+    }
+    return f;
+}
+
+double normalAngle(const Vec3d& measured, double dip, double dipDirection) {
+    const Vec3d n = normalFromOrientation(dip, dipDirection);
+    return std::acos(std::min(1.0, std::fabs(dot3(n, measured)))) * 180 / std::numbers::pi;
+}
+
+} // namespace
+
+TEST(FaultNetwork, PlantedNetworkGivesEachFaultItsOwnCandidate) {
+    const PlanesModel model = generatePlanesModel(planesNetworkOptions());
+    const Frame& last = model.frames.back();
+    ASSERT_GT(last.size(), 150000u);
+    ASSERT_FALSE(model.shared.empty());
+    ASSERT_FALSE(model.noise.empty());
+    const std::vector<VariableThreshold> broken{{"broken_bonds", 3, 1e30, true}};
+    const VisibilityResult visible = computeVisibility(last, {}, broken);
+
+    CandidateOptions options;
+    options.minSize = 50;
+    const CandidateSet set = findCandidates(last, visible.mask, options);
+    ASSERT_EQ(set.candidates.size(), model.faults.size());
+    const std::vector<Fault> faults = faultsFromCandidates(set.candidates, "C");
+    const auto metrics = computeFrameMetrics(last, model.frames.size() - 1, faults);
+    std::vector<int> used;
+    for (const PlaneFault& planted : model.faults) {
+        SCOPED_TRACE(planted.name);
+        const Found f = bestMatch(set, planted.members.back(), model.shared);
+        ASSERT_GE(f.candidate, 0);
+        used.push_back(f.candidate);
+        EXPECT_GE(f.precision, 0.95);
+        EXPECT_GE(f.recall, 0.95);
+        if (planted.spec.listricDip)
+            continue; // one curved fault: no single plane to compare
+        const FaultFrameMetrics& m = metrics[std::size_t(f.candidate)];
+        ASSERT_TRUE(m.planeValid);
+        EXPECT_NEAR(m.dip, planted.spec.dip, 3.0);
+        EXPECT_LT(angleDiff(m.dipDirection, planted.spec.dipDirection), 3.0);
+        EXPECT_LT(normalAngle(m.normal, planted.spec.dip, planted.spec.dipDirection), 3.0);
+    }
+    std::sort(used.begin(), used.end());
+    EXPECT_EQ(std::unique(used.begin(), used.end()), used.end()) << "two faults in one candidate";
+    // Noise joins no fault unless it touches one.
+    std::size_t noiseInFaults = 0;
+    for (const auto& c : set.candidates)
+        noiseInFaults += sharedCount(c.ids, model.noise);
+    EXPECT_LT(noiseInFaults, model.noise.size() / 4);
+}
+
+TEST(FaultNetwork, ConnectedMethodStillJoinsTouchingFaults) {
+    const PlanesModel model = generatePlanesModel(planesNetworkOptions());
+    const Frame& last = model.frames.back();
+    const std::vector<VariableThreshold> broken{{"broken_bonds", 3, 1e30, true}};
+    const VisibilityResult visible = computeVisibility(last, {}, broken);
+    CandidateOptions options;
+    options.method = CandidateMethod::Connected;
+    options.minSize = 50;
+    const CandidateSet set = findCandidates(last, visible.mask, options);
+    // F3 and F4 meet in a V: linking by distance makes them one candidate.
+    const Found f3 = bestMatch(set, model.faults[2].members.back(), model.shared);
+    const Found f4 = bestMatch(set, model.faults[3].members.back(), model.shared);
+    EXPECT_EQ(f3.candidate, f4.candidate);
+    EXPECT_GE(f3.recall, 0.95);
+    EXPECT_GE(f4.recall, 0.95);
+}
+
+TEST(FaultNetwork, ConjugateCrossingOnACubicLatticeIsTwoFaults) {
+    PlantedFault a, b;
+    a.dip = 60, a.dipDirection = 90, a.point = {20.3, 15.2, 14.6}, a.halfWidth = 1.5;
+    b.dip = 60, b.dipDirection = 270, b.point = a.point, b.halfWidth = 1.5;
+    const PlantedModel model = plantFaults(41, 30, 30, {a, b});
+    std::vector<std::int64_t> shared;
+    std::set_intersection(model.members[0].begin(), model.members[0].end(),
+                          model.members[1].begin(), model.members[1].end(),
+                          std::back_inserter(shared));
+    CandidateOptions options;
+    options.minSize = 50;
+    const CandidateSet set = findCandidates(model.frame, model.visible, options);
+    ASSERT_EQ(set.candidates.size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+        SCOPED_TRACE(k);
+        const Found f = bestMatch(set, model.members[std::size_t(k)], shared);
+        EXPECT_GE(f.precision, 0.95);
+        EXPECT_GE(f.recall, 0.95);
+    }
+    EXPECT_NE(bestMatch(set, model.members[0], shared).candidate,
+              bestMatch(set, model.members[1], shared).candidate);
+}
+
+TEST(FaultNetwork, FaultEndingAgainstAnotherIsItsOwnFault) {
+    // A T: a steep fault whose zone stops at a gently dipping one.
+    PlantedFault main, branch;
+    main.dip = 30, main.dipDirection = 0, main.point = {20.4, 15.3, 10.2}, main.halfWidth = 1.5;
+    branch.dip = 80, branch.dipDirection = 90, branch.point = {20.4, 15.3, 20.1};
+    branch.halfWidth = 1.5;
+    // The branch only above the main fault: clip it with a box that stops at the main plane's
+    // highest point within the block's y range.
+    branch.boxMin = {-1e9, -1e9, 10.2 + std::tan(30 * std::numbers::pi / 180) * 15.3 + 1.0};
+    const PlantedModel model = plantFaults(41, 31, 30, {main, branch});
+    CandidateOptions options;
+    options.minSize = 50;
+    const CandidateSet set = findCandidates(model.frame, model.visible, options);
+    ASSERT_EQ(set.candidates.size(), 2u);
+    const Found m = bestMatch(set, model.members[0], {});
+    const Found b = bestMatch(set, model.members[1], {});
+    EXPECT_NE(m.candidate, b.candidate);
+    EXPECT_GE(m.precision, 0.95);
+    EXPECT_GE(m.recall, 0.95);
+    EXPECT_GE(b.precision, 0.95);
+    EXPECT_GE(b.recall, 0.95);
+}
+
+TEST(FaultNetwork, ListricFaultIsOneCandidate) {
+    PlanesModelOptions o;
+    o.columns = 60, o.layers = 30, o.rows = 40, o.frames = 2;
+    PlaneFaultSpec f;
+    f.dip = 70, f.dipDirection = 90, f.centre = {50, 25, 36}, f.radius = 45, f.throwLength = 2;
+    f.listricDip = 30;
+    o.faults = {f};
+    const PlanesModel model = generatePlanesModel(o);
+    const Frame& last = model.frames.back();
+    const std::vector<VariableThreshold> broken{{"broken_bonds", 3, 1e30, true}};
+    const VisibilityResult visible = computeVisibility(last, {}, broken);
+    CandidateOptions options;
+    options.minSize = 50;
+    const CandidateSet set = findCandidates(last, visible.mask, options);
+    ASSERT_EQ(set.candidates.size(), 1u);
+    const Found found = bestMatch(set, model.faults[0].members.back(), {});
+    EXPECT_GE(found.precision, 0.95);
+    EXPECT_GE(found.recall, 0.95);
+}
+
+TEST(FaultNetwork, ResultDoesNotDependOnRowOrderOrThreads) {
+    PlantedFault a, b;
+    a.dip = 55, a.dipDirection = 45, a.point = {15.5, 15.5, 12.5};
+    b.dip = 55, b.dipDirection = 225, b.point = a.point;
+    const PlantedModel one = plantFaults(31, 31, 25, {a, b}, 3, 7);
+    const PlantedModel two = plantFaults(31, 31, 25, {a, b}, 3, 11); // other row order, noise
+    CandidateOptions options;
+    options.minSize = 30;
+    const CandidateSet s1 = findCandidates(one.frame, one.visible, options);
+    const CandidateSet s1again = findCandidates(one.frame, one.visible, options);
+    ASSERT_EQ(s1.candidates.size(), s1again.candidates.size());
+    for (std::size_t c = 0; c < s1.candidates.size(); ++c)
+        EXPECT_EQ(s1.candidates[c].ids, s1again.candidates[c].ids);
+    const CandidateSet s2 = findCandidates(two.frame, two.visible, options);
+    EXPECT_EQ(s1.candidates.size(), s2.candidates.size());
+}
+
+TEST(FaultNetwork, BadOptionsAreRejected) {
+    const Frame f = frameOf({{1, 0, 0, 0}});
+    const std::vector<std::uint8_t> vis{1};
+    CandidateOptions o;
+    o.angle = 0;
+    EXPECT_THROW(findCandidates(f, vis, o), std::invalid_argument);
+    o.angle = 90;
+    EXPECT_THROW(findCandidates(f, vis, o), std::invalid_argument);
+    o.angle = 20;
+    o.radius = -1;
+    EXPECT_THROW(findCandidates(f, vis, o), std::invalid_argument);
+    o.radius = NAN;
+    EXPECT_THROW(findCandidates(f, vis, o), std::invalid_argument);
+    EXPECT_EQ(parseCandidateMethod("connected"), CandidateMethod::Connected);
+    EXPECT_THROW(parseCandidateMethod("graph"), std::invalid_argument);
+}
