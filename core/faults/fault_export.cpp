@@ -87,6 +87,20 @@ std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultT
     return out;
 }
 
+std::string faultEventsCsv(std::span<const Fault> faults, std::span<const FaultEvent> events) {
+    std::string out = "frame,kind,faults\n";
+    for (const FaultEvent& e : events) {
+        out += std::to_string(e.frame) + ',' + std::string(faultEventKindName(e.kind)) + ',';
+        std::string names;
+        for (std::size_t k : e.faults)
+            if (k < faults.size())
+                names += (names.empty() ? "" : ";") + faults[k].name;
+        appendField(out, names);
+        out += '\n';
+    }
+    return out;
+}
+
 std::string faultMetricsCsvHeader() {
     return "frame,fault,count,dip,dip_direction,strike,thickness,area,throw,net_slip,dip_slip,"
            "strike_slip,throw_status,hw_samples,fw_samples,centroid_x,centroid_y,centroid_z,"

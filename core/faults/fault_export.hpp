@@ -39,4 +39,8 @@ std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultT
 //   "precision","recall"}]}]; candidate -1 when no candidate shares an id.
 nlohmann::json faultTracksJson(std::span<const Fault> faults, std::span<const FaultTrack> tracks);
 
+// Header frame,kind,faults; a row per event (faultEvents order), kind appeared|linked|split,
+// faults the names involved joined with ';'.
+std::string faultEventsCsv(std::span<const Fault> faults, std::span<const FaultEvent> events);
+
 } // namespace faultline::core

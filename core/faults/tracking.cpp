@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <map>
+#include <set>
 
 namespace faultline::core {
 
@@ -56,16 +58,14 @@ std::vector<CandidateMatch> matchFaults(const Frame& frame, const CandidateSet& 
                                         std::span<const Fault> faults) {
     assert(candidates.rowLabel.size() == frame.size());
     std::vector<CandidateMatch> matches(faults.size());
-    tbb::parallel_for(std::size_t(0), faults.size(), [&](std::size_t k) {
-        matches[k] = matchOne(frame, candidates, faults[k]);
-    });
+    tbb::parallel_for(std::size_t(0), faults.size(),
+                      [&](std::size_t k) { matches[k] = matchOne(frame, candidates, faults[k]); });
     return matches;
 }
 
 std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
-                                    const VisibleMaskFn& visibleMask,
-                                    std::span<const Fault> faults, const CandidateOptions& options,
-                                    bool keepMembers) {
+                                    const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
+                                    const CandidateOptions& options, bool keepMembers) {
     std::vector<FaultTrack> tracks(faults.size());
     for (auto& t : tracks)
         t.points.reserve(frameCount);
@@ -84,6 +84,73 @@ std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& l
         }
     }
     return tracks;
+}
+
+std::string_view faultEventKindName(FaultEventKind kind) {
+    switch (kind) {
+    case FaultEventKind::Appeared:
+        return "appeared";
+    case FaultEventKind::Linked:
+        return "linked";
+    case FaultEventKind::Split:
+        return "split";
+    }
+    return "appeared";
+}
+
+std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
+    std::vector<FaultEvent> events;
+    std::size_t frames = 0;
+    for (const FaultTrack& t : tracks)
+        frames = std::max(frames, t.points.size());
+    auto candidateAt = [&](std::size_t fault, std::size_t frame) -> std::int32_t {
+        const auto& points = tracks[fault].points;
+        return frame < points.size() ? points[frame].match.candidate : -1;
+    };
+    // Faults grouped by the candidate they match in a frame (candidate -> faults, ascending).
+    auto groups = [&](std::size_t frame) {
+        std::map<std::int32_t, std::vector<std::size_t>> byCandidate;
+        for (std::size_t k = 0; k < tracks.size(); ++k)
+            if (const std::int32_t c = candidateAt(k, frame); c >= 0)
+                byCandidate[c].push_back(k);
+        return byCandidate;
+    };
+    std::vector<std::uint8_t> seen(tracks.size(), 0);
+    std::map<std::int32_t, std::vector<std::size_t>> before;
+    for (std::size_t f = 0; f < frames; ++f) {
+        const auto now = groups(f);
+        for (std::size_t k = 0; k < tracks.size(); ++k)
+            if (!seen[k] && candidateAt(k, f) >= 0) {
+                seen[k] = 1;
+                events.push_back({f, FaultEventKind::Appeared, {k}});
+            }
+        std::vector<FaultEvent> linked, split;
+        if (f > 0) {
+            for (const auto& [c, members] : now) {
+                std::set<std::int32_t> earlier;
+                for (std::size_t k : members)
+                    if (const std::int32_t e = candidateAt(k, f - 1); e >= 0)
+                        earlier.insert(e);
+                if (members.size() >= 2 && earlier.size() >= 2)
+                    linked.push_back({f, FaultEventKind::Linked, members});
+            }
+            for (const auto& [c, members] : before) {
+                std::set<std::int32_t> later;
+                for (std::size_t k : members)
+                    if (const std::int32_t e = candidateAt(k, f); e >= 0)
+                        later.insert(e);
+                if (members.size() >= 2 && later.size() >= 2)
+                    split.push_back({f, FaultEventKind::Split, members});
+            }
+        }
+        auto byFirst = [](const FaultEvent& a, const FaultEvent& b) { return a.faults < b.faults; };
+        std::sort(linked.begin(), linked.end(), byFirst);
+        std::sort(split.begin(), split.end(), byFirst);
+        events.insert(events.end(), linked.begin(), linked.end());
+        events.insert(events.end(), split.begin(), split.end());
+        before = now;
+    }
+    return events;
 }
 
 } // namespace faultline::core

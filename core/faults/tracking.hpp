@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace faultline::core {
@@ -18,13 +19,13 @@ std::vector<std::uint32_t> memberRows(const Frame& frame, std::span<const std::i
 
 // How one fault meets one frame's candidates.
 struct CandidateMatch {
-    std::size_t present = 0;      // fault ids present in the frame (the label, following ids)
-    std::int32_t candidate = -1;  // index into the frame's CandidateSet; -1 when none shares an id
+    std::size_t present = 0;     // fault ids present in the frame (the label, following ids)
+    std::int32_t candidate = -1; // index into the frame's CandidateSet; -1 when none shares an id
     std::size_t candidateSize = 0;
-    std::size_t shared = 0;       // present fault ids inside that candidate
-    double jaccard = 0;           // shared / (present + candidateSize - shared); 0 without a match
-    double precision = 0;         // shared / candidateSize: how much of the candidate is the fault
-    double recall = 0;            // shared / present: how much of the fault the candidate holds
+    std::size_t shared = 0; // present fault ids inside that candidate
+    double jaccard = 0;     // shared / (present + candidateSize - shared); 0 without a match
+    double precision = 0;   // shared / candidateSize: how much of the candidate is the fault
+    double recall = 0;      // shared / present: how much of the fault the candidate holds
     bool operator==(const CandidateMatch&) const = default;
 };
 
@@ -51,9 +52,24 @@ using VisibleMaskFn = std::function<std::vector<std::uint8_t>(const Frame&, std:
 // visited one at a time (candidate search is parallel inside). keepMembers stores each
 // matched candidate's ids (memory: faults x frames x candidate size).
 std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
-                                    const VisibleMaskFn& visibleMask,
-                                    std::span<const Fault> faults,
-                                    const CandidateOptions& options = {},
-                                    bool keepMembers = false);
+                                    const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
+                                    const CandidateOptions& options = {}, bool keepMembers = false);
+
+// What happened to tracked faults between two frames, read from their tracks: a fault first
+// matched a candidate (appeared), faults matched to different candidates in the frame before
+// share one now (linked), or faults that shared one now match different ones (split).
+enum class FaultEventKind { Appeared, Linked, Split };
+std::string_view faultEventKindName(FaultEventKind kind); // appeared | linked | split
+
+struct FaultEvent {
+    std::size_t frame = 0;
+    FaultEventKind kind = FaultEventKind::Appeared;
+    std::vector<std::size_t> faults; // indices into the faults tracked, ascending
+    bool operator==(const FaultEvent&) const = default;
+};
+
+// Events in frame order; within a frame appeared, then linked, then split, each by its first
+// fault. `tracks` as trackFaults gives them (one per fault, every frame).
+std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks);
 
 } // namespace faultline::core

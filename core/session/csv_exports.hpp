@@ -12,7 +12,8 @@
 
 namespace faultline::core {
 
-// cmd: {"what": faults | fault_metrics | fault_tracks, "link", "min_size" (tracks)}; the other
+// cmd: {"what": faults | fault_metrics | fault_tracks | fault_events, candidate options (tracks,
+// events: "method", "link", "min_size", "angle", "radius")}; the other
 // fields are not looked at. Throws CommandError (what is wrong, or that data is needed).
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& data,
                           const Json& cmd);

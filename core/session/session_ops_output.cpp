@@ -15,10 +15,10 @@ namespace {
 
 // Each fault's membership through time: per frame, the candidate of the visible spheres (as
 // the session's boxes, thresholds and fault filter say) that shares most ids with it.
-std::string trackedFaultsCsv(const SessionState& st, const std::shared_ptr<Dataset>& ds,
-                             const CandidateOptions& options) {
+std::vector<FaultTrack> trackedFaults(const SessionState& st, const std::shared_ptr<Dataset>& ds,
+                                     const CandidateOptions& options, const char* what) {
     if (!ds)
-        throw CommandError("export.csv: fault_tracks needs open data");
+        throw CommandError(std::string("export.csv: ") + what + " needs open data");
     const auto tracks = trackFaults(
         ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
         [&st](const Frame& frame, std::size_t) {
@@ -26,7 +26,7 @@ std::string trackedFaultsCsv(const SessionState& st, const std::shared_ptr<Datas
             return computeVisibility(frame, st.boxes, st.thresholds, rowMask.get()).mask;
         },
         st.faults, options);
-    return faultTracksCsv(st.faults, tracks);
+    return tracks;
 }
 
 } // namespace
@@ -44,8 +44,10 @@ std::string exportCsvText(const SessionState& state, const std::shared_ptr<Datas
         return faultMetricsCsv(series);
     }
     if (what == "fault_tracks")
-        return trackedFaultsCsv(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"));
-    throw CommandError("export.csv: \"what\" must be faults, fault_metrics or fault_tracks");
+        return faultTracksCsv(state.faults, trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"), "fault_tracks"));
+    if (what == "fault_events")
+        return faultEventsCsv(state.faults, faultEvents(trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"), "fault_events")));
+    throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_tracks or fault_events");
 }
 
 } // namespace faultline::core
@@ -65,9 +67,10 @@ void registerOutputOps(OpTable& ops) {
     });
     addAction(ops, "export.csv", [](Session& s, const Json& cmd) -> Json {
         // what = faults: "id,fault", a row per member; fault_metrics: a row per frame and fault;
-        // fault_tracks: per frame and fault, the candidate that matches it best ("link",
-        // "min_size" as fault.candidates).
-        args::onlyFields(cmd, {"what", "path", "link", "min_size"});
+        // fault_tracks: per frame and fault, the candidate that matches it best; fault_events:
+        // when tracked faults appeared, linked and split (candidate options as
+        // fault.candidates: "method", "link", "min_size", "angle", "radius").
+        args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius"});
         const std::string path = s.outputPath(args::string(cmd, "path"));
         const std::string text = exportCsvText(s.state(), s.dataset(), cmd);
         try {

@@ -1,7 +1,9 @@
 // Fault networks: faults that cross (X), end against each other (V, T), and curve (listric) come
 // out as one candidate each, with their members and orientation, and noise is left out.
 #include "core/faults/candidates.hpp"
+#include "core/faults/fault_export.hpp"
 #include "core/faults/metrics.hpp"
+#include "core/faults/tracking.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/synth/planes_model.hpp"
 
@@ -220,4 +222,46 @@ TEST(FaultNetwork, BadOptionsAreRejected) {
     EXPECT_THROW(findCandidates(f, vis, o), std::invalid_argument);
     EXPECT_EQ(parseCandidateMethod("connected"), CandidateMethod::Connected);
     EXPECT_THROW(parseCandidateMethod("graph"), std::invalid_argument);
+}
+
+TEST(FaultNetwork, SegmentsThatGrowIntoEachOtherLinkInTheEvents) {
+    // Two coplanar segments along strike, growing until their tips overlap: apart at first
+    // (two candidates), one fault once they meet.
+    PlanesModelOptions o;
+    o.columns = 40, o.layers = 60, o.rows = 30, o.frames = 7;
+    PlaneFaultSpec a;
+    a.dip = 60, a.dipDirection = 90, a.centre = {40, 29, 26}, a.radius = 24, a.throwLength = 1;
+    PlaneFaultSpec b = a;
+    b.centre = {40, 69, 26};
+    o.faults = {a, b};
+    const PlanesModel model = generatePlanesModel(o);
+    std::vector<Fault> faults(2);
+    for (int k = 0; k < 2; ++k) {
+        faults[std::size_t(k)].name = model.faults[std::size_t(k)].name;
+        faults[std::size_t(k)].ids = model.faults[std::size_t(k)].members.back();
+    }
+    const std::vector<VariableThreshold> broken{{"broken_bonds", 3, 1e30, true}};
+    CandidateOptions options;
+    options.minSize = 20;
+    const auto tracks = trackFaults(
+        model.frames.size(),
+        [&](std::size_t f) { return std::shared_ptr<const Frame>(&model.frames[f], [](const Frame*) {}); },
+        [&](const Frame& frame, std::size_t) { return computeVisibility(frame, {}, broken).mask; },
+        faults, options);
+    const auto events = faultEvents(tracks);
+    ASSERT_GE(events.size(), 3u);
+    EXPECT_EQ(events[0], (FaultEvent{1, FaultEventKind::Appeared, {0}}));
+    EXPECT_EQ(events[1], (FaultEvent{1, FaultEventKind::Appeared, {1}}));
+    std::size_t linkedAt = 0;
+    for (const FaultEvent& e : events) {
+        EXPECT_NE(e.kind, FaultEventKind::Split);
+        if (e.kind == FaultEventKind::Linked) {
+            EXPECT_EQ(e.faults, (std::vector<std::size_t>{0, 1}));
+            linkedAt = e.frame;
+        }
+    }
+    // Tips 16 apart at frame 3 (two neighbourhoods and more), 8 apart at frame 4, touching at 5:
+    // coplanar segments join once their tips are within about two neighbourhood radii.
+    EXPECT_GE(linkedAt, 4u);
+    EXPECT_EQ(faultEventsCsv(faults, events).substr(0, 38), "frame,kind,faults\n1,appeared,F1\n1,appe");
 }
