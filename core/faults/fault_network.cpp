@@ -25,6 +25,9 @@ constexpr float kRefKeep = 0.75f;
 // only with at least this many spheres each.
 constexpr std::size_t kMinPiece = 4;
 constexpr std::size_t kMinFacing = 12;
+// Candidates gathered for one cell's neighbourhoods beyond this are sampled evenly (about a
+// sixth of them fall within the radius).
+constexpr std::size_t kSampledCandidates = 2048;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
 constexpr double kRadiusOverThickness = 2.5;
 
@@ -160,6 +163,15 @@ Orientations orient(const SphereCells& wide, std::span<const std::uint32_t> wide
                         bcomp.push_back(component[wideToLink[j]]);
                     }
                 });
+                // Large neighbourhoods are sampled evenly (cells are in space order): a plane
+                // fit needs a few hundred points, not thousands.
+                const std::size_t stride = std::max<std::size_t>(1, bx.size() / kSampledCandidates);
+                if (stride > 1) {
+                    std::size_t kept = 0;
+                    for (std::size_t q = 0; q < bx.size(); q += stride, ++kept)
+                        bx[kept] = bx[q], by[kept] = by[q], bz[kept] = bz[q], bcomp[kept] = bcomp[q];
+                    bx.resize(kept), by.resize(kept), bz.resize(kept), bcomp.resize(kept);
+                }
                 const std::size_t m = bx.size();
                 for (std::uint32_t i = wide.cellBegin(c); i < wide.cellEnd(c); ++i) {
                     const float xi = wide.x[i], yi = wide.y[i], zi = wide.z[i];
@@ -175,7 +187,7 @@ Orientations orient(const SphereCells& wide, std::span<const std::uint32_t> wide
                         ss[0] += dx * dx, ss[1] += dx * dy, ss[2] += dx * dz;
                         ss[3] += dy * dy, ss[4] += dy * dz, ss[5] += dz * dz;
                     }
-                    if (count < kMinNeighbours)
+                    if (count * stride < kMinNeighbours)
                         continue;
                     const double inv = 1.0 / count;
                     const double mx = s[0] * inv, my = s[1] * inv, mz = s[2] * inv;
