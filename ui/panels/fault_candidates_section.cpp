@@ -30,6 +30,18 @@ class FaultCandidatesSection {
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
         ImGui::InputInt("min size", &m_minSize, 0, 0);
         m_minSize = std::max(1, m_minSize);
+        ImGui::Checkbox("Apart at junctions", &m_network);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Follow each fault by its orientation: faults that cross or end against\n"
+                              "each other come out apart (off: linked spheres by distance alone)");
+        if (m_network) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
+            ImGui::InputDouble("angle", &m_angle, 0.0, 0.0, "%.0f");
+            m_angle = std::clamp(m_angle, 1.0, 89.0);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Degrees: the largest turn of orientation within one fault");
+        }
         const bool finding = m_finding && !m_finding->finished();
         ImGui::BeginDisabled(!ready || main->visibility->visibleCount == 0 || finding);
         if (ImGui::Button(finding ? "Finding..." : "Find in visible"))
@@ -49,7 +61,10 @@ class FaultCandidatesSection {
         wb.mark("candidates.clear");
         const auto& cands = preview->set.candidates;
         if (cands.empty()) {
-            ImGui::TextDisabled("No group of %d or more linked visible spheres.", m_minSize);
+            ImGui::TextDisabled(preview->options.method == core::CandidateMethod::Network
+                                    ? "No fault of %d or more visible spheres."
+                                    : "No group of %d or more linked visible spheres.",
+                                m_minSize);
             return;
         }
         // Stale once the visible spheres differ (not merely because another command ran).
@@ -64,11 +79,15 @@ class FaultCandidatesSection {
         ImGui::SameLine();
         ImGui::BeginDisabled(stale || m_prefix.empty());
         if (ImGui::Button("Accept all")) {
-            wb.emit({{"op", "fault.candidates"},
-                     {"link", preview->options.link},
-                     {"min_size", preview->options.minSize},
-                     {"prefix", m_prefix}},
-                    [&wb] { wb.candidatePreview.reset(); });
+            core::Json cmd = {{"op", "fault.candidates"},
+                              {"link", preview->options.link},
+                              {"min_size", preview->options.minSize},
+                              {"prefix", m_prefix}};
+            if (preview->options.method == core::CandidateMethod::Connected)
+                cmd["method"] = "connected";
+            else if (preview->options.angle != core::kDefaultCandidateAngle)
+                cmd["angle"] = preview->options.angle;
+            wb.emit(cmd, [&wb] { wb.candidatePreview.reset(); });
         }
         wb.mark("candidates.accept_all");
         ImGui::EndDisabled();
@@ -112,6 +131,8 @@ class FaultCandidatesSection {
     // single accepted candidate): fault.candidates refuses names that exist.
     double m_link = core::kDefaultCandidateLink;
     int m_minSize = static_cast<int>(core::kDefaultCandidateMinSize);
+    bool m_network = true;
+    double m_angle = core::kDefaultCandidateAngle;
     std::string m_prefix{core::kDefaultCandidatePrefix};
     double m_millis = 0;
     std::set<int> m_accepted;
@@ -123,6 +144,8 @@ class FaultCandidatesSection {
         core::CandidateOptions options;
         options.link = m_link;
         options.minSize = static_cast<std::size_t>(m_minSize);
+        options.method = m_network ? core::CandidateMethod::Network : core::CandidateMethod::Connected;
+        options.angle = m_angle;
         if (m_finding && !m_finding->finished())
             m_finding->cancel();
         m_finding = wb.jobs().start(
