@@ -442,7 +442,7 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
                      const std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
                      double meanRadius) {
     const std::size_t n = wide.size();
-    const int hops = std::max(2, int(std::ceil(radius / (2 * meanRadius))));
+    const int hops = int(std::clamp(std::ceil(radius / (2 * meanRadius)), 2.0, 64.0));
     std::vector<std::uint8_t> reached(n, 0);
     std::vector<std::uint32_t> frontier, next, left;
     for (std::uint32_t i = 0; i < n; ++i)
@@ -511,8 +511,8 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     }
     const double meanRadius = rsum / double(rows.size());
     double radius = options.radius > 0 ? options.radius : 8.0 * meanRadius;
-    if (!(radius > 0) || !(meanRadius > 0))
-        return out; // spheres without size link nothing
+    if (!(radius > 0) || !(meanRadius > 0) || !std::isfinite(radius) || !std::isfinite(rmax))
+        return out; // spheres without size link nothing; sizes beyond floats orient nothing
     const int thin = thinAxis(frame, radius);
     const SphereCells linkCells(frame, rows, options.link * 2.0 * rmax);
     const Graph graph = linkGraph(linkCells, options.link);
