@@ -124,30 +124,25 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
                 seen[k] = 1;
                 events.push_back({f, FaultEventKind::Appeared, {k}});
             }
-        std::vector<FaultEvent> linked, split;
         if (f > 0) {
-            for (const auto& [c, members] : now) {
-                std::set<std::int32_t> earlier;
-                for (std::size_t k : members)
-                    if (const std::int32_t e = candidateAt(k, f - 1); e >= 0)
-                        earlier.insert(e);
-                if (members.size() >= 2 && earlier.size() >= 2)
-                    linked.push_back({f, FaultEventKind::Linked, members});
-            }
-            for (const auto& [c, members] : before) {
-                std::set<std::int32_t> later;
-                for (std::size_t k : members)
-                    if (const std::int32_t e = candidateAt(k, f); e >= 0)
-                        later.insert(e);
-                if (members.size() >= 2 && later.size() >= 2)
-                    split.push_back({f, FaultEventKind::Split, members});
-            }
+            // Groups of one frame whose faults match two or more candidates in the other.
+            auto parted = [&](const auto& groupsIn, std::size_t other, FaultEventKind kind) {
+                std::vector<FaultEvent> found;
+                for (const auto& [c, members] : groupsIn) {
+                    std::set<std::int32_t> there;
+                    for (std::size_t k : members)
+                        if (const std::int32_t e = candidateAt(k, other); e >= 0)
+                            there.insert(e);
+                    if (members.size() >= 2 && there.size() >= 2)
+                        found.push_back({f, kind, members});
+                }
+                std::sort(found.begin(), found.end(),
+                          [](const FaultEvent& a, const FaultEvent& b) { return a.faults < b.faults; });
+                events.insert(events.end(), found.begin(), found.end());
+            };
+            parted(now, f - 1, FaultEventKind::Linked);
+            parted(before, f, FaultEventKind::Split);
         }
-        auto byFirst = [](const FaultEvent& a, const FaultEvent& b) { return a.faults < b.faults; };
-        std::sort(linked.begin(), linked.end(), byFirst);
-        std::sort(split.begin(), split.end(), byFirst);
-        events.insert(events.end(), linked.begin(), linked.end());
-        events.insert(events.end(), split.begin(), split.end());
         before = now;
     }
     return events;
