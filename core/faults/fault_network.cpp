@@ -25,9 +25,9 @@ constexpr float kRefKeep = 0.75f;
 // only with at least this many spheres each.
 constexpr std::size_t kMinPiece = 4;
 constexpr std::size_t kMinFacing = 12;
-// Candidates gathered for one cell's neighbourhoods beyond this are sampled evenly (about a
-// sixth of them fall within the radius).
-constexpr std::size_t kSampledCandidates = 2048;
+// A leftover sphere looks for the nearest surface among at most about this many grouped
+// spheres around its cell (an even sample).
+constexpr std::size_t kLeftoverSample = 4096;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
 constexpr double kRadiusOverThickness = 2.5;
 
@@ -140,80 +140,128 @@ struct Orientations {
 };
 
 // Step 1: per sphere, the plane of its neighbourhood: the spheres within `radius` that are
-// linked to it through other spheres (so a fault nearby but apart does not tilt it).
-Orientations orient(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
+// linked to it through other spheres (so a fault nearby but apart does not tilt it). Spheres are
+// pooled in cells a third of the radius wide, one pool per cell and linked component (count,
+// mean, scatter); a pool's plane sums the pools whose means lie within the radius of its mean,
+// and its spheres take that plane. Work grows with pools, not with neighbour pairs.
+Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
+                    std::span<const std::uint32_t> rowToLink,
                     std::span<const std::uint32_t> component, double radius, int thin) {
-    const std::size_t n = wide.size();
+    const std::size_t n = rows.size();
     Orientations o;
     o.normal.assign(n, F3{0, 0, 1});
     o.planarity.assign(n, 0.0f);
     o.thickness.assign(n, 0.0f);
-    const float r2 = float(radius * radius);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, wide.cellCount(), 16), [&](const auto& range) {
-            std::vector<float> bx, by, bz;
-            std::vector<std::uint32_t> bcomp;
-            for (std::size_t c = range.begin(); c != range.end(); ++c) {
-                bx.clear(), by.clear(), bz.clear(), bcomp.clear();
-                wide.forEachNeighbourCell(c, [&](std::size_t other) {
-                    for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j) {
-                        bx.push_back(wide.x[j]);
-                        by.push_back(wide.y[j]);
-                        bz.push_back(wide.z[j]);
-                        bcomp.push_back(component[wideToLink[j]]);
-                    }
-                });
-                // Large neighbourhoods are sampled evenly (cells are in space order): a plane
-                // fit needs a few hundred points, not thousands.
-                const std::size_t stride = std::max<std::size_t>(1, bx.size() / kSampledCandidates);
-                if (stride > 1) {
-                    std::size_t kept = 0;
-                    for (std::size_t q = 0; q < bx.size(); q += stride, ++kept)
-                        bx[kept] = bx[q], by[kept] = by[q], bz[kept] = bz[q], bcomp[kept] = bcomp[q];
-                    bx.resize(kept), by.resize(kept), bz.resize(kept), bcomp.resize(kept);
+    constexpr int kCellsPerRadius = 3;
+    const SphereCells cells(frame, rows, radius / kCellsPerRadius);
+
+    // Pools: slots of one cell and one component, consecutive after sorting each cell by
+    // component (slots within a cell are in id order, kept for ties).
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    auto componentOf = [&](std::uint32_t slot) { return component[rowToLink[cells.row[slot]]]; };
+    for (std::size_t c = 0; c < cells.cellCount(); ++c)
+        std::stable_sort(order.begin() + cells.cellBegin(c), order.begin() + cells.cellEnd(c),
+                         [&](std::uint32_t a, std::uint32_t b) { return componentOf(a) < componentOf(b); });
+    struct Pool {
+        std::uint32_t begin = 0, end = 0; // into `order`
+        std::uint32_t component = 0;
+        double count = 0;
+        double mean[3] = {0, 0, 0};
+        double scatter[6] = {0, 0, 0, 0, 0, 0}; // xx xy xz yy yz zz about the mean
+    };
+    std::vector<Pool> pools;
+    std::vector<std::uint32_t> cellPools(cells.cellCount() + 1, 0);
+    for (std::size_t c = 0; c < cells.cellCount(); ++c) {
+        cellPools[c] = static_cast<std::uint32_t>(pools.size());
+        for (std::uint32_t k = cells.cellBegin(c); k < cells.cellEnd(c);) {
+            Pool p;
+            p.begin = k;
+            p.component = componentOf(order[k]);
+            while (k < cells.cellEnd(c) && componentOf(order[k]) == p.component)
+                ++k;
+            p.end = k;
+            pools.push_back(p);
+        }
+    }
+    cellPools[cells.cellCount()] = static_cast<std::uint32_t>(pools.size());
+    tbb::parallel_for(std::size_t(0), pools.size(), [&](std::size_t q) {
+        Pool& p = pools[q];
+        p.count = double(p.end - p.begin);
+        for (std::uint32_t k = p.begin; k < p.end; ++k) {
+            const std::uint32_t i = order[k];
+            p.mean[0] += cells.x[i], p.mean[1] += cells.y[i], p.mean[2] += cells.z[i];
+        }
+        for (double& m : p.mean)
+            m /= p.count;
+        for (std::uint32_t k = p.begin; k < p.end; ++k) {
+            const std::uint32_t i = order[k];
+            const double d[3] = {cells.x[i] - p.mean[0], cells.y[i] - p.mean[1], cells.z[i] - p.mean[2]};
+            p.scatter[0] += d[0] * d[0], p.scatter[1] += d[0] * d[1], p.scatter[2] += d[0] * d[2];
+            p.scatter[3] += d[1] * d[1], p.scatter[4] += d[1] * d[2], p.scatter[5] += d[2] * d[2];
+        }
+    });
+
+    const double r2 = radius * radius;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.cellCount(), 8), [&](const auto& range) {
+        std::vector<std::uint32_t> near; // pools of the cells around
+        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+            near.clear();
+            cells.forEachNeighbourCell(c, [&](std::size_t other) {
+                for (std::uint32_t q = cellPools[other]; q < cellPools[other + 1]; ++q)
+                    near.push_back(q);
+            }, kCellsPerRadius + 1);
+            for (std::uint32_t q = cellPools[c]; q < cellPools[c + 1]; ++q) {
+                const Pool& p = pools[q];
+                double count = 0, m[3] = {0, 0, 0}, s[6] = {0, 0, 0, 0, 0, 0};
+                for (std::uint32_t e : near) {
+                    const Pool& other = pools[e];
+                    if (other.component != p.component)
+                        continue;
+                    const double d[3] = {other.mean[0] - p.mean[0], other.mean[1] - p.mean[1],
+                                         other.mean[2] - p.mean[2]};
+                    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > r2)
+                        continue;
+                    const double w = other.count;
+                    count += w;
+                    m[0] += w * d[0], m[1] += w * d[1], m[2] += w * d[2];
+                    s[0] += other.scatter[0] + w * d[0] * d[0];
+                    s[1] += other.scatter[1] + w * d[0] * d[1];
+                    s[2] += other.scatter[2] + w * d[0] * d[2];
+                    s[3] += other.scatter[3] + w * d[1] * d[1];
+                    s[4] += other.scatter[4] + w * d[1] * d[2];
+                    s[5] += other.scatter[5] + w * d[2] * d[2];
                 }
-                const std::size_t m = bx.size();
-                for (std::uint32_t i = wide.cellBegin(c); i < wide.cellEnd(c); ++i) {
-                    const float xi = wide.x[i], yi = wide.y[i], zi = wide.z[i];
-                    const std::uint32_t ci = component[wideToLink[i]];
-                    double s[3] = {0, 0, 0}, ss[6] = {0, 0, 0, 0, 0, 0};
-                    std::uint32_t count = 0;
-                    for (std::size_t q = 0; q < m; ++q) {
-                        const float dx = bx[q] - xi, dy = by[q] - yi, dz = bz[q] - zi;
-                        if (dx * dx + dy * dy + dz * dz > r2 || bcomp[q] != ci)
-                            continue;
-                        ++count;
-                        s[0] += dx, s[1] += dy, s[2] += dz;
-                        ss[0] += dx * dx, ss[1] += dx * dy, ss[2] += dx * dz;
-                        ss[3] += dy * dy, ss[4] += dy * dz, ss[5] += dz * dz;
-                    }
-                    if (count * stride < kMinNeighbours)
-                        continue;
-                    const double inv = 1.0 / count;
-                    const double mx = s[0] * inv, my = s[1] * inv, mz = s[2] * inv;
-                    Mat3d cov{
-                        {{ss[0] * inv - mx * mx, ss[1] * inv - mx * my, ss[2] * inv - mx * mz},
-                         {0, ss[3] * inv - my * my, ss[4] * inv - my * mz},
-                         {0, 0, ss[5] * inv - mz * mz}}};
-                    cov[1][0] = cov[0][1], cov[2][0] = cov[0][2], cov[2][1] = cov[1][2];
-                    if (thin >=
-                        0) { // the plane contains the thin axis: its normal has no part along it
-                        const double big = 1e3 * (cov[0][0] + cov[1][1] + cov[2][2] + 1.0);
-                        for (int a = 0; a < 3; ++a)
-                            cov[thin][a] = cov[a][thin] = 0;
-                        cov[thin][thin] = big;
-                    }
-                    const SymmetricEigen3 e = eigenSymmetric3(cov);
-                    if (!(e.values[1] > 0))
-                        continue;
-                    const std::uint32_t li = wideToLink[i];
-                    o.planarity[li] = float(1.0 - std::max(0.0, e.values[0]) / e.values[1]);
-                    o.thickness[li] = float(std::sqrt(12.0 * std::max(0.0, e.values[0])));
-                    o.normal[li] = normalized(
-                        F3{float(e.vectors[0][0]), float(e.vectors[0][1]), float(e.vectors[0][2])});
+                if (count < kMinNeighbours)
+                    continue;
+                const double inv = 1.0 / count;
+                const double mx = m[0] * inv, my = m[1] * inv, mz = m[2] * inv;
+                Mat3d cov{{{s[0] * inv - mx * mx, s[1] * inv - mx * my, s[2] * inv - mx * mz},
+                           {0, s[3] * inv - my * my, s[4] * inv - my * mz},
+                           {0, 0, s[5] * inv - mz * mz}}};
+                cov[1][0] = cov[0][1], cov[2][0] = cov[0][2], cov[2][1] = cov[1][2];
+                if (thin >= 0) { // the plane contains the thin axis: its normal has no part along it
+                    const double big = 1e3 * (cov[0][0] + cov[1][1] + cov[2][2] + 1.0);
+                    for (int a = 0; a < 3; ++a)
+                        cov[thin][a] = cov[a][thin] = 0;
+                    cov[thin][thin] = big;
+                }
+                const SymmetricEigen3 e = eigenSymmetric3(cov);
+                if (!(e.values[1] > 0))
+                    continue;
+                const float planarity = float(1.0 - std::max(0.0, e.values[0]) / e.values[1]);
+                const float thickness = float(std::sqrt(12.0 * std::max(0.0, e.values[0])));
+                const F3 normal = normalized(F3{float(e.vectors[0][0]), float(e.vectors[0][1]),
+                                                float(e.vectors[0][2])});
+                for (std::uint32_t k = p.begin; k < p.end; ++k) {
+                    const std::uint32_t li = rowToLink[cells.row[order[k]]];
+                    o.planarity[li] = planarity;
+                    o.thickness[li] = thickness;
+                    o.normal[li] = normal;
                 }
             }
-        });
+        }
+    });
     return o;
 }
 
@@ -465,29 +513,53 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
         wideGroup[i] = group[wideToLink[i]];
         wideRef[i] = ref[wideToLink[i]];
     }
+    // Per wide cell, the grouped spheres around it gathered once (sampled evenly past a few
+    // thousand: the nearest surface shows in a sample), then each leftover of the cell scans them.
+    std::vector<std::uint32_t> leftWide(left.size());
+    for (std::size_t q = 0; q < left.size(); ++q)
+        leftWide[q] = linkToWide[left[q]];
+    std::vector<std::uint32_t> byCell(left.size());
+    std::iota(byCell.begin(), byCell.end(), 0u);
+    std::sort(byCell.begin(), byCell.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return leftWide[a] < leftWide[b]; // wide slots are in cell order
+    });
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs; // [begin, end) in byCell, one cell
+    for (std::uint32_t k = 0; k < byCell.size();) {
+        const std::uint32_t c = wide.cellOf(leftWide[byCell[k]]);
+        std::uint32_t e = k;
+        while (e < byCell.size() && wide.cellOf(leftWide[byCell[e]]) == c)
+            ++e;
+        runs.emplace_back(k, e);
+        k = e;
+    }
     const float r2 = float(radius * radius);
     std::vector<std::int32_t> chosen(left.size(), -1);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, left.size(), 256), [&](const auto& range) {
-        for (std::size_t q = range.begin(); q != range.end(); ++q) {
-            const std::uint32_t u = linkToWide[left[q]];
+    tbb::parallel_for(std::size_t(0), runs.size(), [&](std::size_t run) {
+        const auto [k0, k1] = runs[run];
+        std::vector<std::uint32_t> near;
+        wide.forEachNeighbourCell(wide.cellOf(leftWide[byCell[k0]]), [&](std::size_t other) {
+            for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j)
+                if (wideGroup[j] >= 0)
+                    near.push_back(j);
+        });
+        const std::size_t stride = std::max<std::size_t>(1, near.size() / kLeftoverSample);
+        for (std::uint32_t k = k0; k < k1; ++k) {
+            const std::uint32_t q = byCell[k], u = leftWide[q];
             float best = 0;
             std::int32_t bestGroup = -1;
-            wide.forEachNeighbourCell(wide.cellOf(u), [&](std::size_t other) {
-                for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j) {
-                    const std::int32_t gj = wideGroup[j];
-                    if (gj < 0)
-                        continue;
-                    const F3 d{wide.x[u] - wide.x[j], wide.y[u] - wide.y[j], wide.z[u] - wide.z[j]};
-                    const float d2 = dotf(d, d);
-                    if (d2 > r2)
-                        continue;
-                    const float score = std::fabs(dotf(wideRef[j], d)) + 0.1f * std::sqrt(d2);
-                    if (bestGroup < 0 || score < best || (score == best && gj < bestGroup)) {
-                        best = score;
-                        bestGroup = gj;
-                    }
+            for (std::size_t t = 0; t < near.size(); t += stride) {
+                const std::uint32_t j = near[t];
+                const F3 d{wide.x[u] - wide.x[j], wide.y[u] - wide.y[j], wide.z[u] - wide.z[j]};
+                const float d2 = dotf(d, d);
+                if (d2 > r2)
+                    continue;
+                const std::int32_t gj = wideGroup[j];
+                const float score = std::fabs(dotf(wideRef[j], d)) + 0.1f * std::sqrt(d2);
+                if (bestGroup < 0 || score < best || (score == best && gj < bestGroup)) {
+                    best = score;
+                    bestGroup = gj;
                 }
-            });
+            }
             chosen[q] = bestGroup;
         }
     });
@@ -531,7 +603,7 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     };
     SphereCells wide = wideCells(radius);
 
-    Orientations o = orient(wide, wideToLink, graph.component, radius, thin);
+    Orientations o = orient(frame, rows, rowToLink, graph.component, radius, thin);
     double zoneThickness = 2 * meanRadius;
     if (options.radius <= 0 && thin < 0) {
         // Zones thicker than the neighbourhood look barely planar: measure their thickness and
@@ -549,7 +621,7 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
             if (wanted > 1.2 * radius) {
                 radius = wanted;
                 wide = wideCells(radius);
-                o = orient(wide, wideToLink, graph.component, radius, thin);
+                o = orient(frame, rows, rowToLink, graph.component, radius, thin);
             }
         }
     }

@@ -95,6 +95,13 @@ SphereCells::SphereCells(const Frame& frame, std::span<const std::uint32_t> rows
     }
     m_cellBegin.push_back(static_cast<std::uint32_t>(n));
 
+    const double gridCells = double(m_dims[0]) * double(m_dims[1]) * double(m_dims[2]);
+    if (gridCells <= std::max(4.0 * double(n), double(1 << 20))) {
+        m_dense.assign(static_cast<std::size_t>(gridCells), -1);
+        for (std::size_t c = 0; c < m_cellKey.size(); ++c)
+            m_dense[m_cellKey[c]] = static_cast<std::int32_t>(c);
+        return;
+    }
     std::size_t cap = 16;
     while (cap < 2 * m_cellKey.size())
         cap *= 2;
@@ -111,6 +118,8 @@ SphereCells::SphereCells(const Frame& frame, std::span<const std::uint32_t> rows
 }
 
 std::int64_t SphereCells::find(std::uint64_t key) const {
+    if (!m_dense.empty())
+        return m_dense[key];
     std::size_t slot = hashKey(key) & m_mask;
     for (;;) {
         const std::uint64_t k = m_slotKey[slot];

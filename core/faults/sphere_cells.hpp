@@ -57,7 +57,8 @@ class SphereCells {
     std::vector<std::uint64_t> m_cellKey;    // per cell, ascending
     std::vector<std::uint32_t> m_cellBegin;  // per cell, + 1
     std::vector<std::uint32_t> m_cellOfSlot; // per slot
-    // Open addressing: cell key -> cell index.
+    // Cell key -> cell index: a dense table when the grid is small enough, else open addressing.
+    std::vector<std::int32_t> m_dense;
     std::size_t m_mask = 0;
     std::vector<std::uint64_t> m_slotKey;
     std::vector<std::uint32_t> m_slotCell;
