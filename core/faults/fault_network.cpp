@@ -27,7 +27,15 @@ constexpr std::size_t kMinPiece = 4;
 constexpr std::size_t kMinFacing = 12;
 // A leftover sphere looks for the nearest surface among at most about this many grouped
 // spheres around its cell (an even sample).
-constexpr std::size_t kLeftoverSample = 4096;
+constexpr std::size_t kLeftoverSample = 1024;
+// Leftovers further than a radius from every group wait for their outer neighbours: at most
+// this many rounds.
+constexpr int kLeftoverRounds = 6;
+// Whether a region sits on other zones' surfaces is decided on at most about this many of its
+// spheres.
+constexpr std::size_t kJunctionSample = 256;
+// Leftovers are reached over links from the groups up to about this many radii away.
+constexpr double kLeftoverReach = 3.0;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
 constexpr double kRadiusOverThickness = 2.5;
 
@@ -143,7 +151,9 @@ struct Orientations {
 // linked to it through other spheres (so a fault nearby but apart does not tilt it). Spheres are
 // pooled in cells a third of the radius wide, one pool per cell and linked component (count,
 // mean, scatter); a pool's plane sums the pools whose means lie within the radius of its mean,
-// and its spheres take that plane. Work grows with pools, not with neighbour pairs.
+// and its spheres take that plane (smoothed at a sixth of the radius on purpose: sphere by
+// sphere, the normals that bend at a crossing chain two faults more easily). Work grows with
+// pools, not with neighbour pairs.
 Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
                     std::span<const std::uint32_t> rowToLink,
                     std::span<const std::uint32_t> component, double radius, int thin) {
@@ -152,7 +162,7 @@ Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
     o.normal.assign(n, F3{0, 0, 1});
     o.planarity.assign(n, 0.0f);
     o.thickness.assign(n, 0.0f);
-    constexpr int kCellsPerRadius = 3;
+    constexpr int kCellsPerRadius = 2;
     const SphereCells cells(frame, rows, radius / kCellsPerRadius);
 
     // Pools: slots of one cell and one component, consecutive after sorting each cell by
@@ -161,8 +171,9 @@ Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
     std::iota(order.begin(), order.end(), 0u);
     auto componentOf = [&](std::uint32_t slot) { return component[rowToLink[cells.row[slot]]]; };
     for (std::size_t c = 0; c < cells.cellCount(); ++c)
-        std::stable_sort(order.begin() + cells.cellBegin(c), order.begin() + cells.cellEnd(c),
-                         [&](std::uint32_t a, std::uint32_t b) { return componentOf(a) < componentOf(b); });
+        std::stable_sort(
+            order.begin() + cells.cellBegin(c), order.begin() + cells.cellEnd(c),
+            [&](std::uint32_t a, std::uint32_t b) { return componentOf(a) < componentOf(b); });
     struct Pool {
         std::uint32_t begin = 0, end = 0; // into `order`
         std::uint32_t component = 0;
@@ -196,72 +207,78 @@ Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
             m /= p.count;
         for (std::uint32_t k = p.begin; k < p.end; ++k) {
             const std::uint32_t i = order[k];
-            const double d[3] = {cells.x[i] - p.mean[0], cells.y[i] - p.mean[1], cells.z[i] - p.mean[2]};
+            const double d[3] = {cells.x[i] - p.mean[0], cells.y[i] - p.mean[1],
+                                 cells.z[i] - p.mean[2]};
             p.scatter[0] += d[0] * d[0], p.scatter[1] += d[0] * d[1], p.scatter[2] += d[0] * d[2];
             p.scatter[3] += d[1] * d[1], p.scatter[4] += d[1] * d[2], p.scatter[5] += d[2] * d[2];
         }
     });
 
     const double r2 = radius * radius;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.cellCount(), 8), [&](const auto& range) {
-        std::vector<std::uint32_t> near; // pools of the cells around
-        for (std::size_t c = range.begin(); c != range.end(); ++c) {
-            near.clear();
-            cells.forEachNeighbourCell(c, [&](std::size_t other) {
-                for (std::uint32_t q = cellPools[other]; q < cellPools[other + 1]; ++q)
-                    near.push_back(q);
-            }, kCellsPerRadius + 1);
-            for (std::uint32_t q = cellPools[c]; q < cellPools[c + 1]; ++q) {
-                const Pool& p = pools[q];
-                double count = 0, m[3] = {0, 0, 0}, s[6] = {0, 0, 0, 0, 0, 0};
-                for (std::uint32_t e : near) {
-                    const Pool& other = pools[e];
-                    if (other.component != p.component)
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, cells.cellCount(), 8), [&](const auto& range) {
+            std::vector<std::uint32_t> near; // pools of the cells around
+            for (std::size_t c = range.begin(); c != range.end(); ++c) {
+                near.clear();
+                cells.forEachNeighbourCell(
+                    c,
+                    [&](std::size_t other) {
+                        for (std::uint32_t q = cellPools[other]; q < cellPools[other + 1]; ++q)
+                            near.push_back(q);
+                    },
+                    kCellsPerRadius + 1);
+                for (std::uint32_t q = cellPools[c]; q < cellPools[c + 1]; ++q) {
+                    const Pool& p = pools[q];
+                    double count = 0, m[3] = {0, 0, 0}, s[6] = {0, 0, 0, 0, 0, 0};
+                    for (std::uint32_t e : near) {
+                        const Pool& other = pools[e];
+                        if (other.component != p.component)
+                            continue;
+                        const double d[3] = {other.mean[0] - p.mean[0], other.mean[1] - p.mean[1],
+                                             other.mean[2] - p.mean[2]};
+                        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > r2)
+                            continue;
+                        const double w = other.count;
+                        count += w;
+                        m[0] += w * d[0], m[1] += w * d[1], m[2] += w * d[2];
+                        s[0] += other.scatter[0] + w * d[0] * d[0];
+                        s[1] += other.scatter[1] + w * d[0] * d[1];
+                        s[2] += other.scatter[2] + w * d[0] * d[2];
+                        s[3] += other.scatter[3] + w * d[1] * d[1];
+                        s[4] += other.scatter[4] + w * d[1] * d[2];
+                        s[5] += other.scatter[5] + w * d[2] * d[2];
+                    }
+                    if (count < kMinNeighbours)
                         continue;
-                    const double d[3] = {other.mean[0] - p.mean[0], other.mean[1] - p.mean[1],
-                                         other.mean[2] - p.mean[2]};
-                    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > r2)
+                    const double inv = 1.0 / count;
+                    const double mx = m[0] * inv, my = m[1] * inv, mz = m[2] * inv;
+                    Mat3d cov{{{s[0] * inv - mx * mx, s[1] * inv - mx * my, s[2] * inv - mx * mz},
+                               {0, s[3] * inv - my * my, s[4] * inv - my * mz},
+                               {0, 0, s[5] * inv - mz * mz}}};
+                    cov[1][0] = cov[0][1], cov[2][0] = cov[0][2], cov[2][1] = cov[1][2];
+                    if (thin >=
+                        0) { // the plane contains the thin axis: its normal has no part along it
+                        const double big = 1e3 * (cov[0][0] + cov[1][1] + cov[2][2] + 1.0);
+                        for (int a = 0; a < 3; ++a)
+                            cov[thin][a] = cov[a][thin] = 0;
+                        cov[thin][thin] = big;
+                    }
+                    const SymmetricEigen3 e = eigenSymmetric3(cov);
+                    if (!(e.values[1] > 0))
                         continue;
-                    const double w = other.count;
-                    count += w;
-                    m[0] += w * d[0], m[1] += w * d[1], m[2] += w * d[2];
-                    s[0] += other.scatter[0] + w * d[0] * d[0];
-                    s[1] += other.scatter[1] + w * d[0] * d[1];
-                    s[2] += other.scatter[2] + w * d[0] * d[2];
-                    s[3] += other.scatter[3] + w * d[1] * d[1];
-                    s[4] += other.scatter[4] + w * d[1] * d[2];
-                    s[5] += other.scatter[5] + w * d[2] * d[2];
-                }
-                if (count < kMinNeighbours)
-                    continue;
-                const double inv = 1.0 / count;
-                const double mx = m[0] * inv, my = m[1] * inv, mz = m[2] * inv;
-                Mat3d cov{{{s[0] * inv - mx * mx, s[1] * inv - mx * my, s[2] * inv - mx * mz},
-                           {0, s[3] * inv - my * my, s[4] * inv - my * mz},
-                           {0, 0, s[5] * inv - mz * mz}}};
-                cov[1][0] = cov[0][1], cov[2][0] = cov[0][2], cov[2][1] = cov[1][2];
-                if (thin >= 0) { // the plane contains the thin axis: its normal has no part along it
-                    const double big = 1e3 * (cov[0][0] + cov[1][1] + cov[2][2] + 1.0);
-                    for (int a = 0; a < 3; ++a)
-                        cov[thin][a] = cov[a][thin] = 0;
-                    cov[thin][thin] = big;
-                }
-                const SymmetricEigen3 e = eigenSymmetric3(cov);
-                if (!(e.values[1] > 0))
-                    continue;
-                const float planarity = float(1.0 - std::max(0.0, e.values[0]) / e.values[1]);
-                const float thickness = float(std::sqrt(12.0 * std::max(0.0, e.values[0])));
-                const F3 normal = normalized(F3{float(e.vectors[0][0]), float(e.vectors[0][1]),
-                                                float(e.vectors[0][2])});
-                for (std::uint32_t k = p.begin; k < p.end; ++k) {
-                    const std::uint32_t li = rowToLink[cells.row[order[k]]];
-                    o.planarity[li] = planarity;
-                    o.thickness[li] = thickness;
-                    o.normal[li] = normal;
+                    const float planarity = float(1.0 - std::max(0.0, e.values[0]) / e.values[1]);
+                    const float thickness = float(std::sqrt(12.0 * std::max(0.0, e.values[0])));
+                    const F3 normal = normalized(
+                        F3{float(e.vectors[0][0]), float(e.vectors[0][1]), float(e.vectors[0][2])});
+                    for (std::uint32_t k = p.begin; k < p.end; ++k) {
+                        const std::uint32_t li = rowToLink[cells.row[order[k]]];
+                        o.planarity[li] = planarity;
+                        o.thickness[li] = thickness;
+                        o.normal[li] = normal;
+                    }
                 }
             }
-        }
-    });
+        });
     return o;
 }
 
@@ -449,29 +466,43 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
             if (region[i] >= 0 && 2 * size[std::size_t(region[i])] < largest)
                 suspect[std::size_t(region[i])] = 1;
     }
+    // An even sample of each suspect region's spheres decides (the share is what counts).
+    std::vector<std::size_t> stride(regionCount, 1), seen(regionCount, 0), sampled(regionCount, 0);
+    for (std::size_t g = 0; g < regionCount; ++g)
+        stride[g] = std::max<std::size_t>(1, size[g] / kJunctionSample);
     std::vector<std::uint32_t> slots;
     for (std::uint32_t i = 0; i < n; ++i)
-        if (region[i] >= 0 && suspect[std::size_t(region[i])])
+        if (const std::int32_t g = region[i];
+            g >= 0 && suspect[std::size_t(g)] &&
+            seen[std::size_t(g)]++ % stride[std::size_t(g)] == 0) {
             slots.push_back(i);
+            ++sampled[std::size_t(g)];
+        }
     if (slots.empty())
         return;
-    const float r2 = float(radius * radius), tol = float(onSurface);
+    // The zones' own spheres can stand back from a crossing by a neighbourhood or more (the
+    // unsettled band): look two radii out along their tangent planes.
+    constexpr int kJunctionReach = 2;
+    const float r2 = float(4 * radius * radius), tol = float(onSurface);
     std::vector<std::uint8_t> explained(slots.size(), 0);
     tbb::parallel_for(std::size_t(0), slots.size(), [&](std::size_t q) {
         const std::uint32_t i = slots[q];
         const std::int32_t own = region[i];
         bool found = false;
-        cells.forEachNeighbourCell(cells.cellOf(i), [&](std::size_t other) {
-            for (std::uint32_t j = cells.cellBegin(other); j < cells.cellEnd(other) && !found;
-                 ++j) {
-                const std::int32_t g = region[j];
-                if (g < 0 || g == own || size[std::size_t(g)] <= size[std::size_t(own)])
-                    continue;
-                const F3 d{cells.x[i] - cells.x[j], cells.y[i] - cells.y[j],
-                           cells.z[i] - cells.z[j]};
-                found = dotf(d, d) <= r2 && std::fabs(dotf(ref[j], d)) <= tol;
-            }
-        });
+        cells.forEachNeighbourCell(
+            cells.cellOf(i),
+            [&](std::size_t other) {
+                for (std::uint32_t j = cells.cellBegin(other); j < cells.cellEnd(other) && !found;
+                     ++j) {
+                    const std::int32_t g = region[j];
+                    if (g < 0 || g == own || size[std::size_t(g)] <= size[std::size_t(own)])
+                        continue;
+                    const F3 d{cells.x[i] - cells.x[j], cells.y[i] - cells.y[j],
+                               cells.z[i] - cells.z[j]};
+                    found = dotf(d, d) <= r2 && std::fabs(dotf(ref[j], d)) <= tol;
+                }
+            },
+            kJunctionReach);
         explained[q] = found;
     });
     std::vector<std::size_t> onOthers(regionCount, 0);
@@ -479,7 +510,7 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
         onOthers[std::size_t(region[slots[q]])] += explained[q];
     for (std::int32_t& g : linkRegion)
         if (g >= 0 && suspect[std::size_t(g)] &&
-            2 * onOthers[std::size_t(g)] > size[std::size_t(g)])
+            2 * onOthers[std::size_t(g)] > sampled[std::size_t(g)])
             g = -1;
 }
 
@@ -488,9 +519,10 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
 void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
                      std::span<const std::uint32_t> linkToWide, const Graph& g,
                      const std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
-                     double meanRadius) {
+                     double meanRadius, double onSurface) {
     const std::size_t n = wide.size();
-    const int hops = int(std::clamp(std::ceil(radius / (2 * meanRadius)), 2.0, 64.0));
+    const int hops =
+        int(std::clamp(std::ceil(kLeftoverReach * radius / (2 * meanRadius)), 2.0, 192.0));
     std::vector<std::uint8_t> reached(n, 0);
     std::vector<std::uint32_t> frontier, next, left;
     for (std::uint32_t i = 0; i < n; ++i)
@@ -514,55 +546,107 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
         wideRef[i] = ref[wideToLink[i]];
     }
     // Per wide cell, the grouped spheres around it gathered once (sampled evenly past a few
-    // thousand: the nearest surface shows in a sample), then each leftover of the cell scans them.
+    // thousand), then each leftover of the cell measures its distance to each group's local
+    // mid-plane: the mean signed offset from the group's spheres along their normals (a zone's
+    // spheres lie on both sides of its mid-plane, so the mean finds the middle of a thick zone).
+    // Rounds: spheres further in take the groups their outer neighbours took, with the normal
+    // of the sphere that decided.
     std::vector<std::uint32_t> leftWide(left.size());
     for (std::size_t q = 0; q < left.size(); ++q)
         leftWide[q] = linkToWide[left[q]];
-    std::vector<std::uint32_t> byCell(left.size());
-    std::iota(byCell.begin(), byCell.end(), 0u);
-    std::sort(byCell.begin(), byCell.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return leftWide[a] < leftWide[b]; // wide slots are in cell order
-    });
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs; // [begin, end) in byCell, one cell
-    for (std::uint32_t k = 0; k < byCell.size();) {
-        const std::uint32_t c = wide.cellOf(leftWide[byCell[k]]);
-        std::uint32_t e = k;
-        while (e < byCell.size() && wide.cellOf(leftWide[byCell[e]]) == c)
-            ++e;
-        runs.emplace_back(k, e);
-        k = e;
-    }
     const float r2 = float(radius * radius);
     std::vector<std::int32_t> chosen(left.size(), -1);
-    tbb::parallel_for(std::size_t(0), runs.size(), [&](std::size_t run) {
-        const auto [k0, k1] = runs[run];
-        std::vector<std::uint32_t> near;
-        wide.forEachNeighbourCell(wide.cellOf(leftWide[byCell[k0]]), [&](std::size_t other) {
-            for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j)
-                if (wideGroup[j] >= 0)
-                    near.push_back(j);
+    std::vector<F3> chosenRef(left.size());
+    std::vector<std::uint32_t> open(left.size());
+    std::iota(open.begin(), open.end(), 0u);
+    // Rounds take a sphere only into a zone it lies in (mid-plane within a half-thickness):
+    // where one zone's settled spheres stand back from a crossing, the other zone's would
+    // otherwise take its spheres first. A last round takes what is left by nearest surface.
+    const float within = float(onSurface);
+    for (int round = 0; round <= kLeftoverRounds && !open.empty(); ++round) {
+        const bool last = round == kLeftoverRounds;
+        std::sort(open.begin(), open.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return leftWide[a] < leftWide[b]; // wide slots are in cell order
         });
-        const std::size_t stride = std::max<std::size_t>(1, near.size() / kLeftoverSample);
-        for (std::uint32_t k = k0; k < k1; ++k) {
-            const std::uint32_t q = byCell[k], u = leftWide[q];
-            float best = 0;
-            std::int32_t bestGroup = -1;
-            for (std::size_t t = 0; t < near.size(); t += stride) {
-                const std::uint32_t j = near[t];
-                const F3 d{wide.x[u] - wide.x[j], wide.y[u] - wide.y[j], wide.z[u] - wide.z[j]};
-                const float d2 = dotf(d, d);
-                if (d2 > r2)
-                    continue;
-                const std::int32_t gj = wideGroup[j];
-                const float score = std::fabs(dotf(wideRef[j], d)) + 0.1f * std::sqrt(d2);
-                if (bestGroup < 0 || score < best || (score == best && gj < bestGroup)) {
-                    best = score;
-                    bestGroup = gj;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> runs; // [begin, end) of one cell
+        for (std::uint32_t k = 0; k < open.size();) {
+            const std::uint32_t c = wide.cellOf(leftWide[open[k]]);
+            std::uint32_t e = k;
+            while (e < open.size() && wide.cellOf(leftWide[open[e]]) == c)
+                ++e;
+            runs.emplace_back(k, e);
+            k = e;
+        }
+        tbb::parallel_for(std::size_t(0), runs.size(), [&](std::size_t run) {
+            const auto [k0, k1] = runs[run];
+            std::vector<std::uint32_t> near;
+            wide.forEachNeighbourCell(wide.cellOf(leftWide[open[k0]]), [&](std::size_t other) {
+                for (std::uint32_t j = wide.cellBegin(other); j < wide.cellEnd(other); ++j)
+                    if (wideGroup[j] >= 0)
+                        near.push_back(j);
+            });
+            const std::size_t stride = std::max<std::size_t>(1, near.size() / kLeftoverSample);
+            constexpr int kMaxGroups = 8;
+            for (std::uint32_t k = k0; k < k1; ++k) {
+                const std::uint32_t q = open[k], u = leftWide[q];
+                struct Near {
+                    std::int32_t group;
+                    F3 normal; // the first sphere's, to give the others' normals one sign
+                    float offset, count, nearest;
+                    std::uint32_t closest; // the nearest sphere, whose normal the leftover takes
+                } seen[kMaxGroups];
+                int groups = 0;
+                for (std::size_t t = 0; t < near.size(); t += stride) {
+                    const std::uint32_t j = near[t];
+                    const F3 d{wide.x[u] - wide.x[j], wide.y[u] - wide.y[j], wide.z[u] - wide.z[j]};
+                    const float d2 = dotf(d, d);
+                    if (d2 > r2)
+                        continue;
+                    const std::int32_t gj = wideGroup[j];
+                    int slot = 0;
+                    while (slot < groups && seen[slot].group != gj)
+                        ++slot;
+                    if (slot == groups) {
+                        if (groups == kMaxGroups)
+                            continue;
+                        seen[groups++] = {gj, wideRef[j], 0, 0, d2, j};
+                    }
+                    Near& s = seen[slot];
+                    const float sign = dotf(wideRef[j], s.normal) < 0 ? -1.0f : 1.0f;
+                    s.offset += sign * dotf(wideRef[j], d);
+                    s.count += 1;
+                    if (d2 < s.nearest)
+                        s.nearest = d2, s.closest = j;
+                }
+                float best = 0;
+                int pick = -1;
+                for (int m = 0; m < groups; ++m) {
+                    const float score = std::fabs(seen[m].offset / seen[m].count) +
+                                        0.1f * std::sqrt(seen[m].nearest);
+                    if (pick < 0 || score < best ||
+                        (score == best && seen[m].group < seen[pick].group))
+                        best = score, pick = m;
+                }
+                if (pick >= 0 &&
+                    (last || std::fabs(seen[pick].offset / seen[pick].count) <= within)) {
+                    chosen[q] = seen[pick].group;
+                    chosenRef[q] = wideRef[seen[pick].closest];
                 }
             }
-            chosen[q] = bestGroup;
+        });
+        std::vector<std::uint32_t> still;
+        for (std::uint32_t q : open) {
+            if (chosen[q] >= 0) {
+                wideGroup[leftWide[q]] = chosen[q];
+                wideRef[leftWide[q]] = chosenRef[q];
+            } else {
+                still.push_back(q);
+            }
         }
-    });
+        if (still.size() == open.size() && !last)
+            round = kLeftoverRounds - 1; // nothing moved: straight to the last round
+        open.swap(still);
+    }
     for (std::size_t q = 0; q < left.size(); ++q)
         group[left[q]] = chosen[q];
 }
@@ -642,7 +726,8 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     for (std::int32_t& g : region)
         if (g >= 0 && size[std::size_t(g)] < minSize)
             g = -1;
-    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius);
+    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
+                    onSurface);
 
     std::vector<std::int32_t> dense(regionCount, -1);
     for (std::size_t i = 0; i < linkCells.size(); ++i)

@@ -136,8 +136,9 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
                     if (members.size() >= 2 && there.size() >= 2)
                         found.push_back({f, kind, members});
                 }
-                std::sort(found.begin(), found.end(),
-                          [](const FaultEvent& a, const FaultEvent& b) { return a.faults < b.faults; });
+                std::sort(found.begin(), found.end(), [](const FaultEvent& a, const FaultEvent& b) {
+                    return a.faults < b.faults;
+                });
                 events.insert(events.end(), found.begin(), found.end());
             };
             parted(now, f - 1, FaultEventKind::Linked);
