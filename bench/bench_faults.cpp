@@ -84,7 +84,7 @@ const SlabScene& slabScene() {
     return scene;
 }
 
-// 200 x 160 x 100 = 3,200,000 spheres; visible: a rift of 16 faults three diameters thick
+// 200 x 160 x 100 = 3,200,000 spheres; visible: a rift of 16 faults 3.5 diameters thick
 // across the whole block, east- and west-dipping (60 degrees) in pairs that cross in an X at
 // depth, cut by two steep transfer faults across strike: about 1,000,000 visible.
 const SlabScene& millionScene() {
@@ -103,7 +103,7 @@ const SlabScene& millionScene() {
             const auto& p = planes[std::size_t(k)];
             const auto n = normalFromOrientation(p[3], p[4]);
             for (std::size_t r = 0; r < s.frame.size(); ++r)
-                if (std::fabs(distanceToPlane(s.frame, r, {p[0], p[1], p[2]}, n)) < 1.5)
+                if (std::fabs(distanceToPlane(s.frame, r, {p[0], p[1], p[2]}, n)) < 1.75)
                     s.mark(r, k);
         }
         return s;

@@ -198,3 +198,26 @@ TEST_F(PanelTest, FaultMetricsPlotFollowsTheFrameAndGoesToTheFrameClicked) {
     EXPECT_FALSE(wb().jobs().busy());
     EXPECT_FALSE(headless.has(wb(), "faults.metrics.progress"));
 }
+
+TEST_F(PanelTest, FaultMetricsPlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
+    openLattice();
+    // Only the wall x = 1 is visible: one fault, there from the first frame.
+    session.apply({{"op", "box.add"}, {"name", "wall"}, {"min", {1, 0, 0}}, {"max", {1, 3, 3}}});
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id = 2; id <= 64; id += 4)
+        ids.push_back(id);
+    session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", ids}});
+    wb().selectedFaults = {"F1"};
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.settle(wb());
+    EXPECT_FALSE(headless.has(wb(), "faults.metrics.events.shown"));
+    headless.clearEmitted();
+    headless.click(wb(), "faults.metrics.events");
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "faults.metrics.events.shown"));
+    EXPECT_TRUE(headless.emitted().empty()) << "finding events is no command";
+    // Another selection of visible spheres: those events are not shown for it.
+    session.apply({{"op", "box.set"}, {"name", "wall"}, {"enabled", false}});
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "faults.metrics.events.shown"));
+}

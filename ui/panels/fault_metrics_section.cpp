@@ -2,6 +2,9 @@
 // is selected) over every frame, from a background job, with the current frame as a cursor;
 // clicking or dragging on the plot goes to that frame like the timeline does.
 #include "core/faults/metric_fields.hpp"
+#include "core/faults/tracking.hpp"
+#include "core/selection/visibility.hpp"
+#include "core/session/session.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/series_plot.hpp"
 #include "ui/workbench/fault_metrics_cache.hpp"
@@ -22,6 +25,27 @@ constexpr std::size_t kMaxLines = 12; // more lines than this are unreadable any
 
 ImU32 colorOf(const core::Fault& f) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(f.color[0], f.color[1], f.color[2], 1.0f));
+}
+
+// What these faults, followed as candidates of the visible spheres frame by frame, and this
+// selection of visible spheres make as a key: events found for another key are not shown.
+std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* const> faults,
+                      const void* dataset) {
+    std::string key = std::to_string(reinterpret_cast<std::uintptr_t>(dataset));
+    char buf[160];
+    for (const core::Fault* f : faults)
+        key += "|f" + f->name + ":" + std::to_string(core::hashMemberIds(f->ids));
+    for (const auto& b : s.boxes) {
+        std::snprintf(buf, sizeof buf, "|b%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", b.min[0], b.min[1],
+                      b.min[2], b.max[0], b.max[1], b.max[2], int(b.mode), int(b.enabled));
+        key += buf;
+    }
+    for (const auto& t : s.thresholds) {
+        std::snprintf(buf, sizeof buf, "|t%.9g,%.9g,%d,", t.low, t.high, int(t.enabled));
+        key += buf + t.variable;
+    }
+    key += "|filter" + std::to_string(int(s.faultFilter.mode)) + s.faultFilter.fault;
+    return key;
 }
 
 class FaultMetricsSection {
@@ -105,6 +129,28 @@ class FaultMetricsSection {
             }
         }
 
+        // Events: when the faults, followed as candidates of the visible spheres, appeared,
+        // linked and split (as export.csv fault_events), marked on the plot.
+        const std::string key = eventsKey(s, shown, ds.get());
+        const bool finding = m_eventsJob && !m_eventsJob->finished();
+        ImGui::BeginDisabled(finding);
+        if (ImGui::Button(finding ? "Finding links..." : "Find links and splits"))
+            findEvents(wb, ds, shown, key);
+        ImGui::EndDisabled();
+        wb.mark("faults.metrics.events");
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip(
+                "Follow these faults as candidates of the visible spheres through every\n"
+                "frame: A appeared, L linked (two faults become one), S split");
+        std::vector<PlotMark> marks;
+        if (m_events && m_events->key == key) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("%zu event%s", m_events->marks.size(),
+                                m_events->marks.size() == 1 ? "" : "s");
+            wb.mark("faults.metrics.events.shown");
+            marks = m_events->marks;
+        }
+
         // The plot: as tall as the panel allows, but legible.
         const float scale = wb.scale();
         const float below =
@@ -112,9 +158,10 @@ class FaultMetricsSection {
         const float h = std::clamp(ImGui::GetContentRegionAvail().y - below - 4 * scale,
                                    150 * scale, 300 * scale);
         const std::size_t cursor = wb.displayFrame();
-        const PlotInput in = seriesPlot(
-            "##metricplot", lines, ds->frameCount(), m_scrub.value_or(cursor),
-            ImVec2(std::max(80.0f, ImGui::GetContentRegionAvail().x), h), field.integer, scale);
+        const PlotInput in =
+            seriesPlot("##metricplot", lines, ds->frameCount(), m_scrub.value_or(cursor),
+                       ImVec2(std::max(80.0f, ImGui::GetContentRegionAvail().x), h), field.integer,
+                       scale, marks);
         wb.mark("faults.metrics.plot");
         if (in.frame && !in.released) {
             m_scrub = in.frame;
@@ -137,6 +184,76 @@ class FaultMetricsSection {
     }
 
   private:
+    struct Events {
+        std::string key;
+        std::vector<PlotMark> marks;
+    };
+    std::optional<Events> m_events;
+    std::shared_ptr<Job> m_eventsJob;
+
+    // Tracks of the faults over every frame (candidates as fault.candidates' defaults, of the
+    // visible spheres as the session's boxes, thresholds and fault filter say), in the
+    // background; their events become the plot's marks.
+    void findEvents(Workbench& wb, const std::shared_ptr<core::Dataset>& ds,
+                    std::span<const core::Fault* const> shown, const std::string& key) {
+        std::vector<core::Fault> faults;
+        for (const core::Fault* f : shown)
+            faults.push_back(*f);
+        m_eventsJob = wb.jobs().start(
+            "Finding fault links and splits",
+            [this, ds, faults = std::move(faults), state = wb.state(),
+             key](JobControl& control) -> std::function<void()> {
+                core::CandidateOptions options;
+                options.minSize = core::kDefaultCandidateMinSize;
+                const std::size_t frames = ds->frameCount();
+                const auto tracks = core::trackFaults(
+                    frames,
+                    [ds, &control, frames](std::size_t k) {
+                        control.setProgress(float(k) / float(std::max<std::size_t>(frames, 1)));
+                        if (control.cancelled())
+                            throw std::runtime_error("cancelled");
+                        return ds->frame(k);
+                    },
+                    [&state](const core::Frame& frame, std::size_t) {
+                        const auto rowMask = core::Session::faultRowMask(state, frame);
+                        return core::computeVisibility(frame, state.boxes, state.thresholds,
+                                                       rowMask.get())
+                            .mask;
+                    },
+                    faults, options);
+                Events events{key, {}};
+                for (const core::FaultEvent& e : core::faultEvents(tracks)) {
+                    PlotMark m;
+                    m.frame = e.frame;
+                    std::string names;
+                    for (std::size_t k : e.faults)
+                        names += (names.empty() ? "" : ", ") + faults[k].name;
+                    switch (e.kind) {
+                    case core::FaultEventKind::Appeared:
+                        m.letter = 'A', m.color = IM_COL32(70, 140, 70, 255);
+                        m.text = "appeared: " + names;
+                        break;
+                    case core::FaultEventKind::Linked:
+                        m.letter = 'L', m.color = IM_COL32(200, 80, 30, 255);
+                        m.text = "linked: " + names;
+                        break;
+                    case core::FaultEventKind::Split:
+                        m.letter = 'S', m.color = IM_COL32(120, 60, 190, 255);
+                        m.text = "split: " + names;
+                        break;
+                    }
+                    events.marks.push_back(std::move(m));
+                }
+                auto shared = std::make_shared<Events>(std::move(events));
+                return [this, shared] { m_events = std::move(*shared); };
+            },
+            [&wb](const std::string& why) {
+                if (why != "cancelled")
+                    wb.error("Cannot find links and splits: " + why);
+            },
+            wb.now());
+    }
+
     // "F1  44.2 .. 47.9" per fault: the metric's range over the frames where it is defined.
     void drawRanges(Workbench& wb, const std::vector<const core::Fault*>& shown) {
         for (std::size_t k = 0; k < shown.size(); ++k) {

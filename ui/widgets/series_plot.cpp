@@ -35,7 +35,8 @@ std::size_t frameAt(float x, float x0, float x1, std::size_t count) {
 } // namespace
 
 PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_t frameCount,
-                     std::size_t cursorFrame, ImVec2 size, bool integerValues, float scale) {
+                     std::size_t cursorFrame, ImVec2 size, bool integerValues, float scale,
+                     std::span<const PlotMark> marks) {
     PlotInput input;
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton(id, size);
@@ -138,6 +139,24 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
         dl->AddText(ImVec2(0.5f * (x0 + x1 - ts.x), 0.5f * (y0 + y1 - ts.y)), muted, none);
     }
     dl->PopClipRect();
+    // Marks: a dashed line and a letter above the plot (letters of one frame side by side).
+    {
+        std::size_t previous = std::size_t(-1);
+        float shift = 0;
+        for (const PlotMark& m : marks) {
+            if (m.frame >= frameCount)
+                continue;
+            shift = m.frame == previous ? shift + ImGui::CalcTextSize("W").x : 0;
+            previous = m.frame;
+            const float xx = toX(m.frame);
+            const float dash = 4 * scale;
+            for (float yy = y0; yy < y1; yy += 2 * dash)
+                dl->AddLine(ImVec2(xx, yy), ImVec2(xx, std::min(y1, yy + dash)), m.color,
+                            1.5f * scale);
+            const char label[2] = {m.letter, 0};
+            dl->AddText(ImVec2(xx + 2 * scale + shift, y0 + 1 * scale), m.color, label);
+        }
+    }
 
     // Input: the frame under the mouse while pressed; the release commits it.
     if (frameCount >= 1 && active)
@@ -170,6 +189,10 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
             else
                 ImGui::TextDisabled("undefined");
         }
+        for (const PlotMark& m : marks)
+            if (m.frame == f)
+                ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(m.color), "%c %s", m.letter,
+                                   m.text.c_str());
         ImGui::EndTooltip();
     }
     return input;
