@@ -145,8 +145,7 @@ class FaultMetricsSection {
         std::vector<PlotMark> marks;
         if (m_events && m_events->key == key) {
             ImGui::SameLine();
-            ImGui::TextDisabled("%zu event%s", m_events->marks.size(),
-                                m_events->marks.size() == 1 ? "" : "s");
+            ImGui::TextDisabled("%zu event%s", m_events->count, m_events->count == 1 ? "" : "s");
             wb.mark("faults.metrics.events.shown");
             marks = m_events->marks;
         }
@@ -186,7 +185,8 @@ class FaultMetricsSection {
   private:
     struct Events {
         std::string key;
-        std::vector<PlotMark> marks;
+        std::vector<PlotMark> marks; // one per frame and kind
+        std::size_t count = 0;       // events
     };
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
@@ -221,7 +221,7 @@ class FaultMetricsSection {
                             .mask;
                     },
                     faults, options);
-                Events events{key, {}};
+                Events events{key, {}, 0};
                 for (const core::FaultEvent& e : core::faultEvents(tracks)) {
                     PlotMark m;
                     m.frame = e.frame;
@@ -242,7 +242,13 @@ class FaultMetricsSection {
                         m.text = "split: " + names;
                         break;
                     }
-                    events.marks.push_back(std::move(m));
+                    ++events.count;
+                    // One mark per frame and kind: "appeared: F1, F2" rather than a row of As.
+                    if (!events.marks.empty() && events.marks.back().frame == m.frame &&
+                        events.marks.back().letter == m.letter)
+                        events.marks.back().text += ", " + names;
+                    else
+                        events.marks.push_back(std::move(m));
                 }
                 auto shared = std::make_shared<Events>(std::move(events));
                 return [this, shared] { m_events = std::move(*shared); };
