@@ -70,7 +70,8 @@ std::string faultsCsv(std::span<const Fault> faults) {
 }
 
 std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultTrack> tracks) {
-    std::string out = "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall\n";
+    std::string out =
+        "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall\n";
     for (std::size_t f = 0; f < tracks.size() && f < faults.size(); ++f)
         for (const FaultTrackPoint& p : tracks[f].points) {
             const CandidateMatch& m = p.match;
@@ -105,7 +106,7 @@ std::string faultMetricsCsvHeader() {
     return "frame,fault,count,dip,dip_direction,strike,thickness,area,throw,net_slip,dip_slip,"
            "strike_slip,throw_status,hw_samples,fw_samples,centroid_x,centroid_y,centroid_z,"
            "min_x,min_y,min_z,max_x,max_y,max_z,normal_x,normal_y,normal_z,eigen_0,eigen_1,"
-           "eigen_2,mean_radius,broken,seed_frame,seed_x,seed_y,seed_z";
+           "eigen_2,mean_radius,broken,seed_frame,seed_x,seed_y,seed_z,length,height";
 }
 
 std::string faultMetricsCsv(const FaultMetricsSeries& series) {
@@ -145,6 +146,10 @@ std::string faultMetricsCsv(const FaultMetricsSeries& series) {
         } else {
             appendVec(out, kNaN3);
         }
+        for (double v : {m.length, m.height}) {
+            out += ',';
+            appendReal(out, v);
+        }
         out += '\n';
     }
     return out;
@@ -166,6 +171,8 @@ nlohmann::json faultMetricsJson(const FaultMetricsSeries& series) {
                 {"strike", jsonReal(m.strike)},
                 {"thickness", jsonReal(m.thickness)},
                 {"area", jsonReal(m.area)},
+                {"length", jsonReal(m.length)},
+                {"height", jsonReal(m.height)},
                 {"throw", jsonReal(m.throwVertical)},
                 {"net_slip", jsonReal(m.netSlip)},
                 {"dip_slip", jsonReal(m.dipSlip)},

@@ -20,7 +20,7 @@ std::string faultsCsv(std::span<const Fault> faults);
 //   frame,fault,count,dip,dip_direction,strike,thickness,area,throw,net_slip,dip_slip,
 //   strike_slip,throw_status,hw_samples,fw_samples,centroid_x,centroid_y,centroid_z,
 //   min_x,min_y,min_z,max_x,max_y,max_z,normal_x,normal_y,normal_z,eigen_0,eigen_1,eigen_2,
-//   mean_radius,broken,seed_frame,seed_x,seed_y,seed_z
+//   mean_radius,broken,seed_frame,seed_x,seed_y,seed_z,length,height
 // One row per (frame, fault), frame-major. The seed columns repeat the fault's seed on each
 // of its rows (empty seed_frame and NaN point when none). Undefined numbers are written NaN;
 // other reals with 9 significant digits; text fields quoted when they need it (RFC 4180).

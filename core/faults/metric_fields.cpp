@@ -15,7 +15,7 @@ double slip(const FaultFrameMetrics& m, double v) {
 }
 double members(const FaultFrameMetrics& m, double v) { return m.count > 0 ? v : kNaN; }
 
-const std::array<MetricField, 18> kFields{{
+const std::array<MetricField, 20> kFields{{
     {"count", "members present", "spheres", true,
      [](const FaultFrameMetrics& m) { return double(m.count); }},
     {"dip", "dip", "degrees", false, [](const FaultFrameMetrics& m) { return plane(m, m.dip); }},
@@ -26,6 +26,10 @@ const std::array<MetricField, 18> kFields{{
     {"thickness", "thickness", "", false,
      [](const FaultFrameMetrics& m) { return plane(m, m.thickness); }},
     {"area", "area", "", false, [](const FaultFrameMetrics& m) { return plane(m, m.area); }},
+    {"length", "length along strike", "", false,
+     [](const FaultFrameMetrics& m) { return plane(m, m.length); }},
+    {"height", "height down dip", "", false,
+     [](const FaultFrameMetrics& m) { return plane(m, m.height); }},
     {"throw", "throw (vertical)", "", false,
      [](const FaultFrameMetrics& m) { return slip(m, m.throwVertical); }},
     {"net_slip", "net slip", "", false,

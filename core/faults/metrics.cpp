@@ -34,7 +34,8 @@ struct DisplacementColumns {
 // rectangle when it is not much larger than the footprint, else a binary search.
 class Footprint {
   public:
-    Footprint(std::vector<std::uint64_t> keys, double cell) : m_cell(cell), m_keys(std::move(keys)) {
+    Footprint(std::vector<std::uint64_t> keys, double cell)
+        : m_cell(cell), m_keys(std::move(keys)) {
         std::sort(m_keys.begin(), m_keys.end());
         m_keys.erase(std::unique(m_keys.begin(), m_keys.end()), m_keys.end());
         if (m_keys.empty())
@@ -58,7 +59,8 @@ class Footprint {
     }
 
     static std::int32_t index(double w, double cell) {
-        return static_cast<std::int32_t>(std::clamp(std::floor(w / cell), -2147483648.0, 2147483647.0));
+        return static_cast<std::int32_t>(
+            std::clamp(std::floor(w / cell), -2147483648.0, 2147483647.0));
     }
     static std::uint64_t key(std::int32_t iu, std::int32_t iv) {
         return (std::uint64_t(std::uint32_t(iu)) << 32) | std::uint32_t(iv);
@@ -68,6 +70,13 @@ class Footprint {
 
     std::size_t cellCount() const { return m_keys.size(); }
     double area() const { return double(m_keys.size()) * m_cell * m_cell; }
+    // Extents of the occupied cells along u (strike) and v (down dip).
+    double lengthU() const {
+        return m_keys.empty() ? 0.0 : double(std::int64_t(m_uMax) - m_uMin + 1) * m_cell;
+    }
+    double lengthV() const {
+        return m_keys.empty() ? 0.0 : double(std::int64_t(m_vMax) - m_vMin + 1) * m_cell;
+    }
 
     bool contains(double u, double v) const {
         if (m_keys.empty())
@@ -156,10 +165,10 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
     m.dip = fit.orientation.dip;
     m.dipDirection = fit.orientation.dipDirection;
     m.strike = fit.orientation.strike;
-    m.thickness = m.area = kNaN;
+    m.thickness = m.area = m.length = m.height = kNaN;
     m.slip = kNaN3;
     m.throwVertical = m.netSlip = m.dipSlip = m.strikeSlip = kNaN;
-    m.throwStatus = !options.computeThrow      ? ThrowStatus::Disabled
+    m.throwStatus = !options.computeThrow     ? ThrowStatus::Disabled
                     : !displacement.present() ? ThrowStatus::NoDisplacement
                                               : ThrowStatus::NoPlane;
     if (!fit.valid)
@@ -186,6 +195,8 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
     }
     const Footprint footprint(std::move(keys), diameter);
     m.area = footprint.area();
+    m.length = footprint.lengthU();
+    m.height = footprint.lengthV();
 
     if (m.throwStatus != ThrowStatus::NoPlane || grid == nullptr)
         return m;
@@ -249,11 +260,16 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
 
 std::string_view throwStatusName(ThrowStatus status) {
     switch (status) {
-    case ThrowStatus::Ok: return "ok";
-    case ThrowStatus::Disabled: return "disabled";
-    case ThrowStatus::NoDisplacement: return "no_displacement";
-    case ThrowStatus::NoPlane: return "no_plane";
-    case ThrowStatus::TooFewSamples: return "too_few_samples";
+    case ThrowStatus::Ok:
+        return "ok";
+    case ThrowStatus::Disabled:
+        return "disabled";
+    case ThrowStatus::NoDisplacement:
+        return "no_displacement";
+    case ThrowStatus::NoPlane:
+        return "no_plane";
+    case ThrowStatus::TooFewSamples:
+        return "too_few_samples";
     }
     return "unknown";
 }
@@ -297,7 +313,8 @@ FaultMetricsSeries computeMetricsSeries(std::size_t frameCount, const FrameLoade
     tbb::parallel_for(std::size_t(0), frameCount, [&](std::size_t f) {
         const std::shared_ptr<const Frame> frame = load(f);
         std::vector<FaultFrameMetrics> rows = computeFrameMetrics(*frame, f, faults, options);
-        std::move(rows.begin(), rows.end(), series.rows.begin() + std::ptrdiff_t(f * faults.size()));
+        std::move(rows.begin(), rows.end(),
+                  series.rows.begin() + std::ptrdiff_t(f * faults.size()));
     });
     if (!faults.empty())
         series.seeds = seedsFromRows(series.rows, faults.size());

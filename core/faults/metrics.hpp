@@ -40,6 +40,8 @@ std::string_view throwStatusName(ThrowStatus status); // ok | disabled | no_disp
 //             a uniformly filled slab with the same spread (exact for uniform slabs)
 //  area       members projected on the plane into square cells one mean member diameter wide;
 //             area = occupied cells x cell area (the footprint, holes and all)
+//  length     the footprint's extent along strike (cells from first to last x cell width):
+//             the fault's trace length; height its extent down dip
 //  throw      slip = mean displacement (x - x0) of hanging-wall samples minus that of footwall
 //             samples. The hanging wall is the side the upward normal points to. Samples: spheres
 //             not in the fault, at plane distance in [h, h + slab] (MetricsOptions), whose
@@ -59,6 +61,7 @@ struct FaultFrameMetrics {
     double dip = 0, dipDirection = 0, strike = 0;
     double thickness = 0;
     double area = 0;
+    double length = 0, height = 0; // footprint's extent along strike and down dip
     double meanRadius = 0;
     ThrowStatus throwStatus = ThrowStatus::Disabled;
     Vec3d slip{};

@@ -86,6 +86,38 @@ std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& l
     return tracks;
 }
 
+FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                                        const VisibleMaskFn& visibleMask,
+                                        std::span<const Fault> faults,
+                                        const CandidateOptions& options,
+                                        const MetricsOptions& metrics,
+                                        std::vector<FaultTrack>* tracks) {
+    FaultMetricsSeries series;
+    if (tracks)
+        tracks->assign(faults.size(), FaultTrack{});
+    series.frameCount = frameCount;
+    series.faultCount = faults.size();
+    series.rows.reserve(frameCount * faults.size());
+    std::vector<Fault> now(faults.begin(), faults.end());
+    for (std::size_t f = 0; f < frameCount; ++f) {
+        const std::shared_ptr<const Frame> frame = load(f);
+        const CandidateSet set = findCandidates(*frame, visibleMask(*frame, f), options);
+        const std::vector<CandidateMatch> matches = matchFaults(*frame, set, faults);
+        for (std::size_t k = 0; k < faults.size(); ++k) {
+            if (tracks)
+                (*tracks)[k].points.push_back({f, matches[k], {}});
+            now[k].ids = matches[k].candidate >= 0
+                             ? set.candidates[static_cast<std::size_t>(matches[k].candidate)].ids
+                             : std::vector<std::int64_t>{};
+        }
+        auto rows = computeFrameMetrics(*frame, f, now, metrics);
+        series.rows.insert(series.rows.end(), std::make_move_iterator(rows.begin()),
+                           std::make_move_iterator(rows.end()));
+    }
+    series.seeds = seedsFromRows(series.rows, faults.size());
+    return series;
+}
+
 std::string_view faultEventKindName(FaultEventKind kind) {
     switch (kind) {
     case FaultEventKind::Appeared:

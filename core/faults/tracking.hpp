@@ -5,6 +5,7 @@
 #include "core/faults/candidates.hpp"
 #include "core/faults/fault.hpp"
 #include "core/faults/frame_loader.hpp"
+#include "core/faults/metrics.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -54,6 +55,17 @@ using VisibleMaskFn = std::function<std::vector<std::uint8_t>(const Frame&, std:
 std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
                                     const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
                                     const CandidateOptions& options = {}, bool keepMembers = false);
+
+// Growth: each fault's metrics frame by frame on what the fault is in that frame, the candidate
+// that matches it (as trackFaults), not its fixed members; where no candidate matches, the row
+// has count 0 and undefined values. Rows and seeds as computeMetricsSeries gives them. With
+// `tracks`, the tracks of the same pass (as trackFaults without members) are stored there.
+FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                                        const VisibleMaskFn& visibleMask,
+                                        std::span<const Fault> faults,
+                                        const CandidateOptions& options = {},
+                                        const MetricsOptions& metrics = {},
+                                        std::vector<FaultTrack>* tracks = nullptr);
 
 // What happened to tracked faults between two frames, read from their tracks: a fault first
 // matched a candidate (appeared), faults matched to different candidates in the frame before

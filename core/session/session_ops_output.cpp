@@ -13,20 +13,23 @@ namespace faultline::core {
 
 namespace {
 
-// Each fault's membership through time: per frame, the candidate of the visible spheres (as
-// the session's boxes, thresholds and fault filter say) that shares most ids with it.
+// The visible mask of a frame as the session's boxes, thresholds and fault filter say.
+VisibleMaskFn sessionVisibleMask(const SessionState& st) {
+    return [&st](const Frame& frame, std::size_t) {
+        const auto rowMask = Session::faultRowMask(st, frame);
+        return computeVisibility(frame, st.boxes, st.thresholds, rowMask.get()).mask;
+    };
+}
+
+// Each fault's membership through time: per frame, the candidate of the visible spheres that
+// shares most ids with it.
 std::vector<FaultTrack> trackedFaults(const SessionState& st, const std::shared_ptr<Dataset>& ds,
-                                     const CandidateOptions& options, const char* what) {
+                                      const CandidateOptions& options, const char* what) {
     if (!ds)
         throw CommandError(std::string("export.csv: ") + what + " needs open data");
-    const auto tracks = trackFaults(
-        ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
-        [&st](const Frame& frame, std::size_t) {
-            const auto rowMask = Session::faultRowMask(st, frame);
-            return computeVisibility(frame, st.boxes, st.thresholds, rowMask.get()).mask;
-        },
+    return trackFaults(
+        ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, sessionVisibleMask(st),
         st.faults, options);
-    return tracks;
 }
 
 } // namespace
@@ -44,10 +47,24 @@ std::string exportCsvText(const SessionState& state, const std::shared_ptr<Datas
         return faultMetricsCsv(series);
     }
     if (what == "fault_tracks")
-        return faultTracksCsv(state.faults, trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"), "fault_tracks"));
+        return faultTracksCsv(
+            state.faults, trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"),
+                                        "fault_tracks"));
+    if (what == "fault_growth") {
+        if (!ds)
+            throw CommandError("export.csv: fault_growth needs open data");
+        return faultMetricsCsv(trackedMetricsSeries(
+            ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
+            sessionVisibleMask(state), state.faults,
+            detail::candidateOptionsFrom(cmd, "export.csv")));
+    }
     if (what == "fault_events")
-        return faultEventsCsv(state.faults, faultEvents(trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"), "fault_events")));
-    throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_tracks or fault_events");
+        return faultEventsCsv(
+            state.faults,
+            faultEvents(trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"),
+                                      "fault_events")));
+    throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_growth, "
+                       "fault_tracks or fault_events");
 }
 
 } // namespace faultline::core
@@ -67,7 +84,9 @@ void registerOutputOps(OpTable& ops) {
     });
     addAction(ops, "export.csv", [](Session& s, const Json& cmd) -> Json {
         // what = faults: "id,fault", a row per member; fault_metrics: a row per frame and fault;
-        // fault_tracks: per frame and fault, the candidate that matches it best; fault_events:
+        // fault_growth: the fault_metrics columns on what each fault is in each frame (its
+        // matching candidate); fault_tracks: per frame and fault, the candidate that matches it
+        // best; fault_events:
         // when tracked faults appeared, linked and split (candidate options as
         // fault.candidates: "method", "link", "min_size", "angle", "radius").
         args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius"});
@@ -80,7 +99,8 @@ void registerOutputOps(OpTable& ops) {
         }
         return nullptr;
     });
-    addNotYet(ops, "render", "rendering needs the renderer; run `faultline replay` from a build with the GUI");
+    addNotYet(ops, "render",
+              "rendering needs the renderer; run `faultline replay` from a build with the GUI");
 }
 
 } // namespace faultline::core::detail

@@ -24,6 +24,8 @@ FaultMetricsSeries tinySeries() {
     a.strike = 0.5;
     a.thickness = 2.25;
     a.area = 100;
+    a.length = 12.5;
+    a.height = 8;
     a.throwStatus = ThrowStatus::Ok;
     a.throwVertical = -0.125;
     a.netSlip = 0.25;
@@ -43,7 +45,7 @@ FaultMetricsSeries tinySeries() {
     b.fault = 1;
     b.name = "odd, \"name\"";
     b.count = 0;
-    b.dip = b.dipDirection = b.strike = b.thickness = b.area = kNaN;
+    b.dip = b.dipDirection = b.strike = b.thickness = b.area = b.length = b.height = kNaN;
     b.throwStatus = ThrowStatus::NoPlane;
     b.throwVertical = b.netSlip = b.dipSlip = b.strikeSlip = kNaN;
     b.centroid = b.min = b.max = b.normal = b.eigenvalues = {kNaN, kNaN, kNaN};
@@ -69,9 +71,9 @@ TEST(FaultExport, MetricsCsvIsExact) {
     const std::string expected =
         faultMetricsCsvHeader() + "\n" +
         "0,F1,12,30,90.5,0.5,2.25,100,-0.125,0.25,0.25,0,ok,40,41,1,2,3,0,0,0,2,4,6,0.5,0,0.75,"
-        "0.1,2,3,0.5,3,0,1.5,2,1e-07\n"
+        "0.1,2,3,0.5,3,0,1.5,2,1e-07,12.5,8\n"
         "0,\"odd, \"\"name\"\"\",0,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,no_plane,0,0,NaN,NaN,NaN,"
-        "NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,0,,NaN,NaN,NaN\n";
+        "NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,0,,NaN,NaN,NaN,NaN,NaN\n";
     EXPECT_EQ(csv, expected);
     EXPECT_EQ(faultMetricsCsvHeader().rfind("frame,fault,count,dip,dip_direction,", 0), 0u);
 }

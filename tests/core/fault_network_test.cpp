@@ -245,7 +245,9 @@ TEST(FaultNetwork, SegmentsThatGrowIntoEachOtherLinkInTheEvents) {
     options.minSize = 20;
     const auto tracks = trackFaults(
         model.frames.size(),
-        [&](std::size_t f) { return std::shared_ptr<const Frame>(&model.frames[f], [](const Frame*) {}); },
+        [&](std::size_t f) {
+            return std::shared_ptr<const Frame>(&model.frames[f], [](const Frame*) {});
+        },
         [&](const Frame& frame, std::size_t) { return computeVisibility(frame, {}, broken).mask; },
         faults, options);
     const auto events = faultEvents(tracks);
@@ -263,5 +265,25 @@ TEST(FaultNetwork, SegmentsThatGrowIntoEachOtherLinkInTheEvents) {
     // Tips 16 apart at frame 3 (two neighbourhoods and more), 8 apart at frame 4, touching at 5:
     // coplanar segments join once their tips are within about two neighbourhood radii.
     EXPECT_GE(linkedAt, 4u);
-    EXPECT_EQ(faultEventsCsv(faults, events).substr(0, 38), "frame,kind,faults\n1,appeared,F1\n1,appe");
+    EXPECT_EQ(faultEventsCsv(faults, events).substr(0, 38),
+              "frame,kind,faults\n1,appeared,F1\n1,appe");
+
+    // Growth: F1 followed as its candidate lengthens along strike as the segment grows (4
+    // radii a frame at each tip), and spans both segments once they link.
+    const FaultMetricsSeries growth = trackedMetricsSeries(
+        model.frames.size(),
+        [&](std::size_t f) {
+            return std::shared_ptr<const Frame>(&model.frames[f], [](const Frame*) {});
+        },
+        [&](const Frame& frame, std::size_t) { return computeVisibility(frame, {}, broken).mask; },
+        faults, options);
+    EXPECT_EQ(growth.at(0, 0).count, 0u);
+    for (std::size_t f = 2; f < linkedAt; ++f) {
+        SCOPED_TRACE(f);
+        EXPECT_GT(growth.at(f, 0).length, growth.at(f - 1, 0).length + 4);
+        EXPECT_NEAR(growth.at(f, 0).length, 2 * 24.0 * double(f) / 6, 4.0);
+        EXPECT_GT(growth.at(f, 0).count, growth.at(f - 1, 0).count);
+    }
+    EXPECT_GT(growth.at(6, 0).length, 80.0);                 // both segments: 40 apart + 2 x 24
+    EXPECT_EQ(growth.at(6, 0).count, growth.at(6, 1).count); // one candidate for both
 }

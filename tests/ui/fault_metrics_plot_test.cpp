@@ -216,6 +216,11 @@ TEST_F(PanelTest, FaultMetricsPlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
     headless.settle(wb());
     EXPECT_TRUE(headless.has(wb(), "faults.metrics.events.shown"));
     EXPECT_TRUE(headless.emitted().empty()) << "finding events is no command";
+    // Growth: the plot follows the candidates (the same wall here, so the same plot).
+    headless.click(wb(), "faults.metrics.growth");
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.has(wb(), "faults.metrics.plot"));
+    EXPECT_TRUE(headless.emitted().empty());
     // Another selection of visible spheres: those events are not shown for it.
     session.apply({{"op", "box.set"}, {"name", "wall"}, {"enabled", false}});
     headless.frames(wb(), 2);

@@ -134,20 +134,35 @@ class FaultMetricsSection {
         const std::string key = eventsKey(s, shown, ds.get());
         const bool finding = m_eventsJob && !m_eventsJob->finished();
         ImGui::BeginDisabled(finding);
-        if (ImGui::Button(finding ? "Finding links..." : "Find links and splits"))
+        if (ImGui::Button(finding ? "Following..." : "Follow through time"))
             findEvents(wb, ds, shown, key);
         ImGui::EndDisabled();
         wb.mark("faults.metrics.events");
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip(
-                "Follow these faults as candidates of the visible spheres through every\n"
-                "frame: A appeared, L linked (two faults become one), S split");
+                "Follow these faults as candidates of the visible spheres through every frame:\n"
+                "marks A appeared, L linked (two faults become one), S split; Growth plots\n"
+                "the metric of what each fault is in each frame");
         std::vector<PlotMark> marks;
-        if (m_events && m_events->key == key) {
+        const bool followed = m_events && m_events->key == key;
+        if (followed) {
+            ImGui::SameLine();
+            ImGui::Checkbox("Growth", &m_growth);
+            wb.mark("faults.metrics.growth");
             ImGui::SameLine();
             ImGui::TextDisabled("%zu event%s", m_events->count, m_events->count == 1 ? "" : "s");
             wb.mark("faults.metrics.events.shown");
             marks = m_events->marks;
+            if (m_growth) { // the lines follow the candidates instead of the fixed members
+                const core::FaultMetricsSeries& g = m_events->growth;
+                lines.clear();
+                for (std::size_t k = 0; k < shown.size() && k < g.faultCount; ++k) {
+                    m_values[k].clear();
+                    for (std::size_t f = 0; f < g.frameCount; ++f)
+                        m_values[k].push_back(field.value(g.at(f, k)));
+                    lines.push_back({shown[k]->name, m_values[k], colorOf(*shown[k])});
+                }
+            }
         }
 
         // The plot: as tall as the panel allows, but legible.
@@ -185,9 +200,11 @@ class FaultMetricsSection {
   private:
     struct Events {
         std::string key;
-        std::vector<PlotMark> marks; // one per frame and kind
-        std::size_t count = 0;       // events
+        std::vector<PlotMark> marks;     // one per frame and kind
+        std::size_t count = 0;           // events
+        core::FaultMetricsSeries growth; // metrics of each fault's candidate, frame by frame
     };
+    bool m_growth = false;
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
 
@@ -206,7 +223,8 @@ class FaultMetricsSection {
                 core::CandidateOptions options;
                 options.minSize = core::kDefaultCandidateMinSize;
                 const std::size_t frames = ds->frameCount();
-                const auto tracks = core::trackFaults(
+                std::vector<core::FaultTrack> tracks;
+                core::FaultMetricsSeries growth = core::trackedMetricsSeries(
                     frames,
                     [ds, &control, frames](std::size_t k) {
                         control.setProgress(float(k) / float(std::max<std::size_t>(frames, 1)));
@@ -220,8 +238,8 @@ class FaultMetricsSection {
                                                        rowMask.get())
                             .mask;
                     },
-                    faults, options);
-                Events events{key, {}, 0};
+                    faults, options, {}, &tracks);
+                Events events{key, {}, 0, std::move(growth)};
                 for (const core::FaultEvent& e : core::faultEvents(tracks)) {
                     PlotMark m;
                     m.frame = e.frame;
