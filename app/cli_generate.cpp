@@ -25,12 +25,17 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
     "usage: faultline generate --demo\n"
-    "       faultline generate [--kind extension] [--size small|medium|large] [options] --out DIR\n"
+    "       faultline generate --kind block [options] --out DIR\n"
+    "       faultline generate [--kind extension|section] [--size small|medium|large] [options] "
+    "--out DIR\n"
     "       faultline generate --kind planes [--faults N | --network] [options] --out DIR\n"
     "\n"
-    "  --demo              build the demo model once into the per-user data folder and print its\n"
-    "                      path (later runs reuse it)\n"
-    "  --kind K            extension (bonded DEM sandbox, default) or planes (known faults)\n"
+    "  --demo              build the demo model (the 3-D block) once into the per-user data\n"
+    "                      folder and print its path (later runs reuse it)\n"
+    "  --kind K            block (the 3-D demo block: 204,800 spheres, 40 frames, oblique\n"
+    "                      discontinuities), extension (bonded DEM sandbox, default),\n"
+    "                      section (the same, a thin 2-D section: fast, for tests) or planes\n"
+    "                      (known faults)\n"
     "  --size S            small, medium (default) or large: 14k, 60k or 525k spheres\n"
     "                      (extension), 7k, 34k or 269k (planes)\n"
     "  --seed S            random seed (default 1)\n"
@@ -48,6 +53,9 @@ constexpr const char* kUsage =
     "  --discontinuities A,B,...   where the base steps, fractions of the length (default "
     "0.3,0.7)\n"
     "  --stretch-width W   stretch the base uniformly over this fraction instead (default 0)\n"
+    "  --obliquity O       along strike (y) the discontinuities shift by O x length from one\n"
+    "                      side to the other (default 0; block 0.15)\n"
+    "  --segments N        ... in N straight en echelon steps instead of a line (default 0)\n"
     "  --columns NX --layers NY --rows NZ    lattice size (overrides --size)\n"
     "planes options:\n"
     "  --network           a fault network instead of random faults: an X crossing, a fault\n"
@@ -99,7 +107,8 @@ void checkKnown(const Args& args) {
         "--strain-sd",     "--weibull-shape", "--weibull-scale", "--gravity-ratio",
         "--friction",      "--extension",     "--velocity",      "--discontinuities",
         "--stretch-width", "--columns",       "--layers",        "--rows",
-        "--faults",        "--dip",           "--dip-direction", "--throw"};
+        "--faults",        "--dip",           "--dip-direction", "--throw",
+        "--obliquity",     "--segments"};
     static const std::vector<std::string> flags = {"--demo", "--gzip", "--network"};
     for (std::size_t i = 0; i < args.size(); ++i) {
         if (std::find(valued.begin(), valued.end(), args[i]) != valued.end()) {
@@ -142,9 +151,13 @@ core::ModelSize parseSize(const std::string& s) {
     throw std::invalid_argument("--size expects small, medium or large, got '" + s + "'");
 }
 
-int runExtension(const Parsed& a, const fs::path& out) {
+int runExtension(const Parsed& a, const fs::path& out, bool block) {
+    if (block && a.value("--size"))
+        throw std::invalid_argument(
+            "--kind block has one size; set --columns --layers --rows instead");
     core::ExtensionModelOptions o =
-        core::extensionOptionsFor(parseSize(a.value("--size").value_or("medium")));
+        block ? core::extensionDemoOptions()
+              : core::extensionOptionsFor(parseSize(a.value("--size").value_or("medium")));
     if (auto v = a.value("--seed"))
         o.seed = static_cast<std::uint64_t>(toInteger("--seed", *v));
     if (auto v = a.value("--frames"))
@@ -166,7 +179,7 @@ int runExtension(const Parsed& a, const fs::path& out) {
                  {"--weibull-shape", &o.weibullShape}, {"--weibull-scale", &o.weibullScale},
                  {"--gravity-ratio", &o.gravityRatio}, {"--friction", &o.friction},
                  {"--extension", &o.extension},        {"--velocity", &o.velocity},
-                 {"--stretch-width", &o.stretchWidth}};
+                 {"--stretch-width", &o.stretchWidth}, {"--obliquity", &o.obliquity}};
     for (auto& r : reals)
         if (auto v = a.value(r.name))
             *r.target = toDouble(r.name, *v);
@@ -180,6 +193,8 @@ int runExtension(const Parsed& a, const fs::path& out) {
             start = comma + 1;
         }
     }
+    if (auto v = a.value("--segments"))
+        o.segments = static_cast<int>(toInteger("--segments", *v));
     if (auto v = a.value("--columns"))
         o.columns = static_cast<int>(toInteger("--columns", *v));
     if (auto v = a.value("--layers"))
@@ -212,8 +227,10 @@ int runExtension(const Parsed& a, const fs::path& out) {
 int runPlanes(const Parsed& a, const fs::path& out) {
     core::PlanesModelOptions o;
     if (a.flag("--network")) {
-        if (a.value("--size") || a.value("--faults") || a.value("--dip") || a.value("--dip-direction") || a.value("--throw"))
-            throw std::invalid_argument("--network sets the faults and the size; drop --size, --faults, --dip, --dip-direction and --throw");
+        if (a.value("--size") || a.value("--faults") || a.value("--dip") ||
+            a.value("--dip-direction") || a.value("--throw"))
+            throw std::invalid_argument("--network sets the faults and the size; drop --size, "
+                                        "--faults, --dip, --dip-direction and --throw");
         o = core::planesNetworkOptions();
     }
     if (auto v = a.value("--size")) {
@@ -268,11 +285,14 @@ int runGenerate(const Args& args) {
             return 2;
         }
         const std::string kind = a.value("--kind").value_or("extension");
-        if (kind == "extension")
-            return runExtension(a, *out);
+        if (kind == "extension" || kind == "section")
+            return runExtension(a, *out, false);
+        if (kind == "block")
+            return runExtension(a, *out, true);
         if (kind == "planes")
             return runPlanes(a, *out);
-        throw std::invalid_argument("--kind expects extension or planes, got '" + kind + "'");
+        throw std::invalid_argument("--kind expects block, section, extension or planes, got '" +
+                                    kind + "'");
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "faultline generate: %s\n%s", e.what(), kUsage);
         return 2;

@@ -17,8 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Bump when the demo's options change, so older demos are rebuilt.
-constexpr const char* kDumpName = "extension-v1.lammpstrj.gz";
-constexpr const char* kInfoName = "extension-v1.json";
+constexpr const char* kDumpName = "block-v2.lammpstrj.gz";
+constexpr const char* kInfoName = "block-v2.json";
 
 fs::path dataHome() {
     if (const char* xdg = std::getenv("XDG_DATA_HOME"); xdg && *xdg && fs::path(xdg).is_absolute())
@@ -52,7 +52,7 @@ std::string ensureDemoModel(const ProgressCallback& progress) {
     fs::remove_all(temp, ec);
     fs::create_directories(temp);
     try {
-        const ExtensionModelOptions options = extensionOptionsFor(ModelSize::Medium);
+        const ExtensionModelOptions options = extensionDemoOptions();
         LammpsDumpWriter writer((temp / kDumpName).string(), 1);
         const ExtensionRunStats stats = runExtensionModel(
             options, [&](const Frame& f, int) { writer.write(f, extensionDumpColumns()); },

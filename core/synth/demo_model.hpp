@@ -1,5 +1,5 @@
-// The demo model: the default bonded-sphere extension run, generated once into the per-user data
-// folder and reused, so a fresh install has realistic data to open.
+// The demo model: a 3-D bonded-sphere extension block (extensionDemoOptions), generated once into
+// the per-user data folder and reused, so a fresh install has realistic data to open.
 #pragma once
 
 #include "core/synth/extension_model.hpp"
@@ -16,7 +16,7 @@ std::string demoModelFolder();
 // The demo's dump file when a complete demo of this version exists, else nothing.
 std::optional<std::string> existingDemoModel();
 
-// Returns the demo's dump file, generating it first when missing (about a minute; progress is
+// Returns the demo's dump file, generating it first when missing (one to two minutes; progress is
 // reported and may cancel, throwing GenerationCancelled). Generation writes into a temporary
 // folder renamed into place, so an interrupted run never leaves a half demo behind.
 std::string ensureDemoModel(const ProgressCallback& progress = {});

@@ -34,6 +34,8 @@ constexpr double kStiffness = 1.0;
 constexpr double kSkin = 0.4;   // Verlet list margin, radii
 constexpr int kRampSteps = 400; // the moving side accelerates smoothly over these steps
 constexpr std::size_t kGrain = 1024;
+// Where segmented discontinuities step, the step is a ramp this share of a segment wide.
+constexpr double kRelayShare = 0.5;
 
 double quantize(double v, double step) { return std::round(v / step) * step; }
 
@@ -122,10 +124,23 @@ ExtensionModel::ExtensionModel(const ExtensionModelOptions& options)
     s.kind.assign(s.n, SphereKind::Free);
     s.baseWeight.assign(s.n, 0.0);
     const double half = 0.5 * o.stretchWidth * s.length;
-    auto weightAt = [&](double x) {
+    // Where the discontinuities lie at a given y (along strike), as a shift of x.
+    auto shiftAt = [&](double y) {
+        double t = std::clamp(s.boxHi[1] > 0 ? y / s.boxHi[1] : 0.5, 0.0, 1.0);
+        if (o.segments >= 2) {
+            // Steps between segments, each a ramp kRelayShare of a segment wide: the base
+            // bends there instead of shearing along a vertical plane.
+            const double u = t * o.segments - 0.5; // segment centres at whole numbers
+            const double k = std::floor(u), f = u - k;
+            const double ramp = std::clamp((f - 0.5) / kRelayShare + 0.5, 0.0, 1.0);
+            t = std::clamp(k + ramp, 0.0, double(o.segments - 1)) / (o.segments - 1);
+        }
+        return o.obliquity * s.length * (t - 0.5);
+    };
+    auto weightAt = [&](double x, double y) {
         double w = 0;
         for (double d : o.discontinuities) {
-            const double xd = d * s.length;
+            const double xd = d * s.length + shiftAt(y);
             w += half > 0 ? std::clamp((x - (xd - half)) / (2 * half), 0.0, 1.0)
                           : (x > xd ? 1.0 : 0.0);
         }
@@ -138,8 +153,8 @@ ExtensionModel::ExtensionModel(const ExtensionModelOptions& options)
         else if (column == 0 || column == o.columns - 1)
             s.kind[i] = SphereKind::Side;
         // The end plates move with the ends of the base.
-        s.baseWeight[i] =
-            s.kind[i] == SphereKind::Side ? (column == 0 ? 0.0 : 1.0) : weightAt(s.x0[i].x);
+        s.baseWeight[i] = s.kind[i] == SphereKind::Side ? (column == 0 ? 0.0 : 1.0)
+                                                        : weightAt(s.x0[i].x, s.x0[i].y);
     }
     s.reference = lat.positions;
     s.band.resize(s.n);

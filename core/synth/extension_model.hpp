@@ -45,6 +45,12 @@ struct ExtensionModelOptions {
     double velocity = 0.02;
     std::vector<double> discontinuities = {0.3, 0.7};
     double stretchWidth = 0.0;
+    // Along strike (y), the discontinuities move by `obliquity` x length from one side of the
+    // model to the other: a straight oblique line, or with `segments` >= 2 that many straight
+    // steps (en echelon, each step a ramp half a segment wide), so faults nucleate as segments,
+    // overlap in relay ramps and link.
+    double obliquity = 0.0;
+    int segments = 0;
     int settleSteps = 1000; // gravity settling before the extension starts
     int frames = 50;        // frames written: after settling, then evenly through the extension
     int layerBands = 10;    // bands of initial height for the `layer` column
@@ -54,8 +60,13 @@ struct ExtensionModelOptions {
 // Throws std::invalid_argument naming the first option out of range.
 void validate(const ExtensionModelOptions& options);
 
-// small: ~14k spheres, medium (the demo): 60k, large: 525k.
+// small: ~14k spheres, medium (the section demo): 60k, large: 525k.
 ExtensionModelOptions extensionOptionsFor(ModelSize size);
+
+// The 3-D demo: a block 256 x 65 x 69 radii (128 x 40 x 40 = 204,800 spheres), 40 frames, its
+// two basal discontinuities oblique (38 radii across the block's width), so the grabens run
+// oblique to the extension and their faults change place along strike.
+ExtensionModelOptions extensionDemoOptions();
 
 // The dump columns, in order: id type x y z radius strain broken_bonds layer x0 y0 z0.
 // type: 1 free sphere, 2 basal (moved with its base plate), 3 end plate (x moved, y z free).

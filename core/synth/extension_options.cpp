@@ -25,6 +25,21 @@ ExtensionModelOptions extensionOptionsFor(ModelSize size) {
     return o;
 }
 
+ExtensionModelOptions extensionDemoOptions() {
+    ExtensionModelOptions o;
+    o.columns = 128; // 256 radii along the extension (x)
+    o.layers = 40;   // 65 radii along strike (y)
+    o.rows = 40;     // 69 radii tall
+    o.frames = 40;
+    o.discontinuities = {0.3, 0.7};
+    // Oblique discontinuities: 38 radii further east at the north side than at the south, so
+    // the grabens and their faults run oblique and change place along strike. (Segments make
+    // the step a vertical transfer zone whose damage fills the view between the faults.)
+    o.obliquity = 0.15;
+    o.segments = 0;
+    return o;
+}
+
 void validate(const ExtensionModelOptions& o) {
     auto need = [](bool ok, const std::string& what) {
         if (!ok)
@@ -48,6 +63,8 @@ void validate(const ExtensionModelOptions& o) {
     for (double d : o.discontinuities)
         need(d > 0 && d < 1, "discontinuities must be in (0, 1)");
     need(o.stretchWidth >= 0 && o.stretchWidth <= 1, "the stretch width must be in [0, 1]");
+    need(o.obliquity >= -0.5 && o.obliquity <= 0.5, "the obliquity must be in [-0.5, 0.5]");
+    need(o.segments >= 0 && o.segments <= 64, "segments must be in 0..64");
     need(o.settleSteps >= 0, "settle steps must be >= 0");
     need(o.frames >= 1 && o.frames <= 100000, "frames must be in 1..100000");
     need(o.layerBands >= 1, "layer bands must be >= 1");
@@ -74,6 +91,8 @@ std::string describeExtensionRun(const ExtensionModelOptions& o, const Extension
     j["velocity"] = o.velocity;
     j["discontinuities"] = o.discontinuities;
     j["stretch_width"] = o.stretchWidth;
+    j["obliquity"] = o.obliquity;
+    j["segments"] = o.segments;
     j["settle_steps"] = o.settleSteps;
     j["frames"] = s.frames;
     j["layer_bands"] = o.layerBands;

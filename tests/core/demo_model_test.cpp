@@ -59,11 +59,11 @@ TEST(DemoModel, ACompleteDemoIsReusedAndAPartialOneIsNot) {
     ScopedEnv xdg("XDG_DATA_HOME", root.c_str());
     const auto folder = std::filesystem::path(demoModelFolder());
     std::filesystem::create_directories(folder);
-    std::ofstream(folder / "extension-v1.lammpstrj.gz") << "x";
+    std::ofstream(folder / "block-v2.lammpstrj.gz") << "x";
     EXPECT_FALSE(existingDemoModel()) << "no info file: an interrupted demo";
-    std::ofstream(folder / "extension-v1.json") << "{}";
+    std::ofstream(folder / "block-v2.json") << "{}";
     ASSERT_TRUE(existingDemoModel());
-    EXPECT_EQ(*existingDemoModel(), (folder / "extension-v1.lammpstrj.gz").string());
+    EXPECT_EQ(*existingDemoModel(), (folder / "block-v2.lammpstrj.gz").string());
     // Reused without generating anything (the progress callback would cancel).
     EXPECT_EQ(ensureDemoModel([](double) { return false; }), *existingDemoModel());
     std::filesystem::remove_all(root);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -141,4 +143,56 @@ TEST(ExtensionModel, SizesHaveTheAdvertisedSphereCounts) {
     EXPECT_EQ(count(ModelSize::Medium), 60000);
     EXPECT_EQ(count(ModelSize::Large), 525000);
     EXPECT_LT(count(ModelSize::Small), 20000);
+}
+
+TEST(ExtensionModel, TheDemoIsABlockOfTheAdvertisedSize) {
+    const ExtensionModelOptions o = extensionDemoOptions();
+    EXPECT_NO_THROW(validate(o));
+    EXPECT_GE(o.columns * o.layers * o.rows, 200000);
+    EXPECT_GE(o.frames, 40);
+    // Thinnest side in radii (HCP: 2 per column, 2 sqrt(2/3) per layer, sqrt(3) per row).
+    const double sides[3] = {2.0 * o.columns, 2 * std::sqrt(2.0 / 3.0) * o.layers,
+                             std::sqrt(3.0) * o.rows};
+    EXPECT_GE(*std::min_element(sides, sides + 3), 30.0);
+    EXPECT_GT(o.obliquity, 0.0); // faults change place along strike
+}
+
+TEST(ExtensionModel, SegmentedDiscontinuitiesMoveTheFaultsAlongStrike) {
+    // A small block (11,520 spheres, ~2,000 steps): one discontinuity in two segments 12 radii
+    // apart. Broken bonds gather in a few narrow zones, and the zones of the two halves along
+    // strike sit where their own segment is.
+    ExtensionModelOptions o;
+    o.columns = 48;
+    o.layers = 15;
+    o.rows = 16;
+    o.settleSteps = 500;
+    o.frames = 2;
+    o.discontinuities = {0.5};
+    o.obliquity = 0.125;
+    o.segments = 2;
+    ExtensionModel model(o);
+    model.advance(model.frameStep(1));
+    const Frame last = model.snapshot();
+    const AttributeColumn* broken = last.attribute("broken_bonds");
+    ASSERT_NE(broken, nullptr);
+    const double ySplit = 0.5 * double(last.box.hi[1]);
+    double sum[2] = {0, 0};
+    std::size_t count[2] = {0, 0}, damaged = 0;
+    for (std::size_t i = 0; i < last.size(); ++i) {
+        if (broken->value(i) < 3)
+            continue;
+        ++damaged;
+        const int half = last.y[i] < ySplit ? 0 : 1;
+        sum[half] += last.x[i];
+        ++count[half];
+    }
+    ASSERT_GT(count[0], 50u);
+    ASSERT_GT(count[1], 50u);
+    // Damage is localised: far fewer than the block's spheres.
+    EXPECT_LT(double(damaged), 0.2 * double(last.size()));
+    // The graben above the discontinuity follows it: its segments step 12 radii apart in x
+    // (0.125 x 96), so the damaged spheres' mean x moves by about that between the halves.
+    const double shift = sum[1] / double(count[1]) - sum[0] / double(count[0]);
+    EXPECT_GT(shift, 6.0);
+    EXPECT_LT(shift, 18.0);
 }

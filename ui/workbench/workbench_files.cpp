@@ -36,7 +36,8 @@ struct JournalPlace {
 
 bool isSessionFile(const std::string& path) {
     const std::string suffix = ".faultline.json";
-    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return path.size() >= suffix.size() &&
+           path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::string absolute(const std::string& path) {
@@ -102,7 +103,9 @@ void Workbench::openSession(const std::string& pathIn, std::vector<std::string> 
             // Data that moved: ask where it went instead of failing.
             for (const auto& p : s.dataPaths)
                 if (p.find_first_of("*?[%") == std::string::npos && !fs::exists(p))
-                    return [this, path, paths = s.dataPaths] { m_missingData = MissingData{path, paths}; };
+                    return [this, path, paths = s.dataPaths] {
+                        m_missingData = MissingData{path, paths};
+                    };
             std::shared_ptr<core::Dataset> ds;
             if (!s.dataPaths.empty()) {
                 ds = core::Dataset::open(s.dataPaths, [&control](double f) {
@@ -173,13 +176,32 @@ void Workbench::relocateData(const std::string& pickedFile) {
 }
 
 void Workbench::openDemo() {
-    // The demo opens where its faults are: the last frame, coloured by broken bonds.
+    // The demo opens where its faults are: the last frame, coloured by broken bonds, with only
+    // the spheres of three or more broken bonds shown (the fault zones inside the opaque block)
+    // and the rest as faint points for context, seen obliquely. One batch: one undo gives the
+    // whole block back.
     auto showFaults = [this] {
         if (!m_session.dataset())
             return;
-        emit({{"op", "frame.set"}, {"frame", m_session.dataset()->frameCount() - 1}});
+        Json batch = Json::array();
+        batch.push_back({{"op", "frame.set"}, {"frame", m_session.dataset()->frameCount() - 1}});
         if (state().view("main") && state().view("main")->colorVariable.empty())
-            emit({{"op", "color.set"}, {"view", "main"}, {"variable", "broken_bonds"}, {"map", "blue-red"}});
+            batch.push_back({{"op", "color.set"},
+                             {"view", "main"},
+                             {"variable", "broken_bonds"},
+                             {"map", "blue-red"}});
+        if (!state().threshold("broken_bonds"))
+            batch.push_back({{"op", "threshold.add"},
+                             {"variable", "broken_bonds"},
+                             {"low", 3},
+                             {"high", 1e30}});
+        if (state().view("main")) {
+            batch.push_back({{"op", "view.set"}, {"name", "main"}, {"context_points", true}});
+            // From above the south-west corner, so the faults' dip and their run show.
+            batch.push_back(
+                {{"op", "camera.set"}, {"view", "main"}, {"azimuth", -30}, {"elevation", 35}});
+        }
+        emit({{"op", "batch"}, {"commands", batch}});
     };
     if (auto path = core::existingDemoModel()) {
         openData({*path}, showFaults);
@@ -264,7 +286,8 @@ void Workbench::exportCsv(core::Json cmd) {
         [this, place](const std::string& why) { error("Export failed: " + why); }, m_now);
 }
 
-void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds) {
+void Workbench::rememberDataset(const std::vector<std::string>& paths,
+                                std::shared_ptr<core::Dataset> ds) {
     std::erase_if(m_datasets, [&](const auto& e) { return e.first == paths; });
     m_datasets.insert(m_datasets.begin(), {paths, std::move(ds)});
     if (m_datasets.size() > 3)
@@ -273,8 +296,8 @@ void Workbench::rememberDataset(const std::vector<std::string>& paths, std::shar
 
 void Workbench::saveSession() {
     if (m_sessionPath.empty()) {
-        m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, "",
-                      "analysis.faultline.json");
+        m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
+                      {".faultline.json"}, "", "analysis.faultline.json");
         return;
     }
     saveSessionAs(m_sessionPath);
@@ -360,8 +383,9 @@ void Workbench::saveSettings() const {
     try {
         std::error_code ec;
         fs::create_directories(m_options.configDir, ec);
-        core::writeFileAtomically((fs::path(m_options.configDir) / "settings.json").string(),
-                                  Json{{"recent", m_recent}, {"frame_memory_mb", m_frameBudget >> 20}}.dump(2));
+        core::writeFileAtomically(
+            (fs::path(m_options.configDir) / "settings.json").string(),
+            Json{{"recent", m_recent}, {"frame_memory_mb", m_frameBudget >> 20}}.dump(2));
     } catch (const std::exception&) {
         // Not worth interrupting the user for.
     }
