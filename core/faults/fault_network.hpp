@@ -1,21 +1,27 @@
 // Fault networks (internal to candidates.cpp): visible spheres grouped into faults that follow
 // their orientation, so faults that cross or end against each other come out apart.
 //
-// 1. Orientation: each sphere's neighbourhood (spheres within `radius`) is fitted with a plane
-//    (PCA); planarity = 1 - l1 / l2 of its covariance eigenvalues. In a section model (thinner
-//    than the neighbourhood's diameter) planes contain the thin axis.
+// 1. Orientation: each sphere's neighbourhood (the spheres within `radius` linked to it) is
+//    fitted with a plane (PCA over pooled moments of cells half a radius wide); planarity =
+//    1 - l1 / l2 of the covariance eigenvalues. In a section model (thinner than the
+//    neighbourhood's diameter) planes contain the thin axis; in 3-D an automatic radius grows
+//    to 2.5 times the zones' typical thickness when they are thick.
 // 2. Growth: from the most planar spheres, regions grow over linked spheres (distance below
 //    link * (ri + rj)) whose normal lies within `angle` of the region's local normal, a running
 //    mean along the growth path: a curved fault turns gradually and stays one region, while the
 //    normals that bend from one fault to another where two meet part from it. Spheres of low
 //    planarity (junctions, scattered spheres) are not grown through.
-// 3. Joining: two regions that face each other within a cell or two are one fault when their
-//    facing parts are coplanar (normals within `angle`, and one plane fits both about as well
-//    as each alone): a fault cut in two by a crossing fault is joined again.
-// 4. Leftovers: spheres reached from a fault over a few links (junctions, low planarity) go to
-//    the fault whose surface passes nearest; groups below min_size are dissolved first, and
-//    spheres that reach no fault are left out.
-// Cost: one neighbourhood scan per sphere (parallel), growth and joining linear in spheres.
+// 3. Joining: two regions within two cells of each other are one fault when their facing parts
+//    are planar, their normals within `angle`, and each part's centroid lies on the other's
+//    plane: a fault cut in two by a crossing fault is joined again. Then a region smaller than
+//    a neighbour whose spheres mostly lie on larger zones' surfaces (the bisector that
+//    crossings produce) is dissolved.
+// 4. Leftovers: groups below min_size are dissolved; spheres reached from a group over links
+//    join, round by round, the zone whose local mid-plane (the mean offset of its spheres along
+//    their normals) they lie within; a last round takes the nearest; spheres that reach no
+//    group are left out.
+// Cost: one pass over pooled cells for the planes, growth and joining linear in spheres, and
+// sampled scans for junctions and leftovers: about 0.25 s per 100k visible spheres on 2 cores.
 #pragma once
 
 #include "core/faults/candidates.hpp"
