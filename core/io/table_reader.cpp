@@ -16,9 +16,7 @@ namespace {
 std::vector<std::string> headerNames(std::string_view line, char separator) {
     std::vector<std::string> names;
     std::size_t i = 0;
-    auto isSep = [&](char c) {
-        return separator ? c == separator : (c == ' ' || c == '\t');
-    };
+    auto isSep = [&](char c) { return separator ? c == separator : (c == ' ' || c == '\t'); };
     while (i <= line.size()) {
         std::size_t j = i;
         while (j < line.size() && !isSep(line[j]))
@@ -42,6 +40,50 @@ std::vector<std::string> headerNames(std::string_view line, char separator) {
     return names;
 }
 
+// What a column name means when matched: lower case, units in brackets or parentheses dropped
+// ("Pos.x [m]" is pos.x), blanks trimmed. The name shown stays as the file wrote it.
+std::string matchKey(std::string_view name) {
+    std::string out;
+    int depth = 0;
+    for (char c : name) {
+        if (c == '[' || c == '(')
+            ++depth;
+        else if ((c == ']' || c == ')') && depth > 0)
+            --depth;
+        else if (depth == 0)
+            out += c;
+    }
+    while (!out.empty() && std::isspace(static_cast<unsigned char>(out.back())))
+        out.pop_back();
+    std::size_t first = 0;
+    while (first < out.size() && std::isspace(static_cast<unsigned char>(out[first])))
+        ++first;
+    return asciiLower(out.substr(first));
+}
+
+// The names a coordinate goes by in the programs users have: x; ParaView's Points:0 and
+// coordinates:0; DualSPHysics' Pos.x (and PosDouble.x); pos_x, position_x, position:0 ...
+std::vector<std::string> coordinateNames(char axis, int index) {
+    const std::string a(1, axis), i = std::to_string(index);
+    return {a,
+            "points:" + i,
+            "point:" + i,
+            "coordinates:" + i,
+            "coords:" + i,
+            "position:" + i,
+            "pos:" + i,
+            "pos." + a,
+            "pos_" + a,
+            "pos" + a,
+            "position." + a,
+            "position_" + a,
+            "posdouble." + a,
+            "coordinates_" + i};
+}
+
+constexpr const char* kAcceptedCoordinates =
+    "x y z; Points:0..2; coordinates:0..2; Pos.x/Pos.y/Pos.z; pos_x; position_x; position:0";
+
 } // namespace
 
 Frame parseTable(const std::string& path, std::string_view text) {
@@ -51,7 +93,8 @@ Frame parseTable(const std::string& path, std::string_view text) {
     std::string_view header;
     while (pos < text.size()) {
         const void* nl = std::memchr(text.data() + pos, '\n', text.size() - pos);
-        const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data()) : text.size();
+        const std::size_t end =
+            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data()) : text.size();
         std::string_view l = text.substr(pos, end - pos);
         pos = nl ? end + 1 : text.size();
         ++line;
@@ -63,27 +106,68 @@ Frame parseTable(const std::string& path, std::string_view text) {
     if (header.empty())
         throw InputError(path, "empty file: expected a header row naming columns x, y, z");
     if (std::memchr(header.data(), '\0', header.size()))
-        throw InputError(path, InputError::Where::Line, line, "binary data where a header row was expected");
+        throw InputError(path, InputError::Where::Line, line,
+                         "binary data where a header row was expected");
     while (!header.empty() && (header.front() == '#' || header.front() == ' '))
         header.remove_prefix(1);
-    const char separator = header.find(',') != std::string_view::npos  ? ','
+    while (!header.empty() && std::isspace(static_cast<unsigned char>(header.back())))
+        header.remove_suffix(1);
+    // Delimiter: comma, then semicolon (DualSPHysics), then tab (names may hold spaces), else
+    // blanks. Rows split on the comma or semicolon; tabs and blanks are both blanks in rows.
+    const char separator = header.find(',') != std::string_view::npos   ? ','
                            : header.find(';') != std::string_view::npos ? ';'
                                                                         : 0;
-    const std::vector<std::string> names = headerNames(header, separator);
+    std::vector<std::string> names = headerNames(header, separator);
+    if (!separator && header.find('\t') != std::string_view::npos) {
+        // Tabs between names that hold spaces ("X [m]<tab>Y [m]"): split on tabs when that
+        // gives as many names as the first row has values.
+        std::vector<std::string> byTab = headerNames(header, '\t');
+        std::size_t at = pos;
+        std::string_view first;
+        while (at < text.size() && first.empty()) {
+            const std::size_t end = std::min(text.find('\n', at), text.size());
+            const std::string_view l = text.substr(at, end - at);
+            if (l.find_first_not_of(" \t\r") != std::string_view::npos)
+                first = l;
+            at = end + 1;
+        }
+        if (byTab.size() != names.size() && byTab.size() == headerNames(first, 0).size())
+            names = std::move(byTab);
+    }
+    // Yade's export.text / ymport.text: "#format x_y_z_r" names the columns joined by '_'.
+    if (!separator && names.size() == 2 && asciiLower(names[0]) == "format") {
+        const std::string spec = names[1];
+        names.clear();
+        for (std::size_t i = 0; i <= spec.size();) {
+            const std::size_t j = std::min(spec.find('_', i), spec.size());
+            names.push_back(spec.substr(i, j - i));
+            i = j + 1;
+        }
+    }
     const std::uint64_t headerLine = line;
 
-    auto find = [&](std::initializer_list<const char*> wanted) -> int {
-        for (const char* w : wanted)
-            for (std::size_t c = 0; c < names.size(); ++c)
-                if (asciiLower(names[c]) == w)
+    std::vector<std::string> keys;
+    for (const auto& n : names)
+        keys.push_back(matchKey(n));
+    auto find = [&](const std::vector<std::string>& wanted) -> int {
+        for (const auto& w : wanted)
+            for (std::size_t c = 0; c < keys.size(); ++c)
+                if (keys[c] == w)
                     return static_cast<int>(c);
         return -1;
     };
-    const int xc = find({"x"}), yc = find({"y"}), zc = find({"z"});
-    if (xc < 0 || yc < 0 || zc < 0)
-        throw InputError(path, InputError::Where::Line, headerLine,
-                         "header must name columns x, y and z, found " + quoteForError(header, 80));
-    const int idc = find({"id", "particle_id", "pid"});
+    const int xc = find(coordinateNames('x', 0)), yc = find(coordinateNames('y', 1)),
+              zc = find(coordinateNames('z', 2));
+    if (xc < 0 || yc < 0 || zc < 0) {
+        std::string seen;
+        for (const auto& n : names)
+            seen += (seen.empty() ? "" : ", ") + n;
+        throw InputError(
+            path, InputError::Where::Line, headerLine,
+            "header must name columns x, y and z (accepted: " + std::string(kAcceptedCoordinates) +
+                "; units in brackets are ignored), found " + quoteForError(seen, 120));
+    }
+    const int idc = find({"id", "particle_id", "pid", "idp", "ids", "particleid", "particle id"});
     const int rc = find({"radius", "r", "rad"});
     const int dc = rc < 0 ? find({"diameter", "diam", "d"}) : -1;
     for (std::size_t c = 0; c < names.size(); ++c) {
@@ -101,7 +185,8 @@ Frame parseTable(const std::string& path, std::string_view text) {
     while (bodyEnd > pos && std::isspace(static_cast<unsigned char>(text[bodyEnd - 1])))
         --bodyEnd;
     std::string_view body = text.substr(pos, bodyEnd - pos);
-    const std::size_t rows = body.empty() ? 0 : static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) + 1;
+    const std::size_t rows =
+        body.empty() ? 0 : static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) + 1;
 
     Frame frame;
     resizeColumnsInParallel({&frame.x, &frame.y, &frame.z, &frame.radius}, {&frame.ids}, rows);

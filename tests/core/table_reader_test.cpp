@@ -27,14 +27,22 @@ TEST(TableReader, WhitespaceUpperCaseQuotedAndTrailingBlankLines) {
 }
 
 TEST(TableReader, Errors) {
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", ""); }), "t.csv: empty file: expected a header row naming columns x, y, z");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", ""); }),
+              "t.csv: empty file: expected a header row naming columns x, y, z");
     EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "a,b,c\n1,2,3\n"); }),
-              "t.csv:1: header must name columns x, y and z, found 'a,b,c'");
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n1,2\n"); }), "t.csv:3: expected 3 values, found 2");
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n\n1,2,3\n"); }), "t.csv:3: expected 3 values, found 0");
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z,x\n"); }), "t.csv:1: column 'x' appears twice");
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,-inf\n"); }), "t.csv:2: column 'z' must be finite, found '-inf'");
-    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "id,x,y,z\n1,0,0,0\n1,0,0,0\n"); }), "t.csv:1: particle id 1 appears twice");
+              "t.csv:1: header must name columns x, y and z (accepted: x y z; Points:0..2; "
+              "coordinates:0..2; Pos.x/Pos.y/Pos.z; pos_x; position_x; position:0; units in "
+              "brackets are ignored), found 'a, b, c'");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n1,2\n"); }),
+              "t.csv:3: expected 3 values, found 2");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,3\n\n1,2,3\n"); }),
+              "t.csv:3: expected 3 values, found 0");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z,x\n"); }),
+              "t.csv:1: column 'x' appears twice");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "x,y,z\n1,2,-inf\n"); }),
+              "t.csv:2: column 'z' must be finite, found '-inf'");
+    EXPECT_EQ(inputErrorOf([] { parseTable("t.csv", "id,x,y,z\n1,0,0,0\n1,0,0,0\n"); }),
+              "t.csv:1: particle id 1 appears twice");
 }
 
 TEST(TableReader, FixtureDemeWheel) {
@@ -43,4 +51,51 @@ TEST(TableReader, FixtureDemeWheel) {
     EXPECT_EQ(f->size(), 26208u);
     EXPECT_FALSE(f->radiusIsDefault);
     EXPECT_EQ(f->attributeNames(), std::vector<std::string>{"absv"});
+}
+
+TEST(TableReader, ParaViewCsvWithQuotedPointsColumns) {
+    // What ParaView 5.11's SaveData writes for points with arrays: quoted names, Points:0..2.
+    Frame f =
+        parseTable("pv.csv", "\"id\",\"radius\",\"strain\",\"Points:0\",\"Points:1\",\"Points:2\"\n"
+                             "3,0.5,0.01,1.5,2.5,3.5\n4,0.25,0.02,4,5,6\n");
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_EQ(f.ids[0], 3);
+    EXPECT_FLOAT_EQ(f.x[0], 1.5f);
+    EXPECT_FLOAT_EQ(f.z[1], 6.0f);
+    EXPECT_FLOAT_EQ(f.radius[1], 0.25f);
+    EXPECT_EQ(f.attributeNames(), std::vector<std::string>{"strain"});
+    Frame g =
+        parseTable("pv.csv", "\"coordinates:0\",\"coordinates:1\",\"coordinates:2\"\n1,2,3\n");
+    EXPECT_FLOAT_EQ(g.y[0], 2.0f);
+}
+
+TEST(TableReader, DualSphysicsSemicolonsAndUnits) {
+    // PartCSV layout: semicolons, units in brackets; the shown names keep the units.
+    Frame f = parseTable("part.csv", "Pos.x [m];Pos.y [m];Pos.z [m];Idp;Vel.x [m/s];Rhop [kg/m^3]\n"
+                                     "0.1;0.2;0.3;7;1.5;1000\n0.4;0.5;0.6;9;-1;1001\n");
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_EQ(f.ids[1], 9);
+    EXPECT_FLOAT_EQ(f.x[1], 0.4f);
+    EXPECT_FLOAT_EQ(f.z[0], 0.3f);
+    EXPECT_EQ(f.attributeNames(), (std::vector<std::string>{"Vel.x [m/s]", "Rhop [kg/m^3]"}));
+    EXPECT_TRUE(f.radiusIsDefault);
+}
+
+TEST(TableReader, YadeFormatLineNamesTheColumns) {
+    // Yade's export.text(): "#format x_y_z_r", then blank-separated rows.
+    Frame f = parseTable("yade.txt", "#format x_y_z_r\n1 2 3 0.5\n4 5 6 0.25\n");
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_FLOAT_EQ(f.y[1], 5.0f);
+    EXPECT_FLOAT_EQ(f.radius[0], 0.5f);
+    EXPECT_FALSE(f.radiusIsDefault);
+    Frame g = parseTable("yade.txt", "#format id_x_y_z_r_matId\n7 1 2 3 0.5 1\n");
+    EXPECT_EQ(g.ids[0], 7);
+    EXPECT_EQ(g.attributeNames(), std::vector<std::string>{"matId"});
+}
+
+TEST(TableReader, TabSeparatedNamesWithSpaces) {
+    Frame f = parseTable("t.tsv", "X [m]\tY [m]\tZ [m]\tshear strain\n1\t2\t3\t0.5\n");
+    ASSERT_EQ(f.size(), 1u);
+    EXPECT_FLOAT_EQ(f.z[0], 3.0f);
+    EXPECT_EQ(f.attributeNames(), std::vector<std::string>{"shear strain"});
 }
