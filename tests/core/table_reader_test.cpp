@@ -99,3 +99,18 @@ TEST(TableReader, TabSeparatedNamesWithSpaces) {
     EXPECT_FLOAT_EQ(f.z[0], 3.0f);
     EXPECT_EQ(f.attributeNames(), std::vector<std::string>{"shear strain"});
 }
+
+TEST(TableReader, FixtureWrittenByParaView511SaveData) {
+    // Written by pvpython 5.11 (Debian's python3-paraview): SaveData of 12 points with arrays
+    // id, radius, strain.
+    auto ds = Dataset::open({faultline::test::dataFile("paraview511_savedata_points.csv")});
+    auto f = ds->frame(0);
+    ASSERT_EQ(f->size(), 12u);
+    EXPECT_EQ(f->ids[0], 100);
+    EXPECT_EQ(f->ids[11], 111);
+    EXPECT_FLOAT_EQ(f->x[1], 0.5f);
+    EXPECT_FLOAT_EQ(f->y[1], 1.25f);
+    EXPECT_FLOAT_EQ(f->z[1], 1.875f);
+    EXPECT_FLOAT_EQ(f->radius[5], 0.5f);
+    EXPECT_EQ(f->attributeNames(), std::vector<std::string>{"strain"});
+}
