@@ -2,7 +2,7 @@
 #include "app/cli.hpp"
 
 #include "core/io/input_error.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -3,7 +3,7 @@
 #include "app/cli.hpp"
 
 #include "core/io/input_error.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/selection/cutting_box.hpp"
 
 #if FAULTLINE_WITH_GUI

@@ -2,7 +2,7 @@
 // threshold on a histogram (visibility and histograms recomputed every frame), and while
 // orbiting a view (only the camera preview changes). "Updates the view within one frame" needs
 // the drag frames well under 16 ms; the renderer's own cost comes on top and is benched there.
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/session/session.hpp"
 #include "ui/panels/panel_ids.hpp"
 #include "ui/workbench/workbench.hpp"

@@ -1,6 +1,6 @@
 // Any bytes as a data file: format detection, gzip, frame indexing, every reader, every frame.
 #include "core/io/input_error.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

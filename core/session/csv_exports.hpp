@@ -3,7 +3,7 @@
 // every frame, far more than a UI frame may take).
 #pragma once
 
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"
 

@@ -3,7 +3,7 @@
 // data of the current frame (visibility). The UI, the CLI and replay all drive it the same way.
 #pragma once
 
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"

@@ -3,7 +3,7 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/surface/fault_surface.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/synth/dump_writer.hpp"
 
 #include "test_files.hpp"

@@ -1,7 +1,7 @@
 #include "core/io/frame_source.hpp"
-#include "core/model/dataset.hpp"
-#include "core/model/frame_cache.hpp"
-#include "core/model/frame_cache_format.hpp"
+#include "core/data/dataset.hpp"
+#include "core/data/frame_cache.hpp"
+#include "core/data/frame_cache_format.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #include "core/io/input_error.hpp"
-#include "core/model/frame_prefetcher.hpp"
+#include "core/data/frame_prefetcher.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "core/synth/planes_model.hpp"
 
 #include <gtest/gtest.h>

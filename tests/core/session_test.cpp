@@ -3,7 +3,7 @@
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "lattice_dump.hpp"
 #include "test_files.hpp"
 

@@ -1,6 +1,6 @@
 // Surface exports read back: .vdb through OpenVDB's own reader, .glb through tinygltf.
 #include "core/surface/fault_surface.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <gtest/gtest.h>

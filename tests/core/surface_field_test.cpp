@@ -1,7 +1,7 @@
 // The multilevel metaball field against the paper's Algorithm 1 (dense all-pairs sum).
 #include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/surface/metaball_field.hpp"
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"

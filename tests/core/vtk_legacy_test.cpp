@@ -1,6 +1,6 @@
 #include "core/io/input_error.hpp"
 #include "core/io/vtk_legacy.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include "core/io/frame_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/vtk_xml.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>

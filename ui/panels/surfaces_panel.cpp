@@ -7,7 +7,7 @@
 #include "ui/workbench/frame_columns.hpp"
 
 #include "core/color/colormap.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "ui/viewport/category_colors.hpp"
 
 #include <imgui.h>

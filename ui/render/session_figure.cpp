@@ -3,7 +3,7 @@
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "ui/render/surface_mesh.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/render/legend_layout.hpp"

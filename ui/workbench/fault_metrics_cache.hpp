@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/faults/metrics.hpp"
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 #include "ui/workbench/jobs.hpp"
 
 #include <cstdint>

@@ -4,8 +4,8 @@
 // what it had.
 #pragma once
 
-#include "core/model/dataset.hpp"
-#include "core/model/frame_prefetcher.hpp"
+#include "core/data/dataset.hpp"
+#include "core/data/frame_prefetcher.hpp"
 
 #include <atomic>
 #include <functional>

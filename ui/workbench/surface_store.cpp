@@ -1,7 +1,7 @@
 #include "ui/workbench/surface_store.hpp"
 
 #include "core/surface/fault_surface.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "ui/render/surface_mesh.hpp"
 #include "ui/workbench/job_interrupter.hpp"
 

@@ -6,7 +6,7 @@
 #include "core/session/atomic_file.hpp"
 #include "core/session/csv_exports.hpp"
 #include "core/session/session_json.hpp"
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/synth/demo_model.hpp"
 #include "ui/workbench/job_interrupter.hpp"
 

@@ -1,4 +1,4 @@
-#include "core/model/frame_cache_format.hpp"
+#include "core/data/frame_cache_format.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

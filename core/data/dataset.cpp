@@ -1,7 +1,7 @@
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 
 #include "core/io/input_error.hpp"
-#include "core/model/frame_cache.hpp"
+#include "core/data/frame_cache.hpp"
 
 #include <glob.h>
 #include <unistd.h>

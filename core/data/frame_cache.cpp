@@ -1,6 +1,6 @@
-#include "core/model/frame_cache.hpp"
+#include "core/data/frame_cache.hpp"
 
-#include "core/model/frame_cache_format.hpp"
+#include "core/data/frame_cache_format.hpp"
 #include "core/util/ascii.hpp"
 
 #include <fcntl.h>

@@ -2,7 +2,7 @@
 // or "loading"; worker threads load it and the next frames in the direction of travel.
 #pragma once
 
-#include "core/model/dataset.hpp"
+#include "core/data/dataset.hpp"
 
 #include <chrono>
 #include <condition_variable>

@@ -1,4 +1,4 @@
-#include "core/surface/fault_surface_request.hpp"
+#include "core/session/fault_surface_request.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/selection/column_view.hpp"

@@ -1,4 +1,4 @@
-#include "core/model/frame_prefetcher.hpp"
+#include "core/data/frame_prefetcher.hpp"
 
 #include <algorithm>
 #include <exception>

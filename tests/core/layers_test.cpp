@@ -1,0 +1,126 @@
+// Layers of the source tree: the folders of core/ (and of ui/) include each other one way only,
+// never round a circle, and core/ includes no GL, GLFW or ImGui. Read from the sources
+// themselves, so a wrong-way include fails here, naming the file and line that brought it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path sourceRoot() { return fs::path(FAULTLINE_TEST_DATA).parent_path().parent_path(); }
+
+struct Include {
+    std::string file;
+    int line = 0;
+};
+
+// Folder -> folder it includes -> the first include that does it.
+using FolderGraph = std::map<std::string, std::map<std::string, Include>>;
+
+FolderGraph folderGraph(const std::string& top, std::vector<Include>* forbidden = nullptr) {
+    FolderGraph graph;
+    const std::regex include("#\\s*include\\s*[\"<]([^\">]+)[\">]");
+    const std::regex gui("^(GL/|GLFW/|epoxy/|imgui)");
+    for (const auto& entry : fs::recursive_directory_iterator(sourceRoot() / top)) {
+        const std::string ext = entry.path().extension().string();
+        if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".h"))
+            continue;
+        const fs::path rel = fs::relative(entry.path(), sourceRoot() / top);
+        if (rel.begin() == rel.end() || std::next(rel.begin()) == rel.end())
+            continue; // a file directly in top/
+        const std::string folder = rel.begin()->string();
+        std::ifstream in(entry.path());
+        std::string text;
+        int number = 0;
+        while (std::getline(in, text)) {
+            ++number;
+            std::smatch m;
+            if (!std::regex_search(text, m, include))
+                continue;
+            const std::string target = m[1];
+            const std::string where = (fs::path(top) / rel).string();
+            if (forbidden && std::regex_search(target, gui))
+                forbidden->push_back({where + " includes " + target, number});
+            const std::string prefix = top + "/";
+            if (target.rfind(prefix, 0) != 0)
+                continue;
+            const std::string rest = target.substr(prefix.size());
+            const std::size_t slash = rest.find('/');
+            if (slash == std::string::npos)
+                continue;
+            const std::string other = rest.substr(0, slash);
+            if (other != folder && !graph[folder].count(other))
+                graph[folder][other] = {where, number};
+        }
+    }
+    return graph;
+}
+
+// Pairs of folders that reach each other ("a<->b", a < b), each with one include of each way.
+std::map<std::string, std::string> cycles(const FolderGraph& graph) {
+    auto reaches = [&](const std::string& from, const std::string& to) {
+        std::set<std::string> seen;
+        std::vector<std::string> stack{from};
+        while (!stack.empty()) {
+            const std::string at = stack.back();
+            stack.pop_back();
+            auto it = graph.find(at);
+            if (it == graph.end())
+                continue;
+            for (const auto& [next, where] : it->second) {
+                if (next == to)
+                    return true;
+                if (seen.insert(next).second)
+                    stack.push_back(next);
+            }
+        }
+        return false;
+    };
+    std::map<std::string, std::string> found;
+    for (const auto& [a, targets] : graph)
+        for (const auto& [b, where] : targets)
+            if (reaches(b, a)) {
+                const std::string key = a < b ? a + "<->" + b : b + "<->" + a;
+                found[key] +=
+                    where.file + ":" + std::to_string(where.line) + " (" + a + " -> " + b + ") ";
+            }
+    return found;
+}
+
+} // namespace
+
+TEST(Layers, CoreFoldersIncludeEachOtherOneWayOnly) {
+    std::vector<Include> gui;
+    const FolderGraph graph = folderGraph("core", &gui);
+    ASSERT_GT(graph.size(), 5u) << "no sources found under " << (sourceRoot() / "core");
+    for (const auto& [pair, where] : cycles(graph))
+        ADD_FAILURE() << "core/ folders include each other: " << pair << ": " << where;
+    for (const Include& g : gui)
+        ADD_FAILURE() << "core/ must stay free of GL, GLFW and ImGui: " << g.file << ":" << g.line;
+}
+
+TEST(Layers, UiFoldersIncludeEachOtherOnlyWhereKnown) {
+    // The ui/ knot is known debt (issue 25: the workbench split by role untangles it). A new
+    // cycle fails; so does a known one that is gone, so the list only ever shrinks.
+    const std::set<std::string> known = {"dock<->panels",     "dock<->workbench",
+                                         "panels<->widgets",  "panels<->workbench",
+                                         "render<->viewport", "widgets<->workbench"};
+    const FolderGraph graph = folderGraph("ui");
+    ASSERT_GT(graph.size(), 3u);
+    const auto found = cycles(graph);
+    for (const auto& [pair, where] : found)
+        if (!known.count(pair))
+            ADD_FAILURE() << "ui/ folders include each other: " << pair << ": " << where;
+    for (const auto& pair : known)
+        if (!found.count(pair))
+            ADD_FAILURE() << pair << " no longer include each other: take it off the known list";
+}
