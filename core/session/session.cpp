@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
+#include <utility>
 
 namespace faultline::core {
 
@@ -82,6 +84,39 @@ Json Session::run(const Json& cmd, bool& changesState) {
     return inverse;
 }
 
+Session::Preview Session::preview(std::span<const Json> commands) {
+    static const std::set<std::string, std::less<>> kPreviewable = {
+        "box.set", "threshold.add", "threshold.set", "threshold.remove", "camera.set"};
+    // These ops change only boxes, thresholds and views' cameras: keep those and put them back.
+    std::vector<CuttingBox> boxes = m_state.boxes;
+    std::vector<VariableThreshold> thresholds = m_state.thresholds;
+    std::vector<ViewState> views = m_state.views;
+    Preview out;
+    for (const Json& cmd : commands) {
+        const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
+                                   ? cmd["op"].get<std::string>()
+                                   : std::string();
+        auto it = m_ops.find(op);
+        if (!kPreviewable.count(op) || it == m_ops.end())
+            continue;
+        const auto keepBoxes = m_state.boxes;
+        const auto keepThresholds = m_state.thresholds;
+        const auto keepViews = m_state.views;
+        try {
+            it->second.handler(*this, cmd);
+            ++out.applied;
+        } catch (const CommandError&) {
+            m_state.boxes = keepBoxes; // ops change nothing when they refuse; to be sure
+            m_state.thresholds = keepThresholds;
+            m_state.views = keepViews;
+        }
+    }
+    out.boxes = std::exchange(m_state.boxes, std::move(boxes));
+    out.thresholds = std::exchange(m_state.thresholds, std::move(thresholds));
+    out.views = std::exchange(m_state.views, std::move(views));
+    return out;
+}
+
 Json Session::execute(const Json& cmd) {
     bool changes = false;
     Json inverse = run(cmd, changes);
@@ -110,8 +145,9 @@ void Session::apply(const Json& cmd) {
 }
 
 void Session::checkAction(const Json& cmd) const {
-    const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string() ? cmd["op"].get<std::string>()
-                                                                                          : std::string();
+    const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
+                               ? cmd["op"].get<std::string>()
+                               : std::string();
     auto it = m_ops.find(op);
     if (it == m_ops.end() || it->second.changesState)
         throw CommandError("settleAction: \"" + op + "\" is not an action");
@@ -172,7 +208,8 @@ void Session::dropPendingActions() {
 
 std::size_t Session::pendingActions() const {
     return static_cast<std::size_t>(
-        std::count_if(m_waiting.begin(), m_waiting.end(), [](const JournalLine& l) { return l.place != 0 && !l.settled; }));
+        std::count_if(m_waiting.begin(), m_waiting.end(),
+                      [](const JournalLine& l) { return l.place != 0 && !l.settled; }));
 }
 
 bool Session::undo() {

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,19 @@ class Session {
     bool undo(); // false when there is nothing to undo
     bool redo();
     std::size_t undoDepth() const { return m_undo.size(); }
+
+    // What a live edit (a drag of a box face, a histogram threshold, the camera) would show,
+    // without applying it: `commands` run in order through the same ops as apply() on the
+    // session's selection and views, which are then put back as they were; no journal, no
+    // undo, no version change. Only box.set, threshold.add/set/remove and camera.set preview;
+    // a command its op refuses (or another op) is skipped, so an invalid edit shows nothing.
+    struct Preview {
+        std::vector<CuttingBox> boxes;
+        std::vector<VariableThreshold> thresholds;
+        std::vector<ViewState> views;
+        std::size_t applied = 0; // commands that previewed
+    };
+    Preview preview(std::span<const Json> commands);
 
     // Ops known to this session: the built-in ones and any registered by outer layers.
     bool knowsOp(const std::string& op) const;
@@ -122,8 +136,8 @@ class Session {
     SessionState m_state;
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
-    std::vector<Json> m_undo; // inverses, most recent last
-    std::vector<Json> m_redo; // commands that redo, most recent last
+    std::vector<Json> m_undo;          // inverses, most recent last
+    std::vector<Json> m_redo;          // commands that redo, most recent last
     void journalLine(const Json& cmd); // after any reserved places
     void flushJournal();               // the lines no open place holds back
     void checkAction(const Json& cmd) const;

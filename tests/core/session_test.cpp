@@ -1,9 +1,9 @@
 #include "core/io/input_error.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/session/journal.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface.hpp"
-#include "core/session/fault_surface_request.hpp"
 #include "lattice_dump.hpp"
 #include "test_files.hpp"
 
@@ -134,7 +134,8 @@ TEST(Session, DifferenceColouringIsSavedAndItsReferenceFrameResolves) {
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
     s.apply(cmd(R"({"op":"frame.set","frame":2})"));
-    s.apply(cmd(R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_offset":-1})"));
+    s.apply(cmd(
+        R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_offset":-1})"));
     const ViewState& v = *s.state().view("main");
     EXPECT_EQ(v.difference.mode, ColorDifference::Mode::Change);
     EXPECT_EQ(s.referenceFrameOfView(v), 1u);
@@ -182,17 +183,24 @@ TEST(Session, FaultTracksFollowEachFaultThroughTimeAsCsv) {
     for (std::int64_t id = 5; id <= 64; id += 4)
         west.push_back(id);
     s.apply({{"op", "fault.create"}, {"name", "W"}, {"ids", west}});
-    s.apply({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", dir.file("t.csv")}, {"min_size", 5}});
+    s.apply({{"op", "export.csv"},
+             {"what", "fault_tracks"},
+             {"path", dir.file("t.csv")},
+             {"min_size", 5}});
     std::ifstream in(dir.file("t.csv"));
     std::vector<std::string> lines;
     for (std::string l; std::getline(in, l);)
         lines.push_back(l);
     ASSERT_EQ(lines.size(), 4u);
-    EXPECT_EQ(lines[0], "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall");
+    EXPECT_EQ(lines[0],
+              "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall");
     // Candidates tie at 16: the one with the smaller ids (west, id 1) comes first.
     EXPECT_EQ(lines[1], "0,W,15,0,16,15,0.9375,0.9375,1");
     EXPECT_EQ(lines[3], "2,W,15,0,16,15,0.9375,0.9375,1");
-    EXPECT_THROW(s.apply({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", dir.file("u.csv")}, {"link", 0}}),
+    EXPECT_THROW(s.apply({{"op", "export.csv"},
+                          {"what", "fault_tracks"},
+                          {"path", dir.file("u.csv")},
+                          {"link", 0}}),
                  CommandError);
 }
 
@@ -212,18 +220,29 @@ TEST(Session, RejectedCommandsChangeNothing) {
         }
         EXPECT_EQ(s.state(), before);
     };
-    rejects(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})", "box.add: a box named \"a\" exists already");
-    rejects(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,-1,1]})", "box.add: min must not exceed max on any axis");
-    rejects(R"({"op":"box.add","name":"b","min":[0,0],"max":[1,1,1]})", "box.add: \"min\" must be an array of 3 numbers, found [0,0]");
-    rejects(R"({"op":"box.set","name":"a","mode":"slice"})", "box.set: \"mode\" must be keep or cut, found \"slice\"");
-    rejects(R"({"op":"box.set","name":"a","colour":1})", "box.set: unknown field \"colour\" (expected name, min, max, mode, enabled, rename)");
+    rejects(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})",
+            "box.add: a box named \"a\" exists already");
+    rejects(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,-1,1]})",
+            "box.add: min must not exceed max on any axis");
+    rejects(R"({"op":"box.add","name":"b","min":[0,0],"max":[1,1,1]})",
+            "box.add: \"min\" must be an array of 3 numbers, found [0,0]");
+    rejects(R"({"op":"box.set","name":"a","mode":"slice"})",
+            "box.set: \"mode\" must be keep or cut, found \"slice\"");
+    rejects(R"({"op":"box.set","name":"a","colour":1})",
+            "box.set: unknown field \"colour\" (expected name, min, max, mode, enabled, rename)");
     rejects(R"({"op":"frame.set","frame":3})", "frame.set: frame 3 out of range 0..2");
-    rejects(R"({"op":"threshold.add","variable":"strain","low":2,"high":1})", "threshold.add: low must not exceed high");
+    rejects(R"({"op":"threshold.add","variable":"strain","low":2,"high":1})",
+            "threshold.add: low must not exceed high");
     rejects(R"({"op":"fault.add","name":"nope","ids":[1]})", "fault.add: no fault named \"nope\"");
-    rejects(R"({"op":"fault.create","name":"F","ids":[1.5]})", "fault.create: \"ids\" must hold whole numbers, found 1.5");
-    rejects(R"({"op":"fault.merge","names":["x","y"],"into":"z"})", "fault.merge: no fault named \"x\"");
-    rejects(R"({"op":"view.remove","name":"main"})", "view.remove: the main view cannot be removed");
-    rejects(R"({"op":"color.set","map":"rainbow"})", "color.set: unknown map \"rainbow\" (blue-red, viridis, diverging, pastel, bands, gray)");
+    rejects(R"({"op":"fault.create","name":"F","ids":[1.5]})",
+            "fault.create: \"ids\" must hold whole numbers, found 1.5");
+    rejects(R"({"op":"fault.merge","names":["x","y"],"into":"z"})",
+            "fault.merge: no fault named \"x\"");
+    rejects(R"({"op":"view.remove","name":"main"})",
+            "view.remove: the main view cannot be removed");
+    rejects(
+        R"({"op":"color.set","map":"rainbow"})",
+        "color.set: unknown map \"rainbow\" (blue-red, viridis, diverging, pastel, bands, gray)");
     rejects(R"({"op":"data.open","paths":["/nonexistent/file.dump"]})",
             "data.open: /nonexistent/file.dump: cannot open: No such file or directory");
     rejects(R"({"op":"warp"})", "unknown op \"warp\"");
@@ -236,8 +255,10 @@ TEST(Session, FailedBatchRollsBack) {
     Session s;
     s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
     const SessionState before = s.state();
-    EXPECT_THROW(s.apply(cmd(R"({"op":"batch","commands":[{"op":"box.remove","name":"a"},{"op":"box.remove","name":"zz"}]})")),
-                 CommandError);
+    EXPECT_THROW(
+        s.apply(cmd(
+            R"({"op":"batch","commands":[{"op":"box.remove","name":"a"},{"op":"box.remove","name":"zz"}]})")),
+        CommandError);
     EXPECT_EQ(s.state(), before);
 }
 
@@ -273,7 +294,8 @@ TEST(Session, BackgroundActionsKeepTheirPlaceInTheJournal) {
     s.settleAction(csv, cmd(R"({"op":"export.csv","what":"faults","path":"f.csv"})"));
     EXPECT_TRUE(sunk.empty());
     s.settleAction(vdb, cmd(R"({"op":"export.vdb","fault":"F1","path":"F1.vdb"})"));
-    EXPECT_EQ(sunk, (std::vector<std::string>{"export.vdb:F1.vdb", "box.add:a", "export.csv:f.csv", "box.add:b"}));
+    EXPECT_EQ(sunk, (std::vector<std::string>{"export.vdb:F1.vdb", "box.add:a", "export.csv:f.csv",
+                                              "box.add:b"}));
     EXPECT_EQ(s.journal().size(), 4u);
     // One that fails records nothing; what waited behind it is written then.
     const auto failed = s.reserveAction();
@@ -299,10 +321,12 @@ TEST(Session, TheVisibleSpheresHaveASurfaceOfTheirOwn) {
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
     s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":9})")); // x >= 2
     ASSERT_EQ(s.visibility().visibleCount, 32u);
-    s.apply(cmd(R"({"op":"surface.build","fault":"*visible","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    s.apply(cmd(
+        R"({"op":"surface.build","fault":"*visible","kernel":"compact","voxel":0.25,"iso":0.5})"));
     ASSERT_NE(s.state().surface("*visible"), nullptr);
     s.apply({{"op", "export.vdb"}, {"fault", "*visible"}, {"path", dir.file("out/visible.vdb")}});
-    s.apply({{"op", "export.gltf"}, {"faults", {"*visible"}}, {"path", dir.file("out/visible.glb")}});
+    s.apply(
+        {{"op", "export.gltf"}, {"faults", {"*visible"}}, {"path", dir.file("out/visible.glb")}});
     EXPECT_GT(std::filesystem::file_size(dir.file("out/visible.vdb")), 1000u);
     EXPECT_GT(std::filesystem::file_size(dir.file("out/visible.glb")), 1000u);
     // Saved and restored like a fault's surface.
@@ -312,7 +336,8 @@ TEST(Session, TheVisibleSpheresHaveASurfaceOfTheirOwn) {
     auto rejects = [&](const char* text, const std::string& message) {
         expectRefused(s, text, message);
     };
-    rejects(R"({"op":"fault.create","name":"*visible","from":"visible"})", "names the visible spheres' surface");
+    rejects(R"({"op":"fault.create","name":"*visible","from":"visible"})",
+            "names the visible spheres' surface");
     s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
     rejects(R"({"op":"fault.set","name":"F1","rename":"*visible"})", "cannot rename");
     // Nothing visible: refused before any work, saying why.
@@ -329,9 +354,11 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
     s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
-    s.apply(cmd(R"({"op":"surface.build","fault":"F1","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    s.apply(
+        cmd(R"({"op":"surface.build","fault":"F1","kernel":"compact","voxel":0.25,"iso":0.5})"));
     const SurfaceSettings plain = *s.state().surface("F1");
-    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color_by":"strain","map":"gray","range":[0,1],"color_reach":1.0})"));
+    s.apply(cmd(
+        R"({"op":"surface.set","fault":"F1","color_by":"strain","map":"gray","range":[0,1],"color_reach":1.0})"));
     const SurfaceSettings byStrain = *s.state().surface("F1");
     EXPECT_EQ(byStrain.colorBy, "strain");
     const auto frame = s.currentFrame();
@@ -371,7 +398,8 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     rejects(R"({"op":"surface.set","fault":"F1","range":[1,0]})", "\"range\" must be [low, high]");
     rejects(R"({"op":"surface.set","fault":"F1","initial_color":[2,0,0]})", "\"initial_color\"");
     rejects(R"({"op":"surface.set","fault":"F1","map":"rainbow"})", "\"map\" names no colour map");
-    rejects(R"({"op":"surface.set","fault":"F1","color_reach":-1})", "\"color_reach\" must be >= 0");
+    rejects(R"({"op":"surface.set","fault":"F1","color_reach":-1})",
+            "\"color_reach\" must be >= 0");
     // A reach that would make every voxel average every sphere is refused before any work.
     rejects(R"({"op":"surface.build","fault":"F1","color_reach":1e9})", "colour reach");
     EXPECT_EQ(*s.state().surface("F1"), byStrain);
@@ -413,18 +441,26 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
             ADD_FAILURE() << "accepted " << content;
         } catch (const InputError& e) {
             const std::string msg = e.what();
-            EXPECT_EQ(msg.substr(msg.size() - std::min(msg.size(), expectedEnd.size())), expectedEnd) << msg;
+            EXPECT_EQ(msg.substr(msg.size() - std::min(msg.size(), expectedEnd.size())),
+                      expectedEnd)
+                << msg;
         }
     };
-    refuse("{\"format\":\"faultline-session\",\"schema\":1,", "invalid JSON: syntax error while parsing object key - unexpected end of input; expected string literal");
+    refuse("{\"format\":\"faultline-session\",\"schema\":1,",
+           "invalid JSON: syntax error while parsing object key - unexpected end of input; "
+           "expected string literal");
     refuse("[1,2]", "not a Faultline session (expected \"format\": \"faultline-session\")");
-    refuse(R"({"format":"faultline-session","schema":99})", "session schema 99 is newer than this Faultline understands (1): please update Faultline");
+    refuse(
+        R"({"format":"faultline-session","schema":99})",
+        "session schema 99 is newer than this Faultline understands (1): please update Faultline");
     refuse(R"({"format":"faultline-session","schema":1,"faults":[{"name":"F","color":[2,0,0]}]})",
            "faults[0].color: components must lie in [0, 1]");
-    refuse(R"({"format":"faultline-session","schema":1,"boxes":[{"name":"a","min":[0,0,0],"max":[1,1]}]})",
-           "boxes[0].max: must be an array of 3 numbers");
-    refuse(R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
-           "views[0].camera.fov_y: must lie in (0, 180)");
+    refuse(
+        R"({"format":"faultline-session","schema":1,"boxes":[{"name":"a","min":[0,0,0],"max":[1,1]}]})",
+        "boxes[0].max: must be an array of 3 numbers");
+    refuse(
+        R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
+        "views[0].camera.fov_y: must lie in (0, 180)");
     refuse(R"({"format":"faultline-session","schema":1,"faults":[{"name":"*visible"}]})",
            "faults[0].name: \"*visible\" names the visible spheres' surface, not a fault");
     refuse(
@@ -432,7 +468,8 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
         "surfaces[0]: \"range\" must be [low, high] with low < high, or null");
     refuse(std::string(100, '[') + std::string(100, ']'), "JSON nested deeper than 64 levels");
     // Found by fuzz_journal: a number beyond double escaped as a library exception.
-    refuse(R"({"format":"faultline-session","schema":1e999})", "invalid JSON: number overflow parsing '1e999'");
+    refuse(R"({"format":"faultline-session","schema":1e999})",
+           "invalid JSON: number overflow parsing '1e999'");
 }
 
 TEST(SessionFile, MissingDataLeavesTheSessionUntouched) {
@@ -458,28 +495,34 @@ TEST(Journal, LinesAreCheckedBeforeAnythingRuns) {
     };
     EXPECT_EQ(errorOf("// comment\n\n{\"op\":\"frame.set\",\"frame\":1}\n{\"op\":\"teleport\"}\n"),
               "j.jsonl:4: unknown op \"teleport\"");
-    EXPECT_EQ(errorOf("{\"op\":\"undo\"}\n{\"expect\":\"vibes\"}\n"), "j.jsonl:2: unknown expectation \"vibes\"");
-    EXPECT_EQ(errorOf("{\"op\":\"undo\"\n"),
-              "j.jsonl:1: invalid JSON: syntax error while parsing object - unexpected end of input; expected '}'");
-    EXPECT_EQ(errorOf("{\"op\":\"undo\",\"expect\":\"frame\"}\n"), "j.jsonl:1: a line needs exactly one of \"op\" or \"expect\"");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\"}\n{\"expect\":\"vibes\"}\n"),
+              "j.jsonl:2: unknown expectation \"vibes\"");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\"\n"), "j.jsonl:1: invalid JSON: syntax error while parsing "
+                                             "object - unexpected end of input; expected '}'");
+    EXPECT_EQ(errorOf("{\"op\":\"undo\",\"expect\":\"frame\"}\n"),
+              "j.jsonl:1: a line needs exactly one of \"op\" or \"expect\"");
     EXPECT_EQ(errorOf("[1]\n"), "j.jsonl:1: expected a JSON object with \"op\" or \"expect\"");
-    EXPECT_EQ(parseJournal("{\"op\":\"undo\"}\r\n  // x\n{\"expect\":\"frame\",\"equals\":0}", "j", s).size(), 2u);
+    EXPECT_EQ(
+        parseJournal("{\"op\":\"undo\"}\r\n  // x\n{\"expect\":\"frame\",\"equals\":0}", "j", s)
+            .size(),
+        2u);
 }
 
 TEST(Journal, ReplayReportsEachFailingExpectation) {
     TempDir dir;
     writeLattice(dir);
-    const std::string journal = dir.write("j.jsonl",
-        "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
-        "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
-        "{\"expect\":\"visible_count\",\"equals\":32}\n"
-        "{\"expect\":\"visible_count\",\"equals\":31}\n"
-        "{\"expect\":\"histogram\",\"variable\":\"layer\",\"of\":\"visible\",\"bins\":4,\"range\":[0,4],\"counts\":[0,0,16,16]}\n"
-        "{\"op\":\"fault.create\",\"name\":\"F1\",\"from\":\"visible\"}\n"
-        "{\"expect\":\"fault_size\",\"name\":\"F1\",\"equals\":32}\n"
-        "{\"op\":\"session.save\",\"path\":\"out/s.faultline.json\"}\n"
-        "{\"expect\":\"file_exists\",\"path\":\"out/s.faultline.json\"}\n"
-        "{\"expect\":\"file_exists\",\"path\":\"out/nothing.png\"}\n");
+    const std::string journal = dir.write(
+        "j.jsonl", "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
+                   "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
+                   "{\"expect\":\"visible_count\",\"equals\":32}\n"
+                   "{\"expect\":\"visible_count\",\"equals\":31}\n"
+                   "{\"expect\":\"histogram\",\"variable\":\"layer\",\"of\":\"visible\",\"bins\":4,"
+                   "\"range\":[0,4],\"counts\":[0,0,16,16]}\n"
+                   "{\"op\":\"fault.create\",\"name\":\"F1\",\"from\":\"visible\"}\n"
+                   "{\"expect\":\"fault_size\",\"name\":\"F1\",\"equals\":32}\n"
+                   "{\"op\":\"session.save\",\"path\":\"out/s.faultline.json\"}\n"
+                   "{\"expect\":\"file_exists\",\"path\":\"out/s.faultline.json\"}\n"
+                   "{\"expect\":\"file_exists\",\"path\":\"out/nothing.png\"}\n");
     Session s;
     ReplayReport report = replayJournal(journal, {}, s);
     EXPECT_EQ(report.commands, 4u);
@@ -494,11 +537,12 @@ TEST(Journal, ReplayReportsEachFailingExpectation) {
 TEST(Journal, DataOverrideRetargetsTheAnalysis) {
     TempDir dir;
     writeLattice(dir);
-    const std::string other = dir.write("other.csv", "id,x,y,z,layer\n1,0,0,0,2\n2,1,0,0,3\n3,2,0,0,0\n");
-    const std::string journal = dir.write("j.jsonl",
-        "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
-        "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
-        "{\"expect\":\"visible_count\",\"equals\":2}\n");
+    const std::string other =
+        dir.write("other.csv", "id,x,y,z,layer\n1,0,0,0,2\n2,1,0,0,3\n3,2,0,0,0\n");
+    const std::string journal = dir.write(
+        "j.jsonl", "{\"op\":\"data.open\",\"paths\":[\"lattice.dump\"]}\n"
+                   "{\"op\":\"threshold.add\",\"variable\":\"layer\",\"low\":2,\"high\":3}\n"
+                   "{\"expect\":\"visible_count\",\"equals\":2}\n");
     Session s;
     ReplayOptions options;
     options.data = {other};
@@ -507,7 +551,8 @@ TEST(Journal, DataOverrideRetargetsTheAnalysis) {
 
 TEST(Journal, FailingCommandStopsTheReplay) {
     TempDir dir;
-    const std::string journal = dir.write("j.jsonl", "{\"op\":\"frame.set\",\"frame\":1}\n{\"expect\":\"frame\",\"equals\":1}\n");
+    const std::string journal = dir.write(
+        "j.jsonl", "{\"op\":\"frame.set\",\"frame\":1}\n{\"expect\":\"frame\",\"equals\":1}\n");
     Session s;
     ReplayReport report = replayJournal(journal, {}, s);
     EXPECT_TRUE(report.stopped);
@@ -537,7 +582,8 @@ TEST(Session, CandidatesAndSplitUndoExactly) {
     EXPECT_EQ(dump(s.state()), dump(before));
     EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":100})")), CommandError);
     s.apply(cmd(R"({"op":"fault.create","name":"K1","ids":[1]})"));
-    EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":5,"prefix":"K"})")), CommandError);
+    EXPECT_THROW(s.apply(cmd(R"({"op":"fault.candidates","min_size":5,"prefix":"K"})")),
+                 CommandError);
     EXPECT_THROW(s.apply(cmd(R"({"op":"fault.split","name":"K1"})")), CommandError); // one piece
 }
 
@@ -556,4 +602,36 @@ TEST(SessionFile, LargeFaultsArePackedAndRoundTrip) {
     EXPECT_TRUE(doc["faults"][0].contains("ids_packed"));
     EXPECT_FALSE(doc["faults"][0].contains("ids"));
     EXPECT_EQ(loadSessionFile(file), st);
+}
+
+TEST(Session, PreviewRunsTheOpsOnACopyAndChangesNothing) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"));
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.1,"high":1})"));
+    const std::string before = dump(s.state());
+    const std::uint64_t version = s.version();
+    const std::size_t journal = s.journal().size(), undo = s.undoDepth();
+    const std::vector<Json> edits = {
+        cmd(R"({"op":"box.set","name":"a","max":[2,2,2]})"),
+        cmd(R"({"op":"threshold.set","variable":"strain","low":0.5,"high":0.2})"), // refused
+        cmd(R"({"op":"threshold.set","variable":"strain","low":0.3})"),
+        cmd(R"({"op":"camera.set","view":"main","azimuth":40})"),
+        cmd(R"({"op":"fault.create","name":"F","ids":[1]})"),    // not a preview op
+        cmd(R"({"op":"box.set","name":"nope","max":[2,2,2]})")}; // refused
+    const Session::Preview p = s.preview(edits);
+    EXPECT_EQ(p.applied, 3u);
+    ASSERT_EQ(p.boxes.size(), 1u);
+    EXPECT_EQ(p.boxes[0].max, (std::array<double, 3>{2, 2, 2}));
+    ASSERT_EQ(p.thresholds.size(), 1u);
+    EXPECT_EQ(p.thresholds[0].low, 0.3); // the refused low > high changed nothing
+    EXPECT_EQ(p.thresholds[0].high, 1.0);
+    ASSERT_FALSE(p.views.empty());
+    EXPECT_EQ(p.views[0].camera.azimuth, 40.0);
+    EXPECT_EQ(dump(s.state()), before);
+    EXPECT_EQ(s.version(), version);
+    EXPECT_EQ(s.journal().size(), journal);
+    EXPECT_EQ(s.undoDepth(), undo);
+    EXPECT_FALSE(s.state().fault("F"));
 }

@@ -33,55 +33,6 @@ std::string timestampForFile() {
     return buf;
 }
 
-// Applies a previewed command's fields to a copy of the selection it changes.
-void applySelectionPreview(const Json& cmd, std::vector<core::CuttingBox>& boxes,
-                           std::vector<core::VariableThreshold>& thresholds) {
-    const std::string op = cmd.value("op", "");
-    auto vec3 = [](const Json& j, std::array<double, 3>& out) {
-        if (j.is_array() && j.size() == 3)
-            for (int k = 0; k < 3; ++k)
-                if (j[k].is_number())
-                    out[k] = j[k].get<double>();
-    };
-    if (op == "box.set") {
-        for (auto& b : boxes)
-            if (b.name == cmd.value("name", "")) {
-                if (cmd.contains("min"))
-                    vec3(cmd["min"], b.min);
-                if (cmd.contains("max"))
-                    vec3(cmd["max"], b.max);
-                if (cmd.contains("enabled") && cmd["enabled"].is_boolean())
-                    b.enabled = cmd["enabled"].get<bool>();
-            }
-    } else if (op == "threshold.set" || op == "threshold.add") {
-        const std::string var = cmd.value("variable", "");
-        auto it = std::find_if(thresholds.begin(), thresholds.end(), [&](auto& t) { return t.variable == var; });
-        if (it == thresholds.end()) {
-            if (op != "threshold.add")
-                return;
-            thresholds.push_back({var, -1e30, 1e30, true});
-            it = thresholds.end() - 1;
-        }
-        if (cmd.contains("low") && cmd["low"].is_number())
-            it->low = cmd["low"].get<double>();
-        if (cmd.contains("high") && cmd["high"].is_number())
-            it->high = cmd["high"].get<double>();
-        if (cmd.contains("enabled") && cmd["enabled"].is_boolean())
-            it->enabled = cmd["enabled"].get<bool>();
-    }
-}
-
-void applyCameraPreview(const Json& cmd, core::CameraState& c) {
-    if (cmd.contains("target") && cmd["target"].is_array() && cmd["target"].size() == 3)
-        for (int k = 0; k < 3; ++k)
-            c.target[k] = cmd["target"][k].get<double>();
-    c.distance = cmd.value("distance", c.distance);
-    c.azimuth = cmd.value("azimuth", c.azimuth);
-    c.elevation = cmd.value("elevation", c.elevation);
-    c.fovY = cmd.value("fov_y", c.fovY);
-    c.orthographic = cmd.value("orthographic", c.orthographic);
-}
-
 std::array<double, 2> widen(std::array<double, 2> r) {
     if (!std::isfinite(r[0]) || !std::isfinite(r[1]) || r[0] > r[1])
         return {0, 1};
@@ -98,15 +49,18 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     m_panels = createPanels();
     addFaultMetricsSection(m_extensions);
     addFaultCandidatesSection(m_extensions);
-    m_session.setDatasetOpener([this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
+    m_session.setDatasetOpener(
+        [this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
     m_frames.setDataset(m_session.dataset());
     if (!m_options.stateDir.empty()) {
         std::error_code ec;
         fs::create_directories(m_options.stateDir, ec);
-        m_journalPath = (fs::path(m_options.stateDir) / ("journal-" + timestampForFile() + ".jsonl")).string();
+        m_journalPath =
+            (fs::path(m_options.stateDir) / ("journal-" + timestampForFile() + ".jsonl")).string();
         m_journal.open(m_journalPath, std::ios::app);
         if (m_journal) {
-            m_journal << "// faultline workbench journal; run again with: faultline replay " << m_journalPath << "\n";
+            m_journal << "// faultline workbench journal; run again with: faultline replay "
+                      << m_journalPath << "\n";
             m_journal.flush();
             m_session.setJournalSink(
                 [this](const Json& cmd) {
@@ -144,7 +98,9 @@ void Workbench::emit(Json command, std::function<void()> onApplied) {
     m_pending.emplace_back(std::move(command), std::move(onApplied));
 }
 
-void Workbench::preview(const std::string& key, Json command) { m_previews[key] = std::move(command); }
+void Workbench::preview(const std::string& key, Json command) {
+    m_previews[key] = std::move(command);
+}
 
 void Workbench::info(std::string text) {
     m_message = std::move(text);
@@ -181,7 +137,8 @@ std::shared_ptr<core::Dataset> Workbench::openDatasetCached(const std::vector<st
 
 std::size_t Workbench::displayFrame() const {
     for (const auto& [key, cmd] : m_previews)
-        if (cmd.value("op", "") == "frame.set" && cmd.contains("frame") && cmd["frame"].is_number_integer())
+        if (cmd.value("op", "") == "frame.set" && cmd.contains("frame") &&
+            cmd["frame"].is_number_integer())
             return static_cast<std::size_t>(std::max<long long>(0, cmd["frame"].get<long long>()));
     if (m_playback.frame)
         return *m_playback.frame;
@@ -228,11 +185,12 @@ void Workbench::drawDock(float top, float bottom) {
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0);
-    ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(208, 213, 220, 255)); // the gaps between areas
+    ImGui::PushStyleColor(ImGuiCol_WindowBg,
+                          IM_COL32(208, 213, 220, 255)); // the gaps between areas
     ImGui::Begin("##dockhost", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
-                     ImGuiWindowFlags_NoNavFocus);
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                     ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoNavFocus);
     ImGui::PopStyleColor();
     ImGui::PopStyleVar(3);
     DockSpace::Callbacks cb;
@@ -254,7 +212,9 @@ void Workbench::drawDock(float top, float bottom) {
                 p->draw(*this);
     };
     const float gap = std::round(3 * m_scale);
-    if (m_dock.draw(m_layout, ImVec2(gap, top + gap), ImVec2(io.DisplaySize.x - 2 * gap, bottom - top - 2 * gap), m_scale, cb, &m_items))
+    if (m_dock.draw(m_layout, ImVec2(gap, top + gap),
+                    ImVec2(io.DisplaySize.x - 2 * gap, bottom - top - 2 * gap), m_scale, cb,
+                    &m_items))
         commitLayout();
     ImGui::End();
 }
@@ -299,7 +259,8 @@ void Workbench::syncWithSession() {
     }
     if (state().dockLayout != m_adoptedLayout) {
         m_adoptedLayout = state().dockLayout;
-        const bool empty = m_adoptedLayout.is_null() || (m_adoptedLayout.is_object() && m_adoptedLayout.empty());
+        const bool empty =
+            m_adoptedLayout.is_null() || (m_adoptedLayout.is_object() && m_adoptedLayout.empty());
         std::string why;
         if (empty)
             m_layout = DockLayout::defaultLayout();
@@ -307,7 +268,8 @@ void Workbench::syncWithSession() {
             m_layout = *l;
         else {
             m_layout = DockLayout::defaultLayout();
-            error("The session's panel layout was not usable (" + why + "); using the default layout");
+            error("The session's panel layout was not usable (" + why +
+                  "); using the default layout");
         }
     }
     if (!selectedBox.empty() && !state().box(selectedBox))
@@ -401,28 +363,24 @@ void Workbench::updateDisplay() {
     auto ds = dataset();
 
     // The selection as shown: the session's plus any live edit, and a key for caching.
-    std::vector<core::CuttingBox> boxes = s.boxes;
-    std::vector<core::VariableThreshold> thresholds = s.thresholds;
+    // Live edits run through the session's own ops on a copy (Session::preview), so a preview
+    // shows exactly what the command would do, and one the op refuses shows nothing.
+    std::vector<Json> edits;
     std::string previewText;
-    std::map<std::string, core::CameraState> cameras;
-    for (const auto& v : s.views)
-        cameras[v.name] = v.camera;
-    for (const auto& [key, cmd] : m_previews) {
-        const std::string op = cmd.value("op", "");
-        if (op == "camera.set") {
-            const std::string name = cmd.value("view", "main");
-            const core::ViewState* src = s.view(name);
-            if (!src)
-                continue;
-            for (const auto& v : s.views)
-                if (v.name == name || (src->linkedCamera && v.linkedCamera))
-                    applyCameraPreview(cmd, cameras[v.name]);
-        } else if (op != "frame.set") {
-            applySelectionPreview(cmd, boxes, thresholds);
-            previewText += cmd.dump();
+    for (const auto& [key, cmd] : m_previews)
+        if (cmd.value("op", "") != "frame.set") {
+            edits.push_back(cmd);
+            if (cmd.value("op", "") != "camera.set")
+                previewText += cmd.dump();
         }
-    }
-    const std::uint64_t key = std::hash<std::string>{}(std::to_string(m_session.version()) + previewText) | 1;
+    core::Session::Preview shown = m_session.preview(edits);
+    std::vector<core::CuttingBox> boxes = std::move(shown.boxes);
+    std::vector<core::VariableThreshold> thresholds = std::move(shown.thresholds);
+    std::map<std::string, core::CameraState> cameras;
+    for (const auto& v : shown.views)
+        cameras[v.name] = v.camera;
+    const std::uint64_t key =
+        std::hash<std::string>{}(std::to_string(m_session.version()) + previewText) | 1;
     m_displayBoxes = boxes;
     m_displayThresholds = thresholds;
 
@@ -436,13 +394,15 @@ void Workbench::updateDisplay() {
         d.name = v.name;
         if (ds) {
             const long long count = static_cast<long long>(ds->frameCount());
-            const long long want = v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
+            const long long want =
+                v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
             d.wantedFrame = static_cast<std::size_t>(std::clamp(want, 0LL, count - 1));
             if (auto f = m_frames.request(d.wantedFrame, channel)) {
                 if (f != d.frame) { // bounds once per frame shown, not per UI frame
                     d.bounds = modelBounds(*f);
                     const ModelBounds& b = d.bounds;
-                    d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) + std::pow(b.hi[1] - b.lo[1], 2) +
+                    d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) +
+                                                    std::pow(b.hi[1] - b.lo[1], 2) +
                                                     std::pow(b.hi[2] - b.lo[2], 2));
                 }
                 d.frame = f;
@@ -453,8 +413,9 @@ void Workbench::updateDisplay() {
         }
         d.visibility.reset();
         if (d.frame) {
-            auto hit = std::find_if(m_visibilityCache.begin(), m_visibilityCache.end(),
-                                    [&](const VisibilityEntry& e) { return e.frame == d.frame && e.key == key; });
+            auto hit = std::find_if(
+                m_visibilityCache.begin(), m_visibilityCache.end(),
+                [&](const VisibilityEntry& e) { return e.frame == d.frame && e.key == key; });
             if (hit == m_visibilityCache.end()) {
                 auto rowMask = m_session.faultRowMask(*d.frame);
                 auto result = std::make_shared<core::VisibilityResult>(
@@ -477,8 +438,9 @@ void Workbench::updateDisplay() {
     m_views = std::move(next);
     m_surfaces.endFrame();
     std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {
-        return std::none_of(m_views.begin(), m_views.end(),
-                            [&](const ViewDisplay& d) { return d.frame == e.frame && d.visibility == e.result; });
+        return std::none_of(m_views.begin(), m_views.end(), [&](const ViewDisplay& d) {
+            return d.frame == e.frame && d.visibility == e.result;
+        });
     });
 }
 
@@ -553,7 +515,8 @@ const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const
 }
 
 core::CameraState Workbench::fitCamera(const core::ViewState& v, core::CameraState camera,
-                                      const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+                                       const std::array<double, 3>& lo,
+                                       const std::array<double, 3>& hi) const {
     double w = 16, h = 9;
     if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
         w = r->x1 - r->x0, h = r->y1 - r->y0;
