@@ -1,3 +1,31 @@
+// MetaballField: the paper's field (eq. 1: every sphere's kernel, r/d or r/d^2, summed)
+// on sparse 8^3 voxel blocks, to within `tolerance` of the iso-value at every stored voxel.
+//
+// The algorithm (multilevel summation):
+//   - Each kernel is split into a near part, exact within a cutoff a0 (level 1), and a smooth
+//     remainder. The remainder is carried on ever coarser grids of charges, each level's smooth
+//     part interpolated (degree 5) onto the levels below and finally onto the voxels; the top
+//     level sums its charges directly.
+//   - The cutoffs (kappa = a0 / level-1 spacing, and the coarse levels' kappa) are chosen from
+//     an a priori error estimate (errorScale(), calibrated by bench/calibrate_field_error) so the
+//     error stays within the budget at the lowest cost; for small sets they are chosen again
+//     once the levels are planned.
+//   - Block planning: bounds of the field over each candidate block (direct sums for small sets,
+//     the sphere tree otherwise) discard blocks that cannot meet the iso range; coarse nodes are
+//     kept only where planned blocks need them.
+//   - Evaluation: per block, the coarse part interpolated, then the near sums (SIMD, 8 spheres
+//     at a time); blocks whose bounds put them on one side of the iso range skip their near sums.
+//
+// Index of this file:
+//   [SECTION] Error model: constants, weights, budget
+//   [SECTION] Kernels: softened inner parts, power coefficients
+//   [SECTION] Construction and the choice of cutoffs (MetaballField::MetaballField, errorScale)
+//   [SECTION] Bounds over boxes (MetaballField::bounds)
+//   [SECTION] Planning levels (planLevels, levelsEstimate, errorTerm)
+//   [SECTION] Preparing the levels for planned blocks (prepare)
+//   [SECTION] Evaluating blocks (evaluateColor, evaluateBlock, evaluateBlockUnlessOneSided)
+//   [SECTION] Near field (gatherNear, nearValues, sumNear) and points (evaluatePoints)
+
 #include "core/surface/metaball_field.hpp"
 
 #include "core/surface/detail/charge_grid.hpp"
@@ -28,6 +56,10 @@ using detail::WindowList;
 namespace simd8 = detail::simd8;
 
 namespace {
+
+//-----------------------------------------------------------------------------
+// [SECTION] Error model: constants, weights, budget
+//-----------------------------------------------------------------------------
 
 // Interpolation error of the smooth remainders per unit of near-field scale (see errorScale()),
 // for kappa = cutoff / coarse spacing = 3 .. 8, with degree-5 interpolation and C^4 softening.
@@ -107,6 +139,10 @@ struct BoundKernel {
 #else
 #define FAULTLINE_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
+
+//-----------------------------------------------------------------------------
+// [SECTION] Kernels: softened inner parts, power coefficients
+//-----------------------------------------------------------------------------
 
 template <int P> inline float inversePower(float d2, float minD2) {
     d2 = d2 < minD2 ? minD2 : d2;
@@ -415,6 +451,10 @@ void padToVectors(NearList &list) {
 
 } // namespace
 
+//-----------------------------------------------------------------------------
+// [SECTION] Construction and the choice of cutoffs
+//-----------------------------------------------------------------------------
+
 MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
                              const MultilevelTuning &tuning)
     : m_tree(spheres), m_params(params), m_tuning(tuning), m_h(voxelSize) {
@@ -618,6 +658,10 @@ std::size_t MetaballField::coarseNodeCount() const {
     return n;
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Bounds over boxes
+//-----------------------------------------------------------------------------
+
 FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double isoMin, double isoMax,
                                   int maxOpen) const {
     const Box box = voxelBox(lo, hi, m_h);
@@ -697,6 +741,10 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
     }
     return {low, high};
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Planning levels
+//-----------------------------------------------------------------------------
 
 void MetaballField::planLevels(std::span<const Coord3> blocks) {
     // Which nodes each level needs depends only on the level-1 spacing: levels already marked
@@ -812,6 +860,10 @@ double MetaballField::errorTerm(int l) const {
     // A level beyond the terms has a cutoff over twice the span: the last term bounds its.
     return m_errorTerms[std::min<std::size_t>(l, m_errorTerms.size() - 1)];
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Preparing the levels for planned blocks
+//-----------------------------------------------------------------------------
 
 void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
     m_blocks.clear();
@@ -1002,6 +1054,10 @@ void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interru
     }
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Evaluating blocks
+//-----------------------------------------------------------------------------
+
 void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
     thread_local NearList colors;
     const Box box = blockBox(o, m_h);
@@ -1086,6 +1142,10 @@ int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, 
         density[n] += smooth[n];
     return 0;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Near field and points
+//-----------------------------------------------------------------------------
 
 void MetaballField::gatherNear(const Coord3 &o, NearList &block) const {
     const Box box = blockBox(o, m_h);
