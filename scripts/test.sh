@@ -9,6 +9,9 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/build.sh"
 build="${FAULTLINE_BUILD_DIR:-$here/build}"
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
+# Under the test command OpenGL must work: GL tests fail instead of skipping without a context,
+# and a missing uniform or a GL error after a render pass fails the test that drew it.
+export FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1
 (cd "$build" && xvfb-run -a -s "-screen 0 1920x1080x24" \
     ctest --output-on-failure --parallel "$(nproc)" --timeout 600 "$@")
 if [ "${FAULTLINE_QUICK:-0}" != 1 ]; then

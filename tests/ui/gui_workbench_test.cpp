@@ -2,6 +2,7 @@
 // to ImGui after the devices are read: drop a data file, add a box, drag a threshold on a
 // histogram, undo, save the session through the file dialog, take a screenshot. Skipped when
 // there is no display.
+#include "gl_required.hpp"
 #include "../core/test_files.hpp"
 
 #include "core/session/session.hpp"
@@ -141,13 +142,13 @@ std::string readFile(const std::string& path) {
 TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display)
-        GTEST_SKIP() << "no display (run under xvfb-run for this test)";
+        FAULTLINE_NEED_GL("no display (run under xvfb-run for this test)");
     TempDir dir;
     core::Session session;
     std::string why;
     std::unique_ptr<ui::GuiApp> app = openWindow(session, dir.file("state"), why);
     if (!app)
-        GTEST_SKIP() << "no OpenGL window here: " << why;
+        FAULTLINE_NEED_GL("no OpenGL window here: " << why);
     Driver ui(*app);
     ui.steps(3);
 
@@ -235,12 +236,12 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
 TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display)
-        GTEST_SKIP() << "no display (run under xvfb-run for this test)";
+        FAULTLINE_NEED_GL("no display (run under xvfb-run for this test)");
     core::Session session;
     std::string why;
     std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
     if (!app)
-        GTEST_SKIP() << "no OpenGL window here: " << why;
+        FAULTLINE_NEED_GL("no OpenGL window here: " << why);
     Driver ui(*app);
     ui.steps(3);
     app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});

@@ -36,13 +36,14 @@ core::BoundingSphere boxSphere(const glm::dvec3& lo, const glm::dvec3& hi) {
     return {(lo + hi) * 0.5, glm::length(hi - lo) * 0.5};
 }
 
+// Sampler units by name; each program samples only some of these.
 void setSamplers(GLuint program) {
     glUseProgram(program);
-    glUniform1i(glGetUniformLocation(program, "uSpheres"), kUnitSpheres);
-    glUniform1i(glGetUniformLocation(program, "uValues"), kUnitValues);
-    glUniform1i(glGetUniformLocation(program, "uRows"), kUnitRows);
-    glUniform1i(glGetUniformLocation(program, "uColorMap"), kUnitColorMap);
-    glUniform1i(glGetUniformLocation(program, "uSegments"), kUnitSpheres);
+    glUniform1i(gl::optionalUniformLocation(program, "uSpheres"), kUnitSpheres);
+    glUniform1i(gl::optionalUniformLocation(program, "uValues"), kUnitValues);
+    glUniform1i(gl::optionalUniformLocation(program, "uRows"), kUnitRows);
+    glUniform1i(gl::optionalUniformLocation(program, "uColorMap"), kUnitColorMap);
+    glUniform1i(gl::optionalUniformLocation(program, "uSegments"), kUnitSpheres);
 }
 
 } // namespace
@@ -222,7 +223,7 @@ void GlRenderer::uploadSegments() {
 void GlRenderer::bindColorMap(GLuint program, GLuint unit) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, m_colorMapTex.id());
-    glUniform1i(glGetUniformLocation(program, "uBandCount"), m_bandCount);
+    glUniform1i(gl::uniformLocation(program, "uBandCount"), m_bandCount);
 }
 
 void GlRenderer::useSphereProgram(const FrameSetup& f) {
@@ -231,14 +232,14 @@ void GlRenderer::useSphereProgram(const FrameSetup& f) {
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
-    glUniform1f(glGetUniformLocation(p, "uNearZ"), float(-f.clip.nearClip));
-    glUniform1i(glGetUniformLocation(p, "uColorMode"), m_hasValues ? 1 : 0);
-    glUniform3fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.sphereColor));
+    glUniform1f(gl::uniformLocation(p, "uNearZ"), float(-f.clip.nearClip));
+    glUniform1i(gl::uniformLocation(p, "uColorMode"), m_hasValues ? 1 : 0);
+    glUniform3fv(gl::uniformLocation(p, "uColor"), 1, glm::value_ptr(m_style.sphereColor));
     const glm::vec3 nan = core::nanColor(m_map);
-    glUniform3fv(glGetUniformLocation(p, "uNanColor"), 1, glm::value_ptr(nan));
-    glUniform2f(glGetUniformLocation(p, "uRange"), float(m_range.low),
+    glUniform3fv(gl::uniformLocation(p, "uNanColor"), 1, glm::value_ptr(nan));
+    glUniform2f(gl::uniformLocation(p, "uRange"), float(m_range.low),
                 float(1.0 / (m_range.high - m_range.low)));
-    glUniform1f(glGetUniformLocation(p, "uSpecular"), m_style.specular);
+    glUniform1f(gl::uniformLocation(p, "uSpecular"), m_style.specular);
     m_spheresTex.bind(kUnitSpheres);
     m_valuesTex.bind(kUnitValues);
     bindColorMap(p, kUnitColorMap);
@@ -306,10 +307,10 @@ void GlRenderer::drawContextPoints(const FrameSetup& f) {
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
-    glUniform1f(glGetUniformLocation(p, "uPointSize"),
+    glUniform1f(gl::uniformLocation(p, "uPointSize"),
                 std::max(1.0f, m_style.contextPointSize * float(f.supersample)));
     const glm::vec4 color(glm::vec3(m_style.contextColor), 1.0f);
-    glUniform4fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(color));
+    glUniform4fv(gl::uniformLocation(p, "uColor"), 1, glm::value_ptr(color));
     m_spheresTex.bind(kUnitSpheres);
     m_hiddenTex.bind(kUnitRows);
     glEnable(GL_PROGRAM_POINT_SIZE);
@@ -328,11 +329,11 @@ void GlRenderer::drawBoxEdges(const FrameSetup& f, float widthPx, float alpha, b
     glUseProgram(p);
     setMat4(p, "uView", f.view);
     setMat4(p, "uProj", f.projection);
-    glUniform2f(glGetUniformLocation(p, "uViewport"), float(f.width), float(f.height));
-    glUniform1f(glGetUniformLocation(p, "uWidth"), widthPx);
-    glUniform1f(glGetUniformLocation(p, "uNearZ"),
+    glUniform2f(gl::uniformLocation(p, "uViewport"), float(f.width), float(f.height));
+    glUniform1f(gl::uniformLocation(p, "uWidth"), widthPx);
+    glUniform1f(gl::uniformLocation(p, "uNearZ"),
                 f.perspective ? float(-f.clip.nearClip * 1.0001) : 1.0f);
-    glUniform1f(glGetUniformLocation(p, "uAlpha"), alpha);
+    glUniform1f(gl::uniformLocation(p, "uAlpha"), alpha);
     m_segmentsTex.bind(kUnitSpheres);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -406,13 +407,20 @@ void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) 
     glBindVertexArray(m_emptyVao.id());
 
     // Opaque first; transparent surfaces last, blended back to front over everything.
+    gl::checkErrors("render setup");
     drawSpheres(f);
+    gl::checkErrors("spheres");
     drawOpaqueMeshes(f);
+    gl::checkErrors("opaque meshes");
     drawContextPoints(f);
+    gl::checkErrors("context points");
     drawBoxEdges(f, m_style.lineWidth * float(s), 1.0f, true);
+    gl::checkErrors("box edges");
     drawTransparentMeshes(f);
+    gl::checkErrors("transparent meshes");
 
     composite(f, target);
+    gl::checkErrors("composite");
 
     // Overlays at the output size: hidden box edges faintly, handles, legend.
     FrameSetup o = f;
@@ -424,7 +432,9 @@ void GlRenderer::render(const core::Camera& camera, const RenderTarget& target) 
     glClear(GL_DEPTH_BUFFER_BIT);
     drawBoxEdges(o, std::max(1.0f, m_style.lineWidth * 0.6f), 0.3f, false);
     drawHandles(o);
+    gl::checkErrors("overlays");
     drawLegend(target);
+    gl::checkErrors("legend");
 
     glBindVertexArray(0);
     glUseProgram(0);

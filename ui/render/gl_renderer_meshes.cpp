@@ -93,8 +93,8 @@ void GlRenderer::useMeshProgram(const FrameSetup& f) {
     glUseProgram(p);
     gl::setMat4(p, "uView", f.view);
     gl::setMat4(p, "uProj", f.projection);
-    glUniform1f(glGetUniformLocation(p, "uSpecular"), m_style.specular * 0.6f);
-    glUniform1i(glGetUniformLocation(p, "uPerspective"), f.perspective ? 1 : 0);
+    glUniform1f(gl::uniformLocation(p, "uSpecular"), m_style.specular * 0.6f);
+    glUniform1i(gl::uniformLocation(p, "uPerspective"), f.perspective ? 1 : 0);
 }
 
 void GlRenderer::drawOpaqueMeshes(const FrameSetup& f) {

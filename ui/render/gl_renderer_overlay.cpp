@@ -55,11 +55,11 @@ void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
     const double radius =
         m_x.empty() ? std::max(sceneBounds().radius * 0.01, 1e-9) : m_typicalRadius;
     auto setDepthUniforms = [&](GLuint p) {
-        glUniform1i(glGetUniformLocation(p, "uDepth"), kUnitDepth);
-        glUniform2f(glGetUniformLocation(p, "uNearFar"), float(f.clip.nearClip),
+        glUniform1i(gl::uniformLocation(p, "uDepth"), kUnitDepth);
+        glUniform2f(gl::uniformLocation(p, "uNearFar"), float(f.clip.nearClip),
                     float(f.clip.farClip));
-        glUniform1i(glGetUniformLocation(p, "uPerspective"), f.perspective ? 1 : 0);
-        glUniform1f(glGetUniformLocation(p, "uWorldRadius"), float(radius));
+        glUniform1i(gl::uniformLocation(p, "uPerspective"), f.perspective ? 1 : 0);
+        glUniform1f(gl::uniformLocation(p, "uWorldRadius"), float(radius));
     };
     if (m_style.ambientOcclusion) {
         glBindFramebuffer(GL_FRAMEBUFFER, m_occlusion.framebuffer());
@@ -68,7 +68,7 @@ void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
         glUseProgram(p);
         setDepthUniforms(p);
         // Pixels per world unit at unit view depth (perspective) or anywhere (orthographic).
-        glUniform1f(glGetUniformLocation(p, "uPixelsPerUnit"),
+        glUniform1f(gl::uniformLocation(p, "uPixelsPerUnit"),
                     float(f.projection[1][1] * 0.5 * f.height));
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glActiveTexture(GL_TEXTURE0 + kUnitOcclusion);
@@ -80,17 +80,17 @@ void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
     GLuint p = m_programs.composite.id();
     glUseProgram(p);
     setDepthUniforms(p);
-    glUniform1i(glGetUniformLocation(p, "uColor"), kUnitSource);
-    glUniform1i(glGetUniformLocation(p, "uOcclusion"), kUnitOcclusion);
-    glUniform1i(glGetUniformLocation(p, "uAmbientOcclusion"), m_style.ambientOcclusion ? 1 : 0);
-    glUniform1f(glGetUniformLocation(p, "uStrength"), std::clamp(m_style.aoStrength, 0.0f, 1.0f));
+    glUniform1i(gl::uniformLocation(p, "uColor"), kUnitSource);
+    glUniform1i(gl::uniformLocation(p, "uOcclusion"), kUnitOcclusion);
+    glUniform1i(gl::uniformLocation(p, "uAmbientOcclusion"), m_style.ambientOcclusion ? 1 : 0);
+    glUniform1f(gl::uniformLocation(p, "uStrength"), std::clamp(m_style.aoStrength, 0.0f, 1.0f));
     const bool context = m_stats.contextPoints > 0;
-    glUniform1f(glGetUniformLocation(p, "uContextAlpha"),
+    glUniform1f(gl::uniformLocation(p, "uContextAlpha"),
                 context ? std::clamp(m_style.contextColor.a, 0.0f, 1.0f) : 0.0f);
     if (context) {
         glActiveTexture(GL_TEXTURE0 + kUnitContext);
         glBindTexture(GL_TEXTURE_2D, m_contextLayer.color());
-        glUniform1i(glGetUniformLocation(p, "uContext"), kUnitContext);
+        glUniform1i(gl::uniformLocation(p, "uContext"), kUnitContext);
     }
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
@@ -101,8 +101,8 @@ void GlRenderer::composite(const FrameSetup& f, const RenderTarget& target) {
         glUseProgram(p);
         glActiveTexture(GL_TEXTURE0 + kUnitSource);
         glBindTexture(GL_TEXTURE_2D, m_composite.color());
-        glUniform1i(glGetUniformLocation(p, "uSource"), kUnitSource);
-        glUniform1i(glGetUniformLocation(p, "uFactor"), f.supersample);
+        glUniform1i(gl::uniformLocation(p, "uSource"), kUnitSource);
+        glUniform1i(gl::uniformLocation(p, "uFactor"), f.supersample);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glDepthMask(GL_TRUE);
@@ -116,14 +116,14 @@ void GlRenderer::drawHandles(const FrameSetup& f) {
     useSphereProgram(f);
     const GLuint p =
         f.perspective ? m_programs.spheresPerspective.id() : m_programs.spheresOrthographic.id();
-    glUniform1i(glGetUniformLocation(p, "uColorMode"), 0);
+    glUniform1i(gl::uniformLocation(p, "uColorMode"), 0);
     m_handleSpheresTex.bind(kUnitSpheres);
     m_handleRowsTex.bind(kUnitRows);
     glEnable(GL_DEPTH_TEST);
     for (int face = 0; face < 6; ++face) {
         const bool active = m_selected->activeFace == static_cast<core::BoxFace>(face);
         const glm::vec3 c = active ? kActiveHandle : kHandleColors[face / 2];
-        glUniform3fv(glGetUniformLocation(p, "uColor"), 1, glm::value_ptr(c));
+        glUniform3fv(gl::uniformLocation(p, "uColor"), 1, glm::value_ptr(c));
         glDrawArrays(GL_TRIANGLES, 3 * face, 3);
     }
     m_stats.handles = 6;
@@ -212,8 +212,8 @@ void GlRenderer::drawLegend(const RenderTarget& target) {
     }
     const GLuint p = m_programs.overlay.id();
     glUseProgram(p);
-    glUniform2f(glGetUniformLocation(p, "uViewport"), float(target.width), float(target.height));
-    glUniform1i(glGetUniformLocation(p, "uFont"), kUnitFont);
+    glUniform2f(gl::uniformLocation(p, "uViewport"), float(target.width), float(target.height));
+    glUniform1i(gl::uniformLocation(p, "uFont"), kUnitFont);
     bindColorMap(p, kUnitColorMap);
     glBindVertexArray(m_overlayVao.id());
     glBindBuffer(GL_ARRAY_BUFFER, m_overlayVbo.id());
@@ -225,7 +225,7 @@ void GlRenderer::drawLegend(const RenderTarget& target) {
             return;
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(OverlayVertex)),
                      v.data(), GL_STREAM_DRAW);
-        glUniform1i(glGetUniformLocation(p, "uMode"), mode);
+        glUniform1i(gl::uniformLocation(p, "uMode"), mode);
         if (tex) {
             glActiveTexture(GL_TEXTURE0 + kUnitFont);
             glBindTexture(GL_TEXTURE_2D, tex->texture.id());

@@ -3,7 +3,11 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace faultline::ui::gl {
@@ -61,7 +65,7 @@ GLuint compile(const std::string& name, GLenum stage, const std::string& source)
 
 void setMat4(GLuint program, const char* name, const glm::dmat4& m) {
     const glm::mat4 f(m);
-    glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(f));
+    glUniformMatrix4fv(uniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(f));
 }
 
 Program makeProgram(const std::string& name, const std::string& vertexSource,
@@ -168,6 +172,45 @@ void RenderTexture::ensure(int width, int height, bool withDepth) {
         throw std::runtime_error("cannot make a " + std::to_string(width) + "x" +
                                  std::to_string(height) + " render target (status " +
                                  std::to_string(status) + ")");
+}
+
+namespace {
+std::atomic<int> g_strict{-1}; // -1: not decided yet (read the environment once)
+} // namespace
+
+bool strictChecks() {
+    int v = g_strict.load();
+    if (v < 0) {
+        const char* env = std::getenv("FAULTLINE_GL_CHECKS");
+        v = env && *env == '1' ? 1 : 0;
+        g_strict.store(v);
+    }
+    return v == 1;
+}
+
+void setStrictChecks(bool on) { g_strict.store(on ? 1 : 0); }
+
+GLint uniformLocation(GLuint program, const char* name) {
+    const GLint at = glGetUniformLocation(program, name);
+    if (at < 0 && strictChecks())
+        throw std::logic_error(std::string("OpenGL: program ") + std::to_string(program) +
+                               " has no active uniform \"" + name + "\"");
+    return at;
+}
+
+void checkErrors(const char* pass) {
+    if (!strictChecks())
+        return;
+    std::string errors;
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
+        char code[16];
+        std::snprintf(code, sizeof code, "0x%04x", e);
+        errors += (errors.empty() ? "" : ", ") + std::string(code);
+        if (errors.size() > 200)
+            break;
+    }
+    if (!errors.empty())
+        throw std::logic_error(std::string("OpenGL error after ") + pass + ": " + errors);
 }
 
 } // namespace faultline::ui::gl

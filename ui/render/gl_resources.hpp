@@ -99,9 +99,22 @@ class RenderTexture {
     GLuint m_sharedDepth = 0;
 };
 
-// Uniform location by name, cached per program by the caller if it matters; -1 when unused.
-inline GLint uniform(const Program& p, const char* name) {
-    return glGetUniformLocation(p.id(), name);
+// Strict GL checks (on in tests: FAULTLINE_GL_CHECKS=1, set by scripts/test.sh, or
+// setStrictChecks): a uniform the program does not have, or a GL error after a render pass,
+// throws std::logic_error naming it, instead of drawing nothing.
+bool strictChecks();
+void setStrictChecks(bool on);
+
+// Uniform location by name; under strict checks a name the program lacks throws.
+GLint uniformLocation(GLuint program, const char* name);
+// For setters shared by programs that each use only some of the names (sampler units): -1 when
+// the program lacks it, never a throw.
+inline GLint optionalUniformLocation(GLuint program, const char* name) {
+    return glGetUniformLocation(program, name);
 }
+inline GLint uniform(const Program& p, const char* name) { return uniformLocation(p.id(), name); }
+
+// Under strict checks, throws when glGetError reports anything (named with `pass`).
+void checkErrors(const char* pass);
 
 } // namespace faultline::ui::gl
