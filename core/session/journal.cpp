@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <sstream>
 
 namespace faultline::core {
@@ -28,7 +29,10 @@ std::optional<std::string> mismatch(const Json& expected, const Json& actual) {
     return "expected " + describe(expected) + ", actual " + describe(actual);
 }
 
-std::optional<std::string> compareImages(const std::string& path, const std::string& reference, double maxDiff) {
+// Mean |a - b| over all bytes at most maxDiff; with maxPixels, also at most that many pixels
+// whose largest channel difference exceeds 48 of 255 (a missing small feature shows there).
+std::optional<std::string> compareImages(const std::string& path, const std::string& reference, double maxDiff,
+                                         std::optional<long long> maxPixels) {
     int w1, h1, c1, w2, h2, c2;
     unsigned char* a = stbi_load(path.c_str(), &w1, &h1, &c1, 4);
     if (!a)
@@ -48,9 +52,20 @@ std::optional<std::string> compareImages(const std::string& path, const std::str
         for (std::size_t k = 0; k < n; ++k)
             sum += std::abs(static_cast<int>(a[k]) - static_cast<int>(b[k]));
         const double mean = sum / static_cast<double>(n);
+        long long far = 0;
+        for (std::size_t k = 0; k < n; k += 4) {
+            int worst = 0;
+            for (int c = 0; c < 4; ++c)
+                worst = std::max(worst, std::abs(static_cast<int>(a[k + c]) - static_cast<int>(b[k + c])));
+            far += worst > 48;
+        }
         if (mean > maxDiff) {
             std::ostringstream msg;
             msg << "expected mean abs diff <= " << maxDiff << ", actual " << mean;
+            result = msg.str();
+        } else if (maxPixels && far > *maxPixels) {
+            std::ostringstream msg;
+            msg << "expected at most " << *maxPixels << " pixels differing by more than 48, actual " << far;
             result = msg.str();
         }
     }
@@ -162,9 +177,10 @@ std::optional<std::string> checkExpectation(Session& s, const Json& e) {
         return "expected file " + p + " to exist and be non-empty, actual: " + (fs::exists(p, ec) ? "empty" : "missing");
     }
     if (kind == "image") {
-        args::onlyFields(e, {"expect", "path", "reference", "max_mean_abs_diff"});
+        args::onlyFields(e, {"expect", "path", "reference", "max_mean_abs_diff", "max_differing_pixels"});
         return compareImages(s.outputPath(args::string(e, "path")), s.inputPath(args::string(e, "reference")),
-                             args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0));
+                             args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0),
+                             args::optionalInteger(e, "max_differing_pixels"));
     }
     throw CommandError("unknown expectation \"" + kind + "\"");
 }

@@ -1,6 +1,7 @@
 // The OpenGL renderer on known scenes, compared with small reference images (mean absolute
 // difference per channel). Skips without a display; run under xvfb-run with Mesa llvmpipe.
 #include "core/selection/cutting_box.hpp"
+#include "gl_required.hpp"
 #include "test_scenes.hpp"
 #include "ui/render/gl_renderer.hpp"
 #include "ui/render/offscreen.hpp"
@@ -18,13 +19,15 @@ namespace {
 
 // llvmpipe is deterministic on one machine; other drivers round differently.
 constexpr double kTolerance = 1.5;
+// Pixels allowed to differ by more than 48 of 255 in some channel (antialiasing on edges).
+constexpr std::size_t kMaxDifferingPixels = 24;
 
 class GlRender : public ::testing::Test {
   protected:
     void SetUp() override {
         std::string why;
         if (!sharedOffscreenContext(why))
-            GTEST_SKIP() << "no OpenGL context: " << why;
+            FAULTLINE_NEED_GL("no OpenGL context: " << why);
     }
 
     // Renders, saves the image next to the build, and compares with tests/ui/ref/<name>.png
@@ -41,8 +44,13 @@ class GlRender : public ::testing::Test {
         }
         ASSERT_TRUE(std::filesystem::exists(ref))
             << "no reference " << ref << " (see " << out << "; FAULTLINE_UPDATE_REFS=1 makes it)";
-        const double diff = meanAbsDiff(image, readPng(ref));
+        const RgbaImage reference = readPng(ref);
+        const double diff = meanAbsDiff(image, reference);
         EXPECT_LE(diff, kTolerance) << name << ": see " << out << " against " << ref;
+        // And few pixels far off: a missing handle or edge moves the mean too little to see.
+        const std::size_t far = differingPixels(image, reference);
+        EXPECT_LE(far, kMaxDifferingPixels) << name << ": " << far << " pixels differ by more "
+                                            << "than 48 of 255; see " << out << " against " << ref;
     }
 };
 
@@ -90,22 +98,42 @@ TEST_F(GlRender, ColourMappedLattice) {
     compareWithReference(renderSceneToImage(scene, small()), "lattice_viridis");
 }
 
-TEST_F(GlRender, BoxCutWithHandlesAndBands) {
-    const core::Frame f = test::makeLattice(16, 12, 10);
-    const core::CuttingBox cut{"corner", {7.5, -1, 4.5}, {16, 6.5, 10}, core::BoxMode::Cut, true};
+// A lattice with a corner cut away by a box whose handles show, coloured in bands.
+struct BoxCutScene {
+    core::Frame frame = test::makeLattice(16, 12, 10);
     SceneDescription scene;
-    scene.frame = &f;
-    scene.visible.resize(f.size());
-    for (std::size_t i = 0; i < f.size(); ++i)
-        scene.visible[i] = !cut.contains(f.x[i], f.y[i], f.z[i]);
-    scene.colorVariable = "layer";
-    scene.colorMap = *core::parseColorMap("bands:10");
-    scene.boxes.push_back({{cut.min[0], cut.min[1], cut.min[2]},
-                           {cut.max[0], cut.max[1], cut.max[2]},
-                           {0.85f, 0.2f, 0.15f}});
-    scene.selectedBox = BoxHandlesOverlay{0, 0.0, core::BoxFace::MaxZ};
-    scene.style.contextPoints = true;
-    compareWithReference(renderSceneToImage(scene, small()), "box_cut_bands");
+    explicit BoxCutScene(bool handles) {
+        const core::CuttingBox cut{
+            "corner", {7.5, -1, 4.5}, {16, 6.5, 10}, core::BoxMode::Cut, true};
+        scene.frame = &frame;
+        scene.visible.resize(frame.size());
+        for (std::size_t i = 0; i < frame.size(); ++i)
+            scene.visible[i] = !cut.contains(frame.x[i], frame.y[i], frame.z[i]);
+        scene.colorVariable = "layer";
+        scene.colorMap = *core::parseColorMap("bands:10");
+        scene.boxes.push_back({{cut.min[0], cut.min[1], cut.min[2]},
+                               {cut.max[0], cut.max[1], cut.max[2]},
+                               {0.85f, 0.2f, 0.15f}});
+        if (handles)
+            scene.selectedBox = BoxHandlesOverlay{0, 0.0, core::BoxFace::MaxZ};
+        scene.style.contextPoints = true;
+    }
+};
+
+TEST_F(GlRender, BoxCutWithHandlesAndBands) {
+    BoxCutScene s(true);
+    compareWithReference(renderSceneToImage(s.scene, small()), "box_cut_bands");
+}
+
+TEST_F(GlRender, AMissingBoxHandleFailsTheComparison) {
+    // The same figure without its handles: the mean over all bytes barely moves, the count of
+    // pixels far off does.
+    BoxCutScene s(false);
+    const RgbaImage image = renderSceneToImage(s.scene, small());
+    const RgbaImage reference = readPng(std::string(FAULTLINE_UI_REF_DIR) + "/box_cut_bands.png");
+    const std::size_t far = differingPixels(image, reference);
+    EXPECT_LE(meanAbsDiff(image, reference), kTolerance) << "the mean alone would catch it";
+    EXPECT_GT(far, kMaxDifferingPixels);
 }
 
 TEST_F(GlRender, TransparentMeshThroughSpheres) {

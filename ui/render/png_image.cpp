@@ -3,6 +3,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -38,6 +39,19 @@ double meanAbsDiff(const RgbaImage& a, const RgbaImage& b) {
     for (std::size_t i = 0; i < a.pixels.size(); ++i)
         sum += static_cast<std::uint64_t>(std::abs(int(a.pixels[i]) - int(b.pixels[i])));
     return double(sum) / double(a.pixels.size());
+}
+
+std::size_t differingPixels(const RgbaImage& a, const RgbaImage& b, int threshold) {
+    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size())
+        return a.pixels.size() / 4;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i + 3 < a.pixels.size(); i += 4) {
+        int worst = 0;
+        for (int c = 0; c < 4; ++c)
+            worst = std::max(worst, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
+        count += worst > threshold;
+    }
+    return count;
 }
 
 } // namespace faultline::ui

@@ -26,5 +26,9 @@ RgbaImage readPng(const std::string& path);
 
 // Mean of |a - b| over every channel of every pixel (0..255); infinity when sizes differ.
 double meanAbsDiff(const RgbaImage& a, const RgbaImage& b);
+// Pixels whose largest channel difference exceeds `threshold`: a small feature that is missing
+// (a box handle, a thin edge) shows here even where the mean over all bytes hardly moves. The
+// pixel count of `a` when sizes differ.
+std::size_t differingPixels(const RgbaImage& a, const RgbaImage& b, int threshold = 48);
 
 } // namespace faultline::ui
