@@ -75,7 +75,10 @@ FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest&
     for (std::int64_t id : request.fault.ids)
         if (auto row = frame.rowOf(id)) {
             const double v = column->value(*row);
-            const glm::vec3 c = std::isnan(v) ? nanColor(*map) : sampleColorMap(*map, std::clamp(normalizeValue(v, range), 0.0, 1.0));
+            const glm::vec3 c =
+                std::isnan(v)
+                    ? nanColor(*map)
+                    : sampleColorMap(*map, std::clamp(normalizeValue(v, range), 0.0, 1.0));
             s.rgb[3 * k] = c.r, s.rgb[3 * k + 1] = c.g, s.rgb[3 * k + 2] = c.b;
             ++k;
         }
@@ -84,10 +87,7 @@ FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest&
 
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault) {
     SurfaceParams params;
-    const auto kernel = parseKernel(settings.kernel);
-    if (!kernel)
-        throw CommandError("surface: \"kernel\" must be inverse, inverse-square or compact");
-    params.kernel = *kernel;
+    params.kernel = settings.kernel;
     params.iso = static_cast<float>(settings.iso);
     params.voxelSize = static_cast<float>(settings.voxel);
     // (Clamped into float's range: validation refuses what is far too large.)

@@ -24,7 +24,8 @@ std::string_view differenceModeName(ColorDifference::Mode mode) {
 std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count) {
     const FrameBinding& ref = view.difference.reference;
     const long long f = ref.relative ? static_cast<long long>(shown) + ref.value : ref.value;
-    return static_cast<std::size_t>(std::clamp(f, 0LL, std::max(1LL, static_cast<long long>(count)) - 1));
+    return static_cast<std::size_t>(
+        std::clamp(f, 0LL, std::max(1LL, static_cast<long long>(count)) - 1));
 }
 
 std::string colorTitle(const ViewState& view, std::size_t referenceFrame) {
@@ -41,7 +42,8 @@ std::string colorTitle(const ViewState& view, std::size_t referenceFrame) {
 }
 
 std::optional<ColorDifference::Mode> parseDifferenceMode(std::string_view name) {
-    for (auto m : {ColorDifference::Mode::None, ColorDifference::Mode::Change, ColorDifference::Mode::Displacement})
+    for (auto m : {ColorDifference::Mode::None, ColorDifference::Mode::Change,
+                   ColorDifference::Mode::Displacement})
         if (differenceModeName(m) == name)
             return m;
     return std::nullopt;
@@ -49,16 +51,21 @@ std::optional<ColorDifference::Mode> parseDifferenceMode(std::string_view name) 
 
 namespace {
 template <typename Vec, typename Key> auto findIn(Vec& items, Key key, std::string_view name) {
-    auto it = std::find_if(items.begin(), items.end(), [&](const auto& e) { return e.*key == name; });
+    auto it =
+        std::find_if(items.begin(), items.end(), [&](const auto& e) { return e.*key == name; });
     return it == items.end() ? nullptr : &*it;
 }
 } // namespace
 
-ViewState* SessionState::view(std::string_view name) { return findIn(views, &ViewState::name, name); }
+ViewState* SessionState::view(std::string_view name) {
+    return findIn(views, &ViewState::name, name);
+}
 const ViewState* SessionState::view(std::string_view name) const {
     return findIn(views, &ViewState::name, name);
 }
-CuttingBox* SessionState::box(std::string_view name) { return findIn(boxes, &CuttingBox::name, name); }
+CuttingBox* SessionState::box(std::string_view name) {
+    return findIn(boxes, &CuttingBox::name, name);
+}
 const CuttingBox* SessionState::box(std::string_view name) const {
     return findIn(boxes, &CuttingBox::name, name);
 }
@@ -80,12 +87,17 @@ SurfaceSettings* SessionState::surface(std::string_view fault) {
 }
 
 nlohmann::json surfaceSettingsFields(const SurfaceSettings& st) {
-    nlohmann::json j = {{"kernel", st.kernel}, {"voxel", st.voxel},      {"iso", st.iso},
-                        {"visible", st.visible}, {"opacity", st.opacity}, {"color_by", st.colorBy},
+    nlohmann::json j = {{"kernel", std::string(kernelName(st.kernel))},
+                        {"voxel", st.voxel},
+                        {"iso", st.iso},
+                        {"visible", st.visible},
+                        {"opacity", st.opacity},
+                        {"color_by", st.colorBy},
                         {"map", st.colorMap}};
     j["color_reach"] = st.colorReach ? nlohmann::json(*st.colorReach) : nlohmann::json(nullptr);
     j["range"] = st.colorRange ? nlohmann::json(*st.colorRange) : nlohmann::json(nullptr);
-    j["initial_color"] = st.initialColor ? nlohmann::json(*st.initialColor) : nlohmann::json(nullptr);
+    j["initial_color"] =
+        st.initialColor ? nlohmann::json(*st.initialColor) : nlohmann::json(nullptr);
     return j;
 }
 
@@ -127,7 +139,14 @@ void readSurfaceSettingsFields(const nlohmann::json& j, SurfaceSettings& st) {
         }
         into = out;
     };
-    text("kernel", st.kernel);
+    if (j.contains("kernel")) {
+        std::string name;
+        text("kernel", name);
+        const auto kernel = parseKernel(name);
+        if (!kernel)
+            bad("kernel", "must be inverse, inverse-square or compact");
+        st.kernel = *kernel;
+    }
     number("voxel", st.voxel);
     number("iso", st.iso);
     if (j.contains("visible")) {
@@ -150,8 +169,6 @@ void readSurfaceSettingsFields(const nlohmann::json& j, SurfaceSettings& st) {
     }
     numbers.operator()<3>("initial_color", st.initialColor,
                           "must be [r, g, b] with components in [0, 1], or null");
-    if (!parseKernel(st.kernel))
-        bad("kernel", "must be inverse, inverse-square or compact");
     if (st.voxel < 0)
         bad("voxel", "must be >= 0 (0: radius / 3)");
     if (!(st.iso > 0))

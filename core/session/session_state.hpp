@@ -5,6 +5,7 @@
 #include "core/faults/fault.hpp"
 #include "core/selection/cutting_box.hpp"
 #include "core/selection/variable_threshold.hpp"
+#include "core/surface/surface_params.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -21,8 +22,8 @@ inline constexpr int kSessionSchema = 1;
 // An orbit camera as saved: the renderer derives its matrices from these.
 struct CameraState {
     std::array<double, 3> target{0, 0, 0};
-    double distance = 0; // 0: not set yet, fit the model when first shown
-    double azimuth = 0;   // degrees, clockwise from north (+y) as seen from above
+    double distance = 0;   // 0: not set yet, fit the model when first shown
+    double azimuth = 0;    // degrees, clockwise from north (+y) as seen from above
     double elevation = 20; // degrees above horizontal
     double fovY = 35;      // degrees; ignored when orthographic
     bool orthographic = false;
@@ -53,10 +54,10 @@ ViewState mainView();
 struct ViewState {
     std::string name;
     FrameBinding frame;
-    std::string colorVariable;  // empty: a plain colour
+    std::string colorVariable; // empty: a plain colour
     std::string colorMap = "blue-red";
-    std::string rangeMode = "frame";            // frame | all | fixed
-    std::array<double, 2> range{0, 1};          // used when rangeMode == fixed
+    std::string rangeMode = "frame";   // frame | all | fixed
+    std::array<double, 2> range{0, 1}; // used when rangeMode == fixed
     ColorDifference difference;
     CameraState camera;
     bool linkedCamera = true;
@@ -91,9 +92,9 @@ inline constexpr std::string_view kVisibleSpheres = "*visible";
 inline bool isVisibleSpheres(std::string_view name) { return name == kVisibleSpheres; }
 
 struct SurfaceSettings {
-    std::string fault; // a fault's name, or kVisibleSpheres
-    std::string kernel = "inverse-square"; // inverse | inverse-square | compact
-    double voxel = 0;                      // 0: radius / 3
+    std::string fault;                                     // a fault's name, or kVisibleSpheres
+    MetaballKernel kernel = MetaballKernel::InverseSquare; // "inverse-square" etc. only in JSON
+    double voxel = 0;                                      // 0: radius / 3
     double iso = 1.0;
     bool visible = true;
     double opacity = 0.8;

@@ -1,6 +1,6 @@
 // Surface exports read back: .vdb through OpenVDB's own reader, .glb through tinygltf.
-#include "core/surface/fault_surface.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/surface/fault_surface.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@ struct Spheres {
     fc::SphereSet set() const { return {x, y, z, r, rgb}; }
 };
 
-std::filesystem::path tempPath(const std::string &name) {
+std::filesystem::path tempPath(const std::string& name) {
     return std::filesystem::temp_directory_path() / ("faultline_surface_test_" + name);
 }
 
@@ -77,7 +77,7 @@ TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
     request.fault.name = "F1";
     request.fault.ids = {1, 2, 3, 4};
     request.settings.fault = "F1";
-    request.settings.kernel = "compact";
+    request.settings.kernel = faultline::core::MetaballKernel::Compact;
     request.settings.iso = 0.5;
     request.settings.colorBy = "strain";
     request.settings.colorMap = "gray";
@@ -118,8 +118,8 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
     EXPECT_EQ(model.nodes[0].name, "F1");
     EXPECT_EQ(model.nodes[1].name, "F2");
     EXPECT_EQ(model.nodes[2].name, "glyphs");
-    const auto &prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
-    for (const char *attr : {"POSITION", "NORMAL", "COLOR_0"})
+    const auto& prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
+    for (const char* attr : {"POSITION", "NORMAL", "COLOR_0"})
         EXPECT_TRUE(prim.attributes.count(attr));
     EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
     EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());

@@ -67,7 +67,7 @@ TEST_F(PanelTest, ATickedSurfaceIsBuiltInTheBackgroundAndDrawnWithTheSpheres) {
     EXPECT_EQ(compact.value("kernel", ""), "compact");
     ASSERT_TRUE(compact.contains("iso")) << compact.dump();
     EXPECT_LT(compact["iso"].get<double>(), 0.5 * wrapping);
-    EXPECT_EQ(session.state().surface("F1")->kernel, "compact");
+    EXPECT_EQ(session.state().surface("F1")->kernel, core::MetaballKernel::Compact);
     session.apply(Json::parse(R"({"op":"undo"})"));
     headless.settle(wb());
 
@@ -130,13 +130,15 @@ TEST_F(PanelTest, TheVisibleSpheresSurfaceFollowsTheThresholds) {
 TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
-    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5,"color_reach":1})"));
+    session.apply(Json::parse(
+        R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5,"color_reach":1})"));
     headless.showPanel(wb(), ui::panel_ids::kSurfaces);
     headless.settle(wb());
     pickFromCombo("surfaces.color_by", "surfaces.color_by.strain");
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
-    EXPECT_EQ(headless.emitted("surface.set")[0],
-              (Json{{"op", "surface.set"}, {"fault", "F1"}, {"color_by", "strain"}, {"range", nullptr}}));
+    EXPECT_EQ(
+        headless.emitted("surface.set")[0],
+        (Json{{"op", "surface.set"}, {"fault", "F1"}, {"color_by", "strain"}, {"range", nullptr}}));
     headless.settle(wb());
     ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
     const auto& mesh = *wb().mainDisplay()->surfaces[0].mesh;
@@ -150,7 +152,8 @@ TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     };
     EXPECT_GT(spread(mesh), 0.3f); // viridis over the strain range: far from one colour
     // Like the view: the main view's variable, map and range.
-    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"layer","map":"gray"})"));
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","variable":"layer","map":"gray"})"));
     headless.settle(wb());
     headless.clearEmitted();
     headless.click(wb(), "surfaces.like_view");
@@ -160,7 +163,8 @@ TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     EXPECT_EQ(like.value("color_by", ""), "layer");
     EXPECT_EQ(like.value("map", ""), "gray");
     ASSERT_TRUE(like.contains("range")) << like.dump();
-    EXPECT_EQ(like["range"], Json::array({wb().mainDisplay()->colorRange[0], wb().mainDisplay()->colorRange[1]}));
+    EXPECT_EQ(like["range"],
+              Json::array({wb().mainDisplay()->colorRange[0], wb().mainDisplay()->colorRange[1]}));
     EXPECT_EQ(session.state().surface("F1")->colorBy, "layer");
 }
 
@@ -320,10 +324,12 @@ TEST_F(PanelTest, FitVisibleAimsAtTheVisibleSpheresAndContextModeIsAViewSetting)
     ASSERT_EQ(cams.size(), 1u);
     // The visible spheres are centres 0..1 with radius 0.5: the box [-0.5, 1.5]^3.
     for (int a = 0; a < 3; ++a)
-        EXPECT_NEAR(cams[0]["target"][a].get<double>(), 0.5, 0.3); // shifted sideways for the legend only
-    const double full = wb().fitCamera(*session.state().view("main"), session.state().view("main")->camera,
-                                       {-0.5, -0.5, -0.5}, {3.5, 3.5, 3.5})
-                            .distance;
+        EXPECT_NEAR(cams[0]["target"][a].get<double>(), 0.5,
+                    0.3); // shifted sideways for the legend only
+    const double full =
+        wb().fitCamera(*session.state().view("main"), session.state().view("main")->camera,
+                       {-0.5, -0.5, -0.5}, {3.5, 3.5, 3.5})
+            .distance;
     EXPECT_LT(cams[0]["distance"].get<double>(), 0.6 * full);
     headless.click(wb(), "viewports.context");
     ASSERT_EQ(headless.emitted("view.set").size(), 1u);

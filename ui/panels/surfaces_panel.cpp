@@ -13,8 +13,8 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <array>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -235,15 +235,16 @@ class SurfacesPanel final : public Panel {
         ImGui::Text("Surface of %s", sourceLabel(fault).c_str());
         const float w = 170 * wb.scale();
         ImGui::SetNextItemWidth(w);
-        if (ImGui::BeginCombo("kernel", st.kernel.c_str())) {
+        const std::string current(core::kernelName(st.kernel));
+        if (ImGui::BeginCombo("kernel", current.c_str())) {
             for (const char* k : kKernels) {
-                const bool picked = ImGui::Selectable(k, st.kernel == k);
+                const bool picked = ImGui::Selectable(k, current == k);
                 wb.mark(std::string("surfaces.kernel.") + k);
-                if (picked && st.kernel != k) {
+                if (picked && current != k) {
                     // The kernels' fields differ by orders of magnitude: a new kernel comes with
                     // the iso-value that wraps the spheres with it.
                     core::SurfaceSettings next = st;
-                    next.kernel = k;
+                    next.kernel = *core::parseKernel(k);
                     emitWithWrappingIso(wb, fault, next,
                                         {{"op", "surface.set"}, {"fault", fault}, {"kernel", k}});
                 }
@@ -299,13 +300,12 @@ class SurfacesPanel final : public Panel {
         const bool exists = s.surface(fault) != nullptr;
         ImGui::BeginDisabled(!wb.dataset());
         if (ImGui::Button("Export VDB..."))
-            wb.fileDialog().open("Export the density and colour grids of the " +
-                                     (core::isVisibleSpheres(fault) ? "visible spheres"
-                                                                    : fault + " surface") +
-                                     " (OpenVDB)",
-                                 FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"},
-                                 exportFolder(wb),
-                                 (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
+            wb.fileDialog().open(
+                "Export the density and colour grids of the " +
+                    (core::isVisibleSpheres(fault) ? "visible spheres" : fault + " surface") +
+                    " (OpenVDB)",
+                FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"}, exportFolder(wb),
+                (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
         ImGui::SameLine();
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",

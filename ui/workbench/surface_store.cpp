@@ -1,7 +1,7 @@
 #include "ui/workbench/surface_store.hpp"
 
-#include "core/surface/fault_surface.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/surface/fault_surface.hpp"
 #include "ui/render/surface_mesh.hpp"
 #include "ui/workbench/job_interrupter.hpp"
 
@@ -22,17 +22,15 @@ SurfaceStore::SurfaceStore(JobRunner& jobs)
 std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SurfaceSettings& settings,
                                                      const core::Fault& fault,
                                                      std::size_t frameIndex) const {
-    if (!core::parseKernel(settings.kernel))
-        return std::nullopt;
     const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
     const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, fault, settings, params);
     return Key{k.frame, k.members, k.params, params.iso};
 }
 
-const core::Fault* SurfaceStore::sourceOf(
-    const core::SessionState& state, const std::string& name,
-    const std::shared_ptr<const core::Frame>& frame,
-    const std::shared_ptr<const core::VisibilityResult>& visibility) const {
+const core::Fault*
+SurfaceStore::sourceOf(const core::SessionState& state, const std::string& name,
+                       const std::shared_ptr<const core::Frame>& frame,
+                       const std::shared_ptr<const core::VisibilityResult>& visibility) const {
     if (!core::isVisibleSpheres(name))
         return state.fault(name);
     if (!frame || !visibility)
@@ -47,10 +45,10 @@ const core::Fault* SurfaceStore::sourceOf(
     return &m_visibleSources.back().fault;
 }
 
-std::vector<ViewSurface> SurfaceStore::surfacesFor(
-    const core::SessionState& state, std::size_t frameIndex,
-    const std::shared_ptr<const core::Frame>& frame, double now,
-    const std::shared_ptr<const core::VisibilityResult>& visibility) {
+std::vector<ViewSurface>
+SurfaceStore::surfacesFor(const core::SessionState& state, std::size_t frameIndex,
+                          const std::shared_ptr<const core::Frame>& frame, double now,
+                          const std::shared_ptr<const core::VisibilityResult>& visibility) {
     std::vector<ViewSurface> out;
     if (!frame)
         return out;
@@ -125,10 +123,10 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
     entry.job = m_jobs.start("Surface of " + fault.name, std::move(work), std::move(fail), now);
 }
 
-SurfaceStatus SurfaceStore::status(
-    const core::SessionState& state, const std::string& fault, std::size_t frameIndex,
-    const std::shared_ptr<const core::Frame>& frame,
-    const std::shared_ptr<const core::VisibilityResult>& visibility) const {
+SurfaceStatus
+SurfaceStore::status(const core::SessionState& state, const std::string& fault,
+                     std::size_t frameIndex, const std::shared_ptr<const core::Frame>& frame,
+                     const std::shared_ptr<const core::VisibilityResult>& visibility) const {
     const core::SurfaceSettings* settings = state.surface(fault);
     if (!settings)
         return {};
