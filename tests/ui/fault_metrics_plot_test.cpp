@@ -147,16 +147,24 @@ TEST(FaultMetricsCache, AFaultNoLongerShownIsNotWaitedFor) {
     EXPECT_EQ(cache.find(ds, b)->frames.size(), 50u);
 }
 
-TEST_F(PanelTest, FaultMetricsPlotFollowsTheFrameAndGoesToTheFrameClicked) {
+// Fault F1: the column x = 1 of the 4 x 4 x 4 lattice (a vertical plane striking north),
+// selected, with the Faults panel shown and its metrics computed.
+class FaultMetricsPanel : public PanelTest {
+  protected:
+    void showWallFault() {
+        std::vector<std::int64_t> ids;
+        for (std::int64_t id = 2; id <= 64; id += 4)
+            ids.push_back(id);
+        session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", ids}});
+        wb().selectedFaults = {"F1"};
+        headless.showPanel(wb(), ui::panel_ids::kFaults);
+        headless.settle(wb());
+    }
+};
+
+TEST_F(FaultMetricsPanel, PlotFollowsTheFrameAndGoesToTheFrameClicked) {
     openLattice();
-    // The column x = 1 of the 4 x 4 x 4 lattice: a vertical plane striking north.
-    std::vector<std::int64_t> ids;
-    for (std::int64_t id = 2; id <= 64; id += 4)
-        ids.push_back(id);
-    session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", ids}});
-    wb().selectedFaults = {"F1"};
-    headless.showPanel(wb(), ui::panel_ids::kFaults);
-    headless.settle(wb());
+    showWallFault();
     ASSERT_TRUE(headless.has(wb(), "faults.metrics.plot"));
     EXPECT_FALSE(headless.has(wb(), "faults.metrics.progress")); // computed and shown
     EXPECT_TRUE(headless.emitted().empty()) << "computing metrics is no command";
@@ -199,17 +207,11 @@ TEST_F(PanelTest, FaultMetricsPlotFollowsTheFrameAndGoesToTheFrameClicked) {
     EXPECT_FALSE(headless.has(wb(), "faults.metrics.progress"));
 }
 
-TEST_F(PanelTest, FaultMetricsPlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
+TEST_F(FaultMetricsPanel, PlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
     openLattice();
     // Only the wall x = 1 is visible: one fault, there from the first frame.
     session.apply({{"op", "box.add"}, {"name", "wall"}, {"min", {1, 0, 0}}, {"max", {1, 3, 3}}});
-    std::vector<std::int64_t> ids;
-    for (std::int64_t id = 2; id <= 64; id += 4)
-        ids.push_back(id);
-    session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", ids}});
-    wb().selectedFaults = {"F1"};
-    headless.showPanel(wb(), ui::panel_ids::kFaults);
-    headless.settle(wb());
+    showWallFault();
     EXPECT_FALSE(headless.has(wb(), "faults.metrics.events.shown"));
     headless.clearEmitted();
     headless.click(wb(), "faults.metrics.events");
