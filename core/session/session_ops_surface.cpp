@@ -2,8 +2,8 @@
 // surface.remove (settings only; undo of each other), export.vdb and export.gltf.
 #include "core/session/session_ops.hpp"
 
-#include "core/surface/fault_surface.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/surface/fault_surface.hpp"
 #include "core/surface/surface_export.hpp"
 
 #include <algorithm>
@@ -21,8 +21,8 @@ Json settingsJson(const SurfaceSettings& st) {
 
 // surface.build's and surface.set's fields.
 constexpr std::initializer_list<const char*> kSurfaceFields{
-    "fault", "kernel", "voxel", "iso", "visible", "opacity", "color_by", "map", "range", "color_reach",
-    "initial_color"};
+    "fault",    "kernel", "voxel", "iso",         "visible",      "opacity",
+    "color_by", "map",    "range", "color_reach", "initial_color"};
 
 // What a surface named `name` is built from in the current frame: the fault, or the visible
 // spheres (kVisibleSpheres).
@@ -48,18 +48,39 @@ SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
     st.fault = fault;
     if (const SurfaceSettings* old = s.state().surface(fault))
         st = *old;
+    // "iso":"wrap" (and surface.build without "iso"): the iso-value that wraps the spheres,
+    // worked out once the other settings are read (it depends on kernel and voxel).
+    const bool isoWrap =
+        cmd.contains("iso") ? cmd["iso"] == "wrap" : std::string(op) == "surface.build";
+    Json fields = cmd;
+    if (isoWrap)
+        fields.erase("iso");
     try {
-        readSurfaceSettingsFields(cmd, st);
+        readSurfaceSettingsFields(fields, st);
     } catch (const std::invalid_argument& e) {
-        throw CommandError(std::string(op) + ": " + e.what());
+        throw CommandError(std::string(op) + ": " + e.what() +
+                           (cmd.contains("iso") && !isoWrap ? " (or \"wrap\")" : ""));
+    }
+    if (isoWrap) {
+        auto frame = s.currentFrame();
+        if (!frame)
+            throw CommandError(std::string(op) + ": no data is open");
+        try {
+            if (auto iso = faultWrappingIso(*frame, sourceOf(s, fault, op), st))
+                st.iso = *iso;
+        } catch (const std::exception& e) {
+            throw CommandError(std::string(op) + ": " + e.what());
+        }
     }
     return st;
 }
 
 Json storeSettings(Session& s, const SurfaceSettings& st) {
     auto& surfaces = s.mutableState().surfaces;
-    auto it = std::find_if(surfaces.begin(), surfaces.end(), [&](const SurfaceSettings& e) { return e.fault == st.fault; });
-    Json inverse = it == surfaces.end() ? Json{{"op", "surface.remove"}, {"fault", st.fault}} : settingsJson(*it);
+    auto it = std::find_if(surfaces.begin(), surfaces.end(),
+                           [&](const SurfaceSettings& e) { return e.fault == st.fault; });
+    Json inverse = it == surfaces.end() ? Json{{"op", "surface.remove"}, {"fault", st.fault}}
+                                        : settingsJson(*it);
     if (it == surfaces.end())
         surfaces.push_back(st);
     else
@@ -118,7 +139,8 @@ void registerSurfaceOps(OpTable& ops) {
         args::onlyFields(cmd, {"fault"});
         const std::string fault = args::string(cmd, "fault");
         auto& surfaces = s.mutableState().surfaces;
-        auto it = std::find_if(surfaces.begin(), surfaces.end(), [&](const SurfaceSettings& e) { return e.fault == fault; });
+        auto it = std::find_if(surfaces.begin(), surfaces.end(),
+                               [&](const SurfaceSettings& e) { return e.fault == fault; });
         if (it == surfaces.end())
             throw CommandError("surface.remove: fault \"" + fault + "\" has no surface");
         Json inverse = settingsJson(*it);

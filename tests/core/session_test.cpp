@@ -408,6 +408,31 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     EXPECT_EQ(s.state().surface("F1")->colorMap, "gray");
 }
 
+// JOURNAL.md: surface.build without "iso" (or with "iso":"wrap") takes the iso-value that wraps
+// the fault's spheres, as a new surface in the workbench does; an explicit number is kept.
+TEST(Session, ASurfaceBuiltWithoutAnIsoValueWrapsItsSpheres) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","kernel":"inverse","voxel":0.25})"));
+    SurfaceSettings expected = *s.state().surface("F1");
+    const auto wrap = faultWrappingIso(*s.currentFrame(), *s.state().fault("F1"), expected);
+    ASSERT_TRUE(wrap);
+    EXPECT_EQ(s.state().surface("F1")->iso, *wrap);
+    EXPECT_GT(*wrap, 1.0); // r/d summed over the lattice: far above the settings' default
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","iso":0.9})"));
+    EXPECT_EQ(s.state().surface("F1")->iso, 0.9);
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","iso":"wrap"})"));
+    EXPECT_EQ(s.state().surface("F1")->iso, *wrap);
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","iso":2.5})"));
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":"wrap"})"));
+    expected.kernel = MetaballKernel::Compact;
+    EXPECT_EQ(s.state().surface("F1")->iso,
+              *faultWrappingIso(*s.currentFrame(), *s.state().fault("F1"), expected));
+    expectRefused(s, R"({"op":"surface.set","fault":"F1","iso":"high"})", "(or \"wrap\")");
+}
+
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
     TempDir dir;
     Session s;
