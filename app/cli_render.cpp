@@ -23,7 +23,7 @@ int runRender(const Args& args) {
 #else
     const char* usage = "usage: faultline render SESSION.faultline.json|JOURNAL.jsonl --out FIGURE.png\n"
                         "         [--view NAME] [--frame N] [--size WxH] [--transparent] [--data PATH...]\n"
-                        "Needs a display for OpenGL (under no display: xvfb-run -a faultline render ...).";
+                        "Without a display (DISPLAY unset) OpenGL comes from EGL: no X server is needed.";
     std::string input;
     std::vector<std::string> data;
     ui::FigureRequest request;

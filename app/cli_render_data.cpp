@@ -45,7 +45,7 @@ namespace {
     "         [--zoom F]\n"
     "         [--transparent] [--supersample 1..4] [--context] [--no-ao]\n"
     "         [--threshold VAR:LO:HI]... [--cut XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]...\n"
-    "Renders one frame of a data file offscreen (needs a display; use xvfb-run when headless).\n"
+    "Renders one frame of a data file offscreen (without a display, through EGL).\n"
     "Maps: blue-red viridis diverging pastel bands bands:N gray";
 
 } // namespace

@@ -2,11 +2,14 @@
 
 #include "ui/render/legend_layout.hpp"
 
+#include <epoxy/egl.h> // before GLFW, whose header would bring GL/gl.h
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
@@ -26,12 +29,130 @@ std::vector<float> columnValues(const core::AttributeColumn& column) {
 
 } // namespace
 
+struct OffscreenContext::Egl {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+};
+
+namespace {
+
+std::string eglErrorText() {
+    char text[32];
+    std::snprintf(text, sizeof text, "EGL error 0x%04x", static_cast<unsigned>(eglGetError()));
+    return text;
+}
+
+// An OpenGL 4.1 core context on `display` (initialised here), current without a surface.
+EGLContext eglCoreContext(EGLDisplay display, std::string& why) {
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) {
+        why = "eglInitialize failed (" + eglErrorText() + ")";
+        return EGL_NO_CONTEXT;
+    }
+    if (!epoxy_has_egl_extension(display, "EGL_KHR_surfaceless_context")) {
+        why = "the EGL display cannot make a context current without a surface";
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        why = "EGL has no desktop OpenGL (" + eglErrorText() + ")";
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0,
+                                       EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint count = 0;
+    if (!eglChooseConfig(display, configAttributes, &config, 1, &count) || count < 1) {
+        // Some drivers list no surface-less configs; any OpenGL one serves an FBO.
+        const EGLint anyOpenGl[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        if (!eglChooseConfig(display, anyOpenGl, &config, 1, &count) || count < 1)
+            config = nullptr;
+    }
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        4,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        1,
+                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                        EGL_NONE};
+    EGLContext context = eglCreateContext(display, config ? config : EGL_NO_CONFIG_KHR,
+                                          EGL_NO_CONTEXT, contextAttributes);
+    if (context == EGL_NO_CONTEXT) {
+        why = "cannot create an OpenGL 4.1 core context through EGL (" + eglErrorText() + ")";
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        why = "cannot make the EGL context current (" + eglErrorText() + ")";
+        eglDestroyContext(display, context);
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    return context;
+}
+
+// Displays to try, in order: Mesa's surfaceless platform (any Mesa driver, llvmpipe included),
+// then each EGL device (NVIDIA's and other vendors' drivers on compute nodes).
+std::unique_ptr<OffscreenContext::Egl> createEgl(std::string& kind, std::string& why) {
+    std::vector<std::pair<std::string, EGLDisplay>> displays;
+    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
+        displays.emplace_back(
+            "egl (surfaceless)",
+            eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device") &&
+        epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) {
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (eglQueryDevicesEXT(16, devices, &count))
+            for (EGLint k = 0; k < count; ++k)
+                displays.emplace_back(
+                    "egl (device " + std::to_string(k) + ")",
+                    eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[k], nullptr));
+    }
+    if (displays.empty()) {
+        why = "no display (DISPLAY is not set) and EGL offers neither a surfaceless platform nor "
+              "devices";
+        return nullptr;
+    }
+    std::string reasons;
+    for (const auto& [name, display] : displays) {
+        if (display == EGL_NO_DISPLAY)
+            continue;
+        std::string reason;
+        EGLContext context = eglCoreContext(display, reason);
+        if (context != EGL_NO_CONTEXT) {
+            kind = name;
+            auto egl = std::make_unique<OffscreenContext::Egl>();
+            egl->display = display;
+            egl->context = context;
+            return egl;
+        }
+        reasons += (reasons.empty() ? "" : "; ") + name + ": " + reason;
+    }
+    why = "no display (DISPLAY is not set) and no EGL context: " +
+          (reasons.empty() ? std::string("no EGL display could be opened") : reasons);
+    return nullptr;
+}
+
+} // namespace
+
 std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string& why) {
     glfwSetErrorCallback(onGlfwError);
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
-    if ((!display || !*display) && (!wayland || !*wayland)) {
-        why = "no display (DISPLAY is not set; run under xvfb-run for headless rendering)";
+    const char* force = std::getenv("FAULTLINE_OFFSCREEN");
+    const std::string forced = force ? force : "";
+    const bool haveDisplay = (display && *display) || (wayland && *wayland);
+    std::unique_ptr<OffscreenContext> result(new OffscreenContext());
+    if (forced == "egl" || (!haveDisplay && forced != "glfw")) {
+        result->m_egl = createEgl(result->m_kind, why);
+        if (!result->m_egl)
+            return nullptr;
+        return result;
+    }
+    if (!haveDisplay) {
+        why = "no display (DISPLAY is not set) and FAULTLINE_OFFSCREEN=glfw";
         return nullptr;
     }
     if (!glfwInit()) {
@@ -50,16 +171,39 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string& why) {
         return nullptr;
     }
     glfwMakeContextCurrent(window);
-    return std::unique_ptr<OffscreenContext>(new OffscreenContext(window));
+    result->m_window = window;
+    result->m_kind = "glfw";
+    return result;
 }
 
 OffscreenContext::~OffscreenContext() {
+    if (m_egl) {
+        if (eglGetCurrentContext() == m_egl->context)
+            eglMakeCurrent(m_egl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(m_egl->display, m_egl->context);
+        eglTerminate(m_egl->display);
+        return;
+    }
     if (glfwGetCurrentContext() == m_window)
         glfwMakeContextCurrent(nullptr);
     glfwDestroyWindow(m_window);
 }
 
-void OffscreenContext::makeCurrent() { glfwMakeContextCurrent(m_window); }
+void OffscreenContext::makeCurrent() {
+    if (m_egl)
+        eglMakeCurrent(m_egl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_egl->context);
+    else
+        glfwMakeContextCurrent(m_window);
+}
+
+namespace {
+thread_local bool t_eglCurrent = false; // an OffscreenContext's EGL context is current here
+}
+
+bool hasCurrentGlContext() {
+    // Without an initialised GLFW this returns null (and reports an error to the callback).
+    return t_eglCurrent || glfwGetCurrentContext() != nullptr;
+}
 
 OffscreenContext* sharedOffscreenContext(std::string& why) {
     static std::mutex mutex;
@@ -77,6 +221,7 @@ OffscreenContext* sharedOffscreenContext(std::string& why) {
         return nullptr;
     }
     context->makeCurrent();
+    t_eglCurrent = context->kind() != "glfw";
     return context;
 }
 
@@ -127,8 +272,9 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
             const core::AttributeColumn* column =
                 scene.colorColumn ? scene.colorColumn : f->attribute(scene.colorVariable);
             if (column && column->size() != f->size())
-                throw std::invalid_argument("the colour column has " + std::to_string(column->size()) +
-                                            " values for " + std::to_string(f->size()) + " spheres");
+                throw std::invalid_argument("the colour column has " +
+                                            std::to_string(column->size()) + " values for " +
+                                            std::to_string(f->size()) + " spheres");
             if (!column) {
                 std::string names;
                 for (const std::string& n : f->attributeNames())
@@ -159,7 +305,7 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
 RgbaImage renderSceneToImage(const SceneDescription& scene, const RenderSettings& settings) {
     if (settings.width <= 0 || settings.height <= 0)
         throw std::invalid_argument("image size must be positive");
-    if (!glfwGetCurrentContext()) {
+    if (!hasCurrentGlContext()) {
         std::string why;
         if (!sharedOffscreenContext(why))
             throw std::runtime_error("cannot render: " + why);

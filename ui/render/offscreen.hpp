@@ -1,5 +1,6 @@
 // Rendering without a visible window, for `faultline render`, figures and image tests: a hidden
-// GLFW window provides the OpenGL context; a scene description becomes an image or a PNG.
+// GLFW window or, with no display at all, EGL provides the OpenGL context; a scene description
+// becomes an image or a PNG.
 #pragma once
 
 #include "core/model/frame.hpp"
@@ -57,21 +58,31 @@ void renderSceneToPng(const SceneDescription& scene, const RenderSettings& setti
 
 class OffscreenContext {
   public:
-    // A hidden window with an OpenGL 4.1+ core context, made current on this thread; null and
-    // the reason in `why` when none can be made.
+    // An OpenGL 4.1+ core context made current on this thread, without a visible window: a
+    // hidden GLFW window when a display is set, else EGL without any X server (Mesa's
+    // surfaceless platform, or an EGL device: a GPU node's driver). FAULTLINE_OFFSCREEN=egl or
+    // =glfw forces one. Null and the reason in `why` when none can be made.
     static std::unique_ptr<OffscreenContext> create(std::string& why);
     ~OffscreenContext();
     OffscreenContext(const OffscreenContext&) = delete;
     OffscreenContext& operator=(const OffscreenContext&) = delete;
     void makeCurrent();
+    // "glfw" or "egl (surfaceless)" / "egl (device N)": what made the context.
+    const std::string& kind() const { return m_kind; }
+    struct Egl; // EGL display and context (offscreen.cpp)
 
   private:
-    explicit OffscreenContext(GLFWwindow* window) : m_window(window) {}
+    OffscreenContext() = default;
     GLFWwindow* m_window = nullptr;
+    std::unique_ptr<Egl> m_egl;
+    std::string m_kind;
 };
 
+// Whether this thread has a current OpenGL context (a window's, or an offscreen one).
+bool hasCurrentGlContext();
+
 // One context for the whole process, made on first use (kept until exit); null and `why` when
-// there is no display.
+// none can be made.
 OffscreenContext* sharedOffscreenContext(std::string& why);
 
 } // namespace faultline::ui
