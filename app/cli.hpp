@@ -18,6 +18,7 @@ int runRenderData(const Args& args); // developer tool until `render` lands
 int runGui(const Args& args);
 int runReplay(const Args& args);
 int runRender(const Args& args);
+int runMerge(const Args& args);
 
 // Adds the ops that need layers above core (render) to a session.
 void registerAppOps(core::Session& session);

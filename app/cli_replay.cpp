@@ -1,11 +1,13 @@
-// `faultline replay JOURNAL.jsonl [--data PATH...] [--out DIR]`: runs a journal headless.
-// Exit 0 only when every expectation holds; otherwise each failing line is named.
+// `faultline replay JOURNAL.jsonl [--data PATH...] [--out DIR] [--frames A:B | --shard K/N]`:
+// runs a journal headless. Exit 0 only when every expectation holds; otherwise each failing line
+// is named. --frames / --shard limit per-frame work (JOURNAL.md) so a run splits across machines.
 #include "app/cli.hpp"
 
 #include "core/io/input_error.hpp"
 #include "core/session/journal.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace faultline::app {
 
@@ -23,6 +25,21 @@ int runReplay(const Args& args) {
             }
         } else if (a == "--out" && k + 1 < args.size()) {
             options.outDir = args[++k];
+        } else if ((a == "--frames" || a == "--shard") && k + 1 < args.size()) {
+            try {
+                const core::FrameSelection s = a == "--frames" ? core::parseFrameRange(args[++k])
+                                                               : core::parseFrameShard(args[++k]);
+                if (a == "--frames") {
+                    options.frames.first = s.first;
+                    options.frames.last = s.last;
+                } else {
+                    options.frames.shard = s.shard;
+                    options.frames.shards = s.shards;
+                }
+            } catch (const std::invalid_argument& e) {
+                std::fprintf(stderr, "faultline replay: %s\n", e.what());
+                return 2;
+            }
         } else if (journal.empty() && a.rfind("--", 0) != 0) {
             journal = a;
         } else {
@@ -31,7 +48,8 @@ int runReplay(const Args& args) {
         }
     }
     if (journal.empty()) {
-        std::fprintf(stderr, "usage: faultline replay JOURNAL.jsonl [--data PATH...] [--out DIR]\n");
+        std::fprintf(stderr, "usage: faultline replay JOURNAL.jsonl [--data PATH...] [--out DIR] "
+                             "[--frames A:B | --shard K/N]\n");
         return 2;
     }
     core::Session session;
@@ -46,9 +64,12 @@ int runReplay(const Args& args) {
     for (const auto& f : report.failures)
         std::fprintf(stderr, "%s:%zu: %s\n", journal.c_str(), f.line, f.message.c_str());
     if (report.stopped)
-        std::fprintf(stderr, "faultline replay: stopped at the failing command; later lines did not run\n");
-    std::printf("%s: %zu commands, %zu expectations, %zu failed\n", journal.c_str(), report.commands,
-                report.expectations, report.failures.size());
+        std::fprintf(stderr,
+                     "faultline replay: stopped at the failing command; later lines did not run\n");
+    std::printf("%s: %zu commands, %zu expectations, %zu failed%s\n", journal.c_str(),
+                report.commands, report.expectations, report.failures.size(),
+                options.frames.everything() ? ""
+                                            : (" (" + options.frames.describe() + ")").c_str());
     return report.ok() ? 0 : 1;
 }
 

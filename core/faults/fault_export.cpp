@@ -1,5 +1,6 @@
 #include "core/faults/fault_export.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -72,8 +73,15 @@ std::string faultsCsv(std::span<const Fault> faults) {
 std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultTrack> tracks) {
     std::string out =
         "frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall\n";
+    // Frame-major, as the metrics: shards' rows merge back by frame.
+    std::size_t points = 0;
     for (std::size_t f = 0; f < tracks.size() && f < faults.size(); ++f)
-        for (const FaultTrackPoint& p : tracks[f].points) {
+        points = std::max(points, tracks[f].points.size());
+    for (std::size_t i = 0; i < points; ++i)
+        for (std::size_t f = 0; f < tracks.size() && f < faults.size(); ++f) {
+            if (i >= tracks[f].points.size())
+                continue;
+            const FaultTrackPoint& p = tracks[f].points[i];
             const CandidateMatch& m = p.match;
             out += std::to_string(p.frame) + ',';
             appendField(out, faults[f].name);
@@ -113,6 +121,8 @@ std::string faultMetricsCsv(const FaultMetricsSeries& series) {
     std::string out = faultMetricsCsvHeader();
     out += '\n';
     for (const FaultFrameMetrics& m : series.rows) {
+        if (!series.selection.contains(m.frame))
+            continue; // read for a seed only
         appendCount(out, m.frame);
         out += ',';
         appendField(out, m.name);

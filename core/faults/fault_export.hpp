@@ -1,5 +1,5 @@
-// Fault tables for `export.csv` (what=faults, fault_metrics, fault_tracks) and JSON for the same data.
-// Text only: writing the file (atomically) is the caller's job.
+// Fault tables for `export.csv` (what=faults, fault_metrics, fault_tracks) and JSON for the same
+// data. Text only: writing the file (atomically) is the caller's job.
 #pragma once
 
 #include "core/faults/fault.hpp"
@@ -32,7 +32,7 @@ std::string faultMetricsCsvHeader();
 nlohmann::json faultMetricsJson(const FaultMetricsSeries& series);
 
 // Header frame,fault,present,candidate,candidate_size,shared,jaccard,precision,recall; a row
-// per (fault, frame), fault-major; candidate -1 when no candidate shares an id.
+// per (frame, fault), frame-major as the metrics; candidate -1 when no candidate shares an id.
 std::string faultTracksCsv(std::span<const Fault> faults, std::span<const FaultTrack> tracks);
 
 // [{"name", "frames": [{"frame","present","candidate","candidate_size","shared","jaccard",

@@ -305,19 +305,48 @@ std::vector<FaultSeed> seedsFromRows(std::span<const FaultFrameMetrics> rows,
 
 FaultMetricsSeries computeMetricsSeries(std::size_t frameCount, const FrameLoader& load,
                                         std::span<const Fault> faults,
-                                        const MetricsOptions& options) {
+                                        const MetricsOptions& options,
+                                        const FrameSelection& selection) {
     FaultMetricsSeries series;
     series.frameCount = frameCount;
     series.faultCount = faults.size();
+    series.selection = selection;
     series.rows.resize(frameCount * faults.size());
-    tbb::parallel_for(std::size_t(0), frameCount, [&](std::size_t f) {
+    for (std::size_t i = 0; i < series.rows.size(); ++i) {
+        series.rows[i].frame = i / faults.size();
+        series.rows[i].fault = i % faults.size();
+    }
+    const std::vector<std::size_t> frames = selection.frames(frameCount);
+    tbb::parallel_for(std::size_t(0), frames.size(), [&](std::size_t i) {
+        const std::size_t f = frames[i];
         const std::shared_ptr<const Frame> frame = load(f);
         std::vector<FaultFrameMetrics> rows = computeFrameMetrics(*frame, f, faults, options);
         std::move(rows.begin(), rows.end(),
                   series.rows.begin() + std::ptrdiff_t(f * faults.size()));
     });
-    if (!faults.empty())
-        series.seeds = seedsFromRows(series.rows, faults.size());
+    if (faults.empty())
+        return series;
+    series.seeds = seedsFromRows(series.rows, faults.size());
+    if (!selection.everything()) {
+        // A seed is the first break in any frame: read the frames outside the selection, in
+        // order, until every fault has one (their rows only feed the seeds).
+        MetricsOptions seedOnly = options;
+        seedOnly.computeThrow = false;
+        for (std::size_t f = 0; f < frameCount; ++f) {
+            const bool missing =
+                std::any_of(series.seeds.begin(), series.seeds.end(),
+                            [&](const FaultSeed& s) { return !s.found || s.frame > f; });
+            if (!missing)
+                break;
+            if (selection.contains(f))
+                continue;
+            std::vector<FaultFrameMetrics> rows =
+                computeFrameMetrics(*load(f), f, faults, seedOnly);
+            std::move(rows.begin(), rows.end(),
+                      series.rows.begin() + std::ptrdiff_t(f * faults.size()));
+            series.seeds = seedsFromRows(series.rows, faults.size());
+        }
+    }
     return series;
 }
 

@@ -25,10 +25,10 @@ struct MetricsOptions {
 
 enum class ThrowStatus {
     Ok,
-    Disabled,           // MetricsOptions::computeThrow is false
-    NoDisplacement,     // the frame has no x0, y0, z0 columns
-    NoPlane,            // the plane is undefined (fewer than 3 members, or a line)
-    TooFewSamples,      // fewer than throwMinSamples spheres on one side
+    Disabled,       // MetricsOptions::computeThrow is false
+    NoDisplacement, // the frame has no x0, y0, z0 columns
+    NoPlane,        // the plane is undefined (fewer than 3 members, or a line)
+    TooFewSamples,  // fewer than throwMinSamples spheres on one side
 };
 std::string_view throwStatusName(ThrowStatus status); // ok | disabled | no_displacement | ...
 
@@ -91,16 +91,21 @@ struct FaultMetricsSeries {
     std::size_t faultCount = 0;
     std::vector<FaultFrameMetrics> rows; // frame-major: rows[frame * faultCount + fault]
     std::vector<FaultSeed> seeds;        // per fault
+    // The frames whose rows were asked for (the CSV writes only these); rows of other frames
+    // hold what the seeds needed, or nothing.
+    FrameSelection selection;
 
     const FaultFrameMetrics& at(std::size_t frame, std::size_t fault) const {
         return rows[frame * faultCount + fault];
     }
 };
 
-// Frames 0..frameCount-1 (parallel over frames; `load` must be thread-safe) and the seeds.
+// Frames 0..frameCount-1, or the selected ones (parallel over frames; `load` must be
+// thread-safe), and the seeds (from earlier or later frames too when the selection lacks them).
 FaultMetricsSeries computeMetricsSeries(std::size_t frameCount, const FrameLoader& load,
                                         std::span<const Fault> faults,
-                                        const MetricsOptions& options = {});
+                                        const MetricsOptions& options = {},
+                                        const FrameSelection& selection = {});
 
 // The seeds from already computed rows (frame-major, as in FaultMetricsSeries).
 std::vector<FaultSeed> seedsFromRows(std::span<const FaultFrameMetrics> rows,

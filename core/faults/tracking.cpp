@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -65,11 +66,13 @@ std::vector<CandidateMatch> matchFaults(const Frame& frame, const CandidateSet& 
 
 std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
                                     const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
-                                    const CandidateOptions& options, bool keepMembers) {
+                                    const CandidateOptions& options, bool keepMembers,
+                                    const FrameSelection& selection) {
     std::vector<FaultTrack> tracks(faults.size());
+    const std::vector<std::size_t> frames = selection.frames(frameCount);
     for (auto& t : tracks)
-        t.points.reserve(frameCount);
-    for (std::size_t f = 0; f < frameCount; ++f) {
+        t.points.reserve(frames.size());
+    for (const std::size_t f : frames) {
         const std::shared_ptr<const Frame> frame = load(f);
         const std::vector<std::uint8_t> mask = visibleMask(*frame, f);
         const CandidateSet set = findCandidates(*frame, mask, options);
@@ -86,35 +89,50 @@ std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& l
     return tracks;
 }
 
-FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
-                                        const VisibleMaskFn& visibleMask,
-                                        std::span<const Fault> faults,
-                                        const CandidateOptions& options,
-                                        const MetricsOptions& metrics,
-                                        std::vector<FaultTrack>* tracks) {
+FaultMetricsSeries
+trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                     const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
+                     const CandidateOptions& options, const MetricsOptions& metrics,
+                     std::vector<FaultTrack>* tracks, const FrameSelection& selection) {
     FaultMetricsSeries series;
     if (tracks)
         tracks->assign(faults.size(), FaultTrack{});
     series.frameCount = frameCount;
     series.faultCount = faults.size();
-    series.rows.reserve(frameCount * faults.size());
+    series.selection = selection;
+    series.rows.resize(frameCount * faults.size());
+    for (std::size_t i = 0; i < series.rows.size(); ++i) {
+        series.rows[i].frame = i / faults.size();
+        series.rows[i].fault = i % faults.size();
+    }
+    MetricsOptions seedOnly = metrics;
+    seedOnly.computeThrow = false;
     std::vector<Fault> now(faults.begin(), faults.end());
+    std::vector<std::uint8_t> seeded(faults.size(), 0); // a break seen in an earlier frame
     for (std::size_t f = 0; f < frameCount; ++f) {
+        const bool wanted = selection.contains(f);
+        // Outside the selection a frame is read only while some fault has no seed yet.
+        if (!wanted && std::all_of(seeded.begin(), seeded.end(), [](std::uint8_t s) { return s; }))
+            continue;
         const std::shared_ptr<const Frame> frame = load(f);
         const CandidateSet set = findCandidates(*frame, visibleMask(*frame, f), options);
         const std::vector<CandidateMatch> matches = matchFaults(*frame, set, faults);
         for (std::size_t k = 0; k < faults.size(); ++k) {
-            if (tracks)
+            if (tracks && wanted)
                 (*tracks)[k].points.push_back({f, matches[k], {}});
             now[k].ids = matches[k].candidate >= 0
                              ? set.candidates[static_cast<std::size_t>(matches[k].candidate)].ids
                              : std::vector<std::int64_t>{};
         }
-        auto rows = computeFrameMetrics(*frame, f, now, metrics);
-        series.rows.insert(series.rows.end(), std::make_move_iterator(rows.begin()),
-                           std::make_move_iterator(rows.end()));
+        auto rows = computeFrameMetrics(*frame, f, now, wanted ? metrics : seedOnly);
+        for (std::size_t k = 0; k < faults.size(); ++k)
+            if (rows[k].broken > 0)
+                seeded[k] = 1;
+        std::move(rows.begin(), rows.end(),
+                  series.rows.begin() + std::ptrdiff_t(f * faults.size()));
     }
-    series.seeds = seedsFromRows(series.rows, faults.size());
+    if (!faults.empty())
+        series.seeds = seedsFromRows(series.rows, faults.size());
     return series;
 }
 
@@ -178,6 +196,55 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
         }
         before = now;
     }
+    return events;
+}
+
+std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLoader& load,
+                                           const VisibleMaskFn& visibleMask,
+                                           std::span<const Fault> faults,
+                                           const CandidateOptions& options,
+                                           const FrameSelection& selection) {
+    if (selection.everything())
+        return faultEvents(trackFaults(frameCount, load, visibleMask, faults, options));
+    const std::vector<std::size_t> frames = selection.frames(frameCount);
+    if (frames.empty())
+        return {};
+    // A point per frame up to the last selected one; frames never tracked match nothing.
+    const std::size_t end = frames.back() + 1;
+    std::vector<FaultTrack> tracks(faults.size());
+    for (auto& t : tracks) {
+        t.points.resize(end);
+        for (std::size_t f = 0; f < end; ++f)
+            t.points[f].frame = f;
+    }
+    std::vector<std::uint8_t> tracked(end, 0);
+    constexpr std::size_t kNever = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> firstSeen(faults.size(), kNever); // among tracked frames
+    auto track = [&](std::size_t f) {
+        if (tracked[f])
+            return;
+        tracked[f] = 1;
+        const std::shared_ptr<const Frame> frame = load(f);
+        const CandidateSet set = findCandidates(*frame, visibleMask(*frame, f), options);
+        const std::vector<CandidateMatch> matches = matchFaults(*frame, set, faults);
+        for (std::size_t k = 0; k < faults.size(); ++k) {
+            tracks[k].points[f].match = matches[k];
+            if (matches[k].candidate >= 0)
+                firstSeen[k] = std::min(firstSeen[k], f);
+        }
+    };
+    for (const std::size_t f : frames) { // linked and split compare a frame with the one before
+        if (f > 0)
+            track(f - 1);
+        track(f);
+    }
+    // "Appeared" needs every frame before a fault's first match.
+    for (std::size_t f = 0; f < end; ++f)
+        if (!tracked[f] &&
+            std::any_of(firstSeen.begin(), firstSeen.end(), [f](std::size_t s) { return s > f; }))
+            track(f);
+    std::vector<FaultEvent> events = faultEvents(tracks);
+    std::erase_if(events, [&](const FaultEvent& e) { return !selection.contains(e.frame); });
     return events;
 }
 

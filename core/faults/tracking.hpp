@@ -52,20 +52,24 @@ using VisibleMaskFn = std::function<std::vector<std::uint8_t>(const Frame&, std:
 // Candidates of every frame (from its visible mask) matched against every fault. Frames are
 // visited one at a time (candidate search is parallel inside). keepMembers stores each
 // matched candidate's ids (memory: faults x frames x candidate size).
+// With a selection, only its frames (the points are those frames, in order).
 std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& load,
                                     const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
-                                    const CandidateOptions& options = {}, bool keepMembers = false);
+                                    const CandidateOptions& options = {}, bool keepMembers = false,
+                                    const FrameSelection& selection = {});
 
 // Growth: each fault's metrics frame by frame on what the fault is in that frame, the candidate
 // that matches it (as trackFaults), not its fixed members; where no candidate matches, the row
 // has count 0 and undefined values. Rows and seeds as computeMetricsSeries gives them. With
-// `tracks`, the tracks of the same pass (as trackFaults without members) are stored there.
+// `tracks`, the tracks of the same pass (as trackFaults without members) are stored there. With
+// a selection, rows of its frames (and of the frames before, as far as the seeds need them).
 FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
                                         const VisibleMaskFn& visibleMask,
                                         std::span<const Fault> faults,
                                         const CandidateOptions& options = {},
                                         const MetricsOptions& metrics = {},
-                                        std::vector<FaultTrack>* tracks = nullptr);
+                                        std::vector<FaultTrack>* tracks = nullptr,
+                                        const FrameSelection& selection = {});
 
 // What happened to tracked faults between two frames, read from their tracks: a fault first
 // matched a candidate (appeared), faults matched to different candidates in the frame before
@@ -83,5 +87,14 @@ struct FaultEvent {
 // Events in frame order; within a frame appeared, then linked, then split, each by its first
 // fault. `tracks` as trackFaults gives them (one per fault, every frame).
 std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks);
+
+// The events of the selected frames, tracking only the frames they need: each selected frame,
+// the frame before it, and earlier frames as far as needed to know whether a fault appeared
+// before. Equal to the unselected run's events in those frames.
+std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLoader& load,
+                                           const VisibleMaskFn& visibleMask,
+                                           std::span<const Fault> faults,
+                                           const CandidateOptions& options = {},
+                                           const FrameSelection& selection = {});
 
 } // namespace faultline::core

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/data/dataset.hpp"
+#include "core/faults/frame_loader.hpp"
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"
 
@@ -14,8 +15,9 @@ namespace faultline::core {
 
 // cmd: {"what": faults | fault_metrics | fault_tracks | fault_events, candidate options (tracks,
 // events: "method", "link", "min_size", "angle", "radius")}; the other
-// fields are not looked at. Throws CommandError (what is wrong, or that data is needed).
+// fields are not looked at. Rows over time only for the selected frames (replay --frames,
+// --shard). Throws CommandError (what is wrong, or that data is needed).
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& data,
-                          const Json& cmd);
+                          const Json& cmd, const FrameSelection& frames = {});
 
 } // namespace faultline::core

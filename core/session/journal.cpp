@@ -7,9 +7,9 @@
 
 #include <stb/stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <algorithm>
 #include <sstream>
 
 namespace faultline::core {
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kExpectations[] = {"visible_count", "fault_size", "fault_count", "histogram",
-                               "file_exists", "image", "frame"};
+                               "file_exists",   "image",      "frame"};
 
 std::string describe(const Json& v) { return v.dump(); }
 
@@ -31,8 +31,8 @@ std::optional<std::string> mismatch(const Json& expected, const Json& actual) {
 
 // Mean |a - b| over all bytes at most maxDiff; with maxPixels, also at most that many pixels
 // whose largest channel difference exceeds 48 of 255 (a missing small feature shows there).
-std::optional<std::string> compareImages(const std::string& path, const std::string& reference, double maxDiff,
-                                         std::optional<long long> maxPixels) {
+std::optional<std::string> compareImages(const std::string& path, const std::string& reference,
+                                         double maxDiff, std::optional<long long> maxPixels) {
     int w1, h1, c1, w2, h2, c2;
     unsigned char* a = stbi_load(path.c_str(), &w1, &h1, &c1, 4);
     if (!a)
@@ -56,7 +56,8 @@ std::optional<std::string> compareImages(const std::string& path, const std::str
         for (std::size_t k = 0; k < n; k += 4) {
             int worst = 0;
             for (int c = 0; c < 4; ++c)
-                worst = std::max(worst, std::abs(static_cast<int>(a[k + c]) - static_cast<int>(b[k + c])));
+                worst = std::max(worst,
+                                 std::abs(static_cast<int>(a[k + c]) - static_cast<int>(b[k + c])));
             far += worst > 48;
         }
         if (mean > maxDiff) {
@@ -65,7 +66,8 @@ std::optional<std::string> compareImages(const std::string& path, const std::str
             result = msg.str();
         } else if (maxPixels && far > *maxPixels) {
             std::ostringstream msg;
-            msg << "expected at most " << *maxPixels << " pixels differing by more than 48, actual " << far;
+            msg << "expected at most " << *maxPixels << " pixels differing by more than 48, actual "
+                << far;
             result = msg.str();
         }
     }
@@ -83,7 +85,8 @@ bool isKnownExpectation(const std::string& name) {
     return false;
 }
 
-std::vector<JournalLine> parseJournal(const std::string& text, const std::string& path, const Session& session) {
+std::vector<JournalLine> parseJournal(const std::string& text, const std::string& path,
+                                      const Session& session) {
     std::vector<JournalLine> lines;
     std::size_t pos = 0, number = 0;
     while (pos < text.size()) {
@@ -106,17 +109,22 @@ std::vector<JournalLine> parseJournal(const std::string& text, const std::string
             throw InputError(path, InputError::Where::Line, number, e.message());
         }
         if (!value.is_object())
-            throw InputError(path, InputError::Where::Line, number, "expected a JSON object with \"op\" or \"expect\"");
+            throw InputError(path, InputError::Where::Line, number,
+                             "expected a JSON object with \"op\" or \"expect\"");
         const bool isOp = value.contains("op"), isExpect = value.contains("expect");
         if (isOp == isExpect)
-            throw InputError(path, InputError::Where::Line, number, "a line needs exactly one of \"op\" or \"expect\"");
+            throw InputError(path, InputError::Where::Line, number,
+                             "a line needs exactly one of \"op\" or \"expect\"");
         const Json& name = isOp ? value["op"] : value["expect"];
         if (!name.is_string())
-            throw InputError(path, InputError::Where::Line, number, std::string("\"") + (isOp ? "op" : "expect") + "\" must be a string");
+            throw InputError(path, InputError::Where::Line, number,
+                             std::string("\"") + (isOp ? "op" : "expect") + "\" must be a string");
         if (isOp && !session.knowsOp(name.get<std::string>()))
-            throw InputError(path, InputError::Where::Line, number, "unknown op \"" + name.get<std::string>() + "\"");
+            throw InputError(path, InputError::Where::Line, number,
+                             "unknown op \"" + name.get<std::string>() + "\"");
         if (isExpect && !isKnownExpectation(name.get<std::string>()))
-            throw InputError(path, InputError::Where::Line, number, "unknown expectation \"" + name.get<std::string>() + "\"");
+            throw InputError(path, InputError::Where::Line, number,
+                             "unknown expectation \"" + name.get<std::string>() + "\"");
         lines.push_back({number, std::move(value), isExpect});
     }
     return lines;
@@ -164,7 +172,8 @@ std::optional<std::string> checkExpectation(Session& s, const Json& e) {
         const auto& mask = s.visibility().mask;
         auto h = computeHistogram(*frame, variable, spec, of == "visible" ? &mask : nullptr);
         if (!h)
-            return "expected a histogram of \"" + variable + "\", actual: the frame has no such variable";
+            return "expected a histogram of \"" + variable +
+                   "\", actual: the frame has no such variable";
         const auto& counts = of == "visible" ? h->visible.bins : h->all.bins;
         return mismatch(args::require(e, "counts"), counts);
     }
@@ -174,18 +183,22 @@ std::optional<std::string> checkExpectation(Session& s, const Json& e) {
         std::error_code ec;
         if (fs::exists(p, ec) && fs::file_size(p, ec) > 0)
             return std::nullopt;
-        return "expected file " + p + " to exist and be non-empty, actual: " + (fs::exists(p, ec) ? "empty" : "missing");
+        return "expected file " + p +
+               " to exist and be non-empty, actual: " + (fs::exists(p, ec) ? "empty" : "missing");
     }
     if (kind == "image") {
-        args::onlyFields(e, {"expect", "path", "reference", "max_mean_abs_diff", "max_differing_pixels"});
-        return compareImages(s.outputPath(args::string(e, "path")), s.inputPath(args::string(e, "reference")),
+        args::onlyFields(
+            e, {"expect", "path", "reference", "max_mean_abs_diff", "max_differing_pixels"});
+        return compareImages(s.outputPath(args::string(e, "path")),
+                             s.inputPath(args::string(e, "reference")),
                              args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0),
                              args::optionalInteger(e, "max_differing_pixels"));
     }
     throw CommandError("unknown expectation \"" + kind + "\"");
 }
 
-ReplayReport replayJournal(const std::string& path, const ReplayOptions& options, Session& session) {
+ReplayReport replayJournal(const std::string& path, const ReplayOptions& options,
+                           Session& session) {
     const std::string text = readFileBytes(path);
     const auto lines = parseJournal(text, path, session); // everything checked before running
     const std::string folder = fs::absolute(fs::path(path)).parent_path().string();
@@ -196,6 +209,7 @@ ReplayReport replayJournal(const std::string& path, const ReplayOptions& options
     for (const auto& d : options.data)
         data.push_back(fs::absolute(d).string());
     session.setDataOverride(data);
+    session.setFrameSelection(options.frames);
 
     ReplayReport report;
     for (const auto& line : lines) {
@@ -203,7 +217,9 @@ ReplayReport replayJournal(const std::string& path, const ReplayOptions& options
             if (line.isExpectation) {
                 ++report.expectations;
                 if (auto failure = checkExpectation(session, line.value))
-                    report.failures.push_back({line.line, "expect " + line.value["expect"].get<std::string>() + ": " + *failure});
+                    report.failures.push_back(
+                        {line.line,
+                         "expect " + line.value["expect"].get<std::string>() + ": " + *failure});
             } else {
                 ++report.commands;
                 session.apply(line.value);

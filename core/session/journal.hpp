@@ -27,6 +27,7 @@ bool isKnownExpectation(const std::string& name);
 struct ReplayOptions {
     std::vector<std::string> data; // --data: re-target data.open to these paths
     std::string outDir;            // --out: where outputs go (default: the journal's folder)
+    FrameSelection frames;         // --frames A:B, --shard K/N: per-frame work on these only
 };
 
 struct ReplayFailure {

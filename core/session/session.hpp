@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/data/dataset.hpp"
+#include "core/faults/frame_loader.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"
@@ -93,6 +94,10 @@ class Session {
     std::string outputPath(const std::string& path) const;
     // Replay on other data: data.open uses these paths instead of the journal's.
     void setDataOverride(std::vector<std::string> paths) { m_dataOverride = std::move(paths); }
+    // replay --frames / --shard: the frames per-frame work (CSV exports over time, renders of
+    // a frame range) covers. Default: every frame.
+    void setFrameSelection(const FrameSelection& selection) { m_frameSelection = selection; }
+    const FrameSelection& frameSelection() const { return m_frameSelection; }
 
     // How data.open, session.open and replaceState turn paths into a dataset. The default is
     // Dataset::open; the GUI installs one that hands over a dataset it opened in the background,
@@ -158,6 +163,7 @@ class Session {
     };
     std::map<std::string, OpEntry, std::less<>> m_ops;
     std::string m_baseDir, m_outputDir;
+    FrameSelection m_frameSelection;
     std::vector<std::string> m_dataOverride;
     DatasetOpener m_datasetOpener;
 

@@ -24,47 +24,42 @@ VisibleMaskFn sessionVisibleMask(const SessionState& st) {
 // Each fault's membership through time: per frame, the candidate of the visible spheres that
 // shares most ids with it.
 std::vector<FaultTrack> trackedFaults(const SessionState& st, const std::shared_ptr<Dataset>& ds,
-                                      const CandidateOptions& options, const char* what) {
+                                      const CandidateOptions& options,
+                                      const FrameSelection& frames) {
     if (!ds)
-        throw CommandError(std::string("export.csv: ") + what + " needs open data");
+        throw CommandError("export.csv: fault_tracks needs open data");
     return trackFaults(
         ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, sessionVisibleMask(st),
-        st.faults, options);
+        st.faults, options, false, frames);
 }
 
 } // namespace
 
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& ds,
-                          const Json& cmd) {
+                          const Json& cmd, const FrameSelection& frames) {
     const std::string what = args::string(cmd, "what");
     if (what == "faults")
         return faultsCsv(state.faults);
-    if (what == "fault_metrics") {
-        if (!ds)
-            throw CommandError("export.csv: fault_metrics needs open data");
-        const FaultMetricsSeries series = computeMetricsSeries(
-            ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); }, state.faults);
-        return faultMetricsCsv(series);
-    }
+    if (what != "fault_metrics" && what != "fault_tracks" && what != "fault_growth" &&
+        what != "fault_events")
+        throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_growth, "
+                           "fault_tracks or fault_events");
+    if (!ds)
+        throw CommandError("export.csv: " + what + " needs open data");
+    const FrameLoader load = [ds](std::size_t k) { return ds->frame(k); };
+    if (what == "fault_metrics")
+        return faultMetricsCsv(
+            computeMetricsSeries(ds->frameCount(), load, state.faults, {}, frames));
+    const CandidateOptions options = detail::candidateOptionsFrom(cmd, "export.csv");
     if (what == "fault_tracks")
-        return faultTracksCsv(
-            state.faults, trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"),
-                                        "fault_tracks"));
-    if (what == "fault_growth") {
-        if (!ds)
-            throw CommandError("export.csv: fault_growth needs open data");
-        return faultMetricsCsv(trackedMetricsSeries(
-            ds->frameCount(), [ds](std::size_t k) { return ds->frame(k); },
-            sessionVisibleMask(state), state.faults,
-            detail::candidateOptionsFrom(cmd, "export.csv")));
-    }
-    if (what == "fault_events")
-        return faultEventsCsv(
-            state.faults,
-            faultEvents(trackedFaults(state, ds, detail::candidateOptionsFrom(cmd, "export.csv"),
-                                      "fault_events")));
-    throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_growth, "
-                       "fault_tracks or fault_events");
+        return faultTracksCsv(state.faults, trackedFaults(state, ds, options, frames));
+    if (what == "fault_growth")
+        return faultMetricsCsv(trackedMetricsSeries(ds->frameCount(), load,
+                                                    sessionVisibleMask(state), state.faults,
+                                                    options, {}, nullptr, frames));
+    return faultEventsCsv(state.faults,
+                          trackedFaultEvents(ds->frameCount(), load, sessionVisibleMask(state),
+                                             state.faults, options, frames));
 }
 
 } // namespace faultline::core
@@ -91,7 +86,7 @@ void registerOutputOps(OpTable& ops) {
         // fault.candidates: "method", "link", "min_size", "angle", "radius").
         args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius"});
         const std::string path = s.outputPath(args::string(cmd, "path"));
-        const std::string text = exportCsvText(s.state(), s.dataset(), cmd);
+        const std::string text = exportCsvText(s.state(), s.dataset(), cmd, s.frameSelection());
         try {
             writeFileAtomically(path, text);
         } catch (const std::exception& e) {
