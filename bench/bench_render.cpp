@@ -1,7 +1,8 @@
 // Milliseconds per frame of the sphere renderer at 1280x720 (impostors with and without occlusion
 // culling, and with a transparent surface re-sorted every frame) against drawing every sphere as
 // an instanced 320-triangle icosphere, in one run.
-// Needs a display: xvfb-run -a -s "-screen 0 1920x1080x24" ./build/bench/bench_render
+// With a display (xvfb-run -a -s "-screen 0 1920x1080x24" ./build/bench/bench_render) it renders
+// through GLFW; with DISPLAY unset through EGL, as on a compute node.
 #include "core/model/frame.hpp"
 #include "core/view/triangle_depth_order.hpp"
 #include "ui/render/gl_renderer.hpp"

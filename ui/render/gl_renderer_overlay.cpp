@@ -157,17 +157,12 @@ GlRenderer::FontTexture* GlRenderer::font(int pixelHeight) {
 
 void GlRenderer::drawLegend(const RenderTarget& target) {
     m_stats.legendTicks = 0;
-    if (!m_style.showLegend || !m_hasValues)
+    const bool legend = m_style.showLegend && m_hasValues;
+    if (!legend && m_style.caption.empty())
         return;
     const float scale = legendScale(target.width, target.height, m_style.legendScale);
     FontTexture* labels = font(legendLabelPixels(scale));
     FontTexture* title = font(legendTitlePixels(scale));
-    const std::vector<core::LegendTick> ticks =
-        core::legendTicks(m_range, 6, m_style.integerValues);
-    const LegendLayout layout =
-        layoutLegend(ticks, m_style.legendTitle, labels ? &labels->atlas : nullptr,
-                     title ? &title->atlas : nullptr, target.width, target.height, scale);
-    m_stats.legendTicks = ticks.size();
 
     // Light panel and dark text on light or transparent backgrounds, the reverse on dark ones.
     const glm::vec4 bg = m_style.background;
@@ -179,21 +174,40 @@ void GlRenderer::drawLegend(const RenderTarget& target) {
         dark ? glm::vec4(0.93f, 0.93f, 0.93f, 1.0f) : glm::vec4(0.10f, 0.10f, 0.12f, 1.0f);
 
     std::vector<OverlayVertex> solid, bar, labelText, titleText;
-    addRect(solid, layout.panel, panel);
-    const LegendRect& b = layout.bar;
-    const float o = layout.outline;
-    addRect(solid, {b.x0 - o, b.y0 - o, b.x1 + o, b.y0}, ink);
-    addRect(solid, {b.x0 - o, b.y1, b.x1 + o, b.y1 + o}, ink);
-    addRect(solid, {b.x0 - o, b.y0, b.x0, b.y1}, ink);
-    addRect(solid, {b.x1, b.y0, b.x1 + o, b.y1}, ink);
-    for (const LegendRect& t : layout.tickMarks)
-        addRect(solid, t, ink);
-    // The bar: v is t, 1 at the top.
-    addQuad(bar, b.x0, b.y0, b.x1, b.y1, 0, 1, 0, 0, glm::vec4(1.0f));
-    for (const GlyphQuad& g : layout.labelGlyphs)
-        addQuad(labelText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
-    for (const GlyphQuad& g : layout.titleGlyphs)
-        addQuad(titleText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+    if (legend) {
+        const std::vector<core::LegendTick> ticks =
+            core::legendTicks(m_range, 6, m_style.integerValues);
+        const LegendLayout layout =
+            layoutLegend(ticks, m_style.legendTitle, labels ? &labels->atlas : nullptr,
+                         title ? &title->atlas : nullptr, target.width, target.height, scale);
+        m_stats.legendTicks = ticks.size();
+        addRect(solid, layout.panel, panel);
+        const LegendRect& b = layout.bar;
+        const float o = layout.outline;
+        addRect(solid, {b.x0 - o, b.y0 - o, b.x1 + o, b.y0}, ink);
+        addRect(solid, {b.x0 - o, b.y1, b.x1 + o, b.y1 + o}, ink);
+        addRect(solid, {b.x0 - o, b.y0, b.x0, b.y1}, ink);
+        addRect(solid, {b.x1, b.y0, b.x1 + o, b.y1}, ink);
+        for (const LegendRect& t : layout.tickMarks)
+            addRect(solid, t, ink);
+        // The bar: v is t, 1 at the top.
+        addQuad(bar, b.x0, b.y0, b.x1, b.y1, 0, 1, 0, 0, glm::vec4(1.0f));
+        for (const GlyphQuad& g : layout.labelGlyphs)
+            addQuad(labelText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+        for (const GlyphQuad& g : layout.titleGlyphs)
+            addQuad(titleText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+    }
+    // The caption (a movie frame's timestep) on its own panel in the top-left corner.
+    if (!m_style.caption.empty() && title) {
+        const FontAtlas& a = title->atlas;
+        const float pad = std::round(6.0f * scale);
+        const float w = a.measure(m_style.caption);
+        addRect(solid, {pad, pad, 3 * pad + w, 3 * pad + a.ascent() + a.descent()}, panel);
+        std::vector<GlyphQuad> glyphs;
+        a.layout(m_style.caption, 2 * pad, 2 * pad + a.ascent(), glyphs);
+        for (const GlyphQuad& g : glyphs)
+            addQuad(titleText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+    }
 
     if (!m_overlayVao) {
         m_overlayVao = gl::makeVertexArray();

@@ -68,6 +68,7 @@ struct RenderStyle {
     std::string legendTitle;                            // the variable's name
     bool integerValues = false; // legend ticks at whole numbers (e.g. broken bonds)
     float legendScale = 1.0f;   // on top of the automatic size (output height / 720)
+    std::string caption;        // a label in the top-left corner (a movie frame's timestep)
     OcclusionCulling culling = OcclusionCulling::Auto;
 };
 

@@ -4,36 +4,43 @@
 #include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/fault_surface_request.hpp"
-#include "ui/render/surface_mesh.hpp"
-#include "ui/viewport/category_colors.hpp"
 #include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
+#include "ui/render/surface_mesh.hpp"
+#include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <thread>
 
 namespace faultline::ui {
 
 using core::CommandError;
 using core::Json;
 
-void renderSessionFigure(core::Session& session, const FigureRequest& request) {
+RgbaImage renderSessionImage(core::Session& session, const FigureRequest& request,
+                             std::shared_ptr<const core::Frame> loaded) {
     const core::ViewState* view = session.state().view(request.view);
     if (!view)
         throw CommandError("render: no view named \"" + request.view + "\"");
     auto dataset = session.dataset();
     if (!dataset)
         throw CommandError("render: no data is open");
-    if (request.width < 16 || request.height < 16 || request.width > 16384 || request.height > 16384)
+    if (request.width < 16 || request.height < 16 || request.width > 16384 ||
+        request.height > 16384)
         throw CommandError("render: size must lie between 16x16 and 16384x16384");
     const std::size_t frameIndex = request.frame ? *request.frame : session.frameOfView(*view);
     if (frameIndex >= dataset->frameCount())
         throw CommandError("render: frame " + std::to_string(frameIndex) + " out of range 0.." +
                            std::to_string(dataset->frameCount() - 1));
-    const auto frame = dataset->frame(frameIndex);
+    const auto frame = loaded ? loaded : dataset->frame(frameIndex);
 
     SceneDescription scene;
     scene.frame = frame.get();
@@ -71,7 +78,9 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
         else if (difference->min <= difference->max)
             scene.colorRange = core::ValueRange{difference->min, difference->max};
     } else if (!view->colorVariable.empty()) {
-        if (view->rangeMode == "fixed") {
+        if (request.colorRange) {
+            scene.colorRange = *request.colorRange;
+        } else if (view->rangeMode == "fixed") {
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
         } else if (view->rangeMode == "all") {
             // The range over every frame, so a series of figures shares one legend.
@@ -101,7 +110,8 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
         }
         if (!st.visible || !fault || !fault->visible)
             continue;
-        if (std::none_of(fault->ids.begin(), fault->ids.end(), [&](std::int64_t id) { return frame->rowOf(id).has_value(); }))
+        if (std::none_of(fault->ids.begin(), fault->ids.end(),
+                         [&](std::int64_t id) { return frame->rowOf(id).has_value(); }))
             continue; // none of its members in this frame: nothing to draw
         try {
             scene.meshes.push_back(toMeshData(core::buildFaultSurface(*frame, {*fault, st}).mesh));
@@ -112,33 +122,230 @@ void renderSessionFigure(core::Session& session, const FigureRequest& request) {
     }
     // The view's camera; one never placed (distance 0) keeps its angles and is fitted to the
     // model, as the viewport does.
-    core::CameraState camera = view->camera;
+    core::CameraState camera = request.camera ? *request.camera : view->camera;
     if (camera.distance <= 0) {
         const auto& lo = frame->centreMin();
         const auto& hi = frame->centreMax();
         const double w = request.width, h = request.height;
-        const double legend = showsLegend(scene) ? std::min(0.4 * w, 115.0 * legendScale(request.width, request.height, 1.0f)) : 0.0;
+        const double legend =
+            showsLegend(scene)
+                ? std::min(0.4 * w, 115.0 * legendScale(request.width, request.height, 1.0f))
+                : 0.0;
         fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, legend);
     }
     scene.camera = toRenderCamera(camera);
+    scene.style.caption = request.caption;
 
     RenderSettings settings;
     settings.width = request.width;
     settings.height = request.height;
     settings.transparent = request.transparent;
     try {
-        const auto folder = std::filesystem::path(request.path).parent_path();
-        if (!folder.empty())
-            std::filesystem::create_directories(folder);
-        renderSceneToPng(scene, settings, request.path);
+        return renderSceneToImage(scene, settings);
     } catch (const std::exception& e) {
         throw CommandError(std::string("render: ") + e.what());
     }
 }
 
+namespace {
+
+void makeParentFolder(const std::string& path) {
+    const auto folder = std::filesystem::path(path).parent_path();
+    if (!folder.empty())
+        std::filesystem::create_directories(folder);
+}
+
+} // namespace
+
+void renderSessionFigure(core::Session& session, const FigureRequest& request) {
+    const RgbaImage image = renderSessionImage(session, request);
+    try {
+        makeParentFolder(request.path);
+        writePng(image, request.path);
+    } catch (const std::exception& e) {
+        throw CommandError(std::string("render: ") + e.what());
+    }
+}
+
+bool isFrameSequencePattern(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    int conversions = 0;
+    for (std::size_t i = 0; i < name.size(); ++i) {
+        if (name[i] != '%')
+            continue;
+        std::size_t j = i + 1;
+        while (j < name.size() && std::isdigit(static_cast<unsigned char>(name[j])))
+            ++j;
+        if (j < name.size() && name[j] == 'd')
+            ++conversions;
+        i = j;
+    }
+    return conversions == 1;
+}
+
+std::string framePath(const std::string& pattern, std::size_t frame) {
+    std::string out;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') {
+            out += pattern[i];
+            continue;
+        }
+        std::size_t j = i + 1;
+        while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])))
+            ++j;
+        if (j < pattern.size() && pattern[j] == 'd') {
+            const int width = std::min(12, std::atoi(pattern.substr(i + 1, j - i - 1).c_str()));
+            std::string number = std::to_string(frame);
+            if (int(number.size()) < width)
+                number.insert(0, std::size_t(width) - number.size(), '0');
+            out += number;
+            i = j;
+        } else {
+            out += pattern[i];
+        }
+    }
+    return out;
+}
+
+FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
+    : m_session(session), m_request(std::move(request)) {
+    FigureRequest& fig = m_request.figure;
+    const core::ViewState* view = session.state().view(fig.view);
+    if (!view)
+        throw CommandError("render: no view named \"" + fig.view + "\"");
+    auto dataset = session.dataset();
+    if (!dataset)
+        throw CommandError("render: no data is open");
+    const std::size_t count = dataset->frameCount();
+    if (m_request.first > m_request.last || m_request.last >= count)
+        throw CommandError("render: \"frames\" [" + std::to_string(m_request.first) + ", " +
+                           std::to_string(m_request.last) + "] must lie within 0.." +
+                           std::to_string(count - 1) + ", first <= last");
+    if (m_request.step < 1)
+        throw CommandError("render: \"step\" must be at least 1");
+    const bool movie = fig.path.size() > 4 && fig.path.substr(fig.path.size() - 4) == ".mp4";
+    if (!movie && !isFrameSequencePattern(fig.path))
+        throw CommandError("render: with \"frames\" the path must end in .mp4 (a movie) or "
+                           "hold one frame number like %04d (a PNG sequence), got \"" +
+                           fig.path + "\"");
+    if (fig.width < 16 || fig.height < 16 || fig.width > 16384 || fig.height > 16384)
+        throw CommandError("render: size must lie between 16x16 and 16384x16384");
+    for (std::size_t f = m_request.first; f <= m_request.last; f += m_request.step)
+        if (session.frameSelection().contains(f))
+            m_frames.push_back(f);
+    // One colour range for every frame: the view's fixed one, else the range over all frames
+    // (what rangeMode "all" gives a single figure), so colours mean the same in every frame.
+    if (!fig.colorRange && !view->colorVariable.empty() && view->rangeMode != "fixed" &&
+        view->difference.mode == core::ColorDifference::Mode::None) {
+        double lo = 1e300, hi = -1e300;
+        for (std::size_t k = 0; k < count; ++k)
+            if (const auto* c = dataset->frame(k)->attribute(view->colorVariable)) {
+                lo = std::min(lo, c->min);
+                hi = std::max(hi, c->max);
+            }
+        if (lo <= hi)
+            fig.colorRange = core::ValueRange{lo, hi};
+    }
+    // One camera: the view's, or fitted to the first and last frames of the range together.
+    if (!fig.camera && view->camera.distance <= 0) {
+        core::CameraState camera = view->camera;
+        const auto a = dataset->frame(m_request.first);
+        const auto b = dataset->frame(m_request.last);
+        const std::array<double, 3> lo{std::min<double>(a->centreMin()[0], b->centreMin()[0]),
+                                       std::min<double>(a->centreMin()[1], b->centreMin()[1]),
+                                       std::min<double>(a->centreMin()[2], b->centreMin()[2])};
+        const std::array<double, 3> hi{std::max<double>(a->centreMax()[0], b->centreMax()[0]),
+                                       std::max<double>(a->centreMax()[1], b->centreMax()[1]),
+                                       std::max<double>(a->centreMax()[2], b->centreMax()[2])};
+        const double w = fig.width, h = fig.height;
+        const bool legend = !view->colorVariable.empty() && view->colorVariable != kFaultsVariable;
+        const double strip =
+            legend ? std::min(0.4 * w, 115.0 * legendScale(fig.width, fig.height, 1.0f)) : 0.0;
+        fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, strip);
+        fig.camera = camera;
+    }
+    try {
+        if (movie) {
+            makeParentFolder(fig.path);
+            MovieSettings settings;
+            settings.width = fig.width;
+            settings.height = fig.height;
+            settings.framesPerSecond = m_request.framesPerSecond;
+            m_movie = std::make_unique<MovieWriter>(fig.path, settings);
+        }
+    } catch (const std::exception& e) {
+        throw CommandError(std::string("render: ") + e.what());
+    }
+    core::PrefetchSettings prefetch;
+    prefetch.lookAhead = 3;
+    m_prefetcher = std::make_unique<core::FramePrefetcher>(dataset, prefetch);
+    if (!m_frames.empty())
+        m_prefetcher->request(m_frames.front());
+}
+
+FrameSequence::~FrameSequence() = default;
+
+bool FrameSequence::step(bool wait) {
+    if (m_next >= m_frames.size()) {
+        finish();
+        return false;
+    }
+    const std::size_t f = m_frames[m_next];
+    core::FrameRequestResult r = m_prefetcher->request(f);
+    while (r.status == core::FrameStatus::Loading) {
+        if (!wait)
+            return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        r = m_prefetcher->request(f);
+    }
+    if (r.status == core::FrameStatus::Failed)
+        throw CommandError("render: frame " + std::to_string(f) + ": " + r.error);
+    FigureRequest fig = m_request.figure;
+    fig.frame = f;
+    if (m_movie)
+        fig.caption =
+            "frame " + std::to_string(f) + "   timestep " + std::to_string(r.frame->timestep);
+    else
+        fig.path = framePath(fig.path, f);
+    RgbaImage image = renderSessionImage(m_session, fig, r.frame);
+    // Ask for the one after next now: the prefetcher loads it while this one is written.
+    if (m_next + 1 < m_frames.size())
+        m_prefetcher->request(m_frames[m_next + 1]);
+    try {
+        if (m_movie) {
+            m_movie->add(image);
+        } else {
+            makeParentFolder(fig.path);
+            writePng(image, fig.path);
+        }
+    } catch (const std::exception& e) {
+        throw CommandError(std::string("render: ") + e.what());
+    }
+    ++m_next;
+    if (m_next == m_frames.size())
+        finish();
+    return m_next < m_frames.size();
+}
+
+void FrameSequence::finish() {
+    while (m_next < m_frames.size())
+        step(true);
+    if (m_finished)
+        return;
+    m_finished = true;
+    if (m_movie) {
+        try {
+            m_movie->finish();
+        } catch (const std::exception& e) {
+            throw CommandError(std::string("render: ") + e.what());
+        }
+    }
+}
+
 void registerRenderOp(core::Session& session) {
     session.registerOp("render", [](core::Session& s, const Json& cmd) -> Json {
-        core::args::onlyFields(cmd, {"view", "path", "size", "transparent", "frame"});
+        core::args::onlyFields(
+            cmd, {"view", "path", "size", "transparent", "frame", "frames", "step", "fps"});
         FigureRequest request;
         request.view = core::args::optionalString(cmd, "view").value_or("main");
         request.path = s.outputPath(core::args::string(cmd, "path"));
@@ -156,7 +363,34 @@ void registerRenderOp(core::Session& session) {
                 throw CommandError("render: \"frame\" must be >= 0");
             request.frame = static_cast<std::size_t>(*f);
         }
-        renderSessionFigure(s, request);
+        if (!cmd.contains("frames")) {
+            for (const char* field : {"step", "fps"})
+                if (cmd.contains(field))
+                    throw CommandError(std::string("render: \"") + field +
+                                       "\" needs \"frames\": [first, last]");
+            renderSessionFigure(s, request);
+            return nullptr;
+        }
+        const Json& frames = cmd["frames"];
+        if (!frames.is_array() || frames.size() != 2 || !frames[0].is_number_integer() ||
+            !frames[1].is_number_integer() || frames[0].get<long long>() < 0 ||
+            frames[1].get<long long>() < 0)
+            throw CommandError("render: \"frames\" must be [first, last], frame numbers from 0");
+        if (request.frame)
+            throw CommandError("render: give \"frame\" or \"frames\", not both");
+        SequenceRequest sequence;
+        sequence.figure = request;
+        sequence.first = frames[0].get<std::size_t>();
+        sequence.last = frames[1].get<std::size_t>();
+        const auto step = core::args::optionalInteger(cmd, "step").value_or(1);
+        const auto fps = core::args::optionalInteger(cmd, "fps").value_or(10);
+        if (step < 1)
+            throw CommandError("render: \"step\" must be at least 1");
+        if (fps < 1 || fps > 120)
+            throw CommandError("render: \"fps\" must lie between 1 and 120");
+        sequence.step = static_cast<std::size_t>(step);
+        sequence.framesPerSecond = static_cast<int>(fps);
+        FrameSequence(s, sequence).finish();
         return nullptr;
     });
 }

@@ -1,0 +1,132 @@
+// Movies and PNG sequences: the journal's render with "frames", H.264 read back with libavformat,
+// the frame selection of a sharded replay, and the refusals.
+#include "../core/test_files.hpp"
+#include "core/session/session.hpp"
+#include "gl_required.hpp"
+#include "headless_ui.hpp"
+#include "ui/render/movie_writer.hpp"
+#include "ui/render/offscreen.hpp"
+#include "ui/render/session_figure.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace faultline;
+using faultline::core::Json;
+
+namespace {
+
+ui::RgbaImage solid(int w, int h, std::uint8_t red) {
+    ui::RgbaImage img{w, h, {}};
+    img.pixels.resize(std::size_t(w) * h * 4);
+    for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
+        img.pixels[i] = red;
+        img.pixels[i + 1] = static_cast<std::uint8_t>(i / 4 % 251);
+        img.pixels[i + 2] = 40;
+        img.pixels[i + 3] = 255;
+    }
+    return img;
+}
+
+// A session on the 3-frame lattice with the render op, or null without OpenGL.
+class MovieTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::string why;
+        if (!ui::sharedOffscreenContext(why))
+            FAULTLINE_NEED_GL("no OpenGL context: " << why);
+        ui::registerRenderOp(session);
+        session.setBaseDir(dir.path().string());
+        session.apply(
+            {{"op", "data.open"}, {"paths", {test::writeLattice(dir.file("lattice.dump"))}}});
+        session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "strain"}});
+    }
+    test::TempDir dir;
+    core::Session session;
+};
+
+} // namespace
+
+TEST(MovieWriter, WritesH264ThatLibavformatReadsBackFrameByFrame) {
+    test::TempDir dir;
+    const std::string path = dir.file("seven.mp4");
+    {
+        ui::MovieWriter movie(path, {100, 61, 12, 20}); // odd height: rounded up to 62
+        for (int k = 0; k < 7; ++k)
+            movie.add(solid(100, 61, static_cast<std::uint8_t>(30 * k)));
+        movie.finish();
+        EXPECT_EQ(movie.framesWritten(), 7u);
+    }
+    const ui::MovieProbe probe = ui::probeMovie(path);
+    EXPECT_EQ(probe.frames, 7u);
+    EXPECT_EQ(probe.width, 100);
+    EXPECT_EQ(probe.height, 62);
+    EXPECT_EQ(probe.codec, "h264");
+}
+
+TEST(MovieWriter, RefusesWhatItCannotWriteSayingWhere) {
+    test::TempDir dir;
+    EXPECT_THROW(ui::MovieWriter(dir.file("no/such/folder/m.mp4"), {}), std::runtime_error);
+    ui::MovieWriter movie(dir.file("m.mp4"), {64, 64, 10, 20});
+    EXPECT_THROW(movie.add(solid(32, 32, 0)), std::invalid_argument);
+    EXPECT_THROW(ui::probeMovie(dir.file("missing.mp4")), std::runtime_error);
+    dir.write("x/not.mp4", "this is not a movie");
+    EXPECT_THROW(ui::probeMovie(dir.file("x/not.mp4")), std::runtime_error);
+}
+
+TEST_F(MovieTest, AFrameRangeBecomesAMovieWithOneVideoFramePerDataFrame) {
+    session.apply(
+        Json::parse(R"({"op":"render","path":"out/run.mp4","size":[160,90],"frames":[0,2]})"));
+    const ui::MovieProbe probe = ui::probeMovie(dir.file("out/run.mp4"));
+    EXPECT_EQ(probe.frames, 3u);
+    EXPECT_EQ(probe.width, 160);
+    EXPECT_EQ(probe.height, 90);
+    session.apply(Json::parse(
+        R"({"op":"render","path":"out/odd.mp4","size":[160,90],"frames":[0,2],"step":2,"fps":5})"));
+    EXPECT_EQ(ui::probeMovie(dir.file("out/odd.mp4")).frames, 2u);
+}
+
+TEST_F(MovieTest, APatternPathWritesAPngPerFrameNamedByItsNumber) {
+    session.apply(
+        Json::parse(R"({"op":"render","path":"seq/f%03d.png","size":[64,48],"frames":[1,2]})"));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("seq/f000.png")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("seq/f001.png")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("seq/f002.png")));
+    EXPECT_EQ(ui::framePath("a/%d_b.png", 7), "a/7_b.png");
+    EXPECT_EQ(ui::framePath("a/%05d.png", 42), "a/00042.png");
+    EXPECT_TRUE(ui::isFrameSequencePattern("x/frame_%04d.png"));
+    EXPECT_FALSE(ui::isFrameSequencePattern("x/frame.png"));
+    EXPECT_FALSE(ui::isFrameSequencePattern("x/%d_%d.png"));
+}
+
+TEST_F(MovieTest, AShardRendersOnlyItsFrames) {
+    core::FrameSelection shard;
+    shard.shard = 1;
+    shard.shards = 2; // frames 1, 3, ...
+    session.setFrameSelection(shard);
+    session.apply(
+        Json::parse(R"({"op":"render","path":"sh/f%d.png","size":[64,48],"frames":[0,2]})"));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("sh/f0.png")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("sh/f1.png")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("sh/f2.png")));
+}
+
+TEST_F(MovieTest, BadFrameRangesAndPathsAreRefusedBeforeAnythingIsWritten) {
+    auto refused = [&](const char* text, const std::string& message) {
+        try {
+            session.apply(Json::parse(text));
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const core::CommandError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    refused(R"({"op":"render","path":"m.mp4","frames":[0,9]})", "must lie within 0..2");
+    refused(R"({"op":"render","path":"m.mp4","frames":[2,1]})", "first <= last");
+    refused(R"({"op":"render","path":"m.png","frames":[0,2]})", "must end in .mp4");
+    refused(R"({"op":"render","path":"m.mp4","frames":[0]})", "[first, last]");
+    refused(R"({"op":"render","path":"m.mp4","frames":[0,2],"step":0})", "\"step\"");
+    refused(R"({"op":"render","path":"m.png","step":2})", "needs \"frames\"");
+    refused(R"({"op":"render","path":"m.mp4","frames":[0,2],"frame":1})", "not both");
+    EXPECT_FALSE(std::filesystem::exists(dir.file("m.mp4")));
+}
