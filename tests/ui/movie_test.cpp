@@ -4,6 +4,7 @@
 #include "core/session/session.hpp"
 #include "gl_required.hpp"
 #include "headless_ui.hpp"
+#include "panel_fixture.hpp"
 #include "ui/render/movie_writer.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/render/session_figure.hpp"
@@ -14,6 +15,7 @@
 
 using namespace faultline;
 using faultline::core::Json;
+using faultline::test::PanelTest;
 
 namespace {
 
@@ -129,4 +131,49 @@ TEST_F(MovieTest, BadFrameRangesAndPathsAreRefusedBeforeAnythingIsWritten) {
     refused(R"({"op":"render","path":"m.png","step":2})", "needs \"frames\"");
     refused(R"({"op":"render","path":"m.mp4","frames":[0,2],"frame":1})", "not both");
     EXPECT_FALSE(std::filesystem::exists(dir.file("m.mp4")));
+}
+
+// File > Export > Movie in the workbench: a frame per UI frame with progress, journalled as the
+// render op once written; Cancel leaves a playable movie of what was done and no journal line.
+TEST_F(PanelTest, TheWorkbenchWritesAMovieFrameByFrameAndJournalsIt) {
+    std::string why;
+    if (!ui::sharedOffscreenContext(why))
+        FAULTLINE_NEED_GL("no OpenGL context: " << why);
+    openLattice();
+    wb().showMovieOptions();
+    EXPECT_EQ(wb().movieOptions.first, 0);
+    EXPECT_EQ(wb().movieOptions.last, 2);
+    wb().movieOptions.width = 160;
+    wb().movieOptions.height = 90;
+    const std::size_t before = session.journal().size();
+    wb().exportMovie(dir.file("out/lattice"));
+    ASSERT_TRUE(wb().movieRunning()) << wb().lastMessage();
+    EXPECT_EQ(wb().movieProgress().second, 3u);
+    for (int k = 0; k < 200 && wb().movieRunning(); ++k) {
+        wb().frames().waitIdle();
+        headless.frames(wb(), 1);
+    }
+    ASSERT_FALSE(wb().movieRunning());
+    EXPECT_FALSE(wb().lastMessageIsError()) << wb().lastMessage();
+    EXPECT_EQ(ui::probeMovie(dir.file("out/lattice.mp4")).frames, 3u);
+    ASSERT_EQ(session.journal().size(), before + 1);
+    const Json& cmd = session.journal().back();
+    EXPECT_EQ(cmd.value("op", ""), "render");
+    EXPECT_EQ(cmd["frames"], Json::parse("[0,2]"));
+    EXPECT_EQ(cmd["path"], dir.file("out/lattice.mp4"));
+
+    // PNG frames, cancelled after the first: nothing journalled.
+    wb().movieOptions.pngFrames = true;
+    wb().exportMovie(dir.file("out/f.png"));
+    ASSERT_TRUE(wb().movieRunning());
+    for (int k = 0; k < 200 && wb().movieProgress().first < 1; ++k) {
+        wb().frames().waitIdle();
+        headless.frames(wb(), 1);
+    }
+    wb().cancelMovie();
+    EXPECT_FALSE(wb().movieRunning());
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/f_0000.png")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out/f_0002.png")));
+    EXPECT_EQ(session.journal().size(), before + 1);
+    EXPECT_NE(wb().lastMessage().find("cancelled"), std::string::npos) << wb().lastMessage();
 }

@@ -170,6 +170,7 @@ void Workbench::frame(double now) {
     handleDialog();
     drawHelp();
     drawPrompts();
+    drawMovie();
 
     applyPending();
     syncWithSession();

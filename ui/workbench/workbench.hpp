@@ -16,6 +16,7 @@
 #include "ui/workbench/frame_columns.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/workbench/surface_store.hpp"
+#include "ui/render/session_figure.hpp"
 #include "core/faults/candidates.hpp"
 #include "core/model/difference_column_cache.hpp"
 
@@ -195,6 +196,23 @@ class Workbench {
     // export.vdb / export.gltf where it was asked for, once it is done.
     void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb,
                         bool glyphs = false);
+    // ---- movies (workbench_movie.cpp) ----
+    // File > Export > Movie: the options (frames, step, size, rate, MP4 or PNG per frame).
+    struct MovieOptions {
+        int first = 0, last = 0, step = 1;
+        int width = 1280, height = 720;
+        int fps = 10;
+        bool pngFrames = false; // a PNG per frame (path_%04d.png) instead of an MP4
+    };
+    MovieOptions movieOptions;
+    void showMovieOptions(); // opens the options window on every frame of the data
+    // Renders the main view over the options' frames to `path` (the journal's render with
+    // "frames"), one frame per UI frame (frames load ahead in the background); progress and
+    // Cancel in a small window; journalled once written.
+    void exportMovie(const std::string& path);
+    bool movieRunning() const { return m_movie != nullptr; }
+    std::pair<std::size_t, std::size_t> movieProgress() const; // done, total
+    void cancelMovie();
     void saveSession(); // to the session's file, else asks for one
     void saveSessionAs(const std::string& path);
     const std::string& sessionPath() const { return m_sessionPath; }
@@ -232,6 +250,7 @@ class Workbench {
     void drawDock(float top, float bottom);
     void drawHelp();
     void drawPrompts();
+    void drawMovie(); // the options window and the running export's progress
     void resolveColors(const core::ViewState& view, ViewDisplay& d, std::size_t channel);
     const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d);
     void handleShortcuts();
@@ -305,6 +324,10 @@ class Workbench {
     bool m_quit = false;
     bool m_showHelp = false;
     bool m_showAbout = false;
+    bool m_showMovieOptions = false;
+    std::unique_ptr<FrameSequence> m_movie;
+    core::Json m_movieCommand;
+    std::shared_ptr<void> m_moviePlace; // its journal place (JournalPlace)
 };
 
 } // namespace faultline::ui

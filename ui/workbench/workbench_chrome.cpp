@@ -146,6 +146,8 @@ void Workbench::drawMenus() {
                               "export-tracks", {".csv"}, dataFolder, "fault_tracks.csv");
             if (ImGui::MenuItem("Journal of this session...", nullptr, false, !m_session.journal().empty()))
                 m_dialog.open("Export the journal (replay with faultline replay)", FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder, "analysis.jsonl");
+            if (ImGui::MenuItem("Movie (MP4) or frames (PNG)...", nullptr, false, dataset() != nullptr))
+                showMovieOptions();
             if (ImGui::MenuItem("Screenshot (PNG)..."))
                 m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save, "screenshot", {".png"}, "", "faultline-" + stamp() + ".png");
             ImGui::EndMenu();
@@ -391,6 +393,8 @@ void Workbench::handleDialog() {
         relocateData(path);
     else if (purpose == "screenshot")
         requestScreenshot(path);
+    else if (purpose == "export-movie")
+        exportMovie(path);
     else if (purpose == "export-faults")
         emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
     else if (purpose.rfind("export-vdb:", 0) == 0)
