@@ -91,10 +91,17 @@ void readVtkFileAttributes(const XmlTokenizer& t, Scan& scan) {
         scan.encoding.headerBytes = *header == "UInt64" ? 8 : 4;
     }
     if (const std::string* c = t.attribute("compressor"); c && !c->empty()) {
-        if (*c != "vtkZLibDataCompressor")
+        using C = XmlEncoding::Compressor;
+        if (*c == "vtkZLibDataCompressor")
+            scan.encoding.compressor = C::ZLib;
+        else if (*c == "vtkLZ4DataCompressor")
+            scan.encoding.compressor = C::LZ4;
+        else if (*c == "vtkLZMADataCompressor")
+            scan.encoding.compressor = C::LZMA;
+        else
             t.fail("compressor " + quoteForError(*c) +
-                   " is not supported: expected vtkZLibDataCompressor (or none)");
-        scan.encoding.compressed = true;
+                   " is not supported: expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
+                   "vtkLZMADataCompressor (or none)");
     }
 }
 

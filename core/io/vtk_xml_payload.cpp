@@ -4,6 +4,8 @@
 #include "core/io/input_error.hpp"
 
 #include <fast_float/fast_float.h>
+#include <lz4.h>
+#include <lzma.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -149,7 +151,8 @@ class BinaryDecoder {
 
     // The array's packed bytes, `expected` of them.
     std::vector<unsigned char> payload(std::uint64_t expected) {
-        return m_enc.compressed ? inflateBlocks(expected) : plain(expected);
+        return m_enc.compressor != XmlEncoding::Compressor::None ? inflateBlocks(expected)
+                                                                 : plain(expected);
     }
 
   private:
@@ -200,24 +203,87 @@ class BinaryDecoder {
         std::vector<unsigned char> out, compressed;
         for (std::uint64_t k = 0; k < blocks; ++k) {
             const std::uint64_t size = (k + 1 == blocks && lastSize) ? lastSize : blockSize;
-            if (size > sizes[k] * kMaxInflateRatio + 64)
-                fail("zlib block " + std::to_string(k) + " claims " + std::to_string(size) +
-                     " bytes from " + std::to_string(sizes[k]) +
-                     " compressed bytes, more than zlib can produce");
+            // A header may not make us allocate more than the block's codec can produce from
+            // its compressed bytes.
+            if (size > sizes[k] * maxRatio() + 64)
+                fail(std::string(codecName()) + " block " + std::to_string(k) + " claims " +
+                     std::to_string(size) + " bytes from " + std::to_string(sizes[k]) +
+                     " compressed bytes, more than " + codecName() + " can produce");
             compressed.resize(sizes[k]);
             read(compressed.data(), compressed.size(), "compressed block");
             const std::size_t old = out.size();
             out.resize(old + size);
-            uLongf produced = static_cast<uLongf>(size);
-            const int rc = uncompress(out.data() + old, &produced, compressed.data(),
-                                      static_cast<uLong>(compressed.size()));
-            if (rc != Z_OK || produced != size)
-                fail("zlib block " + std::to_string(k) + " is corrupt or does not inflate to the " +
-                     std::to_string(size) + " bytes its header declares" +
-                     (rc == Z_OK ? " (it gives " + std::to_string(produced) + ")"
-                                 : std::string(" (zlib: ") + zError(rc) + ")"));
+            std::string why;
+            const std::uint64_t produced = decompress(compressed, out.data() + old, size, why);
+            if (!why.empty() || produced != size)
+                fail(std::string(codecName()) + " block " + std::to_string(k) +
+                     " is corrupt or does not decompress to the " + std::to_string(size) +
+                     " bytes its header declares" +
+                     (why.empty() ? " (it gives " + std::to_string(produced) + ")"
+                                  : " (" + why + ")"));
         }
         return out;
+    }
+
+    const char* codecName() const {
+        switch (m_enc.compressor) {
+        case XmlEncoding::Compressor::LZ4:
+            return "LZ4";
+        case XmlEncoding::Compressor::LZMA:
+            return "LZMA";
+        default:
+            return "zlib";
+        }
+    }
+    // Uncompressed bytes per compressed byte at most: zlib's deflate 1032:1; LZ4 255:1; xz has
+    // no small bound (a run of zeros packs ~7000:1), so a generous one that still caps what a
+    // forged header can make us allocate at a few MB per KB of file.
+    std::uint64_t maxRatio() const {
+        switch (m_enc.compressor) {
+        case XmlEncoding::Compressor::LZ4:
+            return 256;
+        case XmlEncoding::Compressor::LZMA:
+            return 16384;
+        default:
+            return kMaxInflateRatio;
+        }
+    }
+    // Decompresses one block into exactly `size` bytes at `to`; the bytes produced, or `why`.
+    std::uint64_t decompress(const std::vector<unsigned char>& in, unsigned char* to,
+                             std::uint64_t size, std::string& why) const {
+        switch (m_enc.compressor) {
+        case XmlEncoding::Compressor::LZ4: {
+            if (in.size() > std::uint64_t(LZ4_MAX_INPUT_SIZE) || size > std::uint64_t(INT32_MAX)) {
+                why = "block too large for LZ4";
+                return 0;
+            }
+            const int n =
+                LZ4_decompress_safe(reinterpret_cast<const char*>(in.data()),
+                                    reinterpret_cast<char*>(to), int(in.size()), int(size));
+            if (n < 0)
+                why = "LZ4: malformed block";
+            return n < 0 ? 0 : std::uint64_t(n);
+        }
+        case XmlEncoding::Compressor::LZMA: {
+            std::uint64_t memlimit = 256ull << 20; // a preset-9 dictionary needs 65 MB
+            std::size_t inPos = 0, outPos = 0;
+            const lzma_ret rc = lzma_stream_buffer_decode(&memlimit, 0, nullptr, in.data(), &inPos,
+                                                          in.size(), to, &outPos, size);
+            if (rc != LZMA_OK)
+                why = rc == LZMA_BUF_ERROR ? "LZMA: the stream is truncated or larger than declared"
+                      : rc == LZMA_FORMAT_ERROR   ? "LZMA: not an .xz stream"
+                      : rc == LZMA_MEMLIMIT_ERROR ? "LZMA: needs more than 256 MB to decode"
+                                                  : "LZMA: corrupt data";
+            return outPos;
+        }
+        default: {
+            uLongf produced = static_cast<uLongf>(size);
+            const int rc = uncompress(to, &produced, in.data(), static_cast<uLong>(in.size()));
+            if (rc != Z_OK)
+                why = std::string("zlib: ") + zError(rc);
+            return produced;
+        }
+        }
     }
 
     const std::string& m_path;

@@ -15,7 +15,10 @@ namespace faultline::core::detail {
 struct XmlEncoding {
     bool bigEndian = false;
     std::size_t headerBytes = 4; // UInt32 or UInt64 size headers
-    bool compressed = false;     // vtkZLibDataCompressor
+    // The VTKFile's compressor attribute: vtkZLibDataCompressor, vtkLZ4DataCompressor (raw LZ4
+    // blocks) or vtkLZMADataCompressor (an .xz stream per block).
+    enum class Compressor { None, ZLib, LZ4, LZMA };
+    Compressor compressor = Compressor::None;
     bool haveAppended = false;
     bool appendedBase64 = false;
     std::string_view appended;      // everything after the '_' marker
