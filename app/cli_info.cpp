@@ -1,8 +1,8 @@
 // `faultline info PATH...`: how a user checks that a file reads right.
 #include "app/cli.hpp"
 
-#include "core/io/input_error.hpp"
 #include "core/data/dataset.hpp"
+#include "core/io/input_error.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,7 +11,8 @@ namespace faultline::app {
 
 namespace {
 void printFrame(const core::Frame& f) {
-    std::printf("  spheres: %zu%s\n", f.size(), f.idsAreRowNumbers ? " (no id column: ids are row numbers)" : "");
+    std::printf("  spheres: %zu%s\n", f.size(),
+                f.idsAreRowNumbers ? " (no id column: ids are row numbers)" : "");
     std::printf("  radius: %s", f.radiusIsDefault ? "none in file, default " : "");
     if (f.size() > 0) {
         auto [mn, mx] = std::minmax_element(f.radius.begin(), f.radius.end());
@@ -20,11 +21,15 @@ void printFrame(const core::Frame& f) {
         std::printf("-\n");
     }
     const auto& b = f.box;
-    std::printf("  box: [%g %g] x [%g %g] x [%g %g]%s%s\n", b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2],
-                b.hi[2], b.triclinic ? " triclinic" : "", b.known ? "" : " (bounds of the centres)");
+    std::printf("  box: [%g %g] x [%g %g] x [%g %g]%s%s\n", b.lo[0], b.hi[0], b.lo[1], b.hi[1],
+                b.lo[2], b.hi[2], b.triclinic ? " triclinic" : "",
+                b.known ? "" : " (bounds of the centres)");
     std::printf("  centres: [%g %g] x [%g %g] x [%g %g]\n", f.centreMin()[0], f.centreMax()[0],
                 f.centreMin()[1], f.centreMax()[1], f.centreMin()[2], f.centreMax()[2]);
     std::printf("  columns: %zu\n", f.attributes.size());
+    if (f.columnsAssumed)
+        std::printf("  note: the file names no columns ('ITEM: ATOMS' alone, an old-style dump);\n"
+                    "        read as LAMMPS' atom style: id type xs ys zs (then ix iy iz)\n");
     for (const auto& c : f.attributes)
         std::printf("    %-24s %-6s %g .. %g\n", c.name.c_str(), c.isInteger() ? "int" : "float",
                     c.min, c.max);
@@ -44,8 +49,7 @@ int runInfo(const Args& args) {
             std::printf("%s\n  format: %s\n  frames: %zu", path.c_str(),
                         std::string(core::formatName(first.format)).c_str(), ds->frameCount());
             if (ds->frameCount() > 1)
-                std::printf(" (timesteps %lld .. %lld)",
-                            static_cast<long long>(first.timestep),
+                std::printf(" (timesteps %lld .. %lld)", static_cast<long long>(first.timestep),
                             static_cast<long long>(ds->location(ds->frameCount() - 1).timestep));
             std::printf("\n");
             if (ds->files().size() > 1)

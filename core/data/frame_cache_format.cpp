@@ -83,6 +83,7 @@ enum Flag : std::uint32_t {
     BoxTriclinic = 1u << 2,
     BoxKnown = 1u << 3,
     PeriodicX = 1u << 4, // and << 5, << 6 for y and z
+    ColumnsAssumed = 1u << 7,
     KnownFlags = (1u << 7) - 1,
 };
 
@@ -277,6 +278,7 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
     f.timestep = h.timestep;
     f.radiusIsDefault = (h.flags & RadiusIsDefault) != 0;
     f.idsAreRowNumbers = (h.flags & IdsAreRowNumbers) != 0;
+    f.columnsAssumed = (h.flags & ColumnsAssumed) != 0;
     f.box.triclinic = (h.flags & BoxTriclinic) != 0;
     f.box.known = (h.flags & BoxKnown) != 0;
     for (int a = 0; a < 3; ++a) {
@@ -375,6 +377,7 @@ std::uint64_t writeCachedFrame(const std::string& path, std::string_view key, co
     h.namesBytes = static_cast<std::uint32_t>(names.size());
     h.flags = (frame.radiusIsDefault ? RadiusIsDefault : 0u) |
               (frame.idsAreRowNumbers ? IdsAreRowNumbers : 0u) |
+              (frame.columnsAssumed ? ColumnsAssumed : 0u) |
               (frame.box.triclinic ? BoxTriclinic : 0u) | (frame.box.known ? BoxKnown : 0u);
     for (int a = 0; a < 3; ++a) {
         if (frame.box.periodic[a])

@@ -23,6 +23,7 @@ struct DumpHeader {
     bool haveTimestep = false, haveAtoms = false, haveBox = false;
     SimulationBox box;
     std::vector<std::string> columns;
+    bool columnsAssumed = false; // "ITEM: ATOMS" named none (an old-style dump)
 };
 
 std::string_view trim(std::string_view s) {
@@ -114,8 +115,8 @@ DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
                 auto w = words(line);
                 const std::size_t want = triclinic ? 3 : 2;
                 if (w.size() < want)
-                    throw fail("expected " + std::to_string(want) + " numbers for box bounds, found " +
-                               quoteForError(line));
+                    throw fail("expected " + std::to_string(want) +
+                               " numbers for box bounds, found " + quoteForError(line));
                 for (std::size_t k = 0; k < want; ++k)
                     if (!parseDouble(w[k], bound[a][k]))
                         throw fail("expected a finite number in box bounds, found " +
@@ -145,8 +146,9 @@ DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
         } else if (item.substr(0, 5) == "ATOMS" || item.substr(0, 7) == "ENTRIES") {
             for (auto w : words(item.substr(item[0] == 'A' ? 5 : 7)))
                 h.columns.emplace_back(w);
-            if (h.columns.empty())
-                throw fail("'ITEM: ATOMS' names no columns");
+            // An old-style dump (LAMMPS before 2009, pizza.py's "dump" reads them) names no
+            // columns: the frame reader assumes them from the first row.
+            h.columnsAssumed = h.columns.empty();
             if (!h.haveAtoms)
                 throw fail("'ITEM: ATOMS' before 'ITEM: NUMBER OF ATOMS'");
             return h;
@@ -162,7 +164,8 @@ DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
 
 bool looksLikeLammpsDump(std::string_view head) {
     std::size_t i = 0;
-    while (i < head.size() && (head[i] == ' ' || head[i] == '\n' || head[i] == '\r' || head[i] == '\t'))
+    while (i < head.size() &&
+           (head[i] == ' ' || head[i] == '\n' || head[i] == '\r' || head[i] == '\t'))
         ++i;
     return head.substr(i, 5) == "ITEM:";
 }
@@ -207,8 +210,9 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
             if (pos >= text.size())
                 return false;
             const void* nl = std::memchr(text.data() + pos, '\n', text.size() - pos);
-            const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data())
-                                       : text.size();
+            const std::size_t end =
+                nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data())
+                   : text.size();
             out = text.substr(pos, end - pos);
             pos = nl ? end + 1 : text.size();
             ++line;
@@ -216,6 +220,25 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
         },
         [&] { return line; });
 
+    if (h.columnsAssumed) {
+        // LAMMPS' atom style, as old versions wrote it: id type xs ys zs, with image flags
+        // ix iy iz when dump_modify image was on.
+        const std::size_t nl = std::min(text.find('\n', pos), text.size());
+        std::size_t tokens = 0;
+        for (std::size_t k = pos; k < nl; ++k)
+            if (text[k] != ' ' && text[k] != '\t' && text[k] != '\r' &&
+                (k == pos || text[k - 1] == ' ' || text[k - 1] == '\t'))
+                ++tokens;
+        h.columns = {"id", "type", "xs", "ys", "zs"};
+        if (tokens == 8)
+            h.columns.insert(h.columns.end(), {"ix", "iy", "iz"});
+        else if (h.atoms > 0 && tokens != 5)
+            throw InputError(path, InputError::Where::Line, line + 1,
+                             "'ITEM: ATOMS' names no columns, so this is read as an old-style dump "
+                             "(LAMMPS' atom style): expected rows of 5 values (id type xs ys zs) "
+                             "or 8 (id type xs ys zs ix iy iz), found " +
+                                 std::to_string(tokens));
+    }
     const auto& cols = h.columns;
     NumericTableSpec spec;
     spec.path = path;
@@ -251,7 +274,8 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
     // Anything after the rows must be blank or the next frame.
     {
         std::size_t k = end;
-        while (k < text.size() && (text[k] == ' ' || text[k] == '\n' || text[k] == '\r' || text[k] == '\t'))
+        while (k < text.size() &&
+               (text[k] == ' ' || text[k] == '\n' || text[k] == '\r' || text[k] == '\t'))
             ++k;
         if (k < text.size() && text.compare(k, 5, "ITEM:") != 0)
             throw InputError(path, InputError::Where::Line, line + n + 1,
@@ -289,6 +313,7 @@ Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,
     const int diameterCol = radiusCol < 0 ? find({"diameter"}) : -1;
 
     Frame frame;
+    frame.columnsAssumed = h.columnsAssumed;
     frame.timestep = h.timestep;
     frame.box = h.box;
 

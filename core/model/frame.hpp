@@ -46,8 +46,11 @@ class Frame {
     std::vector<std::int64_t> ids;
     std::vector<float> x, y, z;
     std::vector<float> radius;
-    bool radiusIsDefault = false; // the file had no radius or diameter column
+    bool radiusIsDefault = false;  // the file had no radius or diameter column
     bool idsAreRowNumbers = false; // the file had no id column
+    // The file named no columns and the reader assumed them (an old-style LAMMPS dump read as
+    // LAMMPS' atom style: id type xs ys zs, then ix iy iz).
+    bool columnsAssumed = false;
     SimulationBox box;
     std::vector<AttributeColumn> attributes;
 
@@ -74,7 +77,7 @@ class Frame {
   private:
     // Dense ids (the common case): m_rowById[id - m_idBase]; sparse ids: rows sorted by id.
     std::int64_t m_idBase = 0;
-    std::vector<std::uint32_t> m_rowById;      // dense map, kNoRow where absent
+    std::vector<std::uint32_t> m_rowById;        // dense map, kNoRow where absent
     std::vector<std::uint32_t> m_rowsSortedById; // sparse map
     std::array<float, 3> m_centreMin{0, 0, 0};
     std::array<float, 3> m_centreMax{0, 0, 0};

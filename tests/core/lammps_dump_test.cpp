@@ -1,7 +1,7 @@
+#include "core/data/dataset.hpp"
 #include "core/io/frame_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/lammps_dump.hpp"
-#include "core/data/dataset.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -15,19 +15,19 @@ using faultline::test::TempDir;
 
 namespace {
 
-std::string header(long atoms, const std::string& columns, const std::string& box = "pp pp pp\n0 10\n0 20\n0 30\n",
-                   long timestep = 100) {
+std::string header(long atoms, const std::string& columns,
+                   const std::string& box = "pp pp pp\n0 10\n0 20\n0 30\n", long timestep = 100) {
     return "ITEM: TIMESTEP\n" + std::to_string(timestep) + "\nITEM: NUMBER OF ATOMS\n" +
            std::to_string(atoms) + "\nITEM: BOX BOUNDS " + box + "ITEM: ATOMS " + columns + "\n";
 }
 
 Frame parse(const std::string& text) { return parseLammpsDumpFrame("t.dump", text); }
 
-
 } // namespace
 
 TEST(LammpsDump, ColumnsInAnyOrderWithRadius) {
-    Frame f = parse(header(2, "x radius id type z y c_strain") + "1 0.5 7 1 3 2 0.25\n4 0.75 3 2 6 5 1e-3\n");
+    Frame f = parse(header(2, "x radius id type z y c_strain") +
+                    "1 0.5 7 1 3 2 0.25\n4 0.75 3 2 6 5 1e-3\n");
     ASSERT_EQ(f.size(), 2u);
     EXPECT_EQ(f.timestep, 100);
     EXPECT_EQ(f.ids[0], 7);
@@ -104,7 +104,8 @@ TEST(LammpsDump, TriclinicBoundsAndScaledPositions) {
 }
 
 TEST(LammpsDump, UnitsTimeItemsAndWindowsLineEnds) {
-    std::string text = "ITEM: UNITS\r\nlj\r\nITEM: TIME\r\n0.5\r\n" + header(1, "id x y z radius") + "1 1 2 3 0.5\r\n";
+    std::string text = "ITEM: UNITS\r\nlj\r\nITEM: TIME\r\n0.5\r\n" + header(1, "id x y z radius") +
+                       "1 1 2 3 0.5\r\n";
     Frame f = parse(text);
     EXPECT_EQ(f.size(), 1u);
     EXPECT_FLOAT_EQ(f.radius[0], 0.5f);
@@ -115,7 +116,8 @@ TEST(LammpsDump, ErrorsNameLineAndWhat) {
     // Header is 9 lines, rows start at line 10.
     EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 zz 0\n"); }),
               "t.dump:11: column 3 ('y'): expected a number, found 'zz'");
-    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0\n"); }), "t.dump:11: expected 4 values, found 3");
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0\n"); }),
+              "t.dump:11: expected 4 values, found 3");
     EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0 0 9\n"); }),
               "t.dump:11: expected 4 values, found more: '9'");
     EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 nan 0 0\n"); }),
@@ -124,16 +126,22 @@ TEST(LammpsDump, ErrorsNameLineAndWhat) {
               "t.dump:11: column 'x' must be finite, found 'inf'");
     EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n1.5 0 0 0\n"); }),
               "t.dump:11: column 1 ('id'): expected an integer, found '1.5'");
-    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n1 0 0 0\n"); }), "t.dump:1: particle id 1 appears twice");
-    EXPECT_NE(inputErrorOf([&] { parse(header(1, "id a b c") + "1 0 0 0\n"); }).find("no position columns"),
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n1 0 0 0\n"); }),
+              "t.dump:1: particle id 1 appears twice");
+    EXPECT_NE(inputErrorOf([&] {
+                  parse(header(1, "id a b c") + "1 0 0 0\n");
+              }).find("no position columns"),
               std::string::npos);
     EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\nabc\n"); }),
               "t.dump:2: expected the timestep (an integer), found 'abc'");
     EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n-4\n"); }),
               "t.dump:4: expected the number of atoms (an integer >= 0), found '-4'");
-    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: BOGUS\n"); }), "t.dump:3: unknown section 'ITEM: BOGUS'");
-    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\n"); }), "t.dump:3: file ends where an ITEM: line was expected");
-    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0 0\n3 0 0 0\n"); }), "t.dump:12: more rows than the 2 announced");
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\nITEM: BOGUS\n"); }),
+              "t.dump:3: unknown section 'ITEM: BOGUS'");
+    EXPECT_EQ(inputErrorOf([&] { parse("ITEM: TIMESTEP\n1\n"); }),
+              "t.dump:3: file ends where an ITEM: line was expected");
+    EXPECT_EQ(inputErrorOf([&] { parse(h + "1 0 0 0\n2 0 0 0\n3 0 0 0\n"); }),
+              "t.dump:12: more rows than the 2 announced");
 }
 
 TEST(LammpsDump, HugeAtomCountRefusedBeforeAllocating) {
@@ -161,8 +169,8 @@ TEST(LammpsDump, MultiFrameIndexAndLazyLoad) {
     TempDir dir;
     std::string text;
     for (int t = 0; t < 3; ++t)
-        text += header(2, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", t * 10) + "1 " + std::to_string(t) +
-                " 0 0\n2 0 0 0\n\n";
+        text += header(2, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", t * 10) + "1 " +
+                std::to_string(t) + " 0 0\n2 0 0 0\n\n";
     const std::string p = dir.write("multi.lammpstrj", text);
     auto ds = Dataset::open({p});
     ASSERT_EQ(ds->frameCount(), 3u);
@@ -174,10 +182,13 @@ TEST(LammpsDump, MultiFrameIndexAndLazyLoad) {
 
 TEST(LammpsDump, TruncatedMultiFrameNamesTheFrame) {
     TempDir dir;
-    const std::string p = dir.write("cut.dump", header(2, "id x y z") + "1 0 0 0\n2 0 0 0\n" +
-                                                    header(3, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", 200) + "1 0 0 0\n");
+    const std::string p = dir.write(
+        "cut.dump", header(2, "id x y z") + "1 0 0 0\n2 0 0 0\n" +
+                        header(3, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", 200) + "1 0 0 0\n");
     const std::string msg = inputErrorOf([&] { Dataset::open({p}); });
-    EXPECT_NE(msg.find(":22: file ends after 1 of 3 particle rows of timestep 200"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(":22: file ends after 1 of 3 particle rows of timestep 200"),
+              std::string::npos)
+        << msg;
 }
 
 TEST(LammpsDump, GzipReadThroughZlib) {
@@ -221,8 +232,10 @@ TEST(LammpsDump, PerProcessorPiecesMerge) {
     TempDir dir;
     const std::string box = "pp pp pp\n0 1\n0 1\n0 1\n";
     for (int t : {0, 5}) {
-        dir.write("d." + std::to_string(t) + ".0", header(2, "id x y z c", box, t) + "1 0 0 0 1\n2 0 0 0 2\n");
-        dir.write("d." + std::to_string(t) + ".1", header(1, "id x y z c", box, t) + "3 0 0 0 2.5\n");
+        dir.write("d." + std::to_string(t) + ".0",
+                  header(2, "id x y z c", box, t) + "1 0 0 0 1\n2 0 0 0 2\n");
+        dir.write("d." + std::to_string(t) + ".1",
+                  header(1, "id x y z c", box, t) + "3 0 0 0 2.5\n");
     }
     auto ds = Dataset::open({dir.file("d.*.%")});
     ASSERT_EQ(ds->frameCount(), 2u);
@@ -244,7 +257,8 @@ TEST(LammpsDump, FixtureImageVfMultiframe) {
         EXPECT_EQ(f->size(), 7u);
         EXPECT_TRUE(f->radiusIsDefault);
         EXPECT_EQ(f->attributeNames(),
-                  (std::vector<std::string>{"mol", "type", "q", "ix", "iy", "iz", "vx", "vy", "vz", "fx", "fy", "fz"}));
+                  (std::vector<std::string>{"mol", "type", "q", "ix", "iy", "iz", "vx", "vy", "vz",
+                                            "fx", "fy", "fz"}));
     }
 }
 
@@ -259,4 +273,51 @@ TEST(LammpsDump, FixtureLiggghtsPackingDetectedByContent) {
     auto [mn, mx] = std::minmax_element(f->radius.begin(), f->radius.end());
     EXPECT_NEAR(*mn, 0.001, 1e-6);
     EXPECT_NEAR(*mx, 0.021, 1e-6);
+}
+
+// Old-style dumps (LAMMPS before 2009; pizza.py reads them): "ITEM: BOX BOUNDS" without flags and
+// "ITEM: ATOMS" naming no columns. Rows are LAMMPS' atom style, id type xs ys zs, with image
+// flags ix iy iz when the run asked for them; the frame says the names were assumed. The file
+// follows that documented layout (tests/data/MANIFEST.md).
+TEST(LammpsDump, OldStyleDumpWithoutColumnNamesIsReadAsAtomStyle) {
+    auto ds = Dataset::open({faultline::test::dataFile("lammps_oldstyle_atom_scaled.dump")});
+    ASSERT_EQ(ds->frameCount(), 2u);
+    EXPECT_EQ(ds->location(1).timestep, 1000);
+    const auto a = ds->frame(0);
+    ASSERT_EQ(a->size(), 4u);
+    EXPECT_TRUE(a->columnsAssumed);
+    EXPECT_TRUE(a->radiusIsDefault);
+    EXPECT_EQ(a->attributeNames(), (std::vector<std::string>{"type"}));
+    EXPECT_TRUE(a->box.known);
+    EXPECT_EQ(a->box.periodic, (std::array<bool, 3>{false, false, false}));
+    // Scaled by the box [0 20] x [-5 5] x [0 10].
+    EXPECT_EQ(a->x[0], 5.0f);
+    EXPECT_EQ(a->y[0], 0.0f);
+    EXPECT_EQ(a->z[0], 1.0f);
+    EXPECT_EQ(a->x[3], 15.0f);
+    EXPECT_EQ(a->y[3], 2.5f);
+    EXPECT_EQ(a->z[3], 9.0f);
+    EXPECT_EQ(a->ids, (std::vector<std::int64_t>{1, 2, 3, 4}));
+    const auto b = ds->frame(1);
+    EXPECT_TRUE(b->columnsAssumed);
+    EXPECT_EQ(b->attributeNames(), (std::vector<std::string>{"type", "ix", "iy", "iz"}));
+    EXPECT_EQ(b->x[1], 1.0f);
+    EXPECT_EQ(b->z[3], 9.5f);
+    EXPECT_EQ(b->attribute("iy")->ints[2], -1);
+    // Rows of another width are not guessed at.
+    const std::string old =
+        "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS\n0 1\n0 1\n0 1\n"
+        "ITEM: ATOMS\n";
+    EXPECT_EQ(inputErrorOf([&] { parse(old + "1 1 0.5 0.5\n"); }),
+              "t.dump:10: 'ITEM: ATOMS' names no columns, so this is read as an old-style dump "
+              "(LAMMPS' atom style): expected rows of 5 values (id type xs ys zs) or 8 (id type "
+              "xs ys zs ix iy iz), found 4");
+    EXPECT_EQ(inputErrorOf([&] { parse(old + "1 1 0.5 0.5 0.5 0 0\n"); }).substr(0, 8), "t.dump:1");
+    EXPECT_EQ(parse(old + "7 1 0.5 0.5 0.5\n").ids.front(), 7);
+    // Scaled positions need the box: an old-style frame without one says so.
+    EXPECT_NE(
+        inputErrorOf([&] {
+            parse("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: ATOMS\n1 1 0.5 0.5 0.5\n");
+        }).find("scaled positions need 'ITEM: BOX BOUNDS'"),
+        std::string::npos);
 }
