@@ -1,6 +1,7 @@
 #include "core/io/frame_source.hpp"
 
 #include "core/io/byte_source.hpp"
+#include "core/io/extxyz.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/lammps_dump.hpp"
 #include "core/io/table_reader.hpp"
@@ -23,6 +24,8 @@ std::string_view formatName(FileFormat format) {
         return "VTK collection (.pvd)";
     case FileFormat::Table:
         return "CSV / text table";
+    case FileFormat::Xyz:
+        return "XYZ / extended XYZ";
     }
     return "?";
 }
@@ -41,11 +44,13 @@ FileFormat detectFormat(const std::string& path) {
         return FileFormat::VtkCollection;
     if (looksLikeVtkXml(head))
         return FileFormat::VtkXml;
+    if (looksLikeXyz(head))
+        return FileFormat::Xyz;
     // A table needs a text header naming x, y and z: parseTable checks that precisely.
     for (unsigned char c : head)
         if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t'))
             throw InputError(path, "binary data of no known format (expected a LAMMPS dump, "
-                                   "VTK legacy or XML file, or a CSV table)");
+                                   "VTK legacy or XML file, (extended) XYZ, or a CSV table)");
     return FileFormat::Table;
 }
 
@@ -55,6 +60,17 @@ std::vector<FrameLocation> indexDataFile(const std::string& path) {
     switch (format) {
     case FileFormat::LammpsDump:
         for (const auto& f : indexLammpsDump(path)) {
+            FrameLocation loc;
+            loc.format = format;
+            loc.timestep = f.timestep;
+            loc.time = static_cast<double>(f.timestep);
+            loc.particleCount = f.atoms;
+            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
+            frames.push_back(std::move(loc));
+        }
+        break;
+    case FileFormat::Xyz:
+        for (const auto& f : indexXyz(path)) {
             FrameLocation loc;
             loc.format = format;
             loc.timestep = f.timestep;
@@ -74,7 +90,8 @@ std::vector<FrameLocation> indexDataFile(const std::string& path) {
                 file = folder / file;
             FrameLocation loc;
             loc.format = detectFormat(file.string());
-            if (loc.format == FileFormat::VtkCollection || loc.format == FileFormat::LammpsDump)
+            if (loc.format == FileFormat::VtkCollection || loc.format == FileFormat::LammpsDump ||
+                loc.format == FileFormat::Xyz)
                 throw InputError(path, "collection entry '" + entry.file +
                                            "' must be a single-frame VTK file");
             loc.timestep = index++;
@@ -108,6 +125,8 @@ Frame loadPiece(FileFormat format, const FramePiece& piece) {
         return parseVtkXml(piece.path, bytes);
     case FileFormat::Table:
         return parseTable(piece.path, bytes);
+    case FileFormat::Xyz:
+        return parseXyzFrame(piece.path, bytes, piece.firstLine);
     case FileFormat::VtkCollection:
         break;
     }
@@ -141,7 +160,9 @@ Frame mergeFrames(std::vector<Frame>&& pieces, const std::string& pathForErrors)
                                                 std::to_string(f.timestep) + ")");
         if (f.attributes.size() != out.attributes.size())
             throw InputError(pathForErrors, "per-processor pieces have different columns");
-        auto append = [](auto& dst, const auto& src) { dst.insert(dst.end(), src.begin(), src.end()); };
+        auto append = [](auto& dst, const auto& src) {
+            dst.insert(dst.end(), src.begin(), src.end());
+        };
         append(out.ids, f.ids);
         append(out.x, f.x);
         append(out.y, f.y);
@@ -151,8 +172,8 @@ Frame mergeFrames(std::vector<Frame>&& pieces, const std::string& pathForErrors)
             AttributeColumn& dst = out.attributes[c];
             const AttributeColumn* src = f.attribute(dst.name);
             if (!src)
-                throw InputError(pathForErrors, "piece " + std::to_string(p) + " lacks column '" +
-                                                    dst.name + "'");
+                throw InputError(pathForErrors,
+                                 "piece " + std::to_string(p) + " lacks column '" + dst.name + "'");
             if (dst.type == src->type) {
                 append(dst.floats, src->floats);
                 append(dst.ints, src->ints);

@@ -11,7 +11,7 @@
 
 namespace faultline::core {
 
-enum class FileFormat { LammpsDump, VtkLegacy, VtkXml, VtkCollection, Table };
+enum class FileFormat { LammpsDump, VtkLegacy, VtkXml, VtkCollection, Table, Xyz };
 
 std::string_view formatName(FileFormat format);
 
@@ -30,9 +30,9 @@ struct FramePiece {
 struct FrameLocation {
     FileFormat format = FileFormat::Table;
     std::int64_t timestep = 0;
-    double time = 0.0;                // from a .pvd collection, else the timestep
-    std::uint64_t particleCount = 0;  // when the index knows it (LAMMPS), else 0
-    std::vector<FramePiece> pieces;   // several for LAMMPS per-processor files
+    double time = 0.0;               // from a .pvd collection, else the timestep
+    std::uint64_t particleCount = 0; // when the index knows it (LAMMPS), else 0
+    std::vector<FramePiece> pieces;  // several for LAMMPS per-processor files
 };
 
 // Every frame one file holds (a .pvd collection expands to the files it lists).
