@@ -4,6 +4,7 @@
 #include "core/io/extxyz.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/lammps_dump.hpp"
+#include "core/io/mercury_data.hpp"
 #include "core/io/table_reader.hpp"
 #include "core/io/vtk_legacy.hpp"
 #include "core/io/vtk_xml.hpp"
@@ -26,6 +27,8 @@ std::string_view formatName(FileFormat format) {
         return "CSV / text table";
     case FileFormat::Xyz:
         return "XYZ / extended XYZ";
+    case FileFormat::MercuryData:
+        return "MercuryDPM .data";
     }
     return "?";
 }
@@ -46,11 +49,14 @@ FileFormat detectFormat(const std::string& path) {
         return FileFormat::VtkXml;
     if (looksLikeXyz(head))
         return FileFormat::Xyz;
+    if (looksLikeMercuryData(head))
+        return FileFormat::MercuryData;
     // A table needs a text header naming x, y and z: parseTable checks that precisely.
     for (unsigned char c : head)
         if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t'))
-            throw InputError(path, "binary data of no known format (expected a LAMMPS dump, "
-                                   "VTK legacy or XML file, (extended) XYZ, or a CSV table)");
+            throw InputError(
+                path, "binary data of no known format (expected a LAMMPS dump, "
+                      "VTK legacy or XML file, (extended) XYZ, MercuryDPM .data, or a CSV table)");
     return FileFormat::Table;
 }
 
@@ -80,6 +86,19 @@ std::vector<FrameLocation> indexDataFile(const std::string& path) {
             frames.push_back(std::move(loc));
         }
         break;
+    case FileFormat::MercuryData: {
+        std::int64_t step = 0;
+        for (const auto& f : indexMercuryData(path)) {
+            FrameLocation loc;
+            loc.format = format;
+            loc.timestep = step++;
+            loc.time = f.time;
+            loc.particleCount = f.particles;
+            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
+            frames.push_back(std::move(loc));
+        }
+        break;
+    }
     case FileFormat::VtkCollection: {
         const auto folder = std::filesystem::path(path).parent_path();
         const std::string bytes = readFileBytes(path);
@@ -91,7 +110,7 @@ std::vector<FrameLocation> indexDataFile(const std::string& path) {
             FrameLocation loc;
             loc.format = detectFormat(file.string());
             if (loc.format == FileFormat::VtkCollection || loc.format == FileFormat::LammpsDump ||
-                loc.format == FileFormat::Xyz)
+                loc.format == FileFormat::Xyz || loc.format == FileFormat::MercuryData)
                 throw InputError(path, "collection entry '" + entry.file +
                                            "' must be a single-frame VTK file");
             loc.timestep = index++;
@@ -127,6 +146,8 @@ Frame loadPiece(FileFormat format, const FramePiece& piece) {
         return parseTable(piece.path, bytes);
     case FileFormat::Xyz:
         return parseXyzFrame(piece.path, bytes, piece.firstLine);
+    case FileFormat::MercuryData:
+        return parseMercuryDataFrame(piece.path, bytes, piece.firstLine);
     case FileFormat::VtkCollection:
         break;
     }

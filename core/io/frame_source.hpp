@@ -11,7 +11,7 @@
 
 namespace faultline::core {
 
-enum class FileFormat { LammpsDump, VtkLegacy, VtkXml, VtkCollection, Table, Xyz };
+enum class FileFormat { LammpsDump, VtkLegacy, VtkXml, VtkCollection, Table, Xyz, MercuryData };
 
 std::string_view formatName(FileFormat format);
 
