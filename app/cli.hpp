@@ -20,6 +20,10 @@ int runReplay(const Args& args);
 int runRender(const Args& args);
 int runMerge(const Args& args);
 
+// Replaces this process with faultline-app (beside this executable) on the same arguments;
+// returns only when that fails, with the exit code to use.
+int runFullApp(int argc, char** argv);
+
 // Adds the ops that need layers above core (render) to a session.
 void registerAppOps(core::Session& session);
 void printUsage();

@@ -18,12 +18,14 @@ namespace faultline::app {
 int runRender(const Args& args) {
 #if !FAULTLINE_WITH_GUI
     (void)args;
-    std::fprintf(stderr, "faultline render: this build has no renderer (FAULTLINE_BUILD_GUI=OFF)\n");
+    std::fprintf(stderr,
+                 "faultline render: this build has no renderer (FAULTLINE_BUILD_GUI=OFF)\n");
     return 2;
 #else
-    const char* usage = "usage: faultline render SESSION.faultline.json|JOURNAL.jsonl --out FIGURE.png\n"
-                        "         [--view NAME] [--frame N] [--size WxH] [--transparent] [--data PATH...]\n"
-                        "Without a display (DISPLAY unset) OpenGL comes from EGL: no X server is needed.";
+    const char* usage =
+        "usage: faultline render SESSION.faultline.json|JOURNAL.jsonl --out FIGURE.png\n"
+        "         [--view NAME] [--frame N] [--size WxH] [--transparent] [--data PATH...]\n"
+        "Without a display (DISPLAY unset) OpenGL comes from EGL: no X server is needed.";
     std::string input;
     std::vector<std::string> data;
     ui::FigureRequest request;
@@ -43,7 +45,8 @@ int runRender(const Args& args) {
         else if (a == "--size") {
             const std::string s = value();
             if (std::sscanf(s.c_str(), "%dx%d", &request.width, &request.height) != 2) {
-                std::fprintf(stderr, "faultline render: --size takes WIDTHxHEIGHT, found '%s'\n", s.c_str());
+                std::fprintf(stderr, "faultline render: --size takes WIDTHxHEIGHT, found '%s'\n",
+                             s.c_str());
                 return 2;
             }
         } else if (a == "--transparent")
@@ -54,7 +57,8 @@ int runRender(const Args& args) {
         } else if (input.empty() && a.rfind("--", 0) != 0)
             input = a;
         else {
-            std::fprintf(stderr, "faultline render: unexpected argument '%s'\n%s\n", a.c_str(), usage);
+            std::fprintf(stderr, "faultline render: unexpected argument '%s'\n%s\n", a.c_str(),
+                         usage);
             return 2;
         }
     }
@@ -68,7 +72,9 @@ int runRender(const Args& args) {
         if (input.size() > 6 && input.compare(input.size() - 6, 6, ".jsonl") == 0) {
             core::ReplayOptions options;
             options.data = data;
-            options.outDir = std::filesystem::absolute(std::filesystem::path(request.path)).parent_path().string();
+            options.outDir = std::filesystem::absolute(std::filesystem::path(request.path))
+                                 .parent_path()
+                                 .string();
             const auto report = core::replayJournal(input, options, session);
             for (const auto& f : report.failures)
                 std::fprintf(stderr, "%s:%zu: %s\n", input.c_str(), f.line, f.message.c_str());

@@ -2,8 +2,8 @@
 // PNG offscreen until `faultline render SESSION_OR_JOURNAL` lands with sessions.
 #include "app/cli.hpp"
 
-#include "core/io/input_error.hpp"
 #include "core/data/dataset.hpp"
+#include "core/io/input_error.hpp"
 #include "core/selection/cutting_box.hpp"
 
 #if FAULTLINE_WITH_GUI
@@ -19,8 +19,8 @@ namespace faultline::app {
 
 namespace {
 
-[[maybe_unused]] std::vector<double> parseNumbers(const std::string& text, char sep, std::size_t count,
-                                 const std::string& option) {
+[[maybe_unused]] std::vector<double> parseNumbers(const std::string& text, char sep,
+                                                  std::size_t count, const std::string& option) {
     std::vector<double> out;
     std::stringstream ss(text);
     std::string item;

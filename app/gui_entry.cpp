@@ -40,7 +40,8 @@ int runGui(const Args& argsIn) {
         if (argsIn[k] == "--screenshot" && k + 1 < argsIn.size())
             screenshot = argsIn[++k];
         else if (argsIn[k] == "--size" && k + 1 < argsIn.size() &&
-                 std::sscanf(argsIn[++k].c_str(), "%dx%d", &width, &height) == 2 && width > 0 && height > 0)
+                 std::sscanf(argsIn[++k].c_str(), "%dx%d", &width, &height) == 2 && width > 0 &&
+                 height > 0)
             continue;
         else
             args.push_back(argsIn[k]);
@@ -88,7 +89,8 @@ int runGui(const Args& argsIn) {
         int quiet = 0;
         for (int k = 0; k < 200000 && quiet < 10 && gui.step(true); ++k) {
             auto& wb = gui.workbench();
-            const bool busy = wb.jobs().busy() || wb.frames().loading() || (!wb.dataset() && k < 2000);
+            const bool busy =
+                wb.jobs().busy() || wb.frames().loading() || (!wb.dataset() && k < 2000);
             quiet = busy ? 0 : quiet + 1;
         }
         gui.workbench().requestScreenshot(screenshot); // taken before the next swap
