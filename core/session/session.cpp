@@ -78,9 +78,13 @@ Json Session::run(const Json& cmd, bool& changesState) {
     if (it == m_ops.end())
         throw CommandError("unknown op \"" + op + "\"");
     changesState = it->second.changesState;
+    m_markSavedAfterOp = false;
     Json inverse = it->second.handler(*this, cmd);
     if (changesState)
         ++m_version;
+    if (m_markSavedAfterOp)
+        m_savedVersion = m_version;
+    m_markSavedAfterOp = false;
     return inverse;
 }
 

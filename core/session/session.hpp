@@ -32,6 +32,12 @@ class Session {
 
     const SessionState& state() const { return m_state; }
     std::uint64_t version() const { return m_version; } // grows with every change
+    // Changed since the state was last saved (session.save) or opened (session.open); a new
+    // session is unmodified. markSaved() makes the current state the saved one.
+    bool modified() const { return m_version != m_savedVersion; }
+    void markSaved() { m_savedVersion = m_version; }
+    // For session.open's handler: the state it installs counts as saved once the op completes.
+    void markSavedAfterThisOp() { m_markSavedAfterOp = true; }
 
     // Runs one command (including {"op":"undo"} and {"op":"redo"}) and records it in the journal.
     void apply(const Json& cmd);
@@ -141,7 +147,9 @@ class Session {
     SessionState m_state;
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
-    std::vector<Json> m_undo;          // inverses, most recent last
+    std::vector<Json> m_undo;         // inverses, most recent last
+    std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
+    bool m_markSavedAfterOp = false;
     std::vector<Json> m_redo;          // commands that redo, most recent last
     void journalLine(const Json& cmd); // after any reserved places
     void flushJournal();               // the lines no open place holds back

@@ -75,6 +75,7 @@ void registerOutputOps(OpTable& ops) {
         } catch (const std::exception& e) {
             throw CommandError(std::string("session.save: ") + e.what());
         }
+        s.markSaved();
         return nullptr;
     });
     addAction(ops, "export.csv", [](Session& s, const Json& cmd) -> Json {

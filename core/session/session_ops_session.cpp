@@ -57,12 +57,15 @@ void registerSessionOps(OpTable& ops) {
                 p = s.inputPath(p);
             next.dataPaths = std::move(data);
         }
-        return replaceWith(s, std::move(next), "session.open");
+        Json inverse = replaceWith(s, std::move(next), "session.open");
+        s.markSavedAfterThisOp(); // what is on disk
+        return inverse;
     });
     addStateOp(ops, "session.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"state"});
         const Json& doc = args::require(cmd, "state");
-        SessionState next = asCommand("session.restore", [&] { return sessionFromJson(doc, "", "session.restore"); });
+        SessionState next = asCommand("session.restore",
+                                      [&] { return sessionFromJson(doc, "", "session.restore"); });
         return replaceWith(s, std::move(next), "session.restore");
     });
 }

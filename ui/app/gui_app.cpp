@@ -3,7 +3,9 @@
 #include "ui/app/theme.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 
+// epoxy must come before any GL header (GLFW includes GL/gl.h).
 #include <epoxy/gl.h>
+
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -20,7 +22,8 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
     if (!glfwInit()) {
         const char* why = nullptr;
         glfwGetError(&why);
-        throw std::runtime_error(std::string("cannot open a window: ") + (why ? why : "GLFW failed to start"));
+        throw std::runtime_error(std::string("cannot open a window: ") +
+                                 (why ? why : "GLFW failed to start"));
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -28,17 +31,20 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
     glfwWindowHint(GLFW_MAXIMIZED, options.maximize ? GLFW_TRUE : GLFW_FALSE);
-    m_window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    m_window =
+        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
     if (!m_window) {
         // Some drivers offer 4.1 at most (macOS-like stacks); the workbench needs no more.
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
-        m_window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+        m_window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr,
+                                    nullptr);
     }
     if (!m_window) {
         const char* why = nullptr;
         glfwGetError(&why);
         glfwTerminate();
-        throw std::runtime_error(std::string("cannot create an OpenGL 4 window: ") + (why ? why : "unknown reason"));
+        throw std::runtime_error(std::string("cannot create an OpenGL 4 window: ") +
+                                 (why ? why : "unknown reason"));
     }
     glfwMakeContextCurrent(m_window);
     glfwSwapInterval(1);
@@ -57,7 +63,8 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
     float sx = 1, sy = 1;
     glfwGetWindowContentScale(m_window, &sx, &sy);
     // FAULTLINE_UI_SCALE overrides the monitor's content scale (X11 without Xft.dpi, tests).
-    if (const char* env = std::getenv("FAULTLINE_UI_SCALE"); env && std::atof(env) >= 0.5 && std::atof(env) <= 4)
+    if (const char* env = std::getenv("FAULTLINE_UI_SCALE");
+        env && std::atof(env) >= 0.5 && std::atof(env) <= 4)
         sx = static_cast<float>(std::atof(env));
     m_workbench = std::make_unique<Workbench>(session, std::move(options.workbench));
     setScale(std::max(1.0f, std::round(sx * 4) / 4));
@@ -118,7 +125,8 @@ void GuiApp::dropFiles(const std::vector<std::string>& paths) {
 }
 
 bool GuiApp::animating() const {
-    return m_workbench->playback().playing || m_workbench->jobs().busy() || m_workbench->frames().loading().has_value();
+    return m_workbench->playback().playing || m_workbench->jobs().busy() ||
+           m_workbench->frames().loading().has_value();
 }
 
 bool GuiApp::step(bool wait) {
@@ -154,8 +162,18 @@ bool GuiApp::step(bool wait) {
             m_workbench->error("Cannot write the screenshot " + *path);
     }
     glfwSwapBuffers(m_window);
+    // The window's close button asks like Quit does when work is unsaved.
+    if (glfwWindowShouldClose(m_window) && !m_workbench->quitRequested()) {
+        glfwSetWindowShouldClose(m_window, GLFW_FALSE);
+        m_workbench->requestQuit();
+    }
     if (m_workbench->quitRequested())
         glfwSetWindowShouldClose(m_window, GLFW_TRUE);
+    const std::string title = m_workbench->windowTitle();
+    if (title != m_title) {
+        glfwSetWindowTitle(m_window, title.c_str());
+        m_title = title;
+    }
     return !glfwWindowShouldClose(m_window);
 }
 
@@ -177,7 +195,8 @@ bool GuiApp::saveScreenshot(const std::string& path) {
     std::vector<unsigned char> flipped(pixels.size());
     const std::size_t row = static_cast<std::size_t>(w) * 4;
     for (int y = 0; y < h; ++y)
-        std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row, flipped.data() + static_cast<std::size_t>(y) * row);
+        std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row,
+                    flipped.data() + static_cast<std::size_t>(y) * row);
     for (std::size_t k = 3; k < flipped.size(); k += 4)
         flipped[k] = 255;
     return stbi_write_png(path.c_str(), w, h, 4, flipped.data(), static_cast<int>(row)) != 0;

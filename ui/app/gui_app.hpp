@@ -53,6 +53,7 @@ class GuiApp {
     bool animating() const;
 
     GLFWwindow* m_window = nullptr;
+    std::string m_title; // the window title last set
     std::unique_ptr<Workbench> m_workbench;
     std::unique_ptr<ViewRenderer> m_renderer; // null when this OpenGL cannot draw spheres
     std::function<void(ImGuiIO&)> m_inputHook;

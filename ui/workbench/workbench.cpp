@@ -171,6 +171,7 @@ void Workbench::frame(double now) {
     drawHelp();
     drawPrompts();
     drawMovie();
+    drawUnsavedPrompt();
 
     applyPending();
     syncWithSession();

@@ -4,21 +4,21 @@
 // while a drag is under way, previews that the views show at once without a command.
 #pragma once
 
+#include "core/faults/candidates.hpp"
+#include "core/model/difference_column_cache.hpp"
 #include "core/session/autosave.hpp"
 #include "core/session/session.hpp"
 #include "ui/dock/dock_layout.hpp"
 #include "ui/dock/dock_space.hpp"
+#include "ui/render/session_figure.hpp"
+#include "ui/viewport/category_colors.hpp"
+#include "ui/viewport/view_renderer.hpp"
 #include "ui/widgets/file_dialog.hpp"
+#include "ui/workbench/frame_columns.hpp"
 #include "ui/workbench/frame_store.hpp"
 #include "ui/workbench/item_registry.hpp"
 #include "ui/workbench/jobs.hpp"
-#include "ui/viewport/view_renderer.hpp"
-#include "ui/workbench/frame_columns.hpp"
-#include "ui/viewport/category_colors.hpp"
 #include "ui/workbench/surface_store.hpp"
-#include "ui/render/session_figure.hpp"
-#include "core/faults/candidates.hpp"
-#include "core/model/difference_column_cache.hpp"
 
 #include <fstream>
 #include <functional>
@@ -74,7 +74,7 @@ struct ViewDisplay {
     double sceneRadius = 1; // half the bounds' diagonal
     std::shared_ptr<const core::VisibilityResult> visibility;
     std::uint64_t visibilityKey = 0;
-    core::CameraState camera;       // the session's, previewed, fitted when not set yet
+    core::CameraState camera; // the session's, previewed, fitted when not set yet
     std::array<double, 2> colorRange{0, 1};
     // The column shown instead of the variable's (difference or categories; null: the
     // variable's own, or one colour while a reference frame loads) and what the legend calls it.
@@ -129,10 +129,13 @@ class Workbench {
     std::size_t displayFrame() const; // the current frame, or the one playing
     // A view's camera turned to show [lo, hi] whole in its image, beside its legend.
     core::CameraState fitCamera(const core::ViewState& view, core::CameraState camera,
-                                const std::array<double, 3>& lo, const std::array<double, 3>& hi) const;
+                                const std::array<double, 3>& lo,
+                                const std::array<double, 3>& hi) const;
     // Boxes and thresholds as shown (the session's with a drag's preview applied).
     const std::vector<core::CuttingBox>& displayBoxes() const { return m_displayBoxes; }
-    const std::vector<core::VariableThreshold>& displayThresholds() const { return m_displayThresholds; }
+    const std::vector<core::VariableThreshold>& displayThresholds() const {
+        return m_displayThresholds;
+    }
     FrameStore& frames() { return m_frames; }
     ColumnCatalog& columns() { return m_columns; }
     JobRunner& jobs() { return m_jobs; }
@@ -214,7 +217,8 @@ class Workbench {
     std::pair<std::size_t, std::size_t> movieProgress() const; // done, total
     void cancelMovie();
     void saveSession(); // to the session's file, else asks for one
-    void saveSessionAs(const std::string& path);
+    // `then` runs once the session is written.
+    void saveSessionAs(const std::string& path, std::function<void()> then = {});
     const std::string& sessionPath() const { return m_sessionPath; }
     const std::vector<std::string>& recentFiles() const { return m_recent; }
     // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
@@ -225,7 +229,18 @@ class Workbench {
     const std::string& journalPath() const { return m_journalPath; }
     FileDialog& fileDialog() { return m_dialog; }
     bool quitRequested() const { return m_quit; }
-    void requestQuit() { m_quit = true; }
+    // Quit (menu, Ctrl+Q, the window's close button): asks Save / Discard / Cancel first when
+    // the session has unsaved changes; quitRequested() turns true once the user chose.
+    void requestQuit();
+    // ---- unsaved work (workbench_unsaved.cpp) ----
+    bool hasUnsavedChanges() const { return m_session.modified(); }
+    // Runs `proceed` at once when nothing is unsaved; else asks first ("<action>: save the
+    // changes?" Save / Discard / Cancel): Save writes the session (asking where when it has no
+    // file yet) and proceeds once it is written; Discard proceeds; Cancel forgets it.
+    void guardUnsaved(std::string action, std::function<void()> proceed);
+    bool unsavedPromptOpen() const { return m_unsavedPrompt.has_value(); }
+    // "Faultline - name" with a "*" while there are unsaved changes.
+    std::string windowTitle() const;
     void showHelp() { m_showHelp = true; }
     // Crash recovery: the session autosaved by a run that did not exit cleanly, offered once at
     // start (recover or discard); until decided, autosave keeps that file.
@@ -251,6 +266,7 @@ class Workbench {
     void drawHelp();
     void drawPrompts();
     void drawMovie(); // the options window and the running export's progress
+    void drawUnsavedPrompt();
     void resolveColors(const core::ViewState& view, ViewDisplay& d, std::size_t channel);
     const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d);
     void handleShortcuts();
@@ -275,7 +291,8 @@ class Workbench {
         CategoryColoring coloring;
     };
     std::vector<FaultColoringEntry> m_faultColorings;
-    std::uint64_t m_faultsKey = 0, m_faultsKeyVersion = ~0ull; // faultColoringKey, at a session version
+    std::uint64_t m_faultsKey = 0,
+                  m_faultsKeyVersion = ~0ull; // faultColoringKey, at a session version
     ItemRegistry m_items;
     DockLayout m_layout;
     core::Json m_adoptedLayout; // the session's layout as last adopted
@@ -325,6 +342,12 @@ class Workbench {
     bool m_showHelp = false;
     bool m_showAbout = false;
     bool m_showMovieOptions = false;
+    struct UnsavedPrompt {
+        std::string action;
+        std::function<void()> proceed;
+    };
+    std::optional<UnsavedPrompt> m_unsavedPrompt;
+    std::function<void()> m_afterSaveAs; // the prompt's Save, waiting for a Save as
     std::unique_ptr<FrameSequence> m_movie;
     core::Json m_movieCommand;
     std::shared_ptr<void> m_moviePlace; // its journal place (JournalPlace)

@@ -78,15 +78,19 @@ void Workbench::handleShortcuts() {
     else if (ctrl && pressed(GLFW_KEY_Y))
         emit({{"op", "redo"}});
     else if (ctrl && pressed(GLFW_KEY_O))
-        shift ? m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session", {".faultline.json"}, folderOf(m_sessionPath))
-              : m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},
-                              folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front()));
+        shift ? m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
+                              {".faultline.json"}, folderOf(m_sessionPath))
+              : m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)",
+                              FileDialog::Mode::Open, "open-data", {},
+                              folderOf(state().dataPaths.empty() ? std::string()
+                                                                 : state().dataPaths.front()));
     else if (ctrl && pressed(GLFW_KEY_S))
         shift || m_sessionPath.empty()
-            ? m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json")
+            ? m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
+                            {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json")
             : saveSession();
     else if (ctrl && pressed(GLFW_KEY_Q))
-        m_quit = true;
+        requestQuit();
     else if (ctrl)
         return;
     else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space)))
@@ -116,47 +120,60 @@ void Workbench::handleShortcuts() {
 void Workbench::drawMenus() {
     if (!ImGui::BeginMainMenuBar())
         return;
-    const std::string dataFolder = folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+    const std::string dataFolder =
+        folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open data...", "Ctrl+O"))
-            m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {}, dataFolder);
+            m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)",
+                          FileDialog::Mode::Open, "open-data", {}, dataFolder);
         if (ImGui::MenuItem("Open the demo model"))
-            openDemo();
+            guardUnsaved("Open the demo model", [this] { openDemo(); });
         if (ImGui::MenuItem("Open session...", "Ctrl+Shift+O"))
-            m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session", {".faultline.json"}, folderOf(m_sessionPath));
+            m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
+                          {".faultline.json"}, folderOf(m_sessionPath));
         if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {
             for (const auto& r : m_recent)
                 if (ImGui::MenuItem(r.c_str()))
-                    openPath(r);
+                    guardUnsaved("Open " + fs::path(r).filename().string(),
+                                 [this, r] { openPath(r); });
             ImGui::EndMenu();
         }
         ImGui::Separator();
         if (ImGui::MenuItem("Save session", "Ctrl+S"))
             saveSession();
         if (ImGui::MenuItem("Save session as...", "Ctrl+Shift+S"))
-            m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session", {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
+            m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
+                          {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
         if (ImGui::BeginMenu("Export")) {
             const bool faults = !state().faults.empty();
             if (ImGui::MenuItem("Fault members (CSV)...", nullptr, false, faults))
-                m_dialog.open("Export fault members as CSV (id,fault)", FileDialog::Mode::Save, "export-faults", {".csv"}, dataFolder, "faults.csv");
+                m_dialog.open("Export fault members as CSV (id,fault)", FileDialog::Mode::Save,
+                              "export-faults", {".csv"}, dataFolder, "faults.csv");
             if (ImGui::MenuItem("Fault metrics (CSV)...", nullptr, false, faults))
-                m_dialog.open("Export fault metrics as CSV", FileDialog::Mode::Save, "export-metrics", {".csv"}, dataFolder, "fault_metrics.csv");
+                m_dialog.open("Export fault metrics as CSV", FileDialog::Mode::Save,
+                              "export-metrics", {".csv"}, dataFolder, "fault_metrics.csv");
             if (ImGui::MenuItem("Fault tracks through time (CSV)...", nullptr, false, faults))
-                m_dialog.open("Export each fault's best-matching candidate per frame as CSV", FileDialog::Mode::Save,
-                              "export-tracks", {".csv"}, dataFolder, "fault_tracks.csv");
-            if (ImGui::MenuItem("Journal of this session...", nullptr, false, !m_session.journal().empty()))
-                m_dialog.open("Export the journal (replay with faultline replay)", FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder, "analysis.jsonl");
-            if (ImGui::MenuItem("Movie (MP4) or frames (PNG)...", nullptr, false, dataset() != nullptr))
+                m_dialog.open("Export each fault's best-matching candidate per frame as CSV",
+                              FileDialog::Mode::Save, "export-tracks", {".csv"}, dataFolder,
+                              "fault_tracks.csv");
+            if (ImGui::MenuItem("Journal of this session...", nullptr, false,
+                                !m_session.journal().empty()))
+                m_dialog.open("Export the journal (replay with faultline replay)",
+                              FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder,
+                              "analysis.jsonl");
+            if (ImGui::MenuItem("Movie (MP4) or frames (PNG)...", nullptr, false,
+                                dataset() != nullptr))
                 showMovieOptions();
             if (ImGui::MenuItem("Screenshot (PNG)..."))
-                m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save, "screenshot", {".png"}, "", "faultline-" + stamp() + ".png");
+                m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save,
+                              "screenshot", {".png"}, "", "faultline-" + stamp() + ".png");
             ImGui::EndMenu();
         }
         ImGui::Separator();
         if (ImGui::MenuItem("Close data", nullptr, false, dataset() != nullptr))
-            emit({{"op", "data.close"}});
+            guardUnsaved("Close the data", [this] { emit({{"op", "data.close"}}); });
         if (ImGui::MenuItem("Quit", "Ctrl+Q"))
-            m_quit = true;
+            requestQuit();
         ImGui::EndMenu();
     }
     m_items.markLastItem("menu.file");
@@ -194,10 +211,14 @@ void Workbench::drawMenus() {
             m_showAbout = true;
         ImGui::EndMenu();
     }
-    // The session's name on the right of the menu bar.
-    const std::string title = m_sessionPath.empty() ? std::string("unsaved session") : fs::path(m_sessionPath).filename().string();
+    // The session's name on the right of the menu bar, "*" while changes are unsaved.
+    const std::string title =
+        (m_sessionPath.empty() ? std::string("unsaved session")
+                               : fs::path(m_sessionPath).filename().string()) +
+        (hasUnsavedChanges() ? " *" : "");
     const float w = ImGui::CalcTextSize(title.c_str()).x;
-    ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20 * m_scale, ImGui::GetWindowWidth() - w - 16 * m_scale));
+    ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20 * m_scale,
+                             ImGui::GetWindowWidth() - w - 16 * m_scale));
     ImGui::TextDisabled("%s", title.c_str());
     ImGui::EndMainMenuBar();
 }
@@ -209,8 +230,10 @@ void Workbench::drawStatusBar(float height) {
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8 * m_scale, 4 * m_scale));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0);
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImGui::GetColorU32(ImGuiCol_MenuBarBg));
-    ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                                          ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoNavFocus);
+    ImGui::Begin("##status", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                     ImGuiWindowFlags_NoNavFocus);
     ImGui::PopStyleColor();
     ImGui::PopStyleVar(2);
     ImGui::AlignTextToFramePadding();
@@ -225,7 +248,8 @@ void Workbench::drawStatusBar(float height) {
                       static_cast<long long>(ds->location(f).timestep));
         where = buf;
         if (main && main->frame && main->visibility) {
-            std::snprintf(buf, sizeof buf, "   %zu of %zu spheres visible", main->visibility->visibleCount, main->frame->size());
+            std::snprintf(buf, sizeof buf, "   %zu of %zu spheres visible",
+                          main->visibility->visibleCount, main->frame->size());
             where += buf;
         }
     } else {
@@ -244,7 +268,8 @@ void Workbench::drawStatusBar(float height) {
         if (p >= 0)
             ImGui::ProgressBar(p, ImVec2(160 * m_scale, 0));
         else
-            ImGui::ProgressBar(static_cast<float>(std::fmod(m_now - job->startTime(), 1.0)), ImVec2(160 * m_scale, 0), "working...");
+            ImGui::ProgressBar(static_cast<float>(std::fmod(m_now - job->startTime(), 1.0)),
+                               ImVec2(160 * m_scale, 0), "working...");
         ImGui::SameLine();
         if (ImGui::SmallButton(job->cancelRequested() ? "cancelling" : "Cancel"))
             job->cancel();
@@ -257,12 +282,16 @@ void Workbench::drawStatusBar(float height) {
         ImGui::SameLine();
     }
     const std::string frameError = m_frames.lastError();
-    const bool showMessage = !m_message.empty() && (m_messageIsError || m_now - m_messageTime < 10.0);
+    const bool showMessage =
+        !m_message.empty() && (m_messageIsError || m_now - m_messageTime < 10.0);
     const std::string& message = frameError.empty() ? m_message : frameError;
     if (showMessage || !frameError.empty()) {
         const bool isError = !frameError.empty() || m_messageIsError;
         const float avail = ImGui::GetContentRegionAvail().x - whereW - 24 * m_scale;
-        ImGui::PushClipRect(ImGui::GetCursorScreenPos(), ImVec2(ImGui::GetCursorScreenPos().x + std::max(0.0f, avail), ImGui::GetCursorScreenPos().y + height), true);
+        ImGui::PushClipRect(ImGui::GetCursorScreenPos(),
+                            ImVec2(ImGui::GetCursorScreenPos().x + std::max(0.0f, avail),
+                                   ImGui::GetCursorScreenPos().y + height),
+                            true);
         if (isError)
             ImGui::TextColored(ImVec4(0.80f, 0.16f, 0.12f, 1.0f), "%s", message.c_str());
         else
@@ -272,7 +301,8 @@ void Workbench::drawStatusBar(float height) {
             ImGui::SetTooltip("%s", message.c_str());
         ImGui::SameLine();
     }
-    ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowWidth() - whereW - 10 * m_scale));
+    ImGui::SameLine(
+        std::max(ImGui::GetCursorPosX(), ImGui::GetWindowWidth() - whereW - 10 * m_scale));
     ImGui::TextUnformatted(where.c_str());
     ImGui::End();
 }
@@ -280,10 +310,13 @@ void Workbench::drawStatusBar(float height) {
 void Workbench::drawHelp() {
     const ImGuiIO& io = ImGui::GetIO();
     if (m_showHelp) {
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
         ImGui::SetNextWindowSize(ImVec2(620 * m_scale, 0), ImGuiCond_Appearing);
-        if (ImGui::Begin("Keyboard and mouse", &m_showHelp, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
-            if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        if (ImGui::Begin("Keyboard and mouse", &m_showHelp,
+                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
+            if (ImGui::BeginTable("##keys", 2,
+                                  ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
                 ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 250 * m_scale);
                 ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
                 for (const auto& s : kShortcuts) {
@@ -296,15 +329,21 @@ void Workbench::drawHelp() {
                 ImGui::EndTable();
             }
             ImGui::Spacing();
-            ImGui::TextWrapped("Every change is a command: Edit > Undo reverts it, and the whole run is recorded in %s.",
-                               m_journalPath.empty() ? "the session's journal" : m_journalPath.c_str());
+            ImGui::TextWrapped("Every change is a command: Edit > Undo reverts it, and the whole "
+                               "run is recorded in %s.",
+                               m_journalPath.empty() ? "the session's journal"
+                                                     : m_journalPath.c_str());
         }
         ImGui::End();
     }
     if (m_showAbout) {
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-        if (ImGui::Begin("About Faultline", &m_showAbout, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
-            ImGui::TextUnformatted("Faultline: find, name and follow faults in discrete element models.");
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        if (ImGui::Begin("About Faultline", &m_showAbout,
+                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize |
+                             ImGuiWindowFlags_NoCollapse)) {
+            ImGui::TextUnformatted(
+                "Faultline: find, name and follow faults in discrete element models.");
             ImGui::TextDisabled("Dear ImGui %s", IMGUI_VERSION);
             if (m_renderer)
                 ImGui::TextDisabled("%s", m_renderer->description().c_str());
@@ -318,11 +357,13 @@ void Workbench::drawHelp() {
 // Questions that wait for the user: recover a crashed run's session; where moved data went.
 void Workbench::drawPrompts() {
     const ImGuiIO& io = ImGui::GetIO();
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings;
+    const ImGuiWindowFlags flags =
+        ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings;
     if (m_recovery && !m_dialog.isOpen()) {
         if (!ImGui::IsPopupOpen("Recover unsaved work?"))
             ImGui::OpenPopup("Recover unsaved work?");
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, flags)) {
             ImGui::TextUnformatted("Faultline did not close normally last time.");
             ImGui::Text("Its session was autosaved%s%s.", m_recovery->savedAt.empty() ? "" : " at ",
@@ -345,20 +386,26 @@ void Workbench::drawPrompts() {
     if (m_missingData && !m_dialog.isOpen() && !m_recovery) {
         if (!ImGui::IsPopupOpen("Where is the data?"))
             ImGui::OpenPopup("Where is the data?");
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Where is the data?", nullptr, flags)) {
             const auto& md = *m_missingData;
-            ImGui::Text("The data of %s is not where it was saved:", fs::path(md.session).filename().string().c_str());
+            ImGui::Text("The data of %s is not where it was saved:",
+                        fs::path(md.session).filename().string().c_str());
             for (std::size_t k = 0; k < md.paths.size() && k < 4; ++k)
                 ImGui::BulletText("%s", md.paths[k].c_str());
             if (md.paths.size() > 4)
                 ImGui::BulletText("and %zu more", md.paths.size() - 4);
-            ImGui::TextUnformatted(md.paths.size() == 1 ? "Pick the file where it is now."
-                                                        : "Pick one of its files where they are now (the others are looked for beside it).");
+            ImGui::TextUnformatted(md.paths.size() == 1
+                                       ? "Pick the file where it is now."
+                                       : "Pick one of its files where they are now (the others are "
+                                         "looked for beside it).");
             if (ImGui::Button("Locate...")) {
                 ImGui::CloseCurrentPopup();
-                m_dialog.open("Where is " + fs::path(md.paths.front()).filename().string() + " now?", FileDialog::Mode::Open,
-                              "relocate-data", {}, fs::path(md.session).parent_path().string(),
+                m_dialog.open("Where is " + fs::path(md.paths.front()).filename().string() +
+                                  " now?",
+                              FileDialog::Mode::Open, "relocate-data", {},
+                              fs::path(md.session).parent_path().string(),
                               fs::path(md.paths.front()).filename().string());
             }
             mark("relocate.locate");
@@ -379,16 +426,20 @@ void Workbench::handleDialog() {
     if (!accepted) {
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
             m_missingData.reset(), m_recovering = false; // cancelled: the session stays closed
+        if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "save-session")
+            m_afterSaveAs = {}; // the prompt's Save as was cancelled: nothing proceeds
         return;
     }
     const std::string& purpose = m_dialog.purpose();
     const std::string path = m_dialog.path();
     if (purpose == "open-data")
-        openData({path});
+        guardUnsaved("Open " + fs::path(path).filename().string(),
+                     [this, path] { openData({path}); });
     else if (purpose == "open-session")
-        openSession(path);
+        guardUnsaved("Open " + fs::path(path).filename().string(),
+                     [this, path] { openSession(path); });
     else if (purpose == "save-session")
-        saveSessionAs(path);
+        saveSessionAs(path, std::exchange(m_afterSaveAs, {}));
     else if (purpose == "relocate-data")
         relocateData(path);
     else if (purpose == "screenshot")

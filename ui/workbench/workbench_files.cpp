@@ -5,8 +5,8 @@
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/csv_exports.hpp"
-#include "core/session/session_json.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/session_json.hpp"
 #include "core/synth/demo_model.hpp"
 #include "ui/workbench/job_interrupter.hpp"
 
@@ -81,7 +81,10 @@ void Workbench::openData(std::vector<std::string> paths, std::function<void()> t
             control.setProgress(1.0f);
             return [this, paths, ds, then] {
                 rememberDataset(paths, ds);
-                emit({{"op", "data.open"}, {"paths", paths}}, [this, paths, then] {
+                const bool pristine = !m_session.modified();
+                emit({{"op", "data.open"}, {"paths", paths}}, [this, paths, then, pristine] {
+                    if (pristine) // data opened into an untouched session: nothing to save yet
+                        m_session.markSaved();
                     addRecent(paths.size() == 1 ? paths.front() : std::string());
                     if (then)
                         then();
@@ -201,7 +204,12 @@ void Workbench::openDemo() {
             batch.push_back(
                 {{"op", "camera.set"}, {"view", "main"}, {"azimuth", -30}, {"elevation", 35}});
         }
-        emit({{"op", "batch"}, {"commands", batch}});
+        // The demo's view is where a session starts, not the user's work.
+        const bool pristine = !m_session.modified();
+        emit({{"op", "batch"}, {"commands", batch}}, [this, pristine] {
+            if (pristine)
+                m_session.markSaved();
+        });
     };
     if (auto path = core::existingDemoModel()) {
         openData({*path}, showFaults);
@@ -303,12 +311,15 @@ void Workbench::saveSession() {
     saveSessionAs(m_sessionPath);
 }
 
-void Workbench::saveSessionAs(const std::string& pathIn) {
+void Workbench::saveSessionAs(const std::string& pathIn, std::function<void()> then) {
     const std::string path = absolute(pathIn);
     commitLayout(); // active tabs and the like ride along with the save
-    emit({{"op", "session.save"}, {"path", path}}, [this, path] {
+    emit({{"op", "session.save"}, {"path", path}}, [this, path, then] {
         m_sessionPath = path;
         addRecent(path);
+        info("Saved " + path);
+        if (then)
+            then();
     });
 }
 
