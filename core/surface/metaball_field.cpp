@@ -87,6 +87,9 @@ constexpr double kInverseErrorShare = 0.72;
 // the estimate; level 1's term is scaled up by kFewSpheres / n there, which brings every
 // measured error back under the estimate (at most 0.74 of it).
 constexpr double kFewSpheres = 64.0;
+// Spheres (weight in mean radii, the sphere itself included) within 3 mean radii of the median
+// sphere below which a set counts as sparse (touching spheres have about 20).
+constexpr double kSparseNeighbours = 8.0;
 
 // Error per unit of errorScale() term: [0] for level 1's (at kappa), [1] for each coarser
 // level's (at the coarse kappa). The a priori estimate is weights[0] * term_0 + weights[1] *
@@ -451,6 +454,18 @@ void padToVectors(NearList &list) {
 
 } // namespace
 
+void detail::addDirectBounds(int power, const float *x, const float *y, const float *z,
+                             const float *r, std::size_t count, const Box &box, float minD2,
+                             double &low, double &high) {
+    double lo = 0.0, hi = 0.0;
+    (power == 1 ? directBounds1 : directBounds2)(x, y, z, r, count, box, minD2, 0.0f, lo, hi);
+    // Float sums of positive terms, count / 8 per lane: each within that many roundings
+    // (6e-8 each) of the exact sum; widened by twice that (and at least 1e-4) they stay bounds.
+    const double widen = std::max(1e-4, 2.0 * 6e-8 * double(count / 8 + 8));
+    low += lo * (1.0 - widen);
+    high += hi * (1.0 + widen);
+}
+
 //-----------------------------------------------------------------------------
 // [SECTION] Construction and the choice of cutoffs
 //-----------------------------------------------------------------------------
@@ -475,12 +490,15 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
         // With none, the most accurate pair.
         using Choice = CutoffChoice;
         std::vector<Choice> candidates;
+        m_sparse = isSparse();
+        const double nearRadii =
+            m_tuning.nearCutoffRadii * (m_sparse ? std::max(1.0, m_tuning.sparseNearFactor) : 1.0);
         for (int kappa = kKappaMin; kappa <= kKappaMax; ++kappa) {
             if (m_tuning.kappa > 0 && kappa != m_tuning.kappa)
                 continue;
             // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
             // the near cutoff about nearCutoffRadii radii.
-            const double target = m_tuning.nearCutoffRadii * mean;
+            const double target = nearRadii * mean;
             const int ratio =
                 std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
             for (int coarse = std::max(kKappaMin, kappa / 2 + 1); coarse <= kKappaMax; ++coarse) {
@@ -534,6 +552,23 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
     } else {
         m_a0 = params.compactReach * maxRadius();
     }
+}
+
+bool MetaballField::isSparse() const {
+    // Touching spheres (HCP) put about 20 radii of weight within 3 radii of a sphere; a sparse
+    // selection (the high-strain spheres of fault zones spread over a block) puts a few.
+    const auto &s = m_tree.spheres();
+    const std::size_t n = s.size(), samples = std::min<std::size_t>(n, 64);
+    if (samples == 0)
+        return false;
+    const double a = 3.0 * m_meanRadius;
+    std::vector<double> within(samples);
+    tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
+        const std::size_t i = q * n / samples;
+        within[q] = weightWithin({s.x[i], s.y[i], s.z[i]}, a) / m_meanRadius;
+    });
+    std::nth_element(within.begin(), within.begin() + samples / 2, within.end());
+    return within[samples / 2] < kSparseNeighbours;
 }
 
 void MetaballField::applyChoice(const CutoffChoice &c) {

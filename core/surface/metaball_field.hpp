@@ -51,10 +51,21 @@ struct MultilevelTuning {
                                   // spheres (multilevel summation's anterpolation) where the
                                   // error budget has room for it; 0: never
     double chargeShare = 0.5;     // ... and where the charges number at most this many spheres
+    // For sparse sets (see MetaballField::sparse()) the near cutoff is this much wider: it costs
+    // little there (few spheres in it) and saves level-1 nodes, which would outnumber the voxels'
+    // sums. 1: never wider.
+    double sparseNearFactor = 5.0 / 3.0;
     int maxOpen = 256;            // planning: tree nodes opened per block bound
     int probeOpen = 40;           // planning: after this many openings, give up on a bound
     double giveUpRatio = 2.0;     // whose high is over ratio * isoMin and low under isoMax / ratio
 };
+
+namespace detail {
+// Guaranteed bounds of sum_i r_i / max(d_i, minD)^power (power 1 or 2) over a box, each sphere
+// from its nearest and farthest point of the box, 8 spheres at a time; added to low and high.
+void addDirectBounds(int power, const float *x, const float *y, const float *z, const float *r,
+                     std::size_t count, const Box &box, float minD2, double &low, double &high);
+} // namespace detail
 
 class MetaballField {
   public:
@@ -67,6 +78,13 @@ class MetaballField {
 
     float voxelSize() const { return m_h; }
     const MultilevelTuning &tuning() const { return m_tuning; }
+    const SurfaceParams &params() const { return m_params; }
+    // Inverse kernels: whether the median sphere has under 8 mean radii of weight within 3 mean
+    // radii (touching spheres have about 20), as in a strain-threshold selection spread over a
+    // block. Sparse sets take a wider near cutoff and are planned by folds (surface_plan.cpp).
+    bool sparse() const { return m_sparse; }
+    // The inverse kernels' power and the squared distance below which they are clamped.
+    const InverseKernel &inverseKernel() const { return m_kernel; }
     std::size_t sphereCount() const { return m_tree.spheres().size(); }
     const detail::SphereTree &tree() const { return m_tree; }
     // Sum of all weights, bounding box of the centres, and largest radius.
@@ -140,6 +158,8 @@ class MetaballField {
         double error = 0.0, cost = 0.0;
     };
     void applyChoice(const CutoffChoice &choice);
+    // Whether the median sphere has few neighbours (see sparse()).
+    bool isSparse() const;
     // Marks the nodes of levels 1 .. top the blocks need (m_levels, without values).
     void planLevels(std::span<const Coord3> blockOrigins);
     // The a priori estimate for the planned levels: level 1's term and each coarser level's.
@@ -160,6 +180,7 @@ class MetaballField {
     InverseKernel m_kernel;
     float m_a0 = 0.0f; // near cutoff
     int m_kappa = 0;
+    bool m_sparse = false;
     int m_coarseKappa = 0;
     double m_estimatedError = 0.0;
     std::vector<double> m_errorTerms; // errorScale()'s terms for the chosen cutoffs
