@@ -7,6 +7,7 @@
 //    only with inverse-square, and as the paper has it (r/d, value and gradient);
 //  - 26,000 spheres at voxel 0.5 (the ParaView comparison in the issue).
 #include "bench/fault_zone.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/metaball_field.hpp"
 #include "core/surface/metaball_reference.hpp"
@@ -18,6 +19,7 @@
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <cmath>
+#include <sys/resource.h>
 
 namespace fb = faultline::bench;
 namespace fc = faultline::core;
@@ -201,6 +203,56 @@ void BM_SampledErrorAgainstAlgorithm1(benchmark::State &state, std::size_t count
     state.counters["est_err_over_iso"] = estimate / p.iso;
 }
 
+// The spread-out selection (issue 23): about 10k spheres of three fault zones across a whole
+// 200 x 130 x 110 block, at the wrapping iso (what a new surface in the workbench and a journal's
+// surface.build without iso use), voxel = r / divisor. Peak RSS of the process is reported too:
+// run one case per process (--benchmark_filter) for a figure of that case alone.
+const fb::FaultZone &spread() {
+    static const fb::FaultZone z = fb::spreadFaultZones(10000);
+    return z;
+}
+
+double peakRssMiB() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;
+}
+
+void BM_SpreadSurface(benchmark::State &state, fc::MetaballKernel kernel, float divisor) {
+    const auto &z = spread();
+    fc::SurfaceParams p;
+    p.kernel = kernel;
+    p.voxelSize = 1.0f / divisor;
+    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    fc::SurfaceResult last;
+    for (auto _ : state) {
+        last = {}; // one surface at a time, as the peak memory counts it
+        last = fc::buildSurface(z.set(), p);
+    }
+    report(state, last);
+    state.counters["spheres"] = double(z.x.size());
+    state.counters["peak_rss_mb"] = peakRssMiB();
+}
+
+void BM_SpreadOpenVdb(benchmark::State &state, float divisor) {
+    openvdb::initialize();
+    const ZoneParticles particles{&spread()};
+    const float voxel = 1.0f / divisor;
+    std::size_t quads = 0;
+    for (auto _ : state) {
+        auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
+        openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
+        raster.rasterizeSpheres(particles);
+        raster.finalize(true);
+        std::vector<openvdb::Vec3s> points;
+        std::vector<openvdb::Vec4I> polys;
+        openvdb::tools::volumeToMesh(*grid, points, polys, 0.0);
+        quads = polys.size();
+    }
+    state.counters["quads"] = double(quads);
+    state.counters["peak_rss_mb"] = peakRssMiB();
+}
+
 } // namespace
 
 BENCHMARK_CAPTURE(BM_Surface, inverse_square_50k, fc::MetaballKernel::InverseSquare, 50000, 0.25f)
@@ -265,4 +317,30 @@ BENCHMARK_CAPTURE(BM_Surface, inverse_square_26k_voxel_0_5, fc::MetaballKernel::
     ->UseRealTime()
     ->Iterations(2);
 
+BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r2, fc::MetaballKernel::Inverse, 2.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r2, fc::MetaballKernel::InverseSquare,
+                  2.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r2, 2.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r3, fc::MetaballKernel::Inverse, 3.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel::InverseSquare,
+                  3.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r3, 3.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
 BENCHMARK_MAIN();
