@@ -119,27 +119,6 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
     return {static_cast<std::int64_t>(frameIndex), members, fieldParamsHash(params)};
 }
 
-double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
-    const std::size_t n = s.size();
-    if (n == 0)
-        return 0.0;
-    const std::size_t samples = std::min<std::size_t>(n, 96);
-    constexpr int kDirections = 6;
-    std::vector<double> lowest(samples, 0.0);
-    tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
-        const std::size_t i = q * n / samples;
-        double low = std::numeric_limits<double>::infinity();
-        for (int d = 0; d < kDirections; ++d) {
-            std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
-            p[d / 2] += (d % 2 ? -1.5 : 1.5) * s.radius[i];
-            low = std::min(low, referenceSample(s, params, p).value);
-        }
-        lowest[q] = low;
-    });
-    std::sort(lowest.begin(), lowest.end());
-    return lowest[samples / 4];
-}
-
 std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
                                        const SurfaceSettings& settings) {
     const FaultSpheres spheres = gatherFaultSpheres(frame, fault);

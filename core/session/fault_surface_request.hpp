@@ -3,6 +3,8 @@
 // surface ops, the workbench's background builds and figures share it, so all three agree.
 #pragma once
 
+#include "core/surface/metaball_reference.hpp"
+
 #include "core/faults/fault.hpp"
 #include "core/model/frame.hpp"
 #include "core/selection/visibility.hpp"
@@ -43,14 +45,7 @@ inline constexpr std::array<float, 3> kVisibleSpheresColor{0.78f, 0.8f, 0.84f};
 // their radius + colorReach.
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault);
 
-// An iso-value whose surface wraps the spheres closely: over a sample of the spheres, the field
-// 1.5 radii from the centre on the side where it is lowest (outwards, for spheres at the edge of
-// the set); the lower quartile of those, so that most of the spheres are inside. The kernels'
-// values grow with the number of spheres (the tails add up), so no fixed default iso suits
-// every fault; with the long-tailed inverse kernel the surface is rounder and looser than with
-// inverse-square. Sums every sphere for each sample point: about 600 x N kernel evaluations.
-double wrappingIso(const SphereSet& spheres, const SurfaceParams& params);
-// wrappingIso for a fault's spheres in a frame with these settings, to three significant digits
+// wrappingIso (core/surface/metaball_reference.hpp) for a fault's spheres in a frame with these settings, to three significant digits
 // (what the Surfaces panel writes into a surface.set); none when no member is in the frame.
 std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
                                        const SurfaceSettings& settings);

@@ -9,7 +9,7 @@
 
 namespace faultline::core {
 
-double meanRadius(const SphereSet &spheres) {
+double meanRadius(const SphereSet& spheres) {
     if (spheres.size() == 0)
         return 0.0;
     double sum = 0.0;
@@ -18,8 +18,8 @@ double meanRadius(const SphereSet &spheres) {
     return sum / static_cast<double>(spheres.size());
 }
 
-FieldSample referenceSample(const SphereSet &s, const SurfaceParams &params,
-                            const std::array<double, 3> &p) {
+FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
+                            const std::array<double, 3>& p) {
     FieldSample out;
     const double minD = kMinDistanceFactor * meanRadius(s);
     const double minD2 = minD * minD;
@@ -69,7 +69,7 @@ namespace {
 
 // Algorithm 1's sum at one point: the value, and with Gradient its gradient (line 8) into g.
 template <bool Gradient>
-float algorithm1Point(const SphereSet &s, const SurfaceParams &params, const InverseKernel &inv,
+float algorithm1Point(const SphereSet& s, const SurfaceParams& params, const InverseKernel& inv,
                       float px, float py, float pz, float g[3]) {
     float f = 0.0f;
     for (std::size_t n = 0; n < s.size(); ++n) {
@@ -98,9 +98,9 @@ float algorithm1Point(const SphereSet &s, const SurfaceParams &params, const Inv
 
 } // namespace
 
-std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &params,
-                                   const std::array<int, 3> &origin, const std::array<int, 3> &dims,
-                                   float h, std::vector<std::array<float, 3>> *gradient) {
+std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& params,
+                                   const std::array<int, 3>& origin, const std::array<int, 3>& dims,
+                                   float h, std::vector<std::array<float, 3>>* gradient) {
     const std::size_t nx = dims[0], ny = dims[1], nz = dims[2];
     std::vector<float> field(nx * ny * nz, 0.0f);
     if (gradient)
@@ -123,6 +123,27 @@ std::vector<float> algorithm1Dense(const SphereSet &s, const SurfaceParams &para
         }
     });
     return field;
+}
+
+double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
+    const std::size_t n = s.size();
+    if (n == 0)
+        return 0.0;
+    const std::size_t samples = std::min<std::size_t>(n, 96);
+    constexpr int kDirections = 6;
+    std::vector<double> lowest(samples, 0.0);
+    tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
+        const std::size_t i = q * n / samples;
+        double low = std::numeric_limits<double>::infinity();
+        for (int d = 0; d < kDirections; ++d) {
+            std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
+            p[d / 2] += (d % 2 ? -1.5 : 1.5) * s.radius[i];
+            low = std::min(low, referenceSample(s, params, p).value);
+        }
+        lowest[q] = low;
+    });
+    std::sort(lowest.begin(), lowest.end());
+    return lowest[samples / 4];
 }
 
 } // namespace faultline::core

@@ -1,6 +1,7 @@
 #include "core/surface/surface_plan.hpp"
 
 #include "core/surface/detail/plan_fold.hpp"
+#include "core/surface/metaball_reference.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -45,14 +46,75 @@ detail::Box cellBox(const Cell& cell, float h) {
 
 enum class CellClass { Outside, Inside, Straddle };
 
-[[noreturn]] void refuseBudget(double neededBytes, std::size_t budget, float voxel,
-                               const char* how) {
-    const double scale = std::sqrt(neededBytes / static_cast<double>(budget));
-    char text[160];
-    std::snprintf(text, sizeof text, "use a voxel size of at least %.3g", voxel * scale);
-    throw SurfaceRequestError("surface needs " + std::string(how) + " " + formatBytes(neededBytes) +
-                              " at voxel size " + std::to_string(voxel) + " but the budget is " +
-                              formatBytes(static_cast<double>(budget)) + "; " + text);
+std::string formatNumber(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return text;
+}
+
+// A refusal that says what would fit: a voxel size a user would pick (up to the largest
+// radius: coarser voxels no longer resolve the spheres), else, when the iso-value lies far
+// below the one that wraps the spheres (so the surface is a huge loose shell), that iso-value.
+[[noreturn]] void refuseBudget(const MetaballField& field, double neededBytes, std::size_t budget,
+                               const char* how, double shellDistance = 0.0) {
+    const float voxel = field.voxelSize();
+    const SurfaceParams& params = field.params();
+    std::string text = "surface needs " + std::string(how) + " " + formatBytes(neededBytes) +
+                       " at voxel size " + formatNumber(voxel) + " but the budget is " +
+                       formatBytes(static_cast<double>(budget));
+    std::vector<std::string> fits;
+    const double fitVoxel = voxel * std::sqrt(neededBytes / static_cast<double>(budget));
+    if (fitVoxel <= field.maxRadius())
+        fits.push_back("a voxel size of at least " + formatNumber(fitVoxel * 1.05));
+    if (params.kernel != MetaballKernel::Compact) {
+        const auto& s = field.tree().spheres();
+        const double wrap = wrappingIso(SphereSet{s.x, s.y, s.z, s.r, {}}, params);
+        if (params.iso < wrap / 1.5) {
+            std::string why = "the iso-value that wraps the spheres, about " + formatNumber(wrap) +
+                              " (\"iso\":\"wrap\"): " + formatNumber(params.iso) +
+                              " lies far below the field";
+            if (shellDistance > 0.0)
+                why += ", so the surface would be a shell about " + formatNumber(shellDistance) +
+                       " units out";
+            fits.push_back(why);
+        }
+    }
+    if (fits.empty())
+        fits.push_back("fewer spheres, or a larger memory budget");
+    text += "; use ";
+    for (std::size_t i = 0; i < fits.size(); ++i)
+        text += (i ? ", or " : "") + fits[i];
+    throw SurfaceRequestError(text);
+}
+
+// Inverse kernels: a lower bound on the blocks the surface needs, before any planning. Within
+// R_in = (W / isoMax)^(1/p) - ext of the spheres' weighted centre (ext: the farthest centre from
+// it, W: the total weight) every sphere is within (W / isoMax)^(1/p), so f > isoMax there: the
+// surface encloses that ball and meets every ray from its centre beyond R_in. A block at least
+// R_in away covers a solid angle of at most (sqrt(3) b)^2 pi / 4 / R_in^2 (b: its side), so at
+// least 16 R_in^2 / (3 b^2) blocks hold it. R_in: 0 when there is no such ball.
+double enclosedBallRadius(const MetaballField& field, float isoMax) {
+    if (field.params().kernel == MetaballKernel::Compact)
+        return 0.0;
+    const auto& s = field.tree().spheres();
+    double c[3] = {0, 0, 0}, w = 0.0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        c[0] += double(s.r[i]) * s.x[i], c[1] += double(s.r[i]) * s.y[i];
+        c[2] += double(s.r[i]) * s.z[i], w += s.r[i];
+    }
+    if (!(w > 0.0))
+        return 0.0;
+    double ext2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+        c[k] /= w;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double dx = s.x[i] - c[0], dy = s.y[i] - c[1], dz = s.z[i] - c[2];
+        ext2 = std::max(ext2, dx * dx + dy * dy + dz * dz);
+    }
+    const double ratio = field.totalWeight() / isoMax;
+    const double reach =
+        field.params().kernel == MetaballKernel::Inverse ? ratio : std::sqrt(ratio);
+    return std::max(0.0, reach - std::sqrt(ext2));
 }
 
 } // namespace
@@ -66,6 +128,15 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
     const double reach = field.reach(isoMin) + field.maxRadius();
     const auto& box = field.centreBox();
     const double blockWorld = kBlockDim * static_cast<double>(h);
+    // A surface far out around the spheres (an iso-value far below theirs) is refused at once.
+    if (const double inner = enclosedBallRadius(field, isoMax); inner > 0.0) {
+        const double side = blockWorld, margin = std::sqrt(3.0) * side;
+        const double r = std::max(0.0, inner - margin);
+        const double blocks = 16.0 * r * r / (3.0 * side * side);
+        if (blocks * kBytesPerBlock > static_cast<double>(budgetBytes))
+            refuseBudget(field, blocks * kBytesPerBlock, budgetBytes, "at least", inner);
+    }
+
     Coord3 lo, hi;
     int extent = 1;
     for (int k = 0; k < 3; ++k) {
@@ -167,7 +238,7 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
         if (straddling > budgetBlocks) {
             const double estimate = static_cast<double>(straddling) *
                                     std::pow(4.0, std::max(levelsLeft, 0)) * kBytesPerBlock;
-            refuseBudget(estimate, budgetBytes, h, "about");
+            refuseBudget(field, estimate, budgetBytes, "about");
         }
         --levelsLeft;
         cells = std::move(next);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -566,6 +567,39 @@ TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
 // The constructor chooses the cutoffs by an estimate with coarse levels up to twice the span;
 // prepare() may then take cheaper ones that fit with the levels it planned. Where it does, the
 // field must still match Algorithm 1 within the tolerance, and within its estimate.
+// Issue 23: r/d at iso 1 over a spread-out set is a shell hundreds of units out. It is refused
+// before any planning (no level counted), offering the wrapping iso and no absurd voxel size.
+TEST(MetaballField, AnIsoFarBelowTheFieldIsRefusedAtOnceWithTheWrappingIso) {
+    const Spheres s = spreadZones({80, 50, 40}, 11);
+    fc::SurfaceParams params;
+    params.kernel = fc::MetaballKernel::Inverse;
+    params.iso = 1.0f;
+    fc::MetaballField field(s.set(), params, 0.5f);
+    const double wrap = fc::wrappingIso(s.set(), params);
+    try {
+        fc::planSurface(field, params.iso / params.isoRangeFactor, params.iso * params.isoRangeFactor,
+                        std::size_t{64} << 20, nullptr);
+        FAIL() << "expected a refusal";
+    } catch (const fc::SurfaceRequestError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("needs at least"), std::string::npos) << what;
+        EXPECT_NE(what.find("\"iso\":\"wrap\""), std::string::npos) << what;
+        EXPECT_NE(what.find("shell about"), std::string::npos) << what;
+        // The wrapping iso of a sample of the spheres (in the field's order): about the same.
+        const auto at = what.find("spheres, about ");
+        ASSERT_NE(at, std::string::npos) << what;
+        const double offered = std::stod(what.substr(at + 15));
+        EXPECT_NEAR(offered, wrap, 0.1 * wrap) << what;
+        EXPECT_EQ(what.find("voxel size of at least"), std::string::npos) << what;
+    }
+    // At the wrapping iso the same set fits the same budget.
+    params.iso = static_cast<float>(wrap);
+    fc::MetaballField wrapped(s.set(), params, 0.5f);
+    EXPECT_NO_THROW(fc::planSurface(wrapped, params.iso / params.isoRangeFactor,
+                                    params.iso * params.isoRangeFactor, std::size_t{64} << 20,
+                                    nullptr));
+}
+
 TEST(MetaballField, CheaperCutoffsChosenAfterPlanningStillMatchAlgorithm1) {
     const Spheres s = slab(16, 16, 3, 11);
     fc::SurfaceParams params;
