@@ -2,13 +2,15 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/faults/candidates.hpp"
+#include "core/session/fault_surface_request.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 namespace faultline::core::detail {
 
 namespace {
-
 
 // Distinct, legible colours for new faults, in order.
 constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.90f, 0.30f, 0.20f},
@@ -87,8 +89,10 @@ CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
         throw CommandError(std::string(op) + ": \"angle\" must lie between 0 and 90 degrees");
     if (!(options.radius >= 0))
         throw CommandError(std::string(op) + ": \"radius\" must be >= 0 (0: automatic)");
-    if (options.method == CandidateMethod::Connected && (cmd.contains("angle") || cmd.contains("radius")))
-        throw CommandError(std::string(op) + ": \"angle\" and \"radius\" belong to the network method");
+    if (options.method == CandidateMethod::Connected &&
+        (cmd.contains("angle") || cmd.contains("radius")))
+        throw CommandError(std::string(op) +
+                           ": \"angle\" and \"radius\" belong to the network method");
     return options;
 }
 
@@ -100,7 +104,8 @@ void registerFaultOps(OpTable& ops) {
         if (f.name.empty() || s.state().fault(f.name))
             throw CommandError("fault.create: a fault named \"" + f.name + "\" exists already");
         if (isVisibleSpheres(f.name))
-            throw CommandError("fault.create: \"" + f.name + "\" names the visible spheres' surface; choose another name");
+            throw CommandError("fault.create: \"" + f.name +
+                               "\" names the visible spheres' surface; choose another name");
         if (cmd.contains("from") == cmd.contains("ids"))
             throw CommandError("fault.create: give either \"from\": \"visible\" or \"ids\"");
         if (cmd.contains("from")) {
@@ -112,10 +117,14 @@ void registerFaultOps(OpTable& ops) {
         }
         normalizeIds(f.ids);
         auto& faults = s.mutableState().faults;
-        f.color = colorArg(cmd, "fault.create", kFaultPalette[faults.size() % kFaultPalette.size()]);
+        f.color =
+            colorArg(cmd, "fault.create", kFaultPalette[faults.size() % kFaultPalette.size()]);
         f.notes = args::optionalString(cmd, "notes").value_or("");
-        const long long index = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(faults.size()));
-        faults.insert(faults.begin() + std::clamp(index, 0LL, static_cast<long long>(faults.size())), std::move(f));
+        const long long index =
+            args::optionalInteger(cmd, "index").value_or(static_cast<long long>(faults.size()));
+        faults.insert(faults.begin() +
+                          std::clamp(index, 0LL, static_cast<long long>(faults.size())),
+                      std::move(f));
         return {{"op", "fault.delete"}, {"name", args::string(cmd, "name")}};
     });
     addStateOp(ops, "fault.add", [](Session& s, const Json& cmd) -> Json {
@@ -148,12 +157,16 @@ void registerFaultOps(OpTable& ops) {
         next.notes = args::optionalString(cmd, "notes").value_or(f.notes);
         next.visible = args::optionalBool(cmd, "visible").value_or(f.visible);
         if (auto rename = args::optionalString(cmd, "rename")) {
-            if (rename->empty() || (*rename != f.name && s.state().fault(*rename)) || isVisibleSpheres(*rename))
+            if (rename->empty() || (*rename != f.name && s.state().fault(*rename)) ||
+                isVisibleSpheres(*rename))
                 throw CommandError("fault.set: cannot rename to \"" + *rename + "\"");
             next.name = *rename;
         }
-        Json inverse = {{"op", "fault.set"}, {"name", next.name}, {"color", f.color},
-                        {"notes", f.notes}, {"visible", f.visible}};
+        Json inverse = {{"op", "fault.set"},
+                        {"name", next.name},
+                        {"color", f.color},
+                        {"notes", f.notes},
+                        {"visible", f.visible}};
         if (next.name != f.name) {
             inverse["rename"] = f.name;
             auto& state = s.mutableState();
@@ -170,16 +183,20 @@ void registerFaultOps(OpTable& ops) {
         args::onlyFields(cmd, {"name"});
         const std::string name = args::string(cmd, "name");
         auto& state = s.mutableState();
-        auto it = std::find_if(state.faults.begin(), state.faults.end(), [&](const Fault& f) { return f.name == name; });
+        auto it = std::find_if(state.faults.begin(), state.faults.end(),
+                               [&](const Fault& f) { return f.name == name; });
         if (it == state.faults.end())
             throw CommandError("fault.delete: no fault named \"" + name + "\"");
-        Json inverse = {{"op", "fault.restore"}, {"fault", faultToJson(*it)}, {"index", it - state.faults.begin()}};
+        Json inverse = {{"op", "fault.restore"},
+                        {"fault", faultToJson(*it)},
+                        {"index", it - state.faults.begin()}};
         if (SurfaceSettings* surface = state.surface(name)) {
             inverse["surface"] = surfaceSettingsFields(*surface);
             state.surfaces.erase(state.surfaces.begin() + (surface - state.surfaces.data()));
         }
         if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
-            inverse = {{"op", "batch"}, {"commands", {inverse, faultFilterJson(state.faultFilter)}}};
+            inverse = {{"op", "batch"},
+                       {"commands", {inverse, faultFilterJson(state.faultFilter)}}};
             state.faultFilter = FaultFilter{};
         }
         state.faults.erase(it);
@@ -187,7 +204,9 @@ void registerFaultOps(OpTable& ops) {
     });
     addStateOp(ops, "fault.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"fault", "index", "surface"});
-        Fault f = asCommand("fault.restore", [&] { return faultFromJson(args::require(cmd, "fault"), "fault", "fault.restore"); });
+        Fault f = asCommand("fault.restore", [&] {
+            return faultFromJson(args::require(cmd, "fault"), "fault", "fault.restore");
+        });
         auto& state = s.mutableState();
         if (state.fault(f.name) || isVisibleSpheres(f.name))
             throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");
@@ -203,9 +222,12 @@ void registerFaultOps(OpTable& ops) {
             }
             state.surfaces.push_back(st);
         }
-        const long long index = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(state.faults.size()));
+        const long long index = args::optionalInteger(cmd, "index")
+                                    .value_or(static_cast<long long>(state.faults.size()));
         const std::string name = f.name;
-        state.faults.insert(state.faults.begin() + std::clamp(index, 0LL, static_cast<long long>(state.faults.size())), std::move(f));
+        state.faults.insert(state.faults.begin() +
+                                std::clamp(index, 0LL, static_cast<long long>(state.faults.size())),
+                            std::move(f));
         return {{"op", "fault.delete"}, {"name", name}};
     });
     addStateOp(ops, "fault.merge", [](Session& s, const Json& cmd) -> Json {
@@ -273,22 +295,26 @@ void registerFaultOps(OpTable& ops) {
             if (s.state().fault(f.name))
                 throw CommandError("fault.candidates: a fault named \"" + f.name +
                                    "\" exists already (choose another \"prefix\")");
-            batch.push_back({{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}});
+            batch.push_back(
+                {{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}});
         }
         return s.execute({{"op", "batch"}, {"commands", batch}});
     });
     addStateOp(ops, "fault.split", [](Session& s, const Json& cmd) -> Json {
         // A fault's members in the current frame, split into pieces: the faults it holds (as
         // fault.candidates' network method sees them: apart at junctions), or its connected
-        // pieces with "method": "connected". name.1 (largest), name.2, ... Members absent from
-        // this frame, and members that follow no fault, stay with the largest piece.
-        args::onlyFields(cmd, {"name", "link", "method", "angle", "radius"});
+        // pieces with "method": "connected". name.1 (largest, in the fault's colour), name.2, ...
+        // Pieces under "min_size" spheres (the candidates' default) are not made: their members,
+        // members absent from this frame and members that follow no fault stay with the largest
+        // piece. A fault with surface settings passes them to every piece; with an inverse kernel
+        // each piece's iso-value keeps the parent's ratio to the iso that wraps its spheres (those
+        // values grow with the number of spheres).
+        args::onlyFields(cmd, {"name", "link", "method", "angle", "radius", "min_size"});
         const Fault& fault = faultOf(s, cmd, "fault.split");
         auto frame = s.currentFrame();
         if (!frame)
             throw CommandError("fault.split: no data is open");
-        CandidateOptions options = candidateOptionsFrom(cmd, "fault.split");
-        options.minSize = options.method == CandidateMethod::Network ? kDefaultCandidateMinSize : 1;
+        const CandidateOptions options = candidateOptionsFrom(cmd, "fault.split");
         std::vector<std::uint8_t> members(frame->size(), 0);
         std::vector<std::int64_t> absent;
         for (std::int64_t id : fault.ids) {
@@ -302,12 +328,23 @@ void registerFaultOps(OpTable& ops) {
             throw CommandError("fault.split: \"" + fault.name + "\" is one " +
                                (options.method == CandidateMethod::Network
                                     ? std::string("fault (no junction splits it)")
-                                    : "connected piece at link " + std::to_string(options.link)));
+                                    : "connected piece at link " + std::to_string(options.link)) +
+                               (options.minSize > 1
+                                    ? " of at least " + std::to_string(options.minSize) + " spheres"
+                                    : std::string()));
         for (std::int64_t id : fault.ids)
             if (auto row = frame->rowOf(id); row && set.rowLabel[*row] < 0)
                 absent.push_back(id);
         const std::string name = fault.name;
+        const Fault parent = fault;
+        std::optional<SurfaceSettings> surface;
+        if (const SurfaceSettings* st = s.state().surface(name))
+            surface = *st;
+        std::optional<double> parentWrap;
+        if (surface && surface->kernel != MetaballKernel::Compact)
+            parentWrap = faultWrappingIso(*frame, parent, *surface);
         Json batch = Json::array({{{"op", "fault.delete"}, {"name", name}}});
+        Json surfaces = Json::array();
         for (std::size_t k = 0; k < set.candidates.size(); ++k) {
             std::vector<std::int64_t> ids = set.candidates[k].ids;
             if (k == 0)
@@ -315,8 +352,30 @@ void registerFaultOps(OpTable& ops) {
             const std::string piece = name + "." + std::to_string(k + 1);
             if (s.state().fault(piece))
                 throw CommandError("fault.split: a fault named \"" + piece + "\" exists already");
-            batch.push_back({{"op", "fault.create"}, {"name", piece}, {"ids", ids}, {"color", candidateColor(k)}});
+            const auto color = k == 0 ? Json(parent.color) : Json(candidateColor(k));
+            batch.push_back(
+                {{"op", "fault.create"}, {"name", piece}, {"ids", ids}, {"color", color}});
+            if (!surface)
+                continue;
+            SurfaceSettings st = *surface;
+            st.fault = piece;
+            if (parentWrap) {
+                Fault f;
+                f.name = piece;
+                f.ids = ids;
+                if (const auto wrap = faultWrappingIso(*frame, f, st)) {
+                    const double iso = surface->iso * (*wrap / *parentWrap);
+                    const double unit = std::pow(10.0, std::floor(std::log10(iso)) - 2);
+                    st.iso = std::round(iso / unit) * unit;
+                }
+            }
+            Json set = surfaceSettingsFields(st);
+            set["op"] = "surface.set";
+            set["fault"] = piece;
+            surfaces.push_back(std::move(set));
         }
+        for (auto& c : surfaces)
+            batch.push_back(std::move(c));
         return s.execute({{"op", "batch"}, {"commands", batch}});
     });
 }

@@ -612,6 +612,57 @@ TEST(Session, CandidatesAndSplitUndoExactly) {
     EXPECT_THROW(s.apply(cmd(R"({"op":"fault.split","name":"K1"})")), CommandError); // one piece
 }
 
+// Issue 27: a split keeps the fault's colour on its largest piece and its surface settings on
+// every piece (an inverse kernel's iso scaled to each piece's wrapping iso), and makes no fault of
+// a piece under min_size: its spheres stay with the largest piece.
+TEST(Session, SplitKeepsColourAndSurfaceSettingsAndDropsTinyPieces) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    // id = 1 + x + 4 y + 16 z: the west wall (16), a row of the east wall at z = 0 (4), and two
+    // spheres of it at z = 3 (2): three connected pieces.
+    std::vector<std::int64_t> ids;
+    for (int z = 0; z < 4; ++z)
+        for (int y = 0; y < 4; ++y)
+            ids.push_back(1 + 4 * y + 16 * z);
+    for (int y = 0; y < 4; ++y)
+        ids.push_back(4 + 4 * y);
+    ids.push_back(52), ids.push_back(56);
+    s.apply({{"op", "fault.create"}, {"name", "K"}, {"ids", ids}, {"color", {1.0, 0.0, 0.0}}});
+    s.apply(cmd(R"({"op":"surface.set","fault":"K","kernel":"inverse","iso":2.0,"opacity":0.5})"));
+    const SessionState before = s.state();
+    const Fault whole = *s.state().fault("K");
+    const SurfaceSettings settings = *s.state().surface("K");
+    const double wrapWhole = *faultWrappingIso(*s.currentFrame(), whole, settings);
+    s.apply(cmd(R"({"op":"fault.split","name":"K","method":"connected","min_size":3})"));
+    ASSERT_TRUE(s.state().fault("K.1"));
+    ASSERT_TRUE(s.state().fault("K.2"));
+    EXPECT_FALSE(s.state().fault("K.3")); // the two-sphere piece
+    EXPECT_EQ(s.state().fault("K.1")->ids.size(), 18u);
+    EXPECT_EQ(s.state().fault("K.2")->ids.size(), 4u);
+    EXPECT_EQ(s.state().fault("K.1")->color, whole.color);
+    EXPECT_NE(s.state().fault("K.2")->color, whole.color);
+    for (const char* piece : {"K.1", "K.2"}) {
+        SCOPED_TRACE(piece);
+        const SurfaceSettings* st = s.state().surface(piece);
+        ASSERT_TRUE(st);
+        EXPECT_EQ(st->kernel, MetaballKernel::Inverse);
+        EXPECT_DOUBLE_EQ(st->opacity, 0.5);
+        const double wrap = *faultWrappingIso(*s.currentFrame(), *s.state().fault(piece), *st);
+        EXPECT_NEAR(st->iso, 2.0 * wrap / wrapWhole, 0.01 * st->iso);
+    }
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(dump(s.state()), dump(before));
+    // A compact kernel's iso is absolute: every piece keeps it.
+    s.apply(cmd(R"({"op":"surface.set","fault":"K","kernel":"compact","iso":0.7})"));
+    s.apply(cmd(R"({"op":"fault.split","name":"K","method":"connected","min_size":3})"));
+    EXPECT_DOUBLE_EQ(s.state().surface("K.2")->iso, 0.7);
+    // Under the default min_size (10) only the wall is a piece: nothing to split.
+    s.apply(cmd(R"({"op":"undo"})"));
+    expectRefused(s, R"({"op":"fault.split","name":"K","method":"connected"})",
+                  "of at least 10 spheres");
+}
+
 TEST(SessionFile, LargeFaultsArePackedAndRoundTrip) {
     TempDir dir;
     SessionState st;

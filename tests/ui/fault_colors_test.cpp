@@ -93,4 +93,8 @@ TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
     ASSERT_NE(session.state().fault("W.2"), nullptr);
     EXPECT_EQ(session.state().fault("W.1")->ids.size(), 16u);
     EXPECT_EQ(wb().selectedFaults, (std::set<std::string>{"W.1"}));
+    // The status line says what happened, and what became of small pieces.
+    EXPECT_NE(wb().lastMessage().find("Split W into 2 faults; pieces under 10 spheres stay with W.1"),
+              std::string::npos)
+        << wb().lastMessage();
 }

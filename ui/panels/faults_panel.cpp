@@ -15,9 +15,10 @@ namespace faultline::ui {
 
 namespace {
 
-constexpr float kPalette[][3] = {{0.90f, 0.30f, 0.20f}, {0.20f, 0.55f, 0.90f}, {0.95f, 0.70f, 0.10f}, {0.40f, 0.75f, 0.30f},
-                                 {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
-                                 {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
+constexpr float kPalette[][3] = {
+    {0.90f, 0.30f, 0.20f}, {0.20f, 0.55f, 0.90f}, {0.95f, 0.70f, 0.10f}, {0.40f, 0.75f, 0.30f},
+    {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
+    {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
 
 core::Json colorJson(const float c[3]) { return core::Json::array({c[0], c[1], c[2]}); }
 
@@ -29,15 +30,15 @@ class FaultsPanel final : public Panel {
     void draw(Workbench& wb) override {
         const core::SessionState& s = wb.state();
         const ViewDisplay* main = wb.mainDisplay();
-        const bool haveVisible = main && main->frame && main->visibility && main->visibility->visibleCount > 0;
+        const bool haveVisible =
+            main && main->frame && main->visibility && main->visibility->visibleCount > 0;
         auto& selected = wb.selectedFaults;
 
         ImGui::BeginDisabled(!haveVisible);
         if (ImGui::Button("New from visible")) {
             const std::string name = nextFaultName(s);
-            wb.emit({{"op", "fault.create"}, {"name", name}, {"from", "visible"}}, [&wb, name] {
-                wb.selectedFaults = {name};
-            });
+            wb.emit({{"op", "fault.create"}, {"name", name}, {"from", "visible"}},
+                    [&wb, name] { wb.selectedFaults = {name}; });
         }
         wb.mark("faults.create");
         ImGui::EndDisabled();
@@ -52,26 +53,42 @@ class FaultsPanel final : public Panel {
                 if (selected.count(f.name))
                     names.push_back(f.name);
             const std::string into = names.front();
-            wb.emit({{"op", "fault.merge"}, {"names", names}, {"into", into}}, [&wb, into] { wb.selectedFaults = {into}; });
+            wb.emit({{"op", "fault.merge"}, {"names", names}, {"into", into}},
+                    [&wb, into] { wb.selectedFaults = {into}; });
         }
         ImGui::EndDisabled();
         ImGui::SameLine();
         ImGui::BeginDisabled(selected.size() != 1);
         if (ImGui::Button("Split")) {
             const std::string name = *selected.begin();
-            wb.emit({{"op", "fault.split"}, {"name", name}}, [&wb, name] { wb.selectedFaults = {name + ".1"}; });
+            const bool hadSurface = wb.state().surface(name) != nullptr;
+            wb.emit({{"op", "fault.split"}, {"name", name}}, [&wb, name, hadSurface] {
+                wb.selectedFaults = {name + ".1"};
+                int pieces = 0;
+                while (wb.state().fault(name + "." + std::to_string(pieces + 1)))
+                    ++pieces;
+                wb.info("Split " + name + " into " + std::to_string(pieces) +
+                        " faults; pieces under " + std::to_string(core::kDefaultCandidateMinSize) +
+                        " spheres stay with " + name + ".1" +
+                        (hadSurface ? "; each keeps the surface settings" : ""));
+            });
         }
         wb.mark("faults.split");
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-            ImGui::SetTooltip("Split the selected fault into its connected pieces (name.1 the largest, name.2, ...)");
+            ImGui::SetTooltip(
+                "Split the selected fault into the faults it holds (name.1 the largest, in its "
+                "colour; name.2, ...); pieces under %d spheres stay with name.1, and every "
+                "piece keeps its surface settings",
+                static_cast<int>(core::kDefaultCandidateMinSize));
         ImGui::SameLine();
         ImGui::BeginDisabled(selected.empty());
         if (ImGui::Button("Delete")) {
             core::Json batch = core::Json::array();
             for (const auto& n : selected)
                 batch.push_back({{"op", "fault.delete"}, {"name", n}});
-            wb.emit(batch.size() == 1 ? batch[0] : core::Json{{"op", "batch"}, {"commands", batch}});
+            wb.emit(batch.size() == 1 ? batch[0]
+                                      : core::Json{{"op", "batch"}, {"commands", batch}});
         }
         wb.mark("faults.delete");
         ImGui::EndDisabled();
@@ -81,19 +98,23 @@ class FaultsPanel final : public Panel {
         ImGui::TextUnformatted("Show");
         ImGui::SameLine();
         const auto& filter = s.faultFilter;
-        std::string current = filter.mode == core::FaultFilter::Mode::All        ? "all spheres"
-                              : filter.mode == core::FaultFilter::Mode::Labelled ? "spheres in visible faults"
-                                                                                 : "only " + filter.fault;
+        std::string current = filter.mode == core::FaultFilter::Mode::All ? "all spheres"
+                              : filter.mode == core::FaultFilter::Mode::Labelled
+                                  ? "spheres in visible faults"
+                                  : "only " + filter.fault;
         ImGui::SetNextItemWidth(-1);
         if (ImGui::BeginCombo("##filter", current.c_str())) {
             if (ImGui::Selectable("all spheres", filter.mode == core::FaultFilter::Mode::All))
                 wb.emit({{"op", "fault.filter"}, {"mode", "all"}});
             wb.mark("faults.filter.all");
-            if (ImGui::Selectable("spheres in visible faults", filter.mode == core::FaultFilter::Mode::Labelled))
+            if (ImGui::Selectable("spheres in visible faults",
+                                  filter.mode == core::FaultFilter::Mode::Labelled))
                 wb.emit({{"op", "fault.filter"}, {"mode", "labelled"}});
             wb.mark("faults.filter.labelled");
             for (const auto& f : s.faults) {
-                if (ImGui::Selectable(("only " + f.name).c_str(), filter.mode == core::FaultFilter::Mode::Only && filter.fault == f.name))
+                if (ImGui::Selectable(("only " + f.name).c_str(),
+                                      filter.mode == core::FaultFilter::Mode::Only &&
+                                          filter.fault == f.name))
                     wb.emit({{"op", "fault.filter"}, {"mode", "only"}, {"fault", f.name}});
                 wb.mark("faults.filter.only." + f.name);
             }
@@ -103,8 +124,9 @@ class FaultsPanel final : public Panel {
 
         if (s.faults.empty()) {
             ImGui::Spacing();
-            ImGui::TextWrapped("No faults yet. Narrow the visible spheres with thresholds (for example on "
-                               "broken bonds or strain) and boxes, then press \"New from visible\".");
+            ImGui::TextWrapped(
+                "No faults yet. Narrow the visible spheres with thresholds (for example on "
+                "broken bonds or strain) and boxes, then press \"New from visible\".");
         } else {
             drawTable(wb);
             if (selected.size() == 1)
@@ -126,18 +148,23 @@ class FaultsPanel final : public Panel {
         const auto& extra = wb.extensions().faultColumns;
         const int columns = 4 + static_cast<int>(extra.size());
         const float rowH = ImGui::GetFrameHeightWithSpacing();
-        const float tableH = std::min(rowH * (static_cast<float>(s.faults.size()) + 1.2f), rowH * 9.0f);
-        if (!ImGui::BeginTable("##faults", columns, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
-                                                        ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable,
+        const float tableH =
+            std::min(rowH * (static_cast<float>(s.faults.size()) + 1.2f), rowH * 9.0f);
+        if (!ImGui::BeginTable("##faults", columns,
+                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
+                                   ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable,
                                ImVec2(0, tableH)))
             return;
         ImGui::TableSetupScrollFreeze(0, 1);
-        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight() * 2.2f);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed,
+                                ImGui::GetFrameHeight() * 2.2f);
         ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-        ImGui::TableSetupColumn("spheres", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0000000").x);
+        ImGui::TableSetupColumn("spheres", ImGuiTableColumnFlags_WidthFixed,
+                                ImGui::CalcTextSize("0000000").x);
         ImGui::TableSetupColumn("notes", ImGuiTableColumnFlags_WidthStretch, 1.4f);
         for (const auto& c : extra)
-            ImGui::TableSetupColumn(c.title.c_str(), ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("000000").x);
+            ImGui::TableSetupColumn(c.title.c_str(), ImGuiTableColumnFlags_WidthFixed,
+                                    ImGui::CalcTextSize("000000").x);
         ImGui::TableHeadersRow();
         for (const core::Fault& f : s.faults) {
             ImGui::PushID(f.name.c_str());
@@ -152,7 +179,9 @@ class FaultsPanel final : public Panel {
             ImGui::TableNextColumn();
             ImGui::AlignTextToFramePadding();
             const bool isSelected = selected.count(f.name) > 0;
-            if (ImGui::Selectable(f.name.c_str(), isSelected, ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap)) {
+            if (ImGui::Selectable(f.name.c_str(), isSelected,
+                                  ImGuiSelectableFlags_SpanAllColumns |
+                                      ImGuiSelectableFlags_AllowItemOverlap)) {
                 if (ImGui::GetIO().KeyCtrl) {
                     if (isSelected)
                         selected.erase(f.name);
@@ -181,7 +210,8 @@ class FaultsPanel final : public Panel {
     // A colour square; clicking opens a palette and a picker (committed when the popup closes).
     void drawSwatch(Workbench& wb, const core::Fault& f) {
         const ImVec4 c(f.color[0], f.color[1], f.color[2], 1.0f);
-        if (ImGui::ColorButton("##color", c, ImGuiColorEditFlags_NoTooltip, ImVec2(ImGui::GetFrameHeight(), ImGui::GetFrameHeight()))) {
+        if (ImGui::ColorButton("##color", c, ImGuiColorEditFlags_NoTooltip,
+                               ImVec2(ImGui::GetFrameHeight(), ImGui::GetFrameHeight()))) {
             m_colorFault = f.name;
             std::copy(f.color.begin(), f.color.end(), m_color);
             ImGui::OpenPopup("##colorpopup");
@@ -198,7 +228,9 @@ class FaultsPanel final : public Panel {
                 }
                 ImGui::PopID();
             }
-            ImGui::ColorPicker3("##picker", m_color, ImGuiColorEditFlags_NoSidePreview | ImGuiColorEditFlags_NoSmallPreview);
+            ImGui::ColorPicker3("##picker", m_color,
+                                ImGuiColorEditFlags_NoSidePreview |
+                                    ImGuiColorEditFlags_NoSmallPreview);
             ImGui::EndPopup();
         } else if (m_colorFault == f.name) {
             if (m_color[0] != f.color[0] || m_color[1] != f.color[1] || m_color[2] != f.color[2])
@@ -222,13 +254,15 @@ class FaultsPanel final : public Panel {
         ImGui::InputText("##name", &m_name);
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != f.name) {
             const std::string next = m_name;
-            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}}, [&wb, next] { wb.selectedFaults = {next}; });
+            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
+                    [&wb, next] { wb.selectedFaults = {next}; });
         }
         wb.mark("faults.name");
         ImGui::AlignTextToFramePadding();
         ImGui::TextUnformatted("Notes");
         ImGui::SameLine(ImGui::GetFontSize() * 4);
-        ImGui::InputTextMultiline("##notes", &m_notes, ImVec2(-1, ImGui::GetTextLineHeight() * 3.2f));
+        ImGui::InputTextMultiline("##notes", &m_notes,
+                                  ImVec2(-1, ImGui::GetTextLineHeight() * 3.2f));
         if (ImGui::IsItemDeactivatedAfterEdit() && m_notes != f.notes)
             wb.emit({{"op", "fault.set"}, {"name", f.name}, {"notes", m_notes}});
         wb.mark("faults.notes");
@@ -240,7 +274,8 @@ class FaultsPanel final : public Panel {
             const ViewDisplay* main = wb.mainDisplay();
             std::vector<std::int64_t> ids;
             for (std::size_t row = 0; row < main->visibility->mask.size(); ++row)
-                if (main->visibility->mask[row] && std::binary_search(f.ids.begin(), f.ids.end(), main->frame->ids[row]))
+                if (main->visibility->mask[row] &&
+                    std::binary_search(f.ids.begin(), f.ids.end(), main->frame->ids[row]))
                     ids.push_back(main->frame->ids[row]);
             if (!ids.empty())
                 wb.emit({{"op", "fault.remove"}, {"name", f.name}, {"ids", ids}});
