@@ -500,7 +500,9 @@ MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &para
             // the near cutoff about nearCutoffRadii radii.
             const double target = nearRadii * mean;
             const int ratio =
-                std::max(m_tuning.minRatio, static_cast<int>(std::lround(target / (kappa * m_h))));
+                std::max(m_sparse ? std::max(m_tuning.minRatio, m_tuning.sparseMinRatio)
+                                  : m_tuning.minRatio,
+                         static_cast<int>(std::lround(target / (kappa * m_h))));
             for (int coarse = std::max(kKappaMin, kappa / 2 + 1); coarse <= kKappaMax; ++coarse) {
                 if (m_tuning.coarseKappa > 0 &&
                     coarse != std::max(m_tuning.coarseKappa, kappa / 2 + 1))

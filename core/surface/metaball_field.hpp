@@ -55,6 +55,9 @@ struct MultilevelTuning {
     // little there (few spheres in it) and saves level-1 nodes, which would outnumber the voxels'
     // sums. 1: never wider.
     double sparseNearFactor = 5.0 / 3.0;
+    // ... and level 1 at least this many voxels apart: its nodes' window sums, not the few
+    // near spheres, are what a sparse set's field costs (bench_surface's spread-out cases).
+    int sparseMinRatio = 4;
     int maxOpen = 256;            // planning: tree nodes opened per block bound
     int probeOpen = 40;           // planning: after this many openings, give up on a bound
     double giveUpRatio = 2.0;     // whose high is over ratio * isoMin and low under isoMax / ratio

@@ -236,6 +236,7 @@ TEST(MetaballField, SparseSetWiderNearCutoffStillMatchesAlgorithm1) {
         const float voxel = 0.5f;
         fc::MultilevelTuning dense;
         dense.sparseNearFactor = 1.0;
+        dense.sparseMinRatio = 0;
         const fc::MetaballField plain(s.set(), params, voxel, dense);
         fc::MetaballField wider(s.set(), params, voxel);
         // r/d^2's budget keeps the same cutoff here; r/d's widens.
