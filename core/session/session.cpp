@@ -1,8 +1,11 @@
 #include "core/session/session.hpp"
 
+#include "core/session/command_label.hpp"
+
 #include "core/io/input_error.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <utility>
@@ -138,11 +141,25 @@ void Session::apply(const Json& cmd) {
         if (op == "undo" ? !undo() : !redo())
             throw CommandError(op + ": nothing to " + op);
     } else {
+        // fault.add / fault.remove / fault.create: how many spheres they moved, for the label.
+        const std::string name = op.rfind("fault.", 0) == 0 && cmd.contains("name") &&
+                                         cmd["name"].is_string()
+                                     ? cmd["name"].get<std::string>()
+                                     : std::string();
+        auto faultSize = [&]() -> long long {
+            const Fault* f = name.empty() ? nullptr : m_state.fault(name);
+            return f ? static_cast<long long>(f->ids.size()) : 0;
+        };
+        const long long sizeBefore = faultSize();
         bool changesState = false;
         Json inverse = run(cmd, changesState);
-        if (changesState) {
+        if (changesState && op != "frame.set") {
+            const bool sized = op == "fault.add" || op == "fault.remove" || op == "fault.create";
+            m_undoLabels.push_back(
+                describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1));
             m_undo.push_back(std::move(inverse));
             m_redo.clear();
+            m_redoLabels.clear();
         }
     }
     journalLine(cmd);
@@ -223,6 +240,8 @@ bool Session::undo() {
     Json redo = run(m_undo.back(), changes);
     m_undo.pop_back();
     m_redo.push_back(std::move(redo));
+    m_redoLabels.push_back(m_undoLabels.back());
+    m_undoLabels.pop_back();
     return true;
 }
 
@@ -233,6 +252,8 @@ bool Session::redo() {
     Json undo = run(m_redo.back(), changes);
     m_redo.pop_back();
     m_undo.push_back(std::move(undo));
+    m_undoLabels.push_back(m_redoLabels.back());
+    m_redoLabels.pop_back();
     return true;
 }
 
@@ -273,6 +294,8 @@ void Session::replaceState(SessionState state) {
     m_state = std::move(state);
     m_undo.clear();
     m_redo.clear();
+    m_undoLabels.clear();
+    m_redoLabels.clear();
     setDataset(std::move(ds));
 }
 

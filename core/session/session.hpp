@@ -59,6 +59,11 @@ class Session {
     bool undo(); // false when there is nothing to undo
     bool redo();
     std::size_t undoDepth() const { return m_undo.size(); }
+    // What undo and redo would revert or repeat, in words ("add 279 spheres to F1"); empty when
+    // there is nothing to undo or redo. Time (frame.set) is view state, as in OVITO and
+    // ParaView: moving through frames makes no undo step (and keeps what redo would repeat).
+    std::string undoLabel() const { return m_undoLabels.empty() ? std::string() : m_undoLabels.back(); }
+    std::string redoLabel() const { return m_redoLabels.empty() ? std::string() : m_redoLabels.back(); }
 
     // What a live edit (a drag of a box face, a histogram threshold, the camera) would show,
     // without applying it: `commands` run in order through the same ops as apply() on the
@@ -151,6 +156,7 @@ class Session {
     std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
     bool m_markSavedAfterOp = false;
     std::vector<Json> m_redo;          // commands that redo, most recent last
+    std::vector<std::string> m_undoLabels, m_redoLabels; // describeCommand of each entry
     void journalLine(const Json& cmd); // after any reserved places
     void flushJournal();               // the lines no open place holds back
     void checkAction(const Json& cmd) const;

@@ -81,7 +81,6 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
     Session s;
     const std::vector<Json> commands = {
         {{"op", "data.open"}, {"paths", {data}}},
-        cmd(R"({"op":"frame.set","frame":1})"),
         cmd(R"({"op":"box.add","name":"a","min":[0,0,0],"max":[1,1,1]})"),
         cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[2,2,2],"mode":"cut","index":0})"),
         cmd(R"({"op":"box.set","name":"a","max":[3,3,3],"mode":"cut","rename":"a2"})"),
@@ -127,6 +126,37 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         EXPECT_EQ(dump(s.state()), dump(states[k + 1])) << "redo of " << commands[k].dump();
     }
     EXPECT_FALSE(s.redo());
+}
+
+// Issue 27: time is view state (as in OVITO and ParaView). Moving through frames makes no undo
+// step and keeps what redo would repeat; undo and redo say what they revert.
+TEST(Session, FramesAreNoUndoStepsAndUndoSaysWhatItReverts) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":0.5,"high":1e30})"));
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
+    s.apply(cmd(R"({"op":"fault.add","name":"F1","from":"visible"})")); // x in {2, 3}: 32 spheres
+    EXPECT_EQ(s.undoLabel(), "add 32 spheres to F1");
+    const std::size_t depth = s.undoDepth();
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+    EXPECT_EQ(s.undoDepth(), depth);
+    EXPECT_EQ(s.undoLabel(), "add 32 spheres to F1");
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(s.state().frame, 1u); // the frame stays where the user went
+    EXPECT_EQ(s.state().fault("F1")->ids.size(), 2u);
+    EXPECT_EQ(s.redoLabel(), "add 32 spheres to F1");
+    EXPECT_EQ(s.undoLabel(), "make fault F1 (2 spheres)");
+    s.apply(cmd(R"({"op":"frame.set","frame":0})"));
+    EXPECT_EQ(s.redoLabel(), "add 32 spheres to F1"); // still there
+    ASSERT_TRUE(s.redo());
+    EXPECT_EQ(s.state().fault("F1")->ids.size(), 34u);
+    s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":0.7})"));
+    EXPECT_EQ(s.undoLabel(), "change the strain threshold");
+    EXPECT_EQ(s.redoLabel(), "");
+    s.apply(cmd(R"({"op":"batch","commands":[{"op":"fault.delete","name":"F1"}]})"));
+    EXPECT_EQ(s.undoLabel(), "delete F1");
 }
 
 TEST(Session, DifferenceColouringIsSavedAndItsReferenceFrameResolves) {

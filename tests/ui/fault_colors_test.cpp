@@ -98,3 +98,18 @@ TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
               std::string::npos)
         << wb().lastMessage();
 }
+
+// Issue 27: undo and redo name what they revert in the status line; frames are no undo steps.
+TEST_F(PanelTest, UndoAndRedoSayWhatTheyRevert) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","ids":[1,2,3]})"));
+    session.apply(Json::parse(R"({"op":"frame.set","frame":1})")); // no undo step
+    wb().emit({{"op", "undo"}});
+    headless.frames(wb(), 1);
+    EXPECT_EQ(wb().lastMessage(), "Undone: make fault F1 (3 spheres)");
+    EXPECT_EQ(session.state().frame, 1u);
+    wb().emit({{"op", "redo"}});
+    headless.frames(wb(), 1);
+    EXPECT_EQ(wb().lastMessage(), "Redone: make fault F1 (3 spheres)");
+    EXPECT_EQ(session.undoLabel(), "make fault F1 (3 spheres)");
+}

@@ -226,11 +226,19 @@ void Workbench::applyPending() {
     m_pending.clear();
     for (const auto& [cmd, onApplied] : pending) {
         try {
+            const std::string op = cmd.is_object() ? cmd.value("op", "") : std::string();
+            // What undo / redo will revert or repeat, named before it happens.
+            const std::string undoing = op == "undo"   ? m_session.undoLabel()
+                                        : op == "redo" ? m_session.redoLabel()
+                                                       : std::string();
             m_session.apply(cmd);
             if (onApplied)
                 onApplied();
-            const std::string op = cmd.value("op", "");
-            if (op == "session.save")
+            if (op == "undo" && !undoing.empty())
+                info("Undone: " + undoing);
+            else if (op == "redo" && !undoing.empty())
+                info("Redone: " + undoing);
+            else if (op == "session.save")
                 info("Saved the session to " + cmd.value("path", ""));
             else if (op == "export.csv")
                 info("Exported " + cmd.value("path", ""));

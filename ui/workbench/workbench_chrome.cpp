@@ -178,10 +178,16 @@ void Workbench::drawMenus() {
     }
     m_items.markLastItem("menu.file");
     if (ImGui::BeginMenu("Edit")) {
-        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, m_session.canUndo()))
+        // "Undo: add 279 spheres to F1" (the ### keeps one ImGui id whatever the label says).
+        const std::string undoLabel = m_session.undoLabel(), redoLabel = m_session.redoLabel();
+        const std::string undoItem = (undoLabel.empty() ? "Undo" : "Undo: " + undoLabel) + "###undo";
+        const std::string redoItem = (redoLabel.empty() ? "Redo" : "Redo: " + redoLabel) + "###redo";
+        if (ImGui::MenuItem(undoItem.c_str(), "Ctrl+Z", false, m_session.canUndo()))
             emit({{"op", "undo"}});
-        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, m_session.canRedo()))
+        m_items.markLastItem("edit.undo");
+        if (ImGui::MenuItem(redoItem.c_str(), "Ctrl+Shift+Z", false, m_session.canRedo()))
             emit({{"op", "redo"}});
+        m_items.markLastItem("edit.redo");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {

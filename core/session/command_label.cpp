@@ -1,0 +1,113 @@
+#include "core/session/command_label.hpp"
+
+#include <map>
+
+namespace faultline::core {
+
+namespace {
+
+using Json = nlohmann::json;
+
+std::string text(const Json& cmd, const char* field) {
+    if (cmd.is_object() && cmd.contains(field) && cmd[field].is_string())
+        return cmd[field].get<std::string>();
+    return {};
+}
+
+std::size_t count(const Json& cmd, const char* field) {
+    if (cmd.is_object() && cmd.contains(field) && cmd[field].is_array())
+        return cmd[field].size();
+    return 0;
+}
+
+std::string spheres(std::size_t n) { return std::to_string(n) + (n == 1 ? " sphere" : " spheres"); }
+
+std::string quoted(const std::string& name) { return name.empty() ? std::string("it") : name; }
+
+} // namespace
+
+std::string describeCommand(const Json& cmd, long long spheresChanged) {
+    const std::string op = text(cmd, "op");
+    const std::string name = text(cmd, "name");
+    if (op == "batch") {
+        const std::size_t n = count(cmd, "commands");
+        if (n == 1)
+            return describeCommand(cmd["commands"][0]);
+        // A batch of one op on several faults (Delete with several selected): say so.
+        std::map<std::string, std::size_t> ops;
+        for (std::size_t i = 0; i < n; ++i)
+            ++ops[text(cmd["commands"][i], "op")];
+        if (ops.size() == 1 && ops.begin()->first == "fault.delete")
+            return "delete " + std::to_string(n) + " faults";
+        return std::to_string(n) + " changes";
+    }
+    const std::size_t moved =
+        spheresChanged >= 0 ? static_cast<std::size_t>(spheresChanged) : count(cmd, "ids");
+    if (op == "fault.create" && spheresChanged >= 0)
+        return "make fault " + quoted(name) + " (" + spheres(moved) + ")";
+    if (op == "fault.create") {
+        if (text(cmd, "from") == "visible")
+            return "make fault " + quoted(name) + " of the visible spheres";
+        return "make fault " + quoted(name) + " (" + spheres(count(cmd, "ids")) + ")";
+    }
+    if (op == "fault.add")
+        return "add " + spheres(moved) + " to " + quoted(name);
+    if (op == "fault.remove")
+        return "remove " + spheres(moved) + " from " + quoted(name);
+    if (op == "fault.set") {
+        if (cmd.contains("color") && !cmd.contains("notes") && !cmd.contains("rename"))
+            return "recolour " + quoted(name);
+        return "edit " + quoted(name);
+    }
+    if (op == "fault.delete")
+        return "delete " + quoted(name);
+    if (op == "fault.merge")
+        return "merge " + std::to_string(count(cmd, "names")) + " faults into " +
+               quoted(text(cmd, "into"));
+    if (op == "fault.split")
+        return "split " + quoted(name);
+    if (op == "fault.candidates")
+        return "accept the fault candidates";
+    if (op == "fault.filter")
+        return "show " + (text(cmd, "mode").empty() ? std::string("faults") : text(cmd, "mode"));
+    const std::string variable = text(cmd, "variable");
+    if (op == "threshold.add")
+        return "add a " + variable + " threshold";
+    if (op == "threshold.set")
+        return "change the " + variable + " threshold";
+    if (op == "threshold.remove")
+        return "remove the " + variable + " threshold";
+    if (op == "box.add")
+        return "add box " + quoted(name);
+    if (op == "box.set")
+        return "change box " + quoted(name);
+    if (op == "box.remove")
+        return "remove box " + quoted(name);
+    if (op == "color.set") {
+        const std::string view = text(cmd, "view");
+        return variable.empty() ? "recolour view " + quoted(view)
+                                : "colour view " + quoted(view) + " by " + variable;
+    }
+    if (op == "camera.set")
+        return "move the camera";
+    if (op == "view.add")
+        return "add view " + quoted(name);
+    if (op == "view.remove")
+        return "remove view " + quoted(name);
+    if (op == "view.set")
+        return "change view " + quoted(name);
+    const std::string fault = text(cmd, "fault");
+    if (op == "surface.build")
+        return "build the surface of " + quoted(fault);
+    if (op == "surface.set")
+        return "change the surface of " + quoted(fault);
+    if (op == "surface.remove")
+        return "remove the surface of " + quoted(fault);
+    if (op == "frame.set" && cmd.contains("frame") && cmd["frame"].is_number_integer())
+        return "go to frame " + std::to_string(cmd["frame"].get<long long>());
+    if (op == "data.open")
+        return "open data";
+    return op.empty() ? std::string("a change") : op;
+}
+
+} // namespace faultline::core
