@@ -248,3 +248,26 @@ TEST_F(PanelTest, SessionsOpenInTheBackgroundAsOneUndoableCommand) {
     EXPECT_EQ(session.dataset(), nullptr);
     EXPECT_EQ(wb().recentFiles().front(), file);
 }
+
+// Issue 27: Top / Front / Side fit the visible spheres from their new side, so a zoomed-in view
+// is not left cropped until Fit.
+TEST_F(PanelTest, PresetViewsFitTheVisibleSpheres) {
+    openLattice();
+    headless.settle(wb());
+    session.apply(Json::parse(R"({"op":"camera.set","view":"main","distance":0.5,"target":[9,9,9]})"));
+    headless.settle(wb());
+    for (const char* preset : {"top", "front", "side"}) {
+        SCOPED_TRACE(preset);
+        headless.clearEmitted();
+        headless.click(wb(), std::string("viewports.preset.") + preset);
+        ASSERT_EQ(headless.emitted("camera.set").size(), 1u);
+        const Json cmd = headless.emitted("camera.set")[0];
+        // The lattice spans 0..3 (radius 0.5): fitted, the target is its centre and the camera
+        // stands well back.
+        ASSERT_TRUE(cmd.contains("target")) << cmd.dump();
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(cmd["target"][k].get<double>(), 1.5, 0.6);
+        EXPECT_GT(cmd["distance"].get<double>(), 3.0);
+        headless.settle(wb());
+    }
+}

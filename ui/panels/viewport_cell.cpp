@@ -60,11 +60,14 @@ void ViewportCells::emitForViews(Workbench& wb, const std::function<void(core::J
 }
 
 void ViewportCells::presetAll(Workbench& wb, const char* preset) {
-    core::CameraState c;
-    applyPreset(c, preset);
+    // Looking from another side changes what fits: each view is fitted again to its visible
+    // spheres (as Fit visible does), so the model is never cropped by the old zoom.
+    core::CameraState p;
+    applyPreset(p, preset);
     emitForViews(wb, [&](core::Json& cmd) {
-        cmd["azimuth"] = c.azimuth;
-        cmd["elevation"] = c.elevation;
+        cmd["azimuth"] = p.azimuth;
+        cmd["elevation"] = p.elevation;
+        fitVisibleInto(wb, cmd, &p);
     });
 }
 
@@ -72,20 +75,25 @@ void ViewportCells::fitAll(Workbench& wb) {
     emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
 }
 
+void ViewportCells::fitVisibleInto(Workbench& wb, core::Json& cmd, const core::CameraState* orientation) {
+    const std::string name = cmd["view"].get<std::string>();
+    const ViewDisplay* d = wb.view(name);
+    const core::ViewState* v = wb.state().view(name);
+    if (!d || !v || !d->frame || !d->visibility || d->visibility->visibleCount == 0) {
+        cmd["distance"] = 0.0; // nothing visible: the whole model
+        return;
+    }
+    core::CameraState camera = d->camera;
+    if (orientation)
+        camera.azimuth = orientation->azimuth, camera.elevation = orientation->elevation;
+    const auto bounds = visibleBounds(*d->frame, d->visibility->mask);
+    const core::CameraState c = wb.fitCamera(*v, camera, bounds.lo, bounds.hi);
+    cmd["target"] = c.target;
+    cmd["distance"] = c.distance;
+}
+
 void ViewportCells::fitVisible(Workbench& wb) {
-    emitForViews(wb, [&wb](core::Json& cmd) {
-        const std::string name = cmd["view"].get<std::string>();
-        const ViewDisplay* d = wb.view(name);
-        const core::ViewState* v = wb.state().view(name);
-        if (!d || !v || !d->frame || !d->visibility || d->visibility->visibleCount == 0) {
-            cmd["distance"] = 0.0; // nothing visible: the whole model
-            return;
-        }
-        const auto bounds = visibleBounds(*d->frame, d->visibility->mask);
-        const core::CameraState c = wb.fitCamera(*v, d->camera, bounds.lo, bounds.hi);
-        cmd["target"] = c.target;
-        cmd["distance"] = c.distance;
-    });
+    emitForViews(wb, [&wb, this](core::Json& cmd) { fitVisibleInto(wb, cmd, nullptr); });
 }
 
 void ViewportCells::setOrthographic(Workbench& wb, bool ortho) {

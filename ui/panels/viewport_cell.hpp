@@ -21,6 +21,9 @@ class ViewportCells {
     void presetAll(Workbench& wb, const char* preset);
     void fitAll(Workbench& wb);
     void fitVisible(Workbench& wb); // to the visible spheres (boxes, thresholds, faults applied)
+    // Sets a camera.set's target and distance to fit the view's visible spheres, seen with
+    // `orientation`'s azimuth and elevation (the view's own when null).
+    void fitVisibleInto(Workbench& wb, core::Json& cmd, const core::CameraState* orientation);
     // Orbit / Rectangle / Lasso: what a left drag does in every view (the tool is the workbench's).
     void drawToolButtons(Workbench& wb);
     void setOrthographic(Workbench& wb, bool ortho);

@@ -52,8 +52,9 @@ class ViewportsPanel final : public Panel {
             std::snprintf(label, sizeof label, "%c%s", preset[0] - 32, preset + 1);
             if (ImGui::Button(label))
                 m_cells.presetAll(wb, preset);
+            wb.mark(std::string("viewports.preset.") + preset);
             if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%s", std::string(preset) == "top"     ? "Map view: from above, north up"
+                ImGui::SetTooltip("%s", std::string(preset) == "top"     ? "Map view: from above, north up (fitted to the visible spheres)"
                                         : std::string(preset) == "front" ? "From the south, looking north"
                                         : std::string(preset) == "side"  ? "From the east, looking west"
                                                                          : "Oblique, from the south-south-west");
