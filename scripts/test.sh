@@ -14,7 +14,7 @@ export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 export FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1
 # As root (the machine setup.sh installs on) the Slurm example test must run, not skip.
 [ "$(id -u)" -eq 0 ] && export FAULTLINE_REQUIRE_SLURM=1
-(cd "$build" && xvfb-run -a -s "-screen 0 1920x1080x24" \
+(cd "$build" && xvfb-run -a -s "-screen 0 1920x1080x24 -noreset" \
     ctest --output-on-failure --parallel "$(nproc)" --timeout 600 "$@")
 if [ "${FAULTLINE_QUICK:-0}" != 1 ]; then
     "$here/scripts/hardening.sh"

@@ -279,3 +279,33 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
         ui.steps(1);
     }
 }
+
+// Issue 27: an idle workbench presents nothing new. Frames whose draw lists match the picture on
+// screen (and no view drawn again) are neither drawn nor presented; a change is at once.
+TEST(Gui, AnIdleWindowPresentsNoFramesUntilSomethingChanges) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display)
+        FAULTLINE_NEED_GL("no display (run under xvfb-run for this test)");
+    core::Session session;
+    std::string why;
+    std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
+    if (!app)
+        FAULTLINE_NEED_GL("no OpenGL window here: " << why);
+    Driver ui(*app);
+    ui.steps(3);
+    app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
+    ui.settle();
+    ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
+    for (int k = 0; k < 8; ++k) // settle: tooltips, fades, first view draws
+        app->step(true);
+    const std::size_t presented = app->presentedFrames(), skipped = app->skippedFrames();
+    for (int k = 0; k < 6; ++k) // idle: each waits at most a quarter second
+        app->step(true);
+    EXPECT_EQ(app->presentedFrames(), presented);
+    EXPECT_EQ(app->skippedFrames(), skipped + 6);
+    // A change shows at once.
+    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"z","low":0,"high":0.01})"));
+    app->step(true);
+    app->step(true);
+    EXPECT_GT(app->presentedFrames(), presented);
+}

@@ -5,6 +5,7 @@
 
 #include "ui/workbench/workbench.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -54,6 +55,21 @@ class GuiApp {
 
     GLFWwindow* m_window = nullptr;
     std::string m_title; // the window title last set
+    // Idle frames whose picture would not change are not drawn or presented (the window keeps
+    // the last one): the draw lists' hash and the views' draw count of the last presented frame.
+    std::uint64_t m_presentedHash = 0;
+    std::size_t m_presentedDraws = ~std::size_t{0};
+    int m_presentedWidth = 0, m_presentedHeight = 0;
+    bool m_exposed = true; // the window system asked for a redraw
+    std::size_t m_presentedFrames = 0, m_skippedFrames = 0;
+
+  public:
+    // Frames drawn and presented, and idle frames skipped because nothing changed (tests).
+    std::size_t presentedFrames() const { return m_presentedFrames; }
+    std::size_t skippedFrames() const { return m_skippedFrames; }
+
+  private:
+    static void onRefresh(GLFWwindow* window);
     std::unique_ptr<Workbench> m_workbench;
     std::unique_ptr<ViewRenderer> m_renderer; // null when this OpenGL cannot draw spheres
     std::function<void(ImGuiIO&)> m_inputHook;

@@ -226,6 +226,7 @@ class Workbench {
     void setFrameMemoryBudget(std::size_t bytes);
     void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
     std::optional<std::string> takeScreenshotRequest();
+    bool hasScreenshotRequest() const { return m_screenshotPath.has_value(); }
     const std::string& journalPath() const { return m_journalPath; }
     FileDialog& fileDialog() { return m_dialog; }
     bool quitRequested() const { return m_quit; }
