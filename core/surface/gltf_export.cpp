@@ -17,8 +17,8 @@ namespace {
 using V3 = std::array<float, 3>;
 
 // Appends raw data to the single buffer, 4-byte aligned; returns the new buffer view's index.
-int addView(tinygltf::Model &model, const void *data, std::size_t bytes, int target) {
-    auto &buffer = model.buffers.front().data;
+int addView(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
+    auto& buffer = model.buffers.front().data;
     while (buffer.size() % 4)
         buffer.push_back(0);
     const std::size_t offset = buffer.size();
@@ -34,7 +34,7 @@ int addView(tinygltf::Model &model, const void *data, std::size_t bytes, int tar
     return static_cast<int>(model.bufferViews.size()) - 1;
 }
 
-int addVec3Accessor(tinygltf::Model &model, const std::vector<V3> &values, bool withBounds,
+int addVec3Accessor(tinygltf::Model& model, const std::vector<V3>& values, bool withBounds,
                     int target = TINYGLTF_TARGET_ARRAY_BUFFER) {
     tinygltf::Accessor a;
     a.bufferView = addView(model, values.data(), values.size() * sizeof(V3), target);
@@ -45,7 +45,7 @@ int addVec3Accessor(tinygltf::Model &model, const std::vector<V3> &values, bool 
         V3 lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
               std::numeric_limits<float>::max()};
         V3 hi{-lo[0], -lo[1], -lo[2]};
-        for (const auto &v : values)
+        for (const auto& v : values)
             for (int k = 0; k < 3; ++k) {
                 lo[k] = std::min(lo[k], v[k]);
                 hi[k] = std::max(hi[k], v[k]);
@@ -57,7 +57,7 @@ int addVec3Accessor(tinygltf::Model &model, const std::vector<V3> &values, bool 
     return static_cast<int>(model.accessors.size()) - 1;
 }
 
-int addIndexAccessor(tinygltf::Model &model, const std::vector<std::uint32_t> &indices) {
+int addIndexAccessor(tinygltf::Model& model, const std::vector<std::uint32_t>& indices) {
     tinygltf::Accessor a;
     a.bufferView = addView(model, indices.data(), indices.size() * sizeof(std::uint32_t),
                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
@@ -68,9 +68,9 @@ int addIndexAccessor(tinygltf::Model &model, const std::vector<std::uint32_t> &i
     return static_cast<int>(model.accessors.size()) - 1;
 }
 
-int addMesh(tinygltf::Model &model, const std::string &name, const std::vector<V3> &positions,
-            const std::vector<V3> &normals, const std::vector<V3> *colors,
-            const std::vector<std::uint32_t> &indices, int material) {
+int addMesh(tinygltf::Model& model, const std::string& name, const std::vector<V3>& positions,
+            const std::vector<V3>& normals, const std::vector<V3>* colors,
+            const std::vector<std::uint32_t>& indices, int material) {
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.attributes["POSITION"] = addVec3Accessor(model, positions, true);
@@ -87,7 +87,7 @@ int addMesh(tinygltf::Model &model, const std::string &name, const std::vector<V
 }
 
 // Unit icosphere (one subdivision of an icosahedron: 42 vertices, 80 triangles).
-void icosphere(std::vector<V3> &v, std::vector<std::uint32_t> &tri) {
+void icosphere(std::vector<V3>& v, std::vector<std::uint32_t>& tri) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
          {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
@@ -98,7 +98,7 @@ void icosphere(std::vector<V3> &v, std::vector<std::uint32_t> &tri) {
         const float l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
         return V3{p[0] / l, p[1] / l, p[2] / l};
     };
-    for (auto &p : v)
+    for (auto& p : v)
         p = normalize(p);
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
     auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
@@ -123,8 +123,8 @@ void icosphere(std::vector<V3> &v, std::vector<std::uint32_t> &tri) {
 
 } // namespace
 
-void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> surfaces,
-               const SphereSet &glyphs) {
+void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> surfaces,
+               const SphereSet& glyphs) {
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "Faultline";
@@ -137,7 +137,7 @@ void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> s
     model.materials.push_back(material);
     tinygltf::Scene scene;
     scene.name = "faults";
-    for (const auto &s : surfaces) {
+    for (const auto& s : surfaces) {
         if (!s.mesh)
             throw std::invalid_argument("exportGlb: surface '" + s.name + "' has no mesh");
         tinygltf::Node node;
@@ -178,7 +178,9 @@ void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> s
     model.scenes.push_back(scene);
     model.defaultScene = 0;
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&model, path.string(), false, true, false, true))
+    // .gltf: JSON with the buffers embedded; anything else a binary .glb.
+    const bool binary = path.extension() != ".gltf";
+    if (!writer.WriteGltfSceneToFile(&model, path.string(), false, true, !binary, binary))
         throw std::runtime_error(path.string() + ": cannot write glTF file");
 }
 

@@ -9,6 +9,7 @@
 #include <tiny_gltf.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace fc = faultline::core;
 
@@ -124,5 +125,28 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
     EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
     EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());
     EXPECT_TRUE(model.nodes[2].extensions.count("EXT_mesh_gpu_instancing"));
+    std::filesystem::remove(path);
+}
+
+// A path ending in .gltf gets the JSON form (buffers embedded), which glTF tools read as text.
+TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
+    const Spheres s;
+    fc::SurfaceParams params;
+    params.iso = 2.0f;
+    params.voxelSize = 0.1f;
+    const auto a = fc::buildSurface(s.set(), params);
+    const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}};
+    const auto path = tempPath("faults.gltf");
+    fc::exportGlb(path, surfaces, s.set());
+    std::ifstream in(path, std::ios::binary);
+    char first = 0;
+    in >> first;
+    EXPECT_EQ(first, '{');
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadASCIIFromFile(&model, &err, &warn, path.string())) << err;
+    ASSERT_GE(model.nodes.size(), 1u);
+    EXPECT_EQ(model.nodes[0].name, "F1");
     std::filesystem::remove(path);
 }

@@ -121,6 +121,25 @@ TEST_F(UnsavedWork, SaveAsFromTheQuestionQuitsOnlyWhenWritten) {
     EXPECT_TRUE(wb().quitRequested());
 }
 
+// Issue 27: a save dialog's suggested name is selected when the field takes focus (also by a
+// click): what the user types replaces it (a typed path was appended to it: "faults.glb/tmp/.../F1.gltf").
+TEST_F(UnsavedWork, TypingInASaveDialogReplacesTheSuggestedName) {
+    openLattice();
+    addBox("b");
+    wb().requestQuit();
+    headless.frames(wb(), 2);
+    headless.click(wb(), "unsaved.save");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().fileDialog().isOpen());
+    const std::string file = dir.file("typed.faultline.json");
+    // Click into the field, as a user does, then type: no select-all first.
+    headless.click(wb(), "filedialog.name");
+    headless.type(wb(), file);
+    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.frames(wb(), 3);
+    EXPECT_TRUE(std::filesystem::exists(file)) << wb().lastMessage();
+}
+
 // The test runs itself as a child process that makes changes, lets autosave write them and is
 // then killed (SIGKILL: no destructor, no clean-exit record); the next start offers them back.
 TEST_F(UnsavedWork, AProcessKilledWithUnsavedChangesOffersThemAtTheNextStart) {

@@ -310,7 +310,8 @@ class SurfacesPanel final : public Panel {
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
                                  FileDialog::Mode::Save,
-                                 m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf", {".glb"},
+                                 m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf",
+                                 {".glb", ".gltf"},
                                  exportFolder(wb), "faults.glb");
         ImGui::EndDisabled();
         ImGui::SameLine();

@@ -16,8 +16,9 @@ namespace fs = std::filesystem;
 namespace {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
-                                                   [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+    return s.size() >= suffix.size() &&
+           std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
+                      [](char a, char b) { return std::tolower(a) == std::tolower(b); });
 }
 
 std::string sizeText(std::uintmax_t bytes) {
@@ -35,8 +36,9 @@ std::string sizeText(std::uintmax_t bytes) {
 
 } // namespace
 
-void FileDialog::open(std::string title, Mode mode, std::string purpose, std::vector<std::string> extensions,
-                      std::string directory, std::string fileName) {
+void FileDialog::open(std::string title, Mode mode, std::string purpose,
+                      std::vector<std::string> extensions, std::string directory,
+                      std::string fileName) {
     m_title = std::move(title);
     m_mode = mode;
     m_purpose = std::move(purpose);
@@ -47,6 +49,7 @@ void FileDialog::open(std::string title, Mode mode, std::string purpose, std::ve
     m_directory = fs::absolute(directory, ec).lexically_normal().string();
     m_directoryInput = m_directory;
     m_fileName = std::move(fileName);
+    m_suggested = m_fileName; // replaced, not edited, by the first thing typed
     m_result.clear();
     m_problem.clear();
     m_open = true;
@@ -54,16 +57,44 @@ void FileDialog::open(std::string title, Mode mode, std::string purpose, std::ve
     list();
 }
 
+namespace {
+
+// The first edit of a suggested name keeps only what was inserted: the new text between what
+// the edit left of the suggestion before and after it. user_data: the suggestion (cleared).
+int replaceSuggestion(ImGuiInputTextCallbackData* data) {
+    auto* suggested = static_cast<std::string*>(data->UserData);
+    if (data->EventFlag != ImGuiInputTextFlags_CallbackEdit || suggested->empty())
+        return 0;
+    const std::string before = *suggested,
+                      now(data->Buf, static_cast<std::size_t>(data->BufTextLen));
+    suggested->clear();
+    std::size_t head = 0;
+    while (head < before.size() && head < now.size() && before[head] == now[head])
+        ++head;
+    std::size_t tail = 0;
+    while (tail < before.size() - head && tail < now.size() - head &&
+           before[before.size() - 1 - tail] == now[now.size() - 1 - tail])
+        ++tail;
+    const std::string inserted = now.substr(head, now.size() - head - tail);
+    data->DeleteChars(0, data->BufTextLen);
+    data->InsertChars(0, inserted.c_str());
+    return 0;
+}
+
+} // namespace
+
 bool FileDialog::matches(const std::string& name) const {
     if (m_allFiles || m_extensions.empty())
         return true;
-    return std::any_of(m_extensions.begin(), m_extensions.end(), [&](const std::string& e) { return endsWith(name, e); });
+    return std::any_of(m_extensions.begin(), m_extensions.end(),
+                       [&](const std::string& e) { return endsWith(name, e); });
 }
 
 void FileDialog::list() {
     m_entries.clear();
     std::error_code ec;
-    for (fs::directory_iterator it(m_directory, fs::directory_options::skip_permission_denied, ec), end;
+    for (fs::directory_iterator it(m_directory, fs::directory_options::skip_permission_denied, ec),
+         end;
          !ec && it != end; it.increment(ec)) {
         Entry e;
         e.name = it->path().filename().string();
@@ -90,7 +121,8 @@ bool FileDialog::accept() {
         m_problem = "Choose or type a file name.";
         return false;
     }
-    fs::path p = fs::path(m_fileName).is_absolute() ? fs::path(m_fileName) : fs::path(m_directory) / m_fileName;
+    fs::path p = fs::path(m_fileName).is_absolute() ? fs::path(m_fileName)
+                                                    : fs::path(m_directory) / m_fileName;
     std::string s = p.lexically_normal().string();
     std::error_code ec;
     if (fs::is_directory(s, ec)) {
@@ -100,7 +132,9 @@ bool FileDialog::accept() {
         return false;
     }
     if (m_mode == Mode::Save) {
-        if (!m_extensions.empty() && !std::any_of(m_extensions.begin(), m_extensions.end(), [&](const std::string& e) { return endsWith(s, e); }))
+        if (!m_extensions.empty() &&
+            !std::any_of(m_extensions.begin(), m_extensions.end(),
+                         [&](const std::string& e) { return endsWith(s, e); }))
             s += m_extensions.front();
         if (!fs::is_directory(fs::path(s).parent_path(), ec)) {
             m_problem = "The folder does not exist.";
@@ -127,11 +161,15 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
         m_justOpened = false;
     }
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowSize(ImVec2(std::min(760 * scale, display.x * 0.9f), std::min(540 * scale, display.y * 0.85f)), ImGuiCond_Appearing);
-    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(
+        ImVec2(std::min(760 * scale, display.x * 0.9f), std::min(540 * scale, display.y * 0.85f)),
+        ImGuiCond_Appearing);
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
+                            ImVec2(0.5f, 0.5f));
     bool accepted = false;
     bool keepOpen = true;
-    if (!ImGui::BeginPopupModal(popupId, &keepOpen, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar)) {
+    if (!ImGui::BeginPopupModal(popupId, &keepOpen,
+                                ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar)) {
         m_open = false;
         return false;
     }
@@ -155,7 +193,8 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
             m_problem = "No such folder.";
         }
     }
-    const float footer = ImGui::GetFrameHeightWithSpacing() * 2 + ImGui::GetStyle().ItemSpacing.y * 2;
+    const float footer =
+        ImGui::GetFrameHeightWithSpacing() * 2 + ImGui::GetStyle().ItemSpacing.y * 2;
     ImGui::BeginChild("##entries", ImVec2(0, -footer), true);
     const float sizeColumn = ImGui::GetContentRegionAvail().x - 90 * scale;
     for (const Entry& e : m_entries) {
@@ -171,6 +210,7 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
                 }
             } else {
                 m_fileName = e.name;
+                m_suggested = m_fileName; // a picked name is a suggestion too
                 if (ImGui::IsMouseDoubleClicked(0) && accept()) {
                     accepted = true;
                     break;
@@ -192,7 +232,14 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
     ImGui::SetNextItemWidth(-1);
     if (ImGui::IsWindowAppearing())
         ImGui::SetKeyboardFocusHere();
-    const bool enter = ImGui::InputText("##name", &m_fileName, ImGuiInputTextFlags_EnterReturnsTrue);
+    // The suggested name is selected when the field takes focus, and whatever is typed first
+    // replaces it wherever the cursor was (a click into the field puts the cursor in it): a
+    // typed path never lands inside "faults.glb".
+    const bool enter =
+        ImGui::InputText("##name", &m_fileName,
+                         ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll |
+                             ImGuiInputTextFlags_CallbackEdit,
+                         &replaceSuggestion, &m_suggested);
     if (items)
         items->markLastItem("filedialog.name");
     if (enter && !accepted && accept())
@@ -212,12 +259,15 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
         ImGui::SameLine();
     }
     const float buttons = 200 * scale;
-    ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons));
-    if (ImGui::Button("Cancel", ImVec2(buttons * 0.48f, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    ImGui::SetCursorPosX(
+        std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons));
+    if (ImGui::Button("Cancel", ImVec2(buttons * 0.48f, 0)) ||
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
         m_open = false;
     }
     ImGui::SameLine();
-    if (ImGui::Button(m_mode == Mode::Save ? "Save" : "Open", ImVec2(buttons * 0.48f, 0)) && !accepted && accept())
+    if (ImGui::Button(m_mode == Mode::Save ? "Save" : "Open", ImVec2(buttons * 0.48f, 0)) &&
+        !accepted && accept())
         accepted = true;
     if (items)
         items->markLastItem("filedialog.ok");

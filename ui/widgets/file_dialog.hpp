@@ -16,8 +16,9 @@ class FileDialog {
 
     // `extensions` (e.g. {".faultline.json"}) filter the listing unless "All files" is ticked;
     // the first is appended to a saved name that has none.
-    void open(std::string title, Mode mode, std::string purpose, std::vector<std::string> extensions,
-              std::string directory, std::string fileName = "");
+    void open(std::string title, Mode mode, std::string purpose,
+              std::vector<std::string> extensions, std::string directory,
+              std::string fileName = "");
     // Draws the dialog when open; true once when the user accepted (see path()).
     bool draw(float scale, ItemRegistry* items);
     bool isOpen() const { return m_open; }
@@ -37,6 +38,7 @@ class FileDialog {
     bool m_open = false, m_justOpened = false, m_allFiles = false;
     Mode m_mode = Mode::Open;
     std::string m_title, m_purpose, m_directory, m_directoryInput, m_fileName, m_result, m_problem;
+    std::string m_suggested; // the name as suggested, until the user's first edit replaces it
     std::vector<std::string> m_extensions;
     std::vector<Entry> m_entries;
 };

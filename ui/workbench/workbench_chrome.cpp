@@ -156,6 +156,33 @@ void Workbench::drawMenus() {
                 m_dialog.open("Export each fault's best-matching candidate per frame as CSV",
                               FileDialog::Mode::Save, "export-tracks", {".csv"}, dataFolder,
                               "fault_tracks.csv");
+            // Surfaces, as the Surfaces panel exports them.
+            if (ImGui::BeginMenu("Surface grids (OpenVDB)", dataset() && !state().surfaces.empty())) {
+                for (const auto& st : state().surfaces) {
+                    const bool visible = core::isVisibleSpheres(st.fault);
+                    const std::string label = visible ? "visible spheres" : st.fault;
+                    if (ImGui::MenuItem((label + "...").c_str()))
+                        m_dialog.open("Export the density and colour grids of the " +
+                                          (visible ? label : st.fault + " surface") + " (OpenVDB)",
+                                      FileDialog::Mode::Save, "export-vdb:" + st.fault, {".vdb"},
+                                      dataFolder, (visible ? "visible" : st.fault) + ".vdb");
+                }
+                ImGui::EndMenu();
+            }
+            m_items.markLastItem("menu.export.vdb");
+            const bool shown =
+                dataset() && std::any_of(state().surfaces.begin(), state().surfaces.end(),
+                                         [](const core::SurfaceSettings& st) { return st.visible; });
+            if (ImGui::MenuItem("Shown surfaces (glTF)...", nullptr, false, shown))
+                m_dialog.open("Export the shown surfaces as glTF (one node per fault)",
+                              FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"},
+                              dataFolder, "faults.glb");
+            m_items.markLastItem("menu.export.gltf");
+            if (ImGui::MenuItem("Shown surfaces and spheres (glTF)...", nullptr, false, shown))
+                m_dialog.open("Export the shown surfaces and the visible spheres as glTF",
+                              FileDialog::Mode::Save, "export-gltf+glyphs", {".glb", ".gltf"},
+                              dataFolder, "faults.glb");
+            ImGui::Separator();
             if (ImGui::MenuItem("Journal of this session...", nullptr, false,
                                 !m_session.journal().empty()))
                 m_dialog.open("Export the journal (replay with faultline replay)",
