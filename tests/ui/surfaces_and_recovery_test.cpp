@@ -404,3 +404,29 @@ TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
     EXPECT_NE(wb().lastMessage().find("what"), std::string::npos) << wb().lastMessage();
     EXPECT_EQ(session.journal().size(), before);
 }
+
+// Issue 27: the Surfaces panel's settings follow the surface just ticked and the fault picked in
+// the Faults panel, so Wrap and the other settings act on the surface the user is looking at.
+TEST_F(PanelTest, SurfaceSettingsFollowTheTickedSurfaceAndThePickedFault) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"A","ids":[1,2,3,4,5,6,7,8]})"));
+    session.apply(Json::parse(R"({"op":"fault.create","name":"B","ids":[60,61,62,63,64]})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"A","kernel":"compact","iso":0.1})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.settle(wb());
+    auto settingsFault = [&] {
+        headless.settle(wb());
+        headless.clearEmitted();
+        headless.click(wb(), "surfaces.wrap"); // acts on the surface whose settings show
+        headless.settle(wb());
+        const auto sets = headless.emitted("surface.set");
+        return sets.empty() ? std::string("(none)") : sets.back()["fault"].get<std::string>();
+    };
+    EXPECT_EQ(settingsFault(), "A");
+    headless.click(wb(), "surfaces.show.B"); // ticked: B's settings show
+    headless.settle(wb());
+    EXPECT_EQ(settingsFault(), "B");
+    wb().selectedFaults = {"A"}; // picked in the Faults panel
+    headless.settle(wb());
+    EXPECT_EQ(settingsFault(), "A");
+}

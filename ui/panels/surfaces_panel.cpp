@@ -163,6 +163,8 @@ class SurfacesPanel final : public Panel {
         const core::SurfaceSettings* st = s.surface(name);
         bool shown = st && st->visible;
         if (ImGui::Checkbox("##shown", &shown)) {
+            if (shown)
+                m_fault = name; // the settings below are the surface just ticked
             const core::Json cmd{{"op", "surface.set"}, {"fault", name}, {"visible", shown}};
             // A new surface starts at the iso that wraps its spheres.
             if (!st && shown)
