@@ -166,3 +166,18 @@ TEST_F(PanelTest, DraggingOnAHistogramSetsTheThresholdAndItsEdgesAdjustIt) {
     EXPECT_NEAR(headless.emitted()[0]["low"].get<double>(), 0.5, 0.02);
     EXPECT_EQ(visible(), 24u); // x in {2, 3} and layer >= 1
 }
+
+// Issue 27: the default histograms keep their order when the colouring changes (they followed
+// the colour variable to the top).
+TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderWhenTheColouringChanges) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    const float strainY = headless.rect(wb(), "histogram.strain").y0;
+    const float layerY = headless.rect(wb(), "histogram.layer").y0;
+    EXPECT_LT(strainY, layerY);
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"layer"})"));
+    headless.settle(wb());
+    EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.strain").y0, strainY);
+    EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.layer").y0, layerY);
+}

@@ -106,7 +106,13 @@ class HistogramsPanel final : public Panel {
                     out.push_back(v.get<std::string>());
             return out;
         }
-        // Default: the main view's colour variable and the first columns, three at most.
+        // Default: the main view's colour variable and the first columns, three at most; chosen
+        // once per dataset, so the list does not reorder itself when the colouring changes.
+        if (wb.dataset().get() == m_defaultFor && !m_default.empty() &&
+            std::all_of(m_default.begin(), m_default.end(), [&](const std::string& v) {
+                return v == "radius" || frame.attribute(v);
+            }))
+            return m_default;
         const core::ViewState* mainView = wb.state().view("main");
         if (mainView && !mainView->colorVariable.empty() && frame.attribute(mainView->colorVariable))
             out.push_back(mainView->colorVariable);
@@ -118,8 +124,12 @@ class HistogramsPanel final : public Panel {
         }
         if (out.empty())
             out.push_back("radius");
+        m_default = out;
+        m_defaultFor = wb.dataset().get();
         return out;
     }
+    std::vector<std::string> m_default; // the default list, and the dataset it was chosen for
+    const void* m_defaultFor = nullptr;
 
     static bool settingsLog(Workbench& wb) {
         // Log by default: DEM variables (broken bonds, strain) are strongly skewed.
