@@ -164,6 +164,34 @@ std::size_t SurfaceField::sphereCount() const { return m_impl->field->sphereCoun
 float SurfaceField::isoMin() const { return m_impl->isoMin; }
 float SurfaceField::isoMax() const { return m_impl->isoMax; }
 const SurfaceStats &SurfaceField::stats() const { return m_impl->stats; }
+std::array<float, 2> SurfaceField::storedRange() const {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (auto it = m_impl->density->cbeginValueOn(); it; ++it) {
+        lo = std::min(lo, *it);
+        hi = std::max(hi, *it);
+    }
+    for (auto it = m_impl->density->cbeginValueOff(); it; ++it)
+        if (it.isTileValue()) { // inside tiles: the clamp value
+            lo = std::min(lo, *it);
+            hi = std::max(hi, *it);
+        }
+    if (lo > hi)
+        lo = hi = 0.0f;
+    return {lo, hi};
+}
+
+float SurfaceField::maxAtCentres() const {
+    const auto &s = m_impl->field->tree().spheres();
+    const SphereSet set{s.x, s.y, s.z, s.r, {}};
+    const std::size_t n = s.size(), samples = std::min<std::size_t>(n, 256);
+    double most = 0.0;
+    for (std::size_t q = 0; q < samples; ++q) {
+        const std::size_t i = q * n / samples;
+        most = std::max(most, referenceSample(set, m_impl->params, {s.x[i], s.y[i], s.z[i]}).value);
+    }
+    return static_cast<float>(most);
+}
+
 std::size_t SurfaceField::memoryBytes() const {
     return m_impl->density->memUsage() + m_impl->color->memUsage() +
            m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);

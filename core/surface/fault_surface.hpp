@@ -50,6 +50,12 @@ class SurfaceField {
     float isoMax() const;
     bool supportsIso(float iso) const { return iso >= isoMin() && iso <= isoMax(); }
     const SurfaceStats &stats() const;
+    // Smallest and largest value the density grid stores (values are clamped at 4 isoMax): an
+    // empty mesh at an iso above the largest says the iso lies above the field everywhere.
+    std::array<float, 2> storedRange() const;
+    // The largest field value at a sample of the sphere centres (up to 256): about the field's
+    // maximum (for the compact kernel; the inverse kernels grow without bound at a centre).
+    float maxAtCentres() const;
     std::size_t memoryBytes() const;
     const Impl &impl() const { return *m_impl; }
 

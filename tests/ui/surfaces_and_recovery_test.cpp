@@ -430,3 +430,29 @@ TEST_F(PanelTest, SurfaceSettingsFollowTheTickedSurfaceAndThePickedFault) {
     headless.settle(wb());
     EXPECT_EQ(settingsFault(), "A");
 }
+
+// Issue 27: an empty surface says why (the iso above the field's maximum) and offers Wrap.
+TEST_F(PanelTest, AnEmptySurfaceSaysWhyAndOffersWrap) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"A","ids":[1,2,3,4,5,6,7,8]})"));
+    session.apply(Json::parse(
+        R"({"op":"surface.set","fault":"A","kernel":"compact","iso":50,"visible":true})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    wb().selectedFaults = {"A"};
+    headless.settle(wb());
+    const ui::SurfaceStatus st =
+        wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame);
+    ASSERT_EQ(st.state, ui::SurfaceStatus::State::Ready) << st.error;
+    EXPECT_EQ(st.triangles, 0u);
+    EXPECT_LT(st.fieldMax, 50.0f);
+    EXPECT_GT(st.fieldMax, 0.0f);
+    ASSERT_TRUE(headless.has(wb(), "surfaces.empty_wrap"));
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.empty_wrap");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_LT(headless.emitted("surface.set")[0]["iso"].get<double>(), 50.0);
+    headless.settle(wb());
+    EXPECT_GT(wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame).triangles,
+              0u);
+}

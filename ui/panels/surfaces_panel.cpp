@@ -267,9 +267,10 @@ class SurfacesPanel final : public Panel {
             ImGui::SetTooltip(
                 "Voxel edge in world units; 0 = the mean radius / 3. Smaller is finer and slower.");
         ImGui::SetNextItemWidth(w);
-        // Two decades either side of the setting (the field's scale depends on the fault).
+        // A decade either side of the setting on a log scale (the field's scale depends on the
+        // fault; Wrap finds it): a drag across the slider is a factor of 100, not 10,000.
         const float anchor = static_cast<float>(st.iso);
-        ImGui::SliderFloat("iso", &m_iso, anchor / 100.0f, anchor * 100.0f, "%.3g",
+        ImGui::SliderFloat("iso", &m_iso, anchor / 10.0f, anchor * 10.0f, "%.3g",
                            ImGuiSliderFlags_Logarithmic);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
             set({{"iso", m_iso}});
@@ -295,7 +296,24 @@ class SurfacesPanel final : public Panel {
         const SurfaceStatus status = statusOf(wb, s, fault, frame);
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
-        else if (status.state == SurfaceStatus::State::Ready)
+        else if (status.state == SurfaceStatus::State::Ready && status.triangles == 0) {
+            // Say why nothing shows, and offer the way back.
+            char why[160];
+            if (status.fieldMax < status.iso)
+                std::snprintf(why, sizeof why,
+                              "No surface: iso %.3g is above the field's maximum, about %.3g.",
+                              status.iso, status.fieldMax);
+            else
+                std::snprintf(why, sizeof why,
+                              "No surface: iso %.3g lies below the field everywhere near these "
+                              "spheres.",
+                              status.iso);
+            ImGui::TextWrapped("%s", why);
+            if (ImGui::Button("Wrap the spheres"))
+                emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}},
+                                    true);
+            wb.mark("surfaces.empty_wrap");
+        } else if (status.state == SurfaceStatus::State::Ready)
             ImGui::TextDisabled("%zu spheres, %zu triangles, %.2f s", status.spheres,
                                 status.triangles, status.seconds);
 

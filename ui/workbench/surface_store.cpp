@@ -98,7 +98,16 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const std::size_t count = result.field ? result.field->sphereCount() : 0;
-        return std::function<void()>([this, key, mesh, seconds, count] {
+        float fieldMax = 0.0f;
+        if (mesh->indices.empty() && result.field) {
+            // The grid's largest value; with no grid at all (the plan found the field below the
+            // iso everywhere) the largest at the sphere centres.
+            fieldMax = result.field->storedRange()[1];
+            if (!(fieldMax > 0.0f))
+                fieldMax = result.field->maxAtCentres();
+        }
+        const float iso = result.iso;
+        return std::function<void()>([this, key, mesh, seconds, count, fieldMax, iso] {
             auto it = m_entries.find(key);
             if (it == m_entries.end())
                 return;
@@ -110,6 +119,8 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
             e.status.spheres = count;
             e.status.triangles = mesh->indices.size() / 3;
             e.status.seconds = seconds;
+            e.status.fieldMax = fieldMax;
+            e.status.iso = iso;
         });
     };
     auto fail = [this, key](const std::string& error) {

@@ -28,6 +28,10 @@ struct SurfaceStatus {
     std::string error;      // Failed
     std::size_t spheres = 0, triangles = 0;
     double seconds = 0.0; // how long the build took
+    // Ready with no triangles: the largest value the field's grid holds (the iso lies above it
+    // when it is below the iso), to say why the surface is empty.
+    float fieldMax = 0.0f;
+    float iso = 0.0f;
 };
 
 class SurfaceStore {
