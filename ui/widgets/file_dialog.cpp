@@ -3,6 +3,7 @@
 #include "ui/workbench/item_registry.hpp"
 
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_stdlib.h>
 
 #include <algorithm>
@@ -61,10 +62,20 @@ namespace {
 
 // The first edit of a suggested name keeps only what was inserted: the new text between what
 // the edit left of the suggestion before and after it. user_data: the suggestion (cleared).
+struct NameEdit {
+    std::string* suggested;
+    bool allSelected; // at the start of the frame: typing then replaced the whole text
+};
+
 int replaceSuggestion(ImGuiInputTextCallbackData* data) {
-    auto* suggested = static_cast<std::string*>(data->UserData);
+    auto* edit = static_cast<NameEdit*>(data->UserData);
+    std::string* suggested = edit->suggested;
     if (data->EventFlag != ImGuiInputTextFlags_CallbackEdit || suggested->empty())
         return 0;
+    if (edit->allSelected) { // what was typed already replaced the suggestion
+        suggested->clear();
+        return 0;
+    }
     const std::string before = *suggested,
                       now(data->Buf, static_cast<std::size_t>(data->BufTextLen));
     suggested->clear();
@@ -75,7 +86,11 @@ int replaceSuggestion(ImGuiInputTextCallbackData* data) {
     while (tail < before.size() - head && tail < now.size() - head &&
            before[before.size() - 1 - tail] == now[now.size() - 1 - tail])
         ++tail;
-    const std::string inserted = now.substr(head, now.size() - head - tail);
+    // Only an insertion into the whole suggestion is replaced by what was inserted; an edit that
+    // already replaced it (select all, then type) or deleted from it stands.
+    if (now.size() <= before.size() || head + tail < before.size())
+        return 0;
+    const std::string inserted = now.substr(head, now.size() - before.size());
     data->DeleteChars(0, data->BufTextLen);
     data->InsertChars(0, inserted.c_str());
     return 0;
@@ -235,11 +250,16 @@ bool FileDialog::draw(float scale, ItemRegistry* items) {
     // The suggested name is selected when the field takes focus, and whatever is typed first
     // replaces it wherever the cursor was (a click into the field puts the cursor in it): a
     // typed path never lands inside "faults.glb".
+    NameEdit edit{&m_suggested, false};
+    if (const ImGuiInputTextState* st = ImGui::GetInputTextState(ImGui::GetID("##name")))
+        edit.allSelected = st->HasSelection() &&
+                           std::min(st->Stb.select_start, st->Stb.select_end) == 0 &&
+                           std::max(st->Stb.select_start, st->Stb.select_end) >= st->CurLenW;
     const bool enter =
         ImGui::InputText("##name", &m_fileName,
                          ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll |
                              ImGuiInputTextFlags_CallbackEdit,
-                         &replaceSuggestion, &m_suggested);
+                         &replaceSuggestion, &edit);
     if (items)
         items->markLastItem("filedialog.name");
     if (enter && !accepted && accept())
