@@ -29,7 +29,7 @@ namespace {
 constexpr float kRadius = 0.5f;
 constexpr float kThickness = 4.0f;
 
-const fb::FaultZone &zone(std::size_t count) {
+const fb::FaultZone& zone(std::size_t count) {
     static std::map<std::size_t, fb::FaultZone> zones;
     auto it = zones.find(count);
     if (it == zones.end())
@@ -38,7 +38,7 @@ const fb::FaultZone &zone(std::size_t count) {
 }
 
 // The iso-value whose surface passes one radius... one unit outside the zone's middle.
-float isoOneUnitOutside(const fb::FaultZone &z, fc::MetaballKernel kernel) {
+float isoOneUnitOutside(const fb::FaultZone& z, fc::MetaballKernel kernel) {
     const double dip = 60.0 * 3.14159265358979 / 180.0;
     const double d = kThickness / 2 + 1.0;
     fc::SurfaceParams p;
@@ -47,7 +47,7 @@ float isoOneUnitOutside(const fb::FaultZone &z, fc::MetaballKernel kernel) {
         fc::referenceSample(z.set(), p, {0.3, d * std::sin(dip), d * std::cos(dip)}).value);
 }
 
-fc::SurfaceParams params(const fb::FaultZone &z, fc::MetaballKernel kernel, float voxel) {
+fc::SurfaceParams params(const fb::FaultZone& z, fc::MetaballKernel kernel, float voxel) {
     fc::SurfaceParams p;
     p.kernel = kernel;
     p.voxelSize = voxel;
@@ -55,8 +55,8 @@ fc::SurfaceParams params(const fb::FaultZone &z, fc::MetaballKernel kernel, floa
     return p;
 }
 
-void report(benchmark::State &state, const fc::SurfaceResult &r) {
-    const auto &s = r.field->stats();
+void report(benchmark::State& state, const fc::SurfaceResult& r) {
+    const auto& s = r.field->stats();
     state.counters["blocks"] = double(s.blocks);
     state.counters["voxels"] = double(s.activeVoxels);
     state.counters["levels"] = s.levels;
@@ -72,9 +72,9 @@ void report(benchmark::State &state, const fc::SurfaceResult &r) {
     state.counters["est_err_over_iso"] = s.estimatedError / r.iso;
 }
 
-void BM_Surface(benchmark::State &state, fc::MetaballKernel kernel, std::size_t count,
+void BM_Surface(benchmark::State& state, fc::MetaballKernel kernel, std::size_t count,
                 float voxel) {
-    const auto &z = zone(count);
+    const auto& z = zone(count);
     const auto p = params(z, kernel, voxel);
     fc::SurfaceResult last;
     for (auto _ : state)
@@ -84,16 +84,16 @@ void BM_Surface(benchmark::State &state, fc::MetaballKernel kernel, std::size_t 
 
 struct ZoneParticles {
     using PosType = openvdb::Vec3R;
-    const fb::FaultZone *z;
+    const fb::FaultZone* z;
     std::size_t size() const { return z->x.size(); }
-    void getPos(std::size_t n, openvdb::Vec3R &p) const { p = {z->x[n], z->y[n], z->z[n]}; }
-    void getPosRad(std::size_t n, openvdb::Vec3R &p, openvdb::Real &r) const {
+    void getPos(std::size_t n, openvdb::Vec3R& p) const { p = {z->x[n], z->y[n], z->z[n]}; }
+    void getPosRad(std::size_t n, openvdb::Vec3R& p, openvdb::Real& r) const {
         getPos(n, p);
         r = z->radius[n];
     }
 };
 
-void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State &state, std::size_t count, float voxel) {
+void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State& state, std::size_t count, float voxel) {
     openvdb::initialize();
     const ZoneParticles particles{&zone(count)};
     std::size_t quads = 0, voxels = 0;
@@ -112,8 +112,8 @@ void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State &state, std::size_t c
     state.counters["voxels"] = double(voxels);
 }
 
-void BM_Remesh(benchmark::State &state, std::size_t count, float voxel, fc::NormalSource normals) {
-    const auto &z = zone(count);
+void BM_Remesh(benchmark::State& state, std::size_t count, float voxel, fc::NormalSource normals) {
+    const auto& z = zone(count);
     const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
     const auto built = fc::buildSurface(z.set(), p);
     const float iso = p.iso * 1.05f;
@@ -127,15 +127,15 @@ void BM_Remesh(benchmark::State &state, std::size_t count, float voxel, fc::Norm
 // |multilevel - Algorithm 1| over the kept voxels as a fraction of the iso-value. Without
 // `gradient` only the value at each voxel: a stricter baseline than Algorithm 1 itself, which
 // also takes the gradient (line 8) at every point.
-void BM_Algorithm1Dense(benchmark::State &state, fc::MetaballKernel kernel, std::size_t count,
+void BM_Algorithm1Dense(benchmark::State& state, fc::MetaballKernel kernel, std::size_t count,
                         float voxel, bool gradient) {
-    const auto &z = zone(count);
+    const auto& z = zone(count);
     const auto p = params(z, kernel, voxel);
     fc::MetaballField field(z.set(), p, voxel);
     const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor, p.iso * p.isoRangeFactor,
                                       p.memoryBudgetBytes, nullptr);
     std::array<int, 3> lo{1 << 30, 1 << 30, 1 << 30}, hi{-(1 << 30), -(1 << 30), -(1 << 30)};
-    for (const auto &b : plan.blocks)
+    for (const auto& b : plan.blocks)
         for (int k = 0; k < 3; ++k) {
             lo[k] = std::min(lo[k], b[k]);
             hi[k] = std::max(hi[k], b[k] + 7);
@@ -150,7 +150,7 @@ void BM_Algorithm1Dense(benchmark::State &state, fc::MetaballKernel kernel, std:
     const double clamp = 4.0 * p.iso * p.isoRangeFactor;
     float density[fc::kBlockVoxels];
     fc::Vec3f color[fc::kBlockVoxels];
-    for (const auto &b : plan.blocks) {
+    for (const auto& b : plan.blocks) {
         field.evaluateBlock(b, density, color);
         for (int i = 0; i < 8; ++i)
             for (int j = 0; j < 8; ++j)
@@ -171,21 +171,21 @@ void BM_Algorithm1Dense(benchmark::State &state, fc::MetaballKernel kernel, std:
 
 // The 50k set's field against Algorithm 1 on a sample of the planned blocks (every 64th): the
 // largest disagreement as a fraction of the iso-value, at the size the speed target uses.
-void BM_SampledErrorAgainstAlgorithm1(benchmark::State &state, std::size_t count, float voxel) {
-    const auto &z = zone(count);
+void BM_SampledErrorAgainstAlgorithm1(benchmark::State& state, std::size_t count, float voxel) {
+    const auto& z = zone(count);
     const auto p = params(z, fc::MetaballKernel::InverseSquare, voxel);
     double worst = 0.0, estimate = 0.0;
     std::size_t sampled = 0;
     for (auto _ : state) {
         fc::MetaballField field(z.set(), p, voxel);
-        const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor,
-                                          p.iso * p.isoRangeFactor, p.memoryBudgetBytes, nullptr);
+        const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor, p.iso * p.isoRangeFactor,
+                                          p.memoryBudgetBytes, nullptr);
         field.prepare(plan.blocks, nullptr);
         estimate = field.estimatedError();
         const double clamp = 4.0 * p.iso * p.isoRangeFactor;
         float density[fc::kBlockVoxels];
         for (std::size_t b = 0; b < plan.blocks.size(); b += 64, ++sampled) {
-            const auto &o = plan.blocks[b];
+            const auto& o = plan.blocks[b];
             field.evaluateBlock(o, density, nullptr);
             const auto dense = fc::algorithm1Dense(z.set(), p, o, {8, 8, 8}, voxel);
             for (int i = 0; i < 8; ++i)
@@ -207,7 +207,7 @@ void BM_SampledErrorAgainstAlgorithm1(benchmark::State &state, std::size_t count
 // 200 x 130 x 110 block, at the wrapping iso (what a new surface in the workbench and a journal's
 // surface.build without iso use), voxel = r / divisor. Peak RSS of the process is reported too:
 // run one case per process (--benchmark_filter) for a figure of that case alone.
-const fb::FaultZone &spread() {
+const fb::FaultZone& spread() {
     static const fb::FaultZone z = fb::spreadFaultZones(10000);
     return z;
 }
@@ -218,8 +218,8 @@ double peakRssMiB() {
     return double(u.ru_maxrss) / 1024.0;
 }
 
-void BM_SpreadSurface(benchmark::State &state, fc::MetaballKernel kernel, float divisor) {
-    const auto &z = spread();
+void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float divisor) {
+    const auto& z = spread();
     fc::SurfaceParams p;
     p.kernel = kernel;
     p.voxelSize = 1.0f / divisor;
@@ -234,7 +234,7 @@ void BM_SpreadSurface(benchmark::State &state, fc::MetaballKernel kernel, float 
     state.counters["peak_rss_mb"] = peakRssMiB();
 }
 
-void BM_SpreadOpenVdb(benchmark::State &state, float divisor) {
+void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
     openvdb::initialize();
     const ZoneParticles particles{&spread()};
     const float voxel = 1.0f / divisor;
@@ -317,30 +317,20 @@ BENCHMARK_CAPTURE(BM_Surface, inverse_square_26k_voxel_0_5, fc::MetaballKernel::
     ->UseRealTime()
     ->Iterations(2);
 
+// One surface at a time, three runs each: the spread-out cases take about a second.
+void spreadRuns(benchmark::internal::Benchmark* b) {
+    b->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+}
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r2, fc::MetaballKernel::Inverse, 2.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
+    ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r2, fc::MetaballKernel::InverseSquare,
                   2.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r2, 2.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
+    ->Apply(spreadRuns);
+BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r2, 2.0f)->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r3, fc::MetaballKernel::Inverse, 3.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
+    ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel::InverseSquare,
                   3.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r3, 3.0f)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
-    ->UseRealTime();
+    ->Apply(spreadRuns);
+BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r3, 3.0f)->Apply(spreadRuns);
 BENCHMARK_MAIN();

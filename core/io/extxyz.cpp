@@ -158,17 +158,8 @@ std::int64_t timestepOf(const std::map<std::string, std::string>& pairs, std::in
 } // namespace
 
 bool looksLikeXyz(std::string_view head) {
-    std::size_t pos = 0;
-    auto next = [&](std::string_view& line) {
-        if (pos >= head.size())
-            return false;
-        std::size_t nl = head.find('\n', pos);
-        if (nl == std::string_view::npos)
-            nl = head.size();
-        line = head.substr(pos, nl - pos);
-        pos = nl + 1;
-        return true;
-    };
+    TextCursor cursor{head};
+    auto next = [&](std::string_view& line) { return cursor.next(line); };
     std::string_view count, comment, row;
     if (!next(count) || !countLine(count) || !next(comment))
         return false;
@@ -183,74 +174,49 @@ bool looksLikeXyz(std::string_view head) {
 }
 
 std::vector<XyzFrameIndex> indexXyz(const std::string& path) {
-    ByteSource source(path);
-    TextLineReader reader(source);
-    std::vector<XyzFrameIndex> frames;
-    for (;;) {
-        reader.skipBlankLines();
-        if (reader.atEnd())
-            break;
-        XyzFrameIndex f;
-        f.offset = reader.offset();
-        f.firstLine = reader.lineNumber() + 1;
-        std::string_view line;
-        reader.next(line);
-        const auto n = countLine(line);
-        if (!n)
-            throw InputError(path, InputError::Where::Line, reader.lineNumber(),
-                             "expected the number of particles of frame " +
-                                 std::to_string(frames.size()) + ", found " + quoteForError(line));
-        f.atoms = *n;
-        if (!reader.next(line))
-            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
-                             "file ends where frame " + std::to_string(frames.size()) +
-                                 "'s comment line was expected");
-        f.timestep = timestepOf(commentPairs(line), std::int64_t(frames.size()));
-        const std::uint64_t skipped = reader.skipLines(f.atoms);
-        if (skipped < f.atoms)
-            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
-                             "file ends after " + std::to_string(skipped) + " of the " +
-                                 std::to_string(f.atoms) + " particle rows of frame " +
-                                 std::to_string(frames.size()));
-        f.length = reader.offset() - f.offset;
-        frames.push_back(f);
-    }
-    if (frames.empty())
-        throw InputError(path, "no XYZ frame found");
-    return frames;
+    return indexTextFrames<XyzFrameIndex>(
+        path, "no XYZ frame found",
+        [&](TextLineReader& reader, XyzFrameIndex& f, std::size_t count) -> std::uint64_t {
+            std::string_view line;
+            reader.next(line);
+            const auto n = countLine(line);
+            if (!n)
+                throw InputError(path, InputError::Where::Line, reader.lineNumber(),
+                                 "expected the number of particles of frame " +
+                                     std::to_string(count) + ", found " + quoteForError(line));
+            f.atoms = *n;
+            if (!reader.next(line))
+                throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
+                                 "file ends where frame " + std::to_string(count) +
+                                     "'s comment line was expected");
+            f.timestep = timestepOf(commentPairs(line), std::int64_t(count));
+            return f.atoms;
+        },
+        [](const XyzFrameIndex& f, std::size_t count) {
+            return "the " + std::to_string(f.atoms) + " particle rows of frame " +
+                   std::to_string(count);
+        });
 }
 
 Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_t firstLine) {
-    std::size_t pos = 0;
-    std::uint64_t lineNo = firstLine - 1;
-    auto next = [&](std::string_view& line) {
-        if (pos >= text.size())
-            return false;
-        std::size_t nl = text.find('\n', pos);
-        if (nl == std::string_view::npos)
-            nl = text.size();
-        line = text.substr(pos, nl - pos);
-        pos = nl + 1;
-        ++lineNo;
-        return true;
-    };
+    TextCursor cursor{text, 0, firstLine - 1};
+    auto next = [&](std::string_view& line) { return cursor.next(line); };
     std::string_view line;
     while (next(line) && trim(line).empty()) {
     }
     const auto n = countLine(line);
     if (!n)
-        throw InputError(path, InputError::Where::Line, lineNo,
+        throw InputError(path, InputError::Where::Line, cursor.line,
                          "expected the number of particles, found " + quoteForError(line));
     // Each row has at least 2 bytes per value and 4 values: refuse counts the text cannot hold.
-    if (*n > (text.size() - std::min(pos, text.size())) / 8 + 1)
-        throw InputError(path, InputError::Where::Line, lineNo,
+    if (*n > (cursor.left()) / 8 + 1)
+        throw InputError(path, InputError::Where::Line, cursor.line,
                          "the frame announces " + std::to_string(*n) + " particles but only " +
-                             std::to_string(text.size() - std::min(pos, text.size())) +
-                             " bytes follow");
+                             std::to_string(cursor.left()) + " bytes follow");
     if (!next(line))
-        throw InputError(path, InputError::Where::Line, lineNo + 1,
+        throw InputError(path, InputError::Where::Line, cursor.line + 1,
                          "file ends where the comment line was expected");
-    const std::uint64_t commentLine = lineNo;
+    const std::uint64_t commentLine = cursor.line;
     const auto pairs = commentPairs(line);
     std::vector<Property> props;
     if (auto it = pairs.find("Properties"); it != pairs.end())
@@ -324,12 +290,12 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
     std::vector<std::string_view> w;
     for (std::size_t row = 0; row < count; ++row) {
         if (!next(line))
-            throw InputError(path, InputError::Where::Line, lineNo + 1,
+            throw InputError(path, InputError::Where::Line, cursor.line + 1,
                              "file ends after " + std::to_string(row) + " of " +
                                  std::to_string(count) + " particle rows");
         splitWords(line, w);
         if (w.size() != width)
-            throw InputError(path, InputError::Where::Line, lineNo,
+            throw InputError(path, InputError::Where::Line, cursor.line,
                              "expected " + std::to_string(width) +
                                  " values (as Properties= says), found " +
                                  std::to_string(w.size()));
@@ -337,7 +303,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             double v = 0;
             const auto r = fast_float::from_chars(w[c].data(), w[c].data() + w[c].size(), v);
             if (r.ec != std::errc() || r.ptr != w[c].data() + w[c].size() || !std::isfinite(v))
-                throw InputError(path, InputError::Where::Line, lineNo,
+                throw InputError(path, InputError::Where::Line, cursor.line,
                                  "column " + std::to_string(c + 1) + " ('" + name +
                                      "'): expected a finite number, found " + quoteForError(w[c]));
             return v;
@@ -346,7 +312,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             std::int64_t v = 0;
             const auto [end, ec] = std::from_chars(w[c].data(), w[c].data() + w[c].size(), v);
             if (ec != std::errc() || end != w[c].data() + w[c].size())
-                throw InputError(path, InputError::Where::Line, lineNo,
+                throw InputError(path, InputError::Where::Line, cursor.line,
                                  "column " + std::to_string(c + 1) + " ('" + name +
                                      "'): expected an integer, found " + quoteForError(w[c]));
             return v;
@@ -358,7 +324,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
         if (radiusProp) {
             const double r = real(radiusProp->first, radiusProp->name) * (diameter ? 0.5 : 1.0);
             if (!(r > 0))
-                throw InputError(path, InputError::Where::Line, lineNo,
+                throw InputError(path, InputError::Where::Line, cursor.line,
                                  "column '" + radiusProp->name + "' must be positive, found " +
                                      quoteForError(w[radiusProp->first]));
             frame.radius[row] = static_cast<float>(r);
@@ -372,7 +338,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             case 'I': {
                 const std::int64_t i = integer(a.column, a.data.name);
                 if (i < INT32_MIN || i > INT32_MAX)
-                    throw InputError(path, InputError::Where::Line, lineNo,
+                    throw InputError(path, InputError::Where::Line, cursor.line,
                                      "column '" + a.data.name + "': " + quoteForError(v) +
                                          " does not fit a 32-bit integer");
                 a.data.ints[row] = static_cast<std::int32_t>(i);
@@ -380,7 +346,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             }
             case 'L':
                 if (v != "T" && v != "F" && v != "True" && v != "False" && v != "1" && v != "0")
-                    throw InputError(path, InputError::Where::Line, lineNo,
+                    throw InputError(path, InputError::Where::Line, cursor.line,
                                      "column '" + a.data.name + "': expected T or F, found " +
                                          quoteForError(v));
                 a.data.ints[row] = (v == "T" || v == "True" || v == "1") ? 1 : 0;
@@ -389,7 +355,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
                 auto it = a.names.find(v);
                 if (it == a.names.end()) {
                     if (a.names.size() >= 65536)
-                        throw InputError(path, InputError::Where::Line, lineNo,
+                        throw InputError(path, InputError::Where::Line, cursor.line,
                                          "column '" + a.data.name + "': more than 65536 names");
                     it = a.names.emplace(std::string(v), int(a.names.size()) + 1).first;
                 }

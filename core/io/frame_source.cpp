@@ -60,43 +60,39 @@ FileFormat detectFormat(const std::string& path) {
     return FileFormat::Table;
 }
 
+namespace {
+
+// A frame that is one byte range of a multi-frame file (as its index found it).
+template <class Index>
+FrameLocation pieceOfFile(const std::string& path, FileFormat format, std::int64_t timestep,
+                          double time, std::uint64_t particles, const Index& f) {
+    FrameLocation loc;
+    loc.format = format;
+    loc.timestep = timestep;
+    loc.time = time;
+    loc.particleCount = particles;
+    loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
+    return loc;
+}
+
+} // namespace
+
 std::vector<FrameLocation> indexDataFile(const std::string& path) {
     const FileFormat format = detectFormat(path);
     std::vector<FrameLocation> frames;
     switch (format) {
     case FileFormat::LammpsDump:
-        for (const auto& f : indexLammpsDump(path)) {
-            FrameLocation loc;
-            loc.format = format;
-            loc.timestep = f.timestep;
-            loc.time = static_cast<double>(f.timestep);
-            loc.particleCount = f.atoms;
-            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
-            frames.push_back(std::move(loc));
-        }
+        for (const auto& f : indexLammpsDump(path))
+            frames.push_back(pieceOfFile(path, format, f.timestep, double(f.timestep), f.atoms, f));
         break;
     case FileFormat::Xyz:
-        for (const auto& f : indexXyz(path)) {
-            FrameLocation loc;
-            loc.format = format;
-            loc.timestep = f.timestep;
-            loc.time = static_cast<double>(f.timestep);
-            loc.particleCount = f.atoms;
-            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
-            frames.push_back(std::move(loc));
-        }
+        for (const auto& f : indexXyz(path))
+            frames.push_back(pieceOfFile(path, format, f.timestep, double(f.timestep), f.atoms, f));
         break;
     case FileFormat::MercuryData: {
         std::int64_t step = 0;
-        for (const auto& f : indexMercuryData(path)) {
-            FrameLocation loc;
-            loc.format = format;
-            loc.timestep = step++;
-            loc.time = f.time;
-            loc.particleCount = f.particles;
-            loc.pieces.push_back({path, f.offset, f.length, f.firstLine});
-            frames.push_back(std::move(loc));
-        }
+        for (const auto& f : indexMercuryData(path))
+            frames.push_back(pieceOfFile(path, format, step++, f.time, f.particles, f));
         break;
     }
     case FileFormat::VtkCollection: {

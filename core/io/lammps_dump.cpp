@@ -171,33 +171,20 @@ bool looksLikeLammpsDump(std::string_view head) {
 }
 
 std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path) {
-    ByteSource source(path);
-    TextLineReader reader(source);
-    std::vector<LammpsFrameIndex> frames;
-    for (;;) {
-        reader.skipBlankLines();
-        if (reader.atEnd())
-            break;
-        LammpsFrameIndex f;
-        f.offset = reader.offset();
-        f.firstLine = reader.lineNumber() + 1;
-        DumpHeader h = readHeader(
-            path, [&](std::string_view& line) { return reader.next(line); },
-            [&] { return reader.lineNumber(); });
-        f.timestep = h.timestep;
-        f.atoms = h.atoms;
-        const std::uint64_t skipped = reader.skipLines(h.atoms);
-        if (skipped < h.atoms)
-            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
-                             "file ends after " + std::to_string(skipped) + " of " +
-                                 std::to_string(h.atoms) + " particle rows of timestep " +
-                                 std::to_string(h.timestep));
-        f.length = reader.offset() - f.offset;
-        frames.push_back(f);
-    }
-    if (frames.empty())
-        throw InputError(path, "no 'ITEM: TIMESTEP' frame found: not a LAMMPS dump");
-    return frames;
+    return indexTextFrames<LammpsFrameIndex>(
+        path, "no 'ITEM: TIMESTEP' frame found: not a LAMMPS dump",
+        [&](TextLineReader& reader, LammpsFrameIndex& f, std::size_t) -> std::uint64_t {
+            const DumpHeader h = readHeader(
+                path, [&](std::string_view& line) { return reader.next(line); },
+                [&] { return reader.lineNumber(); });
+            f.timestep = h.timestep;
+            f.atoms = h.atoms;
+            return h.atoms;
+        },
+        [](const LammpsFrameIndex& f, std::size_t) {
+            return std::to_string(f.atoms) + " particle rows of timestep " +
+                   std::to_string(f.timestep);
+        });
 }
 
 Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,

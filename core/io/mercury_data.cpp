@@ -113,64 +113,40 @@ bool looksLikeMercuryData(std::string_view head) {
 }
 
 std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path) {
-    ByteSource source(path);
-    TextLineReader reader(source);
-    std::vector<MercuryFrameIndex> frames;
-    for (;;) {
-        reader.skipBlankLines();
-        if (reader.atEnd())
-            break;
-        MercuryFrameIndex f;
-        f.offset = reader.offset();
-        f.firstLine = reader.lineNumber() + 1;
-        std::string_view line;
-        reader.next(line);
-        Header h;
-        std::string why;
-        if (!readHeader(line, h, why))
-            throw InputError(path, InputError::Where::Line, reader.lineNumber(),
-                             "time step " + std::to_string(frames.size()) + ": " + why);
-        f.particles = h.particles;
-        f.time = h.time;
-        const std::uint64_t skipped = reader.skipLines(h.particles);
-        if (skipped < h.particles)
-            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
-                             "file ends after " + std::to_string(skipped) + " of the " +
-                                 std::to_string(h.particles) + " particle rows of time step " +
-                                 std::to_string(frames.size()));
-        f.length = reader.offset() - f.offset;
-        frames.push_back(f);
-    }
-    if (frames.empty())
-        throw InputError(path, "no MercuryDPM time step found");
-    return frames;
+    return indexTextFrames<MercuryFrameIndex>(
+        path, "no MercuryDPM time step found",
+        [&](TextLineReader& reader, MercuryFrameIndex& f, std::size_t count) -> std::uint64_t {
+            std::string_view line;
+            reader.next(line);
+            Header h;
+            std::string why;
+            if (!readHeader(line, h, why))
+                throw InputError(path, InputError::Where::Line, reader.lineNumber(),
+                                 "time step " + std::to_string(count) + ": " + why);
+            f.particles = h.particles;
+            f.time = h.time;
+            return h.particles;
+        },
+        [](const MercuryFrameIndex& f, std::size_t count) {
+            return "the " + std::to_string(f.particles) + " particle rows of time step " +
+                   std::to_string(count);
+        });
 }
 
 Frame parseMercuryDataFrame(const std::string& path, std::string_view text,
                             std::uint64_t firstLine) {
-    std::size_t pos = 0;
-    std::uint64_t lineNo = firstLine - 1;
-    auto next = [&](std::string_view& line) {
-        if (pos >= text.size())
-            return false;
-        std::size_t nl = text.find('\n', pos);
-        if (nl == std::string_view::npos)
-            nl = text.size();
-        line = text.substr(pos, nl - pos);
-        pos = nl + 1;
-        ++lineNo;
-        return true;
-    };
+    TextCursor cursor{text, 0, firstLine - 1};
+    auto next = [&](std::string_view& line) { return cursor.next(line); };
     std::string_view line;
     while (next(line) && line.find_first_not_of(" \t\r") == std::string_view::npos) {
     }
     Header h;
     std::string why;
     if (!readHeader(line, h, why))
-        throw InputError(path, InputError::Where::Line, lineNo, why);
-    const std::uint64_t rest = text.size() - std::min(pos, text.size());
+        throw InputError(path, InputError::Where::Line, cursor.line, why);
+    const std::uint64_t rest = cursor.left();
     if (h.particles > rest / 16 + 1) // a row holds at least 8 values of 2 bytes
-        throw InputError(path, InputError::Where::Line, lineNo,
+        throw InputError(path, InputError::Where::Line, cursor.line,
                          "the header announces " + std::to_string(h.particles) +
                              " particles but only " + std::to_string(rest) + " bytes follow");
     const bool is3d = h.dimensions == 3;
@@ -209,19 +185,19 @@ Frame parseMercuryDataFrame(const std::string& path, std::string_view text,
     std::vector<std::string_view> w;
     for (std::size_t row = 0; row < n; ++row) {
         if (!next(line))
-            throw InputError(path, InputError::Where::Line, lineNo + 1,
+            throw InputError(path, InputError::Where::Line, cursor.line + 1,
                              "file ends after " + std::to_string(row) + " of " + std::to_string(n) +
                                  " particle rows");
         splitWords(line, w);
         if (w.size() != width)
-            throw InputError(path, InputError::Where::Line, lineNo,
+            throw InputError(path, InputError::Where::Line, cursor.line,
                              "expected " + std::to_string(width) + " values (a " +
                                  std::to_string(h.dimensions) + "-D MercuryDPM row), found " +
                                  std::to_string(w.size()));
         double v[14];
         for (std::size_t k = 0; k < width; ++k)
             if (!number(w[k], v[k]))
-                throw InputError(path, InputError::Where::Line, lineNo,
+                throw InputError(path, InputError::Where::Line, cursor.line,
                                  "value " + std::to_string(k + 1) +
                                      ": expected a finite number, found " + quoteForError(w[k]));
         frame.x[row] = static_cast<float>(v[0]);
@@ -229,7 +205,7 @@ Frame parseMercuryDataFrame(const std::string& path, std::string_view text,
         if (is3d)
             frame.z[row] = static_cast<float>(v[2]);
         if (!(v[radiusAt] > 0))
-            throw InputError(path, InputError::Where::Line, lineNo,
+            throw InputError(path, InputError::Where::Line, cursor.line,
                              "the radius must be positive, found " + quoteForError(w[radiusAt]));
         frame.radius[row] = static_cast<float>(v[radiusAt]);
         frame.ids[row] = static_cast<std::int64_t>(row);
@@ -237,7 +213,7 @@ Frame parseMercuryDataFrame(const std::string& path, std::string_view text,
             columns[k].floats[row] = static_cast<float>(v[attrs[k].second]);
         const double s = v[width - 1];
         if (s != std::trunc(s) || std::fabs(s) > 2.0e9)
-            throw InputError(path, InputError::Where::Line, lineNo,
+            throw InputError(path, InputError::Where::Line, cursor.line,
                              "the species index must be a whole number, found " +
                                  quoteForError(w[width - 1]));
         species.ints[row] = static_cast<std::int32_t>(s);

@@ -3,10 +3,13 @@
 #pragma once
 
 #include "core/io/byte_source.hpp"
+#include "core/io/input_error.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace faultline::core {
 
@@ -26,7 +29,7 @@ class TextLineReader {
     bool atEnd();
 
     std::uint64_t offset() const { return m_bufferOffset + m_pos; } // next unread byte
-    std::uint64_t lineNumber() const { return m_line; }              // lines consumed so far
+    std::uint64_t lineNumber() const { return m_line; }             // lines consumed so far
 
   private:
     bool fill(); // makes room and reads more; false when nothing more
@@ -37,5 +40,57 @@ class TextLineReader {
     std::uint64_t m_line = 0;
     bool m_eof = false;
 };
+
+// Lines of text already in memory (a frame's bytes), with the number of the last line given.
+struct TextCursor {
+    std::string_view text;
+    std::size_t pos = 0;    // next unread byte
+    std::uint64_t line = 0; // number of the last line given (start: the first line's - 1)
+    // The next line without its '\n'; false at the end.
+    bool next(std::string_view& out) {
+        if (pos >= text.size())
+            return false;
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string_view::npos)
+            nl = text.size();
+        out = text.substr(pos, nl - pos);
+        pos = nl + 1;
+        ++line;
+        return true;
+    }
+    std::size_t left() const { return text.size() - std::min(pos, text.size()); } // bytes
+};
+
+// Indexes a file of frames, each a header and then rows (blank lines between frames skipped):
+// `header(reader, f, count)` reads frame number `count`'s header into f (offset and first line
+// are set) and returns how many rows follow; `rowsOf(f, count)` names the frame in the error for
+// a file that ends inside its rows ("particle rows of frame 3"). Throws InputError `none` when
+// the file holds no frame.
+template <class Index, class Header, class RowsOf>
+std::vector<Index> indexTextFrames(const std::string& path, const std::string& none, Header header,
+                                   RowsOf rowsOf) {
+    ByteSource source(path);
+    TextLineReader reader(source);
+    std::vector<Index> frames;
+    for (;;) {
+        reader.skipBlankLines();
+        if (reader.atEnd())
+            break;
+        Index f;
+        f.offset = reader.offset();
+        f.firstLine = reader.lineNumber() + 1;
+        const std::uint64_t rows = header(reader, f, frames.size());
+        const std::uint64_t skipped = reader.skipLines(rows);
+        if (skipped < rows)
+            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
+                             "file ends after " + std::to_string(skipped) + " of " +
+                                 rowsOf(f, frames.size()));
+        f.length = reader.offset() - f.offset;
+        frames.push_back(f);
+    }
+    if (frames.empty())
+        throw InputError(path, none);
+    return frames;
+}
 
 } // namespace faultline::core

@@ -2,8 +2,8 @@
 // to ImGui after the devices are read: drop a data file, add a box, drag a threshold on a
 // histogram, undo, save the session through the file dialog, take a screenshot. Skipped when
 // there is no display.
-#include "gl_required.hpp"
 #include "../core/test_files.hpp"
+#include "gl_required.hpp"
 
 #include "core/session/session.hpp"
 #include "ui/app/gui_app.hpp"
@@ -21,8 +21,8 @@
 #include <sstream>
 
 using namespace faultline;
-using faultline::test::TempDir;
 using core::Json;
+using faultline::test::TempDir;
 
 namespace {
 
@@ -116,7 +116,8 @@ class Driver {
 
 // The real window (1600 x 1000, not maximised) on `session`; null when this machine has no
 // OpenGL window to give (the caller skips).
-std::unique_ptr<ui::GuiApp> openWindow(core::Session& session, const std::string& stateDir, std::string& why) {
+std::unique_ptr<ui::GuiApp> openWindow(core::Session& session, const std::string& stateDir,
+                                       std::string& why) {
     ui::GuiOptions options;
     options.width = 1600;
     options.height = 1000;
@@ -128,6 +129,26 @@ std::unique_ptr<ui::GuiApp> openWindow(core::Session& session, const std::string
         why = e.what();
         return nullptr;
     }
+}
+
+// The real window with the LIGGGHTS packing dropped on it and loaded; null (`why` says) when
+// there is no display or no OpenGL window.
+std::unique_ptr<ui::GuiApp> windowOnThePacking(core::Session& session, std::string& why) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        why = "no display (run under xvfb-run for this test)";
+        return nullptr;
+    }
+    std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
+    if (!app) {
+        why = "no OpenGL window here: " + why;
+        return nullptr;
+    }
+    Driver ui(*app);
+    ui.steps(3);
+    app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
+    ui.settle();
+    return app;
 }
 
 std::string readFile(const std::string& path) {
@@ -199,7 +220,9 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
     ASSERT_EQ(doc["boxes"].size(), 1u);
     EXPECT_EQ(doc["boxes"][0]["name"], "box 1");
     EXPECT_TRUE(doc["thresholds"].empty());
-    EXPECT_EQ(doc["data"].dump().find("liggghts_packing_22410.particles") != std::string::npos, true) << doc.dump();
+    EXPECT_EQ(doc["data"].dump().find("liggghts_packing_22410.particles") != std::string::npos,
+              true)
+        << doc.dump();
     EXPECT_TRUE(doc["dock_layout"].contains("root"));
     EXPECT_EQ(ui.wb().sessionPath(), saved);
 
@@ -220,8 +243,10 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
     stbi_image_free(pixels);
     EXPECT_GT(colours.size(), 20u) << "the screenshot looks blank";
     if (keep && *keep) {
-        std::filesystem::copy_file(shot, std::string(keep) + "/gui-test.png", std::filesystem::copy_options::overwrite_existing);
-        std::filesystem::copy_file(ui.wb().journalPath(), std::string(keep) + "/gui-test.jsonl", std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(shot, std::string(keep) + "/gui-test.png",
+                                   std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(ui.wb().journalPath(), std::string(keep) + "/gui-test.jsonl",
+                                   std::filesystem::copy_options::overwrite_existing);
     }
 
     // The journal of the run holds every step as a command.
@@ -230,22 +255,17 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
     for (std::string line; std::getline(journal, line);)
         if (!line.empty() && line[0] == '{')
             ops.push_back(Json::parse(line)["op"].get<std::string>());
-    EXPECT_EQ(ops, (std::vector<std::string>{"data.open", "box.add", "threshold.add", "undo", "layout.set", "session.save"}));
+    EXPECT_EQ(ops, (std::vector<std::string>{"data.open", "box.add", "threshold.add", "undo",
+                                             "layout.set", "session.save"}));
 }
 
 TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display)
-        FAULTLINE_NEED_GL("no display (run under xvfb-run for this test)");
     core::Session session;
     std::string why;
-    std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
+    std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, why);
     if (!app)
-        FAULTLINE_NEED_GL("no OpenGL window here: " << why);
+        FAULTLINE_NEED_GL(why);
     Driver ui(*app);
-    ui.steps(3);
-    app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
-    ui.settle();
     ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
 
     // The lasso tool; a loop around the middle of the view, drawn while the button is held.
@@ -283,18 +303,12 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
 // Issue 27: an idle workbench presents nothing new. Frames whose draw lists match the picture on
 // screen (and no view drawn again) are neither drawn nor presented; a change is at once.
 TEST(Gui, AnIdleWindowPresentsNoFramesUntilSomethingChanges) {
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display)
-        FAULTLINE_NEED_GL("no display (run under xvfb-run for this test)");
     core::Session session;
     std::string why;
-    std::unique_ptr<ui::GuiApp> app = openWindow(session, "", why);
+    std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, why);
     if (!app)
-        FAULTLINE_NEED_GL("no OpenGL window here: " << why);
+        FAULTLINE_NEED_GL(why);
     Driver ui(*app);
-    ui.steps(3);
-    app->dropFiles({test::dataFile("liggghts_packing_22410.particles")});
-    ui.settle();
     ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
     for (int k = 0; k < 8; ++k) // settle: tooltips, fades, first view draws
         app->step(true);
@@ -304,7 +318,8 @@ TEST(Gui, AnIdleWindowPresentsNoFramesUntilSomethingChanges) {
     EXPECT_EQ(app->presentedFrames(), presented);
     EXPECT_EQ(app->skippedFrames(), skipped + 6);
     // A change shows at once.
-    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"z","low":0,"high":0.01})"));
+    session.apply(
+        core::Json::parse(R"({"op":"threshold.add","variable":"z","low":0,"high":0.01})"));
     app->step(true);
     app->step(true);
     EXPECT_GT(app->presentedFrames(), presented);
