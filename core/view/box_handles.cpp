@@ -32,6 +32,20 @@ double defaultHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi) {
     return r > 0.0 ? r : 1e-3;
 }
 
+double screenHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi, double cameraDistance,
+                          double fovYDegrees) {
+    const double halfFov = 0.5 * fovYDegrees * 3.14159265358979323846 / 180.0;
+    const double viewHeight = 2.0 * cameraDistance * std::tan(halfFov);
+    if (!(viewHeight > 0.0) || !std::isfinite(viewHeight))
+        return defaultHandleRadius(lo, hi);
+    double r = kHandleScreenShare * viewHeight;
+    const glm::dvec3 size = glm::abs(hi - lo);
+    const double thinnest = std::min({size.x, size.y, size.z});
+    if (thinnest > 0.0)
+        r = std::min(r, thinnest / 3.0);
+    return r > 0.0 ? r : 1e-3;
+}
+
 std::optional<BoxFace> pickBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, const Ray& ray,
                                    double handleRadius) {
     std::optional<BoxFace> best;

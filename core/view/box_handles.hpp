@@ -28,6 +28,14 @@ std::array<BoxHandle, 6> boxFaceHandles(const glm::dvec3& lo, const glm::dvec3& 
 // thinnest side so opposite handles do not merge.
 double defaultHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi);
 
+// A handle radius of a constant size on screen: kHandleScreenShare of the view's height in world
+// units at the camera's distance (2 distance tan(fovY / 2)), so handles neither swell when zoomed
+// in nor vanish when zoomed out; at most a third of the box's thinnest side. The renderer and
+// the viewport's picking use the same one.
+inline constexpr double kHandleScreenShare = 0.012;
+double screenHandleRadius(const glm::dvec3& lo, const glm::dvec3& hi, double cameraDistance,
+                          double fovYDegrees);
+
 // The face a ray grabs: the nearest handle sphere it hits, else the face through which it enters
 // the box; nullopt when it misses both.
 std::optional<BoxFace> pickBoxFace(const glm::dvec3& lo, const glm::dvec3& hi, const Ray& ray,

@@ -151,3 +151,17 @@ TEST(SpherePicker, AgreesWithBruteForce) {
         }
     }
 }
+
+// Issue 27: handles keep one size on screen (a share of the view's height at the camera's
+// distance) instead of growing when zoomed in; opposite handles of a thin box never merge.
+TEST(BoxHandles, ScreenRadiusFollowsTheZoomAndStaysApartOnThinBoxes) {
+    const glm::dvec3 lo(0, 0, 0), hi(10, 10, 10);
+    const double far = faultline::core::screenHandleRadius(lo, hi, 100.0, 35.0);
+    const double near = faultline::core::screenHandleRadius(lo, hi, 25.0, 35.0);
+    EXPECT_NEAR(near, far / 4.0, 1e-12);
+    EXPECT_NEAR(far, faultline::core::kHandleScreenShare * 2 * 100.0 * std::tan(17.5 * M_PI / 180),
+                1e-12);
+    const glm::dvec3 thin(10, 10, 0.3);
+    EXPECT_LE(faultline::core::screenHandleRadius(lo, thin, 1000.0, 35.0), 0.1 + 1e-12);
+    EXPECT_GT(faultline::core::screenHandleRadius(lo, hi, 0.0, 35.0), 0.0); // unset: a fallback
+}

@@ -370,7 +370,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
         if (box && d.frame) {
             const glm::dvec3 lo(box->min[0], box->min[1], box->min[2]), hi(box->max[0], box->max[1], box->max[2]);
             const core::Ray ray = rayAt(io.MousePos, d.camera);
-            const double r = core::defaultHandleRadius(lo, hi);
+            const double r = core::screenHandleRadius(lo, hi, d.camera.distance, d.camera.fovY);
             double best = 1e300;
             for (const core::BoxHandle& h : core::boxFaceHandles(lo, hi))
                 if (auto t = core::intersectSphere(ray, h.centre, r); t && *t < best)

@@ -157,6 +157,10 @@ void GlViewRenderer::render(const ViewScene& scene) {
         if (scene.selectedBox && *scene.selectedBox < boxes.size()) {
             BoxHandlesOverlay h;
             h.box = *scene.selectedBox;
+            const auto& b = scene.boxes[*scene.selectedBox];
+            h.handleRadius = core::screenHandleRadius(
+                glm::dvec3(b.min[0], b.min[1], b.min[2]), glm::dvec3(b.max[0], b.max[1], b.max[2]),
+                scene.camera.distance, scene.camera.fovY);
             if (scene.activeFace)
                 h.activeFace = static_cast<core::BoxFace>(*scene.activeFace);
             handles = h;
