@@ -2,6 +2,7 @@
 // gestures on the 4 x 4 x 4 lattice seen from above: a rectangle, Ctrl+click toggling one
 // sphere, a Shift+lasso making a new fault, Ctrl+rectangle removing, undo; orbit and pan intact.
 #include "panel_fixture.hpp"
+#include "ui/panels/viewport_selection.hpp"
 
 #include "ui/viewport/fault_edit.hpp"
 #include "ui/viewport/orbit_camera.hpp"
@@ -200,4 +201,13 @@ TEST_F(SelectionTest, HiddenSpheresAreNotSelected) {
     for (std::int64_t i = 49; i <= 64; ++i)
         top.push_back(i);
     EXPECT_EQ(headless.emitted()[0], (Json{{"op", "fault.create"}, {"name", "F1"}, {"ids", top}}));
+}
+
+// Issue 27: member dots follow the spheres' size on screen: in a whole-model view (spheres a
+// pixel or two across) they are one pixel without a dark ring, so the view does not turn black.
+TEST(MemberMarkers, DotsFollowTheSpheresSizeOnScreen) {
+    EXPECT_FLOAT_EQ(ui::memberMarkerRadius(1.0f, 1.2f, 1.0f), 1.0f);  // sphere 2.4 px across
+    EXPECT_FLOAT_EQ(ui::memberMarkerRadius(1.0f, 5.0f, 1.0f), 2.25f); // sphere 10 px across
+    EXPECT_FLOAT_EQ(ui::memberMarkerRadius(1.0f, 80.0f, 1.0f), 3.0f); // zoomed in: capped
+    EXPECT_FLOAT_EQ(ui::memberMarkerRadius(1.0f, 80.0f, 2.0f), 6.0f); // HiDPI scale
 }

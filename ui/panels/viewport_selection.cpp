@@ -135,6 +135,11 @@ void ViewportSelection::drawOutline(ImDrawList* dl, float scale) const {
     }
 }
 
+float memberMarkerRadius(float sphereRadius, float pixelsPerWorld, float uiScale) {
+    const float r = 0.45f * sphereRadius * pixelsPerWorld;
+    return std::clamp(std::isfinite(r) ? r : 1.0f, 1.0f, 3.0f * uiScale);
+}
+
 void ViewportSelection::drawMembers(Workbench& wb, const ViewDisplay& d,
                                     const core::CameraState& cam, ImVec2 pos, ImVec2 size) const {
     if (!d.frame || !d.visibility || wb.selectedFaults.size() != 1)
@@ -148,7 +153,8 @@ void ViewportSelection::drawMembers(Workbench& wb, const ViewDisplay& d,
     const ImU32 colour =
         ImGui::ColorConvertFloat4ToU32(ImVec4(f->color[0], f->color[1], f->color[2], 1.0f));
     const ImU32 ring = IM_COL32(20, 20, 20, 220);
-    const float r = 3.0f * wb.scale();
+    const double viewHeight = 2.0 * cam.distance * std::tan(0.5 * cam.fovY * M_PI / 180.0);
+    const float pixelsPerWorld = viewHeight > 0.0 ? static_cast<float>(size.y / viewHeight) : 1.0f;
     MemberRows& m = m_members;
     const std::uint64_t version = wb.session().version();
     if (m.version != version || m.frame != d.frame || m.visibility != d.visibility ||
@@ -166,7 +172,10 @@ void ViewportSelection::drawMembers(Workbench& wb, const ViewDisplay& d,
         if (!core::projectToScreen(mapping, d.frame->x[row], d.frame->y[row], d.frame->z[row], p))
             continue;
         const ImVec2 c(pos.x + static_cast<float>(p.x), pos.y + static_cast<float>(p.y));
-        ImGui::GetWindowDrawList()->AddCircleFilled(c, r + 1.0f, ring, 8);
+        // Dots as large as the spheres allow; a dark ring only where there is room for it.
+        const float r = memberMarkerRadius(d.frame->radius[row], pixelsPerWorld, wb.scale());
+        if (r >= 2.0f * wb.scale())
+            ImGui::GetWindowDrawList()->AddCircleFilled(c, r + 1.0f, ring, 8);
         ImGui::GetWindowDrawList()->AddCircleFilled(c, r, colour, 8);
         if (++drawn >= 50000)
             break;

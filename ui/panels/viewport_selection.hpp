@@ -18,6 +18,11 @@
 
 namespace faultline::ui {
 
+// The radius in pixels of the dot that marks a fault member: under half the sphere on screen
+// (pixelsPerWorld at the camera's distance), at least 1 px and at most 3 px times the UI scale,
+// so a whole-model view shows dots, not a black carpet of rings.
+float memberMarkerRadius(float sphereRadius, float pixelsPerWorld, float uiScale);
+
 class ViewportSelection {
   public:
     // The left button went down in `view`: true when the selection takes this gesture (a
