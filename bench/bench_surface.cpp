@@ -93,9 +93,10 @@ struct ZoneParticles {
     }
 };
 
-void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State& state, std::size_t count, float voxel) {
+// OpenVDB's way to the same surface: the spheres rasterised as a narrow-band level set, then
+// meshed at 0. Counters: quads and active voxels of the last run.
+void openVdbLevelSetAndMesh(benchmark::State& state, const ZoneParticles& particles, float voxel) {
     openvdb::initialize();
-    const ZoneParticles particles{&zone(count)};
     std::size_t quads = 0, voxels = 0;
     for (auto _ : state) {
         auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
@@ -110,6 +111,10 @@ void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State& state, std::size_t c
     }
     state.counters["quads"] = double(quads);
     state.counters["voxels"] = double(voxels);
+}
+
+void BM_OpenVdbParticlesToLevelSetAndMesh(benchmark::State& state, std::size_t count, float voxel) {
+    openVdbLevelSetAndMesh(state, ZoneParticles{&zone(count)}, voxel);
 }
 
 void BM_Remesh(benchmark::State& state, std::size_t count, float voxel, fc::NormalSource normals) {
@@ -235,21 +240,7 @@ void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float 
 }
 
 void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
-    openvdb::initialize();
-    const ZoneParticles particles{&spread()};
-    const float voxel = 1.0f / divisor;
-    std::size_t quads = 0;
-    for (auto _ : state) {
-        auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
-        openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
-        raster.rasterizeSpheres(particles);
-        raster.finalize(true);
-        std::vector<openvdb::Vec3s> points;
-        std::vector<openvdb::Vec4I> polys;
-        openvdb::tools::volumeToMesh(*grid, points, polys, 0.0);
-        quads = polys.size();
-    }
-    state.counters["quads"] = double(quads);
+    openVdbLevelSetAndMesh(state, ZoneParticles{&spread()}, 1.0f / divisor);
     state.counters["peak_rss_mb"] = peakRssMiB();
 }
 
