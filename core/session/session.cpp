@@ -151,8 +151,12 @@ void Session::apply(const Json& cmd) {
             return f ? static_cast<long long>(f->ids.size()) : 0;
         };
         const long long sizeBefore = faultSize();
+        const bool wasModified = modified();
         bool changesState = false;
         Json inverse = run(cmd, changesState);
+        // Time is view state: moving through frames leaves nothing unsaved to ask about.
+        if (op == "frame.set" && !wasModified)
+            markSaved();
         if (changesState && op != "frame.set") {
             const bool sized = op == "fault.add" || op == "fault.remove" || op == "fault.create";
             m_undoLabels.push_back(

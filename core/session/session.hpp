@@ -61,7 +61,8 @@ class Session {
     std::size_t undoDepth() const { return m_undo.size(); }
     // What undo and redo would revert or repeat, in words ("add 279 spheres to F1"); empty when
     // there is nothing to undo or redo. Time (frame.set) is view state, as in OVITO and
-    // ParaView: moving through frames makes no undo step (and keeps what redo would repeat).
+    // ParaView: moving through frames makes no undo step (and keeps what redo would repeat), and
+    // does not make an unmodified session modified.
     std::string undoLabel() const { return m_undoLabels.empty() ? std::string() : m_undoLabels.back(); }
     std::string redoLabel() const { return m_redoLabels.empty() ? std::string() : m_redoLabels.back(); }
 

@@ -157,6 +157,13 @@ TEST(Session, FramesAreNoUndoStepsAndUndoSaysWhatItReverts) {
     EXPECT_EQ(s.redoLabel(), "");
     s.apply(cmd(R"({"op":"batch","commands":[{"op":"fault.delete","name":"F1"}]})"));
     EXPECT_EQ(s.undoLabel(), "delete F1");
+    // Nothing unsaved to ask about after only moving through time.
+    s.markSaved();
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    EXPECT_FALSE(s.modified());
+    s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":0.6})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+    EXPECT_TRUE(s.modified());
 }
 
 TEST(Session, DifferenceColouringIsSavedAndItsReferenceFrameResolves) {
