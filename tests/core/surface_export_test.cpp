@@ -25,14 +25,19 @@ std::filesystem::path tempPath(const std::string& name) {
     return std::filesystem::temp_directory_path() / ("faultline_surface_test_" + name);
 }
 
+// The test spheres' surface at `iso`, voxel 0.1 (r/d^2).
+fc::SurfaceResult surfaceAt(const Spheres& s, float iso) {
+    fc::SurfaceParams params;
+    params.iso = iso;
+    params.voxelSize = 0.1f;
+    return fc::buildSurface(s.set(), params);
+}
+
 } // namespace
 
 TEST(SurfaceExport, VdbHoldsNamedGridsAndMetadata) {
     const Spheres s;
-    fc::SurfaceParams params;
-    params.iso = 2.0f;
-    params.voxelSize = 0.1f;
-    const auto result = fc::buildSurface(s.set(), params);
+    const auto result = surfaceAt(s, 2.0f);
     const auto path = tempPath("F1.vdb");
     const fc::VdbSurface entry{"F1", result.field.get(), 2.0f, {}};
     fc::exportVdb(path, {&entry, 1});
@@ -101,12 +106,8 @@ TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
 
 TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
     const Spheres s;
-    fc::SurfaceParams params;
-    params.iso = 2.0f;
-    params.voxelSize = 0.1f;
-    const auto a = fc::buildSurface(s.set(), params);
-    params.iso = 2.5f;
-    const auto b = fc::buildSurface(s.set(), params);
+    const auto a = surfaceAt(s, 2.0f);
+    const auto b = surfaceAt(s, 2.5f);
     const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2", &b.mesh}};
     const auto path = tempPath("faults.glb");
     fc::exportGlb(path, surfaces, s.set());
@@ -131,10 +132,7 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
 // A path ending in .gltf gets the JSON form (buffers embedded), which glTF tools read as text.
 TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
     const Spheres s;
-    fc::SurfaceParams params;
-    params.iso = 2.0f;
-    params.voxelSize = 0.1f;
-    const auto a = fc::buildSurface(s.set(), params);
+    const auto a = surfaceAt(s, 2.0f);
     const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}};
     const auto path = tempPath("faults.gltf");
     fc::exportGlb(path, surfaces, s.set());

@@ -151,6 +151,16 @@ std::unique_ptr<ui::GuiApp> windowOnThePacking(core::Session& session, std::stri
     return app;
 }
 
+// In a test body (it skips or fails the test without a window): `app` and its Driver `driver`,
+// the packing loaded into `session`.
+#define FAULTLINE_WINDOW_ON_THE_PACKING(app, driver, session)                                          \
+    std::string app##Why;                                                                          \
+    std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, app##Why);                       \
+    if (!app)                                                                                      \
+        FAULTLINE_NEED_GL(app##Why);                                                               \
+    Driver driver(*app);                                                                           \
+    ASSERT_NE(session.dataset(), nullptr) << driver.wb().lastMessage()
+
 std::string readFile(const std::string& path) {
     std::ifstream in(path);
     std::stringstream s;
@@ -261,12 +271,7 @@ TEST(Gui, DrivesTheRealWindowThroughAnAnalysis) {
 
 TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
     core::Session session;
-    std::string why;
-    std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, why);
-    if (!app)
-        FAULTLINE_NEED_GL(why);
-    Driver ui(*app);
-    ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
+    FAULTLINE_WINDOW_ON_THE_PACKING(app, ui, session);
 
     // The lasso tool; a loop around the middle of the view, drawn while the button is held.
     ui.click("viewports.tool.lasso");
@@ -304,12 +309,7 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
 // screen (and no view drawn again) are neither drawn nor presented; a change is at once.
 TEST(Gui, AnIdleWindowPresentsNoFramesUntilSomethingChanges) {
     core::Session session;
-    std::string why;
-    std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, why);
-    if (!app)
-        FAULTLINE_NEED_GL(why);
-    Driver ui(*app);
-    ASSERT_NE(session.dataset(), nullptr) << ui.wb().lastMessage();
+    FAULTLINE_WINDOW_ON_THE_PACKING(app, ui, session);
     for (int k = 0; k < 8; ++k) // settle: tooltips, fades, first view draws
         app->step(true);
     const std::size_t presented = app->presentedFrames(), skipped = app->skippedFrames();
