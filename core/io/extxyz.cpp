@@ -16,17 +16,9 @@ namespace faultline::core {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
 // A whole non-negative count filling the (trimmed) line.
 std::optional<std::uint64_t> countLine(std::string_view line) {
-    line = trim(line);
+    line = trimBlanks(line);
     std::uint64_t n = 0;
     if (line.empty())
         return std::nullopt;
@@ -40,21 +32,6 @@ bool isNumber(std::string_view w) {
     double v;
     const auto r = fast_float::from_chars(w.data(), w.data() + w.size(), v);
     return r.ec == std::errc() && r.ptr == w.data() + w.size();
-}
-
-// Splits on blanks.
-void splitWords(std::string_view line, std::vector<std::string_view>& out) {
-    out.clear();
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-            ++i;
-        if (i > start)
-            out.push_back(line.substr(start, i - start));
-    }
 }
 
 // key=value pairs of an extended XYZ comment line; values may be "quoted" or {braced}.
@@ -168,7 +145,7 @@ bool looksLikeXyz(std::string_view head) {
     if (!next(row))
         return *countLine(count) == 0;
     std::vector<std::string_view> w;
-    splitWords(row, w);
+    splitBlanks(row, w);
     // Plain XYZ: "Element x y z".
     return w.size() >= 4 && !isNumber(w[0]) && isNumber(w[1]) && isNumber(w[2]) && isNumber(w[3]);
 }
@@ -202,7 +179,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
     TextCursor cursor{text, 0, firstLine - 1};
     auto next = [&](std::string_view& line) { return cursor.next(line); };
     std::string_view line;
-    while (next(line) && trim(line).empty()) {
+    while (next(line) && trimBlanks(line).empty()) {
     }
     const auto n = countLine(line);
     if (!n)
@@ -293,7 +270,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             throw InputError(path, InputError::Where::Line, cursor.line + 1,
                              "file ends after " + std::to_string(row) + " of " +
                                  std::to_string(count) + " particle rows");
-        splitWords(line, w);
+        splitBlanks(line, w);
         if (w.size() != width)
             throw InputError(path, InputError::Where::Line, cursor.line,
                              "expected " + std::to_string(width) +
@@ -368,7 +345,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
         frame.attributes.push_back(std::move(a.data));
     if (auto it = pairs.find("Lattice"); it != pairs.end()) {
         std::vector<std::string_view> v;
-        splitWords(it->second, v);
+        splitBlanks(it->second, v);
         double m[9];
         bool ok = v.size() == 9;
         for (std::size_t k = 0; ok && k < 9; ++k) {
@@ -380,7 +357,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             double o[3] = {0, 0, 0};
             if (auto oi = pairs.find("Origin"); oi != pairs.end()) {
                 std::vector<std::string_view> ov;
-                splitWords(oi->second, ov);
+                splitBlanks(oi->second, ov);
                 for (std::size_t k = 0; k < 3 && ov.size() == 3; ++k)
                     fast_float::from_chars(ov[k].data(), ov[k].data() + ov[k].size(), o[k]);
             }
@@ -391,7 +368,7 @@ Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_
             frame.box.known = true;
             if (auto pbc = pairs.find("pbc"); pbc != pairs.end()) {
                 std::vector<std::string_view> pv;
-                splitWords(pbc->second, pv);
+                splitBlanks(pbc->second, pv);
                 for (std::size_t k = 0; k < 3 && pv.size() == 3; ++k)
                     frame.box.periodic[k] = pv[k] == "T" || pv[k] == "True";
             }

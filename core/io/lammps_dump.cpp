@@ -1,5 +1,7 @@
 #include "core/io/lammps_dump.hpp"
 
+#include "core/util/ascii.hpp"
+
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/numeric_table.hpp"
@@ -26,27 +28,9 @@ struct DumpHeader {
     bool columnsAssumed = false; // "ITEM: ATOMS" named none (an old-style dump)
 };
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
 std::vector<std::string_view> words(std::string_view s) {
     std::vector<std::string_view> out;
-    std::size_t i = 0;
-    while (i < s.size()) {
-        while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
-            ++i;
-        std::size_t j = i;
-        while (j < s.size() && s[j] != ' ' && s[j] != '\t' && s[j] != '\r')
-            ++j;
-        if (j > i)
-            out.push_back(s.substr(i, j - i));
-        i = j;
-    }
+    splitBlanks(s, out);
     return out;
 }
 
@@ -78,7 +62,7 @@ DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
         if (!next(line))
             throw InputError(path, InputError::Where::Line, lineNo() + 1,
                              std::string("file ends where ") + what + " was expected");
-        line = trim(line);
+        line = trimBlanks(line);
     };
     for (;;) {
         need("an ITEM: line");
@@ -86,7 +70,7 @@ DumpHeader readHeader(const std::string& path, NextLine next, LineNo lineNo) {
             continue;
         if (line.substr(0, 5) != "ITEM:")
             throw fail("expected an 'ITEM:' line, found " + quoteForError(line));
-        std::string_view item = trim(line.substr(5));
+        std::string_view item = trimBlanks(line.substr(5));
         if (item == "TIMESTEP") {
             need("the timestep");
             if (!parseInteger(line, h.timestep))

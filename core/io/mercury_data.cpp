@@ -3,6 +3,7 @@
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/text_lines.hpp"
+#include "core/util/ascii.hpp"
 
 #include <fast_float/fast_float.h>
 
@@ -12,20 +13,6 @@
 namespace faultline::core {
 
 namespace {
-
-void splitWords(std::string_view line, std::vector<std::string_view>& out) {
-    out.clear();
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-            ++i;
-        if (i > start)
-            out.push_back(line.substr(start, i - start));
-    }
-}
 
 bool number(std::string_view w, double& v) {
     const auto r = fast_float::from_chars(w.data(), w.data() + w.size(), v);
@@ -47,7 +34,7 @@ struct Header {
 // The header line, or why it is not one.
 bool readHeader(std::string_view line, Header& h, std::string& why) {
     std::vector<std::string_view> w;
-    splitWords(line, w);
+    splitBlanks(line, w);
     if (w.size() != 6 && w.size() != 8) {
         why = "expected a time step header of 8 numbers (N time xmin ymin zmin xmax ymax zmax) "
               "or 6 in 2-D, found " +
@@ -102,7 +89,7 @@ bool looksLikeMercuryData(std::string_view head) {
     if (!next(line))
         return false;
     std::vector<std::string_view> w;
-    splitWords(line, w);
+    splitBlanks(line, w);
     if (w.size() != (h.dimensions == 3 ? 14u : 8u))
         return false;
     double v;
@@ -188,7 +175,7 @@ Frame parseMercuryDataFrame(const std::string& path, std::string_view text,
             throw InputError(path, InputError::Where::Line, cursor.line + 1,
                              "file ends after " + std::to_string(row) + " of " + std::to_string(n) +
                                  " particle rows");
-        splitWords(line, w);
+        splitBlanks(line, w);
         if (w.size() != width)
             throw InputError(path, InputError::Where::Line, cursor.line,
                              "expected " + std::to_string(width) + " values (a " +
