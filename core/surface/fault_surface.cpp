@@ -192,6 +192,15 @@ float SurfaceField::maxAtCentres() const {
     return static_cast<float>(most);
 }
 
+std::array<float, 2> SurfaceField::isoSliderRange() const {
+    std::call_once(m_impl->sliderOnce, [this] {
+        const auto &s = m_impl->field->tree().spheres();
+        const auto r = core::isoSliderRange(SphereSet{s.x, s.y, s.z, s.r, {}}, m_impl->params);
+        m_impl->slider = {static_cast<float>(r[0]), static_cast<float>(r[1])};
+    });
+    return m_impl->slider;
+}
+
 std::size_t SurfaceField::memoryBytes() const {
     return m_impl->density->memUsage() + m_impl->color->memUsage() +
            m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);

@@ -56,6 +56,9 @@ class SurfaceField {
     // The largest field value at a sample of the sphere centres (up to 256): about the field's
     // maximum (for the compact kernel; the inverse kernels grow without bound at a centre).
     float maxAtCentres() const;
+    // The iso-values worth a slider for these spheres and this kernel (core::isoSliderRange),
+    // computed on the first call (about a tenth of a second at most) and kept.
+    std::array<float, 2> isoSliderRange() const;
     std::size_t memoryBytes() const;
     const Impl &impl() const { return *m_impl; }
 

@@ -30,6 +30,13 @@ FieldSample referenceSample(const SphereSet& spheres, const SurfaceParams& param
 // inverse-square. Sums every sphere for each sample point: about 600 x N kernel evaluations.
 double wrappingIso(const SphereSet& spheres, const SurfaceParams& params);
 
+// The iso-values worth offering on a slider for these spheres, [low, high]: `high` is where the
+// surface has shrunk into the spheres (over a sample of them, the largest field half a radius
+// from a centre, on the side where it is lowest: above it every sampled sphere's surface is
+// gone or nearly); `low` a third of the wrapping iso (a loose hull well outside the spheres).
+// About 1,200 x N kernel evaluations.
+std::array<double, 2> isoSliderRange(const SphereSet& spheres, const SurfaceParams& params);
+
 // Field on a dense box of voxels [origin, origin + dims) (world = index * voxelSize), x fastest;
 // every sphere against every voxel, in parallel. What the benchmark compares against. With
 // `gradient`, also the analytic gradient at every voxel (Algorithm 1 line 8), in the same order.

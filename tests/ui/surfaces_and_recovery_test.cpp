@@ -453,6 +453,54 @@ TEST_F(PanelTest, AnEmptySurfaceSaysWhyAndOffersWrap) {
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
     EXPECT_LT(headless.emitted("surface.set")[0]["iso"].get<double>(), 50.0);
     headless.settle(wb());
-    EXPECT_GT(wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame).triangles,
-              0u);
+    EXPECT_GT(
+        wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame).triangles, 0u);
+}
+
+// Issue 27: the iso slider spans the iso-values worth trying for this fault (from the built
+// field), so a drag to either end still shows a surface; the value stands beside the slider in
+// its own field, which takes typing after one click.
+TEST_F(PanelTest, IsoSliderSpansTheFieldsUsefulRangeAndTheValueTakesTyping) {
+    openLattice();
+    session.apply(Json::parse(
+        R"({"op":"fault.create","name":"A","ids":[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16]})"));
+    session.apply(
+        Json::parse(R"({"op":"surface.set","fault":"A","kernel":"inverse","visible":true})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    wb().selectedFaults = {"A"};
+    headless.settle(wb());
+    auto status = [&] {
+        return wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame);
+    };
+    const ui::SurfaceStatus st = status();
+    ASSERT_EQ(st.state, ui::SurfaceStatus::State::Ready) << st.error;
+    ASSERT_GT(st.triangles, 0u);
+    EXPECT_GT(st.isoLow, 0.0f);
+    EXPECT_GT(st.isoHigh, 2 * st.isoLow);
+    EXPECT_GT(st.isoHigh, st.iso);
+    const float left = std::min(st.isoLow, st.iso); // the range always holds the setting
+    // Both ends of the slider give a surface.
+    for (const float end : {0.0f, 1.0f}) {
+        const ui::ItemRect r = headless.rect(wb(), "surfaces.iso");
+        headless.clearEmitted();
+        const float x = r.x0 + 2 + end * (r.x1 - r.x0 - 4);
+        headless.drag(wb(), r.cx(), r.cy(), x, r.cy());
+        headless.settle(wb());
+        const auto sets = headless.emitted("surface.set");
+        ASSERT_EQ(sets.size(), 1u);
+        const double iso = sets[0]["iso"].get<double>();
+        EXPECT_NEAR(iso, end == 0.0f ? left : st.isoHigh, 0.02 * iso);
+        headless.settle(wb());
+        EXPECT_GT(status().triangles, 0u) << "iso " << iso;
+    }
+    // One click on the value, type, Enter: one surface.set with the typed value.
+    headless.clearEmitted();
+    headless.click(wb(), "surfaces.iso_value");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "2.5");
+    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.settle(wb());
+    const auto typed = headless.emitted("surface.set");
+    ASSERT_EQ(typed.size(), 1u);
+    EXPECT_DOUBLE_EQ(typed[0]["iso"].get<double>(), 2.5);
 }

@@ -266,18 +266,34 @@ class SurfacesPanel final : public Panel {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "Voxel edge in world units; 0 = the mean radius / 3. Smaller is finer and slower.");
-        ImGui::SetNextItemWidth(w);
-        // A decade either side of the setting on a log scale (the field's scale depends on the
-        // fault; Wrap finds it): a drag across the slider is a factor of 100, not 10,000.
+        const SurfaceStatus status = statusOf(wb, s, fault, frame);
+        // The slider spans the iso-values worth trying for this fault and kernel (from the built
+        // field: a loose hull at the left, the surface shrunk into the spheres at the right), on
+        // a log scale; before a build, a decade either side of the setting. The value stands in
+        // its own field beside the slider (one click to type), so the thumb never hides it.
         const float anchor = static_cast<float>(st.iso);
-        ImGui::SliderFloat("iso", &m_iso, anchor / 10.0f, anchor * 10.0f, "%.3g",
-                           ImGuiSliderFlags_Logarithmic);
+        float low = anchor / 10.0f, high = anchor * 10.0f;
+        if (status.isoHigh > status.isoLow && status.isoLow > 0.0f) {
+            low = std::min(status.isoLow, anchor);
+            high = std::max(status.isoHigh, anchor);
+        }
+        ImGui::SetNextItemWidth(w);
+        ImGui::SliderFloat("##iso", &m_iso, low, high, "", ImGuiSliderFlags_Logarithmic |
+                                                               ImGuiSliderFlags_NoInput);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
             set({{"iso", m_iso}});
         wb.mark("surfaces.iso");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("The field value the surface passes through; a new value re-meshes "
-                              "the cached field (Ctrl+click to type one).");
+            ImGui::SetTooltip("The field value the surface passes through (%.3g .. %.3g here: "
+                              "left a loose hull, right the spheres alone); a new value re-meshes "
+                              "the cached field.",
+                              low, high);
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(64 * wb.scale());
+        ImGui::InputFloat("iso", &m_iso, 0.0f, 0.0f, "%.4g");
+        if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
+            set({{"iso", m_iso}});
+        wb.mark("surfaces.iso_value");
         ImGui::SameLine();
         if (ImGui::Button("Wrap"))
             emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
@@ -293,7 +309,6 @@ class SurfacesPanel final : public Panel {
 
         drawColour(wb, s, st, set);
 
-        const SurfaceStatus status = statusOf(wb, s, fault, frame);
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
         else if (status.state == SurfaceStatus::State::Ready && status.triangles == 0) {

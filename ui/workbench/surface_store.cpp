@@ -107,7 +107,9 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
                 fieldMax = result.field->maxAtCentres();
         }
         const float iso = result.iso;
-        return std::function<void()>([this, key, mesh, seconds, count, fieldMax, iso] {
+        const std::array<float, 2> slider =
+            result.field ? result.field->isoSliderRange() : std::array<float, 2>{0.0f, 0.0f};
+        return std::function<void()>([this, key, mesh, seconds, count, fieldMax, iso, slider] {
             auto it = m_entries.find(key);
             if (it == m_entries.end())
                 return;
@@ -121,6 +123,8 @@ void SurfaceStore::startBuild(const Key& key, Entry& entry, const core::SurfaceS
             e.status.seconds = seconds;
             e.status.fieldMax = fieldMax;
             e.status.iso = iso;
+            e.status.isoLow = slider[0];
+            e.status.isoHigh = slider[1];
         });
     };
     auto fail = [this, key](const std::string& error) {

@@ -32,6 +32,9 @@ struct SurfaceStatus {
     // when it is below the iso), to say why the surface is empty.
     float fieldMax = 0.0f;
     float iso = 0.0f;
+    // Ready: the iso-values worth a slider for this fault and kernel, [low, high]: `high` where
+    // the surface has shrunk into the spheres, `low` a loose hull (core::isoSliderRange).
+    float isoLow = 0.0f, isoHigh = 0.0f;
 };
 
 class SurfaceStore {

@@ -7,7 +7,9 @@
 
 #include <openvdb/openvdb.h>
 
+#include <array>
 #include <memory>
+#include <mutex>
 
 namespace faultline::core {
 
@@ -18,6 +20,9 @@ struct SurfaceField::Impl {
     std::unique_ptr<MetaballField> field; // for analytic normals at new vertices
     openvdb::FloatGrid::Ptr density;
     openvdb::Vec3SGrid::Ptr color;
+    // isoSliderRange(), computed once on first use (the field is shared by re-meshes).
+    mutable std::once_flag sliderOnce;
+    mutable std::array<float, 2> slider{0.0f, 0.0f};
 };
 
 // openvdb::initialize(), once per process.
