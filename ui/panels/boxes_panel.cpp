@@ -4,6 +4,7 @@
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/range_slider.hpp"
 #include "ui/widgets/section.hpp"
+#include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
 #include "core/session/session_json.hpp"
@@ -45,7 +46,7 @@ class BoxesPanel final : public Panel {
         wb.mark("boxes.add");
         ImGui::EndDisabled();
         const core::CuttingBox* sel = s.box(wb.selectedBox);
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Duplicate"));
         ImGui::BeginDisabled(!sel);
         if (ImGui::Button("Duplicate") && sel) {
             core::Json cmd = core::boxToJson(*sel);
@@ -55,19 +56,22 @@ class BoxesPanel final : public Panel {
             wb.emit(cmd, [&wb, name] { wb.selectedBox = name; });
         }
         wb.mark("boxes.duplicate");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Delete"));
         if (ImGui::Button("Delete") && sel)
             wb.emit({{"op", "box.remove"}, {"name", sel->name}});
         wb.mark("boxes.delete");
         ImGui::EndDisabled();
-        ImGui::SameLine();
+        flowSameLine(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+                     ImGui::CalcTextSize("Edit in view").x);
         ImGui::Checkbox("Edit in view", &wb.editBoxInViewport);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Show the selected box's face handles in the viewports; drag them to move a face.");
 
         if (s.boxes.empty()) {
             ImGui::Spacing();
-            ImGui::TextDisabled("No boxes. A keep box shows only what lies inside it;\na cut box hides what lies inside it.");
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("No boxes. A keep box shows only what lies inside it; a cut box hides what lies inside it.");
+            ImGui::PopStyleColor();
             return;
         }
         // The list.
@@ -88,9 +92,12 @@ class BoxesPanel final : public Panel {
                 wb.mark("boxes.enabled." + b.name);
                 ImGui::TableNextColumn();
                 ImGui::AlignTextToFramePadding();
-                if (ImGui::Selectable(b.name.c_str(), b.name == wb.selectedBox, ImGuiSelectableFlags_SpanAllColumns |
+                const std::string shown = elided(b.name, ImGui::GetContentRegionAvail().x);
+                if (ImGui::Selectable((shown + "##row").c_str(), b.name == wb.selectedBox, ImGuiSelectableFlags_SpanAllColumns |
                                                                                     ImGuiSelectableFlags_AllowItemOverlap))
                     wb.selectedBox = b.name;
+                if (shown != b.name && ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%s", b.name.c_str());
                 wb.mark("boxes.row." + b.name);
                 ImGui::TableNextColumn();
                 ImGui::TextColored(b.mode == core::BoxMode::Keep ? ImVec4(0.15f, 0.5f, 0.25f, 1) : ImVec4(0.75f, 0.25f, 0.15f, 1),

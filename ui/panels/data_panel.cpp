@@ -2,6 +2,7 @@
 #include "core/io/frame_source.hpp"
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
 #include <imgui.h>
@@ -83,7 +84,7 @@ class DataPanel final : public Panel {
                     const VariableInfo* info = &col;
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
-                    ImGui::TextUnformatted(name.c_str());
+                    textElided(name);
                     ImGui::TableNextColumn();
                     ImGui::TextDisabled("%s", info->integer ? "int" : "float");
                     ImGui::TableNextColumn();
@@ -111,7 +112,7 @@ class DataPanel final : public Panel {
                 wb.setFrameMemoryBudget(static_cast<std::size_t>(std::max(64, m_budgetMb)) << 20);
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("Memory for frames kept while scrubbing (default: a quarter of RAM)");
-            ImGui::SameLine();
+            flowSameLine(buttonWidth("default"));
             if (ImGui::SmallButton("default"))
                 wb.setFrameMemoryBudget(0);
         }

@@ -5,6 +5,7 @@
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
 #include "ui/widgets/section.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -45,7 +46,7 @@ class FaultsPanel final : public Panel {
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip("A new fault whose members are the spheres visible now (%zu)",
                               haveVisible ? main->visibility->visibleCount : std::size_t(0));
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Merge"));
         ImGui::BeginDisabled(selected.size() < 2);
         if (ImGui::Button("Merge")) {
             std::vector<std::string> names;
@@ -57,7 +58,7 @@ class FaultsPanel final : public Panel {
                     [&wb, into] { wb.selectedFaults = {into}; });
         }
         ImGui::EndDisabled();
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Split"));
         ImGui::BeginDisabled(selected.size() != 1);
         if (ImGui::Button("Split")) {
             const std::string name = *selected.begin();
@@ -81,7 +82,7 @@ class FaultsPanel final : public Panel {
                 "colour; name.2, ...); pieces under %d spheres stay with name.1, and every "
                 "piece keeps its surface settings",
                 static_cast<int>(core::kDefaultCandidateMinSize));
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Delete"));
         ImGui::BeginDisabled(selected.empty());
         if (ImGui::Button("Delete")) {
             core::Json batch = core::Json::array();
@@ -179,7 +180,8 @@ class FaultsPanel final : public Panel {
             ImGui::TableNextColumn();
             ImGui::AlignTextToFramePadding();
             const bool isSelected = selected.count(f.name) > 0;
-            if (ImGui::Selectable(f.name.c_str(), isSelected,
+            const std::string shown = elided(f.name, ImGui::GetContentRegionAvail().x);
+            if (ImGui::Selectable((shown + "##row").c_str(), isSelected,
                                   ImGuiSelectableFlags_SpanAllColumns |
                                       ImGuiSelectableFlags_AllowItemOverlap)) {
                 if (ImGui::GetIO().KeyCtrl) {
@@ -191,11 +193,14 @@ class FaultsPanel final : public Panel {
                     selected = {f.name};
                 }
             }
+            if (shown != f.name && ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s", f.name.c_str());
             wb.mark("faults.row." + f.name);
             ImGui::TableNextColumn();
             ImGui::Text("%zu", f.ids.size());
             ImGui::TableNextColumn();
-            ImGui::TextDisabled("%s", f.notes.c_str());
+            const std::string notes = elided(f.notes, ImGui::GetContentRegionAvail().x);
+            ImGui::TextDisabled("%s", notes.c_str());
             if (!f.notes.empty() && ImGui::IsItemHovered())
                 ImGui::SetTooltip("%s", f.notes.c_str());
             for (const auto& c : extra) {
@@ -269,7 +274,7 @@ class FaultsPanel final : public Panel {
         ImGui::BeginDisabled(!haveVisible);
         if (ImGui::Button("Add the visible spheres"))
             wb.emit({{"op", "fault.add"}, {"name", f.name}, {"from", "visible"}});
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Remove the visible spheres"));
         if (ImGui::Button("Remove the visible spheres")) {
             const ViewDisplay* main = wb.mainDisplay();
             std::vector<std::int64_t> ids;

@@ -4,6 +4,7 @@
 // run in the workbench's SurfaceStore.
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
 #include "core/color/colormap.hpp"
@@ -184,9 +185,13 @@ class SurfacesPanel final : public Panel {
                            ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
                            ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
         ImGui::SameLine();
-        if (ImGui::Selectable(sourceLabel(name).c_str(), m_fault == name,
+        const std::string label = sourceLabel(name);
+        const std::string shownLabel = elided(label, ImGui::GetContentRegionAvail().x);
+        if (ImGui::Selectable((shownLabel + "##pick").c_str(), m_fault == name,
                               ImGuiSelectableFlags_SpanAllColumns))
             m_fault = name;
+        if (shownLabel != label && ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s", label.c_str());
         if (visibleSpheres)
             wb.mark("surfaces.pick.visible");
         ImGui::TableNextColumn();
@@ -199,8 +204,8 @@ class SurfacesPanel final : public Panel {
                 if (ImGui::IsItemHovered())
                     ImGui::SetTooltip("%s", status.error.c_str());
             } else {
-                ImGui::TextUnformatted(statusText(status).c_str());
-                if (status.state == SurfaceStatus::State::Ready && ImGui::IsItemHovered())
+                const bool cut = textElided(statusText(status));
+                if (status.state == SurfaceStatus::State::Ready && !cut && ImGui::IsItemHovered())
                     ImGui::SetTooltip("%zu spheres, built in %.2f s", status.spheres,
                                       status.seconds);
             }
@@ -341,7 +346,7 @@ class SurfacesPanel final : public Panel {
                     " (OpenVDB)",
                 FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"}, exportFolder(wb),
                 (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Export glTF..."));
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
                                  FileDialog::Mode::Save,
@@ -349,7 +354,7 @@ class SurfacesPanel final : public Panel {
                                  {".glb", ".gltf"},
                                  exportFolder(wb), "faults.glb");
         ImGui::EndDisabled();
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Remove"));
         ImGui::BeginDisabled(!exists);
         if (ImGui::Button("Remove"))
             wb.emit({{"op", "surface.remove"}, {"fault", fault}});

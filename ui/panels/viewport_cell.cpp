@@ -4,6 +4,7 @@
 #include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
+#include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
 #include <glm/geometric.hpp>
@@ -176,19 +177,32 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
                           static_cast<long long>(wb.dataset()->location(d.wantedFrame).timestep));
     drawFramePopup(wb, view);
     ImGui::SameLine();
-    // Colour.
+    // Colour: the button takes what is left of the header beside the linked box and the close
+    // button, its label shortened to fit (the whole of it in the tooltip). Categories (faults,
+    // candidates) have no colour map to name.
     const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
-    // The map's name only when there is room for it (a difference title is long already).
-    const std::string colour = title.empty()       ? std::string("plain colour")
-                               : title.size() > 24 ? title
-                                                   : title + " (" + view.colorMap + ")";
-    if (ImGui::Button((colour + "##colour").c_str())) {
+    const std::string colour = title.empty()        ? std::string("plain colour")
+                               : !d.palette.empty() ? title
+                                                    : title + " (" + view.colorMap + ")";
+    const ImGuiStyle& style = ImGui::GetStyle();
+    float reserve = 0.0f;
+    if (wb.state().views.size() > 1)
+        reserve += ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                   ImGui::CalcTextSize("linked").x + style.ItemSpacing.x;
+    if (view.name != "main")
+        reserve += ImGui::GetFrameHeight() + style.ItemSpacing.x;
+    const float room = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x - reserve -
+                       2 * style.FramePadding.x;
+    const std::string shown = elided(colour, std::max(room, ImGui::CalcTextSize("...").x));
+    if (ImGui::Button((shown + "##colour").c_str())) {
         m_rangeEdit[0] = d.colorRange[0];
         m_rangeEdit[1] = d.colorRange[1];
         m_sinceRelative = view.difference.reference.relative;
         m_sinceEdit = static_cast<int>(view.difference.reference.value);
         ImGui::OpenPopup("##colourpopup");
     }
+    if (shown != colour && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", colour.c_str());
     wb.mark("view.colour." + view.name);
     drawColourPopup(wb, view, d);
     ImGui::SameLine();

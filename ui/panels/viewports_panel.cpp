@@ -5,6 +5,7 @@
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/panels/viewport_cell.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 
@@ -44,12 +45,11 @@ class ViewportsPanel final : public Panel {
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip("Another view side by side (up to four), e.g. ten frames earlier");
-        ImGui::SameLine();
-        ImGui::TextDisabled("|");
-        ImGui::SameLine();
+        // The toolbar flows onto a second row where the panel is narrow.
         for (const char* preset : {"top", "front", "side", "iso"}) {
             char label[16];
             std::snprintf(label, sizeof label, "%c%s", preset[0] - 32, preset + 1);
+            flowSameLine(buttonWidth(label));
             if (ImGui::Button(label))
                 m_cells.presetAll(wb, preset);
             wb.mark(std::string("viewports.preset.") + preset);
@@ -58,21 +58,24 @@ class ViewportsPanel final : public Panel {
                                         : std::string(preset) == "front" ? "From the south, looking north"
                                         : std::string(preset) == "side"  ? "From the east, looking west"
                                                                          : "Oblique, from the south-south-west");
-            ImGui::SameLine();
         }
+        flowSameLine(buttonWidth("Fit"));
         if (ImGui::Button("Fit"))
             m_cells.fitAll(wb);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Fit the model in the views (F)");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Fit visible"));
         if (ImGui::Button("Fit visible"))
             m_cells.fitVisible(wb);
         wb.mark("viewports.fit_visible");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Fit the visible spheres in the views (boxes, thresholds and faults applied)");
-        ImGui::SameLine();
         const core::ViewState* main = s.view("main");
         bool context = main && main->contextPoints;
+        const auto checkboxWidth = [](const char* label) {
+            return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
+        };
+        flowSameLine(checkboxWidth("Hidden as points"));
         if (ImGui::Checkbox("Hidden as points", &context)) {
             core::Json batch = core::Json::array();
             for (const auto& v : s.views)
@@ -82,13 +85,11 @@ class ViewportsPanel final : public Panel {
         wb.mark("viewports.context");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Draw the hidden spheres as faint small points, for context");
-        ImGui::SameLine();
+        flowSameLine(checkboxWidth("Orthographic"));
         bool ortho = main && main->camera.orthographic;
         if (ImGui::Checkbox("Orthographic", &ortho))
             m_cells.setOrthographic(wb, ortho);
-        ImGui::SameLine();
-        ImGui::TextDisabled("|");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Orbit") + buttonWidth("Rectangle") + buttonWidth("Lasso") + 2);
         m_cells.drawToolButtons(wb);
 
         // Cells: one to three side by side, four as two by two.

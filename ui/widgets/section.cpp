@@ -1,11 +1,13 @@
 #include "ui/widgets/section.hpp"
 
+#include "ui/widgets/text_fit.hpp"
+
 #include <imgui.h>
 
 namespace faultline::ui {
 
 void sectionHeader(const std::string& title) {
-    ImGui::TextUnformatted(title.c_str());
+    textElided(title); // a long fault or box name is shortened, never cut off
     const ImVec2 a = ImGui::GetItemRectMax();
     const float y = (ImGui::GetItemRectMin().y + a.y) * 0.5f;
     const float x0 = a.x + ImGui::GetStyle().ItemSpacing.x;

@@ -350,14 +350,18 @@ void Workbench::drawHelp() {
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
             if (ImGui::BeginTable("##keys", 2,
                                   ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-                ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 250 * m_scale);
+                // The keys column as wide as its longest entry; the descriptions wrap.
+                float keys = 0.0f;
+                for (const auto& s : kShortcuts)
+                    keys = std::max(keys, ImGui::CalcTextSize(s.keys).x);
+                ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, keys);
                 ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
                 for (const auto& s : kShortcuts) {
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
                     ImGui::TextUnformatted(s.keys);
                     ImGui::TableNextColumn();
-                    ImGui::TextUnformatted(s.what);
+                    ImGui::TextWrapped("%s", s.what);
                 }
                 ImGui::EndTable();
             }

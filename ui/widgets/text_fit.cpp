@@ -1,0 +1,50 @@
+#include "ui/widgets/text_fit.hpp"
+
+#include <imgui.h>
+
+namespace faultline::ui {
+
+std::string elided(const std::string& text, float width) {
+    if (ImGui::CalcTextSize(text.c_str()).x <= width)
+        return text;
+    const float dots = ImGui::CalcTextSize("...").x;
+    // The longest prefix that fits with the dots (binary search on the byte length; UTF-8
+    // continuation bytes are never split off from their lead byte).
+    std::size_t lo = 0, hi = text.size();
+    while (lo < hi) {
+        const std::size_t mid = (lo + hi + 1) / 2;
+        if (ImGui::CalcTextSize(text.c_str(), text.c_str() + mid).x + dots <= width)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    while (lo > 0 && (static_cast<unsigned char>(text[lo]) & 0xC0) == 0x80)
+        --lo;
+    while (lo > 0 && text[lo - 1] == ' ')
+        --lo;
+    return text.substr(0, lo) + "...";
+}
+
+bool textElided(const std::string& text, float width) {
+    if (width <= 0.0f)
+        width = ImGui::GetContentRegionAvail().x;
+    const std::string shown = elided(text, width);
+    ImGui::TextUnformatted(shown.c_str());
+    const bool cut = shown.size() != text.size() || shown != text;
+    if (cut && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", text.c_str());
+    return cut;
+}
+
+void flowSameLine(float width) {
+    const float spacing = ImGui::GetStyle().ItemSpacing.x;
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + spacing + width <= right)
+        ImGui::SameLine();
+}
+
+float buttonWidth(const char* label) {
+    return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+}
+
+} // namespace faultline::ui

@@ -1,0 +1,21 @@
+// Text that fits its place: labels shortened with "..." where the column or window is too narrow
+// (the whole text in a tooltip), and rows of buttons that flow onto the next line instead of
+// running past the panel's edge. The layout test (tests/ui/layout_test.cpp) checks that nothing
+// is cut off.
+#pragma once
+
+#include <string>
+
+namespace faultline::ui {
+
+// `text` shortened to at most `width` pixels in the current font, ending in "..." when cut.
+std::string elided(const std::string& text, float width);
+// Draws `text` shortened to the space left on this line (or `width` when given); when
+// shortened, hovering shows all of it. Returns whether it was shortened.
+bool textElided(const std::string& text, float width = 0.0f);
+// Before an item that is not the first of a row: stays on the row when an item `width` pixels
+// wide still fits, else starts a new row. `buttonWidth(label)` is the width of a button.
+void flowSameLine(float width);
+float buttonWidth(const char* label);
+
+} // namespace faultline::ui
