@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -35,7 +36,10 @@ struct FieldBounds {
 
 namespace detail {
 struct FieldLevel;
-}
+struct Brick;
+struct ChargeGrid;
+struct WindowList;
+} // namespace detail
 
 // Knobs that trade speed between the levels; they do not change the accuracy target.
 struct MultilevelTuning {
@@ -169,6 +173,14 @@ class MetaballField {
     double levelsEstimate() const;
     // errorScale()'s term of cutoff a_l for the chosen cutoffs (non-empty m_errorTerms).
     double errorTerm(int l) const;
+    // The steps of prepare(), in order (metaball_field_levels.cpp).
+    void indexBlocks(std::span<const Coord3> blocks);
+    void chooseCutoffsFor(std::span<const Coord3> blocks);
+    std::vector<std::optional<detail::ChargeGrid>> chooseChargeLevels();
+    void computeLevels(const std::vector<std::optional<detail::ChargeGrid>> &charges,
+                       Interrupter *interrupter);
+    void sumWindows(const detail::FieldLevel &level, detail::Brick &brick,
+                    const detail::ChargeGrid *grid, const detail::WindowList &topCharges) const;
     // The spheres within the near cutoff of a block, and the block's near sums from them.
     void gatherNear(const Coord3 &origin, detail::NearList &list) const;
     void nearValues(const Coord3 &origin, const detail::NearList &list, float *density) const;
