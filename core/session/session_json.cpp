@@ -4,6 +4,9 @@
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/id_codec.hpp"
+#include "core/session/items/box_codec.hpp"
+#include "core/session/items/camera_codec.hpp"
+#include "core/session/items/threshold_codec.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -110,27 +113,20 @@ class Fields {
     const std::string& m_file;
 };
 
-Json cameraToJson(const CameraState& c) {
-    return {{"target", c.target}, {"distance", c.distance}, {"azimuth", c.azimuth},
-            {"elevation", c.elevation}, {"fov_y", c.fovY}, {"orthographic", c.orthographic}};
-}
-
-CameraState cameraFromJson(const Json& j, const std::string& where, const std::string& file) {
-    Fields f(j, where, file);
-    CameraState c;
-    c.target = f.nums<3>("target", c.target);
-    c.distance = f.num("distance", c.distance);
-    if (c.distance < 0)
-        f.fail("distance", "must be >= 0");
-    c.azimuth = f.num("azimuth", c.azimuth);
-    c.elevation = f.num("elevation", c.elevation);
-    if (c.elevation < -90 || c.elevation > 90)
-        f.fail("elevation", "must lie in [-90, 90]");
-    c.fovY = f.num("fov_y", c.fovY);
-    if (c.fovY <= 0 || c.fovY >= 180)
-        f.fail("fov_y", "must lie in (0, 180)");
-    c.orthographic = f.boolean("orthographic", false);
-    return c;
+// One item read by its codec (items/*_codec.hpp), errors located in the file.
+template <typename T>
+T readItem(const Json& j, const std::string& where, const std::string& file,
+           std::initializer_list<const char*> required, T item = {}) {
+    try {
+        const items::ItemReader fields(j);
+        for (const char* f : required)
+            fields.require(f);
+        items::patch(item, fields);
+        items::validate(item);
+    } catch (const items::ItemError& e) {
+        throw InputError(file, items::fileMessage(where, e));
+    }
+    return item;
 }
 
 const char* filterModeName(FaultFilter::Mode m) {
@@ -167,7 +163,7 @@ Json viewToJson(const ViewState& v) {
                 {"reference",
                  {{"relative", v.difference.reference.relative},
                   {"value", v.difference.reference.value}}}}}}},
-            {"camera", cameraToJson(v.camera)},
+            {"camera", items::toJson(v.camera)},
             {"linked_camera", v.linkedCamera},
             {"context_points", v.contextPoints}};
 }
@@ -205,34 +201,10 @@ ViewState viewFromJson(const Json& j, const std::string& where, const std::strin
         }
     }
     if (v.has("camera"))
-        view.camera = cameraFromJson(v.get("camera"), v.child("camera"), path);
+        view.camera = readItem<CameraState>(v.get("camera"), v.child("camera"), path, {});
     view.linkedCamera = v.boolean("linked_camera", true);
     view.contextPoints = v.boolean("context_points", false);
     return view;
-}
-
-Json boxToJson(const CuttingBox& b) {
-    return {{"name", b.name}, {"min", b.min}, {"max", b.max},
-            {"mode", std::string(boxModeName(b.mode))}, {"enabled", b.enabled}};
-}
-
-CuttingBox boxFromJson(const Json& j, const std::string& where, const std::string& path) {
-    Fields b(j, where, path);
-    CuttingBox box;
-    box.name = b.str("name");
-    if (box.name.empty())
-        b.fail("name", "must not be empty");
-    box.min = b.nums<3>("min");
-    box.max = b.nums<3>("max");
-    for (int a = 0; a < 3; ++a)
-        if (box.min[a] > box.max[a])
-            b.fail("min", "must not exceed max on any axis");
-    const auto mode = parseBoxMode(b.str("mode", "keep"));
-    if (!mode)
-        b.fail("mode", "must be keep or cut");
-    box.mode = *mode;
-    box.enabled = b.boolean("enabled", true);
-    return box;
 }
 
 // Faults this large store their members packed (id_codec.hpp); smaller ones stay readable.
@@ -299,11 +271,11 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     doc["views"] = views;
     Json boxes = Json::array();
     for (const auto& b : s.boxes)
-        boxes.push_back(boxToJson(b));
+        boxes.push_back(items::toJson(b));
     doc["boxes"] = boxes;
     Json thresholds = Json::array();
     for (const auto& t : s.thresholds)
-        thresholds.push_back({{"variable", t.variable}, {"low", t.low}, {"high", t.high}, {"enabled", t.enabled}});
+        thresholds.push_back(items::toJson(t));
     doc["thresholds"] = thresholds;
     Json faults = Json::array();
     for (const auto& f : s.faults)
@@ -366,21 +338,19 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
 
     const Json& boxes = top.array("boxes");
     for (std::size_t k = 0; k < boxes.size(); ++k) {
-        CuttingBox box = boxFromJson(boxes[k], top.child("boxes", k), path);
+        const CuttingBox box =
+            readItem<CuttingBox>(boxes[k], top.child("boxes", k), path, {"name", "min", "max"});
         if (s.box(box.name))
             throw InputError(path, top.child("boxes", k) + ".name: '" + box.name + "' is used twice");
         s.boxes.push_back(box);
     }
     const Json& thresholds = top.array("thresholds");
     for (std::size_t k = 0; k < thresholds.size(); ++k) {
-        Fields t(thresholds[k], top.child("thresholds", k), path);
-        VariableThreshold th;
-        th.variable = t.str("variable");
-        if (th.variable.empty() || s.threshold(th.variable))
-            t.fail("variable", "must be a unique, non-empty variable name");
-        th.low = t.num("low");
-        th.high = t.num("high");
-        th.enabled = t.boolean("enabled", true);
+        const VariableThreshold th = readItem<VariableThreshold>(
+            thresholds[k], top.child("thresholds", k), path, {"variable", "low", "high"});
+        if (s.threshold(th.variable))
+            throw InputError(path, top.child("thresholds", k) + ".variable: '" + th.variable +
+                                       "' has two thresholds");
         s.thresholds.push_back(th);
     }
     const Json& faults = top.array("faults");

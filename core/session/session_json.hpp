@@ -19,12 +19,11 @@ nlohmann::json sessionToJson(const SessionState& state, const std::string& baseD
 SessionState sessionFromJson(const nlohmann::json& doc, const std::string& baseDir,
                              const std::string& path);
 
-// One item of a session, as stored (also the payload of ops that restore a deleted item).
+// One item of a session, as stored (also the payload of ops that restore a deleted item);
+// cameras, boxes and thresholds have their codecs in items/.
 // `where` and `path` name the item in errors (InputError).
 nlohmann::json viewToJson(const ViewState& view);
 ViewState viewFromJson(const nlohmann::json& j, const std::string& where, const std::string& path);
-nlohmann::json boxToJson(const CuttingBox& box);
-CuttingBox boxFromJson(const nlohmann::json& j, const std::string& where, const std::string& path);
 nlohmann::json faultToJson(const Fault& fault);
 Fault faultFromJson(const nlohmann::json& j, const std::string& where, const std::string& path);
 

@@ -2,6 +2,7 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/color/colormap.hpp"
+#include "core/session/items/item_codecs.hpp"
 
 #include <algorithm>
 
@@ -13,11 +14,6 @@ Json openInverse(Session& s) {
     if (!s.dataset())
         return {{"op", "data.close"}};
     return {{"op", "data.open"}, {"paths", s.state().dataPaths}, {"frame", s.state().frame}};
-}
-
-Json cameraJson(const CameraState& c) {
-    return {{"target", c.target}, {"distance", c.distance}, {"azimuth", c.azimuth},
-            {"elevation", c.elevation}, {"fov_y", c.fovY}, {"orthographic", c.orthographic}};
 }
 
 ViewState& viewOf(Session& s, const Json& cmd, const char* field = "view") {
@@ -207,17 +203,8 @@ void registerDataOps(OpTable& ops) {
     addStateOp(ops, "camera.set", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"view", "target", "distance", "azimuth", "elevation", "fov_y", "orthographic"});
         ViewState& v = viewOf(s, cmd);
-        CameraState c = v.camera;
-        if (auto t = args::optionalVec3(cmd, "target"))
-            c.target = *t;
-        c.distance = args::optionalNumber(cmd, "distance").value_or(c.distance);
-        c.azimuth = args::optionalNumber(cmd, "azimuth").value_or(c.azimuth);
-        c.elevation = args::optionalNumber(cmd, "elevation").value_or(c.elevation);
-        c.fovY = args::optionalNumber(cmd, "fov_y").value_or(c.fovY);
-        c.orthographic = args::optionalBool(cmd, "orthographic").value_or(c.orthographic);
-        if (c.distance < 0 || c.elevation < -90 || c.elevation > 90 || c.fovY <= 0 || c.fovY >= 180)
-            throw CommandError("camera.set: distance >= 0, elevation in [-90, 90], fov_y in (0, 180)");
-        Json inverse = cameraJson(v.camera);
+        const CameraState c = items::patched("camera.set", v.camera, cmd);
+        Json inverse = items::toJson(v.camera);
         inverse["op"] = "camera.set";
         inverse["view"] = v.name;
         // Linked cameras move together.

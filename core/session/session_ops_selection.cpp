@@ -1,6 +1,8 @@
 // Ops on what is selected: box.add/set/remove, threshold.add/set/remove (JOURNAL.md).
 #include "core/session/session_ops.hpp"
 
+#include "core/session/items/item_codecs.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,29 +10,9 @@ namespace faultline::core::detail {
 
 namespace {
 
-void checkBounds(const char* op, const std::array<double, 3>& mn, const std::array<double, 3>& mx) {
-    for (int a = 0; a < 3; ++a)
-        if (!(mn[a] <= mx[a]))
-            throw CommandError(std::string(op) + ": min must not exceed max on any axis");
-}
-
-BoxMode modeArg(const Json& cmd, BoxMode fallback) {
-    auto mode = args::optionalString(cmd, "mode");
-    if (!mode)
-        return fallback;
-    auto parsed = parseBoxMode(*mode);
-    if (!parsed)
-        throw CommandError(cmd["op"].get<std::string>() + ": \"mode\" must be keep or cut, found \"" + *mode + "\"");
-    return *parsed;
-}
-
 template <typename T> std::size_t indexArg(const Json& cmd, const std::vector<T>& items) {
     const long long i = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(items.size()));
     return static_cast<std::size_t>(std::clamp(i, 0LL, static_cast<long long>(items.size())));
-}
-
-Json thresholdJson(const VariableThreshold& t) {
-    return {{"variable", t.variable}, {"low", t.low}, {"high", t.high}, {"enabled", t.enabled}};
 }
 
 } // namespace
@@ -38,15 +20,10 @@ Json thresholdJson(const VariableThreshold& t) {
 void registerSelectionOps(OpTable& ops) {
     addStateOp(ops, "box.add", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"name", "min", "max", "mode", "enabled", "index"});
-        CuttingBox b;
-        b.name = args::string(cmd, "name");
-        if (b.name.empty() || s.state().box(b.name))
-            throw CommandError("box.add: a box named \"" + b.name + "\" exists already");
-        b.min = args::vec3(cmd, "min");
-        b.max = args::vec3(cmd, "max");
-        checkBounds("box.add", b.min, b.max);
-        b.mode = modeArg(cmd, BoxMode::Keep);
-        b.enabled = args::optionalBool(cmd, "enabled").value_or(true);
+        const std::string name = args::string(cmd, "name");
+        if (name.empty() || s.state().box(name))
+            throw CommandError("box.add: a box named \"" + name + "\" exists already");
+        const CuttingBox b = items::patched("box.add", CuttingBox{}, cmd, {"name", "min", "max"});
         auto& boxes = s.mutableState().boxes;
         boxes.insert(boxes.begin() + static_cast<long>(indexArg(cmd, boxes)), b);
         return {{"op", "box.remove"}, {"name", b.name}};
@@ -57,18 +34,13 @@ void registerSelectionOps(OpTable& ops) {
         CuttingBox* b = s.mutableState().box(name);
         if (!b)
             throw CommandError("box.set: no box named \"" + name + "\"");
-        CuttingBox next = *b;
-        next.min = args::optionalVec3(cmd, "min").value_or(b->min);
-        next.max = args::optionalVec3(cmd, "max").value_or(b->max);
-        checkBounds("box.set", next.min, next.max);
-        next.mode = modeArg(cmd, b->mode);
-        next.enabled = args::optionalBool(cmd, "enabled").value_or(b->enabled);
+        CuttingBox next = items::patched("box.set", *b, cmd);
         if (auto rename = args::optionalString(cmd, "rename")) {
             if (rename->empty() || (*rename != name && s.state().box(*rename)))
                 throw CommandError("box.set: cannot rename to \"" + *rename + "\"");
             next.name = *rename;
         }
-        Json inverse = boxToJson(*b);
+        Json inverse = items::toJson(*b);
         inverse.erase("name");
         inverse["op"] = "box.set";
         inverse["name"] = next.name;
@@ -84,7 +56,7 @@ void registerSelectionOps(OpTable& ops) {
         auto it = std::find_if(boxes.begin(), boxes.end(), [&](const CuttingBox& b) { return b.name == name; });
         if (it == boxes.end())
             throw CommandError("box.remove: no box named \"" + name + "\"");
-        Json inverse = boxToJson(*it);
+        Json inverse = items::toJson(*it);
         inverse["op"] = "box.add";
         inverse["index"] = it - boxes.begin();
         boxes.erase(it);
@@ -93,16 +65,11 @@ void registerSelectionOps(OpTable& ops) {
 
     addStateOp(ops, "threshold.add", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"variable", "low", "high", "enabled", "index"});
-        VariableThreshold t;
-        t.variable = args::string(cmd, "variable");
-        if (t.variable.empty() || s.state().threshold(t.variable))
-            throw CommandError("threshold.add: \"" + t.variable +
+        const std::string variable = args::string(cmd, "variable");
+        if (variable.empty() || s.state().threshold(variable))
+            throw CommandError("threshold.add: \"" + variable +
                                "\" has a threshold already (use threshold.set)");
-        t.low = args::optionalNumber(cmd, "low").value_or(-1e30);
-        t.high = args::optionalNumber(cmd, "high").value_or(1e30);
-        if (t.low > t.high)
-            throw CommandError("threshold.add: low must not exceed high");
-        t.enabled = args::optionalBool(cmd, "enabled").value_or(true);
+        const VariableThreshold t = items::patched("threshold.add", VariableThreshold{}, cmd);
         auto& list = s.mutableState().thresholds;
         list.insert(list.begin() + static_cast<long>(indexArg(cmd, list)), t);
         return {{"op", "threshold.remove"}, {"variable", t.variable}};
@@ -113,13 +80,8 @@ void registerSelectionOps(OpTable& ops) {
         VariableThreshold* t = s.mutableState().threshold(variable);
         if (!t)
             throw CommandError("threshold.set: no threshold on \"" + variable + "\"");
-        VariableThreshold next = *t;
-        next.low = args::optionalNumber(cmd, "low").value_or(t->low);
-        next.high = args::optionalNumber(cmd, "high").value_or(t->high);
-        next.enabled = args::optionalBool(cmd, "enabled").value_or(t->enabled);
-        if (next.low > next.high)
-            throw CommandError("threshold.set: low must not exceed high");
-        Json inverse = thresholdJson(*t);
+        const VariableThreshold next = items::patched("threshold.set", *t, cmd);
+        Json inverse = items::toJson(*t);
         inverse["op"] = "threshold.set";
         *t = next;
         return inverse;
@@ -131,7 +93,7 @@ void registerSelectionOps(OpTable& ops) {
         auto it = std::find_if(list.begin(), list.end(), [&](const VariableThreshold& t) { return t.variable == variable; });
         if (it == list.end())
             throw CommandError("threshold.remove: no threshold on \"" + variable + "\"");
-        Json inverse = thresholdJson(*it);
+        Json inverse = items::toJson(*it);
         inverse["op"] = "threshold.add";
         inverse["index"] = it - list.begin();
         list.erase(it);

@@ -523,6 +523,10 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
     refuse(
         R"({"format":"faultline-session","schema":1,"views":[{"name":"main","camera":{"fov_y":0}}]})",
         "views[0].camera.fov_y: must lie in (0, 180)");
+    // The same rules as threshold.add (one codec): a file cannot hold what a command refuses.
+    refuse(
+        R"({"format":"faultline-session","schema":1,"thresholds":[{"variable":"s","low":2,"high":1}]})",
+        "thresholds[0].low: must not exceed high");
     refuse(R"({"format":"faultline-session","schema":1,"faults":[{"name":"*visible"}]})",
            "faults[0].name: \"*visible\" names the visible spheres' surface, not a fault");
     refuse(

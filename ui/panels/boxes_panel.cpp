@@ -1,5 +1,6 @@
 // Cutting boxes panel: the list (enable, name, keep/cut), add/duplicate/delete, and an editor
 // for the selected box: name, mode, min/max per axis as numbers and as fractions of the model.
+#include "core/session/items/box_codec.hpp"
 #include "ui/panels/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/range_slider.hpp"
@@ -49,7 +50,7 @@ class BoxesPanel final : public Panel {
         flowSameLine(buttonWidth("Duplicate"));
         ImGui::BeginDisabled(!sel);
         if (ImGui::Button("Duplicate") && sel) {
-            core::Json cmd = core::boxToJson(*sel);
+            core::Json cmd = core::items::toJson(*sel);
             const std::string name = uniqueName(s, sel->name);
             cmd["op"] = "box.add";
             cmd["name"] = name;

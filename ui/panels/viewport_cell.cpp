@@ -1,5 +1,6 @@
 #include "ui/panels/viewport_cell.hpp"
 
+#include "core/session/items/camera_codec.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
@@ -17,11 +18,6 @@ namespace faultline::ui {
 namespace {
 
 const char* kMaps[] = {"blue-red", "viridis", "diverging", "pastel", "bands", "gray"};
-
-core::Json cameraJson(const core::CameraState& c) {
-    return {{"target", c.target}, {"distance", c.distance}, {"azimuth", c.azimuth},
-            {"elevation", c.elevation}, {"fov_y", c.fovY}, {"orthographic", c.orthographic}};
-}
 
 std::string bindingText(const core::FrameBinding& b) {
     if (!b.relative)
@@ -437,7 +433,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
             else
                 pan(c, dx, dy, size.y);
             m_drag.current = c;
-            core::Json cmd = cameraJson(c);
+            core::Json cmd = core::items::toJson(c);
             cmd["op"] = "camera.set";
             cmd["view"] = view.name;
             wb.preview("viewport.camera", cmd);
@@ -452,7 +448,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
             if (!m_pendingBox.is_null())
                 wb.emit(m_pendingBox);
         } else if (m_drag.mode != DragMode::None && !(m_drag.current == m_drag.start)) {
-            core::Json cmd = cameraJson(m_drag.current);
+            core::Json cmd = core::items::toJson(m_drag.current);
             cmd["op"] = "camera.set";
             cmd["view"] = view.name;
             wb.emit(cmd);
@@ -475,7 +471,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
         m_wheel->lastTime = wb.now();
     }
     if (m_wheel && m_wheel->view == view.name) {
-        core::Json cmd = cameraJson(m_wheel->camera);
+        core::Json cmd = core::items::toJson(m_wheel->camera);
         cmd["op"] = "camera.set";
         cmd["view"] = view.name;
         if (wb.now() - m_wheel->lastTime > 0.4) {

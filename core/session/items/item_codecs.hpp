@@ -1,0 +1,28 @@
+// Every session item's codec (one header each), and reading a command into an item with them.
+#pragma once
+
+#include "core/session/items/box_codec.hpp"
+#include "core/session/items/camera_codec.hpp"
+#include "core/session/items/item_reader.hpp"
+#include "core/session/items/threshold_codec.hpp"
+
+namespace faultline::core::items {
+
+// `item` with the command's fields read into it and checked (patch, then validate); errors
+// become CommandErrors naming the op and the field. `required` fields must be present.
+template <typename T>
+T patched(const std::string& op, T item, const Json& cmd,
+          std::initializer_list<const char*> required = {}) {
+    try {
+        const ItemReader fields(cmd);
+        for (const char* f : required)
+            fields.require(f);
+        patch(item, fields);
+        validate(item);
+    } catch (const ItemError& e) {
+        throw CommandError(commandMessage(op, e));
+    }
+    return item;
+}
+
+} // namespace faultline::core::items
