@@ -4,7 +4,7 @@
 #include "core/session/session.hpp"
 
 #if FAULTLINE_WITH_GUI
-#include "ui/render/session_figure.hpp"
+#include "ui/viewport/session_figure.hpp"
 #endif
 
 namespace faultline::app {

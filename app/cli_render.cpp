@@ -7,7 +7,7 @@
 #include "core/session/session_json.hpp"
 
 #if FAULTLINE_WITH_GUI
-#include "ui/render/session_figure.hpp"
+#include "ui/viewport/session_figure.hpp"
 #endif
 
 #include <cstdio>

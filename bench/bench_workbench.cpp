@@ -4,7 +4,7 @@
 // the drag frames well under 16 ms; the renderer's own cost comes on top and is benched there.
 #include "core/data/dataset.hpp"
 #include "core/session/session.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/workbench/workbench.hpp"
 
 #include <benchmark/benchmark.h>

@@ -1,5 +1,5 @@
 #include "ui/dock/dock_layout.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 #include <gtest/gtest.h>
 

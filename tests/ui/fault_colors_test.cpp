@@ -3,7 +3,7 @@
 #include "panel_fixture.hpp"
 
 #include "core/faults/candidates.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/viewport/category_colors.hpp"
 
 using namespace faultline;

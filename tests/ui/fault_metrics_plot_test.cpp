@@ -4,7 +4,7 @@
 #include "panel_fixture.hpp"
 
 #include "core/faults/metric_fields.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/workbench/fault_metrics_cache.hpp"
 
 #include <chrono>

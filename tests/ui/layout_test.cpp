@@ -6,7 +6,7 @@
 #include "../core/test_files.hpp"
 #include "headless_ui.hpp"
 #include "layout_check.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 #include <gtest/gtest.h>
 

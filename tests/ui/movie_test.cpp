@@ -7,7 +7,7 @@
 #include "panel_fixture.hpp"
 #include "ui/render/movie_writer.hpp"
 #include "ui/render/offscreen.hpp"
-#include "ui/render/session_figure.hpp"
+#include "ui/viewport/session_figure.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // input, checking the commands emitted and what the views show while dragging.
 #include "panel_fixture.hpp"
 
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 using namespace faultline;
 using namespace faultline::test;

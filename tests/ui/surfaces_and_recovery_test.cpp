@@ -5,7 +5,7 @@
 
 #include "core/session/autosave.hpp"
 #include "core/session/session_json.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/render/mock_renderer.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 

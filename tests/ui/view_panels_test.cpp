@@ -3,7 +3,7 @@
 #include "panel_fixture.hpp"
 
 #include "core/session/journal.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/workbench/frame_columns.hpp"
 

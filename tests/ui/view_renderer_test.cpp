@@ -2,7 +2,7 @@
 // positions go up once, a drag re-sends only the visible rows, an idle UI draws nothing again.
 #include "panel_fixture.hpp"
 
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/render/mock_renderer.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"

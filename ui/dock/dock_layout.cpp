@@ -1,6 +1,6 @@
 #include "ui/dock/dock_layout.hpp"
 
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 #include <algorithm>
 #include <functional>

@@ -1,6 +1,6 @@
 #include "ui/dock/dock_space.hpp"
 
-#include "ui/workbench/item_registry.hpp"
+#include "ui/widgets/item_registry.hpp"
 
 #include <algorithm>
 

@@ -1,7 +1,7 @@
 // Cutting boxes panel: the list (enable, name, keep/cut), add/duplicate/delete, and an editor
 // for the selected box: name, mode, min/max per axis as numbers and as fractions of the model.
 #include "core/session/items/box_codec.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/range_slider.hpp"
 #include "ui/widgets/section.hpp"

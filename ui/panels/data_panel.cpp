@@ -1,6 +1,6 @@
 // Data panel: the files open, their frames, the current frame's columns with ranges, memory.
 #include "core/io/frame_source.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"

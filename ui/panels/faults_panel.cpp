@@ -1,7 +1,7 @@
 // Faults panel: the table of named faults (visibility, colour, name, size, notes), creating one
 // from the visible spheres, adding/removing the visible ones, merge, delete, and which spheres
 // faults let through (fault.filter). Later analysis plugs in through PanelExtensions.
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
 #include "ui/widgets/section.hpp"

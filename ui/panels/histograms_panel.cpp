@@ -1,7 +1,7 @@
 // Histograms panel: one plot per chosen variable with all spheres and the visible ones overlaid
 // (log scale optional). Dragging across a plot sets that variable's threshold; its edges are
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/workbench/frame_columns.hpp"
 

@@ -2,7 +2,7 @@
 // Algorithm 1): show or hide it, its kernel, voxel size, iso-value and opacity, the state of its
 // background build, and exports to OpenVDB and glTF. Settings are surface.set commands; builds
 // run in the workbench's SurfaceStore.
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/workbench/frame_columns.hpp"

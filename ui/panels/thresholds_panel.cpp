@@ -1,6 +1,6 @@
 // Thresholds panel: one row per variable threshold: enabled, low/high as numbers and on a range
 // slider over the variable's values in the current frame; add on any variable, remove.
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/bound_input.hpp"
 #include "ui/widgets/range_slider.hpp"

@@ -1,7 +1,7 @@
 // Timeline panel: scrub the frames (the slider marks the frames already loaded), play/pause at a
 // chosen rate, step, loop, jump. Scrubbing and playing show frames at once; the session's frame
 // changes by one frame.set when the slider is released or playback pauses.
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/icon_button.hpp"
 

@@ -2,7 +2,7 @@
 // binding (the current frame plus an offset, or a fixed frame) and colour variable, cameras
 // linked or independent. Camera drags and box-handle drags preview live and emit one command
 // when released; the 3-D image comes from the ViewRenderer (viewport_interaction.cpp).
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/panels/viewport_cell.hpp"
 #include "ui/widgets/text_fit.hpp"

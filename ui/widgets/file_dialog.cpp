@@ -1,6 +1,6 @@
 #include "ui/widgets/file_dialog.hpp"
 
-#include "ui/workbench/item_registry.hpp"
+#include "ui/widgets/item_registry.hpp"
 
 #include <imgui.h>
 #include <imgui_internal.h>

@@ -2,7 +2,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/selection/visibility.hpp"
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/workbench/frame_columns.hpp"

@@ -1,7 +1,7 @@
 // The workbench's frame around the panels: main menu, keyboard shortcuts, status bar, help.
 #include "ui/workbench/workbench.hpp"
 
-#include "ui/panels/panel_ids.hpp"
+#include "ui/dock/panel_ids.hpp"
 #include "ui/workbench/frame_columns.hpp"
 
 #include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)

@@ -1,4 +1,4 @@
-#include "ui/render/session_figure.hpp"
+#include "ui/viewport/session_figure.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"

@@ -1,4 +1,4 @@
-#include "ui/workbench/item_registry.hpp"
+#include "ui/widgets/item_registry.hpp"
 
 #include <imgui.h>
 
