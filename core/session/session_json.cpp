@@ -4,9 +4,7 @@
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/id_codec.hpp"
-#include "core/session/items/box_codec.hpp"
-#include "core/session/items/camera_codec.hpp"
-#include "core/session/items/threshold_codec.hpp"
+#include "core/session/items/item_codecs.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -284,7 +282,7 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)}, {"fault", s.faultFilter.fault}};
     Json surfaces = Json::array();
     for (const auto& sf : s.surfaces) {
-        Json j = surfaceSettingsFields(sf);
+        Json j = items::toJson(sf);
         j["fault"] = sf.fault;
         surfaces.push_back(std::move(j));
     }
@@ -382,12 +380,8 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         st.fault = sf.str("fault");
         if (!s.hasSurfaceSource(st.fault))
             sf.fail("fault", "names no fault of this session");
-        try {
-            readSurfaceSettingsFields(surfaces[k], st);
-        } catch (const std::invalid_argument& e) {
-            sf.fail("", e.what());
-        }
-        s.surfaces.push_back(st);
+        s.surfaces.push_back(
+            readItem<SurfaceSettings>(surfaces[k], top.child("surfaces", k), path, {}, st));
     }
     if (top.has("dock_layout")) {
         if (!top.get("dock_layout").is_object())

@@ -3,6 +3,7 @@
 
 #include "core/faults/candidates.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/items/item_codecs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -191,7 +192,7 @@ void registerFaultOps(OpTable& ops) {
                         {"fault", faultToJson(*it)},
                         {"index", it - state.faults.begin()}};
         if (SurfaceSettings* surface = state.surface(name)) {
-            inverse["surface"] = surfaceSettingsFields(*surface);
+            inverse["surface"] = items::toJson(*surface);
             state.surfaces.erase(state.surfaces.begin() + (surface - state.surfaces.data()));
         }
         if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
@@ -213,12 +214,12 @@ void registerFaultOps(OpTable& ops) {
         if (cmd.contains("surface")) {
             SurfaceSettings st;
             st.fault = f.name;
-            if (!cmd["surface"].is_object())
-                throw CommandError("fault.restore: \"surface\" must be an object");
             try {
-                readSurfaceSettingsFields(cmd["surface"], st);
-            } catch (const std::invalid_argument& e) {
-                throw CommandError(std::string("fault.restore: surface ") + e.what());
+                const items::ItemReader fields(cmd["surface"], "surface.");
+                items::patch(st, fields);
+                items::validate(st);
+            } catch (const items::ItemError& e) {
+                throw CommandError(items::commandMessage("fault.restore", e));
             }
             state.surfaces.push_back(st);
         }
@@ -369,7 +370,7 @@ void registerFaultOps(OpTable& ops) {
                     st.iso = std::round(iso / unit) * unit;
                 }
             }
-            Json set = surfaceSettingsFields(st);
+            Json set = items::toJson(st);
             set["op"] = "surface.set";
             set["fault"] = piece;
             surfaces.push_back(std::move(set));

@@ -3,6 +3,7 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/items/item_codecs.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/surface_export.hpp"
 
@@ -13,7 +14,7 @@ namespace faultline::core::detail {
 namespace {
 
 Json settingsJson(const SurfaceSettings& st) {
-    Json j = surfaceSettingsFields(st);
+    Json j = items::toJson(st);
     j["op"] = "surface.set";
     j["fault"] = st.fault;
     return j;
@@ -56,10 +57,11 @@ SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
     if (isoWrap)
         fields.erase("iso");
     try {
-        readSurfaceSettingsFields(fields, st);
-    } catch (const std::invalid_argument& e) {
-        throw CommandError(std::string(op) + ": " + e.what() +
-                           (cmd.contains("iso") && !isoWrap ? " (or \"wrap\")" : ""));
+        items::patch(st, items::ItemReader(fields));
+        items::validate(st);
+    } catch (const items::ItemError& e) {
+        throw CommandError(items::commandMessage(op, e) +
+                           (e.path == "iso" && !isoWrap ? " (or \"wrap\")" : ""));
     }
     if (isoWrap) {
         auto frame = s.currentFrame();

@@ -112,11 +112,7 @@ struct SurfaceSettings {
     bool operator==(const SurfaceSettings&) const = default;
 };
 
-// The settings' fields as journals and session files write them (no "op", no "fault"), and
-// back: fields absent from `fields` keep their value in `into`. Throws std::invalid_argument
-// naming the field that is wrong.
-nlohmann::json surfaceSettingsFields(const SurfaceSettings& settings);
-void readSurfaceSettingsFields(const nlohmann::json& fields, SurfaceSettings& into);
+// As JSON: core/session/items/surface_codec.hpp.
 
 struct SessionState {
     std::vector<std::string> dataPaths; // absolute in memory; saved relative to the session file

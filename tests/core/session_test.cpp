@@ -531,7 +531,7 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
            "faults[0].name: \"*visible\" names the visible spheres' surface, not a fault");
     refuse(
         R"({"format":"faultline-session","schema":1,"surfaces":[{"fault":"*visible","range":[2,1]}]})",
-        "surfaces[0]: \"range\" must be [low, high] with low < high, or null");
+        "surfaces[0].range: must be [low, high] with low < high, or null");
     refuse(std::string(100, '[') + std::string(100, ']'), "JSON nested deeper than 64 levels");
     // Found by fuzz_journal: a number beyond double escaped as a library exception.
     refuse(R"({"format":"faultline-session","schema":1e999})",

@@ -4,6 +4,7 @@
 #include "core/session/items/box_codec.hpp"
 #include "core/session/items/camera_codec.hpp"
 #include "core/session/items/item_reader.hpp"
+#include "core/session/items/surface_codec.hpp"
 #include "core/session/items/threshold_codec.hpp"
 
 namespace faultline::core::items {

@@ -1,0 +1,19 @@
+// A fault's surface settings as JSON: the fields of surface.set / surface.build, of a session's
+// surfaces[] and of the "surface" a fault.restore brings back. The fault they belong to is the
+// caller's key ("fault"), not one of the fields.
+#pragma once
+
+#include "core/session/items/item_reader.hpp"
+#include "core/session/session_state.hpp"
+
+namespace faultline::core::items {
+
+// kernel, voxel, iso, visible, opacity, color_by, map, range, color_reach, initial_color.
+Json toJson(const SurfaceSettings& settings);
+// Reads the fields present; "range", "color_reach" and "initial_color" may be null (none).
+void patch(SurfaceSettings& settings, const ItemReader& fields);
+// voxel >= 0, iso > 0, opacity in [0, 1], a colour map, low < high, reach >= 0, colours in
+// [0, 1]; the map's name is made canonical ("grey" is "gray": one cache entry per map).
+void validate(SurfaceSettings& settings);
+
+} // namespace faultline::core::items
