@@ -148,111 +148,6 @@ Json migrate(Json doc, int from, const std::string& path) {
 
 } // namespace
 
-Json viewToJson(const ViewState& v) {
-    return {{"name", v.name},
-            {"frame", {{"relative", v.frame.relative}, {"value", v.frame.value}}},
-            {"color",
-             {{"variable", v.colorVariable},
-              {"map", v.colorMap},
-              {"range_mode", v.rangeMode},
-              {"range", v.range},
-              {"difference",
-               {{"mode", differenceModeName(v.difference.mode)},
-                {"reference",
-                 {{"relative", v.difference.reference.relative},
-                  {"value", v.difference.reference.value}}}}}}},
-            {"camera", items::toJson(v.camera)},
-            {"linked_camera", v.linkedCamera},
-            {"context_points", v.contextPoints}};
-}
-
-ViewState viewFromJson(const Json& j, const std::string& where, const std::string& path) {
-    Fields v(j, where, path);
-    ViewState view;
-    view.name = v.str("name");
-    if (view.name.empty())
-        v.fail("name", "must not be empty");
-    if (v.has("frame")) {
-        Fields fr(v.get("frame"), v.child("frame"), path);
-        view.frame.relative = fr.boolean("relative", true);
-        view.frame.value = static_cast<long long>(fr.num("value", 0.0));
-    }
-    if (v.has("color")) {
-        Fields c(v.get("color"), v.child("color"), path);
-        view.colorVariable = c.str("variable", "");
-        view.colorMap = c.str("map", view.colorMap);
-        view.rangeMode = c.str("range_mode", view.rangeMode);
-        if (view.rangeMode != "frame" && view.rangeMode != "all" && view.rangeMode != "fixed")
-            c.fail("range_mode", "must be frame, all or fixed");
-        view.range = c.nums<2>("range", view.range);
-        if (c.has("difference")) {
-            Fields d(c.get("difference"), c.child("difference"), path);
-            const auto mode = parseDifferenceMode(d.str("mode", "none"));
-            if (!mode)
-                d.fail("mode", "must be none, change or displacement");
-            view.difference.mode = *mode;
-            if (d.has("reference")) {
-                Fields r(d.get("reference"), d.child("reference"), path);
-                view.difference.reference.relative = r.boolean("relative", false);
-                view.difference.reference.value = static_cast<long long>(r.num("value", 0.0));
-            }
-        }
-    }
-    if (v.has("camera"))
-        view.camera = readItem<CameraState>(v.get("camera"), v.child("camera"), path, {});
-    view.linkedCamera = v.boolean("linked_camera", true);
-    view.contextPoints = v.boolean("context_points", false);
-    return view;
-}
-
-// Faults this large store their members packed (id_codec.hpp); smaller ones stay readable.
-constexpr std::size_t kPackIdsFrom = 4096;
-
-Json faultToJson(const Fault& f) {
-    Json j = {{"name", f.name}, {"color", f.color}, {"notes", f.notes}, {"visible", f.visible}};
-    if (f.ids.size() >= kPackIdsFrom)
-        j["ids_packed"] = packSortedIds(f.ids);
-    else
-        j["ids"] = f.ids;
-    return j;
-}
-
-Fault faultFromJson(const Json& j, const std::string& where, const std::string& path) {
-    Fields f(j, where, path);
-    Fault fault;
-    fault.name = f.str("name");
-    if (fault.name.empty())
-        f.fail("name", "must not be empty");
-    if (isVisibleSpheres(fault.name))
-        f.fail("name", "\"" + fault.name + "\" names the visible spheres' surface, not a fault");
-    const auto color = f.nums<3>("color", std::array<double, 3>{1, 0.5, 0});
-    for (int c = 0; c < 3; ++c) {
-        if (color[c] < 0 || color[c] > 1)
-            f.fail("color", "components must lie in [0, 1]");
-        fault.color[c] = static_cast<float>(color[c]);
-    }
-    fault.notes = f.str("notes", "");
-    fault.visible = f.boolean("visible", true);
-    if (f.has("ids") && f.has("ids_packed"))
-        f.fail("ids_packed", "cannot stand beside \"ids\"");
-    if (f.has("ids_packed")) {
-        std::string error;
-        auto ids = unpackSortedIds(f.str("ids_packed"), error);
-        if (!ids)
-            f.fail("ids_packed", error);
-        fault.ids = std::move(*ids);
-        return fault;
-    }
-    const Json& ids = f.array("ids");
-    fault.ids.reserve(ids.size());
-    for (const Json& id : ids) {
-        if (!id.is_number_integer())
-            f.fail("ids", "must hold whole numbers");
-        fault.ids.push_back(id.get<std::int64_t>());
-    }
-    normalizeIds(fault.ids);
-    return fault;
-}
 
 Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     Json doc;
@@ -265,7 +160,7 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     doc["frame"] = s.frame;
     Json views = Json::array();
     for (const auto& v : s.views)
-        views.push_back(viewToJson(v));
+        views.push_back(items::toJson(v));
     doc["views"] = views;
     Json boxes = Json::array();
     for (const auto& b : s.boxes)
@@ -277,7 +172,7 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     doc["thresholds"] = thresholds;
     Json faults = Json::array();
     for (const auto& f : s.faults)
-        faults.push_back(faultToJson(f));
+        faults.push_back(items::toJson(f));
     doc["faults"] = faults;
     doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)}, {"fault", s.faultFilter.fault}};
     Json surfaces = Json::array();
@@ -324,7 +219,7 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
     s.views.clear();
     const Json& views = top.array("views");
     for (std::size_t k = 0; k < views.size(); ++k) {
-        ViewState view = viewFromJson(views[k], top.child("views", k), path);
+        ViewState view = readItem<ViewState>(views[k], top.child("views", k), path, {"name"});
         for (const auto& other : s.views)
             if (other.name == view.name)
                 throw InputError(path, top.child("views", k) + ".name: '" + view.name +
@@ -353,7 +248,7 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
     }
     const Json& faults = top.array("faults");
     for (std::size_t k = 0; k < faults.size(); ++k) {
-        Fault fault = faultFromJson(faults[k], top.child("faults", k), path);
+        Fault fault = readItem<Fault>(faults[k], top.child("faults", k), path, {"name"});
         if (s.fault(fault.name))
             throw InputError(path, top.child("faults", k) + ".name: '" + fault.name + "' is used twice");
         s.faults.push_back(std::move(fault));

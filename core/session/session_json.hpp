@@ -20,12 +20,8 @@ SessionState sessionFromJson(const nlohmann::json& doc, const std::string& baseD
                              const std::string& path);
 
 // One item of a session, as stored (also the payload of ops that restore a deleted item);
-// cameras, boxes and thresholds have their codecs in items/.
+// views, cameras, boxes, thresholds, faults and surface settings have their codecs in items/.
 // `where` and `path` name the item in errors (InputError).
-nlohmann::json viewToJson(const ViewState& view);
-ViewState viewFromJson(const nlohmann::json& j, const std::string& where, const std::string& path);
-nlohmann::json faultToJson(const Fault& fault);
-Fault faultFromJson(const nlohmann::json& j, const std::string& where, const std::string& path);
 
 // Reads and parses a session file (size and nesting bounded) and validates it.
 SessionState loadSessionFile(const std::string& path);

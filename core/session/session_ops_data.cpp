@@ -96,12 +96,21 @@ void registerDataOps(OpTable& ops) {
         const auto index = std::min<std::size_t>(
             static_cast<std::size_t>(std::max(0LL, args::optionalInteger(cmd, "index").value_or(static_cast<long long>(views.size())))),
             views.size());
+        items::checked("view.add", v);
         views.insert(views.begin() + static_cast<long>(index), v);
         return {{"op", "view.remove"}, {"name", name}};
     });
     addStateOp(ops, "view.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"view", "index"});
-        ViewState v = asCommand("view.restore", [&] { return viewFromJson(args::require(cmd, "view"), "view", "view.restore"); });
+        ViewState v;
+        try {
+            const items::ItemReader fields(args::require(cmd, "view"), "view.");
+            fields.require("name");
+            items::patch(v, fields);
+            items::validate(v);
+        } catch (const items::ItemError& e) {
+            throw CommandError(items::commandMessage("view.restore", e));
+        }
         if (s.state().view(v.name))
             throw CommandError("view.restore: a view named \"" + v.name + "\" exists already");
         auto& views = s.mutableState().views;
@@ -118,7 +127,7 @@ void registerDataOps(OpTable& ops) {
         auto it = std::find_if(views.begin(), views.end(), [&](const ViewState& v) { return v.name == name; });
         if (it == views.end())
             throw CommandError("view.remove: no view named \"" + name + "\"");
-        Json inverse = {{"op", "view.restore"}, {"view", viewToJson(*it)}, {"index", it - views.begin()}};
+        Json inverse = {{"op", "view.restore"}, {"view", items::toJson(*it)}, {"index", it - views.begin()}};
         views.erase(it);
         return inverse;
     });
@@ -140,9 +149,12 @@ void registerDataOps(OpTable& ops) {
             binding = {true, *o};
         const bool linked = args::optionalBool(cmd, "linked_camera").value_or(v.linkedCamera);
         const bool context = args::optionalBool(cmd, "context_points").value_or(v.contextPoints);
-        v.frame = binding;
-        v.linkedCamera = linked;
-        v.contextPoints = context;
+        ViewState next = v;
+        next.frame = binding;
+        next.linkedCamera = linked;
+        next.contextPoints = context;
+        items::checked("view.set", next);
+        v = next;
         return inverse;
     });
     addStateOp(ops, "color.set", [](Session& s, const Json& cmd) -> Json {
@@ -197,6 +209,7 @@ void registerDataOps(OpTable& ops) {
             next.difference.reference = {true, *o};
         if (next.difference.mode == ColorDifference::Mode::Change && next.colorVariable.empty())
             throw CommandError("color.set: \"difference\":\"change\" needs a \"variable\"");
+        items::checked("color.set", next);
         v = next;
         return inverse;
     });

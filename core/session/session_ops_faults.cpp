@@ -33,19 +33,6 @@ Fault& faultOf(Session& s, const Json& cmd, const char* op) {
     return *f;
 }
 
-std::array<float, 3> colorArg(const Json& cmd, const char* op, std::array<float, 3> fallback) {
-    auto c = args::optionalVec3(cmd, "color");
-    if (!c)
-        return fallback;
-    std::array<float, 3> out{};
-    for (int k = 0; k < 3; ++k) {
-        if ((*c)[k] < 0 || (*c)[k] > 1)
-            throw CommandError(std::string(op) + ": \"color\" components must lie in [0, 1]");
-        out[k] = static_cast<float>((*c)[k]);
-    }
-    return out;
-}
-
 std::vector<std::int64_t> visibleIds(Session& s, const char* op) {
     auto frame = s.currentFrame();
     if (!frame)
@@ -118,9 +105,11 @@ void registerFaultOps(OpTable& ops) {
         }
         normalizeIds(f.ids);
         auto& faults = s.mutableState().faults;
-        f.color =
-            colorArg(cmd, "fault.create", kFaultPalette[faults.size() % kFaultPalette.size()]);
-        f.notes = args::optionalString(cmd, "notes").value_or("");
+        f.color = kFaultPalette[faults.size() % kFaultPalette.size()];
+        // The fields beside the members (colour, notes) as any fault's.
+        Json fields = cmd;
+        fields.erase("ids");
+        f = items::patched("fault.create", f, fields);
         const long long index =
             args::optionalInteger(cmd, "index").value_or(static_cast<long long>(faults.size()));
         faults.insert(faults.begin() +
@@ -153,10 +142,7 @@ void registerFaultOps(OpTable& ops) {
     addStateOp(ops, "fault.set", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"name", "color", "notes", "visible", "rename"});
         Fault& f = faultOf(s, cmd, "fault.set");
-        Fault next = f;
-        next.color = colorArg(cmd, "fault.set", f.color);
-        next.notes = args::optionalString(cmd, "notes").value_or(f.notes);
-        next.visible = args::optionalBool(cmd, "visible").value_or(f.visible);
+        Fault next = items::patched("fault.set", f, cmd);
         if (auto rename = args::optionalString(cmd, "rename")) {
             if (rename->empty() || (*rename != f.name && s.state().fault(*rename)) ||
                 isVisibleSpheres(*rename))
@@ -189,7 +175,7 @@ void registerFaultOps(OpTable& ops) {
         if (it == state.faults.end())
             throw CommandError("fault.delete: no fault named \"" + name + "\"");
         Json inverse = {{"op", "fault.restore"},
-                        {"fault", faultToJson(*it)},
+                        {"fault", items::toJson(*it)},
                         {"index", it - state.faults.begin()}};
         if (SurfaceSettings* surface = state.surface(name)) {
             inverse["surface"] = items::toJson(*surface);
@@ -205,9 +191,15 @@ void registerFaultOps(OpTable& ops) {
     });
     addStateOp(ops, "fault.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"fault", "index", "surface"});
-        Fault f = asCommand("fault.restore", [&] {
-            return faultFromJson(args::require(cmd, "fault"), "fault", "fault.restore");
-        });
+        Fault f;
+        try {
+            const items::ItemReader fields(args::require(cmd, "fault"), "fault.");
+            fields.require("name");
+            items::patch(f, fields);
+            items::validate(f);
+        } catch (const items::ItemError& e) {
+            throw CommandError(items::commandMessage("fault.restore", e));
+        }
         auto& state = s.mutableState();
         if (state.fault(f.name) || isVisibleSpheres(f.name))
             throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");

@@ -32,6 +32,62 @@ TEST(ItemCodecs, WhatIsWrittenReadsBack) {
     EXPECT_EQ(roundTrip(b), b);
     VariableThreshold t{"strain", 0.01, 0.5, false};
     EXPECT_EQ(roundTrip(t), t);
+    ViewState v = mainView();
+    v.name = "right";
+    v.frame = {false, 12};
+    v.colorVariable = "broken_bonds";
+    v.colorMap = "viridis";
+    v.rangeMode = "fixed";
+    v.range = {0, 6};
+    v.difference = {ColorDifference::Mode::Change, {true, -10}};
+    v.camera = c;
+    v.linkedCamera = false;
+    v.contextPoints = true;
+    EXPECT_EQ(roundTrip(v), v);
+    Fault f;
+    f.name = "W graben";
+    f.color = {0.25f, 0.5f, 1.0f};
+    f.notes = "antithetic";
+    f.visible = false;
+    f.ids = {3, 5, 8};
+    EXPECT_EQ(roundTrip(f), f);
+    for (std::int64_t id = 0; id < 5000; ++id) // packed from 4,096 members
+        f.ids.push_back(100 + 3 * id);
+    EXPECT_TRUE(items::toJson(f).contains("ids_packed"));
+    EXPECT_EQ(roundTrip(f), f);
+    SurfaceSettings st;
+    st.fault = "W graben";
+    st.kernel = MetaballKernel::Inverse;
+    st.iso = 150;
+    st.colorBy = "strain";
+    st.colorRange = std::array<double, 2>{0, 0.1};
+    SurfaceSettings back;
+    back.fault = st.fault;
+    items::patch(back, items::ItemReader(items::toJson(st)));
+    items::validate(back);
+    EXPECT_EQ(back, st);
+}
+
+// A view no command would make is refused from a file too, naming the field.
+TEST(ItemCodecs, AViewsRulesHoldForFilesAsForCommands) {
+    auto fileError = [](const char* text) {
+        ViewState v;
+        try {
+            items::patch(v, items::ItemReader(Json::parse(text)));
+            items::validate(v);
+        } catch (const items::ItemError& e) {
+            return items::fileMessage("views[1]", e);
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(fileError(R"({"name":"v","color":{"map":"rainbow"}})"),
+              "views[1].color.map: names no colour map");
+    EXPECT_EQ(fileError(R"({"name":"v","color":{"difference":{"mode":"change"}}})"),
+              "views[1].color.difference.mode: change needs a variable");
+    EXPECT_EQ(fileError(R"({"name":"v","frame":{"relative":false,"value":2.5}})"),
+              "views[1].frame.value: must be a whole number");
+    EXPECT_EQ(fileError(R"({"name":"v","camera":{"elevation":120}})"),
+              "views[1].camera.elevation: must lie in [-90, 90]");
 }
 
 TEST(ItemCodecs, APatchChangesOnlyTheFieldsItHolds) {

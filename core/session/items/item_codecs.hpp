@@ -3,9 +3,11 @@
 
 #include "core/session/items/box_codec.hpp"
 #include "core/session/items/camera_codec.hpp"
+#include "core/session/items/fault_codec.hpp"
 #include "core/session/items/item_reader.hpp"
 #include "core/session/items/surface_codec.hpp"
 #include "core/session/items/threshold_codec.hpp"
+#include "core/session/items/view_codec.hpp"
 
 namespace faultline::core::items {
 
@@ -24,6 +26,15 @@ T patched(const std::string& op, T item, const Json& cmd,
         throw CommandError(commandMessage(op, e));
     }
     return item;
+}
+
+// Checks an item a command built field by field (validate), as a CommandError naming the op.
+template <typename T> void checked(const std::string& op, const T& item) {
+    try {
+        validate(item);
+    } catch (const ItemError& e) {
+        throw CommandError(commandMessage(op, e));
+    }
 }
 
 } // namespace faultline::core::items

@@ -1,0 +1,103 @@
+#include "core/session/items/view_codec.hpp"
+
+#include "core/color/colormap.hpp"
+#include "core/session/items/camera_codec.hpp"
+
+#include <cmath>
+
+namespace faultline::core::items {
+
+Json toJson(const ViewState& v) {
+    return {{"name", v.name},
+            {"frame", {{"relative", v.frame.relative}, {"value", v.frame.value}}},
+            {"color",
+             {{"variable", v.colorVariable},
+              {"map", v.colorMap},
+              {"range_mode", v.rangeMode},
+              {"range", v.range},
+              {"difference",
+               {{"mode", differenceModeName(v.difference.mode)},
+                {"reference",
+                 {{"relative", v.difference.reference.relative},
+                  {"value", v.difference.reference.value}}}}}}},
+            {"camera", toJson(v.camera)},
+            {"linked_camera", v.linkedCamera},
+            {"context_points", v.contextPoints}};
+}
+
+namespace {
+
+// A whole number (a frame or an offset).
+void readWhole(const ItemReader& f, const char* field, long long& out) {
+    if (!f.has(field))
+        return;
+    double d = 0;
+    f.read(field, d);
+    if (d != std::trunc(d) || std::fabs(d) > 9e15)
+        f.fail(field, "must be a whole number", &f.get(field));
+    out = static_cast<long long>(d);
+}
+
+void readBinding(const ItemReader& f, FrameBinding& b) {
+    f.read("relative", b.relative);
+    readWhole(f, "value", b.value);
+}
+
+} // namespace
+
+void patch(ViewState& v, const ItemReader& f) {
+    f.read("name", v.name);
+    if (f.has("frame"))
+        readBinding(ItemReader(f.get("frame"), f.path("frame.")), v.frame);
+    if (f.has("color")) {
+        const ItemReader c(f.get("color"), f.path("color."));
+        c.read("variable", v.colorVariable);
+        c.read("map", v.colorMap);
+        c.read("range_mode", v.rangeMode);
+        if (c.has("range")) {
+            const Json& r = c.get("range");
+            if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
+                !std::isfinite(r[0].get<double>()) || !std::isfinite(r[1].get<double>()))
+                c.fail("range", "must be [low, high]", &r);
+            v.range = {r[0].get<double>(), r[1].get<double>()};
+        }
+        if (c.has("difference")) {
+            const ItemReader d(c.get("difference"), c.path("difference."));
+            if (d.has("mode")) {
+                std::string mode;
+                d.read("mode", mode);
+                const auto parsed = parseDifferenceMode(mode);
+                if (!parsed)
+                    d.fail("mode", "must be none, change or displacement", &d.get("mode"));
+                v.difference.mode = *parsed;
+            }
+            if (d.has("reference"))
+                readBinding(ItemReader(d.get("reference"), d.path("reference.")),
+                            v.difference.reference);
+        }
+    }
+    if (f.has("camera"))
+        patch(v.camera, ItemReader(f.get("camera"), f.path("camera.")));
+    f.read("linked_camera", v.linkedCamera);
+    f.read("context_points", v.contextPoints);
+}
+
+void validate(const ViewState& v) {
+    if (v.name.empty())
+        breaks("name", "must not be empty");
+    if (!v.frame.relative && v.frame.value < 0)
+        breaks("frame.value", "must be >= 0 for a fixed frame");
+    if (!parseColorMap(v.colorMap))
+        breaks("color.map", "names no colour map");
+    if (v.rangeMode != "frame" && v.rangeMode != "all" && v.rangeMode != "fixed")
+        breaks("color.range_mode", "must be frame, all or fixed");
+    if (!(v.range[0] < v.range[1]))
+        breaks("color.range", "must have low < high");
+    if (v.difference.mode == ColorDifference::Mode::Change && v.colorVariable.empty())
+        breaks("color.difference.mode", "change needs a variable");
+    if (!v.difference.reference.relative && v.difference.reference.value < 0)
+        breaks("color.difference.reference.value", "must be >= 0 for a fixed frame");
+    validate(v.camera, "camera.");
+}
+
+} // namespace faultline::core::items
