@@ -56,9 +56,7 @@ FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest&
     const auto column = findColumn(frame, st.colorBy);
     if (!column)
         throw CommandError("no variable \"" + st.colorBy + "\" to colour by in this frame");
-    const auto map = parseColorMap(st.colorMap);
-    if (!map)
-        throw CommandError("unknown colour map \"" + st.colorMap + "\"");
+    const ColorMapSpec* map = &st.colorMap;
     ValueRange range{0.0, 1.0};
     if (st.colorRange) {
         range = {(*st.colorRange)[0], (*st.colorRange)[1]};
@@ -111,7 +109,7 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
     mix(settings.colorReach ? 1 : 0); // none: from the mean radius (params hold 0)
     if (!settings.colorBy.empty()) {
         mix(std::hash<std::string>{}(settings.colorBy));
-        mix(std::hash<std::string>{}(settings.colorMap));
+        mix(std::hash<std::string>{}(colorMapName(settings.colorMap)));
         if (settings.colorRange)
             for (double r : *settings.colorRange)
                 mix(std::bit_cast<std::uint64_t>(r));
@@ -177,7 +175,7 @@ void writeFaultVdb(const Frame& frame, const FaultSurfaceRequest& request, const
             std::snprintf(range, sizeof range, "%.9g %.9g", (*st.colorRange)[0],
                           (*st.colorRange)[1]);
         surface.notes.push_back({"color_by", st.colorBy});
-        surface.notes.push_back({"color_map", st.colorMap});
+        surface.notes.push_back({"color_map", colorMapName(st.colorMap)});
         surface.notes.push_back({"color_range", range});
     }
     makeFolder(path);

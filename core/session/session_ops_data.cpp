@@ -162,7 +162,7 @@ void registerDataOps(OpTable& ops) {
                                "since_frame", "since_offset"});
         ViewState& v = viewOf(s, cmd);
         Json inverse = {{"op", "color.set"}, {"view", v.name}, {"variable", v.colorVariable},
-                        {"map", v.colorMap}, {"range_mode", v.rangeMode}, {"range", v.range},
+                        {"map", colorMapName(v.colorMap)}, {"range_mode", std::string(rangeModeName(v.rangeMode))}, {"range", v.range},
                         {"difference", differenceModeName(v.difference.mode)}};
         inverse[v.difference.reference.relative ? "since_offset" : "since_frame"] = v.difference.reference.value;
         ViewState next = v;
@@ -170,13 +170,14 @@ void registerDataOps(OpTable& ops) {
             next.colorVariable = *var;
         if (auto map = args::optionalString(cmd, "map")) {
             // The renderers' own parser decides, so the two cannot disagree on a name.
-            if (!parseColorMap(*map)) {
+            const auto parsed = parseColorMap(*map);
+            if (!parsed || parsed->kind == ColorMapKind::Palette) {
                 std::string known;
                 for (const std::string& name : colorMapNames())
                     known += (known.empty() ? "" : ", ") + name;
                 throw CommandError("color.set: unknown map \"" + *map + "\" (" + known + ")");
             }
-            next.colorMap = *map;
+            next.colorMap = *parsed;
         }
         if (cmd.contains("range")) {
             const Json& r = cmd["range"];
@@ -184,12 +185,13 @@ void registerDataOps(OpTable& ops) {
                 !(r[0].get<double>() < r[1].get<double>()))
                 throw CommandError("color.set: \"range\" must be [low, high] with low < high");
             next.range = {r[0].get<double>(), r[1].get<double>()};
-            next.rangeMode = "fixed";
+            next.rangeMode = RangeMode::Fixed;
         }
         if (auto mode = args::optionalString(cmd, "range_mode")) {
-            if (*mode != "frame" && *mode != "all" && *mode != "fixed")
+            const auto parsed = parseRangeMode(*mode);
+            if (!parsed)
                 throw CommandError("color.set: \"range_mode\" must be frame, all or fixed");
-            next.rangeMode = *mode;
+            next.rangeMode = *parsed;
         }
         // Difference colouring: "change" of the variable, or "displacement", since a frame.
         if (auto diff = args::optionalString(cmd, "difference")) {

@@ -2,6 +2,8 @@
 // thresholds, faults, surface settings, dock layout. Plain data; changed only by commands.
 #pragma once
 
+#include "core/color/colormap.hpp"
+
 #include "core/faults/fault.hpp"
 #include "core/selection/cutting_box.hpp"
 #include "core/selection/variable_threshold.hpp"
@@ -55,9 +57,9 @@ struct ViewState {
     std::string name;
     FrameBinding frame;
     std::string colorVariable; // empty: a plain colour
-    std::string colorMap = "blue-red";
-    std::string rangeMode = "frame";   // frame | all | fixed
-    std::array<double, 2> range{0, 1}; // used when rangeMode == fixed
+    ColorMapSpec colorMap{ColorMapKind::BlueRed}; // a journal name ("blue-red") only in JSON
+    RangeMode rangeMode = RangeMode::CurrentFrame; // "frame" | "all" | "fixed" in JSON
+    std::array<double, 2> range{0, 1};             // used when rangeMode is Fixed
     ColorDifference difference;
     CameraState camera;
     bool linkedCamera = true;
@@ -102,7 +104,7 @@ struct SurfaceSettings {
     // it (averaged), else the initial colour. The spheres take the fault's colour or, with
     // colorBy, a colour map of that variable over colorRange (none: its range in the frame).
     std::string colorBy; // "": the fault's colour
-    std::string colorMap = "viridis";
+    ColorMapSpec colorMap{ColorMapKind::Viridis}; // a journal name only in JSON
     std::optional<std::array<double, 2>> colorRange;
     std::optional<double> colorReach; // none: with colorBy twice the spheres' mean radius (a
                                       // surface at a wrapping iso lies up to 3 radii out where it

@@ -36,8 +36,8 @@ TEST(ItemCodecs, WhatIsWrittenReadsBack) {
     v.name = "right";
     v.frame = {false, 12};
     v.colorVariable = "broken_bonds";
-    v.colorMap = "viridis";
-    v.rangeMode = "fixed";
+    v.colorMap = ColorMapSpec{ColorMapKind::Bands, 12};
+    v.rangeMode = RangeMode::Fixed;
     v.range = {0, 6};
     v.difference = {ColorDifference::Mode::Change, {true, -10}};
     v.camera = c;

@@ -442,7 +442,7 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     EXPECT_EQ(*s.state().surface("F1"), byStrain);
     // One name per map: "grey" is stored as "gray" (one cache entry, not two).
     s.apply(cmd(R"({"op":"surface.set","fault":"F1","map":"grey"})"));
-    EXPECT_EQ(s.state().surface("F1")->colorMap, "gray");
+    EXPECT_EQ(colorMapName(s.state().surface("F1")->colorMap), "gray");
 }
 
 // JOURNAL.md: surface.build without "iso" (or with "iso":"wrap") takes the iso-value that wraps

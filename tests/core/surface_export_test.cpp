@@ -86,7 +86,7 @@ TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
     request.settings.kernel = faultline::core::MetaballKernel::Compact;
     request.settings.iso = 0.5;
     request.settings.colorBy = "strain";
-    request.settings.colorMap = "gray";
+    request.settings.colorMap = faultline::core::ColorMapSpec{faultline::core::ColorMapKind::Gray};
     request.settings.colorRange = std::array<double, 2>{0.0, 0.5};
     const auto path = tempPath("colours.vdb");
     fc::writeFaultVdb(frame, request, path.string());

@@ -400,7 +400,7 @@ class SurfacesPanel final : public Panel {
         ImGui::BeginDisabled(!viewColours);
         if (ImGui::Button("Like the view"))
             set({{"color_by", view->colorVariable},
-                 {"map", view->colorMap},
+                 {"map", core::colorMapName(view->colorMap)},
                  {"range", {main->colorRange[0], main->colorRange[1]}}});
         ImGui::EndDisabled();
         wb.mark("surfaces.like_view");
@@ -408,9 +408,10 @@ class SurfacesPanel final : public Panel {
             ImGui::SetTooltip("Colour the surface by the main view's variable, map and range");
         if (!st.colorBy.empty()) {
             ImGui::SetNextItemWidth(w);
-            if (ImGui::BeginCombo("map", st.colorMap.c_str())) {
+            const std::string currentMap = core::colorMapName(st.colorMap);
+            if (ImGui::BeginCombo("map", currentMap.c_str())) {
                 for (const std::string& m : core::colorMapNames())
-                    if (ImGui::Selectable(m.c_str(), m == st.colorMap) && m != st.colorMap)
+                    if (ImGui::Selectable(m.c_str(), m == currentMap) && m != currentMap)
                         set({{"map", m}});
                 ImGui::EndCombo();
             }

@@ -179,7 +179,7 @@ void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const
     const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
     const std::string colour = title.empty()        ? std::string("plain colour")
                                : !d.palette.empty() ? title
-                                                    : title + " (" + view.colorMap + ")";
+                                                    : title + " (" + core::colorMapName(view.colorMap) + ")";
     const ImGuiStyle& style = ImGui::GetStyle();
     float reserve = 0.0f;
     if (wb.state().views.size() > 1)
@@ -288,11 +288,11 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
     if (d.frame)
         for (const auto& [v, info] : wb.columns().of(d.frame))
             if (ImGui::Selectable(v.c_str(), v == view.colorVariable))
-                wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == "fixed" ? "frame" : view.rangeMode}});
+                wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == core::RangeMode::Fixed ? std::string("frame") : std::string(core::rangeModeName(view.rangeMode))}});
     ImGui::Separator();
     ImGui::TextDisabled("Colour map");
     for (const char* m : kMaps)
-        if (ImGui::Selectable(m, view.colorMap == m))
+        if (ImGui::Selectable(m, core::colorMapName(view.colorMap) == m))
             wb.emit({{"op", "color.set"}, {"view", view.name}, {"map", m}});
     ImGui::Separator();
     ImGui::TextDisabled("Range");
@@ -301,7 +301,7 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
         const char* label;
     } modes[] = {{"frame", "this frame's min to max"}, {"all", "all frames seen (steady in playback)"}, {"fixed", "fixed"}};
     for (const auto& m : modes)
-        if (ImGui::RadioButton(m.label, view.rangeMode == m.mode) && view.rangeMode != m.mode) {
+        if (const bool on = core::rangeModeName(view.rangeMode) == m.mode; ImGui::RadioButton(m.label, on) && !on) {
             core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};
             if (std::string(m.mode) == "fixed")
                 cmd["range"] = {d.colorRange[0], d.colorRange[1]};

@@ -123,7 +123,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
     // The rest is cheap to set; compare it as text to know whether to draw again.
     std::ostringstream sig;
     sig.precision(17);
-    sig << scene.colorMap << '|' << scene.colorRange[0] << '|' << scene.colorRange[1] << '|'
+    sig << core::colorMapName(scene.colorMap) << '|' << scene.colorRange[0] << '|' << scene.colorRange[1] << '|'
         << scene.width << 'x' << scene.height << '|' << scene.camera.target[0] << ','
         << scene.camera.target[1] << ',' << scene.camera.target[2] << '|' << scene.camera.distance
         << '|' << scene.camera.azimuth << '|' << scene.camera.elevation << '|' << scene.camera.fovY
@@ -137,9 +137,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
             << b.max[1] << ',' << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
     if (sig.str() != slot.signature || changed) {
         slot.signature = sig.str();
-        // The session accepts only names core::parseColorMap knows; the default covers an
-        // empty name.
-        auto map = core::parseColorMap(scene.colorMap).value_or(core::ColorMapSpec{});
+        auto map = scene.colorMap;
         if (!scene.palette.empty())
             map = core::ColorMapSpec{core::ColorMapKind::Palette, 10, scene.palette};
         r.setColorMap(map);

@@ -50,8 +50,7 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
     scene.visible = visibility.mask;
     scene.colorVariable = view->colorVariable;
     scene.style.contextPoints = view->contextPoints;
-    if (auto map = core::parseColorMap(view->colorMap))
-        scene.colorMap = *map;
+    scene.colorMap = view->colorMap;
     // Difference colouring: the change since the view's reference frame, matched by id.
     std::optional<core::AttributeColumn> difference;
     CategoryColoring categories; // "faults": each member in its fault's colour
@@ -73,16 +72,16 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         }
         scene.colorVariable = core::colorTitle(*view, ref);
         scene.colorColumn = &*difference;
-        if (view->rangeMode == "fixed")
+        if (view->rangeMode == core::RangeMode::Fixed)
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
         else if (difference->min <= difference->max)
             scene.colorRange = core::ValueRange{difference->min, difference->max};
     } else if (!view->colorVariable.empty()) {
         if (request.colorRange) {
             scene.colorRange = *request.colorRange;
-        } else if (view->rangeMode == "fixed") {
+        } else if (view->rangeMode == core::RangeMode::Fixed) {
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
-        } else if (view->rangeMode == "all") {
+        } else if (view->rangeMode == core::RangeMode::AllFrames) {
             // The range over every frame, so a series of figures shares one legend.
             double lo = 1e300, hi = -1e300;
             for (std::size_t k = 0; k < dataset->frameCount(); ++k)
@@ -235,7 +234,7 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
             m_frames.push_back(f);
     // One colour range for every frame: the view's fixed one, else the range over all frames
     // (what rangeMode "all" gives a single figure), so colours mean the same in every frame.
-    if (!fig.colorRange && !view->colorVariable.empty() && view->rangeMode != "fixed" &&
+    if (!fig.colorRange && !view->colorVariable.empty() && view->rangeMode != core::RangeMode::Fixed &&
         view->difference.mode == core::ColorDifference::Mode::None) {
         double lo = 1e300, hi = -1e300;
         for (std::size_t k = 0; k < count; ++k)

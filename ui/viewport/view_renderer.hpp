@@ -32,7 +32,7 @@ struct ViewScene {
     std::string colorVariable;                 // empty: one colour; else the legend's title
     // Values to colour by instead of the frame's colorVariable column (difference colouring).
     std::shared_ptr<const core::AttributeColumn> colorColumn;
-    std::string colorMap = "blue-red";
+    core::ColorMapSpec colorMap;               // the view's; categories use palette below
     std::array<double, 2> colorRange{0, 1};    // resolved
     core::CameraState camera;                  // resolved (fitted, previewed)
     std::vector<core::CuttingBox> boxes;       // enabled boxes to outline

@@ -495,10 +495,10 @@ void Workbench::resolveColors(const core::ViewState& v, ViewDisplay& d, std::siz
     if (!d.colorTitle.empty()) {
         auto& all = m_allFramesRange.try_emplace(rangeKey, range).first->second;
         all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-        if (v.rangeMode == "all")
+        if (v.rangeMode == core::RangeMode::AllFrames)
             range = all;
     }
-    if (v.rangeMode == "fixed")
+    if (v.rangeMode == core::RangeMode::Fixed)
         range = v.range;
     d.colorRange = widen(range);
 }

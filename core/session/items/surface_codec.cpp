@@ -11,7 +11,7 @@ Json toJson(const SurfaceSettings& st) {
               {"visible", st.visible},
               {"opacity", st.opacity},
               {"color_by", st.colorBy},
-              {"map", st.colorMap}};
+              {"map", colorMapName(st.colorMap)}};
     j["color_reach"] = st.colorReach ? Json(*st.colorReach) : Json(nullptr);
     j["range"] = st.colorRange ? Json(*st.colorRange) : Json(nullptr);
     j["initial_color"] = st.initialColor ? Json(*st.initialColor) : Json(nullptr);
@@ -66,7 +66,14 @@ void patch(SurfaceSettings& st, const ItemReader& f) {
     f.read("visible", st.visible);
     f.read("opacity", st.opacity);
     f.read("color_by", st.colorBy);
-    f.read("map", st.colorMap);
+    if (f.has("map")) {
+        std::string name;
+        f.read("map", name);
+        const auto map = parseColorMap(name);
+        if (!map || map->kind == ColorMapKind::Palette)
+            f.fail("map", "names no colour map", &f.get("map"));
+        st.colorMap = *map;
+    }
     readOptional<2>(f, "range", st.colorRange, kRange);
     if (f.has("color_reach")) {
         if (f.get("color_reach").is_null()) {
@@ -80,17 +87,15 @@ void patch(SurfaceSettings& st, const ItemReader& f) {
     readOptional<3>(f, "initial_color", st.initialColor, kColour);
 }
 
-void validate(SurfaceSettings& st) {
+void validate(const SurfaceSettings& st) {
     if (st.voxel < 0)
         bad("voxel", "must be >= 0 (0: radius / 3)");
     if (!(st.iso > 0))
         bad("iso", "must be > 0");
     if (st.opacity < 0 || st.opacity > 1)
         bad("opacity", "must lie in [0, 1]");
-    const auto map = parseColorMap(st.colorMap);
-    if (!map || map->kind == ColorMapKind::Palette)
+    if (st.colorMap.kind == ColorMapKind::Palette)
         bad("map", "names no colour map");
-    st.colorMap = colorMapName(*map);
     if (st.colorRange && !((*st.colorRange)[0] < (*st.colorRange)[1]))
         bad("range", kRange);
     if (st.colorReach && *st.colorReach < 0)

@@ -13,7 +13,7 @@ Json toJson(const SurfaceSettings& settings);
 // Reads the fields present; "range", "color_reach" and "initial_color" may be null (none).
 void patch(SurfaceSettings& settings, const ItemReader& fields);
 // voxel >= 0, iso > 0, opacity in [0, 1], a colour map, low < high, reach >= 0, colours in
-// [0, 1]; the map's name is made canonical ("grey" is "gray": one cache entry per map).
-void validate(SurfaceSettings& settings);
+// [0, 1].
+void validate(const SurfaceSettings& settings);
 
 } // namespace faultline::core::items

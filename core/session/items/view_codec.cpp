@@ -12,8 +12,8 @@ Json toJson(const ViewState& v) {
             {"frame", {{"relative", v.frame.relative}, {"value", v.frame.value}}},
             {"color",
              {{"variable", v.colorVariable},
-              {"map", v.colorMap},
-              {"range_mode", v.rangeMode},
+              {"map", colorMapName(v.colorMap)},
+              {"range_mode", std::string(rangeModeName(v.rangeMode))},
               {"range", v.range},
               {"difference",
                {{"mode", differenceModeName(v.difference.mode)},
@@ -52,8 +52,22 @@ void patch(ViewState& v, const ItemReader& f) {
     if (f.has("color")) {
         const ItemReader c(f.get("color"), f.path("color."));
         c.read("variable", v.colorVariable);
-        c.read("map", v.colorMap);
-        c.read("range_mode", v.rangeMode);
+        if (c.has("map")) {
+            std::string name;
+            c.read("map", name);
+            const auto map = parseColorMap(name);
+            if (!map || map->kind == ColorMapKind::Palette)
+                c.fail("map", "names no colour map", &c.get("map"));
+            v.colorMap = *map;
+        }
+        if (c.has("range_mode")) {
+            std::string name;
+            c.read("range_mode", name);
+            const auto mode = parseRangeMode(name);
+            if (!mode)
+                c.fail("range_mode", "must be frame, all or fixed", &c.get("range_mode"));
+            v.rangeMode = *mode;
+        }
         if (c.has("range")) {
             const Json& r = c.get("range");
             if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
@@ -87,10 +101,8 @@ void validate(const ViewState& v) {
         breaks("name", "must not be empty");
     if (!v.frame.relative && v.frame.value < 0)
         breaks("frame.value", "must be >= 0 for a fixed frame");
-    if (!parseColorMap(v.colorMap))
+    if (v.colorMap.kind == ColorMapKind::Palette)
         breaks("color.map", "names no colour map");
-    if (v.rangeMode != "frame" && v.rangeMode != "all" && v.rangeMode != "fixed")
-        breaks("color.range_mode", "must be frame, all or fixed");
     if (!(v.range[0] < v.range[1]))
         breaks("color.range", "must have low < high");
     if (v.difference.mode == ColorDifference::Mode::Change && v.colorVariable.empty())
