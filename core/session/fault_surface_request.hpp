@@ -64,7 +64,7 @@ struct FaultSurfaceRequest {
 
 // The members present in a frame in the colours their surface gives them (Figure 4): the
 // fault's, or the setting's colour map of its colorBy variable. Throws CommandError when the
-// frame has no such variable or the map is unknown.
+// frame has no such variable.
 FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest& request);
 
 // Where a build may reuse earlier work: a SurfaceCache and the frame's index in its dataset.
