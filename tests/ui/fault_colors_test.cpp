@@ -26,8 +26,8 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     headless.showPanel(wb(), ui::panel_ids::kFaults);
     headless.click(wb(), "candidates.find");
     headless.settle(wb()); // found in a background job
-    ASSERT_TRUE(wb().candidatePreview.has_value());
-    ASSERT_EQ(wb().candidatePreview->set.candidates.size(), 2u);
+    ASSERT_TRUE(wb().selection().candidates.has_value());
+    ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 2u);
     headless.frames(wb(), 2);
     const ui::ViewDisplay* d = wb().mainDisplay();
     ASSERT_EQ(d->palette.size(), 3u); // none + two candidates
@@ -46,7 +46,7 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     EXPECT_EQ(created[0]["name"], "F1");
     EXPECT_EQ(created[0]["ids"].size(), 16u);
     ASSERT_NE(session.state().fault("F1"), nullptr);
-    EXPECT_EQ(wb().selectedFaults, (std::set<std::string>{"F1"}));
+    EXPECT_EQ(wb().selection().faults, (std::set<std::string>{"F1"}));
     // Accept all: the journal's op with the same parameters, under another prefix.
     session.undo();
     headless.frames(wb(), 2);
@@ -56,7 +56,7 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     EXPECT_EQ(headless.emitted("fault.candidates")[0]["min_size"], 10);
     EXPECT_EQ(session.state().faults.size(), 2u);
     EXPECT_NE(session.state().fault("C1"), nullptr); // the journal's default prefix, not F's
-    EXPECT_FALSE(wb().candidatePreview.has_value());
+    EXPECT_FALSE(wb().selection().candidates.has_value());
 }
 
 TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
@@ -84,7 +84,7 @@ TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
     openLattice();
     twoWalls(session);
     session.apply(Json::parse(R"({"op":"fault.create","name":"W","from":"visible"})"));
-    wb().selectedFaults = {"W"};
+    wb().selection().faults = {"W"};
     headless.showPanel(wb(), ui::panel_ids::kFaults);
     headless.clearEmitted();
     headless.click(wb(), "faults.split");
@@ -92,7 +92,7 @@ TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
     ASSERT_NE(session.state().fault("W.1"), nullptr);
     ASSERT_NE(session.state().fault("W.2"), nullptr);
     EXPECT_EQ(session.state().fault("W.1")->ids.size(), 16u);
-    EXPECT_EQ(wb().selectedFaults, (std::set<std::string>{"W.1"}));
+    EXPECT_EQ(wb().selection().faults, (std::set<std::string>{"W.1"}));
     // The status line says what happened, and what became of small pieces.
     EXPECT_NE(wb().lastMessage().find("Split W into 2 faults; pieces under 10 spheres stay with W.1"),
               std::string::npos)

@@ -5,7 +5,7 @@
 
 #include "core/faults/metric_fields.hpp"
 #include "ui/dock/panel_ids.hpp"
-#include "ui/workbench/fault_metrics_cache.hpp"
+#include "ui/context/fault_metrics_cache.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -156,7 +156,7 @@ class FaultMetricsPanel : public PanelTest {
         for (std::int64_t id = 2; id <= 64; id += 4)
             ids.push_back(id);
         session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", ids}});
-        wb().selectedFaults = {"F1"};
+        wb().selection().faults = {"F1"};
         headless.showPanel(wb(), ui::panel_ids::kFaults);
         headless.settle(wb());
     }

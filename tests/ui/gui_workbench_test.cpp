@@ -275,7 +275,7 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
 
     // The lasso tool; a loop around the middle of the view, drawn while the button is held.
     ui.click("viewports.tool.lasso");
-    ASSERT_EQ(ui.wb().viewportTool, ui::ViewportTool::Lasso);
+    ASSERT_EQ(ui.wb().selection().tool, ui::ViewportTool::Lasso);
     const ui::ItemRect img = ui.rect("view.image.main");
     const float cx = img.cx(), cy = img.cy(), r = 0.12f * (img.y1 - img.y0);
     ui.moveTo(cx + r, cy);
@@ -293,7 +293,7 @@ TEST(Gui, LassoInTheRealWindowMakesAFaultAndItsMetricsArePlotted) {
     EXPECT_EQ(f.name, "F1");
     EXPECT_GT(f.ids.size(), 50u);
     EXPECT_LT(f.ids.size(), 22410u);
-    EXPECT_EQ(ui.wb().selectedFaults, std::set<std::string>{"F1"});
+    EXPECT_EQ(ui.wb().selection().faults, std::set<std::string>{"F1"});
 
     // Its metrics, in the Faults panel.
     ui.click("tab.faults");

@@ -85,7 +85,7 @@ void checkEveryPanel(float width, float height) {
             R"({"op":"color.set","view":"main","variable":"broken_bonds","difference":"change","since_frame":1})",
         })
         session.apply(Json::parse(op));
-    wb->selectedFaults = {"F2"};
+    wb->selection().faults = {"F2"};
     wb->showHelp();
     headless.settle(*wb);
     checkAll("after an hour");

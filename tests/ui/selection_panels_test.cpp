@@ -38,7 +38,7 @@ TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
     headless.click(wb(), "boxes.add");
     const Json expected = {{"op", "box.add"}, {"name", "box 1"}, {"min", {-0.5, -0.5, -0.5}}, {"max", {3.5, 3.5, 3.5}}, {"mode", "keep"}};
     ASSERT_EQ(headless.emitted(), std::vector<Json>{expected});
-    EXPECT_EQ(wb().selectedBox, "box 1");
+    EXPECT_EQ(wb().selection().box, "box 1");
     EXPECT_EQ(visible(), 64u);
 
     // Drag the x slider's high end to the middle: the view follows during the drag, one command
@@ -68,7 +68,7 @@ TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
     headless.click(wb(), "boxes.duplicate");
     ASSERT_EQ(headless.emitted("box.add").size(), 1u);
     EXPECT_EQ(headless.emitted("box.add")[0]["name"], "box 1 1");
-    EXPECT_EQ(wb().selectedBox, "box 1 1");
+    EXPECT_EQ(wb().selection().box, "box 1 1");
     headless.click(wb(), "boxes.delete");
     EXPECT_EQ(headless.emitted("box.remove").back(), (Json{{"op", "box.remove"}, {"name", "box 1 1"}}));
     EXPECT_EQ(session.state().boxes.size(), 1u);

@@ -426,7 +426,7 @@ TEST_F(PanelTest, SurfaceSettingsFollowTheTickedSurfaceAndThePickedFault) {
     headless.click(wb(), "surfaces.show.B"); // ticked: B's settings show
     headless.settle(wb());
     EXPECT_EQ(settingsFault(), "B");
-    wb().selectedFaults = {"A"}; // picked in the Faults panel
+    wb().selection().faults = {"A"}; // picked in the Faults panel
     headless.settle(wb());
     EXPECT_EQ(settingsFault(), "A");
 }
@@ -438,7 +438,7 @@ TEST_F(PanelTest, AnEmptySurfaceSaysWhyAndOffersWrap) {
     session.apply(Json::parse(
         R"({"op":"surface.set","fault":"A","kernel":"compact","iso":50,"visible":true})"));
     headless.showPanel(wb(), ui::panel_ids::kSurfaces);
-    wb().selectedFaults = {"A"};
+    wb().selection().faults = {"A"};
     headless.settle(wb());
     const ui::SurfaceStatus st =
         wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame);
@@ -467,7 +467,7 @@ TEST_F(PanelTest, IsoSliderSpansTheFieldsUsefulRangeAndTheValueTakesTyping) {
     session.apply(
         Json::parse(R"({"op":"surface.set","fault":"A","kernel":"inverse","visible":true})"));
     headless.showPanel(wb(), ui::panel_ids::kSurfaces);
-    wb().selectedFaults = {"A"};
+    wb().selection().faults = {"A"};
     headless.settle(wb());
     auto status = [&] {
         return wb().surfaces().status(session.state(), "A", wb().mainDisplay()->shownFrame);

@@ -5,7 +5,7 @@
 #include "core/session/journal.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/viewport/orbit_camera.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -24,7 +24,7 @@ TEST_F(PanelTest, FaultsPanelCreatesHidesFiltersAndDeletes) {
     EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "fault.create"}, {"name", "F1"}, {"from", "visible"}}}));
     ASSERT_NE(session.state().fault("F1"), nullptr);
     EXPECT_EQ(session.state().fault("F1")->ids.size(), 32u);
-    EXPECT_EQ(wb().selectedFaults, std::set<std::string>{"F1"});
+    EXPECT_EQ(wb().selection().faults, std::set<std::string>{"F1"});
 
     headless.clearEmitted();
     session.apply(Json::parse(R"({"op":"threshold.remove","variable":"strain"})"));
@@ -134,7 +134,7 @@ TEST_F(PanelTest, ViewportsAddAViewAndCameraDragsCommitOnRelease) {
 TEST_F(PanelTest, DraggingABoxFaceInTheViewEmitsOneBoxSet) {
     openLattice();
     session.apply(Json::parse(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[3,3,3]})"));
-    wb().selectedBox = "b";
+    wb().selection().box = "b";
     headless.frames(wb(), 3);
     // The +x face handle, where the view draws it.
     const ui::ItemRect img = headless.rect(wb(), "view.image.main");

@@ -113,20 +113,20 @@ class SelectionTest : public PanelTest {
 TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     // 1. Rectangle tool, a drag around the spheres with x in {0, 1}: a new fault of them.
     headless.click(wb(), "viewports.tool.rectangle");
-    EXPECT_EQ(wb().viewportTool, ui::ViewportTool::Rectangle);
+    EXPECT_EQ(wb().selection().tool, ui::ViewportTool::Rectangle);
     const auto left = column({0, 1});
     auto [lo, hi] = boundsOf(left);
     headless.drag(wb(), lo.x, lo.y, hi.x, hi.y, 5, 0,
                   [&] { EXPECT_TRUE(headless.emitted().empty()); });
     ASSERT_EQ(headless.emitted().size(), 1u);
     EXPECT_EQ(headless.emitted()[0], (Json{{"op", "fault.create"}, {"name", "F1"}, {"ids", left}}));
-    EXPECT_EQ(wb().selectedFaults, std::set<std::string>{"F1"});
+    EXPECT_EQ(wb().selection().faults, std::set<std::string>{"F1"});
     EXPECT_EQ(session.state().fault("F1")->ids, left);
 
     // 2. Back to orbiting (Esc); Ctrl+click the top sphere of the far corner adds it, again
     //    takes it out.
     headless.key(wb(), GLFW_KEY_ESCAPE);
-    EXPECT_EQ(wb().viewportTool, ui::ViewportTool::Orbit);
+    EXPECT_EQ(wb().selection().tool, ui::ViewportTool::Orbit);
     headless.clearEmitted();
     const ImVec2 corner = at[id(3, 3, 3)];
     withKeys(true, false, [&] { headless.clickAt(wb(), corner.x, corner.y); });
@@ -138,7 +138,7 @@ TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
 
     // 3. Lasso (L) with Shift around the column x = 3, y = 0: a new fault of its four spheres.
     headless.key(wb(), GLFW_KEY_L);
-    EXPECT_EQ(wb().viewportTool, ui::ViewportTool::Lasso);
+    EXPECT_EQ(wb().selection().tool, ui::ViewportTool::Lasso);
     headless.clearEmitted();
     const std::vector<std::int64_t> post{id(3, 0, 0), id(3, 0, 1), id(3, 0, 2), id(3, 0, 3)};
     auto [plo, phi] = boundsOf(post);
@@ -153,10 +153,10 @@ TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     });
     ASSERT_EQ(headless.emitted().size(), 1u);
     EXPECT_EQ(headless.emitted()[0], (Json{{"op", "fault.create"}, {"name", "F2"}, {"ids", post}}));
-    EXPECT_EQ(wb().selectedFaults, std::set<std::string>{"F2"});
+    EXPECT_EQ(wb().selection().faults, std::set<std::string>{"F2"});
 
     // 4. Ctrl+rectangle over the x = 0 spheres removes them from F1.
-    wb().selectedFaults = {"F1"};
+    wb().selection().faults = {"F1"};
     headless.key(wb(), GLFW_KEY_R);
     headless.clearEmitted();
     const auto first = column({0});

@@ -6,7 +6,7 @@
 #include "ui/widgets/range_slider.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include "core/session/session_json.hpp"
 
@@ -32,7 +32,7 @@ class BoxesPanel final : public Panel {
     const char* id() const override { return panel_ids::kBoxes; }
     const char* title() const override { return "Cutting boxes"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const core::SessionState& s = wb.state();
         const ViewDisplay* main = wb.mainDisplay();
         const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
@@ -42,11 +42,11 @@ class BoxesPanel final : public Panel {
         if (ImGui::Button("Add")) {
             const std::string name = uniqueName(s, "box");
             wb.emit({{"op", "box.add"}, {"name", name}, {"min", model.lo}, {"max", model.hi}, {"mode", "keep"}},
-                    [&wb, name] { wb.selectedBox = name; });
+                    [&wb, name] { wb.selection().box = name; });
         }
         wb.mark("boxes.add");
         ImGui::EndDisabled();
-        const core::CuttingBox* sel = s.box(wb.selectedBox);
+        const core::CuttingBox* sel = s.box(wb.selection().box);
         flowSameLine(buttonWidth("Duplicate"));
         ImGui::BeginDisabled(!sel);
         if (ImGui::Button("Duplicate") && sel) {
@@ -54,7 +54,7 @@ class BoxesPanel final : public Panel {
             const std::string name = uniqueName(s, sel->name);
             cmd["op"] = "box.add";
             cmd["name"] = name;
-            wb.emit(cmd, [&wb, name] { wb.selectedBox = name; });
+            wb.emit(cmd, [&wb, name] { wb.selection().box = name; });
         }
         wb.mark("boxes.duplicate");
         flowSameLine(buttonWidth("Delete"));
@@ -64,7 +64,7 @@ class BoxesPanel final : public Panel {
         ImGui::EndDisabled();
         flowSameLine(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
                      ImGui::CalcTextSize("Edit in view").x);
-        ImGui::Checkbox("Edit in view", &wb.editBoxInViewport);
+        ImGui::Checkbox("Edit in view", &wb.selection().editBoxInView);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Show the selected box's face handles in the viewports; drag them to move a face.");
 
@@ -94,9 +94,9 @@ class BoxesPanel final : public Panel {
                 ImGui::TableNextColumn();
                 ImGui::AlignTextToFramePadding();
                 const std::string shown = elided(b.name, ImGui::GetContentRegionAvail().x);
-                if (ImGui::Selectable((shown + "##row").c_str(), b.name == wb.selectedBox, ImGuiSelectableFlags_SpanAllColumns |
+                if (ImGui::Selectable((shown + "##row").c_str(), b.name == wb.selection().box, ImGuiSelectableFlags_SpanAllColumns |
                                                                                     ImGuiSelectableFlags_AllowItemOverlap))
-                    wb.selectedBox = b.name;
+                    wb.selection().box = b.name;
                 if (shown != b.name && ImGui::IsItemHovered())
                     ImGui::SetTooltip("%s", b.name.c_str());
                 wb.mark("boxes.row." + b.name);
@@ -107,7 +107,7 @@ class BoxesPanel final : public Panel {
             }
             ImGui::EndTable();
         }
-        sel = s.box(wb.selectedBox);
+        sel = s.box(wb.selection().box);
         if (!sel) {
             ImGui::TextDisabled("Select a box to edit it.");
             return;
@@ -116,7 +116,7 @@ class BoxesPanel final : public Panel {
     }
 
   private:
-    void drawEditor(Workbench& wb, const core::CuttingBox& b, const ModelBounds& model) {
+    void drawEditor(PanelContext& wb, const core::CuttingBox& b, const ModelBounds& model) {
         ImGui::Spacing();
         sectionHeader("Box \"" + b.name + "\"");
         if (m_nameFor != b.name) {
@@ -130,7 +130,7 @@ class BoxesPanel final : public Panel {
         ImGui::InputText("##name", &m_name);
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != b.name) {
             const std::string next = m_name;
-            wb.emit({{"op", "box.set"}, {"name", b.name}, {"rename", next}}, [&wb, next] { wb.selectedBox = next; });
+            wb.emit({{"op", "box.set"}, {"name", b.name}, {"rename", next}}, [&wb, next] { wb.selection().box = next; });
         }
         ImGui::AlignTextToFramePadding();
         ImGui::TextUnformatted("Mode");

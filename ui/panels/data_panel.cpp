@@ -3,7 +3,7 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <imgui.h>
 
@@ -18,7 +18,7 @@ class DataPanel final : public Panel {
     const char* id() const override { return panel_ids::kData; }
     const char* title() const override { return "Data"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         auto ds = wb.dataset();
         if (ImGui::Button("Open data..."))
             wb.fileDialog().open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},

@@ -17,7 +17,7 @@ namespace {
 
 class FaultCandidatesSection {
   public:
-    void draw(Workbench& wb) {
+    void draw(PanelContext& wb) {
         const ViewDisplay* main = wb.mainDisplay();
         const bool ready = main && main->frame && main->visibility;
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
@@ -52,7 +52,7 @@ class FaultCandidatesSection {
             ImGui::SetTooltip(
                 "Groups of linked visible spheres (narrow them first, e.g. broken bonds >= 1)");
 
-        auto& preview = wb.candidatePreview;
+        auto& preview = wb.selection().candidates;
         if (!preview)
             return;
         ImGui::SameLine();
@@ -87,7 +87,7 @@ class FaultCandidatesSection {
                 cmd["method"] = "connected";
             else if (preview->options.angle != core::kDefaultCandidateAngle)
                 cmd["angle"] = preview->options.angle;
-            wb.emit(cmd, [&wb] { wb.candidatePreview.reset(); });
+            wb.emit(cmd, [&wb] { wb.selection().candidates.reset(); });
         }
         wb.mark("candidates.accept_all");
         ImGui::EndDisabled();
@@ -140,7 +140,7 @@ class FaultCandidatesSection {
 
     // Clustering a million visible spheres takes a while: a background job (progress in the
     // status bar, cancel there); the preview appears when it is done.
-    void find(Workbench& wb, const ViewDisplay& main) {
+    void find(PanelContext& wb, const ViewDisplay& main) {
         core::CandidateOptions options;
         options.link = m_link;
         options.minSize = static_cast<std::size_t>(m_minSize);
@@ -153,7 +153,7 @@ class FaultCandidatesSection {
             [this, &wb, options, frame = main.frame,
              visibility = main.visibility](JobControl&) -> std::function<void()> {
                 const auto t0 = std::chrono::steady_clock::now();
-                Workbench::CandidatePreview p;
+                UiSelection::CandidatePreview p;
                 p.frame = frame;
                 p.visibility = visibility;
                 p.options = options;
@@ -162,30 +162,30 @@ class FaultCandidatesSection {
                 const double ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                         .count();
-                auto shared = std::make_shared<Workbench::CandidatePreview>(std::move(p));
+                auto shared = std::make_shared<UiSelection::CandidatePreview>(std::move(p));
                 return [this, &wb, shared, ms] {
                     m_millis = ms;
                     m_accepted.clear();
-                    wb.candidatePreview = std::move(*shared);
+                    wb.selection().candidates = std::move(*shared);
                 };
             },
             [&wb](const std::string& why) { wb.error("Cannot find candidates: " + why); },
             wb.now());
     }
 
-    void clear(Workbench& wb) {
-        wb.candidatePreview.reset();
+    void clear(PanelContext& wb) {
+        wb.selection().candidates.reset();
         m_accepted.clear();
     }
 
-    void accept(Workbench& wb, int k) {
-        const auto& cand = wb.candidatePreview->set.candidates[static_cast<std::size_t>(k)];
+    void accept(PanelContext& wb, int k) {
+        const auto& cand = wb.selection().candidates->set.candidates[static_cast<std::size_t>(k)];
         const std::string name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
         wb.emit({{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}},
                 [this, &wb, k, name] {
                     m_accepted.insert(k);
-                    wb.selectedFaults = {name};
+                    wb.selection().faults = {name};
                 });
     }
 };
@@ -195,7 +195,7 @@ class FaultCandidatesSection {
 void addFaultCandidatesSection(PanelExtensions& extensions) {
     auto section = std::make_shared<FaultCandidatesSection>();
     extensions.faultSections.push_back(
-        {"Candidates", [section](Workbench& wb) { section->draw(wb); }, true});
+        {"Candidates", [section](PanelContext& wb) { section->draw(wb); }, true});
 }
 
 } // namespace faultline::ui

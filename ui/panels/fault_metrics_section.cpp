@@ -7,7 +7,7 @@
 #include "core/session/session.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/series_plot.hpp"
-#include "ui/workbench/fault_metrics_cache.hpp"
+#include "ui/context/fault_metrics_cache.hpp"
 
 #include <imgui.h>
 
@@ -50,7 +50,7 @@ std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* 
 
 class FaultMetricsSection {
   public:
-    void draw(Workbench& wb) {
+    void draw(PanelContext& wb) {
         const core::SessionState& s = wb.state();
         auto ds = wb.dataset();
         if (!ds) {
@@ -64,9 +64,9 @@ class FaultMetricsSection {
         // The faults on show, in table order.
         std::vector<const core::Fault*> shown;
         for (const auto& f : s.faults)
-            if (wb.selectedFaults.empty() || wb.selectedFaults.count(f.name))
+            if (wb.selection().faults.empty() || wb.selection().faults.count(f.name))
                 shown.push_back(&f);
-        const bool all = wb.selectedFaults.empty();
+        const bool all = wb.selection().faults.empty();
         const std::size_t total = shown.size();
         if (shown.size() > kMaxLines)
             shown.resize(kMaxLines);
@@ -211,7 +211,7 @@ class FaultMetricsSection {
     // Tracks of the faults over every frame (candidates as fault.candidates' defaults, of the
     // visible spheres as the session's boxes, thresholds and fault filter say), in the
     // background; their events become the plot's marks.
-    void findEvents(Workbench& wb, const std::shared_ptr<core::Dataset>& ds,
+    void findEvents(PanelContext& wb, const std::shared_ptr<core::Dataset>& ds,
                     std::span<const core::Fault* const> shown, const std::string& key) {
         std::vector<core::Fault> faults;
         for (const core::Fault* f : shown)
@@ -279,7 +279,7 @@ class FaultMetricsSection {
     }
 
     // "F1  44.2 .. 47.9" per fault: the metric's range over the frames where it is defined.
-    void drawRanges(Workbench& wb, const std::vector<const core::Fault*>& shown) {
+    void drawRanges(PanelContext& wb, const std::vector<const core::Fault*>& shown) {
         for (std::size_t k = 0; k < shown.size(); ++k) {
             if (m_values[k].empty())
                 continue;
@@ -319,7 +319,7 @@ class FaultMetricsSection {
 void addFaultMetricsSection(PanelExtensions& extensions) {
     auto section = std::make_shared<FaultMetricsSection>();
     extensions.faultSections.push_back(
-        {"Metrics over time", [section](Workbench& wb) { section->draw(wb); }, true});
+        {"Metrics over time", [section](PanelContext& wb) { section->draw(wb); }, true});
 }
 
 } // namespace faultline::ui

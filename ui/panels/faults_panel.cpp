@@ -28,18 +28,18 @@ class FaultsPanel final : public Panel {
     const char* id() const override { return panel_ids::kFaults; }
     const char* title() const override { return "Faults"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const core::SessionState& s = wb.state();
         const ViewDisplay* main = wb.mainDisplay();
         const bool haveVisible =
             main && main->frame && main->visibility && main->visibility->visibleCount > 0;
-        auto& selected = wb.selectedFaults;
+        auto& selected = wb.selection().faults;
 
         ImGui::BeginDisabled(!haveVisible);
         if (ImGui::Button("New from visible")) {
             const std::string name = nextFaultName(s);
             wb.emit({{"op", "fault.create"}, {"name", name}, {"from", "visible"}},
-                    [&wb, name] { wb.selectedFaults = {name}; });
+                    [&wb, name] { wb.selection().faults = {name}; });
         }
         wb.mark("faults.create");
         ImGui::EndDisabled();
@@ -55,7 +55,7 @@ class FaultsPanel final : public Panel {
                     names.push_back(f.name);
             const std::string into = names.front();
             wb.emit({{"op", "fault.merge"}, {"names", names}, {"into", into}},
-                    [&wb, into] { wb.selectedFaults = {into}; });
+                    [&wb, into] { wb.selection().faults = {into}; });
         }
         ImGui::EndDisabled();
         flowSameLine(buttonWidth("Split"));
@@ -64,7 +64,7 @@ class FaultsPanel final : public Panel {
             const std::string name = *selected.begin();
             const bool hadSurface = wb.state().surface(name) != nullptr;
             wb.emit({{"op", "fault.split"}, {"name", name}}, [&wb, name, hadSurface] {
-                wb.selectedFaults = {name + ".1"};
+                wb.selection().faults = {name + ".1"};
                 int pieces = 0;
                 while (wb.state().fault(name + "." + std::to_string(pieces + 1)))
                     ++pieces;
@@ -143,9 +143,9 @@ class FaultsPanel final : public Panel {
     }
 
   private:
-    void drawTable(Workbench& wb) {
+    void drawTable(PanelContext& wb) {
         const core::SessionState& s = wb.state();
-        auto& selected = wb.selectedFaults;
+        auto& selected = wb.selection().faults;
         const auto& extra = wb.extensions().faultColumns;
         const int columns = 4 + static_cast<int>(extra.size());
         const float rowH = ImGui::GetFrameHeightWithSpacing();
@@ -213,7 +213,7 @@ class FaultsPanel final : public Panel {
     }
 
     // A colour square; clicking opens a palette and a picker (committed when the popup closes).
-    void drawSwatch(Workbench& wb, const core::Fault& f) {
+    void drawSwatch(PanelContext& wb, const core::Fault& f) {
         const ImVec4 c(f.color[0], f.color[1], f.color[2], 1.0f);
         if (ImGui::ColorButton("##color", c, ImGuiColorEditFlags_NoTooltip,
                                ImVec2(ImGui::GetFrameHeight(), ImGui::GetFrameHeight()))) {
@@ -244,7 +244,7 @@ class FaultsPanel final : public Panel {
         }
     }
 
-    void drawDetails(Workbench& wb, const core::Fault& f, bool haveVisible) {
+    void drawDetails(PanelContext& wb, const core::Fault& f, bool haveVisible) {
         ImGui::Spacing();
         sectionHeader("Fault \"" + f.name + "\"");
         if (m_editFor != f.name) {
@@ -260,7 +260,7 @@ class FaultsPanel final : public Panel {
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != f.name) {
             const std::string next = m_name;
             wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
-                    [&wb, next] { wb.selectedFaults = {next}; });
+                    [&wb, next] { wb.selection().faults = {next}; });
         }
         wb.mark("faults.name");
         ImGui::AlignTextToFramePadding();

@@ -3,7 +3,7 @@
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include "core/selection/histogram.hpp"
 
@@ -34,7 +34,7 @@ class HistogramsPanel final : public Panel {
     const char* id() const override { return panel_ids::kHistograms; }
     const char* title() const override { return "Histograms"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const ViewDisplay* main = wb.mainDisplay();
         const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
         if (wb.dataset() != m_dataset) {
@@ -97,7 +97,7 @@ class HistogramsPanel final : public Panel {
         ImGui::TextDisabled("%s", label);
     }
 
-    std::vector<std::string> chosenVariables(Workbench& wb, const core::Frame& frame) {
+    std::vector<std::string> chosenVariables(PanelContext& wb, const core::Frame& frame) {
         const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
         std::vector<std::string> out;
         if (s && s->contains("variables") && (*s)["variables"].is_array()) {
@@ -131,13 +131,13 @@ class HistogramsPanel final : public Panel {
     std::vector<std::string> m_default; // the default list, and the dataset it was chosen for
     const void* m_defaultFor = nullptr;
 
-    static bool settingsLog(Workbench& wb) {
+    static bool settingsLog(PanelContext& wb) {
         // Log by default: DEM variables (broken bonds, strain) are strongly skewed.
         const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
         return !(s && s->contains("log") && (*s)["log"].is_boolean()) || (*s)["log"].get<bool>();
     }
 
-    static void saveSettings(Workbench& wb, const std::vector<std::string>& vars, bool log) {
+    static void saveSettings(PanelContext& wb, const std::vector<std::string>& vars, bool log) {
         core::Json& s = wb.layout().panelSettings(panel_ids::kHistograms);
         s["variables"] = vars;
         s["log"] = log;
@@ -171,7 +171,7 @@ class HistogramsPanel final : public Panel {
     }
 
     // Draws one histogram; false when its close button was pressed.
-    bool drawOne(Workbench& wb, const core::Frame& frame, const ViewDisplay& main, const std::string& var, bool logScale) {
+    bool drawOne(PanelContext& wb, const core::Frame& frame, const ViewDisplay& main, const std::string& var, bool logScale) {
         const float scale = wb.scale();
         const core::Histogram* h = histogramFor(frame, main, var);
         const auto info = wb.columns().info(main.frame, var);

@@ -1,7 +1,7 @@
 // The workbench's panels (one class per file in ui/panels/), made in the order of panel_ids.
 #pragma once
 
-#include "ui/workbench/workbench.hpp"
+#include "ui/context/panel_context.hpp"
 
 #include <memory>
 #include <vector>

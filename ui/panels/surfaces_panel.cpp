@@ -5,7 +5,7 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/session/fault_surface_request.hpp"
@@ -62,7 +62,7 @@ class SurfacesPanel final : public Panel {
     const char* id() const override { return panel_ids::kSurfaces; }
     const char* title() const override { return "Surfaces"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const core::SessionState& s = wb.state();
         const ViewDisplay* main = wb.mainDisplay();
         const std::size_t frame = main ? main->shownFrame : 0;
@@ -92,7 +92,7 @@ class SurfacesPanel final : public Panel {
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
     // frame, found in the background (about 600 field sums over all of them). Without one (no
     // member in the frame) `cmd` goes as it is, unless it asks for nothing else.
-    void emitWithWrappingIso(Workbench& wb, const std::string& source,
+    void emitWithWrappingIso(PanelContext& wb, const std::string& source,
                              const core::SurfaceSettings& settings, core::Json cmd,
                              bool onlyIso = false) {
         const ViewDisplay* main = wb.mainDisplay();
@@ -121,10 +121,10 @@ class SurfacesPanel final : public Panel {
             wb.now());
     }
 
-    std::string currentFault(Workbench& wb, const core::SessionState& s) {
+    std::string currentFault(PanelContext& wb, const core::SessionState& s) {
         // A fault picked in the Faults panel shows its settings (once: a click here wins).
         const std::string picked =
-            wb.selectedFaults.size() == 1 ? *wb.selectedFaults.begin() : std::string();
+            wb.selection().faults.size() == 1 ? *wb.selection().faults.begin() : std::string();
         if (picked != m_selected) {
             m_selected = picked;
             if (s.fault(picked))
@@ -137,7 +137,7 @@ class SurfacesPanel final : public Panel {
         return m_fault;
     }
 
-    void drawTable(Workbench& wb, const core::SessionState& s, std::size_t frame) {
+    void drawTable(PanelContext& wb, const core::SessionState& s, std::size_t frame) {
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingStretchProp;
         const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size() + 1, 6) + 1);
@@ -155,7 +155,7 @@ class SurfacesPanel final : public Panel {
         ImGui::EndTable();
     }
 
-    void drawRow(Workbench& wb, const core::SessionState& s, std::size_t frame,
+    void drawRow(PanelContext& wb, const core::SessionState& s, std::size_t frame,
                  const std::string& name, const std::array<float, 3>& color) {
         const bool visibleSpheres = core::isVisibleSpheres(name);
         ImGui::PushID(name.c_str());
@@ -215,14 +215,14 @@ class SurfacesPanel final : public Panel {
         ImGui::PopID();
     }
 
-    static SurfaceStatus statusOf(Workbench& wb, const core::SessionState& s,
+    static SurfaceStatus statusOf(PanelContext& wb, const core::SessionState& s,
                                   const std::string& name, std::size_t frame) {
         const ViewDisplay* main = wb.mainDisplay();
         return wb.surfaces().status(s, name, frame, main ? main->frame : nullptr,
                                     main ? main->visibility : nullptr);
     }
 
-    void drawSettings(Workbench& wb, const core::SessionState& s, const std::string& fault,
+    void drawSettings(PanelContext& wb, const core::SessionState& s, const std::string& fault,
                       std::size_t frame) {
         core::SurfaceSettings st;
         st.fault = fault;
@@ -369,7 +369,7 @@ class SurfacesPanel final : public Panel {
     // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and
     // the reach w within which a voxel takes a sphere's colour.
     template <typename Set>
-    void drawColour(Workbench& wb, const core::SessionState& s, const core::SurfaceSettings& st,
+    void drawColour(PanelContext& wb, const core::SessionState& s, const core::SurfaceSettings& st,
                     const Set& set) {
         const ViewDisplay* main = wb.mainDisplay();
         const float w = 170 * wb.scale();
@@ -437,7 +437,7 @@ class SurfacesPanel final : public Panel {
         }
     }
 
-    static std::string exportFolder(Workbench& wb) {
+    static std::string exportFolder(PanelContext& wb) {
         const auto& paths = wb.state().dataPaths;
         return paths.empty() ? std::string()
                              : std::filesystem::path(paths.front()).parent_path().string();

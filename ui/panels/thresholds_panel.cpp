@@ -4,7 +4,7 @@
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/bound_input.hpp"
 #include "ui/widgets/range_slider.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <imgui.h>
 
@@ -20,7 +20,7 @@ class ThresholdsPanel final : public Panel {
     const char* id() const override { return panel_ids::kThresholds; }
     const char* title() const override { return "Thresholds"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const ViewDisplay* main = wb.mainDisplay();
         const core::Frame* frame = main && main->frame ? main->frame.get() : nullptr;
         const float scale = wb.scale();

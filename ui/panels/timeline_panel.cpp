@@ -21,7 +21,7 @@ class TimelinePanel final : public Panel {
     const char* id() const override { return panel_ids::kTimeline; }
     const char* title() const override { return "Timeline"; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         auto ds = wb.dataset();
         Playback& pb = wb.playback();
         const std::size_t count = ds ? ds->frameCount() : 0;
@@ -91,7 +91,7 @@ class TimelinePanel final : public Panel {
     }
 
   private:
-    void drawScrubber(Workbench& wb, std::size_t count, std::size_t shown) {
+    void drawScrubber(PanelContext& wb, std::size_t count, std::size_t shown) {
         const float w = std::max(40.0f, ImGui::GetContentRegionAvail().x);
         const float h = ImGui::GetFrameHeight();
         const ImVec2 p0 = ImGui::GetCursorScreenPos();

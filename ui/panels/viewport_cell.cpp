@@ -6,7 +6,7 @@
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -38,7 +38,7 @@ double sceneRadius(const ViewDisplay& d) { return d.frame ? d.sceneRadius : 1.0;
 
 } // namespace
 
-void ViewportCells::emitForViews(Workbench& wb, const std::function<void(core::Json&)>& fill) {
+void ViewportCells::emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill) {
     core::Json batch = core::Json::array();
     bool mainDone = false;
     for (const auto& v : wb.state().views) {
@@ -56,7 +56,7 @@ void ViewportCells::emitForViews(Workbench& wb, const std::function<void(core::J
         wb.emit({{"op", "batch"}, {"commands", batch}});
 }
 
-void ViewportCells::presetAll(Workbench& wb, const char* preset) {
+void ViewportCells::presetAll(PanelContext& wb, const char* preset) {
     // Looking from another side changes what fits: each view is fitted again to its visible
     // spheres (as Fit visible does), so the model is never cropped by the old zoom.
     core::CameraState p;
@@ -68,11 +68,11 @@ void ViewportCells::presetAll(Workbench& wb, const char* preset) {
     });
 }
 
-void ViewportCells::fitAll(Workbench& wb) {
+void ViewportCells::fitAll(PanelContext& wb) {
     emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
 }
 
-void ViewportCells::fitVisibleInto(Workbench& wb, core::Json& cmd, const core::CameraState* orientation) {
+void ViewportCells::fitVisibleInto(PanelContext& wb, core::Json& cmd, const core::CameraState* orientation) {
     const std::string name = cmd["view"].get<std::string>();
     const ViewDisplay* d = wb.view(name);
     const core::ViewState* v = wb.state().view(name);
@@ -89,11 +89,11 @@ void ViewportCells::fitVisibleInto(Workbench& wb, core::Json& cmd, const core::C
     cmd["distance"] = c.distance;
 }
 
-void ViewportCells::fitVisible(Workbench& wb) {
+void ViewportCells::fitVisible(PanelContext& wb) {
     emitForViews(wb, [&wb, this](core::Json& cmd) { fitVisibleInto(wb, cmd, nullptr); });
 }
 
-void ViewportCells::setOrthographic(Workbench& wb, bool ortho) {
+void ViewportCells::setOrthographic(PanelContext& wb, bool ortho) {
     emitForViews(wb, [&](core::Json& cmd) {
         cmd["orthographic"] = ortho;
         // Keep the display's fitted distance instead of "unset".
@@ -102,7 +102,7 @@ void ViewportCells::setOrthographic(Workbench& wb, bool ortho) {
     });
 }
 
-void ViewportCells::draw(Workbench& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size) {
+void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size) {
     const ViewDisplay* dp = wb.view(view.name);
     static const ViewDisplay kEmpty;
     const ViewDisplay& d = dp ? *dp : kEmpty;
@@ -151,7 +151,7 @@ void ViewportCells::draw(Workbench& wb, const core::ViewState& view, ImVec2 pos,
     ImGui::PopID();
 }
 
-void ViewportCells::drawHeader(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width) {
+void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width) {
     const float scale = wb.scale();
     const float h = ImGui::GetFrameHeight() + 6 * scale;
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -227,7 +227,7 @@ constexpr const char* kSelectHelp =
     "Ctrl+drag: take them out of it. Shift+drag: a new fault.\n"
     "A click toggles one sphere; right drag pans.";
 
-void ViewportCells::drawToolButtons(Workbench& wb) {
+void ViewportCells::drawToolButtons(PanelContext& wb) {
     static const struct {
         ViewportTool tool;
         const char* label;
@@ -242,11 +242,11 @@ void ViewportCells::drawToolButtons(Workbench& wb) {
     };
     ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(1, ImGui::GetStyle().ItemSpacing.y));
     for (const auto& t : kTools) {
-        const bool on = wb.viewportTool == t.tool;
+        const bool on = wb.selection().tool == t.tool;
         if (on)
             ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetColorU32(ImGuiCol_ButtonActive));
         if (ImGui::Button(t.label))
-            wb.viewportTool = t.tool;
+            wb.selection().tool = t.tool;
         if (on)
             ImGui::PopStyleColor();
         wb.mark(std::string("viewports.tool.") + t.mark);
@@ -258,7 +258,7 @@ void ViewportCells::drawToolButtons(Workbench& wb) {
     ImGui::PopStyleVar();
 }
 
-void ViewportCells::drawFramePopup(Workbench& wb, const core::ViewState& view) {
+void ViewportCells::drawFramePopup(PanelContext& wb, const core::ViewState& view) {
     if (!ImGui::BeginPopup("##framepopup"))
         return;
     ImGui::TextUnformatted("This view shows");
@@ -277,7 +277,7 @@ void ViewportCells::drawFramePopup(Workbench& wb, const core::ViewState& view) {
     ImGui::EndPopup();
 }
 
-void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d) {
+void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d) {
     if (!ImGui::BeginPopup("##colourpopup"))
         return;
     ImGui::TextDisabled("Colour by");
@@ -321,7 +321,7 @@ void ViewportCells::drawColourPopup(Workbench& wb, const core::ViewState& view, 
 }
 
 // Difference colouring: the variable's change, or the distance moved, since a reference frame.
-void ViewportCells::drawDifference(Workbench& wb, const core::ViewState& view) {
+void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view) {
     using Mode = core::ColorDifference::Mode;
     ImGui::Separator();
     ImGui::TextDisabled("Show");
@@ -361,7 +361,7 @@ void ViewportCells::drawDifference(Workbench& wb, const core::ViewState& view) {
         since({{"op", "color.set"}, {"view", view.name}});
 }
 
-void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {
+void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {
     const ImGuiIO& io = ImGui::GetIO();
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
@@ -369,7 +369,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
 
     // Which face handle of the selected box the mouse is over: a ray from the eye through the
     // cursor against the handle spheres the renderer draws (core/view/box_handles).
-    const core::CuttingBox* box = wb.editBoxInViewport ? wb.state().box(wb.selectedBox) : nullptr;
+    const core::CuttingBox* box = wb.selection().editBoxInView ? wb.state().box(wb.selection().box) : nullptr;
     auto rayAt = [&](ImVec2 mouse, const core::CameraState& cam) {
         const glm::dvec2 ndc((mouse.x - pos.x) / size.x * 2.0 - 1.0, 1.0 - (mouse.y - pos.y) / size.y * 2.0);
         return core::cameraRay(toRenderCamera(cam), ndc, aspect);
@@ -396,7 +396,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
         const bool otherButton = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
                                  ImGui::IsMouseDown(ImGuiMouseButton_Middle);
         const bool panButton =
-            otherButton || (io.KeyShift && wb.viewportTool == ViewportTool::Orbit);
+            otherButton || (io.KeyShift && wb.selection().tool == ViewportTool::Orbit);
         if (!otherButton && m_selection.press(wb, view.name, io.MousePos)) {
             m_drag.mode = DragMode::Select;
         } else if (!panButton && m_hoverFace >= 0 && m_hoverView == view.name && box) {
@@ -459,9 +459,9 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     if (hovered && m_hoverFace >= 0 && m_drag.mode == DragMode::None)
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     if (m_drag.mode == DragMode::BoxFace)
-        wb.activeBoxFace = m_drag.face;
+        wb.selection().activeBoxFace = m_drag.face;
     else if (hovered)
-        wb.activeBoxFace = m_hoverFace;
+        wb.selection().activeBoxFace = m_hoverFace;
 
     // Wheel zoom: previewed; one camera.set once the wheel has rested.
     if (hovered && io.MouseWheel != 0 && d.frame) {
@@ -483,7 +483,7 @@ void ViewportCells::interact(Workbench& wb, const core::ViewState& view, const V
     }
 }
 
-void ViewportCells::drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
+void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
                                  ImVec2 pos, ImVec2 size) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float scale = wb.scale();
@@ -517,12 +517,12 @@ void ViewportCells::drawOverlays(Workbench& wb, const core::ViewState& view, con
     for (const auto& b : wb.displayBoxes()) {
         if (!drawBoxes)
             break;
-        if (!b.enabled && b.name != wb.selectedBox)
+        if (!b.enabled && b.name != wb.selection().box)
             continue;
-        const bool sel = b.name == wb.selectedBox;
+        const bool sel = b.name == wb.selection().box;
         const ImU32 col = b.mode == core::BoxMode::Keep ? IM_COL32(40, 140, 70, sel ? 255 : 170) : IM_COL32(200, 70, 40, sel ? 255 : 170);
         boxEdges(b.min, b.max, col, (sel ? 2.0f : 1.2f) * scale);
-        if (sel && wb.editBoxInViewport)
+        if (sel && wb.selection().editBoxInView)
             for (int f = 0; f < 6; ++f)
                 if (auto p = px(faceCentre(b.min, b.max, f))) {
                     const bool lit = (m_hoverFace == f && m_hoverView == view.name) || (m_drag.mode == DragMode::BoxFace && m_drag.face == f);

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "ui/panels/viewport_selection.hpp"
-#include "ui/workbench/workbench.hpp"
+#include "ui/context/panel_context.hpp"
 
 #include <imgui.h>
 
@@ -16,28 +16,28 @@ namespace faultline::ui {
 
 class ViewportCells {
   public:
-    void draw(Workbench& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size);
+    void draw(PanelContext& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size);
     // Camera commands for every view at once (one undo step): linked views follow the main one.
-    void presetAll(Workbench& wb, const char* preset);
-    void fitAll(Workbench& wb);
-    void fitVisible(Workbench& wb); // to the visible spheres (boxes, thresholds, faults applied)
+    void presetAll(PanelContext& wb, const char* preset);
+    void fitAll(PanelContext& wb);
+    void fitVisible(PanelContext& wb); // to the visible spheres (boxes, thresholds, faults applied)
     // Sets a camera.set's target and distance to fit the view's visible spheres, seen with
     // `orientation`'s azimuth and elevation (the view's own when null).
-    void fitVisibleInto(Workbench& wb, core::Json& cmd, const core::CameraState* orientation);
+    void fitVisibleInto(PanelContext& wb, core::Json& cmd, const core::CameraState* orientation);
     // Orbit / Rectangle / Lasso: what a left drag does in every view (the tool is the workbench's).
-    void drawToolButtons(Workbench& wb);
-    void setOrthographic(Workbench& wb, bool ortho);
+    void drawToolButtons(PanelContext& wb);
+    void setOrthographic(PanelContext& wb, bool ortho);
 
   private:
-    void drawHeader(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
-    void drawColourPopup(Workbench& wb, const core::ViewState& view, const ViewDisplay& d);
-    void drawDifference(Workbench& wb, const core::ViewState& view);
-    void drawFramePopup(Workbench& wb, const core::ViewState& view);
+    void drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
+    void drawColourPopup(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d);
+    void drawDifference(PanelContext& wb, const core::ViewState& view);
+    void drawFramePopup(PanelContext& wb, const core::ViewState& view);
 
-    void interact(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
-    void drawOverlays(Workbench& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
+    void interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
+    void drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
                       ImVec2 pos, ImVec2 size);
-    void emitForViews(Workbench& wb, const std::function<void(core::Json&)>& fill);
+    void emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill);
 
     enum class DragMode { None, Orbit, Pan, BoxFace, Select };
     struct Drag {

@@ -20,9 +20,9 @@ core::ScreenMapping mappingOf(const ViewDisplay& d, const core::CameraState& cam
 
 } // namespace
 
-bool ViewportSelection::press(Workbench& wb, const std::string& view, ImVec2 mouse) {
+bool ViewportSelection::press(PanelContext& wb, const std::string& view, ImVec2 mouse) {
     const ImGuiIO& io = ImGui::GetIO();
-    m_tool = wb.viewportTool;
+    m_tool = wb.selection().tool;
     if (m_tool == ViewportTool::Orbit && !io.KeyCtrl)
         return false;
     m_active = true;
@@ -54,7 +54,7 @@ bool ViewportSelection::isClick() const {
     return true;
 }
 
-void ViewportSelection::release(Workbench& wb, const ViewDisplay& d, ImVec2 mouse, ImVec2 pos,
+void ViewportSelection::release(PanelContext& wb, const ViewDisplay& d, ImVec2 mouse, ImVec2 pos,
                                 ImVec2 size) {
     if (!m_active)
         return;
@@ -65,13 +65,13 @@ void ViewportSelection::release(Workbench& wb, const ViewDisplay& d, ImVec2 mous
     const bool click = isClick();
     std::vector<std::int64_t> ids =
         click ? idUnder(d, m_points.front(), pos, size) : idsInShape(d, pos, size);
-    const FaultEdit edit = faultEdit(wb.state(), wb.selectedFaults, std::move(ids),
+    const FaultEdit edit = faultEdit(wb.state(), wb.selection().faults, std::move(ids),
                                      click ? FaultEditOp::Toggle : m_op);
     if (!edit.command.is_null()) {
         const std::string next = edit.selectNext;
         wb.emit(edit.command, [&wb, next] {
             if (!next.empty())
-                wb.selectedFaults = {next};
+                wb.selection().faults = {next};
         });
     }
     wb.info(edit.message);
@@ -140,13 +140,13 @@ float memberMarkerRadius(float sphereRadius, float pixelsPerWorld, float uiScale
     return std::clamp(std::isfinite(r) ? r : 1.0f, 1.0f, 3.0f * uiScale);
 }
 
-void ViewportSelection::drawMembers(Workbench& wb, const ViewDisplay& d,
+void ViewportSelection::drawMembers(PanelContext& wb, const ViewDisplay& d,
                                     const core::CameraState& cam, ImVec2 pos, ImVec2 size) const {
-    if (!d.frame || !d.visibility || wb.selectedFaults.size() != 1)
+    if (!d.frame || !d.visibility || wb.selection().faults.size() != 1)
         return;
-    if (wb.viewportTool == ViewportTool::Orbit && !ImGui::GetIO().KeyCtrl)
+    if (wb.selection().tool == ViewportTool::Orbit && !ImGui::GetIO().KeyCtrl)
         return;
-    const core::Fault* f = wb.state().fault(*wb.selectedFaults.begin());
+    const core::Fault* f = wb.state().fault(*wb.selection().faults.begin());
     if (!f)
         return;
     const core::ScreenMapping mapping = mappingOf(d, cam, size);

@@ -7,7 +7,7 @@
 
 #include "core/view/sphere_picker.hpp"
 #include "ui/viewport/fault_edit.hpp"
-#include "ui/workbench/workbench.hpp"
+#include "ui/context/panel_context.hpp"
 
 #include <imgui.h>
 
@@ -27,10 +27,10 @@ class ViewportSelection {
   public:
     // The left button went down in `view`: true when the selection takes this gesture (a
     // selection tool is on, or Ctrl is held).
-    bool press(Workbench& wb, const std::string& view, ImVec2 mouse);
+    bool press(PanelContext& wb, const std::string& view, ImVec2 mouse);
     void drag(ImVec2 mouse, float scale); // while the button is held
     // The button came up: emits the gesture's command. pos/size: the view's image on screen.
-    void release(Workbench& wb, const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
+    void release(PanelContext& wb, const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
     bool active() const { return m_active; }
     const std::string& view() const { return m_view; }
     // A Ctrl+press without a tool that became a drag: the caller orbits instead, as before.
@@ -40,7 +40,7 @@ class ViewportSelection {
     // The rectangle or lasso being drawn.
     void drawOutline(ImDrawList* dl, float scale) const;
     // The selected fault's visible members as dots (while a tool is on or Ctrl is held).
-    void drawMembers(Workbench& wb, const ViewDisplay& d, const core::CameraState& cam, ImVec2 pos,
+    void drawMembers(PanelContext& wb, const ViewDisplay& d, const core::CameraState& cam, ImVec2 pos,
                      ImVec2 size) const;
 
   private:

@@ -29,7 +29,7 @@ class ViewportsPanel final : public Panel {
     const char* title() const override { return "Viewports"; }
     bool padded() const override { return false; }
 
-    void draw(Workbench& wb) override {
+    void draw(PanelContext& wb) override {
         const core::SessionState& s = wb.state();
         const float scale = wb.scale();
         // Toolbar.

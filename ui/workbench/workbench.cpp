@@ -5,7 +5,7 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/orbit_camera.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <imgui.h>
 
@@ -155,7 +155,7 @@ void Workbench::frame(double now) {
     m_now = now;
     m_emittedLog.clear();
     m_previews.clear();
-    activeBoxFace = -1;
+    m_selection.activeBoxFace = -1;
     m_jobs.poll();
     syncWithSession();
     updatePlayback();
@@ -282,9 +282,9 @@ void Workbench::syncWithSession() {
                   "); using the default layout");
         }
     }
-    if (!selectedBox.empty() && !state().box(selectedBox))
-        selectedBox.clear();
-    std::erase_if(selectedFaults, [&](const std::string& f) { return !state().fault(f); });
+    if (!m_selection.box.empty() && !state().box(m_selection.box))
+        m_selection.box.clear();
+    std::erase_if(m_selection.faults, [&](const std::string& f) { return !state().fault(f); });
     if (m_renderer)
         for (const auto& v : m_views)
             if (!state().view(v.name))
@@ -506,8 +506,8 @@ void Workbench::resolveColors(const core::ViewState& v, ViewDisplay& d, std::siz
 const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const ViewDisplay& d) {
     if (!d.frame)
         return nullptr;
-    if (candidatePreview && v.name == "main" && candidatePreview->frame == d.frame)
-        return &candidatePreview->coloring;
+    if (m_selection.candidates && v.name == "main" && m_selection.candidates->frame == d.frame)
+        return &m_selection.candidates->coloring;
     if (v.colorVariable != kFaultsVariable || d.frame->attribute(kFaultsVariable))
         return nullptr;
     if (m_faultsKeyVersion != m_session.version()) { // hashing every member id: once per change
@@ -562,11 +562,11 @@ void Workbench::renderViews() {
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;
         for (const auto& b : m_displayBoxes)
-            if (b.enabled || b.name == selectedBox) {
-                if (b.name == selectedBox && editBoxInViewport) {
+            if (b.enabled || b.name == m_selection.box) {
+                if (b.name == m_selection.box && m_selection.editBoxInView) {
                     scene.selectedBox = scene.boxes.size();
-                    if (activeBoxFace >= 0)
-                        scene.activeFace = activeBoxFace;
+                    if (m_selection.activeBoxFace >= 0)
+                        scene.activeFace = m_selection.activeBoxFace;
                 }
                 scene.boxes.push_back(b);
             }

@@ -4,21 +4,17 @@
 // while a drag is under way, previews that the views show at once without a command.
 #pragma once
 
-#include "core/faults/candidates.hpp"
 #include "core/model/difference_column_cache.hpp"
 #include "core/session/autosave.hpp"
 #include "core/session/session.hpp"
+#include "ui/context/panel_context.hpp"
 #include "ui/dock/dock_layout.hpp"
 #include "ui/dock/dock_space.hpp"
-#include "ui/viewport/session_figure.hpp"
 #include "ui/viewport/category_colors.hpp"
+#include "ui/viewport/session_figure.hpp"
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/widgets/file_dialog.hpp"
-#include "ui/workbench/frame_columns.hpp"
-#include "ui/workbench/frame_store.hpp"
 #include "ui/widgets/item_registry.hpp"
-#include "ui/workbench/jobs.hpp"
-#include "ui/workbench/surface_store.hpp"
 
 #include <fstream>
 #include <functional>
@@ -31,74 +27,15 @@
 
 namespace faultline::ui {
 
-class Workbench;
-
-class Panel {
-  public:
-    virtual ~Panel() = default;
-    virtual const char* id() const = 0;
-    virtual const char* title() const = 0;
-    virtual void draw(Workbench& wb) = 0;
-    virtual bool padded() const { return true; } // false: content fills the area (viewports)
-};
-
-// Where later features plug into existing panels without editing them (the fault analysis
-// adds per-fault metric columns and a candidates section to the Faults panel).
-struct PanelExtensions {
-    struct Section {
-        std::string title;
-        std::function<void(Workbench&)> draw;
-        bool defaultOpen = false;
-    };
-    struct FaultColumn {
-        std::string title;
-        std::function<void(Workbench&, const core::Fault&)> cell;
-    };
-    std::vector<Section> faultSections;
-    std::vector<FaultColumn> faultColumns;
-};
-
 struct WorkbenchOptions {
     std::string stateDir;  // autosave and the journal of this run; empty: neither is written
     std::string configDir; // recent files; empty: not remembered
     double autosaveSeconds = 60.0;
 };
 
-// What one view shows this frame (after previews, frame loading and camera fitting).
-struct ViewDisplay {
-    std::string name;
-    std::size_t wantedFrame = 0;
-    std::shared_ptr<const core::Frame> frame; // shown; lags wantedFrame while it loads
-    std::size_t shownFrame = 0;
-    ModelBounds bounds;     // of the shown frame (centres widened by the largest radius)
-    double sceneRadius = 1; // half the bounds' diagonal
-    std::shared_ptr<const core::VisibilityResult> visibility;
-    std::uint64_t visibilityKey = 0;
-    core::CameraState camera; // the session's, previewed, fitted when not set yet
-    std::array<double, 2> colorRange{0, 1};
-    // The column shown instead of the variable's (difference or categories; null: the
-    // variable's own, or one colour while a reference frame loads) and what the legend calls it.
-    std::shared_ptr<const core::AttributeColumn> colorColumn;
-    std::string colorTitle;
-    std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
-    std::vector<glm::vec3> palette;    // categories (faults, candidates): colorColumn holds k + 0.5
-    bool loading() const { return !frame || shownFrame != wantedFrame; }
-};
-
-// What a left drag in a view does: orbit the camera, or outline spheres to build a fault.
-enum class ViewportTool { Orbit, Rectangle, Lasso };
-
-// Playing and scrubbing show frames without a command per frame; pausing commits frame.set.
-struct Playback {
-    bool playing = false;
-    double fps = 5.0;
-    bool loop = true;
-    int direction = 1;
-    std::optional<std::size_t> frame; // shown instead of the session's frame
-    double lastStep = 0.0;
-};
-
-class Workbench {
+// The Workbench composes the panels, the dock, the menus and the status bar; panels see it
+// through PanelContext (ui/context/panel_context.hpp).
+class Workbench final : public PanelContext {
   public:
     explicit Workbench(core::Session& session, WorkbenchOptions options = {});
     ~Workbench();
@@ -111,73 +48,55 @@ class Workbench {
     // Draws every view into its texture (after frame(), before ImGui::Render).
     void renderViews();
 
-    // ---- for panels ----
-    core::Session& session() { return m_session; }
-    const core::SessionState& state() const { return m_session.state(); }
-    const std::shared_ptr<core::Dataset>& dataset() const { return m_frames.dataset(); }
-    // `onApplied` runs once the command was applied without error.
-    void emit(core::Json command, std::function<void()> onApplied = {});
-    // A live edit (box.set, threshold.set/add, camera.set, frame.set) shown this frame only;
-    // re-issue it every frame while dragging, emit the command on release.
-    void preview(const std::string& key, core::Json command);
+    // ---- PanelContext ----
+    core::Session& session() override { return m_session; }
+    const core::SessionState& state() const override { return m_session.state(); }
+    const std::shared_ptr<core::Dataset>& dataset() const override { return m_frames.dataset(); }
+    using PanelContext::emit;
+    void emit(core::Json command, std::function<void()> onApplied) override;
+    void preview(const std::string& key, core::Json command) override;
     const std::vector<core::Json>& emittedThisFrame() const { return m_emittedLog; }
 
-    const std::vector<ViewDisplay>& views() const { return m_views; }
-    const ViewDisplay* view(const std::string& name) const;
-    // The frame the main view shows and its visibility (histograms, data panel).
-    const ViewDisplay* mainDisplay() const { return m_views.empty() ? nullptr : &m_views.front(); }
-    std::size_t displayFrame() const; // the current frame, or the one playing
-    // A view's camera turned to show [lo, hi] whole in its image, beside its legend.
+    const std::vector<ViewDisplay>& views() const override { return m_views; }
+    const ViewDisplay* view(const std::string& name) const override;
+    const ViewDisplay* mainDisplay() const override {
+        return m_views.empty() ? nullptr : &m_views.front();
+    }
+    std::size_t displayFrame() const override;
     core::CameraState fitCamera(const core::ViewState& view, core::CameraState camera,
                                 const std::array<double, 3>& lo,
-                                const std::array<double, 3>& hi) const;
-    // Boxes and thresholds as shown (the session's with a drag's preview applied).
-    const std::vector<core::CuttingBox>& displayBoxes() const { return m_displayBoxes; }
+                                const std::array<double, 3>& hi) const override;
+    const std::vector<core::CuttingBox>& displayBoxes() const override { return m_displayBoxes; }
+    // Thresholds as shown (the session's with a drag's preview applied).
     const std::vector<core::VariableThreshold>& displayThresholds() const {
         return m_displayThresholds;
     }
-    FrameStore& frames() { return m_frames; }
-    ColumnCatalog& columns() { return m_columns; }
-    JobRunner& jobs() { return m_jobs; }
-    SurfaceStore& surfaces() { return m_surfaces; }
-    Playback& playback() { return m_playback; }
-    void play();
-    void pause(); // commits the frame shown
-    void stepFrames(long long delta);
-    void jumpToFrame(long long frame);
+    FrameStore& frames() override { return m_frames; }
+    ColumnCatalog& columns() override { return m_columns; }
+    JobRunner& jobs() override { return m_jobs; }
+    SurfaceStore& surfaces() override { return m_surfaces; }
+    Playback& playback() override { return m_playback; }
+    void play() override;
+    void pause() override;
+    void stepFrames(long long delta) override;
+    void jumpToFrame(long long frame) override;
+    UiSelection& selection() override { return m_selection; }
+    const UiSelection& selection() const { return m_selection; }
 
-    DockLayout& layout() { return m_layout; }
-    void commitLayout(); // emits layout.set when the layout differs from the session's
+    DockLayout& layout() override { return m_layout; }
+    void commitLayout() override;
 
-    ItemRegistry& items() { return m_items; }
-    void mark(const std::string& name) { m_items.markLastItem(name); }
-    double now() const { return m_now; }
-    float scale() const { return m_scale; }
+    ItemRegistry& items() override { return m_items; }
+    double now() const override { return m_now; }
+    float scale() const override { return m_scale; }
     void setScale(float s) { m_scale = s; }
-    ViewRenderer* renderer() const { return m_renderer; }
+    ViewRenderer* renderer() const override { return m_renderer; }
     void setRenderer(ViewRenderer* renderer) { m_renderer = renderer; }
 
-    PanelExtensions& extensions() { return m_extensions; }
+    PanelExtensions& extensions() override { return m_extensions; }
 
-    // UI-only selection (not part of the session).
-    std::string selectedBox;
-    bool editBoxInViewport = true;
-    int activeBoxFace = -1; // the face handle under the mouse or dragged (0..5), highlighted
-    std::set<std::string> selectedFaults;
-    // Candidates found in the Faults panel, shown in their colours in the main view until
-    // accepted or cleared (UI only: accepting one is a fault.create).
-    struct CandidatePreview {
-        std::shared_ptr<const core::Frame> frame;
-        std::shared_ptr<const core::VisibilityResult> visibility; // of the main view when found
-        core::CandidateOptions options;
-        core::CandidateSet set;
-        CategoryColoring coloring;
-    };
-    std::optional<CandidatePreview> candidatePreview;
-    ViewportTool viewportTool = ViewportTool::Orbit;
-
-    void info(std::string text);
-    void error(std::string text);
+    void info(std::string text) override;
+    void error(std::string text) override;
     const std::string& lastMessage() const { return m_message; }
     bool lastMessageIsError() const { return m_messageIsError; }
 
@@ -222,13 +141,13 @@ class Workbench {
     const std::string& sessionPath() const { return m_sessionPath; }
     const std::vector<std::string>& recentFiles() const { return m_recent; }
     // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
-    std::size_t frameMemoryBudget() const;
-    void setFrameMemoryBudget(std::size_t bytes);
+    std::size_t frameMemoryBudget() const override;
+    void setFrameMemoryBudget(std::size_t bytes) override;
     void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
     std::optional<std::string> takeScreenshotRequest();
     bool hasScreenshotRequest() const { return m_screenshotPath.has_value(); }
     const std::string& journalPath() const { return m_journalPath; }
-    FileDialog& fileDialog() { return m_dialog; }
+    FileDialog& fileDialog() override { return m_dialog; }
     bool quitRequested() const { return m_quit; }
     // Quit (menu, Ctrl+Q, the window's close button): asks Save / Discard / Cancel first when
     // the session has unsaved changes; quitRequested() turns true once the user chose.
@@ -302,6 +221,7 @@ class Workbench {
     std::vector<std::unique_ptr<Panel>> m_panels;
     ViewRenderer* m_renderer = nullptr;
     PanelExtensions m_extensions;
+    UiSelection m_selection;
     float m_scale = 1.0f;
     double m_now = 0.0;
 

@@ -2,7 +2,7 @@
 #include "ui/workbench/workbench.hpp"
 
 #include "ui/dock/panel_ids.hpp"
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)
 #include <imgui.h>
@@ -108,11 +108,11 @@ void Workbench::handleShortcuts() {
     else if (pressed(GLFW_KEY_F1))
         m_showHelp = true;
     else if (pressed(GLFW_KEY_R))
-        viewportTool = ViewportTool::Rectangle;
+        m_selection.tool = ViewportTool::Rectangle;
     else if (pressed(GLFW_KEY_L))
-        viewportTool = ViewportTool::Lasso;
+        m_selection.tool = ViewportTool::Lasso;
     else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
-        viewportTool = ViewportTool::Orbit;
+        m_selection.tool = ViewportTool::Orbit;
     else if (pressed(GLFW_KEY_F) && dataset())
         emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}}); // 0: fit the model
 }

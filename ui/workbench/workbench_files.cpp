@@ -8,7 +8,7 @@
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/session_json.hpp"
 #include "core/synth/demo_model.hpp"
-#include "ui/workbench/job_interrupter.hpp"
+#include "ui/context/job_interrupter.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "ui/workbench/frame_columns.hpp"
+#include "ui/context/frame_columns.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "ui/workbench/surface_store.hpp"
+#include "ui/context/surface_store.hpp"
 
 #include "core/session/fault_surface_request.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "ui/render/surface_mesh.hpp"
-#include "ui/workbench/job_interrupter.hpp"
+#include "ui/context/job_interrupter.hpp"
 
 #include <algorithm>
 #include <chrono>

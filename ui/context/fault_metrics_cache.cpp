@@ -1,4 +1,4 @@
-#include "ui/workbench/fault_metrics_cache.hpp"
+#include "ui/context/fault_metrics_cache.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "core/surface/interrupter.hpp"
-#include "ui/workbench/jobs.hpp"
+#include "ui/context/jobs.hpp"
 
 #include <algorithm>
 #include <string>

@@ -10,7 +10,7 @@
 #include "core/surface/surface_cache.hpp"
 #include "ui/render/renderer.hpp"
 #include "ui/viewport/view_renderer.hpp"
-#include "ui/workbench/jobs.hpp"
+#include "ui/context/jobs.hpp"
 
 #include <map>
 #include <memory>

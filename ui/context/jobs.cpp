@@ -1,4 +1,4 @@
-#include "ui/workbench/jobs.hpp"
+#include "ui/context/jobs.hpp"
 
 #include <chrono>
 #include <exception>

@@ -5,7 +5,7 @@
 
 #include "core/faults/metrics.hpp"
 #include "core/data/dataset.hpp"
-#include "ui/workbench/jobs.hpp"
+#include "ui/context/jobs.hpp"
 
 #include <cstdint>
 #include <map>

@@ -1,4 +1,4 @@
-#include "ui/workbench/frame_store.hpp"
+#include "ui/context/frame_store.hpp"
 
 #include <chrono>
 
