@@ -176,6 +176,23 @@ class Workbench final : public PanelContext {
     void relocateData(const std::string& pickedFile); // the picked file stands for the data
 
   private:
+    // A keyboard command (workbench_chrome.cpp): shown in the help window and the menus, run
+    // by its keys. Entries without a key are mouse gestures, listed in the help only.
+    struct KeyCommand {
+        const char* id;   // how menus name it ("" for gestures)
+        const char* keys; // as shown: "Ctrl+Shift+O"
+        const char* what;
+        int key = 0;         // GLFW key code (the ImGui back end's key indices); 0: a gesture
+        bool ctrl = false;   // held, or not
+        int shift = -1;      // 1 held, 0 not, -1 either
+        bool repeat = false; // fires again while held
+        void (*run)(Workbench&) = nullptr;
+    };
+    static const std::vector<KeyCommand>& keyCommands();
+    static const char* keysOf(const char* id);
+    void runCommand(const char* id);
+    void openDataDialog();
+    void saveSessionAsDialog();
     void applyPending();
     void syncWithSession();
     void updatePlayback();

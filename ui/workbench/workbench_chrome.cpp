@@ -19,38 +19,6 @@ using core::Json;
 
 namespace {
 
-struct Shortcut {
-    const char* keys;
-    const char* what;
-};
-constexpr Shortcut kShortcuts[] = {
-    {"Ctrl+O", "Open data"},
-    {"Ctrl+Shift+O", "Open a session"},
-    {"Ctrl+S / Ctrl+Shift+S", "Save the session / save as"},
-    {"Ctrl+Z", "Undo"},
-    {"Ctrl+Shift+Z, Ctrl+Y", "Redo"},
-    {"Space", "Play / pause"},
-    {"Left / Right", "Previous / next frame (Shift: 10 frames)"},
-    {"Home / End", "First / last frame"},
-    {"F", "Fit the model in the viewports"},
-    {"F12", "Screenshot of the window (PNG in the working folder)"},
-    {"F1", "This list"},
-    {"Ctrl+Q", "Quit"},
-    {"Left drag in a view", "Orbit"},
-    {"Right or middle drag, Shift+drag", "Pan"},
-    {"Wheel", "Zoom"},
-    {"Ctrl+click a sphere",
-     "Add it to the selected fault, or take it out (a new fault when none is selected)"},
-    {"R / L / Esc", "Rectangle / lasso selection tool / back to orbiting"},
-    {"Drag with a selection tool",
-     "Add the visible spheres inside to the selected fault (a new one if none)"},
-    {"Ctrl+drag / Shift+drag (tool)",
-     "Remove them from the selected fault / make a new fault of them"},
-    {"Click or drag on a metric plot", "Go to that frame (Faults panel, metrics over time)"},
-    {"Drag on a histogram", "Set that variable's threshold (drag the edges to adjust)"},
-    {"Drag a tab", "Move a panel; drop on an edge to split the area"},
-};
-
 std::string stamp() {
     const std::time_t t = std::time(nullptr);
     char buf[32];
@@ -66,55 +34,122 @@ std::string folderOf(const std::string& path) {
 
 } // namespace
 
+// Every keyboard command: the keys as the help window and the menus show them, what it does,
+// and what it runs. Mouse gestures (no key) are in the help window only. The handler, the help
+// and the menus all read this one table, so a shortcut cannot be documented one way and work
+// another.
+const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
+    using W = Workbench;
+    static const std::vector<KeyCommand> commands = {
+        {"open-data", "Ctrl+O", "Open data", GLFW_KEY_O, true, 0, false,
+         [](W& w) { w.openDataDialog(); }},
+        {"open-session", "Ctrl+Shift+O", "Open a session", GLFW_KEY_O, true, 1, false,
+         [](W& w) {
+             w.m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
+                             {".faultline.json"}, folderOf(w.m_sessionPath));
+         }},
+        {"save", "Ctrl+S", "Save the session", GLFW_KEY_S, true, 0, false,
+         [](W& w) { w.m_sessionPath.empty() ? w.saveSessionAsDialog() : w.saveSession(); }},
+        {"save-as", "Ctrl+Shift+S", "Save the session as", GLFW_KEY_S, true, 1, false,
+         [](W& w) { w.saveSessionAsDialog(); }},
+        {"undo", "Ctrl+Z", "Undo", GLFW_KEY_Z, true, 0, false,
+         [](W& w) { w.emit({{"op", "undo"}}); }},
+        {"redo", "Ctrl+Shift+Z", "Redo", GLFW_KEY_Z, true, 1, false,
+         [](W& w) { w.emit({{"op", "redo"}}); }},
+        {"redo-y", "Ctrl+Y", "Redo", GLFW_KEY_Y, true, -1, false,
+         [](W& w) { w.emit({{"op", "redo"}}); }},
+        {"quit", "Ctrl+Q", "Quit", GLFW_KEY_Q, true, -1, false, [](W& w) { w.requestQuit(); }},
+        {"play", "Space", "Play / pause", GLFW_KEY_SPACE, false, -1, false,
+         [](W& w) { w.m_playback.playing ? w.pause() : w.play(); }},
+        {"previous", "Left", "Previous frame", GLFW_KEY_LEFT, false, 0, true,
+         [](W& w) { w.stepFrames(-1); }},
+        {"next", "Right", "Next frame", GLFW_KEY_RIGHT, false, 0, true,
+         [](W& w) { w.stepFrames(1); }},
+        {"back-10", "Shift+Left", "10 frames back", GLFW_KEY_LEFT, false, 1, true,
+         [](W& w) { w.stepFrames(-10); }},
+        {"forward-10", "Shift+Right", "10 frames on", GLFW_KEY_RIGHT, false, 1, true,
+         [](W& w) { w.stepFrames(10); }},
+        {"first", "Home", "First frame", GLFW_KEY_HOME, false, -1, false,
+         [](W& w) { w.jumpToFrame(0); }},
+        {"last", "End", "Last frame", GLFW_KEY_END, false, -1, false,
+         [](W& w) {
+             w.jumpToFrame(w.dataset() ? static_cast<long long>(w.dataset()->frameCount()) - 1
+                                       : 0);
+         }},
+        {"fit", "F", "Fit the model in the viewports", GLFW_KEY_F, false, -1, false,
+         [](W& w) {
+             if (w.dataset()) // distance 0: fit the model
+                 w.emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}});
+         }},
+        {"screenshot", "F12", "Screenshot of the window (PNG in the working folder)",
+         GLFW_KEY_F12, false, -1, false,
+         [](W& w) {
+             w.requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
+         }},
+        {"help", "F1", "This list", GLFW_KEY_F1, false, -1, false,
+         [](W& w) { w.m_showHelp = true; }},
+        {"tool-rectangle", "R", "Rectangle selection tool", GLFW_KEY_R, false, -1, false,
+         [](W& w) { w.m_selection.tool = ViewportTool::Rectangle; }},
+        {"tool-lasso", "L", "Lasso selection tool", GLFW_KEY_L, false, -1, false,
+         [](W& w) { w.m_selection.tool = ViewportTool::Lasso; }},
+        {"tool-orbit", "Esc", "Back to orbiting", GLFW_KEY_ESCAPE, false, -1, false,
+         [](W& w) { w.m_selection.tool = ViewportTool::Orbit; }},
+        // Mouse gestures: the help window lists them.
+        {"", "Left drag in a view", "Orbit"},
+        {"", "Right or middle drag, Shift+drag", "Pan"},
+        {"", "Wheel", "Zoom"},
+        {"", "Ctrl+click a sphere",
+         "Add it to the selected fault, or take it out (a new fault when none is selected)"},
+        {"", "Drag with a selection tool",
+         "Add the visible spheres inside to the selected fault (a new one if none)"},
+        {"", "Ctrl+drag / Shift+drag (tool)",
+         "Remove them from the selected fault / make a new fault of them"},
+        {"", "Click or drag on a metric plot",
+         "Go to that frame (Faults panel, metrics over time)"},
+        {"", "Drag on a histogram", "Set that variable's threshold (drag the edges to adjust)"},
+        {"", "Drag a tab", "Move a panel; drop on an edge to split the area"},
+    };
+    return commands;
+}
+
+const char* Workbench::keysOf(const char* id) {
+    for (const KeyCommand& c : keyCommands())
+        if (std::string_view(c.id) == id)
+            return c.keys;
+    return nullptr;
+}
+
+void Workbench::runCommand(const char* id) {
+    for (const KeyCommand& c : keyCommands())
+        if (std::string_view(c.id) == id && c.run) {
+            c.run(*this);
+            return;
+        }
+}
+
+void Workbench::openDataDialog() {
+    m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open,
+                  "open-data", {},
+                  folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front()));
+}
+
+void Workbench::saveSessionAsDialog() {
+    m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
+                  {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
+}
+
 void Workbench::handleShortcuts() {
     const ImGuiIO& io = ImGui::GetIO();
     if (io.WantTextInput || ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId))
         return;
-    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
-    auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
-    auto repeat = [](int key) { return ImGui::IsKeyPressed(key, true); };
-    if (ctrl && pressed(GLFW_KEY_Z))
-        emit({{"op", shift ? "redo" : "undo"}});
-    else if (ctrl && pressed(GLFW_KEY_Y))
-        emit({{"op", "redo"}});
-    else if (ctrl && pressed(GLFW_KEY_O))
-        shift ? m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
-                              {".faultline.json"}, folderOf(m_sessionPath))
-              : m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)",
-                              FileDialog::Mode::Open, "open-data", {},
-                              folderOf(state().dataPaths.empty() ? std::string()
-                                                                 : state().dataPaths.front()));
-    else if (ctrl && pressed(GLFW_KEY_S))
-        shift || m_sessionPath.empty()
-            ? m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
-                            {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json")
-            : saveSession();
-    else if (ctrl && pressed(GLFW_KEY_Q))
-        requestQuit();
-    else if (ctrl)
-        return;
-    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space)))
-        m_playback.playing ? pause() : play();
-    else if (repeat(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
-        stepFrames(shift ? -10 : -1);
-    else if (repeat(ImGui::GetKeyIndex(ImGuiKey_RightArrow)))
-        stepFrames(shift ? 10 : 1);
-    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Home)))
-        jumpToFrame(0);
-    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_End)))
-        jumpToFrame(dataset() ? static_cast<long long>(dataset()->frameCount()) - 1 : 0);
-    else if (pressed(GLFW_KEY_F12))
-        requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
-    else if (pressed(GLFW_KEY_F1))
-        m_showHelp = true;
-    else if (pressed(GLFW_KEY_R))
-        m_selection.tool = ViewportTool::Rectangle;
-    else if (pressed(GLFW_KEY_L))
-        m_selection.tool = ViewportTool::Lasso;
-    else if (pressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
-        m_selection.tool = ViewportTool::Orbit;
-    else if (pressed(GLFW_KEY_F) && dataset())
-        emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}}); // 0: fit the model
+    for (const KeyCommand& c : keyCommands()) {
+        if (!c.key || c.ctrl != io.KeyCtrl || (c.shift >= 0 && (c.shift == 1) != io.KeyShift))
+            continue;
+        if (ImGui::IsKeyPressed(c.key, c.repeat)) {
+            c.run(*this);
+            return;
+        }
+    }
 }
 
 void Workbench::drawMenus() {
@@ -123,14 +158,12 @@ void Workbench::drawMenus() {
     const std::string dataFolder =
         folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open data...", "Ctrl+O"))
-            m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)",
-                          FileDialog::Mode::Open, "open-data", {}, dataFolder);
+        if (ImGui::MenuItem("Open data...", keysOf("open-data")))
+            runCommand("open-data");
         if (ImGui::MenuItem("Open the demo model"))
             guardUnsaved("Open the demo model", [this] { openDemo(); });
-        if (ImGui::MenuItem("Open session...", "Ctrl+Shift+O"))
-            m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
-                          {".faultline.json"}, folderOf(m_sessionPath));
+        if (ImGui::MenuItem("Open session...", keysOf("open-session")))
+            runCommand("open-session");
         if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {
             for (const auto& r : m_recent)
                 if (ImGui::MenuItem(r.c_str()))
@@ -139,11 +172,10 @@ void Workbench::drawMenus() {
             ImGui::EndMenu();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Save session", "Ctrl+S"))
-            saveSession();
-        if (ImGui::MenuItem("Save session as...", "Ctrl+Shift+S"))
-            m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
-                          {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
+        if (ImGui::MenuItem("Save session", keysOf("save")))
+            runCommand("save");
+        if (ImGui::MenuItem("Save session as...", keysOf("save-as")))
+            runCommand("save-as");
         if (ImGui::BeginMenu("Export")) {
             const bool faults = !state().faults.empty();
             if (ImGui::MenuItem("Fault members (CSV)...", nullptr, false, faults))
@@ -199,8 +231,8 @@ void Workbench::drawMenus() {
         ImGui::Separator();
         if (ImGui::MenuItem("Close data", nullptr, false, dataset() != nullptr))
             guardUnsaved("Close the data", [this] { emit({{"op", "data.close"}}); });
-        if (ImGui::MenuItem("Quit", "Ctrl+Q"))
-            requestQuit();
+        if (ImGui::MenuItem("Quit", keysOf("quit")))
+            runCommand("quit");
         ImGui::EndMenu();
     }
     m_items.markLastItem("menu.file");
@@ -209,11 +241,11 @@ void Workbench::drawMenus() {
         const std::string undoLabel = m_session.undoLabel(), redoLabel = m_session.redoLabel();
         const std::string undoItem = (undoLabel.empty() ? "Undo" : "Undo: " + undoLabel) + "###undo";
         const std::string redoItem = (redoLabel.empty() ? "Redo" : "Redo: " + redoLabel) + "###redo";
-        if (ImGui::MenuItem(undoItem.c_str(), "Ctrl+Z", false, m_session.canUndo()))
-            emit({{"op", "undo"}});
+        if (ImGui::MenuItem(undoItem.c_str(), keysOf("undo"), false, m_session.canUndo()))
+            runCommand("undo");
         m_items.markLastItem("edit.undo");
-        if (ImGui::MenuItem(redoItem.c_str(), "Ctrl+Shift+Z", false, m_session.canRedo()))
-            emit({{"op", "redo"}});
+        if (ImGui::MenuItem(redoItem.c_str(), keysOf("redo"), false, m_session.canRedo()))
+            runCommand("redo");
         m_items.markLastItem("edit.redo");
         ImGui::EndMenu();
     }
@@ -233,13 +265,13 @@ void Workbench::drawMenus() {
             commitLayout();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Screenshot", "F12"))
-            requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
+        if (ImGui::MenuItem("Screenshot", keysOf("screenshot")))
+            runCommand("screenshot");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
-        if (ImGui::MenuItem("Keyboard and mouse", "F1"))
-            m_showHelp = true;
+        if (ImGui::MenuItem("Keyboard and mouse", keysOf("help")))
+            runCommand("help");
         if (ImGui::MenuItem("About Faultline"))
             m_showAbout = true;
         ImGui::EndMenu();
@@ -352,11 +384,11 @@ void Workbench::drawHelp() {
                                   ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
                 // The keys column as wide as its longest entry; the descriptions wrap.
                 float keys = 0.0f;
-                for (const auto& s : kShortcuts)
+                for (const auto& s : keyCommands())
                     keys = std::max(keys, ImGui::CalcTextSize(s.keys).x);
                 ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, keys);
                 ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
-                for (const auto& s : kShortcuts) {
+                for (const auto& s : keyCommands()) {
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
                     ImGui::TextUnformatted(s.keys);
