@@ -23,22 +23,11 @@ using core::Json;
 
 namespace {
 
-// Prefetch channels of difference colouring's reference frames (one per view, after the views').
-constexpr std::size_t kReferenceChannel = 64;
-
 std::string timestampForFile() {
     const std::time_t t = std::time(nullptr);
     char buf[32];
     std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
     return buf;
-}
-
-std::array<double, 2> widen(std::array<double, 2> r) {
-    if (!std::isfinite(r[0]) || !std::isfinite(r[1]) || r[0] > r[1])
-        return {0, 1};
-    if (r[0] == r[1])
-        return {r[0] - 0.5, r[1] + 0.5};
-    return r;
 }
 
 } // namespace
@@ -114,12 +103,7 @@ void Workbench::error(std::string text) {
     m_messageTime = m_now;
 }
 
-const ViewDisplay* Workbench::view(const std::string& name) const {
-    for (const auto& v : m_views)
-        if (v.name == name)
-            return &v;
-    return nullptr;
-}
+const ViewDisplay* Workbench::view(const std::string& name) const { return m_composer.view(name); }
 
 std::shared_ptr<core::Dataset> Workbench::openDatasetCached(const std::vector<std::string>& paths) {
     for (auto it = m_datasets.begin(); it != m_datasets.end(); ++it)
@@ -257,11 +241,8 @@ void Workbench::syncWithSession() {
         if (m_session.dataset())
             m_session.dataset()->setCacheBudget(frameMemoryBudget());
         m_frames.setDataset(m_session.dataset());
-        m_views.clear();
-        m_visibilityCache.clear();
-        m_allFramesRange.clear();
+        m_composer.reset();
         m_surfaces.clear();
-        m_differences.clear();
         Playback fresh;
         fresh.fps = m_playback.fps;
         fresh.loop = m_playback.loop;
@@ -286,7 +267,7 @@ void Workbench::syncWithSession() {
         m_selection.box.clear();
     std::erase_if(m_selection.faults, [&](const std::string& f) { return !state().fault(f); });
     if (m_renderer)
-        for (const auto& v : m_views)
+        for (const auto& v : m_composer.views())
             if (!state().view(v.name))
                 m_renderer->forget(v.name);
 }
@@ -369,159 +350,11 @@ void Workbench::updatePlayback() {
 }
 
 void Workbench::updateDisplay() {
-    const core::SessionState& s = state();
-    auto ds = dataset();
-
-    // The selection as shown: the session's plus any live edit, and a key for caching.
-    // Live edits run through the session's own ops on a copy (Session::preview), so a preview
-    // shows exactly what the command would do, and one the op refuses shows nothing.
-    std::vector<Json> edits;
-    std::string previewText;
-    for (const auto& [key, cmd] : m_previews)
-        if (cmd.value("op", "") != "frame.set") {
-            edits.push_back(cmd);
-            if (cmd.value("op", "") != "camera.set")
-                previewText += cmd.dump();
-        }
-    core::Session::Preview shown = m_session.preview(edits);
-    std::vector<core::CuttingBox> boxes = std::move(shown.boxes);
-    std::vector<core::VariableThreshold> thresholds = std::move(shown.thresholds);
-    std::map<std::string, core::CameraState> cameras;
-    for (const auto& v : shown.views)
-        cameras[v.name] = v.camera;
-    const std::uint64_t key =
-        std::hash<std::string>{}(std::to_string(m_session.version()) + previewText) | 1;
-    m_displayBoxes = boxes;
-    m_displayThresholds = thresholds;
-
-    const std::size_t base = displayFrame();
-    std::vector<ViewDisplay> next;
-    std::size_t channel = 0;
-    for (const auto& v : s.views) {
-        ViewDisplay d;
-        if (const ViewDisplay* old = view(v.name))
-            d = *old;
-        d.name = v.name;
-        if (ds) {
-            const long long count = static_cast<long long>(ds->frameCount());
-            const long long want =
-                v.frame.relative ? static_cast<long long>(base) + v.frame.value : v.frame.value;
-            d.wantedFrame = static_cast<std::size_t>(std::clamp(want, 0LL, count - 1));
-            if (auto f = m_frames.request(d.wantedFrame, channel)) {
-                if (f != d.frame) { // bounds once per frame shown, not per UI frame
-                    d.bounds = modelBounds(*f);
-                    const ModelBounds& b = d.bounds;
-                    d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) +
-                                                    std::pow(b.hi[1] - b.lo[1], 2) +
-                                                    std::pow(b.hi[2] - b.lo[2], 2));
-                }
-                d.frame = f;
-                d.shownFrame = d.wantedFrame;
-            }
-        } else {
-            d.frame.reset();
-        }
-        d.visibility.reset();
-        if (d.frame) {
-            auto hit = std::find_if(
-                m_visibilityCache.begin(), m_visibilityCache.end(),
-                [&](const VisibilityEntry& e) { return e.frame == d.frame && e.key == key; });
-            if (hit == m_visibilityCache.end()) {
-                auto rowMask = m_session.faultRowMask(*d.frame);
-                auto result = std::make_shared<core::VisibilityResult>(
-                    core::computeVisibility(*d.frame, boxes, thresholds, rowMask.get()));
-                m_visibilityCache.push_back({d.frame, key, result});
-                hit = m_visibilityCache.end() - 1;
-            }
-            d.visibility = hit->result;
-            d.visibilityKey = key ^ reinterpret_cast<std::uintptr_t>(d.frame.get());
-        }
-        // Camera: the session's (with a drag's preview); fitted to the model while unset.
-        d.camera = cameras[v.name];
-        if (d.camera.distance <= 0 && d.frame)
-            d.camera = fitCamera(v, d.camera, d.bounds.lo, d.bounds.hi);
-        resolveColors(v, d, channel);
-        d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, m_now, d.visibility);
-        next.push_back(std::move(d));
-        ++channel;
-    }
-    m_views = std::move(next);
-    m_surfaces.endFrame();
-    std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {
-        return std::none_of(m_views.begin(), m_views.end(), [&](const ViewDisplay& d) {
-            return d.frame == e.frame && d.visibility == e.result;
-        });
-    });
-}
-
-// What a view's spheres are coloured by and over which range: categories (the candidates
-// previewed, or "faults"), a difference since a reference frame (once that frame is here), or
-// the variable's own column (the renderer reads it from the frame).
-void Workbench::resolveColors(const core::ViewState& v, ViewDisplay& d, std::size_t channel) {
-    d.colorColumn.reset();
-    d.palette.clear();
-    d.colorTitle = v.colorVariable;
-    d.colorRange = {0, 1};
-    if (!d.frame)
-        return;
-    if (const CategoryColoring* cat = categoriesFor(v, d)) {
-        d.colorColumn = cat->values;
-        d.palette = cat->palette;
-        d.colorTitle = d.colorColumn->name;
-        d.colorRange = {0.0, static_cast<double>(d.palette.size())};
-        return;
-    }
-    std::array<double, 2> range{0, 1};
-    std::string rangeKey = v.colorVariable; // whose all-frames range accumulates
-    if (v.difference.mode != core::ColorDifference::Mode::None) {
-        const std::size_t ref = core::referenceFrame(v, d.shownFrame, dataset()->frameCount());
-        d.colorTitle.clear(); // one colour until the reference frame is here
-        if (auto refFrame = m_frames.request(ref, kReferenceChannel + channel)) {
-            try {
-                d.colorColumn = v.difference.mode == core::ColorDifference::Mode::Change
-                                    ? m_differences.change(d.frame, refFrame, v.colorVariable)
-                                    : m_differences.displacement(d.frame, refFrame);
-                d.colorTitle = rangeKey = core::colorTitle(v, ref);
-                if (d.colorColumn->min <= d.colorColumn->max)
-                    range = {d.colorColumn->min, d.colorColumn->max};
-            } catch (const std::invalid_argument&) {
-                // the frame lacks the variable: one colour
-            }
-        }
-    } else if (!v.colorVariable.empty()) {
-        if (auto info = m_columns.info(d.frame, v.colorVariable))
-            range = {info->min, info->max};
-    }
-    if (!d.colorTitle.empty()) {
-        auto& all = m_allFramesRange.try_emplace(rangeKey, range).first->second;
-        all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-        if (v.rangeMode == core::RangeMode::AllFrames)
-            range = all;
-    }
-    if (v.rangeMode == core::RangeMode::Fixed)
-        range = v.range;
-    d.colorRange = widen(range);
-}
-
-const CategoryColoring* Workbench::categoriesFor(const core::ViewState& v, const ViewDisplay& d) {
-    if (!d.frame)
-        return nullptr;
-    if (m_selection.candidates && v.name == "main" && m_selection.candidates->frame == d.frame)
-        return &m_selection.candidates->coloring;
-    if (v.colorVariable != kFaultsVariable || d.frame->attribute(kFaultsVariable))
-        return nullptr;
-    if (m_faultsKeyVersion != m_session.version()) { // hashing every member id: once per change
-        m_faultsKeyVersion = m_session.version();
-        m_faultsKey = faultColoringKey(state().faults);
-    }
-    const std::uint64_t key = m_faultsKey;
-    for (auto& e : m_faultColorings)
-        if (e.frame == d.frame && e.key == key)
-            return &e.coloring;
-    if (m_faultColorings.size() >= 4)
-        m_faultColorings.erase(m_faultColorings.begin());
-    m_faultColorings.push_back({d.frame, key, faultColoring(*d.frame, state().faults)});
-    return &m_faultColorings.back().coloring;
+    m_composer.update({m_previews, displayFrame(), m_now, m_selection,
+                       [this](const core::ViewState& v, core::CameraState c,
+                              const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+                           return fitCamera(v, c, lo, hi);
+                       }});
 }
 
 core::CameraState Workbench::fitCamera(const core::ViewState& v, core::CameraState camera,
@@ -543,7 +376,7 @@ void Workbench::renderViews() {
     if (!m_renderer)
         return;
     // Filled by the viewports panel: the pixel size each view was given this frame.
-    for (const ViewDisplay& d : m_views) {
+    for (const ViewDisplay& d : m_composer.views()) {
         const core::ViewState* v = state().view(d.name);
         auto size = m_items.find("view.image." + d.name);
         if (!v || !size)
@@ -561,7 +394,7 @@ void Workbench::renderViews() {
         scene.contextPoints = v->contextPoints;
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;
-        for (const auto& b : m_displayBoxes)
+        for (const auto& b : m_composer.displayBoxes())
             if (b.enabled || b.name == m_selection.box) {
                 if (b.name == m_selection.box && m_selection.editBoxInView) {
                     scene.selectedBox = scene.boxes.size();

@@ -10,6 +10,7 @@
 #include "ui/context/panel_context.hpp"
 #include "ui/dock/dock_layout.hpp"
 #include "ui/dock/dock_space.hpp"
+#include "ui/workbench/view_composer.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/session_figure.hpp"
 #include "ui/viewport/view_renderer.hpp"
@@ -57,19 +58,21 @@ class Workbench final : public PanelContext {
     void preview(const std::string& key, core::Json command) override;
     const std::vector<core::Json>& emittedThisFrame() const { return m_emittedLog; }
 
-    const std::vector<ViewDisplay>& views() const override { return m_views; }
+    const std::vector<ViewDisplay>& views() const override { return m_composer.views(); }
     const ViewDisplay* view(const std::string& name) const override;
     const ViewDisplay* mainDisplay() const override {
-        return m_views.empty() ? nullptr : &m_views.front();
+        return views().empty() ? nullptr : &views().front();
     }
     std::size_t displayFrame() const override;
     core::CameraState fitCamera(const core::ViewState& view, core::CameraState camera,
                                 const std::array<double, 3>& lo,
                                 const std::array<double, 3>& hi) const override;
-    const std::vector<core::CuttingBox>& displayBoxes() const override { return m_displayBoxes; }
+    const std::vector<core::CuttingBox>& displayBoxes() const override {
+        return m_composer.displayBoxes();
+    }
     // Thresholds as shown (the session's with a drag's preview applied).
     const std::vector<core::VariableThreshold>& displayThresholds() const {
-        return m_displayThresholds;
+        return m_composer.displayThresholds();
     }
     FrameStore& frames() override { return m_frames; }
     ColumnCatalog& columns() override { return m_columns; }
@@ -204,8 +207,6 @@ class Workbench final : public PanelContext {
     void drawPrompts();
     void drawMovie(); // the options window and the running export's progress
     void drawUnsavedPrompt();
-    void resolveColors(const core::ViewState& view, ViewDisplay& d, std::size_t channel);
-    const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d);
     void handleShortcuts();
     void handleDialog();
     void autosave(bool force);
@@ -221,15 +222,7 @@ class Workbench final : public PanelContext {
     ColumnCatalog m_columns;
     JobRunner m_jobs;
     SurfaceStore m_surfaces{m_jobs};
-    core::DifferenceColumnCache m_differences;
-    struct FaultColoringEntry {
-        std::shared_ptr<const core::Frame> frame;
-        std::uint64_t key = 0;
-        CategoryColoring coloring;
-    };
-    std::vector<FaultColoringEntry> m_faultColorings;
-    std::uint64_t m_faultsKey = 0,
-                  m_faultsKeyVersion = ~0ull; // faultColoringKey, at a session version
+    ViewComposer m_composer{m_session, m_frames, m_columns, m_surfaces}; // what the views show
     ItemRegistry m_items;
     DockLayout m_layout;
     core::Json m_adoptedLayout; // the session's layout as last adopted
@@ -247,16 +240,6 @@ class Workbench final : public PanelContext {
     std::map<std::string, core::Json> m_previews;
     Playback m_playback;
 
-    std::vector<ViewDisplay> m_views;
-    std::vector<core::CuttingBox> m_displayBoxes;
-    std::vector<core::VariableThreshold> m_displayThresholds;
-    struct VisibilityEntry {
-        std::shared_ptr<const core::Frame> frame;
-        std::uint64_t key = 0;
-        std::shared_ptr<const core::VisibilityResult> result;
-    };
-    std::vector<VisibilityEntry> m_visibilityCache;
-    std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable
 
     std::vector<std::pair<std::vector<std::string>, std::shared_ptr<core::Dataset>>> m_datasets;
 
