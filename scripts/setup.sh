@@ -10,7 +10,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs
     xvfb xauth libgl1-mesa-dri libglx-mesa0 libegl1 libegl-mesa0 mesa-utils
     libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
-    slurm-wlm munge bc
+    slurm-wlm munge bc fonts-dejavu-core
 )
 
 missing=()

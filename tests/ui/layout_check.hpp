@@ -200,14 +200,28 @@ inline std::vector<LayoutProblem> layoutProblems(const ImDrawData* data) {
         if (!w->Active || w->Hidden || w->ScrollbarX || w->SkipItems ||
             (w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_AlwaysAutoResize)))
             continue;
-        // A multi-line text box's own child (ImGui opens it with NoMove): its text scrolls
-        // sideways with the cursor, as in any editor.
-        if ((w->Flags & ImGuiWindowFlags_ChildWindow) && (w->Flags & ImGuiWindowFlags_NoMove))
+        // Children without padding of their own are a multi-line text box's (its text scrolls
+        // sideways with the cursor, as in any editor) or a scrolling table's rows (the columns
+        // are checked below).
+        if ((w->Flags & ImGuiWindowFlags_ChildWindow) &&
+            !(w->Flags & ImGuiWindowFlags_AlwaysUseWindowPadding))
             continue;
         const float over = w->DC.CursorMaxPos.x - w->InnerClipRect.Max.x;
-        if (over > kWider)
+        if (over > kWider) {
+            // Name the text that reaches furthest right: usually what is cut.
+            std::string nearest;
+            if (w->DrawList) {
+                const std::vector<Glyph> glyphs = glyphsOf(*w->DrawList, atlas);
+                const Glyph* far = nullptr;
+                for (const Glyph& g : glyphs)
+                    if (!far || g.p1.x > far->p1.x)
+                        far = &g;
+                if (far)
+                    nearest = " (furthest right: \"" + runText(glyphs, far->run) + "\")";
+            }
             problems.push_back({w->Name, "has content " + std::to_string(int(over)) +
-                                             " px wider than the window"});
+                                             " px wider than the window" + nearest});
+        }
     }
     for (int n = 0; n < g.Tables.GetMapSize(); ++n) {
         ImGuiTable* t = const_cast<ImGuiContext&>(g).Tables.TryGetMapData(n);

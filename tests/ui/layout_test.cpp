@@ -6,6 +6,7 @@
 #include "../core/test_files.hpp"
 #include "headless_ui.hpp"
 #include "layout_check.hpp"
+#include "ui/app/theme.hpp"
 #include "ui/dock/panel_ids.hpp"
 
 #include <gtest/gtest.h>
@@ -20,20 +21,25 @@ namespace {
 
 using core::Json;
 
-// 4 frames of a 6x6x6 lattice with the demo's columns.
+// 4 frames of a 6x6x6 lattice with the demo's columns, extent and number lengths (a block
+// about 271 x 66 x 70, coordinates with 4 digits).
 std::string demoLikeDump() {
     std::string text;
     for (int t = 0; t < 4; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t * 20000) +
-                "\nITEM: NUMBER OF ATOMS\n216\nITEM: BOX BOUNDS pp pp pp\n0 5\n0 5\n0 5\n"
-                "ITEM: ATOMS id x y z radius strain broken_bonds layer x0 y0 z0\n";
+        text += "ITEM: TIMESTEP\n" + std::to_string(1000 + t * 20000) +
+                "\nITEM: NUMBER OF ATOMS\n216\nITEM: BOX BOUNDS pp pp pp\n0 271\n0 66\n0 70\n"
+                "ITEM: ATOMS id type x y z radius strain broken_bonds layer x0 y0 z0\n";
         int id = 1;
         for (int z = 0; z < 6; ++z)
             for (int y = 0; y < 6; ++y)
                 for (int x = 0; x < 6; ++x) {
-                    char row[200];
-                    std::snprintf(row, sizeof row, "%d %d %d %d 0.5 %.4f %d %d %d %d %d\n", id++, x,
-                                  y, z, 0.01 * (x + y) * t, (x == y) ? t : 0, z, x, y, z);
+                    const double px = 1 + x * 53.98 + 0.013 * t * x, py = 0.815 + y * 12.81,
+                                 pz = 0.583 + z * 13.51;
+                    char row[240];
+                    std::snprintf(row, sizeof row,
+                                  "%d %d %.4f %.4f %.4f 1 %.4f %d %d %.4f %.4f %.4f\n", id++,
+                                  1 + (x + y) % 3, px, py, pz, 0.0001 + 0.5217 * (x + y) * t,
+                                  (x == y) ? 4 * t : 0, z, px, py, pz);
                     text += row;
                 }
     }
@@ -44,6 +50,15 @@ void checkEveryPanel(float width, float height) {
     TempDir dir;
     core::Session session;
     HeadlessUi headless(width, height);
+    // The workbench's own look and font (DejaVu Sans, as the app loads it): text widths must be
+    // the user's, not ImGui's narrow bitmap font's.
+    ui::applyTheme(1.0f);
+    ASSERT_TRUE(ui::loadFonts(1.0f)) << "DejaVu Sans is missing (scripts/setup.sh installs it)";
+    {
+        unsigned char* pixels = nullptr;
+        int w = 0, h = 0;
+        ImGui::GetIO().Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    }
     ui::WorkbenchOptions options;
     auto wb = std::make_unique<ui::Workbench>(session, options);
     headless.frames(*wb, 2);
@@ -77,7 +92,7 @@ void checkEveryPanel(float width, float height) {
         const char* op : {
             R"({"op":"fault.create","name":"West-dipping graben boundary fault","ids":[1,8,15,22,29,36]})",
             R"({"op":"fault.create","name":"F2","ids":[43,50,57,64]})",
-            R"({"op":"box.add","name":"Central slab through the graben","min":[1,0,0],"max":[4,5,5]})",
+            R"({"op":"box.add","name":"Central slab through the graben","min":[50,0,0],"max":[220,70,70]})",
             R"({"op":"threshold.add","variable":"broken_bonds","low":1,"high":3})",
             R"({"op":"surface.set","fault":"F2","kernel":"compact","iso":0.3,"visible":true})",
             R"({"op":"view.add","name":"view 2","frame":1})",

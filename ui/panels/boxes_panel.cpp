@@ -70,9 +70,7 @@ class BoxesPanel final : public Panel {
 
         if (s.boxes.empty()) {
             ImGui::Spacing();
-            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            ImGui::TextWrapped("No boxes. A keep box shows only what lies inside it; a cut box hides what lies inside it.");
-            ImGui::PopStyleColor();
+            hint("No boxes. A keep box shows only what lies inside it; a cut box hides what lies inside it.");
             return;
         }
         // The list.

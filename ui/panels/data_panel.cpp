@@ -104,7 +104,10 @@ class DataPanel final : public Panel {
             ImGui::SameLine(ImGui::GetFontSize() * 8);
             if (!ImGui::IsItemActive() && !m_editingBudget)
                 m_budgetMb = static_cast<int>(wb.frameMemoryBudget() >> 20);
-            ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
+            ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x -
+                                                 ImGui::CalcTextSize("MB").x -
+                                                 ImGui::GetStyle().ItemInnerSpacing.x,
+                                             ImGui::GetFontSize() * 4, ImGui::GetFontSize() * 7));
             ImGui::InputInt("MB##budget", &m_budgetMb, 256, 1024);
             m_editingBudget = ImGui::IsItemActive();
             wb.mark("data.budget");
@@ -122,10 +125,11 @@ class DataPanel final : public Panel {
     int m_budgetMb = 0;
     bool m_editingBudget = false;
 
+    // "key   value", the value shortened to the panel (all of it in a tooltip).
     static void keyValue(const char* key, const std::string& value) {
         ImGui::TextDisabled("%s", key);
         ImGui::SameLine(ImGui::GetFontSize() * 8);
-        ImGui::TextUnformatted(value.c_str());
+        textElided(value);
     }
 };
 

@@ -3,6 +3,8 @@
 // a named fault (fault.create), or all at once (the journal's fault.candidates).
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
+#include "ui/widgets/section.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -26,7 +28,8 @@ class FaultCandidatesSection {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "Two spheres are linked when their centres are closer than k x (r_i + r_j)");
-        ImGui::SameLine();
+        flowSameLine(ImGui::GetFontSize() * 5 + ImGui::GetStyle().ItemInnerSpacing.x +
+                     ImGui::CalcTextSize("min size").x);
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
         ImGui::InputInt("min size", &m_minSize, 0, 0);
         m_minSize = std::max(1, m_minSize);
@@ -35,7 +38,8 @@ class FaultCandidatesSection {
             ImGui::SetTooltip("Follow each fault by its orientation: faults that cross or end against\n"
                               "each other come out apart (off: linked spheres by distance alone)");
         if (m_network) {
-            ImGui::SameLine();
+            flowSameLine(ImGui::GetFontSize() * 4 + ImGui::GetStyle().ItemInnerSpacing.x +
+                         ImGui::CalcTextSize("angle").x);
             ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
             ImGui::InputDouble("angle", &m_angle, 0.0, 0.0, "%.0f");
             m_angle = std::clamp(m_angle, 1.0, 89.0);
@@ -55,7 +59,7 @@ class FaultCandidatesSection {
         auto& preview = wb.selection().candidates;
         if (!preview)
             return;
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Clear"));
         if (ImGui::Button("Clear"))
             return clear(wb);
         wb.mark("candidates.clear");
@@ -71,12 +75,12 @@ class FaultCandidatesSection {
         const bool stale = !ready || main->frame != preview->frame ||
                            (main->visibility != preview->visibility &&
                             main->visibility->mask != preview->visibility->mask);
-        ImGui::TextDisabled("%zu candidates (%.0f ms)%s", cands.size(), m_millis,
+        hint("%zu candidates (%.0f ms)%s", cands.size(), m_millis,
                             stale ? ": the visible spheres changed, find again"
                                   : ", shown in the main view");
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
         ImGui::InputText("prefix", &m_prefix);
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Accept all"));
         ImGui::BeginDisabled(stale || m_prefix.empty());
         if (ImGui::Button("Accept all")) {
             core::Json cmd = {{"op", "fault.candidates"},

@@ -8,6 +8,8 @@
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/series_plot.hpp"
 #include "ui/context/fault_metrics_cache.hpp"
+#include "ui/widgets/section.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 
@@ -54,7 +56,7 @@ class FaultMetricsSection {
         const core::SessionState& s = wb.state();
         auto ds = wb.dataset();
         if (!ds) {
-            ImGui::TextDisabled("Open data to follow the faults' metrics over time.");
+            hint("Open data to follow the faults' metrics over time.");
             return;
         }
         if (s.faults.empty()) {
@@ -89,12 +91,11 @@ class FaultMetricsSection {
             ImGui::EndCombo();
         }
         wb.mark("faults.metrics.metric");
-        ImGui::SameLine();
         if (all)
-            ImGui::TextDisabled(total > shown.size() ? "first %zu of %zu faults" : "all %zu faults",
-                                shown.size(), total);
+            hint(total > shown.size() ? "first %zu of %zu faults" : "all %zu faults", shown.size(),
+                 total);
         else
-            ImGui::TextDisabled("%zu selected", shown.size());
+            hint("%zu selected", shown.size());
 
         // The values of each fault, and what is still being computed.
         m_values.assign(shown.size(), {});
@@ -146,10 +147,11 @@ class FaultMetricsSection {
         std::vector<PlotMark> marks;
         const bool followed = m_events && m_events->key == key;
         if (followed) {
-            ImGui::SameLine();
+            flowSameLine(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+                         ImGui::CalcTextSize("Growth").x);
             ImGui::Checkbox("Growth", &m_growth);
             wb.mark("faults.metrics.growth");
-            ImGui::SameLine();
+            flowSameLine(ImGui::CalcTextSize("00 events").x);
             ImGui::TextDisabled("%zu event%s", m_events->count, m_events->count == 1 ? "" : "s");
             wb.mark("faults.metrics.events.shown");
             marks = m_events->marks;
@@ -191,10 +193,9 @@ class FaultMetricsSection {
         }
         drawRanges(wb, shown);
         if (m_cache.lastSeconds() > 0 && pending == 0)
-            ImGui::TextDisabled("%s%s%s; computed over %zu frames in %.2f s",
-                                std::string(field.label).c_str(), field.unit.empty() ? "" : " in ",
-                                std::string(field.unit).c_str(), m_cache.lastFrameCount(),
-                                m_cache.lastSeconds());
+            hint("%s%s%s; computed over %zu frames in %.2f s", std::string(field.label).c_str(),
+                 field.unit.empty() ? "" : " in ", std::string(field.unit).c_str(),
+                 m_cache.lastFrameCount(), m_cache.lastSeconds());
     }
 
   private:
@@ -295,16 +296,23 @@ class FaultMetricsSection {
                                                       ImGui::ColorConvertFloat4ToU32(c));
             ImGui::Dummy(ImVec2(sw, sw));
             ImGui::SameLine();
-            ImGui::TextUnformatted(shown[k]->name.c_str());
-            ImGui::SameLine();
+            // The name shortened to leave the numbers their room; the numbers wrap below it
+            // when the panel is narrow.
             const std::size_t now = std::min(wb.displayFrame(), m_values[k].size() - 1);
+            char numbers[160];
             if (lo > hi)
-                ImGui::TextDisabled("undefined in every frame");
+                std::snprintf(numbers, sizeof numbers, "undefined in every frame");
             else if (std::isfinite(m_values[k][now]))
-                ImGui::TextDisabled("min %.5g   max %.5g   frame %zu: %.5g", lo, hi, now,
-                                    m_values[k][now]);
+                std::snprintf(numbers, sizeof numbers, "min %.5g   max %.5g   frame %zu: %.5g", lo,
+                              hi, now, m_values[k][now]);
             else
-                ImGui::TextDisabled("min %.5g   max %.5g   frame %zu: undefined", lo, hi, now);
+                std::snprintf(numbers, sizeof numbers,
+                              "min %.5g   max %.5g   frame %zu: undefined", lo, hi, now);
+            const float avail = ImGui::GetContentRegionAvail().x;
+            textElided(shown[k]->name, std::max(avail * 0.4f, avail - ImGui::CalcTextSize(numbers).x -
+                                                                   ImGui::GetStyle().ItemSpacing.x));
+            flowSameLine(ImGui::CalcTextSize(numbers).x);
+            hint("%s", numbers);
         }
     }
 

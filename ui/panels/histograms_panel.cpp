@@ -3,6 +3,7 @@
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
 
 #include "core/selection/histogram.hpp"
@@ -49,7 +50,11 @@ class HistogramsPanel final : public Panel {
         bool logScale = settingsLog(wb);
 
         // Toolbar: add a variable, log scale.
-        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x * 0.6f, 200 * wb.scale()));
+        // The combo as wide as its text (the arrow beside it); "Log scale" flows on when narrow.
+        const ImGuiStyle& style = ImGui::GetStyle();
+        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x,
+                                         ImGui::CalcTextSize("Add a histogram...").x +
+                                             ImGui::GetFrameHeight() + 2 * style.FramePadding.x));
         if (ImGui::BeginCombo("##addhist", "Add a histogram...")) {
             for (const auto& [v, info] : wb.columns().of(main->frame))
                 if (std::find(vars.begin(), vars.end(), v) == vars.end() && ImGui::Selectable(v.c_str())) {
@@ -59,7 +64,8 @@ class HistogramsPanel final : public Panel {
             ImGui::EndCombo();
         }
         wb.mark("histograms.add");
-        ImGui::SameLine();
+        flowSameLine(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                     ImGui::CalcTextSize("Log scale").x);
         if (ImGui::Checkbox("Log scale", &logScale))
             saveSettings(wb, vars, logScale);
         wb.mark("histograms.log");

@@ -240,7 +240,8 @@ class SurfacesPanel final : public Panel {
             wb.emit(fields);
         };
         ImGui::Text("Surface of %s", sourceLabel(fault).c_str());
-        const float w = 170 * wb.scale();
+        // Fields 170 px wide where the panel allows, leaving room for their labels.
+        const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
         ImGui::SetNextItemWidth(w);
         const std::string current(core::kernelName(st.kernel));
         if (ImGui::BeginCombo("kernel", current.c_str())) {
@@ -282,7 +283,8 @@ class SurfacesPanel final : public Panel {
             low = std::min(status.isoLow, anchor);
             high = std::max(status.isoHigh, anchor);
         }
-        ImGui::SetNextItemWidth(w);
+        const float valueW = 64 * wb.scale();
+        ImGui::SetNextItemWidth(std::max(w - valueW - ImGui::GetStyle().ItemSpacing.x, 30 * wb.scale()));
         ImGui::SliderFloat("##iso", &m_iso, low, high, "", ImGuiSliderFlags_Logarithmic |
                                                                ImGuiSliderFlags_NoInput);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
@@ -294,12 +296,12 @@ class SurfacesPanel final : public Panel {
                               "the cached field.",
                               low, high);
         ImGui::SameLine();
-        ImGui::SetNextItemWidth(64 * wb.scale());
+        ImGui::SetNextItemWidth(valueW);
         ImGui::InputFloat("iso", &m_iso, 0.0f, 0.0f, "%.4g");
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
             set({{"iso", m_iso}});
         wb.mark("surfaces.iso_value");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Wrap"));
         if (ImGui::Button("Wrap"))
             emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
         wb.mark("surfaces.wrap");
@@ -372,7 +374,8 @@ class SurfacesPanel final : public Panel {
     void drawColour(PanelContext& wb, const core::SessionState& s, const core::SurfaceSettings& st,
                     const Set& set) {
         const ViewDisplay* main = wb.mainDisplay();
-        const float w = 170 * wb.scale();
+        // Fields 170 px wide where the panel allows, leaving room for their labels.
+        const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
         const std::string plain = core::isVisibleSpheres(st.fault) ? "one colour" : "fault colour";
         ImGui::SetNextItemWidth(w);
         if (ImGui::BeginCombo("colour", st.colorBy.empty() ? plain.c_str() : st.colorBy.c_str())) {
@@ -391,7 +394,7 @@ class SurfacesPanel final : public Panel {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Figure 4: each voxel takes the colour of the spheres within their "
                               "radius + reach, averaged");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Like the view"));
         // The main view's variable, map and range: the surface in the glyphs' colours.
         const core::ViewState* view = s.view("main");
         const bool viewColours = view && main && !view->colorVariable.empty() &&

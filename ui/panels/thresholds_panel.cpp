@@ -5,6 +5,8 @@
 #include "ui/widgets/bound_input.hpp"
 #include "ui/widgets/range_slider.hpp"
 #include "ui/context/frame_columns.hpp"
+#include "ui/widgets/section.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 
@@ -48,7 +50,7 @@ class ThresholdsPanel final : public Panel {
         ImGui::EndDisabled();
         ImGui::Spacing();
         if (wb.state().thresholds.empty()) {
-            ImGui::TextDisabled("No thresholds. Add one above, or drag across a histogram.");
+            hint("No thresholds. Add one above, or drag across a histogram.");
             return;
         }
         std::string toRemove;

@@ -4,6 +4,8 @@
 
 #include <imgui.h>
 
+#include <cstdarg>
+
 namespace faultline::ui {
 
 void sectionHeader(const std::string& title) {
@@ -14,6 +16,15 @@ void sectionHeader(const std::string& title) {
     const float x1 = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     if (x1 > x0)
         ImGui::GetWindowDrawList()->AddLine(ImVec2(x0, y), ImVec2(x1, y), ImGui::GetColorU32(ImGuiCol_Separator));
+}
+
+void hint(const char* format, ...) {
+    va_list args;
+    va_start(args, format);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrappedV(format, args);
+    ImGui::PopStyleColor();
+    va_end(args);
 }
 
 void helpMarker(const char* text) {
