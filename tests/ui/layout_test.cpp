@@ -93,7 +93,7 @@ void checkEveryPanel(float width, float height) {
             R"({"op":"fault.create","name":"West-dipping graben boundary fault","ids":[1,8,15,22,29,36]})",
             R"({"op":"fault.create","name":"F2","ids":[43,50,57,64]})",
             R"({"op":"box.add","name":"Central slab through the graben","min":[50,0,0],"max":[220,70,70]})",
-            R"({"op":"threshold.add","variable":"broken_bonds","low":1,"high":3})",
+            R"({"op":"threshold.add","variable":"broken_bonds","low":2,"high":12})",
             R"({"op":"surface.set","fault":"F2","kernel":"compact","iso":0.3,"visible":true})",
             R"({"op":"view.add","name":"view 2","frame":1})",
             R"({"op":"frame.set","frame":3})",

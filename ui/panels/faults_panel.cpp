@@ -159,10 +159,10 @@ class FaultsPanel final : public Panel {
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed,
                                 ImGui::GetFrameHeight() * 2.2f);
-        ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 2.0f);
         ImGui::TableSetupColumn("spheres", ImGuiTableColumnFlags_WidthFixed,
                                 ImGui::CalcTextSize("0000000").x);
-        ImGui::TableSetupColumn("notes", ImGuiTableColumnFlags_WidthStretch, 1.4f);
+        ImGui::TableSetupColumn("notes", ImGuiTableColumnFlags_WidthStretch, 1.0f);
         for (const auto& c : extra)
             ImGui::TableSetupColumn(c.title.c_str(), ImGuiTableColumnFlags_WidthFixed,
                                     ImGui::CalcTextSize("000000").x);

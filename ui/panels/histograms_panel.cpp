@@ -184,14 +184,21 @@ class HistogramsPanel final : public Panel {
         const core::VariableThreshold* t = wb.state().threshold(var);
 
         // Title line: name, threshold, close.
+        // The name and threshold shortened to leave the close button its place.
+        const float closeW = ImGui::GetFrameHeight();
+        const float room = ImGui::GetContentRegionAvail().x - closeW - ImGui::GetStyle().ItemSpacing.x;
         ImGui::AlignTextToFramePadding();
-        ImGui::TextUnformatted(var.c_str());
+        textElided(var, room);
         if (t) {
             ImGui::SameLine();
-            ImGui::TextDisabled("%s  %s .. %s", t->enabled ? "threshold" : "threshold (off)", numberText(t->low).c_str(),
-                                numberText(t->high).c_str());
+            const std::string text = std::string(t->enabled ? "threshold" : "threshold (off)") + "  " +
+                                     numberText(t->low) + " .. " + numberText(t->high);
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            textElided(text, std::max(0.0f, ImGui::GetWindowContentRegionMax().x + ImGui::GetWindowPos().x -
+                                                 ImGui::GetCursorScreenPos().x - closeW -
+                                                 ImGui::GetStyle().ItemSpacing.x));
+            ImGui::PopStyleColor();
         }
-        const float closeW = ImGui::GetFrameHeight();
         ImGui::SameLine(ImGui::GetContentRegionMax().x - closeW);
         const bool keep = !ImGui::Button("x", ImVec2(closeW, 0));
         if (ImGui::IsItemHovered())
