@@ -104,6 +104,13 @@ void checkEveryPanel(float width, float height) {
     wb->showHelp();
     headless.settle(*wb);
     checkAll("after an hour");
+    // The long-named fault picked, with a surface: its settings and metrics under its name.
+    session.apply(Json::parse(
+        R"({"op":"surface.set","fault":"West-dipping graben boundary fault","kernel":"compact","iso":0.3,"visible":true})"));
+    wb->selection().faults = {"West-dipping graben boundary fault"};
+    wb->showHelp();
+    headless.settle(*wb);
+    checkAll("a long-named fault picked");
     EXPECT_EQ(count, 0u) << "at " << width << "x" << height << ":\n" << found.str();
 }
 

@@ -4,6 +4,7 @@
 // run in the workbench's SurfaceStore.
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
 
@@ -239,7 +240,7 @@ class SurfacesPanel final : public Panel {
             fields["fault"] = fault;
             wb.emit(fields);
         };
-        ImGui::Text("Surface of %s", sourceLabel(fault).c_str());
+        textElided("Surface of " + sourceLabel(fault));
         // Fields 170 px wide where the panel allows, leaving room for their labels.
         const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
         ImGui::SetNextItemWidth(w);
@@ -336,7 +337,7 @@ class SurfacesPanel final : public Panel {
                                     true);
             wb.mark("surfaces.empty_wrap");
         } else if (status.state == SurfaceStatus::State::Ready)
-            ImGui::TextDisabled("%zu spheres, %zu triangles, %.2f s", status.spheres,
+            hint("%zu spheres, %zu triangles, %.2f s", status.spheres,
                                 status.triangles, status.seconds);
 
         const bool exists = s.surface(fault) != nullptr;
