@@ -181,3 +181,32 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderWhenTheColouringChanges) {
     EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.strain").y0, strainY);
     EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.layer").y0, layerY);
 }
+
+// Issue 27: a box extent takes typing after one click; Enter commits one box.set, Escape puts
+// the value back and commits nothing.
+TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {
+    openLattice();
+    session.apply(core::Json::parse(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[3,3,3]})"));
+    wb().selection().box = "b";
+    headless.showPanel(wb(), ui::panel_ids::kBoxes);
+    headless.settle(wb());
+    headless.clearEmitted();
+    headless.click(wb(), "boxes.max.0");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "2.5");
+    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.settle(wb());
+    auto sets = headless.emitted("box.set");
+    ASSERT_EQ(sets.size(), 1u);
+    EXPECT_DOUBLE_EQ(sets[0]["max"][0].get<double>(), 2.5);
+    EXPECT_DOUBLE_EQ(session.state().box("b")->max[0], 2.5);
+
+    headless.clearEmitted();
+    headless.click(wb(), "boxes.min.1");
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "1.75");
+    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.settle(wb());
+    EXPECT_TRUE(headless.emitted("box.set").empty());
+    EXPECT_DOUBLE_EQ(session.state().box("b")->min[1], 0.0);
+}

@@ -7,6 +7,7 @@
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
+#include "ui/widgets/number_field.hpp"
 
 #include "core/session/session_json.hpp"
 
@@ -150,17 +151,17 @@ class BoxesPanel final : public Panel {
             ImGui::TextDisabled("%s", axes[a]);
             const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
             double lo = b.min[a], hi = b.max[a];
-            ImGui::SetNextItemWidth(half);
-            ImGui::InputDouble("##min", &lo, 0, 0, "%.6g");
-            if (ImGui::IsItemDeactivatedAfterEdit() && lo != b.min[a]) {
+            const bool minTyped = numberField("##min", &lo, "%.6g", half);
+            wb.mark("boxes.min." + std::to_string(a));
+            if (minTyped && lo != b.min[a]) {
                 auto mn = b.min;
                 mn[a] = std::min(lo, b.max[a]);
                 wb.emit({{"op", "box.set"}, {"name", b.name}, {"min", mn}});
             }
             ImGui::SameLine();
-            ImGui::SetNextItemWidth(half);
-            ImGui::InputDouble("##max", &hi, 0, 0, "%.6g");
-            if (ImGui::IsItemDeactivatedAfterEdit() && hi != b.max[a]) {
+            const bool maxTyped = numberField("##max", &hi, "%.6g", half);
+            wb.mark("boxes.max." + std::to_string(a));
+            if (maxTyped && hi != b.max[a]) {
                 auto mx = b.max;
                 mx[a] = std::max(hi, b.min[a]);
                 wb.emit({{"op", "box.set"}, {"name", b.name}, {"max", mx}});

@@ -5,6 +5,7 @@
 #include "ui/viewport/fault_edit.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
+#include "ui/widgets/number_field.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -22,16 +23,14 @@ class FaultCandidatesSection {
     void draw(PanelContext& wb) {
         const ViewDisplay* main = wb.mainDisplay();
         const bool ready = main && main->frame && main->visibility;
-        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
-        ImGui::InputDouble("link k", &m_link, 0.0, 0.0, "%.2f");
+        numberField("link k", &m_link, "%.2f", ImGui::GetFontSize() * 5);
         m_link = std::clamp(m_link, 0.5, 5.0);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "Two spheres are linked when their centres are closer than k x (r_i + r_j)");
         flowSameLine(ImGui::GetFontSize() * 5 + ImGui::GetStyle().ItemInnerSpacing.x +
                      ImGui::CalcTextSize("min size").x);
-        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
-        ImGui::InputInt("min size", &m_minSize, 0, 0);
+        numberField("min size", &m_minSize, ImGui::GetFontSize() * 5);
         m_minSize = std::max(1, m_minSize);
         ImGui::Checkbox("Apart at junctions", &m_network);
         if (ImGui::IsItemHovered())
@@ -40,8 +39,7 @@ class FaultCandidatesSection {
         if (m_network) {
             flowSameLine(ImGui::GetFontSize() * 4 + ImGui::GetStyle().ItemInnerSpacing.x +
                          ImGui::CalcTextSize("angle").x);
-            ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
-            ImGui::InputDouble("angle", &m_angle, 0.0, 0.0, "%.0f");
+            numberField("angle", &m_angle, "%.0f", ImGui::GetFontSize() * 4);
             m_angle = std::clamp(m_angle, 1.0, 89.0);
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("Degrees: the largest turn of orientation within one fault");

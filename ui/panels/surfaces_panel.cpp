@@ -11,6 +11,7 @@
 #include "core/color/colormap.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "ui/viewport/category_colors.hpp"
+#include "ui/widgets/number_field.hpp"
 
 #include <imgui.h>
 
@@ -265,9 +266,8 @@ class SurfacesPanel final : public Panel {
             ImGui::SetTooltip("inverse: sum r/d (Algorithm 1); inverse-square: sum r/d^2 (eq. 1);\n"
                               "compact: Wyvill's kernel, zero beyond 3 radii (fastest).\n"
                               "A new kernel takes the iso-value that wraps the spheres with it.");
-        ImGui::SetNextItemWidth(w);
-        ImGui::InputDouble("voxel", &m_voxel, 0, 0, m_voxel > 0 ? "%.4g" : "auto");
-        if (ImGui::IsItemDeactivatedAfterEdit() && m_voxel >= 0 && m_voxel != st.voxel)
+        if (numberField("voxel", &m_voxel, "%.4g", w, "auto", 0.0) && m_voxel >= 0 &&
+            m_voxel != st.voxel)
             set({{"voxel", m_voxel}});
         wb.mark("surfaces.voxel");
         if (ImGui::IsItemHovered())
@@ -297,10 +297,11 @@ class SurfacesPanel final : public Panel {
                               "the cached field.",
                               low, high);
         ImGui::SameLine();
-        ImGui::SetNextItemWidth(valueW);
-        ImGui::InputFloat("iso", &m_iso, 0.0f, 0.0f, "%.4g");
-        if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
-            set({{"iso", m_iso}});
+        double isoValue = m_iso;
+        if (numberField("iso", &isoValue, "%.4g", valueW) && isoValue > 0) {
+            m_iso = static_cast<float>(isoValue);
+            set({{"iso", isoValue}});
+        }
         wb.mark("surfaces.iso_value");
         flowSameLine(buttonWidth("Wrap"));
         if (ImGui::Button("Wrap"))
@@ -427,11 +428,10 @@ class SurfacesPanel final : public Panel {
                 m_reach = st.colorReach.value_or(-1.0);
                 m_editingReach = st.fault;
             }
-            ImGui::SetNextItemWidth(w);
-            ImGui::InputDouble("reach", &m_reach, 0, 0, m_reach >= 0 ? "%.3g" : "auto");
+            const bool reachTyped = numberField("reach", &m_reach, "%.3g", w, "auto", -1.0);
             if (m_reach < 0)
                 m_reach = -1.0; // auto
-            if (ImGui::IsItemDeactivatedAfterEdit() && m_reach != st.colorReach.value_or(-1.0))
+            if (reachTyped && m_reach != st.colorReach.value_or(-1.0))
                 set({{"color_reach", m_reach >= 0 ? core::Json(m_reach) : core::Json(nullptr)}});
             wb.mark("surfaces.reach");
             if (ImGui::IsItemHovered())

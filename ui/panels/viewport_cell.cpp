@@ -7,6 +7,7 @@
 #include "ui/viewport/orbit_camera.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
+#include "ui/widgets/number_field.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -307,13 +308,9 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
                 cmd["range"] = {d.colorRange[0], d.colorRange[1]};
             wb.emit(cmd);
         }
-    ImGui::SetNextItemWidth(110 * wb.scale());
-    ImGui::InputDouble("##lo", &m_rangeEdit[0], 0, 0, "%.5g");
-    const bool loDone = ImGui::IsItemDeactivatedAfterEdit();
+    const bool loDone = numberField("##lo", &m_rangeEdit[0], "%.5g", 110 * wb.scale());
     ImGui::SameLine();
-    ImGui::SetNextItemWidth(110 * wb.scale());
-    ImGui::InputDouble("##hi", &m_rangeEdit[1], 0, 0, "%.5g");
-    const bool hiDone = ImGui::IsItemDeactivatedAfterEdit();
+    const bool hiDone = numberField("##hi", &m_rangeEdit[1], "%.5g", 110 * wb.scale());
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
         wb.emit({{"op", "color.set"}, {"view", view.name}, {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
     drawDifference(wb, view);
@@ -351,11 +348,9 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
     ImGui::SameLine();
     if (ImGui::RadioButton("offset from the frame shown (e.g. -10)", m_sinceRelative))
         m_sinceRelative = true, m_sinceEdit = -std::abs(m_sinceEdit);
-    ImGui::SetNextItemWidth(110 * wb.scale());
-    ImGui::InputInt("##since", &m_sinceEdit);
+    const bool edited = numberField("##since", &m_sinceEdit, 110 * wb.scale());
     if (!m_sinceRelative)
         m_sinceEdit = std::max(0, m_sinceEdit);
-    const bool edited = ImGui::IsItemDeactivatedAfterEdit();
     ImGui::SameLine();
     if (ImGui::Button("Apply##since") || edited)
         since({{"op", "color.set"}, {"view", view.name}});
