@@ -24,6 +24,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -42,6 +43,7 @@ struct Glyph {
     unsigned codepoint; // the character
     bool trimmed;       // cut on the CPU (part of the glyph's texture only)
     int run;            // index of the run of text it belongs to (per draw list)
+    unsigned order;     // where its quad starts in the draw list's index buffer
 };
 
 struct GlyphKey {
@@ -83,10 +85,15 @@ inline std::vector<Glyph> glyphsOf(const ImDrawList& list, const Atlas& atlas) {
     const ImTextureID fontTexture = ImGui::GetIO().Fonts->TexID;
     int run = -1;
     float lastX = 0, lastBaseline = 0;
+    unsigned lastOrder = 0;
     for (const ImDrawCmd& cmd : list.CmdBuffer) {
         if (cmd.UserCallback || cmd.TextureId != fontTexture)
             continue;
-        for (unsigned e = 0; e + 6 <= cmd.ElemCount; e += 6) {
+        // Triangle by triangle (other shapes may hold an odd number of them); a glyph is a quad
+        // of two.
+        for (unsigned e = 0; e + 3 <= cmd.ElemCount; e += 3) {
+            if (e + 6 > cmd.ElemCount)
+                break;
             const ImDrawIdx* idx = list.IdxBuffer.Data + cmd.IdxOffset + e;
             const unsigned i0 = cmd.VtxOffset + idx[0];
             // A glyph quad: indices 0 1 2 0 2 3 over four vertices in a row.
@@ -102,22 +109,30 @@ inline std::vector<Glyph> glyphsOf(const ImDrawList& list, const Atlas& atlas) {
             if (auto it = atlas.byTopLeft.find({v[0].uv.x, v[0].uv.y});
                 it != atlas.byTopLeft.end()) {
                 g = it->second;
-                trimmed = v[2].uv.x != g->U1 || v[2].uv.y != g->V1;
+                trimmed = v[2].uv.x != g->U1; // cut on the right (cuts at the top or bottom
+                                              // are a scrolled panel's edge, by design)
             } else if (auto jt = atlas.byBottomRight.find({v[2].uv.x, v[2].uv.y});
                        jt != atlas.byBottomRight.end()) {
                 g = jt->second;
-                trimmed = true;
+                trimmed = v[0].uv.x != g->U0; // cut on the left
             }
             if (!g)
                 continue;
             const float height = v[2].pos.y - v[0].pos.y;
             const float scale = g->Y1 > g->Y0 ? height / (g->Y1 - g->Y0) : 1.0f;
             const float baseline = v[0].pos.y - g->Y0 * scale;
-            if (run < 0 || std::abs(baseline - lastBaseline) > 0.5f || v[0].pos.x < lastX - 1.0f)
+            // One run is one call's text: glyphs back to back in the index buffer, on one
+            // baseline, moving right.
+            const unsigned order = cmd.IdxOffset + e;
+            if (run < 0 || order != lastOrder + 6 || std::abs(baseline - lastBaseline) > 0.5f ||
+                v[0].pos.x < lastX - 1.0f)
                 ++run;
             lastBaseline = baseline;
             lastX = v[0].pos.x;
-            out.push_back({v[0].pos, v[2].pos, cmd.ClipRect, g->Codepoint, trimmed, run});
+            lastOrder = order;
+            out.push_back(
+                {v[0].pos, v[2].pos, cmd.ClipRect, g->Codepoint, trimmed, run, cmd.IdxOffset + e});
+            e += 3; // the quad's second triangle
         }
     }
     return out;
@@ -161,6 +176,81 @@ inline std::vector<LayoutProblem> layoutProblems(const ImDrawData* data) {
             else if (g.p0.x < g.clip.x - kSlack && g.p1.x > g.clip.x)
                 report(g.run, "is cut off at the left edge of its window or column");
         }
+        // Text under an opaque shape drawn after it (a button's frame over a label): each
+        // triangle that is not a glyph, against the glyphs drawn before it whose visible
+        // centre it covers, in a grid of 32-pixel buckets.
+        {
+            std::unordered_set<unsigned> glyphStarts;
+            std::map<std::pair<int, int>, std::vector<int>> grid;
+            auto bucket = [](float v) { return static_cast<int>(std::floor(v / 32.0f)); };
+            std::vector<ImVec2> centre(glyphs.size());
+            for (std::size_t k = 0; k < glyphs.size(); ++k) {
+                const Glyph& g = glyphs[k];
+                glyphStarts.insert(g.order);
+                const float x0 = std::max(g.p0.x, g.clip.x), x1 = std::min(g.p1.x, g.clip.z);
+                const float y0 = std::max(g.p0.y, g.clip.y), y1 = std::min(g.p1.y, g.clip.w);
+                if (x1 - x0 < 1.0f || y1 - y0 < 1.0f || g.codepoint == ' ')
+                    continue;
+                centre[k] = ImVec2(0.5f * (x0 + x1), 0.5f * (y0 + y1));
+                grid[{bucket(centre[k].x), bucket(centre[k].y)}].push_back(static_cast<int>(k));
+            }
+            auto inside = [](ImVec2 p, ImVec2 a, ImVec2 b, ImVec2 c) {
+                const float d1 = (p.x - b.x) * (a.y - b.y) - (a.x - b.x) * (p.y - b.y);
+                const float d2 = (p.x - c.x) * (b.y - c.y) - (b.x - c.x) * (p.y - c.y);
+                const float d3 = (p.x - a.x) * (c.y - a.y) - (c.x - a.x) * (p.y - a.y);
+                const bool neg = d1 < 0 || d2 < 0 || d3<0, pos = d1> 0 || d2 > 0 || d3 > 0;
+                return !(neg && pos);
+            };
+            for (const ImDrawCmd& cmd : list.CmdBuffer) {
+                if (cmd.UserCallback)
+                    continue;
+                for (unsigned e = 0; e + 3 <= cmd.ElemCount; e += 3) {
+                    const unsigned at = cmd.IdxOffset + e;
+                    if (glyphStarts.count(at)) {
+                        e += 3;
+                        continue;
+                    }
+                    const ImDrawIdx* idx = list.IdxBuffer.Data + at;
+                    const ImDrawVert& a = list.VtxBuffer[cmd.VtxOffset + idx[0]];
+                    const ImDrawVert& b = list.VtxBuffer[cmd.VtxOffset + idx[1]];
+                    const ImDrawVert& c = list.VtxBuffer[cmd.VtxOffset + idx[2]];
+                    // Opaque enough to hide what is under it (button frames are partly
+                    // transparent).
+                    auto opaque = [](ImU32 col) {
+                        return ((col >> IM_COL32_A_SHIFT) & 0xFF) >= 100;
+                    };
+                    if (!opaque(a.col) || !opaque(b.col) || !opaque(c.col))
+                        continue;
+                    const float area = 0.5f * std::abs((b.pos.x - a.pos.x) * (c.pos.y - a.pos.y) -
+                                                       (c.pos.x - a.pos.x) * (b.pos.y - a.pos.y));
+                    if (area < 4.0f)
+                        continue; // lines and edges, not a shape that hides text
+                    const float bx0 =
+                        std::max(std::min({a.pos.x, b.pos.x, c.pos.x}), cmd.ClipRect.x);
+                    const float bx1 =
+                        std::min(std::max({a.pos.x, b.pos.x, c.pos.x}), cmd.ClipRect.z);
+                    const float by0 =
+                        std::max(std::min({a.pos.y, b.pos.y, c.pos.y}), cmd.ClipRect.y);
+                    const float by1 =
+                        std::min(std::max({a.pos.y, b.pos.y, c.pos.y}), cmd.ClipRect.w);
+                    if (bx1 <= bx0 || by1 <= by0)
+                        continue;
+                    for (int gx = bucket(bx0); gx <= bucket(bx1); ++gx)
+                        for (int gy = bucket(by0); gy <= bucket(by1); ++gy) {
+                            auto it = grid.find({gx, gy});
+                            if (it == grid.end())
+                                continue;
+                            for (int k : it->second) {
+                                const ImVec2 p = centre[k];
+                                if (glyphs[k].order < at && p.x >= bx0 && p.x <= bx1 &&
+                                    p.y >= by0 && p.y <= by1 && inside(p, a.pos, b.pos, c.pos))
+                                    report(glyphs[k].run, "is hidden under a shape drawn over it");
+                            }
+                        }
+                }
+            }
+        }
+
         // Text over text: sweep the visible parts of the glyphs by their left edge.
         struct Box {
             float x0, y0, x1, y1;

@@ -101,6 +101,9 @@ void checkEveryPanel(float width, float height) {
         })
         session.apply(Json::parse(op));
     wb->selection().faults = {"F2"};
+    // The histograms a user picked, the thresholded one first (its title shows the bounds).
+    wb->layout().panelSettings(ui::panel_ids::kHistograms)["variables"] = {"broken_bonds", "type",
+                                                                           "strain"};
     wb->showHelp();
     headless.settle(*wb);
     checkAll("after an hour");
@@ -152,6 +155,19 @@ TEST(Layout, TheCheckerFindsCutOffAndOverlappingText) {
     const auto over = frame(false, true, false);
     ASSERT_EQ(over.size(), 1u);
     EXPECT_NE(over[0].what.find("overlap"), std::string::npos) << over[0].what;
+    // A button drawn over a label hides it.
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(10, 10));
+    ImGui::SetNextWindowSize(ImVec2(300, 200));
+    ImGui::Begin("covered", nullptr, ImGuiWindowFlags_NoSavedSettings);
+    ImGui::TextUnformatted("a label under a button");
+    ImGui::SameLine(20);
+    ImGui::Button("##over", ImVec2(80, 0));
+    ImGui::End();
+    ImGui::Render();
+    const auto covered = layoutProblems(ImGui::GetDrawData());
+    ASSERT_EQ(covered.size(), 1u);
+    EXPECT_NE(covered[0].what.find("hidden under a shape"), std::string::npos) << covered[0].what;
     ImGui::DestroyContext(context);
 }
 

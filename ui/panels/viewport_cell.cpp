@@ -119,6 +119,7 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 imgMax(imgPos.x + imgSize.x, imgPos.y + imgSize.y);
     const unsigned int tex = wb.renderer() ? wb.renderer()->texture(view.name) : 0;
+    std::array<std::string, 2> placeholder; // the text shown where there is no image (yet)
     if (tex) {
         dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)), imgPos, imgMax, ImVec2(0, 1), ImVec2(1, 0));
     } else {
@@ -126,19 +127,14 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
         dl->AddRectFilledMultiColor(imgPos, imgMax, IM_COL32(250, 251, 253, 255), IM_COL32(250, 251, 253, 255),
                                     IM_COL32(226, 230, 238, 255), IM_COL32(226, 230, 238, 255));
         const char* line1 = wb.renderer() ? "rendering..." : "3-D spheres are not drawn in this build";
+        // Drawn last (below), over the box outlines and member marks, so they never hide it.
         std::string line2 = d.frame ? std::to_string(d.frame->size()) + " spheres, " +
                                           std::to_string(d.visibility ? d.visibility->visibleCount : 0) + " visible"
                                     : std::string("no data: File > Open data, or drop a file here");
-        const ImVec2 t1 = ImGui::CalcTextSize(line1), t2 = ImGui::CalcTextSize(line2.c_str());
-        const float cx = imgPos.x + imgSize.x * 0.5f, cy = imgPos.y + imgSize.y * 0.5f;
-        dl->AddText(ImVec2(cx - t1.x * 0.5f, cy - t1.y), IM_COL32(110, 116, 128, 255), line1);
-        dl->AddText(ImVec2(cx - t2.x * 0.5f, cy + 4), IM_COL32(110, 116, 128, 255), line2.c_str());
+        placeholder = {line1, line2};
     }
-    if (tex && !d.frame) {
-        const char* hint = "No data: File > Open data, or drop a file here";
-        const ImVec2 t = ImGui::CalcTextSize(hint);
-        dl->AddText(ImVec2(imgPos.x + (imgSize.x - t.x) * 0.5f, imgPos.y + (imgSize.y - t.y) * 0.5f), IM_COL32(110, 116, 128, 255), hint);
-    }
+    if (tex && !d.frame)
+        placeholder = {"No data: File > Open data, or drop a file here", ""};
     interact(wb, view, d, imgPos, imgSize);
     const core::CameraState cam = m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace && m_drag.view == view.name
                                       ? m_drag.current
@@ -148,6 +144,13 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     m_selection.drawMembers(wb, d, cam, imgPos, imgSize);
     if (m_selection.view() == view.name)
         m_selection.drawOutline(dl, wb.scale());
+    const float cx = imgPos.x + imgSize.x * 0.5f, cy = imgPos.y + imgSize.y * 0.5f;
+    for (int k = 0; k < 2; ++k)
+        if (!placeholder[k].empty()) {
+            const ImVec2 t = ImGui::CalcTextSize(placeholder[k].c_str());
+            dl->AddText(ImVec2(cx - t.x * 0.5f, k == 0 ? cy - t.y : cy + 4), IM_COL32(110, 116, 128, 255),
+                        placeholder[k].c_str());
+        }
     dl->PopClipRect();
     ImGui::PopID();
 }
