@@ -268,4 +268,11 @@ ValueRange resolveColorRange(RangeMode mode, ValueRange currentFrame,
     return widenDegenerate(currentFrame);
 }
 
+std::optional<ColorMapSpec> parseJournalColorMap(std::string_view name) {
+    auto map = parseColorMap(name);
+    if (map && map->kind == ColorMapKind::Palette)
+        return std::nullopt;
+    return map;
+}
+
 } // namespace faultline::core

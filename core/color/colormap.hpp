@@ -36,6 +36,8 @@ inline constexpr int kMaxBands = 1024;
 std::string colorMapName(const ColorMapSpec& spec);
 // Case-insensitive; nullopt for an unknown name or a band count outside 1..kMaxBands.
 std::optional<ColorMapSpec> parseColorMap(std::string_view name);
+// A map a journal or session may name: parseColorMap without Palette (categories' colours).
+std::optional<ColorMapSpec> parseJournalColorMap(std::string_view name);
 // Names to offer in a combo box, in display order.
 const std::vector<std::string>& colorMapNames();
 

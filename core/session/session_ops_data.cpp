@@ -102,15 +102,7 @@ void registerDataOps(OpTable& ops) {
     });
     addStateOp(ops, "view.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"view", "index"});
-        ViewState v;
-        try {
-            const items::ItemReader fields(args::require(cmd, "view"), "view.");
-            fields.require("name");
-            items::patch(v, fields);
-            items::validate(v);
-        } catch (const items::ItemError& e) {
-            throw CommandError(items::commandMessage("view.restore", e));
-        }
+        const ViewState v = items::patchedField("view.restore", ViewState{}, cmd, "view", {"name"});
         if (s.state().view(v.name))
             throw CommandError("view.restore: a view named \"" + v.name + "\" exists already");
         auto& views = s.mutableState().views;
@@ -170,8 +162,8 @@ void registerDataOps(OpTable& ops) {
             next.colorVariable = *var;
         if (auto map = args::optionalString(cmd, "map")) {
             // The renderers' own parser decides, so the two cannot disagree on a name.
-            const auto parsed = parseColorMap(*map);
-            if (!parsed || parsed->kind == ColorMapKind::Palette) {
+            const auto parsed = parseJournalColorMap(*map);
+            if (!parsed) {
                 std::string known;
                 for (const std::string& name : colorMapNames())
                     known += (known.empty() ? "" : ", ") + name;

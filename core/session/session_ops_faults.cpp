@@ -191,28 +191,14 @@ void registerFaultOps(OpTable& ops) {
     });
     addStateOp(ops, "fault.restore", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"fault", "index", "surface"});
-        Fault f;
-        try {
-            const items::ItemReader fields(args::require(cmd, "fault"), "fault.");
-            fields.require("name");
-            items::patch(f, fields);
-            items::validate(f);
-        } catch (const items::ItemError& e) {
-            throw CommandError(items::commandMessage("fault.restore", e));
-        }
+        Fault f = items::patchedField("fault.restore", Fault{}, cmd, "fault", {"name"});
         auto& state = s.mutableState();
         if (state.fault(f.name) || isVisibleSpheres(f.name))
             throw CommandError("fault.restore: a fault named \"" + f.name + "\" exists already");
         if (cmd.contains("surface")) {
             SurfaceSettings st;
             st.fault = f.name;
-            try {
-                const items::ItemReader fields(cmd["surface"], "surface.");
-                items::patch(st, fields);
-                items::validate(st);
-            } catch (const items::ItemError& e) {
-                throw CommandError(items::commandMessage("fault.restore", e));
-            }
+            st = items::patchedField("fault.restore", st, cmd, "surface");
             state.surfaces.push_back(st);
         }
         const long long index = args::optionalInteger(cmd, "index")

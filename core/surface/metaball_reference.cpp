@@ -125,11 +125,13 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
     return field;
 }
 
-double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
+namespace {
+
+// Over `samples` spheres spread through the set: the lowest field value of the six points
+// `reach` radii from the centre along the axes (the side where the field is lowest).
+std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params,
+                                 std::size_t samples, double reach) {
     const std::size_t n = s.size();
-    if (n == 0)
-        return 0.0;
-    const std::size_t samples = std::min<std::size_t>(n, 96);
     constexpr int kDirections = 6;
     std::vector<double> lowest(samples, 0.0);
     tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
@@ -137,11 +139,22 @@ double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
         double low = std::numeric_limits<double>::infinity();
         for (int d = 0; d < kDirections; ++d) {
             std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
-            p[d / 2] += (d % 2 ? -1.5 : 1.5) * s.radius[i];
+            p[d / 2] += (d % 2 ? -reach : reach) * s.radius[i];
             low = std::min(low, referenceSample(s, params, p).value);
         }
         lowest[q] = low;
     });
+    return lowest;
+}
+
+} // namespace
+
+double wrappingIso(const SphereSet& s, const SurfaceParams& params) {
+    const std::size_t n = s.size();
+    if (n == 0)
+        return 0.0;
+    const std::size_t samples = std::min<std::size_t>(n, 96);
+    std::vector<double> lowest = lowestAround(s, params, samples, 1.5);
     std::sort(lowest.begin(), lowest.end());
     return lowest[samples / 4];
 }
@@ -153,18 +166,7 @@ std::array<double, 2> isoSliderRange(const SphereSet& s, const SurfaceParams& pa
     // At most about 5e7 kernel evaluations (a tenth of a second), whatever the set's size.
     const std::size_t samples = std::clamp<std::size_t>(5'000'000 / n, std::min<std::size_t>(n, 8),
                                                         std::min<std::size_t>(n, 96));
-    constexpr int kDirections = 6;
-    std::vector<double> inner(samples, 0.0);
-    tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
-        const std::size_t i = q * n / samples;
-        double low = std::numeric_limits<double>::infinity();
-        for (int d = 0; d < kDirections; ++d) {
-            std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
-            p[d / 2] += (d % 2 ? -0.5 : 0.5) * s.radius[i];
-            low = std::min(low, referenceSample(s, params, p).value);
-        }
-        inner[q] = low;
-    });
+    const std::vector<double> inner = lowestAround(s, params, samples, 0.5);
     const double high = *std::max_element(inner.begin(), inner.end());
     // The wrapping iso's own sample costs 600 x N: for large sets, two decades below `high`.
     const double low = n <= 50'000 ? wrappingIso(s, params) / 3.0 : high / 100.0;

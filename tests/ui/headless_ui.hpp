@@ -146,6 +146,15 @@ class HeadlessUi {
             ImGui::GetIO().AddInputCharacter(static_cast<unsigned>(c));
         frames(wb);
     }
+    // Into the field marked `name`: one click, select all, type `text`, then press `finish`
+    // (Enter commits, Escape cancels).
+    void retype(ui::Workbench& wb, const std::string& name, const std::string& text,
+                int finish = GLFW_KEY_ENTER) {
+        click(wb, name);
+        key(wb, GLFW_KEY_A, /*ctrl=*/true);
+        type(wb, text);
+        key(wb, finish);
+    }
     void wheel(ui::Workbench& wb, float x, float y, float amount) {
         ImGui::GetIO().MousePos = ImVec2(x, y);
         ImGui::GetIO().MouseWheel = amount;

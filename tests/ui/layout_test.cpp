@@ -122,13 +122,7 @@ TEST(Layout, NoTextIsCutOffOrOverlapsAt1920x1080) { checkEveryPanel(1920, 1080);
 
 // The checker itself: it finds a label cut off by its window and two texts drawn over each other.
 TEST(Layout, TheCheckerFindsCutOffAndOverlappingText) {
-    ImGuiContext* context = ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.DisplaySize = ImVec2(800, 600);
-    io.IniFilename = nullptr;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    const HeadlessUi context(800, 600); // an ImGui context with its font atlas built
     auto frame = [&](bool cut, bool overlap, bool fits) {
         ImGui::NewFrame();
         ImGui::SetNextWindowPos(ImVec2(10, 10));
@@ -168,7 +162,6 @@ TEST(Layout, TheCheckerFindsCutOffAndOverlappingText) {
     const auto covered = layoutProblems(ImGui::GetDrawData());
     ASSERT_EQ(covered.size(), 1u);
     EXPECT_NE(covered[0].what.find("hidden under a shape"), std::string::npos) << covered[0].what;
-    ImGui::DestroyContext(context);
 }
 
 } // namespace

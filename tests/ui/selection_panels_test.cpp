@@ -105,10 +105,7 @@ TEST_F(PanelTest, ThresholdsPanelAddsSlidesInWholeValuesDisablesAndRemoves) {
 
     // Typed bounds: a number, and an empty field for an open end.
     headless.clearEmitted();
-    headless.click(wb(), "thresholds.low.layer");
-    headless.key(wb(), GLFW_KEY_A, true);
-    headless.type(wb(), "2.5");
-    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.retype(wb(), "thresholds.low.layer", "2.5", GLFW_KEY_ENTER);
     EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 3.0}}}));
     headless.clearEmitted();
     headless.click(wb(), "thresholds.high.layer");
@@ -191,10 +188,7 @@ TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {
     headless.showPanel(wb(), ui::panel_ids::kBoxes);
     headless.settle(wb());
     headless.clearEmitted();
-    headless.click(wb(), "boxes.max.0");
-    headless.key(wb(), GLFW_KEY_A, true);
-    headless.type(wb(), "2.5");
-    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.retype(wb(), "boxes.max.0", "2.5", GLFW_KEY_ENTER);
     headless.settle(wb());
     auto sets = headless.emitted("box.set");
     ASSERT_EQ(sets.size(), 1u);
@@ -202,10 +196,7 @@ TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {
     EXPECT_DOUBLE_EQ(session.state().box("b")->max[0], 2.5);
 
     headless.clearEmitted();
-    headless.click(wb(), "boxes.min.1");
-    headless.key(wb(), GLFW_KEY_A, true);
-    headless.type(wb(), "1.75");
-    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.retype(wb(), "boxes.min.1", "1.75", GLFW_KEY_ESCAPE);
     headless.settle(wb());
     EXPECT_TRUE(headless.emitted("box.set").empty());
     EXPECT_DOUBLE_EQ(session.state().box("b")->min[1], 0.0);

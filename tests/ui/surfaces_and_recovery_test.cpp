@@ -495,20 +495,14 @@ TEST_F(PanelTest, IsoSliderSpansTheFieldsUsefulRangeAndTheValueTakesTyping) {
     }
     // One click on the value, type, Enter: one surface.set with the typed value.
     headless.clearEmitted();
-    headless.click(wb(), "surfaces.iso_value");
-    headless.key(wb(), GLFW_KEY_A, true);
-    headless.type(wb(), "2.5");
-    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.retype(wb(), "surfaces.iso_value", "2.5", GLFW_KEY_ENTER);
     headless.settle(wb());
     const auto typed = headless.emitted("surface.set");
     ASSERT_EQ(typed.size(), 1u);
     EXPECT_DOUBLE_EQ(typed[0]["iso"].get<double>(), 2.5);
     // Escape cancels: nothing is emitted and the field shows the setting again.
     headless.clearEmitted();
-    headless.click(wb(), "surfaces.iso_value");
-    headless.key(wb(), GLFW_KEY_A, true);
-    headless.type(wb(), "7");
-    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.retype(wb(), "surfaces.iso_value", "7", GLFW_KEY_ESCAPE);
     headless.settle(wb());
     EXPECT_TRUE(headless.emitted("surface.set").empty());
 }

@@ -14,14 +14,7 @@ void patch(CuttingBox& b, const ItemReader& f) {
     f.read("name", b.name);
     f.read("min", b.min);
     f.read("max", b.max);
-    if (f.has("mode")) {
-        std::string mode;
-        f.read("mode", mode);
-        const auto parsed = parseBoxMode(mode);
-        if (!parsed)
-            f.fail("mode", "must be keep or cut", &f.get("mode"));
-        b.mode = *parsed;
-    }
+    f.readNamed("mode", b.mode, parseBoxMode, "must be keep or cut");
     f.read("enabled", b.enabled);
 }
 

@@ -11,13 +11,13 @@
 
 namespace faultline::core::items {
 
-// `item` with the command's fields read into it and checked (patch, then validate); errors
-// become CommandErrors naming the op and the field. `required` fields must be present.
+// `item` with the fields of `object` read into it and checked (patch, then validate); errors
+// become CommandErrors naming the op and the field (`prefix`: the object's path in the command).
 template <typename T>
-T patched(const std::string& op, T item, const Json& cmd,
-          std::initializer_list<const char*> required = {}) {
+T patchedFrom(const std::string& op, T item, const Json& object, const std::string& prefix,
+              std::initializer_list<const char*> required) {
     try {
-        const ItemReader fields(cmd);
+        const ItemReader fields(object, prefix);
         for (const char* f : required)
             fields.require(f);
         patch(item, fields);
@@ -26,6 +26,21 @@ T patched(const std::string& op, T item, const Json& cmd,
         throw CommandError(commandMessage(op, e));
     }
     return item;
+}
+
+// `item` with the command's own fields read into it and checked.
+template <typename T>
+T patched(const std::string& op, T item, const Json& cmd,
+          std::initializer_list<const char*> required = {}) {
+    return patchedFrom(op, std::move(item), cmd, {}, required);
+}
+
+// An item carried whole in one of the command's fields (view.restore's "view").
+template <typename T>
+T patchedField(const std::string& op, T item, const Json& cmd, const char* field,
+               std::initializer_list<const char*> required = {}) {
+    return patchedFrom(op, std::move(item), args::require(cmd, field), std::string(field) + ".",
+                       required);
 }
 
 // Checks an item a command built field by field (validate), as a CommandError naming the op.

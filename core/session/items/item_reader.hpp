@@ -7,6 +7,7 @@
 #include "core/session/command_args.hpp" // Json, CommandError
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,19 @@ class ItemReader {
     void read(const char* field, bool& out) const;
     void read(const char* field, std::array<double, 3>& out) const;
     void read(const char* field, std::array<float, 3>& out) const;
+    // A name standing for one of a set (a kernel, a colour map, a mode): `parse` gives the value
+    // or nothing, and nothing fails with `what`.
+    template <typename T, typename Parse>
+    void readNamed(const char* field, T& out, Parse parse, const char* what) const {
+        if (!has(field))
+            return;
+        std::string name;
+        read(field, name);
+        const auto parsed = parse(name);
+        if (!parsed)
+            fail(field, what, &get(field));
+        out = *parsed;
+    }
     std::string path(const char* field) const { return m_prefix + field; }
     [[noreturn]] void fail(const char* field, const std::string& what,
                            const Json* found = nullptr) const;

@@ -53,27 +53,13 @@ constexpr const char* kColour = "must be [r, g, b] with components in [0, 1], or
 } // namespace
 
 void patch(SurfaceSettings& st, const ItemReader& f) {
-    if (f.has("kernel")) {
-        std::string name;
-        f.read("kernel", name);
-        const auto kernel = parseKernel(name);
-        if (!kernel)
-            f.fail("kernel", "must be inverse, inverse-square or compact", &f.get("kernel"));
-        st.kernel = *kernel;
-    }
+    f.readNamed("kernel", st.kernel, parseKernel, "must be inverse, inverse-square or compact");
     f.read("voxel", st.voxel);
     f.read("iso", st.iso);
     f.read("visible", st.visible);
     f.read("opacity", st.opacity);
     f.read("color_by", st.colorBy);
-    if (f.has("map")) {
-        std::string name;
-        f.read("map", name);
-        const auto map = parseColorMap(name);
-        if (!map || map->kind == ColorMapKind::Palette)
-            f.fail("map", "names no colour map", &f.get("map"));
-        st.colorMap = *map;
-    }
+    f.readNamed("map", st.colorMap, parseJournalColorMap, "names no colour map");
     readOptional<2>(f, "range", st.colorRange, kRange);
     if (f.has("color_reach")) {
         if (f.get("color_reach").is_null()) {

@@ -52,22 +52,8 @@ void patch(ViewState& v, const ItemReader& f) {
     if (f.has("color")) {
         const ItemReader c(f.get("color"), f.path("color."));
         c.read("variable", v.colorVariable);
-        if (c.has("map")) {
-            std::string name;
-            c.read("map", name);
-            const auto map = parseColorMap(name);
-            if (!map || map->kind == ColorMapKind::Palette)
-                c.fail("map", "names no colour map", &c.get("map"));
-            v.colorMap = *map;
-        }
-        if (c.has("range_mode")) {
-            std::string name;
-            c.read("range_mode", name);
-            const auto mode = parseRangeMode(name);
-            if (!mode)
-                c.fail("range_mode", "must be frame, all or fixed", &c.get("range_mode"));
-            v.rangeMode = *mode;
-        }
+        c.readNamed("map", v.colorMap, parseJournalColorMap, "names no colour map");
+        c.readNamed("range_mode", v.rangeMode, parseRangeMode, "must be frame, all or fixed");
         if (c.has("range")) {
             const Json& r = c.get("range");
             if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
@@ -77,14 +63,8 @@ void patch(ViewState& v, const ItemReader& f) {
         }
         if (c.has("difference")) {
             const ItemReader d(c.get("difference"), c.path("difference."));
-            if (d.has("mode")) {
-                std::string mode;
-                d.read("mode", mode);
-                const auto parsed = parseDifferenceMode(mode);
-                if (!parsed)
-                    d.fail("mode", "must be none, change or displacement", &d.get("mode"));
-                v.difference.mode = *parsed;
-            }
+            d.readNamed("mode", v.difference.mode, parseDifferenceMode,
+                        "must be none, change or displacement");
             if (d.has("reference"))
                 readBinding(ItemReader(d.get("reference"), d.path("reference.")),
                             v.difference.reference);
