@@ -32,84 +32,6 @@ std::string resolve(const std::string& path, const std::string& baseDir) {
     return (fs::path(baseDir) / path).lexically_normal().string();
 }
 
-// Reads one JSON object field by field; errors name the file and the field's path.
-class Fields {
-  public:
-    Fields(const Json& obj, std::string where, const std::string& file)
-        : m_obj(obj), m_where(std::move(where)), m_file(file) {
-        if (!obj.is_object())
-            fail("", "must be an object, found " + std::string(obj.type_name()));
-    }
-    [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-        std::string at = m_where;
-        if (!field.empty())
-            at += (at.empty() ? "" : ".") + field;
-        throw InputError(m_file, (at.empty() ? std::string("document") : at) + ": " + what);
-    }
-    bool has(const char* f) const { return m_obj.contains(f); }
-    const Json& get(const char* f) const {
-        auto it = m_obj.find(f);
-        if (it == m_obj.end())
-            fail(f, "is missing");
-        return *it;
-    }
-    std::string str(const char* f, std::optional<std::string> fallback = std::nullopt) const {
-        if (!has(f) && fallback)
-            return *fallback;
-        const Json& v = get(f);
-        if (!v.is_string())
-            fail(f, "must be a string");
-        return v.get<std::string>();
-    }
-    double num(const char* f, std::optional<double> fallback = std::nullopt) const {
-        if (!has(f) && fallback)
-            return *fallback;
-        const Json& v = get(f);
-        if (!v.is_number() || !std::isfinite(v.get<double>()))
-            fail(f, "must be a finite number");
-        return v.get<double>();
-    }
-    bool boolean(const char* f, bool fallback) const {
-        if (!has(f))
-            return fallback;
-        const Json& v = get(f);
-        if (!v.is_boolean())
-            fail(f, "must be true or false");
-        return v.get<bool>();
-    }
-    template <std::size_t N> std::array<double, N> nums(const char* f, std::optional<std::array<double, N>> fallback = std::nullopt) const {
-        if (!has(f) && fallback)
-            return *fallback;
-        const Json& v = get(f);
-        if (!v.is_array() || v.size() != N)
-            fail(f, "must be an array of " + std::to_string(N) + " numbers");
-        std::array<double, N> out{};
-        for (std::size_t k = 0; k < N; ++k) {
-            if (!v[k].is_number() || !std::isfinite(v[k].get<double>()))
-                fail(f, "must hold finite numbers");
-            out[k] = v[k].get<double>();
-        }
-        return out;
-    }
-    const Json& array(const char* f) const {
-        static const Json kEmpty = Json::array();
-        if (!has(f))
-            return kEmpty;
-        const Json& v = get(f);
-        if (!v.is_array())
-            fail(f, "must be an array");
-        return v;
-    }
-    std::string child(const char* f, std::size_t k) const {
-        return (m_where.empty() ? "" : m_where + ".") + f + "[" + std::to_string(k) + "]";
-    }
-    std::string child(const char* f) const { return (m_where.empty() ? "" : m_where + ".") + f; }
-
-  private:
-    const Json& m_obj;
-    std::string m_where;
-    const std::string& m_file;
-};
 
 // One item read by its codec (items/*_codec.hpp), errors located in the file.
 template <typename T>
@@ -200,88 +122,101 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         throw InputError(path, "session schema " + std::to_string(schema) + " is not valid");
     const Json doc = schema < kSessionSchema ? migrate(input, schema, path) : input;
 
-    Fields top(doc, "", path);
+    // The document's own fields read as the items' are (items::ItemReader), errors located in
+    // the file; the items themselves through their codecs (readItem).
+    auto at = [](const char* list, std::size_t k) {
+        return std::string(list) + "[" + std::to_string(k) + "]";
+    };
     SessionState s;
-    if (top.has("data")) {
-        Fields data(top.get("data"), "data", path);
-        const Json& paths = data.array("paths");
-        for (std::size_t k = 0; k < paths.size(); ++k) {
-            if (!paths[k].is_string())
-                data.fail("paths[" + std::to_string(k) + "]", "must be a string");
-            s.dataPaths.push_back(resolve(paths[k].get<std::string>(), baseDir));
+    try {
+        const items::ItemReader top(doc);
+        if (top.has("data")) {
+            const items::ItemReader data(top.get("data"), "data.");
+            const Json& paths = data.array("paths");
+            for (std::size_t k = 0; k < paths.size(); ++k) {
+                if (!paths[k].is_string())
+                    data.fail(at("paths", k).c_str(), "must be a string");
+                s.dataPaths.push_back(resolve(paths[k].get<std::string>(), baseDir));
+            }
         }
-    }
-    const double frame = top.num("frame", 0.0);
-    if (frame < 0 || frame != std::floor(frame))
-        top.fail("frame", "must be a whole number >= 0");
-    s.frame = static_cast<std::size_t>(frame);
+        double frame = 0.0;
+        top.read("frame", frame);
+        if (frame < 0 || frame != std::floor(frame))
+            top.fail("frame", "must be a whole number >= 0");
+        s.frame = static_cast<std::size_t>(frame);
 
-    s.views.clear();
-    const Json& views = top.array("views");
-    for (std::size_t k = 0; k < views.size(); ++k) {
-        ViewState view = readItem<ViewState>(views[k], top.child("views", k), path, {"name"});
-        for (const auto& other : s.views)
-            if (other.name == view.name)
-                throw InputError(path, top.child("views", k) + ".name: '" + view.name +
-                                           "' is used by two views");
-        s.views.push_back(std::move(view));
-    }
-    if (!s.view("main"))
-        s.views.insert(s.views.begin(), mainView());
+        s.views.clear();
+        const Json& views = top.array("views");
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            ViewState view = readItem<ViewState>(views[k], at("views", k), path, {"name"});
+            for (const auto& other : s.views)
+                if (other.name == view.name)
+                    throw InputError(path, at("views", k) + ".name: '" + view.name +
+                                               "' is used by two views");
+            s.views.push_back(std::move(view));
+        }
+        if (!s.view("main"))
+            s.views.insert(s.views.begin(), mainView());
 
-    const Json& boxes = top.array("boxes");
-    for (std::size_t k = 0; k < boxes.size(); ++k) {
-        const CuttingBox box =
-            readItem<CuttingBox>(boxes[k], top.child("boxes", k), path, {"name", "min", "max"});
-        if (s.box(box.name))
-            throw InputError(path, top.child("boxes", k) + ".name: '" + box.name + "' is used twice");
-        s.boxes.push_back(box);
-    }
-    const Json& thresholds = top.array("thresholds");
-    for (std::size_t k = 0; k < thresholds.size(); ++k) {
-        const VariableThreshold th = readItem<VariableThreshold>(
-            thresholds[k], top.child("thresholds", k), path, {"variable", "low", "high"});
-        if (s.threshold(th.variable))
-            throw InputError(path, top.child("thresholds", k) + ".variable: '" + th.variable +
-                                       "' has two thresholds");
-        s.thresholds.push_back(th);
-    }
-    const Json& faults = top.array("faults");
-    for (std::size_t k = 0; k < faults.size(); ++k) {
-        Fault fault = readItem<Fault>(faults[k], top.child("faults", k), path, {"name"});
-        if (s.fault(fault.name))
-            throw InputError(path, top.child("faults", k) + ".name: '" + fault.name + "' is used twice");
-        s.faults.push_back(std::move(fault));
-    }
-    if (top.has("fault_filter")) {
-        Fields ff(top.get("fault_filter"), "fault_filter", path);
-        const std::string mode = ff.str("mode", "all");
-        if (mode == "all")
-            s.faultFilter.mode = FaultFilter::Mode::All;
-        else if (mode == "labelled")
-            s.faultFilter.mode = FaultFilter::Mode::Labelled;
-        else if (mode == "only")
-            s.faultFilter.mode = FaultFilter::Mode::Only;
-        else
-            ff.fail("mode", "must be all, labelled or only");
-        s.faultFilter.fault = ff.str("fault", "");
-        if (s.faultFilter.mode == FaultFilter::Mode::Only && !s.fault(s.faultFilter.fault))
-            ff.fail("fault", "names no fault of this session");
-    }
-    const Json& surfaces = top.array("surfaces");
-    for (std::size_t k = 0; k < surfaces.size(); ++k) {
-        Fields sf(surfaces[k], top.child("surfaces", k), path);
-        SurfaceSettings st;
-        st.fault = sf.str("fault");
-        if (!s.hasSurfaceSource(st.fault))
-            sf.fail("fault", "names no fault of this session");
-        s.surfaces.push_back(
-            readItem<SurfaceSettings>(surfaces[k], top.child("surfaces", k), path, {}, st));
-    }
-    if (top.has("dock_layout")) {
-        if (!top.get("dock_layout").is_object())
-            top.fail("dock_layout", "must be an object");
-        s.dockLayout = top.get("dock_layout");
+        const Json& boxes = top.array("boxes");
+        for (std::size_t k = 0; k < boxes.size(); ++k) {
+            const CuttingBox box =
+                readItem<CuttingBox>(boxes[k], at("boxes", k), path, {"name", "min", "max"});
+            if (s.box(box.name))
+                throw InputError(path, at("boxes", k) + ".name: '" + box.name + "' is used twice");
+            s.boxes.push_back(box);
+        }
+        const Json& thresholds = top.array("thresholds");
+        for (std::size_t k = 0; k < thresholds.size(); ++k) {
+            const VariableThreshold th = readItem<VariableThreshold>(
+                thresholds[k], at("thresholds", k), path, {"variable", "low", "high"});
+            if (s.threshold(th.variable))
+                throw InputError(path, at("thresholds", k) + ".variable: '" + th.variable +
+                                           "' has two thresholds");
+            s.thresholds.push_back(th);
+        }
+        const Json& faults = top.array("faults");
+        for (std::size_t k = 0; k < faults.size(); ++k) {
+            Fault fault = readItem<Fault>(faults[k], at("faults", k), path, {"name"});
+            if (s.fault(fault.name))
+                throw InputError(path,
+                                 at("faults", k) + ".name: '" + fault.name + "' is used twice");
+            s.faults.push_back(std::move(fault));
+        }
+        if (top.has("fault_filter")) {
+            const items::ItemReader ff(top.get("fault_filter"), "fault_filter.");
+            std::string mode = "all";
+            ff.read("mode", mode);
+            if (mode == "all")
+                s.faultFilter.mode = FaultFilter::Mode::All;
+            else if (mode == "labelled")
+                s.faultFilter.mode = FaultFilter::Mode::Labelled;
+            else if (mode == "only")
+                s.faultFilter.mode = FaultFilter::Mode::Only;
+            else
+                ff.fail("mode", "must be all, labelled or only");
+            ff.read("fault", s.faultFilter.fault);
+            if (s.faultFilter.mode == FaultFilter::Mode::Only && !s.fault(s.faultFilter.fault))
+                ff.fail("fault", "names no fault of this session");
+        }
+        const Json& surfaces = top.array("surfaces");
+        for (std::size_t k = 0; k < surfaces.size(); ++k) {
+            const items::ItemReader sf(surfaces[k], at("surfaces", k) + ".");
+            SurfaceSettings st;
+            sf.require("fault");
+            sf.read("fault", st.fault);
+            if (!s.hasSurfaceSource(st.fault))
+                sf.fail("fault", "names no fault of this session");
+            s.surfaces.push_back(
+                readItem<SurfaceSettings>(surfaces[k], at("surfaces", k), path, {}, st));
+        }
+        if (top.has("dock_layout")) {
+            if (!top.get("dock_layout").is_object())
+                top.fail("dock_layout", "must be an object");
+            s.dockLayout = top.get("dock_layout");
+        }
+    } catch (const items::ItemError& e) {
+        throw InputError(path, items::fileMessage("", e));
     }
     return s;
 }

@@ -18,8 +18,6 @@ namespace faultline::ui {
 
 namespace {
 
-const char* kMaps[] = {"blue-red", "viridis", "diverging", "pastel", "bands", "gray"};
-
 std::string bindingText(const core::FrameBinding& b) {
     if (!b.relative)
         return "frame " + std::to_string(b.value);
@@ -295,8 +293,8 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
                 wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == core::RangeMode::Fixed ? std::string("frame") : std::string(core::rangeModeName(view.rangeMode))}});
     ImGui::Separator();
     ImGui::TextDisabled("Colour map");
-    for (const char* m : kMaps)
-        if (ImGui::Selectable(m, core::colorMapName(view.colorMap) == m))
+    for (const std::string& m : core::colorMapNames())
+        if (ImGui::Selectable(m.c_str(), core::colorMapName(view.colorMap) == m))
             wb.emit({{"op", "color.set"}, {"view", view.name}, {"map", m}});
     ImGui::Separator();
     ImGui::TextDisabled("Range");

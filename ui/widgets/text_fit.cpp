@@ -30,7 +30,7 @@ bool textElided(const std::string& text, float width) {
         width = ImGui::GetContentRegionAvail().x;
     const std::string shown = elided(text, width);
     ImGui::TextUnformatted(shown.c_str());
-    const bool cut = shown.size() != text.size() || shown != text;
+    const bool cut = shown != text;
     if (cut && ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", text.c_str());
     return cut;

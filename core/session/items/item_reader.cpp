@@ -93,6 +93,16 @@ void ItemReader::read(const char* field, std::array<double, 3>& out) const {
     out = next;
 }
 
+const Json& ItemReader::array(const char* field) const {
+    static const Json kEmpty = Json::array();
+    if (!has(field))
+        return kEmpty;
+    const Json& v = get(field);
+    if (!v.is_array())
+        fail(field, "must be an array", &v);
+    return v;
+}
+
 void ItemReader::read(const char* field, std::array<float, 3>& out) const {
     std::array<double, 3> d{out[0], out[1], out[2]};
     read(field, d);

@@ -44,6 +44,8 @@ class ItemReader {
     void read(const char* field, bool& out) const;
     void read(const char* field, std::array<double, 3>& out) const;
     void read(const char* field, std::array<float, 3>& out) const;
+    // An array field; an empty one when the field is absent.
+    const Json& array(const char* field) const;
     // A name standing for one of a set (a kernel, a colour map, a mode): `parse` gives the value
     // or nothing, and nothing fails with `what`.
     template <typename T, typename Parse>
