@@ -63,8 +63,7 @@ class BoxesPanel final : public Panel {
             wb.emit({{"op", "box.remove"}, {"name", sel->name}});
         wb.mark("boxes.delete");
         ImGui::EndDisabled();
-        flowSameLine(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
-                     ImGui::CalcTextSize("Edit in view").x);
+        flowSameLine(checkboxWidth("Edit in view"));
         ImGui::Checkbox("Edit in view", &wb.selection().editBoxInView);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Show the selected box's face handles in the viewports; drag them to move a face.");

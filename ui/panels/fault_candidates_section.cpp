@@ -28,8 +28,7 @@ class FaultCandidatesSection {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "Two spheres are linked when their centres are closer than k x (r_i + r_j)");
-        flowSameLine(ImGui::GetFontSize() * 5 + ImGui::GetStyle().ItemInnerSpacing.x +
-                     ImGui::CalcTextSize("min size").x);
+        flowSameLine(labelledWidth(ImGui::GetFontSize() * 5, "min size"));
         numberField("min size", &m_minSize, ImGui::GetFontSize() * 5);
         m_minSize = std::max(1, m_minSize);
         ImGui::Checkbox("Apart at junctions", &m_network);
@@ -37,8 +36,7 @@ class FaultCandidatesSection {
             ImGui::SetTooltip("Follow each fault by its orientation: faults that cross or end against\n"
                               "each other come out apart (off: linked spheres by distance alone)");
         if (m_network) {
-            flowSameLine(ImGui::GetFontSize() * 4 + ImGui::GetStyle().ItemInnerSpacing.x +
-                         ImGui::CalcTextSize("angle").x);
+            flowSameLine(labelledWidth(ImGui::GetFontSize() * 4, "angle"));
             numberField("angle", &m_angle, "%.0f", ImGui::GetFontSize() * 4);
             m_angle = std::clamp(m_angle, 1.0, 89.0);
             if (ImGui::IsItemHovered())

@@ -147,8 +147,7 @@ class FaultMetricsSection {
         std::vector<PlotMark> marks;
         const bool followed = m_events && m_events->key == key;
         if (followed) {
-            flowSameLine(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
-                         ImGui::CalcTextSize("Growth").x);
+            flowSameLine(checkboxWidth("Growth"));
             ImGui::Checkbox("Growth", &m_growth);
             wb.mark("faults.metrics.growth");
             flowSameLine(ImGui::CalcTextSize("00 events").x);

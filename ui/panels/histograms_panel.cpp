@@ -64,8 +64,7 @@ class HistogramsPanel final : public Panel {
             ImGui::EndCombo();
         }
         wb.mark("histograms.add");
-        flowSameLine(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
-                     ImGui::CalcTextSize("Log scale").x);
+        flowSameLine(checkboxWidth("Log scale"));
         if (ImGui::Checkbox("Log scale", &logScale))
             saveSettings(wb, vars, logScale);
         wb.mark("histograms.log");

@@ -185,8 +185,7 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     const ImGuiStyle& style = ImGui::GetStyle();
     float reserve = 0.0f;
     if (wb.state().views.size() > 1)
-        reserve += ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
-                   ImGui::CalcTextSize("linked").x + style.ItemSpacing.x;
+        reserve += checkboxWidth("linked") + style.ItemSpacing.x;
     if (view.name != "main")
         reserve += ImGui::GetFrameHeight() + style.ItemSpacing.x;
     const float room = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x - reserve -

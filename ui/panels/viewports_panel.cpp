@@ -72,9 +72,6 @@ class ViewportsPanel final : public Panel {
             ImGui::SetTooltip("Fit the visible spheres in the views (boxes, thresholds and faults applied)");
         const core::ViewState* main = s.view("main");
         bool context = main && main->contextPoints;
-        const auto checkboxWidth = [](const char* label) {
-            return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
-        };
         flowSameLine(checkboxWidth("Hidden as points"));
         if (ImGui::Checkbox("Hidden as points", &context)) {
             core::Json batch = core::Json::array();

@@ -43,6 +43,13 @@ void flowSameLine(float width) {
         ImGui::SameLine();
 }
 
+float labelledWidth(float fieldWidth, const char* label) {
+    return fieldWidth + ImGui::GetStyle().ItemInnerSpacing.x +
+           ImGui::CalcTextSize(label, nullptr, true).x;
+}
+
+float checkboxWidth(const char* label) { return labelledWidth(ImGui::GetFrameHeight(), label); }
+
 float buttonWidth(const char* label) {
     return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
 }

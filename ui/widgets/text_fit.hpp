@@ -17,5 +17,8 @@ bool textElided(const std::string& text, float width = 0.0f);
 // wide still fits, else starts a new row. `buttonWidth(label)` is the width of a button.
 void flowSameLine(float width);
 float buttonWidth(const char* label);
+// The width of a checkbox with its label (also of a field `fieldWidth` wide with its label).
+float checkboxWidth(const char* label);
+float labelledWidth(float fieldWidth, const char* label);
 
 } // namespace faultline::ui
