@@ -119,7 +119,9 @@ class PanelContext {
     virtual ~PanelContext() = default;
 
     // ---- the session ----
-    virtual core::Session& session() = 0;
+    // The session is read, never written: changes go through emit(). Its version changes
+    // with every command applied.
+    virtual std::uint64_t sessionVersion() const = 0;
     virtual const core::SessionState& state() const = 0;
     virtual const std::shared_ptr<core::Dataset>& dataset() const = 0;
     // `onApplied` runs once the command was applied without error.

@@ -156,7 +156,7 @@ void ViewportSelection::drawMembers(PanelContext& wb, const ViewDisplay& d,
     const double viewHeight = 2.0 * cam.distance * std::tan(0.5 * cam.fovY * M_PI / 180.0);
     const float pixelsPerWorld = viewHeight > 0.0 ? static_cast<float>(size.y / viewHeight) : 1.0f;
     MemberRows& m = m_members;
-    const std::uint64_t version = wb.session().version();
+    const std::uint64_t version = wb.sessionVersion();
     if (m.version != version || m.frame != d.frame || m.visibility != d.visibility ||
         m.fault != f->name) {
         m.version = version, m.frame = d.frame, m.visibility = d.visibility;

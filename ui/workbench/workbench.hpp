@@ -50,7 +50,8 @@ class Workbench final : public PanelContext {
     void renderViews();
 
     // ---- PanelContext ----
-    core::Session& session() override { return m_session; }
+    core::Session& session() { return m_session; }
+    std::uint64_t sessionVersion() const override { return m_session.version(); }
     const core::SessionState& state() const override { return m_session.state(); }
     const std::shared_ptr<core::Dataset>& dataset() const override { return m_frames.dataset(); }
     using PanelContext::emit;
