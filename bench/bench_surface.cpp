@@ -14,6 +14,8 @@
 #include "core/surface/surface_plan.hpp"
 
 #include <benchmark/benchmark.h>
+
+#include <chrono>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
@@ -65,6 +67,9 @@ void report(benchmark::State& state, const fc::SurfaceResult& r) {
     state.counters["triangles"] = double(r.mesh.triangleCount());
     state.counters["plan_ms"] = 1e3 * s.planSeconds;
     state.counters["field_ms"] = 1e3 * s.fieldSeconds;
+    state.counters["levels_ms"] = 1e3 * s.levelsSeconds;
+    state.counters["blocks_ms"] = 1e3 * s.blocksSeconds;
+    state.counters["color_ms"] = 1e3 * s.colorSeconds;
     state.counters["mesh_ms"] = 1e3 * s.meshSeconds;
     state.counters["iso"] = r.iso;
     state.counters["kappa"] = s.kappa;
@@ -230,13 +235,38 @@ void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float 
     p.voxelSize = 1.0f / divisor;
     p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
     fc::SurfaceResult last;
+    double freeMs = 0, buildMs = 0;
     for (auto _ : state) {
+        auto t0 = std::chrono::steady_clock::now();
         last = {}; // one surface at a time, as the peak memory counts it
+        auto t1 = std::chrono::steady_clock::now();
         last = fc::buildSurface(z.set(), p);
+        auto t2 = std::chrono::steady_clock::now();
+        freeMs += std::chrono::duration<double>(t1 - t0).count() * 1e3;
+        buildMs += std::chrono::duration<double>(t2 - t1).count() * 1e3;
     }
+    state.counters["free_ms"] = freeMs / state.iterations();
+    state.counters["build_ms"] = buildMs / state.iterations();
     report(state, last);
     state.counters["spheres"] = double(z.x.size());
     state.counters["peak_rss_mb"] = peakRssMiB();
+}
+
+// Re-meshing the spread-out r/d surface at r/2 at the edges of its iso range (the iso slider).
+void BM_SpreadRemesh(benchmark::State& state) {
+    const auto& z = spread();
+    fc::SurfaceParams p;
+    p.kernel = fc::MetaballKernel::Inverse;
+    p.voxelSize = 0.5f;
+    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    const auto built = fc::buildSurface(z.set(), p);
+    fc::SurfaceMesh mesh;
+    bool up = false;
+    for (auto _ : state) {
+        up = !up;
+        mesh = fc::remesh(*built.field, up ? built.field->isoMax() : built.field->isoMin());
+    }
+    state.counters["triangles"] = double(mesh.triangleCount());
 }
 
 void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
@@ -318,6 +348,8 @@ BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r2, fc::MetaballKernel
                   2.0f)
     ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r2, 2.0f)->Apply(spreadRuns);
+BENCHMARK(BM_SpreadRemesh)->Name("spread_remesh_inverse_r2")->Unit(benchmark::kMillisecond)
+    ->Iterations(10)->UseRealTime();
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r3, fc::MetaballKernel::Inverse, 3.0f)
     ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel::InverseSquare,

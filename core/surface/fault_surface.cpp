@@ -230,6 +230,8 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     if (interrupter)
         interrupter->start("field");
     field.prepare(plan.blocks, interrupter);
+    impl->stats.levelsSeconds = secondsSince(t0);
+    const auto tBlocks = Clock::now();
     std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
     std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
     std::vector<BlockRange> ranges(plan.blocks.size());
@@ -303,6 +305,8 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         field.evaluateBlock(plan.blocks[b], density, nullptr);
         storeBlock(b, density);
     });
+    impl->stats.blocksSeconds = secondsSince(tBlocks);
+    const auto tColor = Clock::now();
     // Colour (Figure 4) only where the mesh can be: the blocks that keep their voxels.
     tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
         if (sides[b] != BlockSide::Crossing)
@@ -315,6 +319,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
             cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
         colorLeaves[b] = cl;
     });
+    impl->stats.colorSeconds = secondsSince(tColor);
     for (std::size_t b = 0; b < plan.blocks.size(); ++b) {
         if (sides[b] == BlockSide::Crossing) {
             impl->density->tree().addLeaf(densityLeaves[b]);

@@ -32,6 +32,8 @@ struct SurfaceStats {
     int kappa = 0;               // near cutoff / level-1 spacing
     double estimatedError = 0.0; // a priori bound on |f - f_exact| of the levels built
     double planSeconds = 0.0, fieldSeconds = 0.0, meshSeconds = 0.0;
+    // fieldSeconds in parts: the coarse levels (prepare), the blocks' values, their colours.
+    double levelsSeconds = 0.0, blocksSeconds = 0.0, colorSeconds = 0.0;
 };
 
 // The grids of one build (opaque: OpenVDB stays inside a few .cpp files). Immutable once built,

@@ -122,17 +122,39 @@ void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
                     l[k] = std::max(lo[k], o[k]);
                     h[k] = std::min(hi[k], o[k] + 7);
                 }
+                // Rows along z, copied whole: every node of them was marked as needed.
+                const int run = h[2] - l[2] + 1;
+                [[maybe_unused]] const unsigned runBits = ((1u << run) - 1u) << (l[2] - o[2]);
                 for (int i = l[0]; i <= h[0]; ++i)
-                    for (int j = l[1]; j <= h[1]; ++j)
-                        for (int z = l[2]; z <= h[2]; ++z) {
-                            const int n = Brick::offset(i - o[0], j - o[1], z - o[2]);
-                            assert(brick->needed(n));
-                            out[(static_cast<std::size_t>(i - lo[0]) * dims[1] + (j - lo[1])) *
-                                    dims[2] +
-                                (z - lo[2])] = brick->values[n];
-                        }
+                    for (int j = l[1]; j <= h[1]; ++j) {
+                        const int n = Brick::offset(i - o[0], j - o[1], l[2] - o[2]);
+                        assert(((brick->mask[i - o[0]] >> (8 * (j - o[1]))) & runBits) ==
+                                   runBits &&
+                               "a coarse node the interpolation needs was never marked");
+                        std::copy_n(&brick->values[n], run,
+                                    &out[(static_cast<std::size_t>(i - lo[0]) * dims[1] +
+                                          (j - lo[1])) *
+                                             dims[2] +
+                                         (l[2] - lo[2])]);
+                    }
             }
 }
+
+namespace {
+// Interpolation weights of the `ratio` finer indices between two nodes (phase g mod ratio),
+// computed once per ratio and thread.
+const std::array<float, kTaps> *phaseWeights(int ratio) {
+    thread_local int cached = 0;
+    thread_local std::vector<std::array<float, kTaps>> table;
+    if (cached != ratio) {
+        table.resize(static_cast<std::size_t>(ratio));
+        for (int p = 0; p < ratio; ++p)
+            lagrangeWeights(static_cast<float>(p) / static_cast<float>(ratio), table[p].data());
+        cached = ratio;
+    }
+    return table.data();
+}
+} // namespace
 
 void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n,
                      float *out) {
@@ -142,10 +164,11 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
         sd[k] = floorDiv(t0[k] + n[k] - 1, ratio) + kTapsAbove - s0[k] + 1;
     }
     thread_local std::vector<float> src, pass1, pass2;
+    thread_local std::vector<int> base[3];
+    thread_local std::vector<const float *> weights[3];
     gatherPatch(level, s0, sd, src);
     // Per target index along each axis: first source node and weights.
-    std::vector<int> base[3];
-    std::vector<std::array<float, kTaps>> weights[3];
+    const std::array<float, kTaps> *phases = phaseWeights(ratio);
     for (int k = 0; k < 3; ++k) {
         base[k].resize(n[k]);
         weights[k].resize(n[k]);
@@ -153,8 +176,7 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
             const int g = t0[k] + t;
             const int b = floorDiv(g, ratio);
             base[k][t] = b - kTapsBelow - s0[k];
-            lagrangeWeights(static_cast<float>(g - b * ratio) / static_cast<float>(ratio),
-                            weights[k][t].data());
+            weights[k][t] = phases[g - b * ratio].data();
         }
     }
     // x pass: [n0][sd1][sd2]
@@ -171,21 +193,22 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
     // y pass: [n0][n1][sd2]
     pass2.assign(static_cast<std::size_t>(n[0]) * n[1] * sd[2], 0.0f);
     for (int i = 0; i < n[0]; ++i)
-        for (int j = 0; j < n[1]; ++j)
+        for (int j = 0; j < n[1]; ++j) {
+            float *d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
             for (int q = 0; q < kTaps; ++q) {
                 const float w = weights[1][j][q];
                 const float *s = &pass1[(i * sd[1] + base[1][j] + q) * sd[2]];
-                float *d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
                 for (int e = 0; e < sd[2]; ++e)
                     d[e] += w * s[e];
             }
+        }
     // z pass into out
     for (int i = 0; i < n[0]; ++i)
         for (int j = 0; j < n[1]; ++j) {
             const float *s = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
             float *d = &out[(static_cast<std::size_t>(i) * n[1] + j) * n[2]];
             for (int z = 0; z < n[2]; ++z) {
-                const auto &w = weights[2][z];
+                const float *w = weights[2][z];
                 const float *b = s + base[2][z];
                 float v = 0.0f;
                 for (int q = 0; q < kTaps; ++q)
