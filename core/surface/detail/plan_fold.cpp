@@ -115,17 +115,30 @@ template <int P> Fold foldWith(const Fold& parent, const Box& box, float minD2) 
     const double far = std::max(kFoldRatio * delta, delta + 2.0 * minD) * (1.0 + 1e-5);
     const float far2 = static_cast<float>(far * far);
     const std::size_t n = parent.x.size();
-    f.x.reserve(n), f.y.reserve(n), f.z.reserve(n), f.r.reserve(n);
-    thread_local std::vector<float> ux, uy, uz, uw;
-    ux.clear(), uy.clear(), uz.clear(), uw.clear();
     const float cx = float(f.centre[0]), cy = float(f.centre[1]), cz = float(f.centre[2]);
+    // Which spheres stay listed, in one vectorised pass; then lists of exactly their size (a
+    // fold per straddling cell: reserving the parent's size churned pages).
+    thread_local std::vector<unsigned char> near;
+    near.resize(n);
+    std::size_t kept = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const float dx = cx - parent.x[i], dy = cy - parent.y[i], dz = cz - parent.z[i];
-        if (dx * dx + dy * dy + dz * dz < far2) {
-            f.x.push_back(parent.x[i]), f.y.push_back(parent.y[i]), f.z.push_back(parent.z[i]);
-            f.r.push_back(parent.r[i]);
+        near[i] = dx * dx + dy * dy + dz * dz < far2 ? 1 : 0;
+        kept += near[i];
+    }
+    f.x.resize(kept), f.y.resize(kept), f.z.resize(kept), f.r.resize(kept);
+    thread_local std::vector<float> ux, uy, uz, uw;
+    ux.resize(n - kept), uy.resize(n - kept), uz.resize(n - kept), uw.resize(n - kept);
+    std::size_t a = 0, b = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (near[i]) {
+            f.x[a] = parent.x[i], f.y[a] = parent.y[i], f.z[a] = parent.z[i];
+            f.r[a] = parent.r[i];
+            ++a;
         } else {
-            ux.push_back(dx), uy.push_back(dy), uz.push_back(dz), uw.push_back(parent.r[i]);
+            ux[b] = cx - parent.x[i], uy[b] = cy - parent.y[i], uz[b] = cz - parent.z[i];
+            uw[b] = parent.r[i];
+            ++b;
         }
     }
     if (ux.empty())

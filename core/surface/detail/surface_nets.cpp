@@ -112,8 +112,11 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 tile[s] = leaf ? 0.0f : densityAcc.getValue(o);
             }
             const float* data[27];
-            for (int q = 0; q < 27; ++q)
+            bool full[27]; // every voxel stored (the leaves buildSurface makes)
+            for (int q = 0; q < 27; ++q) {
                 data[q] = nd[q] ? nd[q]->buffer().data() : nullptr;
+                full[q] = nd[q] && nd[q]->getValueMask().isOn();
+            }
             for (int i = 0; i < kPad; ++i)
                 for (int j = 0; j < kPad; ++j) {
                     const int si = sideOf(i), sj = sideOf(j), li = localOf(i), lj = localOf(j);
@@ -128,10 +131,13 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         bool* on = &stored[padOffset(i, j, k0)];
                         if (data[s]) {
                             const int off = leafOffset(li, lj, local0);
-                            const auto& mask = nd[s]->getValueMask();
-                            for (int k = 0; k < count; ++k) {
-                                out[k] = data[s][off + k];
-                                on[k] = mask.isOn(off + k);
+                            std::memcpy(out, data[s] + off, count * sizeof(float));
+                            if (full[s]) {
+                                std::memset(on, 1, count);
+                            } else {
+                                const auto& mask = nd[s]->getValueMask();
+                                for (int k = 0; k < count; ++k)
+                                    on[k] = mask.isOn(off + k);
                             }
                         } else {
                             for (int k = 0; k < count; ++k) {
