@@ -1,5 +1,7 @@
 #include "core/surface/detail/field_level.hpp"
 
+#include "core/surface/detail/simd8.hpp"
+
 #include <algorithm>
 #include <cassert>
 
@@ -106,8 +108,10 @@ void lagrangeDerivatives(float t, float w[kTaps]) {
 }
 
 void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
-                 std::vector<float> &out) {
-    out.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0.0f);
+                 std::vector<float> &out, int strideZ) {
+    const std::size_t stride = strideZ > 0 ? strideZ : dims[2];
+    assert(stride >= static_cast<std::size_t>(dims[2]));
+    out.assign(static_cast<std::size_t>(dims[0]) * dims[1] * stride, 0.0f);
     const Int3 hi{lo[0] + dims[0] - 1, lo[1] + dims[1] - 1, lo[2] + dims[2] - 1};
     for (int bx = floorDiv(lo[0], 8); bx <= floorDiv(hi[0], 8); ++bx)
         for (int by = floorDiv(lo[1], 8); by <= floorDiv(hi[1], 8); ++by)
@@ -134,7 +138,7 @@ void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
                         std::copy_n(&brick->values[n], run,
                                     &out[(static_cast<std::size_t>(i - lo[0]) * dims[1] +
                                           (j - lo[1])) *
-                                             dims[2] +
+                                             stride +
                                          (l[2] - lo[2])]);
                     }
             }
@@ -156,6 +160,61 @@ const std::array<float, kTaps> *phaseWeights(int ratio) {
 }
 } // namespace
 
+#if defined(__clang__)
+#define FAULTLINE_INTERP_HOT
+#else
+#define FAULTLINE_INTERP_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
+
+namespace {
+// The three separable passes over a patch whose rows along z are a whole number of 8-lane
+// vectors (zeros past their end): x, then y on whole rows, then z as an 8 x stride matrix of
+// weights applied to each row. Up to 8 targets along z.
+FAULTLINE_INTERP_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride,
+                                            const Int3 &n, const int *const base[3],
+                                            const float *const *const weights[3],
+                                            const float *zMatrix, float *pass1, float *pass2,
+                                            float *out) {
+    using simd8::v8f;
+    const int vectors = stride / 8;
+    // x pass: [n0][sd1][stride]
+    const std::size_t plane = static_cast<std::size_t>(sd[1]) * stride;
+    for (int i = 0; i < n[0]; ++i) {
+        float *d = pass1 + i * plane;
+        std::fill(d, d + plane, 0.0f);
+        for (int q = 0; q < kTaps; ++q) {
+            const float w = weights[0][i][q];
+            const float *s = src + (base[0][i] + q) * plane;
+            for (std::size_t e = 0; e < plane; ++e)
+                d[e] += w * s[e];
+        }
+    }
+    // y pass: [n0][n1][stride]
+    for (int i = 0; i < n[0]; ++i)
+        for (int j = 0; j < n[1]; ++j) {
+            for (int v = 0; v < vectors; ++v) {
+                v8f acc{};
+                for (int q = 0; q < kTaps; ++q)
+                    acc += simd8::splat(weights[1][j][q]) *
+                           simd8::load(pass1 + (i * sd[1] + base[1][j] + q) * stride + 8 * v);
+                simd8::store(pass2 + (static_cast<std::size_t>(i) * n[1] + j) * stride + 8 * v,
+                             acc);
+            }
+        }
+    // z pass: each row times the weights matrix (column e: what source e gives each target).
+    for (int i = 0; i < n[0]; ++i)
+        for (int j = 0; j < n[1]; ++j) {
+            const float *s = pass2 + (static_cast<std::size_t>(i) * n[1] + j) * stride;
+            v8f acc{};
+            for (int e = 0; e < sd[2]; ++e)
+                acc += simd8::splat(s[e]) * simd8::load(zMatrix + 8 * e);
+            float *d = out + (static_cast<std::size_t>(i) * n[1] + j) * n[2];
+            for (int z = 0; z < n[2]; ++z)
+                d[z] += acc[z];
+        }
+}
+} // namespace
+
 void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n,
                      float *out) {
     Int3 s0, sd;
@@ -163,10 +222,12 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
         s0[k] = floorDiv(t0[k], ratio) - kTapsBelow;
         sd[k] = floorDiv(t0[k] + n[k] - 1, ratio) + kTapsAbove - s0[k] + 1;
     }
-    thread_local std::vector<float> src, pass1, pass2;
+    assert(n[2] <= 8 && "the z pass fills up to 8 targets");
+    const int stride = (sd[2] + 7) / 8 * 8;
+    thread_local std::vector<float> src, pass1, pass2, zMatrix;
     thread_local std::vector<int> base[3];
     thread_local std::vector<const float *> weights[3];
-    gatherPatch(level, s0, sd, src);
+    gatherPatch(level, s0, sd, src, stride);
     // Per target index along each axis: first source node and weights.
     const std::array<float, kTaps> *phases = phaseWeights(ratio);
     for (int k = 0; k < 3; ++k) {
@@ -179,43 +240,16 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
             weights[k][t] = phases[g - b * ratio].data();
         }
     }
-    // x pass: [n0][sd1][sd2]
-    pass1.assign(static_cast<std::size_t>(n[0]) * sd[1] * sd[2], 0.0f);
-    const std::size_t plane = static_cast<std::size_t>(sd[1]) * sd[2];
-    for (int i = 0; i < n[0]; ++i)
-        for (int q = 0; q < kTaps; ++q) {
-            const float w = weights[0][i][q];
-            const float *s = &src[(base[0][i] + q) * plane];
-            float *d = &pass1[i * plane];
-            for (std::size_t e = 0; e < plane; ++e)
-                d[e] += w * s[e];
-        }
-    // y pass: [n0][n1][sd2]
-    pass2.assign(static_cast<std::size_t>(n[0]) * n[1] * sd[2], 0.0f);
-    for (int i = 0; i < n[0]; ++i)
-        for (int j = 0; j < n[1]; ++j) {
-            float *d = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
-            for (int q = 0; q < kTaps; ++q) {
-                const float w = weights[1][j][q];
-                const float *s = &pass1[(i * sd[1] + base[1][j] + q) * sd[2]];
-                for (int e = 0; e < sd[2]; ++e)
-                    d[e] += w * s[e];
-            }
-        }
-    // z pass into out
-    for (int i = 0; i < n[0]; ++i)
-        for (int j = 0; j < n[1]; ++j) {
-            const float *s = &pass2[(static_cast<std::size_t>(i) * n[1] + j) * sd[2]];
-            float *d = &out[(static_cast<std::size_t>(i) * n[1] + j) * n[2]];
-            for (int z = 0; z < n[2]; ++z) {
-                const float *w = weights[2][z];
-                const float *b = s + base[2][z];
-                float v = 0.0f;
-                for (int q = 0; q < kTaps; ++q)
-                    v += w[q] * b[q];
-                d[z] += v;
-            }
-        }
+    zMatrix.assign(static_cast<std::size_t>(sd[2]) * 8, 0.0f);
+    for (int z = 0; z < n[2]; ++z)
+        for (int q = 0; q < kTaps; ++q)
+            zMatrix[(base[2][z] + q) * 8 + z] = weights[2][z][q];
+    pass1.resize(static_cast<std::size_t>(n[0]) * sd[1] * stride);
+    pass2.resize(static_cast<std::size_t>(n[0]) * n[1] * stride);
+    const int *const bases[3] = {base[0].data(), base[1].data(), base[2].data()};
+    const float *const *const ws[3] = {weights[0].data(), weights[1].data(), weights[2].data()};
+    interpolatePasses(src.data(), sd, stride, n, bases, ws, zMatrix.data(), pass1.data(),
+                      pass2.data(), out);
 }
 
 } // namespace faultline::core::detail

@@ -58,9 +58,10 @@ inline constexpr int kTapsAbove = kTaps - kTapsBelow - 1;
 void lagrangeWeights(float t, float w[kTaps]);
 void lagrangeDerivatives(float t, float w[kTaps]);
 
-// Copies the nodes [lo, lo + dims) of a level into `out` (x slowest, z fastest).
+// Copies the nodes [lo, lo + dims) of a level into `out` (x slowest, z fastest), rows along z
+// strideZ apart (0: dims[2]), zeros past their end.
 void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
-                 std::vector<float> &out);
+                 std::vector<float> &out, int strideZ = 0);
 
 // Adds to `out` (dims n, z fastest) the cubic interpolation of `level` at the finer indices
 // [t0, t0 + n), where a finer index t sits at level index t / ratio.
