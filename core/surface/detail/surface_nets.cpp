@@ -112,9 +112,11 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 tile[s] = leaf ? 0.0f : densityAcc.getValue(o);
             }
             const float* data[27];
+            const openvdb::Vec3s* colorData[27];
             bool full[27]; // every voxel stored (the leaves buildSurface makes)
             for (int q = 0; q < 27; ++q) {
                 data[q] = nd[q] ? nd[q]->buffer().data() : nullptr;
+                colorData[q] = nc[q] ? nc[q]->buffer().data() : nullptr;
                 full[q] = nd[q] && nd[q]->getValueMask().isOn();
             }
             for (int i = 0; i < kPad; ++i)
@@ -241,13 +243,14 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             if (!stored[at])
                                 continue;
                             const int s = neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
-                            const int off = leafOffset(localOf(p[0]), localOf(p[1]), localOf(p[2]));
                             float wgt = 1.0f;
                             for (int k = 0; k < 3; ++k)
                                 wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
-                            if (nc[s])
-                                colorSum += wgt * nc[s]->getValue(off);
+                            if (colorData[s])
+                                colorSum += wgt * colorData[s][leafOffset(
+                                                      localOf(p[0]), localOf(p[1]), localOf(p[2]))];
                             if (normals) {
+                                // In value per voxel: only the direction is kept (normals).
                                 for (int a = 0; a < 3; ++a) {
                                     const int up = at + kPadStep[a], down = at - kPadStep[a];
                                     const float g = stored[up] && stored[down]
@@ -255,7 +258,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                                     : stored[up]   ? value[up] - value[at]
                                                     : stored[down] ? value[at] - value[down]
                                                                    : 0.0f;
-                                    gradientSum[a] += wgt * g / h;
+                                    gradientSum[a] += wgt * g;
                                 }
                             }
                             weight += wgt;
