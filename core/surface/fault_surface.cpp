@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -247,8 +248,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         for (int n = 0; n < kBlockVoxels; ++n)
             density[n] = std::min(density[n], clamp);
         ranges[b] = blockRange(density);
-        for (int n = 0; n < kBlockVoxels; ++n)
-            dl->setValueOnly(n, density[n]);
+        std::copy_n(density, kBlockVoxels, dl->buffer().data());
         densityLeaves[b] = dl;
     };
     // Blocks that bounds put wholly on one side of the iso range skip their near sums; their
@@ -315,8 +315,9 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         Vec3f color[kBlockVoxels];
         field.evaluateColor(o, color);
         auto *cl = new ColorLeaf(openvdb::Coord(o[0], o[1], o[2]), initial, true);
+        openvdb::Vec3s *out = cl->buffer().data();
         for (int n = 0; n < kBlockVoxels; ++n)
-            cl->setValueOnly(n, openvdb::Vec3s(color[n][0], color[n][1], color[n][2]));
+            out[n] = openvdb::Vec3s(color[n][0], color[n][1], color[n][2]);
         colorLeaves[b] = cl;
     });
     impl->stats.colorSeconds = secondsSince(tColor);
