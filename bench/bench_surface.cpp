@@ -14,8 +14,6 @@
 #include "core/surface/surface_plan.hpp"
 
 #include <benchmark/benchmark.h>
-
-#include <chrono>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
@@ -235,18 +233,10 @@ void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float 
     p.voxelSize = 1.0f / divisor;
     p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
     fc::SurfaceResult last;
-    double freeMs = 0, buildMs = 0;
     for (auto _ : state) {
-        auto t0 = std::chrono::steady_clock::now();
         last = {}; // one surface at a time, as the peak memory counts it
-        auto t1 = std::chrono::steady_clock::now();
         last = fc::buildSurface(z.set(), p);
-        auto t2 = std::chrono::steady_clock::now();
-        freeMs += std::chrono::duration<double>(t1 - t0).count() * 1e3;
-        buildMs += std::chrono::duration<double>(t2 - t1).count() * 1e3;
     }
-    state.counters["free_ms"] = freeMs / state.iterations();
-    state.counters["build_ms"] = buildMs / state.iterations();
     report(state, last);
     state.counters["spheres"] = double(z.x.size());
     state.counters["peak_rss_mb"] = peakRssMiB();

@@ -158,19 +158,11 @@ const std::array<float, kTaps> *phaseWeights(int ratio) {
     }
     return table.data();
 }
-} // namespace
 
-#if defined(__clang__)
-#define FAULTLINE_INTERP_HOT
-#else
-#define FAULTLINE_INTERP_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
-#endif
-
-namespace {
 // The three separable passes over a patch whose rows along z are a whole number of 8-lane
 // vectors (zeros past their end): x, then y on whole rows, then z as an 8 x stride matrix of
 // weights applied to each row. Up to 8 targets along z.
-FAULTLINE_INTERP_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride,
+FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride,
                                             const Int3 &n, const int *const base[3],
                                             const float *const *const weights[3],
                                             const float *zMatrix, float *pass1, float *pass2,

@@ -104,15 +104,7 @@ struct BoundKernel {
 };
 
 // Hot loops: bodies templated on the kernel power (no branch inside the loops), instantiated in
-// functions compiled for x86-64-v3 too (AVX2 with FMA: "avx2" alone leaves every a * b + c as
-// two instructions) and picked at run time by CPU feature.
-// clang (the sanitizer build) does not keep the 8-wide helpers' vectors in one ABI across the
-// clones and computes garbage: it builds the baseline only (speed does not matter there).
-#if defined(__clang__)
-#define FAULTLINE_HOT
-#else
-#define FAULTLINE_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
-#endif
+// FAULTLINE_HOT functions (simd8.hpp).
 
 //-----------------------------------------------------------------------------
 // [SECTION] Kernels: softened inner parts, power coefficients

@@ -24,12 +24,6 @@ void moveQuadratic(const Fold& from, const std::array<double, 3>& d, double& val
     }
 }
 
-#if defined(__clang__)
-#define FAULTLINE_FOLD_HOT
-#else
-#define FAULTLINE_FOLD_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
-#endif
-
 // Sums of the folded spheres' terms about a centre, and what bounds their rounding.
 struct FoldSums {
     double value = 0.0, grad[3] = {0, 0, 0}, hess[6] = {0, 0, 0, 0, 0, 0}, remainder = 0.0;
@@ -83,11 +77,11 @@ template <int P>
     out.gradAbs = simd8::sum(gAbs), out.hessAbs = simd8::sum(hAbs);
 }
 
-FAULTLINE_FOLD_HOT void foldTerms1(const float* ux, const float* uy, const float* uz,
+FAULTLINE_HOT void foldTerms1(const float* ux, const float* uy, const float* uz,
                                    const float* w, std::size_t n, float delta, FoldSums& out) {
     foldTermsBody<1>(ux, uy, uz, w, n, delta, out);
 }
-FAULTLINE_FOLD_HOT void foldTerms2(const float* ux, const float* uy, const float* uz,
+FAULTLINE_HOT void foldTerms2(const float* ux, const float* uy, const float* uz,
                                    const float* w, std::size_t n, float delta, FoldSums& out) {
     foldTermsBody<2>(ux, uy, uz, w, n, delta, out);
 }
