@@ -241,8 +241,9 @@ TEST(MetaballField, SparseSetWiderNearCutoffStillMatchesAlgorithm1) {
         fc::MetaballField wider(s.set(), params, voxel);
         // r/d^2's budget keeps the same cutoff here; r/d's widens.
         EXPECT_GE(wider.nearCutoff(), plain.nearCutoff());
-        if (kernel == fc::MetaballKernel::Inverse)
+        if (kernel == fc::MetaballKernel::Inverse) {
             EXPECT_GT(wider.nearCutoff(), plain.nearCutoff());
+        }
         const float isoMin = params.iso / params.isoRangeFactor;
         const auto check = compareWithReference(s, params, voxel, isoMin,
                                                 params.iso * params.isoRangeFactor, {});
