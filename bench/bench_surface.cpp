@@ -18,8 +18,11 @@
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sys/resource.h>
+#include <vector>
 
 namespace fb = faultline::bench;
 namespace fc = faultline::core;
@@ -98,19 +101,29 @@ struct ZoneParticles {
 
 // OpenVDB's way to the same surface: the spheres rasterised as a narrow-band level set, then
 // meshed at 0. Counters: quads and active voxels of the last run.
-void openVdbLevelSetAndMesh(benchmark::State& state, const ZoneParticles& particles, float voxel) {
+struct OpenVdbSurface {
+    openvdb::FloatGrid::Ptr grid;
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec4I> polys;
+};
+
+OpenVdbSurface openVdbOnce(const ZoneParticles& particles, float voxel) {
     openvdb::initialize();
+    OpenVdbSurface s;
+    s.grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
+    openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*s.grid);
+    raster.rasterizeSpheres(particles);
+    raster.finalize(true);
+    openvdb::tools::volumeToMesh(*s.grid, s.points, s.polys, 0.0);
+    return s;
+}
+
+void openVdbLevelSetAndMesh(benchmark::State& state, const ZoneParticles& particles, float voxel) {
     std::size_t quads = 0, voxels = 0;
     for (auto _ : state) {
-        auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, 3.0);
-        openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
-        raster.rasterizeSpheres(particles);
-        raster.finalize(true);
-        std::vector<openvdb::Vec3s> points;
-        std::vector<openvdb::Vec4I> polys;
-        openvdb::tools::volumeToMesh(*grid, points, polys, 0.0);
-        quads = polys.size();
-        voxels = grid->activeVoxelCount();
+        const OpenVdbSurface s = openVdbOnce(particles, voxel);
+        quads = s.polys.size();
+        voxels = s.grid->activeVoxelCount();
     }
     state.counters["quads"] = double(quads);
     state.counters["voxels"] = double(voxels);
@@ -276,6 +289,49 @@ void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
     state.counters["blocks"] = double(blocks);
 }
 
+// The ratio, robust to a machine whose speed drifts between benchmarks: rounds of
+// OpenVDB, then Faultline with r/d, then with r/d^2, on the spread-out set at one voxel size;
+// counters are the medians of each one's times and of the per-round ratios.
+void BM_SpreadRatio(benchmark::State& state, float divisor) {
+    const auto& z = spread();
+    const ZoneParticles particles{&z};
+    fc::SurfaceParams p[2];
+    p[0].kernel = fc::MetaballKernel::Inverse;
+    p[1].kernel = fc::MetaballKernel::InverseSquare;
+    for (auto& q : p) {
+        q.voxelSize = 1.0f / divisor;
+        q.iso = static_cast<float>(fc::wrappingIso(z.set(), q));
+    }
+    constexpr int kRounds = 7;
+    std::vector<double> vdb, ours[2], ratio[2];
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t0) {
+        return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    };
+    for (auto _ : state)
+        for (int round = 0; round < kRounds; ++round) {
+            // Each timed without freeing its result (freed after the clock stops).
+            auto t0 = Clock::now();
+            OpenVdbSurface theirs = openVdbOnce(particles, 1.0f / divisor);
+            vdb.push_back(ms(t0));
+            for (int k = 0; k < 2; ++k) {
+                t0 = Clock::now();
+                fc::SurfaceResult built = fc::buildSurface(z.set(), p[k]);
+                ours[k].push_back(ms(t0));
+                ratio[k].push_back(ours[k].back() / vdb.back());
+            }
+        }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    state.counters["openvdb_ms"] = median(vdb);
+    state.counters["inverse_ms"] = median(ours[0]);
+    state.counters["inverse_square_ms"] = median(ours[1]);
+    state.counters["ratio_inverse"] = median(ratio[0]);
+    state.counters["ratio_inverse_square"] = median(ratio[1]);
+}
+
 void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
     openVdbLevelSetAndMesh(state, ZoneParticles{&spread()}, 1.0f / divisor);
     state.counters["peak_rss_mb"] = peakRssMiB();
@@ -373,4 +429,12 @@ BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel
                   3.0f)
     ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r3, 3.0f)->Apply(spreadRuns);
+BENCHMARK_CAPTURE(BM_SpreadRatio, spread_ratio_r2, 2.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_SpreadRatio, spread_ratio_r3, 3.0f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
 BENCHMARK_MAIN();
