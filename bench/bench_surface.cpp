@@ -21,7 +21,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <sys/resource.h>
+#include <utility>
 #include <vector>
 
 namespace fb = faultline::bench;
@@ -289,34 +291,28 @@ void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
     state.counters["blocks"] = double(blocks);
 }
 
-// The ratio, robust to a machine whose speed drifts between benchmarks: rounds of
-// OpenVDB, then Faultline with r/d, then with r/d^2, on the spread-out set at one voxel size;
-// counters are the medians of each one's times and of the per-round ratios.
-void BM_SpreadRatio(benchmark::State& state, float divisor) {
-    const auto& z = spread();
+// The ratios, robust to a machine whose speed drifts between benchmarks: rounds of
+// OpenVDB, then each Faultline build, on the same spheres at one voxel size; counters are the
+// medians of each one's times (name_ms) and of the per-round ratios (ratio_name). Each build is
+// timed without freeing its result (freed after the clock stops).
+void ratioRounds(benchmark::State& state, const fb::FaultZone& z, float voxel,
+                 const std::vector<std::pair<std::string, fc::SurfaceParams>>& builds) {
     const ZoneParticles particles{&z};
-    fc::SurfaceParams p[2];
-    p[0].kernel = fc::MetaballKernel::Inverse;
-    p[1].kernel = fc::MetaballKernel::InverseSquare;
-    for (auto& q : p) {
-        q.voxelSize = 1.0f / divisor;
-        q.iso = static_cast<float>(fc::wrappingIso(z.set(), q));
-    }
     constexpr int kRounds = 7;
-    std::vector<double> vdb, ours[2], ratio[2];
+    std::vector<double> vdb;
+    std::vector<std::vector<double>> ours(builds.size()), ratio(builds.size());
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::time_point t0) {
         return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     };
     for (auto _ : state)
         for (int round = 0; round < kRounds; ++round) {
-            // Each timed without freeing its result (freed after the clock stops).
             auto t0 = Clock::now();
-            OpenVdbSurface theirs = openVdbOnce(particles, 1.0f / divisor);
+            OpenVdbSurface theirs = openVdbOnce(particles, voxel);
             vdb.push_back(ms(t0));
-            for (int k = 0; k < 2; ++k) {
+            for (std::size_t k = 0; k < builds.size(); ++k) {
                 t0 = Clock::now();
-                fc::SurfaceResult built = fc::buildSurface(z.set(), p[k]);
+                fc::SurfaceResult built = fc::buildSurface(z.set(), builds[k].second);
                 ours[k].push_back(ms(t0));
                 ratio[k].push_back(ours[k].back() / vdb.back());
             }
@@ -326,10 +322,32 @@ void BM_SpreadRatio(benchmark::State& state, float divisor) {
         return v.empty() ? 0.0 : v[v.size() / 2];
     };
     state.counters["openvdb_ms"] = median(vdb);
-    state.counters["inverse_ms"] = median(ours[0]);
-    state.counters["inverse_square_ms"] = median(ours[1]);
-    state.counters["ratio_inverse"] = median(ratio[0]);
-    state.counters["ratio_inverse_square"] = median(ratio[1]);
+    for (std::size_t k = 0; k < builds.size(); ++k) {
+        state.counters[builds[k].first + "_ms"] = median(ours[k]);
+        state.counters["ratio_" + builds[k].first] = median(ratio[k]);
+    }
+}
+
+// The spread-out set, both kernels at the wrapping iso.
+void BM_SpreadRatio(benchmark::State& state, float divisor) {
+    const auto& z = spread();
+    std::vector<std::pair<std::string, fc::SurfaceParams>> builds;
+    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
+        fc::SurfaceParams p;
+        p.kernel = kernel;
+        p.voxelSize = 1.0f / divisor;
+        p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+        builds.emplace_back(kernel == fc::MetaballKernel::Inverse ? "inverse" : "inverse_square",
+                            p);
+    }
+    ratioRounds(state, z, 1.0f / divisor, builds);
+}
+
+// The compact zone (BM_Surface's inverse_square_50k against openvdb_50k).
+void BM_CompactRatio(benchmark::State& state, std::size_t count, float voxel) {
+    const auto& z = zone(count);
+    ratioRounds(state, z, voxel,
+                {{"inverse_square", params(z, fc::MetaballKernel::InverseSquare, voxel)}});
 }
 
 void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
@@ -429,6 +447,10 @@ BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel
                   3.0f)
     ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadOpenVdb, spread_openvdb_r3, 3.0f)->Apply(spreadRuns);
+BENCHMARK_CAPTURE(BM_CompactRatio, compact_ratio_50k, 50000, 0.25f)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SpreadRatio, spread_ratio_r2, 2.0f)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
