@@ -107,6 +107,7 @@ struct OpenVdbSurface {
     openvdb::FloatGrid::Ptr grid;
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec4I> polys;
+    double meshMs = 0.0; // volumeToMesh's part of the time
 };
 
 OpenVdbSurface openVdbOnce(const ZoneParticles& particles, float voxel) {
@@ -116,7 +117,10 @@ OpenVdbSurface openVdbOnce(const ZoneParticles& particles, float voxel) {
     openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*s.grid);
     raster.rasterizeSpheres(particles);
     raster.finalize(true);
+    const auto t0 = std::chrono::steady_clock::now();
     openvdb::tools::volumeToMesh(*s.grid, s.points, s.polys, 0.0);
+    s.meshMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }
 
@@ -294,13 +298,15 @@ void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
 // The ratios, robust to a machine whose speed drifts between benchmarks: rounds of
 // OpenVDB, then each Faultline build, on the same spheres at one voxel size; counters are the
 // medians of each one's times (name_ms) and of the per-round ratios (ratio_name). Each build is
-// timed without freeing its result (freed after the clock stops).
+// timed without freeing its result (freed after the clock stops). Also each one's meshing part
+// (openvdb_mesh_ms: volumeToMesh; name_mesh_ms: surface nets), to tell the fields' cost apart.
 void ratioRounds(benchmark::State& state, const fb::FaultZone& z, float voxel,
                  const std::vector<std::pair<std::string, fc::SurfaceParams>>& builds) {
     const ZoneParticles particles{&z};
     constexpr int kRounds = 7;
-    std::vector<double> vdb;
-    std::vector<std::vector<double>> ours(builds.size()), ratio(builds.size());
+    std::vector<double> vdb, vdbMesh;
+    std::vector<std::vector<double>> ours(builds.size()), ratio(builds.size()),
+        oursMesh(builds.size());
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::time_point t0) {
         return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -310,10 +316,12 @@ void ratioRounds(benchmark::State& state, const fb::FaultZone& z, float voxel,
             auto t0 = Clock::now();
             OpenVdbSurface theirs = openVdbOnce(particles, voxel);
             vdb.push_back(ms(t0));
+            vdbMesh.push_back(theirs.meshMs);
             for (std::size_t k = 0; k < builds.size(); ++k) {
                 t0 = Clock::now();
                 fc::SurfaceResult built = fc::buildSurface(z.set(), builds[k].second);
                 ours[k].push_back(ms(t0));
+                oursMesh[k].push_back(1e3 * built.field->stats().meshSeconds);
                 ratio[k].push_back(ours[k].back() / vdb.back());
             }
         }
@@ -322,8 +330,10 @@ void ratioRounds(benchmark::State& state, const fb::FaultZone& z, float voxel,
         return v.empty() ? 0.0 : v[v.size() / 2];
     };
     state.counters["openvdb_ms"] = median(vdb);
+    state.counters["openvdb_mesh_ms"] = median(vdbMesh);
     for (std::size_t k = 0; k < builds.size(); ++k) {
         state.counters[builds[k].first + "_ms"] = median(ours[k]);
+        state.counters[builds[k].first + "_mesh_ms"] = median(oursMesh[k]);
         state.counters["ratio_" + builds[k].first] = median(ratio[k]);
     }
 }
