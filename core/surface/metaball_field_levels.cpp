@@ -192,7 +192,7 @@ void MetaballField::computeLevels(const std::vector<std::optional<ChargeGrid>> &
         charges.back()->gather(charges.back()->lo, 1, std::numeric_limits<float>::infinity(),
                                topCharges);
 
-    // Compute from the coarsest level down: each level adds its window sum to the cubic
+    // Compute from the coarsest level down: each level adds its window sum to the degree-5
     // interpolation of the level above.
     std::size_t totalBricks = 0;
     for (const auto &l : m_levels)

@@ -162,11 +162,10 @@ const std::array<float, kTaps> *phaseWeights(int ratio) {
 // The three separable passes over a patch whose rows along z are a whole number of 8-lane
 // vectors (zeros past their end): x, then y on whole rows, then z as an 8 x stride matrix of
 // weights applied to each row. Up to 8 targets along z.
-FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride,
-                                            const Int3 &n, const int *const base[3],
-                                            const float *const *const weights[3],
-                                            const float *zMatrix, float *pass1, float *pass2,
-                                            float *out) {
+FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride, const Int3 &n,
+                                     const int *const base[3],
+                                     const float *const *const weights[3], const float *zMatrix,
+                                     float *pass1, float *pass2, float *out) {
     using simd8::v8f;
     const int vectors = stride / 8;
     // x pass: [n0][sd1][stride]

@@ -1,5 +1,6 @@
 // FieldLevel: one coarse grid of the multilevel sum, stored as sparse 8^3 bricks of nodes with a
-// mask of the nodes some finer level needs. Also the cubic interpolation between levels.
+// mask of the nodes some finer level needs. Also the degree-5 (6-tap Lagrange) interpolation
+// between levels.
 #pragma once
 
 #include "core/surface/metaball_kernel.hpp"
@@ -63,8 +64,8 @@ void lagrangeDerivatives(float t, float w[kTaps]);
 void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
                  std::vector<float> &out, int strideZ = 0);
 
-// Adds to `out` (dims n, z fastest) the cubic interpolation of `level` at the finer indices
-// [t0, t0 + n), where a finer index t sits at level index t / ratio.
+// Adds to `out` (dims n, z fastest) the degree-5 (kTaps) interpolation of `level` at the finer
+// indices [t0, t0 + n), where a finer index t sits at level index t / ratio.
 void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n, float *out);
 
 } // namespace faultline::core::detail
