@@ -30,27 +30,36 @@ struct FoldSums {
     double gradAbs = 0.0, hessAbs = 0.0; // sums of |gradient| and of Hessian norms
 };
 
-// Over spheres given relative to the centre (u = centre - sphere, float) and weights: per sphere
-// w / d^p, its gradient -p w d^-(p+2) u, Hessian w (p (p+2) d^-(p+4) u u^T - p d^-(p+2) I), and
+// Over the spheres within sqrt(far2) of c no term (they are flagged in `near`, 1 each, and
+// counted in the return value); over the others, with u = c - sphere and weight w: w / d^p, its
+// gradient -p w d^-(p+2) u, Hessian w (p (p+2) d^-(p+4) u u^T - p d^-(p+2) I), and
 // w / (d - delta)^(p+3) for the remainder; eight at a time in float (the caller widens by their
-// rounding).
+// rounding). One pass: the far spheres are never copied.
 template <int P>
-[[gnu::always_inline]] inline void foldTermsBody(const float* ux, const float* uy, const float* uz,
-                                                 const float* w, std::size_t n, float delta,
-                                                 FoldSums& out) {
+[[gnu::always_inline]] inline std::size_t
+foldTermsBody(const float* px, const float* py, const float* pz, const float* pr, std::size_t n,
+              float cx, float cy, float cz, float far2, float delta, unsigned char* near,
+              FoldSums& out) {
     using simd8::splat;
     using simd8::v8f;
     v8f value{}, gx{}, gy{}, gz{}, hxx{}, hyy{}, hzz{}, hxy{}, hxz{}, hyz{}, rem{}, gAbs{}, hAbs{};
-    const v8f vdelta = splat(delta), one = splat(1.0f);
+    const v8f vdelta = splat(delta), one = splat(1.0f), vfar2 = splat(far2);
+    // Near spheres and padding lanes: weight 0 at a distance of 1 + delta (finite terms).
+    const v8f padX = splat(1.0f + delta);
+    const v8f vcx = splat(cx), vcy = splat(cy), vcz = splat(cz);
+    std::size_t kept = 0;
     for (std::size_t q = 0; q < n; q += 8) {
         const std::size_t left = n - q;
-        // Padding lanes: weight 0 at a distance of 1 + delta (finite terms, zero weight).
-        const v8f pad = left >= 8 ? v8f{} : splat(1.0f + delta);
-        v8f x = simd8::loadUpTo(ux + q, left), y = simd8::loadUpTo(uy + q, left),
-            z = simd8::loadUpTo(uz + q, left), wt = simd8::loadUpTo(w + q, left);
-        if (left < 8)
-            for (std::size_t l = left; l < 8; ++l)
-                x[l] = pad[l];
+        v8f x = vcx - simd8::loadUpTo(px + q, left), y = vcy - simd8::loadUpTo(py + q, left),
+            z = vcz - simd8::loadUpTo(pz + q, left), wt = simd8::loadUpTo(pr + q, left);
+        auto drop = x * x + y * y + z * z < vfar2; // near: listed, not folded
+        for (std::size_t l = 0; l < 8 && l < left; ++l) {
+            near[q + l] = drop[l] ? 1 : 0;
+            kept += near[q + l];
+        }
+        for (std::size_t l = left; l < 8; ++l)
+            drop[l] = -1; // padding
+        x = drop ? padX : x, y = drop ? v8f{} : y, z = drop ? v8f{} : z, wt = drop ? v8f{} : wt;
         const v8f d2 = x * x + y * y + z * z;
         const v8f invd = simd8::inverseSqrt(d2);
         const v8f invd2 = invd * invd;
@@ -64,9 +73,9 @@ template <int P>
         hxx += qq * x * x + g, hyy += qq * y * y + g, hzz += qq * z * z + g;
         hxy += qq * x * y, hxz += qq * x * z, hyz += qq * y * z;
         hAbs += splat(float(P * (P + 1))) * wi * invd2;
-        const v8f near = d2 * invd - vdelta;
-        const v8f near2 = near * near;
-        const v8f nearP3 = P == 1 ? near2 * near2 : near2 * near2 * near;
+        const v8f nearD = d2 * invd - vdelta;
+        const v8f nearD2 = nearD * nearD;
+        const v8f nearP3 = P == 1 ? nearD2 * nearD2 : nearD2 * nearD2 * nearD;
         rem += wt * (one / nearP3);
     }
     out.value = simd8::sum(value);
@@ -75,15 +84,18 @@ template <int P>
     out.hess[3] = simd8::sum(hxy), out.hess[4] = simd8::sum(hxz), out.hess[5] = simd8::sum(hyz);
     out.remainder = simd8::sum(rem);
     out.gradAbs = simd8::sum(gAbs), out.hessAbs = simd8::sum(hAbs);
+    return kept;
 }
 
-FAULTLINE_HOT void foldTerms1(const float* ux, const float* uy, const float* uz,
-                                   const float* w, std::size_t n, float delta, FoldSums& out) {
-    foldTermsBody<1>(ux, uy, uz, w, n, delta, out);
+FAULTLINE_HOT std::size_t foldTerms1(const float* px, const float* py, const float* pz,
+                                     const float* pr, std::size_t n, float cx, float cy, float cz,
+                                     float far2, float delta, unsigned char* near, FoldSums& out) {
+    return foldTermsBody<1>(px, py, pz, pr, n, cx, cy, cz, far2, delta, near, out);
 }
-FAULTLINE_HOT void foldTerms2(const float* ux, const float* uy, const float* uz,
-                                   const float* w, std::size_t n, float delta, FoldSums& out) {
-    foldTermsBody<2>(ux, uy, uz, w, n, delta, out);
+FAULTLINE_HOT std::size_t foldTerms2(const float* px, const float* py, const float* pz,
+                                     const float* pr, std::size_t n, float cx, float cy, float cz,
+                                     float far2, float delta, unsigned char* near, FoldSums& out) {
+    return foldTermsBody<2>(px, py, pz, pr, n, cx, cy, cz, far2, delta, near, out);
 }
 
 // The fold a cell passes to its children: the parent's, moved to this cell's centre, plus the
@@ -110,36 +122,24 @@ template <int P> Fold foldWith(const Fold& parent, const Box& box, float minD2) 
     const float far2 = static_cast<float>(far * far);
     const std::size_t n = parent.x.size();
     const float cx = float(f.centre[0]), cy = float(f.centre[1]), cz = float(f.centre[2]);
-    // Which spheres stay listed, in one vectorised pass; then lists of exactly their size (a
-    // fold per straddling cell: reserving the parent's size churned pages).
+    // One pass folds the far spheres and flags the near ones; then lists of exactly the near
+    // spheres (a fold per straddling cell: reserving the parent's size churned pages).
     thread_local std::vector<unsigned char> near;
     near.resize(n);
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const float dx = cx - parent.x[i], dy = cy - parent.y[i], dz = cz - parent.z[i];
-        near[i] = dx * dx + dy * dy + dz * dz < far2 ? 1 : 0;
-        kept += near[i];
-    }
+    FoldSums sums;
+    const std::size_t kept = (P == 1 ? foldTerms1 : foldTerms2)(
+        parent.x.data(), parent.y.data(), parent.z.data(), parent.r.data(), n, cx, cy, cz, far2,
+        static_cast<float>(delta), near.data(), sums);
     f.x.resize(kept), f.y.resize(kept), f.z.resize(kept), f.r.resize(kept);
-    thread_local std::vector<float> ux, uy, uz, uw;
-    ux.resize(n - kept), uy.resize(n - kept), uz.resize(n - kept), uw.resize(n - kept);
-    std::size_t a = 0, b = 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    std::size_t a = 0;
+    for (std::size_t i = 0; i < n; ++i)
         if (near[i]) {
             f.x[a] = parent.x[i], f.y[a] = parent.y[i], f.z[a] = parent.z[i];
             f.r[a] = parent.r[i];
             ++a;
-        } else {
-            ux[b] = cx - parent.x[i], uy[b] = cy - parent.y[i], uz[b] = cz - parent.z[i];
-            uw[b] = parent.r[i];
-            ++b;
         }
-    }
-    if (ux.empty())
+    if (kept == n)
         return f;
-    FoldSums sums;
-    (P == 1 ? foldTerms1 : foldTerms2)(ux.data(), uy.data(), uz.data(), uw.data(), ux.size(),
-                                       static_cast<float>(delta), sums);
     f.value += sums.value;
     for (int k = 0; k < 3; ++k)
         f.grad[k] += sums.grad[k];
