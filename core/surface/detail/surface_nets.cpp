@@ -3,10 +3,12 @@
 #include "core/surface/detail/field_level.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -55,13 +57,35 @@ struct Foreign {
     std::int32_t cell;  // the cell's offset in that leaf's cell table
 };
 
+// A leaf's cells number kCells^3 = 729, and it owns at most as many vertices and foreign
+// slots: 16 bits hold every entry and cell offset (half the memory of 32, which every build
+// allocates and the kernel clears again).
+using CellEntry = std::int16_t;
+static_assert(kCells * kCells * kCells - 1 <= INT16_MAX &&
+                  kOwnedElsewhere - kCells * kCells * kCells >= INT16_MIN,
+              "cell entries and offsets fit in 16 bits");
+
 struct LeafWork {
-    std::vector<std::int32_t> cells; // kCells^3: local vertex, kNone, or a foreign slot
+    std::vector<CellEntry> cells; // kCells^3: local vertex, kNone, or a foreign slot
     std::vector<Foreign> foreign;
     std::vector<Vec3f> positions, colors, gradients;
-    std::vector<std::array<std::int32_t, 4>> quads; // cell offsets, counter-clockwise outside
+    std::vector<std::array<CellEntry, 4>> quads; // cell offsets, counter-clockwise outside
     std::uint32_t vertexBase = 0;
     std::size_t quadBase = 0;
+    void clear() {
+        cells.clear(), foreign.clear(), positions.clear(), colors.clear(), gradients.clear();
+        quads.clear();
+    }
+    // Copies of `from`'s lists, each of exactly its size: a leaf holds about 30 vertices, and
+    // lists grown in place would keep room for several times that in every leaf.
+    void assignExact(const LeafWork& from) {
+        cells.assign(from.cells.begin(), from.cells.end());
+        foreign.assign(from.foreign.begin(), from.foreign.end());
+        positions.assign(from.positions.begin(), from.positions.end());
+        colors.assign(from.colors.begin(), from.colors.end());
+        gradients.assign(from.gradients.begin(), from.gradients.end());
+        quads.assign(from.quads.begin(), from.quads.end());
+    }
 };
 
 } // namespace
@@ -95,6 +119,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
         float value[kPad * kPad * kPad];
         bool stored[kPad * kPad * kPad];
         unsigned char in[kPad * kPad * kPad];
+        LeafWork w; // this leaf's lists while they grow (kept by work[n] at their size)
         for (std::size_t n = range.begin(); n != range.end(); ++n) {
             const openvdb::Coord origin = leaves[n]->origin();
             const FloatLeaf* nd[27];
@@ -157,12 +182,8 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             }
             if (insideCount == 0 || insideCount == kPad * kPad * kPad)
                 continue; // nothing crosses in or next to this leaf
-            LeafWork& w = work[n];
+            w.clear();
             w.cells.assign(kCells * kCells * kCells, kNone);
-            // A leaf the surface crosses holds about 8^2 cells of it: grow once, not per vertex.
-            w.positions.reserve(128), w.colors.reserve(128), w.quads.reserve(192);
-            if (normals)
-                w.gradients.reserve(128);
             for (int ci = 0; ci < kCells; ++ci)
                 for (int cj = 0; cj < kCells; ++cj) {
                     // A row of cells along z whose corners (four rows of 10 flags) are all
@@ -210,7 +231,8 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             const int oi = ci - 8 * (sideOf(q[0]) - 1);
                             const int oj = cj - 8 * (sideOf(q[1]) - 1);
                             const int ok = ck - 8 * (sideOf(q[2]) - 1);
-                            w.cells[cell] = kOwnedElsewhere - static_cast<int>(w.foreign.size());
+                            w.cells[cell] =
+                                CellEntry(kOwnedElsewhere - static_cast<int>(w.foreign.size()));
                             w.foreign.push_back(
                                 {static_cast<std::uint32_t>(nleaf[owner]), cellOffset(oi, oj, ok)});
                             continue;
@@ -264,7 +286,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             weight += wgt;
                         }
                         const openvdb::Vec3s rgb = weight > 0.0f ? colorSum / weight : background;
-                        w.cells[cell] = static_cast<std::int32_t>(w.positions.size());
+                        w.cells[cell] = static_cast<CellEntry>(w.positions.size());
                         w.positions.push_back({(float(origin.x() - 1 + ci) + t[0]) * h,
                                                (float(origin.y() - 1 + cj) + t[1]) * h,
                                                (float(origin.z() - 1 + ck) + t[2]) * h});
@@ -305,14 +327,14 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 continue;
                             const int b = (a + 1) % 3, c = (a + 2) % 3;
                             // Cells around the edge, counter-clockwise seen from +a.
-                            std::array<std::int32_t, 4> quad;
+                            std::array<CellEntry, 4> quad;
                             const int around[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
                             for (int m = 0; m < 4; ++m) {
                                 int cc[3] = {v[0], v[1], v[2]};
                                 cc[b] += around[m][0];
                                 cc[c] += around[m][1];
-                                quad[m] = cellOffset(cc[0] - kMargin + 1, cc[1] - kMargin + 1,
-                                                     cc[2] - kMargin + 1);
+                                quad[m] = CellEntry(cellOffset(
+                                    cc[0] - kMargin + 1, cc[1] - kMargin + 1, cc[2] - kMargin + 1));
                             }
                             // Outward is from high density to low: +a when this end is inside.
                             if (!inHere)
@@ -321,6 +343,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         }
                     }
                 }
+            work[n].assignExact(w);
         }
     });
 
@@ -332,11 +355,13 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
         vertices += w.positions.size();
         quads += w.quads.size();
     }
-    mesh.positions.resize(vertices);
-    mesh.colors.resize(vertices);
-    mesh.normals.resize(normals ? vertices : 0);
-    mesh.indices.assign(6 * quads, 0);
-    std::vector<char> keep(quads, 1);
+    // Tens of megabytes that the kernel clears page by page as they are first written: both
+    // cores at it.
+    std::vector<char> keep;
+    tbb::parallel_invoke(
+        [&] { mesh.positions.resize(vertices); }, [&] { mesh.colors.resize(vertices); },
+        [&] { mesh.normals.resize(normals ? vertices : 0); },
+        [&] { mesh.indices.assign(6 * quads, 0); }, [&] { keep.assign(quads, 1); });
     tbb::parallel_for(std::size_t{0}, work.size(), [&](std::size_t n) {
         const LeafWork& w = work[n];
         std::copy(w.positions.begin(), w.positions.end(), mesh.positions.begin() + w.vertexBase);
@@ -346,7 +371,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 mesh.normals[w.vertexBase + v] = normalFromGradient(w.gradients[v]);
             }
         auto vertexOf = [&](std::int32_t cell) -> std::int64_t {
-            const std::int32_t entry = w.cells[cell];
+            const std::int32_t entry = w.cells[std::size_t(cell)];
             if (entry >= 0)
                 return std::int64_t(w.vertexBase) + entry;
             if (entry == kNone)
@@ -384,6 +409,11 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
             }
         mesh.indices.resize(6 * to);
     }
+    // Thousands of small lists, freed by both cores.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 256), [&](const auto& r) {
+        for (std::size_t n = r.begin(); n != r.end(); ++n)
+            work[n] = LeafWork{};
+    });
 }
 
 } // namespace faultline::core::detail
