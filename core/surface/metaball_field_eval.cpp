@@ -22,62 +22,78 @@ using namespace field_internal;
 
 namespace {
 
+// The near sums of one 4^3 octant of a block (its first voxel at index lo), voxels in the
+// vector lanes and one sphere at a time: lane l of vector (i, half) is voxel
+// (i, 2 half + l / 4, l % 4) of the octant, and out[8 (2 i + half) + l] its sum. Octant lists
+// are short for sparse sets (a few to a few dozen spheres): one voxel per call with the spheres
+// in the lanes spent more on the call, the horizontal sum and the padding of the last vector
+// than on the terms (spread-out r/2 set: near sums 3.3x faster for r/d, 1.5x for r/d^2).
 template <int P>
-[[gnu::always_inline]] inline float nearValueBody(float x, float y, float z, const NearList &list,
+[[gnu::always_inline]] inline void octantNearBody(const int lo[3], float h, const NearList& list,
                                                   float invC2, float a2, float minD2,
-                                                  const SoftenedKernel &soft) {
-    using simd8::load;
+                                                  const SoftenedKernel& soft, float out[64]) {
     using simd8::splat;
     using simd8::v8f;
-    const v8f vx = splat(x), vy = splat(y), vz = splat(z), one = splat(1.0f);
-    const v8f va2 = splat(a2), vmin = splat(minD2), vinvC2 = splat(invC2),
+    const v8f one = splat(1.0f), va2 = splat(a2), vmin = splat(minD2),
               vinvSoft = splat(1.0f / soft.a2);
     v8f c[5];
     for (int k = 0; k < 5; ++k)
         c[k] = splat(soft.scale * soft.coef[k]);
-    auto term = [&](std::size_t q) {
-        const v8f dx = vx - load(list.x.data() + q), dy = vy - load(list.y.data() + q),
-                  dz = vz - load(list.z.data() + q);
-        const v8f r = load(list.r.data() + q);
-        const v8f d2 = dx * dx + dy * dy + dz * dz;
-        if constexpr (P == 0) {
-            const v8f t = one - d2 * (vinvC2 / (r * r));
-            return t > v8f{} ? r * (t * t * t) : v8f{};
-        } else {
-            const v8f clamped = simd8::max(d2, vmin);
-            v8f k;
-            if constexpr (P == 2)
-                k = one / clamped;
-            else
-                k = simd8::inverseSqrt(clamped);
-            const v8f t = d2 * vinvSoft - one;
-            const v8f v = k - (c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * c[4]))));
-            return d2 < va2 ? r * v : v8f{};
-        }
-    };
-    const std::size_t count = list.size();
-    v8f acc0{}, acc1{};
-    std::size_t q = 0;
-    for (; q + 16 <= count; q += 16) {
-        acc0 += term(q);
-        acc1 += term(q + 8);
+    v8f laneY[2], laneZ;
+    for (int l = 0; l < 8; ++l) {
+        laneY[0][l] = float(lo[1] + l / 4) * h;
+        laneY[1][l] = float(lo[1] + 2 + l / 4) * h;
+        laneZ[l] = float(lo[2] + l % 4) * h;
     }
-    for (; q < count; q += 8)
-        acc0 += term(q);
-    return simd8::sum(acc0 + acc1);
+    const std::size_t count = list.size();
+    const float *px = list.x.data(), *py = list.y.data(), *pz = list.z.data(), *pr = list.r.data();
+    float xs[4];
+    for (int i = 0; i < 4; ++i)
+        xs[i] = float(lo[0] + i) * h;
+    // Per sphere, its squared distance in y and z to the eight lanes once; then each of the
+    // four x planes adds its own (a scalar).
+    for (int half = 0; half < 2; ++half) {
+        v8f acc[4] = {};
+        for (std::size_t q = 0; q < count; ++q) {
+            const v8f dy = laneY[half] - splat(py[q]), dz = laneZ - splat(pz[q]);
+            const v8f yz2 = dy * dy + dz * dz, r = splat(pr[q]);
+            [[maybe_unused]] const v8f compactScale =
+                splat(P == 0 ? invC2 / (pr[q] * pr[q]) : 0.0f);
+            for (int i = 0; i < 4; ++i) {
+                const float dx = xs[i] - px[q];
+                const v8f d2 = yz2 + splat(dx * dx);
+                if constexpr (P == 0) {
+                    const v8f t = one - d2 * compactScale;
+                    acc[i] += t > v8f{} ? r * (t * t * t) : v8f{};
+                } else {
+                    const v8f clamped = simd8::max(d2, vmin);
+                    v8f k;
+                    if constexpr (P == 2)
+                        k = one / clamped;
+                    else
+                        k = simd8::inverseSqrt(clamped);
+                    const v8f t = d2 * vinvSoft - one;
+                    const v8f v = k - (c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * c[4]))));
+                    acc[i] += d2 < va2 ? r * v : v8f{};
+                }
+            }
+        }
+        for (int i = 0; i < 4; ++i)
+            simd8::store(out + 8 * (2 * i + half), acc[i]);
+    }
 }
 
-FAULTLINE_HOT float nearValue0(float x, float y, float z, const NearList &list, float invC2,
-                               float a2, float minD2, const SoftenedKernel &soft) {
-    return nearValueBody<0>(x, y, z, list, invC2, a2, minD2, soft);
+FAULTLINE_HOT void octantNear0(const int lo[3], float h, const NearList& list, float invC2,
+                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<0>(lo, h, list, invC2, a2, minD2, soft, out);
 }
-FAULTLINE_HOT float nearValue1(float x, float y, float z, const NearList &list, float invC2,
-                               float a2, float minD2, const SoftenedKernel &soft) {
-    return nearValueBody<1>(x, y, z, list, invC2, a2, minD2, soft);
+FAULTLINE_HOT void octantNear1(const int lo[3], float h, const NearList& list, float invC2,
+                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<1>(lo, h, list, invC2, a2, minD2, soft, out);
 }
-FAULTLINE_HOT float nearValue2(float x, float y, float z, const NearList &list, float invC2,
-                               float a2, float minD2, const SoftenedKernel &soft) {
-    return nearValueBody<2>(x, y, z, list, invC2, a2, minD2, soft);
+FAULTLINE_HOT void octantNear2(const int lo[3], float h, const NearList& list, float invC2,
+                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<2>(lo, h, list, invC2, a2, minD2, soft, out);
 }
 
 // Figure 4 colour along a row of 8 voxels (z indices k0 .. k0 + 7): per voxel, the sum of the colours of
@@ -107,14 +123,6 @@ FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList &l
     }
     simd8::store(red, cr), simd8::store(green, cg), simd8::store(blue, cb);
     simd8::store(count, n);
-}
-
-// Pads a near list to whole vectors with weightless spheres far from everything.
-void padToVectors(NearList &list) {
-    while (list.x.size() % 8 != 0) {
-        list.x.push_back(1e18f), list.y.push_back(1e18f), list.z.push_back(1e18f);
-        list.r.push_back(0.0f);
-    }
 }
 
 } // namespace
@@ -251,20 +259,18 @@ void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *de
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
                         o[2] + ((octant >> 2) & 1) * kHalf};
-        NearList &list = octants[octant];
-        padToVectors(list);
+        const NearList& list = octants[octant];
+        const int first[3] = {lo[0], lo[1], lo[2]};
+        float sums[64];
+        (compact ? octantNear0
+         : m_kernel.p == 2
+             ? octantNear2
+             : octantNear1)(first, m_h, list, invC2, a2, m_kernel.minD2, m_soft0, sums);
+        static_assert(kHalf == 4, "octantNear fills 4^3 voxels");
         for (int i = 0; i < kHalf; ++i)
-            for (int j = 0; j < kHalf; ++j)
-                for (int k = 0; k < kHalf; ++k) {
-                    const float x = (lo[0] + i) * m_h, y = (lo[1] + j) * m_h, z = (lo[2] + k) * m_h;
-                    const float minD2 = m_kernel.minD2;
-                    const float f = compact ? nearValue0(x, y, z, list, invC2, a2, minD2, m_soft0)
-                                    : m_kernel.p == 2
-                                        ? nearValue2(x, y, z, list, invC2, a2, minD2, m_soft0)
-                                        : nearValue1(x, y, z, list, invC2, a2, minD2, m_soft0);
-                    density[blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + j, lo[2] - o[2] + k)] =
-                        f;
-                }
+            for (int l = 0; l < 16; ++l)
+                density[blockOffset(lo[0] - o[0] + i, lo[1] - o[1] + l / 4, lo[2] - o[2] + l % 4)] =
+                    sums[16 * i + l];
     }
 }
 
