@@ -168,16 +168,19 @@ FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int strid
                                      float *pass1, float *pass2, float *out) {
     using simd8::v8f;
     const int vectors = stride / 8;
-    // x pass: [n0][sd1][stride]
+    // x pass: [n0][sd1][stride], each vector of a plane summed in a register.
     const std::size_t plane = static_cast<std::size_t>(sd[1]) * stride;
     for (int i = 0; i < n[0]; ++i) {
         float *d = pass1 + i * plane;
-        std::fill(d, d + plane, 0.0f);
-        for (int q = 0; q < kTaps; ++q) {
-            const float w = weights[0][i][q];
-            const float *s = src + (base[0][i] + q) * plane;
-            for (std::size_t e = 0; e < plane; ++e)
-                d[e] += w * s[e];
+        v8f w[kTaps];
+        for (int q = 0; q < kTaps; ++q)
+            w[q] = simd8::splat(weights[0][i][q]);
+        const float *s = src + base[0][i] * plane;
+        for (std::size_t e = 0; e < plane; e += 8) {
+            v8f acc{};
+            for (int q = 0; q < kTaps; ++q)
+                acc += w[q] * simd8::load(s + q * plane + e);
+            simd8::store(d + e, acc);
         }
     }
     // y pass: [n0][n1][stride]
@@ -200,8 +203,12 @@ FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int strid
             for (int e = 0; e < sd[2]; ++e)
                 acc += simd8::splat(s[e]) * simd8::load(zMatrix + 8 * e);
             float *d = out + (static_cast<std::size_t>(i) * n[1] + j) * n[2];
-            for (int z = 0; z < n[2]; ++z)
-                d[z] += acc[z];
+            if (n[2] == 8) {
+                simd8::store(d, simd8::load(d) + acc);
+            } else {
+                for (int z = 0; z < n[2]; ++z)
+                    d[z] += acc[z];
+            }
         }
 }
 } // namespace
