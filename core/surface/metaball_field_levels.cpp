@@ -23,14 +23,11 @@ using namespace field_internal;
 
 namespace {
 
+// One window term at squared distances d2 (eight at a time), before its weight: gamma_below -
+// gamma_own within own's cutoff (a coarse level's window), or gamma_below (top level).
 template <int P, bool Top>
-[[gnu::always_inline]] inline simd8::v8f windowTerm(const WindowKernels &k, simd8::v8f x,
-                                                      simd8::v8f y, simd8::v8f z, simd8::v8f px,
-                                                      simd8::v8f py, simd8::v8f pz,
-                                                      simd8::v8f w) {
+[[gnu::always_inline]] inline simd8::v8f windowTerm(const WindowKernels& k, simd8::v8f d2) {
     using simd8::v8f;
-    const v8f dx = x - px, dy = y - py, dz = z - pz;
-    const v8f d2 = dx * dx + dy * dy + dz * dz;
     const v8f inner =
         k.below[0] + d2 * (k.below[1] + d2 * (k.below[2] + d2 * (k.below[3] + d2 * k.below[4])));
     const v8f clamped = simd8::max(d2, k.minD2);
@@ -44,49 +41,78 @@ template <int P, bool Top>
         v -= k.own[0] + d2 * (k.own[1] + d2 * (k.own[2] + d2 * (k.own[3] + d2 * k.own[4])));
         v = d2 < k.ownA2 ? v : v8f{};
     }
-    return w * v;
+    return v;
 }
 
-template <int P, bool Top>
-[[gnu::always_inline]] inline float windowSumBody(float x, float y, float z, const float *px,
-                                                  const float *py, const float *pz,
-                                                  const float *pw, std::size_t count,
-                                                  const WindowKernels &k) {
+// Window sums of NZ nodes of one row along z (at x, y and zs[]), the spheres (or charges) in
+// the lanes: the x and y part of each squared distance is formed once for the row's nodes.
+template <int P, bool Top, int NZ>
+[[gnu::always_inline]] inline void
+windowRowBody(float x, float y, const float* zs, const float* px, const float* py, const float* pz,
+              const float* pw, std::size_t count, const WindowKernels& k, float* out) {
     using simd8::load;
     using simd8::v8f;
-    const v8f vx = simd8::splat(x), vy = simd8::splat(y), vz = simd8::splat(z);
-    v8f acc0{}, acc1{};
+    const v8f vx = simd8::splat(x), vy = simd8::splat(y);
+    v8f vz[NZ], acc[NZ];
+    for (int n = 0; n < NZ; ++n)
+        vz[n] = simd8::splat(zs[n]), acc[n] = v8f{};
+    auto add = [&](v8f sx, v8f sy, v8f sz, v8f w) {
+        const v8f dx = vx - sx, dy = vy - sy;
+        const v8f xy2 = dx * dx + dy * dy;
+        for (int n = 0; n < NZ; ++n) {
+            const v8f dz = vz[n] - sz;
+            acc[n] += w * windowTerm<P, Top>(k, xy2 + dz * dz);
+        }
+    };
     std::size_t q = 0;
-    for (; q + 16 <= count; q += 16) {
-        acc0 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q), load(py + q), load(pz + q),
-                                   load(pw + q));
-        acc1 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q + 8), load(py + q + 8),
-                                   load(pz + q + 8), load(pw + q + 8));
-    }
     for (; q + 8 <= count; q += 8)
-        acc0 += windowTerm<P, Top>(k, vx, vy, vz, load(px + q), load(py + q), load(pz + q),
-                                   load(pw + q));
+        add(load(px + q), load(py + q), load(pz + q), load(pw + q));
     if (q < count) {
         // Padding lanes have weight 0 (and a clamped, finite kernel).
         const std::size_t n = count - q;
-        acc1 += windowTerm<P, Top>(k, vx, vy, vz, simd8::loadPartial(px + q, n),
-                                   simd8::loadPartial(py + q, n), simd8::loadPartial(pz + q, n),
-                                   simd8::loadPartial(pw + q, n));
+        add(simd8::loadPartial(px + q, n), simd8::loadPartial(py + q, n),
+            simd8::loadPartial(pz + q, n), simd8::loadPartial(pw + q, n));
     }
-    return simd8::sum(acc0 + acc1);
+    for (int n = 0; n < NZ; ++n)
+        out[n] = simd8::sum(acc[n]);
 }
 
-FAULTLINE_HOT float windowSum1(float x, float y, float z, const float *px, const float *py,
-                               const float *pz, const float *pw, std::size_t count,
-                               const WindowKernels &kernels, bool top) {
-    return top ? windowSumBody<1, true>(x, y, z, px, py, pz, pw, count, kernels)
-               : windowSumBody<1, false>(x, y, z, px, py, pz, pw, count, kernels);
+template <int P, bool Top>
+[[gnu::always_inline]] inline void
+windowRowDispatch(float x, float y, const float* zs, int nz, const float* px, const float* py,
+                  const float* pz, const float* pw, std::size_t count, const WindowKernels& k,
+                  float* out) {
+    switch (nz) {
+    case 1:
+        windowRowBody<P, Top, 1>(x, y, zs, px, py, pz, pw, count, k, out);
+        break;
+    case 2:
+        windowRowBody<P, Top, 2>(x, y, zs, px, py, pz, pw, count, k, out);
+        break;
+    case 3:
+        windowRowBody<P, Top, 3>(x, y, zs, px, py, pz, pw, count, k, out);
+        break;
+    default:
+        windowRowBody<P, Top, 4>(x, y, zs, px, py, pz, pw, count, k, out);
+        break;
+    }
 }
-FAULTLINE_HOT float windowSum2(float x, float y, float z, const float *px, const float *py,
-                               const float *pz, const float *pw, std::size_t count,
-                               const WindowKernels &kernels, bool top) {
-    return top ? windowSumBody<2, true>(x, y, z, px, py, pz, pw, count, kernels)
-               : windowSumBody<2, false>(x, y, z, px, py, pz, pw, count, kernels);
+
+FAULTLINE_HOT void windowRow1(float x, float y, const float* zs, int nz, const float* px,
+                              const float* py, const float* pz, const float* pw, std::size_t count,
+                              const WindowKernels& kernels, bool top, float* out) {
+    if (top)
+        windowRowDispatch<1, true>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
+    else
+        windowRowDispatch<1, false>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
+}
+FAULTLINE_HOT void windowRow2(float x, float y, const float* zs, int nz, const float* px,
+                              const float* py, const float* pz, const float* pw, std::size_t count,
+                              const WindowKernels& kernels, bool top, float* out) {
+    if (top)
+        windowRowDispatch<2, true>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
+    else
+        windowRowDispatch<2, false>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
 }
 
 // Bounds of f over a box from every sphere on its own (no tree): the tightest bounds of their
@@ -301,16 +327,24 @@ void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const Char
                     pw = window.w.data();
                     len = window.w.size();
                 }
-                for (int n = 0; n < count; ++n) {
-                    const int off = needed[n];
-                    const int i = off >> 6, j = (off >> 3) & 7, z = off & 7;
+                // The needed nodes a row along z at a time (they come in blockOffset order:
+                // z fastest).
+                for (int n = 0; n < count;) {
+                    const int row = needed[n] >> 3;
+                    int end = n + 1;
+                    while (end < count && needed[end] >> 3 == row)
+                        ++end;
+                    const int i = row >> 3, j = row & 7;
+                    float zs[kGroup], sums[kGroup];
+                    for (int m = n; m < end; ++m)
+                        zs[m - n] = (brick.origin[2] + (needed[m] & 7)) * level.spacing;
                     const float x = (brick.origin[0] + i) * level.spacing;
                     const float y = (brick.origin[1] + j) * level.spacing;
-                    const float w = (brick.origin[2] + z) * level.spacing;
-                    brick.values[off] =
-                        kernel.p == 2
-                            ? windowSum2(x, y, w, px, py, pz, pw, len, kernels, level.top)
-                            : windowSum1(x, y, w, px, py, pz, pw, len, kernels, level.top);
+                    (kernel.p == 2 ? windowRow2 : windowRow1)(x, y, zs, end - n, px, py, pz, pw,
+                                                              len, kernels, level.top, sums);
+                    for (int m = n; m < end; ++m)
+                        brick.values[needed[m]] = sums[m - n];
+                    n = end;
                 }
             }
 }
