@@ -55,9 +55,10 @@ using namespace field_internal;
 // [SECTION] Construction and the choice of cutoffs
 //-----------------------------------------------------------------------------
 
-MetaballField::MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
-                             const MultilevelTuning &tuning)
-    : m_tree(spheres), m_params(params), m_tuning(tuning), m_h(voxelSize) {
+MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& params, float voxelSize,
+                             const MultilevelTuning& tuning)
+    : m_tree(spheres), m_grid(m_tree.spheres(), m_tree.root().box, kBlockDim * voxelSize),
+      m_params(params), m_tuning(tuning), m_h(voxelSize) {
     double mean = 0.0;
     for (float r : m_tree.spheres().r)
         mean += r;

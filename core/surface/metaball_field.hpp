@@ -2,6 +2,7 @@
 // summation: exact near field within a cutoff a0, smooth remainders on ever coarser grids.
 #pragma once
 
+#include "core/surface/detail/sphere_grid.hpp"
 #include "core/surface/detail/sphere_tree.hpp"
 #include "core/surface/interrupter.hpp"
 #include "core/surface/metaball_kernel.hpp"
@@ -188,6 +189,7 @@ class MetaballField {
                  Vec3f *color) const;
 
     detail::SphereTree m_tree;
+    detail::SphereGrid m_grid; // the same spheres by block-sized cells: near and colour lists
     SurfaceParams m_params;
     MultilevelTuning m_tuning;
     float m_h;

@@ -135,7 +135,7 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
     thread_local NearList colors;
     const Box box = blockBox(o, m_h);
     colors.clear();
-    m_tree.gather(box, maxRadius() + m_params.colorReach, colors, true);
+    m_grid.gather(box, maxRadius() + m_params.colorReach, colors, true);
     static_assert(kBlockDim == 8, "colorRow fills rows of 8 voxels");
     if (colors.size() == 0) {
         std::fill(color, color + kBlockVoxels, m_params.initialColor);
@@ -223,7 +223,7 @@ int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, 
 void MetaballField::gatherNear(const Coord3 &o, NearList &block) const {
     const Box box = blockBox(o, m_h);
     block.clear();
-    m_tree.gather(box, m_a0, block, false);
+    m_grid.gather(box, m_a0, block, false);
 }
 
 void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *density) const {

@@ -1,8 +1,10 @@
 // The multilevel metaball field against the paper's Algorithm 1 (dense all-pairs sum).
+#include "core/session/fault_surface_request.hpp"
 #include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
 #include "core/surface/detail/plan_fold.hpp"
-#include "core/session/fault_surface_request.hpp"
+#include "core/surface/detail/sphere_grid.hpp"
+#include "core/surface/detail/sphere_tree.hpp"
 #include "core/surface/metaball_field.hpp"
 #include "core/surface/metaball_reference.hpp"
 #include "core/surface/surface_plan.hpp"
@@ -221,6 +223,49 @@ TEST(MetaballField, FoldBoundsHoldEverywhereInNestedBoxes) {
             }
         }
         EXPECT_GT(folded, 12); // the chains did fold spheres
+    }
+}
+
+// The grid's near and colour lists hold exactly the spheres the tree gathers (as sets: the
+// grid lists them in cell order), for boxes inside, across and outside the spheres' box, small
+// and large reaches, with the colours beside their spheres.
+TEST(SphereGrid, GathersTheSpheresTheTreeGathers) {
+    const Spheres s = spreadZones({80, 50, 40}, 23);
+    std::vector<float> rgb(3 * s.x.size());
+    for (std::size_t i = 0; i < rgb.size(); ++i)
+        rgb[i] = float(i % 97) / 96.0f;
+    fc::SphereSet set = s.set();
+    set.rgb = rgb;
+    const fc::detail::SphereTree tree(set);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> at(-20.0f, 100.0f), side(0.0f, 6.0f), reach(0.0f, 12.0f);
+    for (float cell : {0.7f, 4.0f, 1e-3f}) { // the last: capped at kMaxCells
+        const fc::detail::SphereGrid grid(tree.spheres(), tree.root().box, cell);
+        if (cell < 0.01f) {
+            EXPECT_GT(grid.cellSize(), cell);
+        }
+        for (int n = 0; n < 300; ++n) {
+            fc::detail::Box box;
+            for (int k = 0; k < 3; ++k) {
+                box.lo[k] = at(rng);
+                box.hi[k] = box.lo[k] + side(rng);
+            }
+            const float r = n % 10 == 0 ? 200.0f : reach(rng);
+            for (bool withColor : {false, true}) {
+                fc::detail::NearList fromTree, fromGrid;
+                tree.gather(box, r, fromTree, withColor);
+                grid.gather(box, r, fromGrid, withColor);
+                auto rows = [&](const fc::detail::NearList& l) {
+                    std::vector<std::array<float, 7>> v;
+                    for (std::size_t i = 0; i < l.size(); ++i)
+                        v.push_back({l.x[i], l.y[i], l.z[i], l.r[i], withColor ? l.red[i] : 0.0f,
+                                     withColor ? l.green[i] : 0.0f, withColor ? l.blue[i] : 0.0f});
+                    std::sort(v.begin(), v.end());
+                    return v;
+                };
+                ASSERT_EQ(rows(fromTree), rows(fromGrid)) << "cell " << cell << " box " << n;
+            }
+        }
     }
 }
 
