@@ -30,6 +30,7 @@ namespace {
 // than on the terms (spread-out r/2 set: near sums 3.3x faster for r/d, 1.5x for r/d^2).
 template <int P>
 [[gnu::always_inline]] inline void octantNearBody(const int lo[3], float h, const NearList& list,
+                                                  const unsigned char* reach, unsigned octant,
                                                   float invC2, float a2, float minD2,
                                                   const SoftenedKernel& soft, float out[64]) {
     using simd8::splat;
@@ -55,6 +56,8 @@ template <int P>
     for (int half = 0; half < 2; ++half) {
         v8f acc[4] = {};
         for (std::size_t q = 0; q < count; ++q) {
+            if (!((reach[q] >> octant) & 1u))
+                continue; // beyond a0 of every voxel of this octant
             const v8f dy = laneY[half] - splat(py[q]), dz = laneZ - splat(pz[q]);
             const v8f yz2 = dy * dy + dz * dz, r = splat(pr[q]);
             [[maybe_unused]] const v8f compactScale =
@@ -83,17 +86,20 @@ template <int P>
     }
 }
 
-FAULTLINE_HOT void octantNear0(const int lo[3], float h, const NearList& list, float invC2,
-                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
-    octantNearBody<0>(lo, h, list, invC2, a2, minD2, soft, out);
+FAULTLINE_HOT void octantNear0(const int lo[3], float h, const NearList& list,
+                               const unsigned char* reach, unsigned octant, float invC2, float a2,
+                               float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<0>(lo, h, list, reach, octant, invC2, a2, minD2, soft, out);
 }
-FAULTLINE_HOT void octantNear1(const int lo[3], float h, const NearList& list, float invC2,
-                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
-    octantNearBody<1>(lo, h, list, invC2, a2, minD2, soft, out);
+FAULTLINE_HOT void octantNear1(const int lo[3], float h, const NearList& list,
+                               const unsigned char* reach, unsigned octant, float invC2, float a2,
+                               float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<1>(lo, h, list, reach, octant, invC2, a2, minD2, soft, out);
 }
-FAULTLINE_HOT void octantNear2(const int lo[3], float h, const NearList& list, float invC2,
-                               float a2, float minD2, const SoftenedKernel& soft, float out[64]) {
-    octantNearBody<2>(lo, h, list, invC2, a2, minD2, soft, out);
+FAULTLINE_HOT void octantNear2(const int lo[3], float h, const NearList& list,
+                               const unsigned char* reach, unsigned octant, float invC2, float a2,
+                               float minD2, const SoftenedKernel& soft, float out[64]) {
+    octantNearBody<2>(lo, h, list, reach, octant, invC2, a2, minD2, soft, out);
 }
 
 // Bounds of the near part over a box, 8 spheres at a time (see evaluateBlockUnlessOneSided):
@@ -287,11 +293,12 @@ void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *de
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
     const Box box = blockBox(o, m_h);
     // Each sphere's gap to the lower and upper half of the block along each axis gives its
-    // distance to all eight octants in one pass.
+    // distance to all eight octants in one pass: a bit per octant within a0 of it, which the
+    // octant's sums test (most spheres reach all eight: copying them into eight lists cost more
+    // than it saved).
     constexpr int kHalf = kBlockDim / 2;
-    thread_local NearList octants[8];
-    for (auto &l : octants)
-        l.clear();
+    thread_local std::vector<unsigned char> reach;
+    reach.resize(block.size());
     for (std::size_t q = 0; q < block.size(); ++q) {
         const float c[3] = {block.x[q], block.y[q], block.z[q]};
         float gap2[3][2];
@@ -302,25 +309,23 @@ void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *de
             gap2[k][0] = low * low;
             gap2[k][1] = high * high;
         }
-        for (int octant = 0; octant < 8; ++octant) {
-            if (gap2[0][octant & 1] + gap2[1][(octant >> 1) & 1] + gap2[2][(octant >> 2) & 1] >
-                a2)
-                continue;
-            NearList &l = octants[octant];
-            l.x.push_back(c[0]), l.y.push_back(c[1]), l.z.push_back(c[2]);
-            l.r.push_back(block.r[q]);
-        }
+        unsigned bits = 0;
+        for (int octant = 0; octant < 8; ++octant)
+            bits |=
+                (gap2[0][octant & 1] + gap2[1][(octant >> 1) & 1] + gap2[2][(octant >> 2) & 1] <=
+                 a2)
+                << octant;
+        reach[q] = static_cast<unsigned char>(bits);
     }
     for (int octant = 0; octant < 8; ++octant) {
         const Coord3 lo{o[0] + (octant & 1) * kHalf, o[1] + ((octant >> 1) & 1) * kHalf,
                         o[2] + ((octant >> 2) & 1) * kHalf};
-        const NearList& list = octants[octant];
         const int first[3] = {lo[0], lo[1], lo[2]};
         float sums[64];
-        (compact ? octantNear0
-         : m_kernel.p == 2
-             ? octantNear2
-             : octantNear1)(first, m_h, list, invC2, a2, m_kernel.minD2, m_soft0, sums);
+        (compact           ? octantNear0
+         : m_kernel.p == 2 ? octantNear2
+                           : octantNear1)(first, m_h, block, reach.data(), unsigned(octant), invC2,
+                                          a2, m_kernel.minD2, m_soft0, sums);
         static_assert(kHalf == 4, "octantNear fills 4^3 voxels");
         for (int i = 0; i < kHalf; ++i)
             for (int l = 0; l < 16; ++l)
