@@ -144,35 +144,37 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 colorData[q] = nc[q] ? nc[q]->buffer().data() : nullptr;
                 full[q] = nd[q] && nd[q]->getValueMask().isOn();
             }
+            // Rows along z: kMargin voxels of the leaf below, 8 of the same leaf, kMargin of
+            // the one above, each part copied with its size known here (no memcpy calls).
+            auto part = [&]<int Count>(int s, int off, float* out, bool* on) {
+                if (data[s]) {
+                    std::memcpy(out, data[s] + off, Count * sizeof(float));
+                    if (full[s]) {
+                        std::memset(on, 1, Count);
+                    } else {
+                        const auto& mask = nd[s]->getValueMask();
+                        for (int k = 0; k < Count; ++k)
+                            on[k] = mask.isOn(off + k);
+                    }
+                } else {
+                    for (int k = 0; k < Count; ++k) {
+                        out[k] = tile[s];
+                        on[k] = false;
+                    }
+                }
+            };
             for (int i = 0; i < kPad; ++i)
                 for (int j = 0; j < kPad; ++j) {
                     const int si = sideOf(i), sj = sideOf(j), li = localOf(i), lj = localOf(j);
-                    for (int part = 0; part < 3; ++part) {
-                        // z runs over the leaf below (kMargin voxels), this one (8), the one
-                        // above (kMargin).
-                        const int s = neighbourIndex(si, sj, part);
-                        const int k0 = part == 0 ? 0 : part == 1 ? kMargin : kMargin + 8;
-                        const int count = part == 1 ? 8 : kMargin;
-                        const int local0 = part == 0 ? 8 - kMargin : 0;
-                        float* out = &value[padOffset(i, j, k0)];
-                        bool* on = &stored[padOffset(i, j, k0)];
-                        if (data[s]) {
-                            const int off = leafOffset(li, lj, local0);
-                            std::memcpy(out, data[s] + off, count * sizeof(float));
-                            if (full[s]) {
-                                std::memset(on, 1, count);
-                            } else {
-                                const auto& mask = nd[s]->getValueMask();
-                                for (int k = 0; k < count; ++k)
-                                    on[k] = mask.isOn(off + k);
-                            }
-                        } else {
-                            for (int k = 0; k < count; ++k) {
-                                out[k] = tile[s];
-                                on[k] = false;
-                            }
-                        }
-                    }
+                    float* out = &value[padOffset(i, j, 0)];
+                    bool* on = &stored[padOffset(i, j, 0)];
+                    part.template operator()<kMargin>(neighbourIndex(si, sj, 0),
+                                                      leafOffset(li, lj, 8 - kMargin), out, on);
+                    part.template operator()<8>(neighbourIndex(si, sj, 1), leafOffset(li, lj, 0),
+                                                out + kMargin, on + kMargin);
+                    part.template operator()<kMargin>(neighbourIndex(si, sj, 2),
+                                                      leafOffset(li, lj, 0), out + kMargin + 8,
+                                                      on + kMargin + 8);
                 }
             // Which voxels are inside, once: the cells and the edges below only read these bits.
             int insideCount = 0;
