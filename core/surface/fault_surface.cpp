@@ -204,7 +204,8 @@ std::array<float, 2> SurfaceField::isoSliderRange() const {
 
 std::size_t SurfaceField::memoryBytes() const {
     return m_impl->density->memUsage() + m_impl->color->memUsage() +
-           m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float);
+           m_impl->stats.coarseNodes * sizeof(float) * 2 + sphereCount() * 7 * sizeof(float) +
+           m_impl->field->gridBytes();
 }
 
 SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,

@@ -13,8 +13,9 @@
 //   - Block planning: bounds of the field over each candidate block (direct sums for small sets,
 //     the sphere tree otherwise) discard blocks that cannot meet the iso range; coarse nodes are
 //     kept only where planned blocks need them.
-//   - Evaluation: per block, the coarse part interpolated, then the near sums (SIMD, 8 spheres
-//     at a time); blocks whose bounds put them on one side of the iso range skip their near sums.
+//   - Evaluation: per block, the coarse part interpolated, then the near sums over the spheres
+//     within a0 (gathered from a grid of block-sized cells; SIMD, 8 voxels at a time); blocks
+//     whose bounds put them on one side of the iso range skip their near sums.
 //
 // Files (one class, four files; shared parts in detail/metaball_field_common.hpp):
 //   metaball_field.cpp         construction, the choice of cutoffs, the error model

@@ -77,7 +77,8 @@ void addDirectBounds(int power, const float *x, const float *y, const float *z, 
 
 class MetaballField {
   public:
-    // Copies the spheres into its own tree order (the caller's columns may go away later).
+    // Copies the spheres into its own tree order, and again by grid cell (the caller's columns
+    // may go away later).
     MetaballField(const SphereSet &spheres, const SurfaceParams &params, float voxelSize,
                   const MultilevelTuning &tuning = {});
     ~MetaballField();
@@ -95,6 +96,8 @@ class MetaballField {
     const InverseKernel &inverseKernel() const { return m_kernel; }
     std::size_t sphereCount() const { return m_tree.spheres().size(); }
     const detail::SphereTree &tree() const { return m_tree; }
+    // Memory of the spheres' grid (the near and colour lists' index).
+    std::size_t gridBytes() const { return m_grid.memoryBytes(); }
     // Sum of all weights, bounding box of the centres, and largest radius.
     double totalWeight() const { return m_tree.root().weight; }
     const detail::Box &centreBox() const { return m_tree.root().box; }

@@ -250,7 +250,8 @@ SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
     for (auto& b : plan.blocks)
         for (int k = 0; k < 3; ++k)
             b[k] *= kBlockDim;
-    plan.estimatedBytes = plan.blocks.size() * kBytesPerBlock + field.sphereCount() * 48;
+    plan.estimatedBytes =
+        plan.blocks.size() * kBytesPerBlock + field.sphereCount() * 48 + field.gridBytes();
     if (interrupter)
         interrupter->end();
     return plan;

@@ -24,6 +24,9 @@ class SphereGrid {
     void gather(const Box& box, float reach, NearList& out, bool withColor) const;
 
     float cellSize() const { return m_cell; }
+    std::size_t memoryBytes() const {
+        return m_start.size() * sizeof(std::uint32_t) + 7 * m_spheres.size() * sizeof(float);
+    }
     static constexpr std::size_t kMaxCells = std::size_t{1} << 23;
 
   private:
