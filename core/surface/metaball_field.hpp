@@ -55,7 +55,7 @@ struct MultilevelTuning {
     int anterpolateFrom = 3;      // levels from this one up may sum grid charges instead of
                                   // spheres (multilevel summation's anterpolation) where the
                                   // error budget has room for it; 0: never
-    double chargeShare = 0.5;     // ... and where the charges number at most this many spheres
+    double chargeShare = 0.9;     // ... and where the charges number at most this many spheres
     // For sparse sets (see MetaballField::sparse()) the near cutoff is this much wider: it costs
     // little there (few spheres in it) and saves level-1 nodes, which would outnumber the voxels'
     // sums. 1: never wider.
