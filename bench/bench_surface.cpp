@@ -244,6 +244,15 @@ const fb::FaultZone& spread() {
     return z;
 }
 
+// The spread-out set's parameters: a kernel at voxel r / divisor and the wrapping iso.
+fc::SurfaceParams spreadParams(fc::MetaballKernel kernel, float divisor) {
+    fc::SurfaceParams p;
+    p.kernel = kernel;
+    p.voxelSize = 1.0f / divisor;
+    p.iso = static_cast<float>(fc::wrappingIso(spread().set(), p));
+    return p;
+}
+
 double peakRssMiB() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
@@ -252,10 +261,7 @@ double peakRssMiB() {
 
 void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float divisor) {
     const auto& z = spread();
-    fc::SurfaceParams p;
-    p.kernel = kernel;
-    p.voxelSize = 1.0f / divisor;
-    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    const fc::SurfaceParams p = spreadParams(kernel, divisor);
     fc::SurfaceResult last;
     for (auto _ : state) {
         last = {}; // one surface at a time, as the peak memory counts it
@@ -269,10 +275,7 @@ void BM_SpreadSurface(benchmark::State& state, fc::MetaballKernel kernel, float 
 // Re-meshing the spread-out r/d surface at r/2 at the edges of its iso range (the iso slider).
 void BM_SpreadRemesh(benchmark::State& state) {
     const auto& z = spread();
-    fc::SurfaceParams p;
-    p.kernel = fc::MetaballKernel::Inverse;
-    p.voxelSize = 0.5f;
-    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    const fc::SurfaceParams p = spreadParams(fc::MetaballKernel::Inverse, 2.0f);
     const auto built = fc::buildSurface(z.set(), p);
     fc::SurfaceMesh mesh;
     bool up = false;
@@ -286,10 +289,7 @@ void BM_SpreadRemesh(benchmark::State& state) {
 // The spread-out r/2 case's field object and block plan alone (the fold planner).
 void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
     const auto& z = spread();
-    fc::SurfaceParams p;
-    p.kernel = kernel;
-    p.voxelSize = 0.5f;
-    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    const fc::SurfaceParams p = spreadParams(kernel, 2.0f);
     std::size_t blocks = 0;
     for (auto _ : state) {
         fc::MetaballField field(z.set(), p, p.voxelSize);
@@ -303,12 +303,8 @@ void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
 // The spread-out r/2 case's field against Algorithm 1 on every 37th planned block (about 400
 // to 550 blocks, each voxel summed over all 10k spheres): the accuracy the speed is bought with.
 void BM_SpreadSampledError(benchmark::State& state, fc::MetaballKernel kernel) {
-    const auto& z = spread();
-    fc::SurfaceParams p;
-    p.kernel = kernel;
-    p.voxelSize = 0.5f;
-    p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
-    sampledError(state, z, p, p.voxelSize, 37);
+    const fc::SurfaceParams p = spreadParams(kernel, 2.0f);
+    sampledError(state, spread(), p, p.voxelSize, 37);
 }
 
 // The ratios, robust to a machine whose speed drifts between benchmarks: rounds of
@@ -358,14 +354,9 @@ void ratioRounds(benchmark::State& state, const fb::FaultZone& z, float voxel,
 void BM_SpreadRatio(benchmark::State& state, float divisor) {
     const auto& z = spread();
     std::vector<std::pair<std::string, fc::SurfaceParams>> builds;
-    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
-        fc::SurfaceParams p;
-        p.kernel = kernel;
-        p.voxelSize = 1.0f / divisor;
-        p.iso = static_cast<float>(fc::wrappingIso(z.set(), p));
+    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare})
         builds.emplace_back(kernel == fc::MetaballKernel::Inverse ? "inverse" : "inverse_square",
-                            p);
-    }
+                            spreadParams(kernel, divisor));
     ratioRounds(state, z, 1.0f / divisor, builds);
 }
 

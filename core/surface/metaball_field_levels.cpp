@@ -98,21 +98,18 @@ windowRowDispatch(float x, float y, const float* zs, int nz, const float* px, co
     }
 }
 
-FAULTLINE_HOT void windowRow1(float x, float y, const float* zs, int nz, const float* px,
-                              const float* py, const float* pz, const float* pw, std::size_t count,
-                              const WindowKernels& kernels, bool top, float* out) {
-    if (top)
+// P: the kernel's power (1 or 2); top: the top level's sums (no own cutoff).
+FAULTLINE_HOT void windowRow(int power, bool top, float x, float y, const float* zs, int nz,
+                             const float* px, const float* py, const float* pz, const float* pw,
+                             std::size_t count, const WindowKernels& kernels, float* out) {
+    if (power == 2 && top)
+        windowRowDispatch<2, true>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
+    else if (power == 2)
+        windowRowDispatch<2, false>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
+    else if (top)
         windowRowDispatch<1, true>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
     else
         windowRowDispatch<1, false>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
-}
-FAULTLINE_HOT void windowRow2(float x, float y, const float* zs, int nz, const float* px,
-                              const float* py, const float* pz, const float* pw, std::size_t count,
-                              const WindowKernels& kernels, bool top, float* out) {
-    if (top)
-        windowRowDispatch<2, true>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
-    else
-        windowRowDispatch<2, false>(x, y, zs, nz, px, py, pz, pw, count, kernels, out);
 }
 
 // Bounds of f over a box from every sphere on its own (no tree): the tightest bounds of their
@@ -340,8 +337,8 @@ void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const Char
                         zs[m - n] = (brick.origin[2] + (needed[m] & 7)) * level.spacing;
                     const float x = (brick.origin[0] + i) * level.spacing;
                     const float y = (brick.origin[1] + j) * level.spacing;
-                    (kernel.p == 2 ? windowRow2 : windowRow1)(x, y, zs, end - n, px, py, pz, pw,
-                                                              len, kernels, level.top, sums);
+                    windowRow(kernel.p, level.top, x, y, zs, end - n, px, py, pz, pw, len, kernels,
+                              sums);
                     for (int m = n; m < end; ++m)
                         brick.values[needed[m]] = sums[m - n];
                     n = end;

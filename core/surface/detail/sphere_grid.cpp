@@ -75,26 +75,8 @@ void SphereGrid::gather(const Box& box, float reach, NearList& out, bool withCol
         for (int iy = lo[1]; iy <= hi[1]; ++iy) {
             const std::size_t column = (std::size_t(ix) * m_dims[1] + iy) * m_dims[2];
             const std::uint32_t first = m_start[column + lo[2]], last = m_start[column + hi[2] + 1];
-            for (std::uint32_t i = first; i < last; ++i) {
-                // The test SphereTree::gather makes, with the same float operations.
-                float d2 = 0.0f;
-                const float c[3] = {p.x[i], p.y[i], p.z[i]};
-                for (int k = 0; k < 3; ++k) {
-                    const float gap = std::max(0.0f, std::max(box.lo[k] - c[k], c[k] - box.hi[k]));
-                    d2 += gap * gap;
-                }
-                if (d2 > reach2)
-                    continue;
-                out.x.push_back(c[0]);
-                out.y.push_back(c[1]);
-                out.z.push_back(c[2]);
-                out.r.push_back(p.r[i]);
-                if (withColor) {
-                    out.red.push_back(p.red[i]);
-                    out.green.push_back(p.green[i]);
-                    out.blue.push_back(p.blue[i]);
-                }
-            }
+            for (std::uint32_t i = first; i < last; ++i)
+                appendIfWithin(p, i, box, reach2, out, withColor); // as the tree's gather
         }
 }
 

@@ -126,25 +126,8 @@ void SphereTree::gather(const Box &box, float reach, NearList &out, bool withCol
             stack[top++] = node.right;
             continue;
         }
-        for (std::uint32_t i = node.begin; i < node.end; ++i) {
-            float d2 = 0.0f;
-            const float c[3] = {p.x[i], p.y[i], p.z[i]};
-            for (int k = 0; k < 3; ++k) {
-                const float gap = std::max(0.0f, std::max(box.lo[k] - c[k], c[k] - box.hi[k]));
-                d2 += gap * gap;
-            }
-            if (d2 > reach2)
-                continue;
-            out.x.push_back(c[0]);
-            out.y.push_back(c[1]);
-            out.z.push_back(c[2]);
-            out.r.push_back(p.r[i]);
-            if (withColor) {
-                out.red.push_back(p.red[i]);
-                out.green.push_back(p.green[i]);
-                out.blue.push_back(p.blue[i]);
-            }
-        }
+        for (std::uint32_t i = node.begin; i < node.end; ++i)
+            appendIfWithin(p, i, box, reach2, out, withColor);
     }
 }
 

@@ -60,6 +60,29 @@ struct NearList {
     std::size_t size() const { return x.size(); }
 };
 
+// Appends sphere i of p to out when its centre lies within sqrt(reach2) of box (the gathers'
+// one test, so that the tree and the grid keep exactly the same spheres).
+inline void appendIfWithin(const PackedSpheres& p, std::uint32_t i, const Box& box, float reach2,
+                           NearList& out, bool withColor) {
+    float d2 = 0.0f;
+    const float c[3] = {p.x[i], p.y[i], p.z[i]};
+    for (int k = 0; k < 3; ++k) {
+        const float gap = std::max(0.0f, std::max(box.lo[k] - c[k], c[k] - box.hi[k]));
+        d2 += gap * gap;
+    }
+    if (d2 > reach2)
+        return;
+    out.x.push_back(c[0]);
+    out.y.push_back(c[1]);
+    out.z.push_back(c[2]);
+    out.r.push_back(p.r[i]);
+    if (withColor) {
+        out.red.push_back(p.red[i]);
+        out.green.push_back(p.green[i]);
+        out.blue.push_back(p.blue[i]);
+    }
+}
+
 class SphereTree {
   public:
     explicit SphereTree(const SphereSet &spheres);
