@@ -12,7 +12,7 @@
 namespace faultline::core::detail {
 
 // What a coarse node's window sum adds up: contiguous columns, padded with weightless entries to
-// whole 16s (the sums take two vectors at a time).
+// whole vectors of 8 (the sums take a vector at a time).
 struct WindowList {
     std::vector<float> x, y, z, w;
     void clear() { x.clear(), y.clear(), z.clear(), w.clear(); }
@@ -20,7 +20,7 @@ struct WindowList {
         x.push_back(px), y.push_back(py), z.push_back(pz), w.push_back(pw);
     }
     void pad() {
-        while (w.size() % 16 != 0)
+        while (w.size() % 8 != 0)
             push(0.0f, 0.0f, 0.0f, 0.0f);
     }
 };
