@@ -98,7 +98,7 @@ windowRowDispatch(float x, float y, const float* zs, int nz, const float* px, co
     }
 }
 
-// P: the kernel's power (1 or 2); top: the top level's sums (no own cutoff).
+// power: the kernel's (1 or 2); top: the top level's sums (no own cutoff).
 FAULTLINE_HOT void windowRow(int power, bool top, float x, float y, const float* zs, int nz,
                              const float* px, const float* py, const float* pz, const float* pw,
                              std::size_t count, const WindowKernels& kernels, float* out) {
