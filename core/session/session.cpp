@@ -157,7 +157,12 @@ void Session::apply(const Json& cmd) {
         // Time is view state: moving through frames leaves nothing unsaved to ask about.
         if (op == "frame.set" && !wasModified)
             markSaved();
-        if (changesState && op != "frame.set") {
+        if (changesState && (op == "data.open" || op == "session.open")) {
+            // Opening data or a session starts a new history, as in OVITO and ParaView: an undo
+            // past it would leave an empty workbench bound to the file just opened, and a save
+            // then writes that emptiness over it (issue 41).
+            clearHistory();
+        } else if (changesState && op != "frame.set") {
             const bool sized = op == "fault.add" || op == "fault.remove" || op == "fault.create";
             m_undoLabels.push_back(
                 describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1));
@@ -237,6 +242,13 @@ std::size_t Session::pendingActions() const {
                       [](const JournalLine& l) { return l.place != 0 && !l.settled; }));
 }
 
+void Session::clearHistory() {
+    m_undo.clear();
+    m_redo.clear();
+    m_undoLabels.clear();
+    m_redoLabels.clear();
+}
+
 bool Session::undo() {
     if (m_undo.empty())
         return false;
@@ -296,10 +308,7 @@ void Session::replaceState(SessionState state) {
                                  " frames");
     }
     m_state = std::move(state);
-    m_undo.clear();
-    m_redo.clear();
-    m_undoLabels.clear();
-    m_redoLabels.clear();
+    clearHistory();
     setDataset(std::move(ds));
 }
 

@@ -59,6 +59,9 @@ class Session {
     bool undo(); // false when there is nothing to undo
     bool redo();
     std::size_t undoDepth() const { return m_undo.size(); }
+    // Forgets every undo and redo step. data.open and session.open do this themselves: opening
+    // starts a new history (nothing undoes an open, so nothing can empty what was opened).
+    void clearHistory();
     // What undo and redo would revert or repeat, in words ("add 279 spheres to F1"); empty when
     // there is nothing to undo or redo. Time (frame.set) is view state, as in OVITO and
     // ParaView: moving through frames makes no undo step (and keeps what redo would repeat), and

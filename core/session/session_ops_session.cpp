@@ -1,6 +1,6 @@
-// Ops on the whole session: session.open (load a *.faultline.json as an undoable command, its
-// data optionally at another place) and
-// session.restore (its inverse: a whole state given inline).
+// Ops on the whole session: session.open (load a *.faultline.json, its data optionally at another
+// place; Session::apply starts a new history after it, so it is no undo step) and
+// session.restore (a whole state given inline).
 #include "core/session/session_ops.hpp"
 
 namespace faultline::core::detail {

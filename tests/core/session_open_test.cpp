@@ -31,7 +31,7 @@ Json cmd(const char* text) { return Json::parse(text); }
 
 } // namespace
 
-TEST(SessionOpen, OpensASessionFileAsOneUndoableCommand) {
+TEST(SessionOpen, OpensASessionFileAsANewHistory) {
     TempDir dir;
     const std::string a = writeCube(dir, "a.dump"), b = writeCube(dir, "b.dump");
     // The session to open: data b, frame 1, a box and a threshold.
@@ -57,14 +57,34 @@ TEST(SessionOpen, OpensASessionFileAsOneUndoableCommand) {
     EXPECT_EQ(s.state().boxes[0].name, "half");
     EXPECT_EQ(s.visibility().visibleCount, 4u); // x == 0 in the half box, strain 0 + 1 == 1
 
+    // Issue 41: undo past the open emptied the workbench, and a save then wrote that over the
+    // file. Opening starts a new history: nothing to undo, the opened state stays.
+    EXPECT_FALSE(s.canUndo());
+    EXPECT_FALSE(s.undo());
+    EXPECT_THROW(s.apply(cmd(R"({"op":"undo"})")), CommandError);
+    EXPECT_EQ(s.state().boxes[0].name, "half");
+    EXPECT_FALSE(s.modified());
+    // What comes after the open undoes back to it, and no further.
+    s.apply(cmd(R"({"op":"box.remove","name":"half"})"));
     ASSERT_TRUE(s.undo());
-    EXPECT_EQ(s.state(), before);
-    EXPECT_EQ(s.state().dataPaths, std::vector<std::string>{a});
-    EXPECT_EQ(s.visibility().visibleCount, 0u);
-    ASSERT_TRUE(s.redo());
-    EXPECT_EQ(s.state().frame, 1u);
     EXPECT_EQ(s.visibility().visibleCount, 4u);
+    EXPECT_FALSE(s.undo());
+    EXPECT_NE(s.state(), before);
 }
+
+// Opening data is a new history too; what came before it is no longer undoable.
+TEST(SessionOpen, OpeningDataStartsANewHistory) {
+    TempDir dir;
+    Session s;
+    s.apply(cmd(R"({"op":"box.add","name":"b","min":[0,0,0],"max":[1,1,1]})"));
+    EXPECT_TRUE(s.canUndo());
+    s.apply({{"op", "data.open"}, {"paths", {writeCube(dir, "a.dump")}}});
+    EXPECT_FALSE(s.canUndo());
+    EXPECT_FALSE(s.canRedo());
+    EXPECT_EQ(s.undoLabel(), "");
+}
+
+
 
 TEST(SessionOpen, AMissingFileOrBadStateChangesNothing) {
     TempDir dir;
@@ -83,7 +103,7 @@ TEST(SessionOpen, AMissingFileOrBadStateChangesNothing) {
     far.frame = 5;
     EXPECT_THROW(s.apply({{"op", "session.restore"}, {"state", sessionToJson(far, "")}}), CommandError);
     EXPECT_EQ(s.state(), before);
-    EXPECT_EQ(s.undoDepth(), 1u);
+    EXPECT_EQ(s.undoDepth(), 0u); // the data.open started the history
 }
 
 TEST(SessionOpen, TheDatasetOpenerIsUsedForData) {

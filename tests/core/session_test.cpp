@@ -115,13 +115,14 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         states.push_back(s.state());
     }
     EXPECT_EQ(s.state().fault("M")->ids, (std::vector<std::int64_t>{2, 3, 4, 5, 40}));
-    for (std::size_t k = commands.size(); k > 0; --k) {
+    // data.open (the first command) starts the history: undo walks back to just after it.
+    for (std::size_t k = commands.size(); k > 1; --k) {
         ASSERT_TRUE(s.undo());
         EXPECT_EQ(dump(s.state()), dump(states[k - 1])) << "undo of " << commands[k - 1].dump();
         EXPECT_EQ(s.state(), states[k - 1]);
     }
     EXPECT_FALSE(s.undo());
-    for (std::size_t k = 0; k < commands.size(); ++k) {
+    for (std::size_t k = 1; k < commands.size(); ++k) {
         ASSERT_TRUE(s.redo());
         EXPECT_EQ(dump(s.state()), dump(states[k + 1])) << "redo of " << commands[k].dump();
     }

@@ -103,6 +103,104 @@ TEST_F(UnsavedWork, SaveFromTheQuestionWritesTheSessionThenQuits) {
     EXPECT_FALSE(wb().hasUnsavedChanges());
 }
 
+// Issue 41, item 1: open a saved session, Ctrl+Z, Ctrl+S. Undo used to revert the open (an
+// empty workbench still bound to the file) and the save then wrote the emptiness over it.
+TEST_F(UnsavedWork, UndoAfterOpeningASessionCannotEmptyItsFile) {
+    openLattice();
+    session.apply(core::Json::parse(R"({"op":"fault.create","name":"F1","ids":[1,2,3,4,5]})"));
+    addBox("b");
+    const std::string file = dir.file("analysis.faultline.json");
+    wb().saveSessionAs(file);
+    headless.frames(wb(), 2);
+    const auto sizeBefore = std::filesystem::file_size(file);
+
+    // A fresh workbench opens the file, as after a restart.
+    core::Session other;
+    ui::WorkbenchOptions options;
+    ui::Workbench reopened(other, options);
+    headless.frames(reopened, 2);
+    reopened.openSession(file);
+    headless.settle(reopened);
+    ASSERT_NE(other.state().fault("F1"), nullptr) << reopened.lastMessage();
+    headless.key(reopened, GLFW_KEY_Z, true); // Ctrl+Z: nothing to undo, the open stays
+    headless.frames(reopened, 2);
+    EXPECT_NE(other.state().fault("F1"), nullptr);
+    EXPECT_FALSE(other.state().dataPaths.empty());
+    headless.key(reopened, GLFW_KEY_S, true); // Ctrl+S
+    headless.frames(reopened, 3);
+    EXPECT_FALSE(reopened.overwritePromptOpen());
+    const core::SessionState onDisk = core::loadSessionFile(file);
+    ASSERT_NE(onDisk.fault("F1"), nullptr);
+    EXPECT_EQ(onDisk.fault("F1")->ids.size(), 5u);
+    EXPECT_NE(onDisk.box("b"), nullptr);
+    EXPECT_GE(std::filesystem::file_size(file) + 64, sizeBefore);
+
+    // Closing the data and saving would drop the data and the file's fault: asked first, and
+    // Cancel writes nothing.
+    reopened.emit({{"op", "data.close"}}, {});
+    reopened.emit({{"op", "fault.delete"}, {"name", "F1"}}, {});
+    headless.frames(reopened, 2);
+    headless.key(reopened, GLFW_KEY_S, true);
+    headless.frames(reopened, 2);
+    ASSERT_TRUE(reopened.overwritePromptOpen());
+    EXPECT_EQ(reopened.overwriteLoss(),
+              (std::vector<std::string>{"the data (lattice.dump)", "fault F1 (5 spheres)"}));
+    headless.click(reopened, "overwrite.cancel");
+    headless.frames(reopened, 2);
+    EXPECT_FALSE(reopened.overwritePromptOpen());
+    EXPECT_NE(core::loadSessionFile(file).fault("F1"), nullptr);
+    // Replace, once asked, writes it.
+    headless.key(reopened, GLFW_KEY_S, true);
+    headless.frames(reopened, 2);
+    headless.click(reopened, "overwrite.replace");
+    headless.frames(reopened, 3);
+    EXPECT_EQ(core::loadSessionFile(file).fault("F1"), nullptr);
+}
+
+// Open Recent of the session's own file, with unsaved changes: the question must not offer to
+// save over the file being opened.
+TEST_F(UnsavedWork, ReopeningTheSessionsOwnFileOffersNoSaveOverIt) {
+    openLattice();
+    const std::string file = dir.file("own.faultline.json");
+    wb().saveSessionAs(file);
+    headless.frames(wb(), 2);
+    addBox("unsaved");
+    headless.frames(wb(), 1);
+    wb().guardUnsaved("Open own.faultline.json", [] {}, file);
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().unsavedPromptOpen());
+    EXPECT_FALSE(wb().unsavedPromptOffersSave());
+    headless.click(wb(), "unsaved.save"); // labelled "Save as...": asks where
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(wb().fileDialog().isOpen());
+    EXPECT_EQ(core::loadSessionFile(file).box("unsaved"), nullptr);
+    // Another file: Save is offered.
+    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.frames(wb(), 2);
+    wb().guardUnsaved("Open other", [] {}, dir.file("other.faultline.json"));
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(wb().unsavedPromptOffersSave());
+}
+
+// Save as onto an existing file that is not the session's own asks before replacing it.
+TEST_F(UnsavedWork, SaveAsOverAnotherFileAsksFirst) {
+    openLattice();
+    const std::string a = dir.file("a.faultline.json"), b = dir.file("b.faultline.json");
+    wb().saveSessionAs(a);
+    headless.frames(wb(), 2);
+    addBox("only in b");
+    wb().saveSessionAs(b);
+    headless.frames(wb(), 2);
+    wb().saveSessionAs(a);
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().overwritePromptOpen());
+    EXPECT_TRUE(wb().overwriteLoss().empty()); // b holds all a does: only "replace it?"
+    headless.click(wb(), "overwrite.replace");
+    headless.frames(wb(), 3);
+    EXPECT_NE(core::loadSessionFile(a).box("only in b"), nullptr);
+    EXPECT_EQ(wb().sessionPath(), a);
+}
+
 TEST_F(UnsavedWork, SaveAsFromTheQuestionQuitsOnlyWhenWritten) {
     openLattice();
     addBox("b");

@@ -156,6 +156,7 @@ void Workbench::frame(double now) {
     drawPrompts();
     drawMovie();
     drawUnsavedPrompt();
+    drawOverwritePrompt();
 
     applyPending();
     syncWithSession();

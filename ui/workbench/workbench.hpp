@@ -161,8 +161,18 @@ class Workbench final : public PanelContext {
     // Runs `proceed` at once when nothing is unsaved; else asks first ("<action>: save the
     // changes?" Save / Discard / Cancel): Save writes the session (asking where when it has no
     // file yet) and proceeds once it is written; Discard proceeds; Cancel forgets it.
-    void guardUnsaved(std::string action, std::function<void()> proceed);
+    // `target`: the file the action opens, when it opens one. When that is the session's own
+    // file the question offers "Save as..." instead of Save: saving there would write over the
+    // very file being (re)opened.
+    void guardUnsaved(std::string action, std::function<void()> proceed,
+                      const std::string& target = {});
     bool unsavedPromptOpen() const { return m_unsavedPrompt.has_value(); }
+    bool unsavedPromptOffersSave() const { return m_unsavedPrompt && !m_unsavedPrompt->reopening; }
+    // Saving over an existing file that is not the session's own, or over the session's file
+    // when it holds something the session to save does not (core::saveLoss): asks Replace /
+    // Cancel first, naming what would be lost.
+    bool overwritePromptOpen() const { return m_overwritePrompt.has_value(); }
+    const std::vector<std::string>& overwriteLoss() const;
     // "Faultline - name" with a "*" while there are unsaved changes.
     std::string windowTitle() const;
     void showHelp() { m_showHelp = true; }
@@ -267,8 +277,17 @@ class Workbench final : public PanelContext {
     struct UnsavedPrompt {
         std::string action;
         std::function<void()> proceed;
+        bool reopening = false; // the action opens the session's own file
     };
     std::optional<UnsavedPrompt> m_unsavedPrompt;
+    struct OverwritePrompt {
+        std::string path;
+        std::vector<std::string> lost; // core::saveLossOverFile
+        std::function<void()> then;
+    };
+    std::optional<OverwritePrompt> m_overwritePrompt;
+    void drawOverwritePrompt();
+    void writeSession(const std::string& path, std::function<void()> then);
     std::function<void()> m_afterSaveAs; // the prompt's Save, waiting for a Save as
     std::unique_ptr<FrameSequence> m_movie;
     core::Json m_movieCommand;

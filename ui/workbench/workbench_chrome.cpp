@@ -168,7 +168,7 @@ void Workbench::drawMenus() {
             for (const auto& r : m_recent)
                 if (ImGui::MenuItem(r.c_str()))
                     guardUnsaved("Open " + fs::path(r).filename().string(),
-                                 [this, r] { openPath(r); });
+                                 [this, r] { openPath(r); }, r);
             ImGui::EndMenu();
         }
         ImGui::Separator();
@@ -506,7 +506,7 @@ void Workbench::handleDialog() {
                      [this, path] { openData({path}); });
     else if (purpose == "open-session")
         guardUnsaved("Open " + fs::path(path).filename().string(),
-                     [this, path] { openSession(path); });
+                     [this, path] { openSession(path); }, path);
     else if (purpose == "save-session")
         saveSessionAs(path, std::exchange(m_afterSaveAs, {}));
     else if (purpose == "relocate-data")

@@ -6,6 +6,7 @@
 #include "core/session/atomic_file.hpp"
 #include "core/session/csv_exports.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/save_loss.hpp"
 #include "core/session/session_json.hpp"
 #include "core/synth/demo_model.hpp"
 #include "ui/context/job_interrupter.hpp"
@@ -314,6 +315,17 @@ void Workbench::saveSession() {
 void Workbench::saveSessionAs(const std::string& pathIn, std::function<void()> then) {
     const std::string path = absolute(pathIn);
     commitLayout(); // active tabs and the like ride along with the save
+    std::error_code ec;
+    const bool otherFile = path != m_sessionPath && fs::exists(path, ec);
+    std::vector<std::string> lost = core::saveLossOverFile(path, state());
+    if (otherFile || !lost.empty()) {
+        m_overwritePrompt = OverwritePrompt{path, std::move(lost), std::move(then)};
+        return;
+    }
+    writeSession(path, std::move(then));
+}
+
+void Workbench::writeSession(const std::string& path, std::function<void()> then) {
     emit({{"op", "session.save"}, {"path", path}}, [this, path, then] {
         m_sessionPath = path;
         addRecent(path);
