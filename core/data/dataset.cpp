@@ -2,6 +2,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/data/frame_cache.hpp"
+#include "core/motion/strain_from_motion.hpp"
 
 #include <glob.h>
 #include <unistd.h>
@@ -205,64 +206,160 @@ std::vector<std::string> Dataset::files() const {
     return out;
 }
 
-std::shared_ptr<const Frame> Dataset::touchLocked(std::size_t index) const {
+const Dataset::CacheEntry* Dataset::touchLocked(std::size_t index) const {
     const auto it = m_lruIndex.find(index);
     if (it == m_lruIndex.end())
         return nullptr;
     m_lru.splice(m_lru.begin(), m_lru, it->second);
-    return it->second->frame;
+    return &*it->second;
 }
 
 std::shared_ptr<const Frame> Dataset::cachedFrame(std::size_t index) const {
     std::lock_guard lock(m_mutex);
-    return touchLocked(index);
+    const CacheEntry* e = touchLocked(index);
+    return e && currentLocked(*e) ? e->frame : nullptr;
 }
 
 bool Dataset::isCached(std::size_t index) const {
     std::lock_guard lock(m_mutex);
-    return m_lruIndex.count(index) != 0;
+    const auto it = m_lruIndex.find(index);
+    return it != m_lruIndex.end() && currentLocked(*it->second);
 }
+
+void Dataset::setStrains(std::vector<StrainSpec> strains) {
+    std::lock_guard lock(m_mutex);
+    if (strains == m_strains)
+        return;
+    m_strains = std::move(strains);
+    ++m_strainsVersion;
+}
+
+std::vector<StrainSpec> Dataset::strains() const {
+    std::lock_guard lock(m_mutex);
+    return m_strains;
+}
+
+std::shared_ptr<const Frame> Dataset::readFrame(std::size_t index) const {
+    std::shared_ptr<FrameCache> disk;
+    {
+        std::lock_guard lock(m_mutex);
+        disk = m_frameCache;
+    }
+    if (m_loader)
+        return std::make_shared<const Frame>(m_loader(index));
+    if (disk)
+        return std::make_shared<const Frame>(disk->fetch(m_frames[index]));
+    return std::make_shared<const Frame>(loadFrame(m_frames[index]));
+}
+
+std::shared_ptr<const Frame> Dataset::baseFrame(std::size_t index) const {
+    {
+        std::lock_guard lock(m_mutex);
+        if (const CacheEntry* e = touchLocked(index))
+            return e->frame;
+    }
+    auto read = readFrame(index);
+    std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock
+    std::lock_guard lock(m_mutex);
+    if (const CacheEntry* e = touchLocked(index))
+        return e->frame; // another thread was quicker
+    insertLocked(index, read, kRead, evicted);
+    return read;
+}
+
+void Dataset::insertLocked(std::size_t index, std::shared_ptr<const Frame> frame,
+                           std::uint64_t derived,
+                           std::vector<std::shared_ptr<const Frame>>& evicted) const {
+    if (auto it = m_lruIndex.find(index); it != m_lruIndex.end()) {
+        m_cachedBytes -= it->second->bytes;
+        evicted.push_back(std::move(it->second->frame));
+        m_lru.erase(it->second);
+        m_lruIndex.erase(it);
+    }
+    const std::size_t bytes = frame->memoryBytes();
+    m_lru.push_front({index, std::move(frame), bytes, derived});
+    m_lruIndex[index] = m_lru.begin();
+    m_cachedBytes += bytes;
+    evictLocked(evicted);
+}
+
+namespace {
+
+// `base` with its derived columns replaced by those of `strains` against their references.
+std::shared_ptr<const Frame>
+deriveFrame(const std::shared_ptr<const Frame>& base, std::size_t index, std::size_t count,
+            const std::vector<StrainSpec>& strains,
+            const std::function<std::shared_ptr<const Frame>(std::size_t)>& frameAt) {
+    auto out = std::make_shared<Frame>(*base);
+    out->attributes.resize(out->attributes.size() - out->derivedColumns);
+    out->derivedColumns = 0;
+    for (const StrainSpec& spec : strains) {
+        std::vector<AttributeColumn> cols;
+        if (auto ref = spec.referenceFor(index, count)) {
+            const auto reference = *ref == index ? base : frameAt(*ref);
+            cols = strainFromMotion(*out, *reference, spec.cutoff, spec.prefix);
+        } else {
+            cols = strainUnavailable(*out, spec.prefix);
+        }
+        for (auto& c : cols) {
+            // A variable of the file's own with the same name keeps its place: the op refuses
+            // such names, so this only happens when other data was opened under the spec.
+            if (out->attribute(c.name))
+                continue;
+            out->attributes.push_back(std::move(c));
+            ++out->derivedColumns;
+        }
+    }
+    return out;
+}
+
+} // namespace
 
 std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     if (index >= m_frames.size())
         throw std::out_of_range("frame " + std::to_string(index) + " of " +
                                 std::to_string(m_frames.size()));
     std::promise<std::shared_ptr<const Frame>> promise;
-    std::shared_ptr<FrameCache> disk;
+    std::shared_ptr<const Frame> base;
+    std::vector<StrainSpec> strains;
+    std::uint64_t version = 0;
     {
         std::unique_lock lock(m_mutex);
-        if (auto hit = touchLocked(index))
-            return hit;
-        if (auto loading = m_loading.find(index); loading != m_loading.end()) {
-            auto future = loading->second;
+        if (const CacheEntry* hit = touchLocked(index)) {
+            if (currentLocked(*hit))
+                return hit->frame;
+            base = hit->frame; // derived for another list: derive again from its columns
+        }
+        version = m_strains.empty() ? kRead : m_strainsVersion;
+        if (auto loading = m_loading.find(index);
+            loading != m_loading.end() && loading->second.derived == version) {
+            auto future = loading->second.future;
             lock.unlock();
             return future.get(); // rethrows the loader's error
         }
-        m_loading.emplace(index, promise.get_future().share());
-        disk = m_frameCache;
+        m_loading[index] = {version, promise.get_future().share()};
+        strains = m_strains;
     }
     std::shared_ptr<const Frame> loaded;
     try {
-        if (m_loader)
-            loaded = std::make_shared<const Frame>(m_loader(index));
-        else if (disk)
-            loaded = std::make_shared<const Frame>(disk->fetch(m_frames[index]));
-        else
-            loaded = std::make_shared<const Frame>(loadFrame(m_frames[index]));
+        if (!base)
+            base = readFrame(index);
+        loaded = strains.empty() && base->derivedColumns == 0
+                     ? base
+                     : deriveFrame(base, index, m_frames.size(), strains,
+                                   [this](std::size_t k) { return baseFrame(k); });
     } catch (...) {
         std::lock_guard lock(m_mutex);
-        m_loading.erase(index);
+        if (auto it = m_loading.find(index); it != m_loading.end() && it->second.derived == version)
+            m_loading.erase(it);
         promise.set_exception(std::current_exception());
         throw;
     }
     std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock: frees are slow
     std::lock_guard lock(m_mutex);
-    const std::size_t bytes = loaded->memoryBytes();
-    m_lru.push_front({index, loaded, bytes});
-    m_lruIndex[index] = m_lru.begin();
-    m_cachedBytes += bytes;
-    evictLocked(evicted);
-    m_loading.erase(index);
+    insertLocked(index, loaded, version, evicted);
+    if (auto it = m_loading.find(index); it != m_loading.end() && it->second.derived == version)
+        m_loading.erase(it);
     promise.set_value(loaded);
     return loaded;
 }

@@ -6,6 +6,7 @@
 
 #include "core/io/frame_source.hpp"
 #include "core/model/frame.hpp"
+#include "core/motion/strain_spec.hpp"
 
 #include <atomic>
 #include <functional>
@@ -55,6 +56,14 @@ class Dataset {
     const std::vector<std::string>& patterns() const { return m_patterns; }
     std::vector<std::string> files() const;
 
+    // Variables derived from motion (strain.add): every frame the dataset hands out carries
+    // their columns after its own, computed against its reference frame (NaN where it has
+    // none). Setting a different list makes the cached frames stale: they are derived again,
+    // from their own columns, when next asked for. The session keeps this in step with its
+    // state (Session::syncDerived).
+    void setStrains(std::vector<StrainSpec> strains);
+    std::vector<StrainSpec> strains() const;
+
     // Loads (or returns the cached) frame, blocking; safe to call from several threads. Two
     // threads asking for the same frame share one load. Throws InputError from the reader.
     std::shared_ptr<const Frame> frame(std::size_t index) const;
@@ -83,18 +92,36 @@ class Dataset {
         std::size_t index;
         std::shared_ptr<const Frame> frame;
         std::size_t bytes;
+        std::uint64_t derived; // the strains version it was derived for; kRead: as read
     };
+    static constexpr std::uint64_t kRead = ~std::uint64_t(0);
+    std::vector<StrainSpec> m_strains;    // guarded by m_mutex
+    std::uint64_t m_strainsVersion = 0;   // grows with each new list
+    bool currentLocked(const CacheEntry& e) const {
+        return e.derived == m_strainsVersion || (e.derived == kRead && m_strains.empty());
+    }
+    // The frame as read (or any cached version of it: positions and ids are the same), loading
+    // it without deriving; cached as read when it was not cached.
+    std::shared_ptr<const Frame> baseFrame(std::size_t index) const;
+    std::shared_ptr<const Frame> readFrame(std::size_t index) const;
+    void insertLocked(std::size_t index, std::shared_ptr<const Frame> frame, std::uint64_t derived,
+                      std::vector<std::shared_ptr<const Frame>>& evicted) const;
     mutable std::mutex m_mutex;          // guards everything below
     mutable std::list<CacheEntry> m_lru; // most recent first
     mutable std::unordered_map<std::size_t, std::list<CacheEntry>::iterator> m_lruIndex;
     mutable std::size_t m_cachedBytes = 0;
-    mutable std::map<std::size_t, std::shared_future<std::shared_ptr<const Frame>>> m_loading;
+    struct Loading {
+        std::uint64_t derived;
+        std::shared_future<std::shared_ptr<const Frame>> future;
+    };
+    mutable std::map<std::size_t, Loading> m_loading;
     std::shared_ptr<FrameCache> m_frameCache;
     std::atomic<std::size_t> m_budget{defaultFrameMemoryBudget()};
     // Drops least recently used frames over budget into `evicted`, for the caller to free
     // after it unlocks.
     void evictLocked(std::vector<std::shared_ptr<const Frame>>& evicted) const;
-    std::shared_ptr<const Frame> touchLocked(std::size_t index) const; // null when not cached
+    // The cached entry (any version), marked most recently used; null when not cached.
+    const CacheEntry* touchLocked(std::size_t index) const;
 };
 
 // Expands a glob pattern ('*', '?', '[..]'); a path with no wildcard is returned as it is.

@@ -53,6 +53,9 @@ class Frame {
     bool columnsAssumed = false;
     SimulationBox box;
     std::vector<AttributeColumn> attributes;
+    // The last `derivedColumns` attributes were derived (strain from motion), not read: the
+    // dataset strips them before deriving again (core/data/dataset.hpp).
+    std::size_t derivedColumns = 0;
 
     std::size_t size() const { return ids.size(); }
 

@@ -19,4 +19,8 @@ AttributeColumn variableChange(const Frame& now, const Frame& reference, std::st
 // Named "displacement".
 AttributeColumn displacementSince(const Frame& now, const Frame& reference);
 
+// Caches a float column's min and max (NaN ignored; 0 and 0 when every value is NaN), in
+// parallel, as Frame::finalize does for a file's columns.
+void cacheColumnRange(AttributeColumn& column);
+
 } // namespace faultline::core

@@ -22,6 +22,7 @@ Session::Session() {
     detail::registerOutputOps(ops);
     detail::registerSurfaceOps(ops);
     detail::registerSessionOps(ops);
+    detail::registerStrainOps(ops);
     for (auto& [name, entry] : ops)
         m_ops[name] = OpEntry{std::move(entry.first), entry.second};
     // A group of commands that undoes as one (e.g. accepting every candidate).
@@ -83,8 +84,10 @@ Json Session::run(const Json& cmd, bool& changesState) {
     changesState = it->second.changesState;
     m_markSavedAfterOp = false;
     Json inverse = it->second.handler(*this, cmd);
-    if (changesState)
+    if (changesState) {
+        syncDerived();
         ++m_version;
+    }
     if (m_markSavedAfterOp)
         m_savedVersion = m_version;
     m_markSavedAfterOp = false;
@@ -290,8 +293,14 @@ std::shared_ptr<Dataset> Session::openDataset(const std::vector<std::string>& pa
     return m_datasetOpener ? m_datasetOpener(paths) : Dataset::open(paths);
 }
 
+void Session::syncDerived() {
+    if (m_dataset)
+        m_dataset->setStrains(m_state.strains);
+}
+
 void Session::setDataset(std::shared_ptr<Dataset> dataset) {
     m_dataset = std::move(dataset);
+    syncDerived();
     m_visibility = VisibilityResult{};
     m_visibilityFrame.reset();
     ++m_version;

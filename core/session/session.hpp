@@ -152,6 +152,8 @@ class Session {
 
   private:
     Json run(const Json& cmd, bool& changesState);
+    // Hands the state's strains[] to the dataset, so its frames carry their columns.
+    void syncDerived();
 
     SessionState m_state;
     std::uint64_t m_version = 1;
@@ -198,6 +200,7 @@ void registerFaultOps(std::map<std::string, std::pair<Session::OpHandler, bool>>
 void registerOutputOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerSurfaceOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 void registerSessionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerStrainOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
 } // namespace detail
 
 } // namespace faultline::core

@@ -104,6 +104,12 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
         surfaces.push_back(std::move(j));
     }
     doc["surfaces"] = surfaces;
+    if (!s.strains.empty()) {
+        Json strains = Json::array();
+        for (const auto& st : s.strains)
+            strains.push_back(items::toJson(st));
+        doc["strains"] = strains;
+    }
     doc["dock_layout"] = s.dockLayout.is_null() ? Json::object() : s.dockLayout;
     return doc;
 }
@@ -174,6 +180,18 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
                 throw InputError(path, at("thresholds", k) + ".variable: '" + th.variable +
                                            "' has two thresholds");
             s.thresholds.push_back(th);
+        }
+        const Json& strains = top.array("strains");
+        for (std::size_t k = 0; k < strains.size(); ++k) {
+            const StrainSpec st = readItem<StrainSpec>(strains[k], at("strains", k), path, {});
+            if (!strains[k].contains("since_frame") && !strains[k].contains("since_offset"))
+                throw InputError(path, at("strains", k) +
+                                           ": needs \"since_frame\" or \"since_offset\"");
+            for (const auto& other : s.strains)
+                if (other.prefix == st.prefix)
+                    throw InputError(path, at("strains", k) + ".prefix: '" + st.prefix +
+                                               "' is used twice");
+            s.strains.push_back(st);
         }
         const Json& faults = top.array("faults");
         for (std::size_t k = 0; k < faults.size(); ++k) {

@@ -9,6 +9,9 @@
 #include "core/session/atomic_file.hpp"
 #include "core/session/csv_exports.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace faultline::core {
 
 namespace {
@@ -33,6 +36,72 @@ std::vector<FaultTrack> trackedFaults(const SessionState& st, const std::shared_
         st.faults, options, false, frames);
 }
 
+// what = spheres: "id,<variables>", a row per sphere of the current frame (or its visible ones).
+std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& ds, const Json& cmd) {
+    if (!ds)
+        throw CommandError("export.csv: spheres needs open data");
+    const auto frame = ds->frame(std::min(st.frame, ds->frameCount() - 1));
+    std::vector<std::string> names;
+    if (cmd.contains("variables")) {
+        names = args::strings(cmd, "variables");
+    } else {
+        names = {"x", "y", "z", "radius"};
+        for (const auto& c : frame->attributes)
+            names.push_back(c.name);
+    }
+    const bool onlyVisible = args::optionalBool(cmd, "only_visible").value_or(false);
+    // Each column as (floats or ints or a position axis).
+    struct Source {
+        const float* floats = nullptr;
+        const std::int32_t* ints = nullptr;
+    };
+    std::vector<Source> sources;
+    for (const auto& n : names) {
+        if (const AttributeColumn* c = frame->attribute(n))
+            sources.push_back(c->isInteger() ? Source{nullptr, c->ints.data()}
+                                             : Source{c->floats.data(), nullptr});
+        else if (n == "x" || n == "y" || n == "z" || n == "radius")
+            sources.push_back({n == "x"   ? frame->x.data()
+                               : n == "y" ? frame->y.data()
+                               : n == "z" ? frame->z.data()
+                                          : frame->radius.data(),
+                               nullptr});
+        else {
+            std::string known = "x, y, z, radius";
+            for (const auto& c : frame->attributes)
+                known += ", " + c.name;
+            throw CommandError("export.csv: no variable \"" + n + "\" in frame " +
+                               std::to_string(st.frame) + " (it has " + known + ")");
+        }
+    }
+    std::vector<std::uint8_t> mask;
+    if (onlyVisible) {
+        const auto rowMask = Session::faultRowMask(st, *frame);
+        mask = computeVisibility(*frame, st.boxes, st.thresholds, rowMask.get()).mask;
+    }
+    std::string out = "id";
+    for (const auto& n : names)
+        out += "," + n;
+    out += "\n";
+    char buf[32];
+    for (std::size_t row = 0; row < frame->size(); ++row) {
+        if (onlyVisible && !mask[row])
+            continue;
+        out += std::to_string(frame->ids[row]);
+        for (const Source& src : sources) {
+            if (src.ints) {
+                out += ',';
+                out += std::to_string(src.ints[row]);
+            } else {
+                std::snprintf(buf, sizeof buf, ",%.9g", static_cast<double>(src.floats[row]));
+                out += buf;
+            }
+        }
+        out += '\n';
+    }
+    return out;
+}
+
 } // namespace
 
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& ds,
@@ -40,10 +109,12 @@ std::string exportCsvText(const SessionState& state, const std::shared_ptr<Datas
     const std::string what = args::string(cmd, "what");
     if (what == "faults")
         return faultsCsv(state.faults);
+    if (what == "spheres")
+        return spheresCsv(state, ds, cmd);
     if (what != "fault_metrics" && what != "fault_tracks" && what != "fault_growth" &&
         what != "fault_events")
-        throw CommandError("export.csv: \"what\" must be faults, fault_metrics, fault_growth, "
-                           "fault_tracks or fault_events");
+        throw CommandError("export.csv: \"what\" must be faults, spheres, fault_metrics, "
+                           "fault_growth, fault_tracks or fault_events");
     if (!ds)
         throw CommandError("export.csv: " + what + " needs open data");
     const FrameLoader load = [ds](std::size_t k) { return ds->frame(k); };
@@ -85,7 +156,8 @@ void registerOutputOps(OpTable& ops) {
         // best; fault_events:
         // when tracked faults appeared, linked and split (candidate options as
         // fault.candidates: "method", "link", "min_size", "angle", "radius").
-        args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius"});
+        args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius",
+                               "variables", "only_visible"});
         const std::string path = s.outputPath(args::string(cmd, "path"));
         const std::string text = exportCsvText(s.state(), s.dataset(), cmd, s.frameSelection());
         try {

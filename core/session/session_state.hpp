@@ -5,6 +5,7 @@
 #include "core/color/colormap.hpp"
 
 #include "core/faults/fault.hpp"
+#include "core/motion/strain_spec.hpp"
 #include "core/selection/cutting_box.hpp"
 #include "core/selection/variable_threshold.hpp"
 #include "core/surface/surface_params.hpp"
@@ -125,6 +126,7 @@ struct SessionState {
     std::vector<Fault> faults;
     FaultFilter faultFilter;
     std::vector<SurfaceSettings> surfaces;
+    std::vector<StrainSpec> strains; // variables derived from motion (strain.add), in order
     nlohmann::json dockLayout = nlohmann::json::object(); // owned by the UI; kept as it is
 
     ViewState* view(std::string_view name);

@@ -5,6 +5,7 @@
 #include "core/session/items/camera_codec.hpp"
 #include "core/session/items/fault_codec.hpp"
 #include "core/session/items/item_reader.hpp"
+#include "core/session/items/strain_codec.hpp"
 #include "core/session/items/surface_codec.hpp"
 #include "core/session/items/threshold_codec.hpp"
 #include "core/session/items/view_codec.hpp"

@@ -1,0 +1,383 @@
+#include "core/motion/strain_from_motion.hpp"
+
+#include "core/model/frame_difference.hpp"
+#include "core/model/periodic_cell.hpp"
+#include "core/motion/strain_spec.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace faultline::core {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr std::size_t kGrain = 4096;
+
+bool sameIdOrder(const Frame& a, const Frame& b) {
+    return a.ids.size() == b.ids.size() &&
+           (a.ids.empty() ||
+            std::memcmp(a.ids.data(), b.ids.data(), a.ids.size() * sizeof(std::int64_t)) == 0);
+}
+
+// The reference centres and, on periodic axes, their images within `cutoff` of the centres'
+// bounds, sorted into cubic cells of at least `cutoff`: neighbours of a sphere lie in its cell
+// and the 26 around it, and an image's vector is the minimum-image one.
+class NeighbourCells {
+  public:
+    NeighbourCells(const Frame& ref, double cutoff) {
+        const std::size_t n = ref.size();
+        std::vector<float> x(ref.x), y(ref.y), z(ref.z);
+        std::vector<std::uint32_t> owner(n);
+        for (std::size_t i = 0; i < n; ++i)
+            owner[i] = static_cast<std::uint32_t>(i);
+        const auto& cmin = ref.centreMin();
+        const auto& cmax = ref.centreMax();
+        double lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = double(cmin[a]) - cutoff;
+            hi[a] = double(cmax[a]) + cutoff;
+        }
+        const PeriodicCell cell(ref.box);
+        if (cell.any && n > 0) {
+            const double edge[3][3] = {{cell.lx, 0, 0}, {cell.xy, cell.ly, 0},
+                                       {cell.xz, cell.yz, cell.lz}};
+            for (int na = -1; na <= 1; ++na)
+                for (int nb = -1; nb <= 1; ++nb)
+                    for (int nc = -1; nc <= 1; ++nc) {
+                        if ((na == 0 && nb == 0 && nc == 0) || (na && !cell.periodic[0]) ||
+                            (nb && !cell.periodic[1]) || (nc && !cell.periodic[2]))
+                            continue;
+                        double s[3];
+                        for (int a = 0; a < 3; ++a)
+                            s[a] = na * edge[0][a] + nb * edge[1][a] + nc * edge[2][a];
+                        for (std::size_t i = 0; i < n; ++i) {
+                            const double q[3] = {ref.x[i] + s[0], ref.y[i] + s[1],
+                                                 ref.z[i] + s[2]};
+                            if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
+                                q[2] < lo[2] || q[2] > hi[2])
+                                continue;
+                            x.push_back(static_cast<float>(q[0]));
+                            y.push_back(static_cast<float>(q[1]));
+                            z.push_back(static_cast<float>(q[2]));
+                            owner.push_back(static_cast<std::uint32_t>(i));
+                        }
+                    }
+        }
+        // Cells of at least `cutoff`, no more of them than ~4 per point (sparse or flat sets).
+        const std::size_t points = owner.size();
+        m_size = cutoff;
+        for (;;) {
+            double cells = 1;
+            for (int a = 0; a < 3; ++a) {
+                m_dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / m_size) + 1);
+                cells *= m_dims[a];
+            }
+            if (cells <= 4.0 * double(points) + 64)
+                break;
+            m_size *= 1.25;
+        }
+        for (int a = 0; a < 3; ++a)
+            m_lo[a] = lo[a];
+        std::vector<std::uint32_t> cellOf(points);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 16384),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t k = r.begin(); k != r.end(); ++k)
+                                  cellOf[k] = cellIndex(x[k], y[k], z[k]);
+                          });
+        const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
+        m_start.assign(cells + 1, 0);
+        for (std::uint32_t c : cellOf)
+            ++m_start[c + 1];
+        for (std::size_t c = 0; c < cells; ++c)
+            m_start[c + 1] += m_start[c];
+        std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
+        m_points.resize(points);
+        for (std::size_t k = 0; k < points; ++k)
+            m_points[fill[cellOf[k]]++] = {x[k], y[k], z[k], owner[k]};
+    }
+
+    int coord(double v, int axis) const {
+        return std::clamp(static_cast<int>((v - m_lo[axis]) / m_size), 0, m_dims[axis] - 1);
+    }
+    std::uint32_t cellIndex(double px, double py, double pz) const {
+        return static_cast<std::uint32_t>(
+            (std::size_t(coord(pz, 2)) * m_dims[1] + coord(py, 1)) * m_dims[0] + coord(px, 0));
+    }
+
+    struct Point {
+        float x, y, z;
+        std::uint32_t owner; // the reference row it is (an image of)
+    };
+    // fn(point) for every point in the cells around (px, py, pz).
+    template <typename Fn> void around(double px, double py, double pz, Fn fn) const {
+        const int c[3] = {coord(px, 0), coord(py, 1), coord(pz, 2)};
+        for (int k = std::max(0, c[2] - 1); k <= std::min(m_dims[2] - 1, c[2] + 1); ++k)
+            for (int j = std::max(0, c[1] - 1); j <= std::min(m_dims[1] - 1, c[1] + 1); ++j) {
+                const std::size_t row = (std::size_t(k) * m_dims[1] + j) * m_dims[0];
+                const std::size_t first = row + std::max(0, c[0] - 1);
+                const std::size_t last = row + std::min(m_dims[0] - 1, c[0] + 1);
+                for (std::uint32_t p = m_start[first]; p < m_start[last + 1]; ++p)
+                    fn(m_points[p]);
+            }
+    }
+
+  private:
+    double m_lo[3] = {0, 0, 0};
+    double m_size = 1;
+    int m_dims[3] = {1, 1, 1};
+    std::vector<std::uint32_t> m_start;
+    std::vector<Point> m_points;
+};
+
+// The axis every centre of `f` shares (2-D data), or -1.
+int flatAxis(const Frame& f) {
+    if (f.size() < 2)
+        return -1;
+    for (int a = 0; a < 3; ++a)
+        if (f.centreMin()[a] == f.centreMax()[a])
+            return a;
+    return -1;
+}
+
+// Sums over one sphere's neighbours: V = sum X X^T, W = sum Y X^T, and sum Y_i^2 per axis.
+struct NeighbourSums {
+    double V[3][3] = {};
+    double W[3][3] = {};
+    double yy[3] = {};
+    int count = 0;
+    void add(const double X[3], const double Y[3]) {
+        for (int i = 0; i < 3; ++i) {
+            yy[i] += Y[i] * Y[i];
+            for (int j = 0; j < 3; ++j) {
+                V[i][j] += X[i] * X[j];
+                W[i][j] += Y[i] * X[j];
+            }
+        }
+        ++count;
+    }
+};
+
+struct StrainValues {
+    float shear = kNaN, volumetric = kNaN, d2min = kNaN;
+};
+
+// F = W V^-1 and the invariants of E = (F^T F - I) / 2 over the axes `axes` (2 or 3 of them).
+StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
+    StrainValues out;
+    if (s.count < 3)
+        return out;
+    double V[3][3] = {}, W[3][3] = {};
+    for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) {
+            V[i][j] = s.V[axes[i]][axes[j]];
+            W[i][j] = s.W[axes[i]][axes[j]];
+        }
+    double inv[3][3] = {};
+    const double trace = dim == 3 ? V[0][0] + V[1][1] + V[2][2] : V[0][0] + V[1][1];
+    if (dim == 3) {
+        const double c00 = V[1][1] * V[2][2] - V[1][2] * V[2][1];
+        const double c01 = V[1][2] * V[2][0] - V[1][0] * V[2][2];
+        const double c02 = V[1][0] * V[2][1] - V[1][1] * V[2][0];
+        const double det = V[0][0] * c00 + V[0][1] * c01 + V[0][2] * c02;
+        const double scale = trace / 3;
+        if (!(std::fabs(det) > 1e-9 * scale * scale * scale))
+            return out;
+        inv[0][0] = c00 / det;
+        inv[1][0] = c01 / det;
+        inv[2][0] = c02 / det;
+        inv[0][1] = (V[0][2] * V[2][1] - V[0][1] * V[2][2]) / det;
+        inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) / det;
+        inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) / det;
+        inv[0][2] = (V[0][1] * V[1][2] - V[0][2] * V[1][1]) / det;
+        inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) / det;
+        inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) / det;
+    } else {
+        const double det = V[0][0] * V[1][1] - V[0][1] * V[1][0];
+        const double scale = trace / 2;
+        if (!(std::fabs(det) > 1e-9 * scale * scale))
+            return out;
+        inv[0][0] = V[1][1] / det;
+        inv[0][1] = -V[0][1] / det;
+        inv[1][0] = -V[1][0] / det;
+        inv[1][1] = V[0][0] / det;
+    }
+    double F[3][3] = {};
+    for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+            for (int k = 0; k < dim; ++k)
+                F[i][j] += W[i][k] * inv[k][j];
+    double E[3][3] = {};
+    for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) {
+            double c = 0;
+            for (int k = 0; k < dim; ++k)
+                c += F[k][i] * F[k][j];
+            E[i][j] = 0.5 * (c - (i == j ? 1.0 : 0.0));
+        }
+    // d2min = sum |Y - F X|^2 = sum |Y|^2 - tr(F W^T), since F V F^T = F W^T.
+    double yy = 0, fw = 0;
+    for (int i = 0; i < dim; ++i) {
+        yy += s.yy[axes[i]];
+        for (int j = 0; j < dim; ++j)
+            fw += F[i][j] * W[i][j];
+    }
+    out.d2min = static_cast<float>(std::max(0.0, yy - fw));
+    if (dim == 3) {
+        const double dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
+        out.shear = static_cast<float>(
+            std::sqrt(E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
+                      (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0));
+        out.volumetric = static_cast<float>((E[0][0] + E[1][1] + E[2][2]) / 3.0);
+    } else {
+        const double d = E[0][0] - E[1][1];
+        out.shear = static_cast<float>(std::sqrt(E[0][1] * E[0][1] + d * d / 2.0));
+        out.volumetric = static_cast<float>((E[0][0] + E[1][1]) / 2.0);
+    }
+    return out;
+}
+
+std::vector<AttributeColumn> namedColumns(std::size_t rows, const std::string& prefix) {
+    std::vector<AttributeColumn> cols(kStrainVariables.size());
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+        cols[k].name = prefix + std::string(kStrainVariables[k]);
+        cols[k].type = ColumnType::Float32;
+        cols[k].floats.assign(rows, kNaN);
+    }
+    return cols;
+}
+
+} // namespace
+
+double defaultStrainCutoff(const Frame& ref) {
+    const std::size_t n = ref.size();
+    if (n == 0)
+        return 1.0;
+    if (!ref.radiusIsDefault) {
+        // The median of up to 65,536 evenly spaced radii.
+        const std::size_t step = std::max<std::size_t>(1, n / 65536);
+        std::vector<float> sample;
+        sample.reserve(n / step + 1);
+        for (std::size_t i = 0; i < n; i += step)
+            sample.push_back(ref.radius[i]);
+        std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+        const double r = sample[sample.size() / 2];
+        if (r > 0 && std::isfinite(r))
+            return 1.5 * 2.0 * r;
+    }
+    // No radii: a random close packing (0.64) of n spheres in the centres' bounds has diameter
+    // d with n * pi d^3 / 6 = 0.64 V; in 2-D, n * pi d^2 / 4 = 0.84 A.
+    const int flat = flatAxis(ref);
+    double volume = 1;
+    int dims = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double l = double(ref.centreMax()[a]) - ref.centreMin()[a];
+        if (a == flat || !(l > 0))
+            continue;
+        volume *= l;
+        ++dims;
+    }
+    if (dims == 0)
+        return 1.0;
+    const double d = dims == 3   ? std::cbrt(0.64 * volume * 6.0 / (M_PI * double(n)))
+                     : dims == 2 ? std::sqrt(0.84 * volume * 4.0 / (M_PI * double(n)))
+                                 : volume / double(n);
+    return 1.5 * d;
+}
+
+std::vector<AttributeColumn> strainUnavailable(const Frame& now, const std::string& prefix) {
+    auto cols = namedColumns(now.size(), prefix);
+    for (auto& c : cols)
+        c.min = c.max = 0.0;
+    return cols;
+}
+
+std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref, double cutoff,
+                                              const std::string& prefix) {
+    if (!(cutoff > 0) || !std::isfinite(cutoff))
+        cutoff = defaultStrainCutoff(ref);
+    auto cols = namedColumns(now.size(), prefix);
+    if (now.size() == 0 || ref.size() == 0) {
+        for (auto& c : cols)
+            cacheColumnRange(c);
+        return cols;
+    }
+    const NeighbourCells cells(ref, cutoff);
+    const PeriodicCell refCell(ref.box), nowCell(now.box);
+    const bool aligned = sameIdOrder(now, ref);
+    const int flat = flatAxis(ref);
+    int axes[3] = {0, 1, 2};
+    int dim = 3;
+    if (flat >= 0) {
+        dim = 2;
+        int k = 0;
+        for (int a = 0; a < 3; ++a)
+            if (a != flat)
+                axes[k++] = a;
+    }
+    const double cutoff2 = cutoff * cutoff;
+    float* shear = cols[0].floats.data();
+    float* volumetric = cols[1].floats.data();
+    float* d2min = cols[2].floats.data();
+    float* displacement = cols[3].floats.data();
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, now.size(), kGrain),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                std::size_t r = i;
+                if (!aligned) {
+                    const auto found = ref.rowOf(now.ids[i]);
+                    if (!found)
+                        continue; // not in the reference: NaN
+                    r = *found;
+                }
+                const double p[3] = {ref.x[r], ref.y[r], ref.z[r]};
+                const double q[3] = {now.x[i], now.y[i], now.z[i]};
+                double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                if (refCell.any)
+                    refCell.wrap(u[0], u[1], u[2]);
+                displacement[i] = static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+                NeighbourSums sums;
+                cells.around(p[0], p[1], p[2], [&](const auto& point) {
+                    if (point.owner == r)
+                        return;
+                    const double X[3] = {point.x - p[0], point.y - p[1], point.z - p[2]};
+                    if (X[0] * X[0] + X[1] * X[1] + X[2] * X[2] > cutoff2)
+                        return;
+                    std::size_t k = point.owner;
+                    if (!aligned) {
+                        const auto found = now.rowOf(ref.ids[point.owner]);
+                        if (!found)
+                            return; // gone from the current frame
+                        k = *found;
+                    }
+                    double Y[3] = {now.x[k] - q[0], now.y[k] - q[1], now.z[k] - q[2]};
+                    if (nowCell.any)
+                        nowCell.wrap(Y[0], Y[1], Y[2]);
+                    sums.add(X, Y);
+                });
+                const StrainValues v = solve(sums, axes, dim);
+                shear[i] = v.shear;
+                volumetric[i] = v.volumetric;
+                d2min[i] = v.d2min;
+            }
+        });
+    for (auto& c : cols)
+        cacheColumnRange(c);
+    return cols;
+}
+
+std::optional<std::size_t> StrainSpec::referenceFor(std::size_t frame, std::size_t count) const {
+    const long long f = relative ? static_cast<long long>(frame) + reference : reference;
+    if (f < 0 || f >= static_cast<long long>(count))
+        return std::nullopt;
+    return static_cast<std::size_t>(f);
+}
+
+} // namespace faultline::core

@@ -1,0 +1,37 @@
+// Strain from motion: per-sphere deformation between a reference frame and the current one,
+// from how each sphere's neighbourhood moved (spheres matched by id). The contract is the
+// journal's (shared/design/JOURNAL.md, "Strain from motion"), as OVITO's Atomic Strain:
+//   neighbours of sphere i: the spheres within `cutoff` of it in the reference frame;
+//   X, Y: a neighbour's vector then and now (minimum image on the boxes' periodic axes);
+//   F = (sum Y X^T)(sum X X^T)^-1, E = (F^T F - I) / 2;
+//   shear_strain = sqrt(Exy^2 + Eyz^2 + Exz^2 + ((Exx-Eyy)^2 + (Eyy-Ezz)^2 + (Ezz-Exx)^2) / 6),
+//   volumetric_strain = (Exx + Eyy + Ezz) / 3, d2min = sum |Y - F X|^2,
+//   displacement = |x - x_ref|.
+// 2-D data (every reference centre shares one coordinate) uses the in-plane 2 x 2 form, as OVITO
+// does: shear = sqrt(Exy^2 + (Exx-Eyy)^2 / 2), volumetric = (Exx + Eyy) / 2.
+// NaN: a sphere whose id is not in the reference; fewer than 3 neighbours (that are also in the
+// current frame); a singular sum X X^T.
+// Cost: one cell list of the reference (ghost images on periodic axes), then each sphere's 27
+// cells, in parallel (TBB). About 0.1 us per neighbour tested on one core; see bench_strain.
+#pragma once
+
+#include "core/model/frame.hpp"
+
+#include <string>
+#include <vector>
+
+namespace faultline::core {
+
+// 1.5 x the median diameter of the reference; when the file gave no radius, 1.5 x the spacing a
+// random close packing of the same number of spheres in the centres' bounds would have.
+double defaultStrainCutoff(const Frame& reference);
+
+// The four columns (kStrainVariables order, each named prefix + variable) for every row of
+// `now`. `cutoff` <= 0: defaultStrainCutoff(reference). Results do not depend on thread count.
+std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& reference,
+                                              double cutoff, const std::string& prefix = {});
+
+// The same columns, all NaN (no reference frame for this frame).
+std::vector<AttributeColumn> strainUnavailable(const Frame& now, const std::string& prefix = {});
+
+} // namespace faultline::core

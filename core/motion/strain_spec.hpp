@@ -1,0 +1,29 @@
+// StrainSpec: one set of variables derived from motion (strain.add): against which frame, over
+// which neighbours, under which names. Plain data; the session holds a list, the dataset
+// computes the columns (core/motion/strain_from_motion.hpp).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace faultline::core {
+
+struct StrainSpec {
+    bool relative = false;   // false: against frame `reference`; true: `reference` frames away
+    long long reference = 0; // since_frame (>= 0) or since_offset (non-zero)
+    double cutoff = 0;       // neighbour distance in the reference frame; 0: automatic
+    std::string prefix;      // put before each variable's name ("inc_shear_strain")
+    bool operator==(const StrainSpec&) const = default;
+
+    // The reference frame for `frame` of `count` frames; nothing when it lies outside the data
+    // (the variables are NaN there).
+    std::optional<std::size_t> referenceFor(std::size_t frame, std::size_t count) const;
+};
+
+// The variables each spec adds, without its prefix, in column order.
+inline constexpr std::array<std::string_view, 4> kStrainVariables = {
+    "shear_strain", "volumetric_strain", "d2min", "displacement"};
+
+} // namespace faultline::core

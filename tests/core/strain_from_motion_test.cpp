@@ -1,0 +1,349 @@
+// Strain from motion (issue 36): exact values against hand-computed deformations of a jittered
+// packing, the non-affine residual, periodic and triclinic boxes, 2-D data and missing ids.
+#include "core/motion/strain_from_motion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <random>
+
+using namespace faultline::core;
+
+namespace {
+
+using Vec = std::array<double, 3>;
+using Map = std::function<Vec(const Vec&)>;
+
+// A jittered simple-cubic packing of n^3 spheres (spacing 1, radius 0.5), ids 1..n^3.
+Frame packing(int n, unsigned seed = 7, bool flatZ = false) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+    Frame f;
+    std::int64_t id = 1;
+    for (int k = 0; k < (flatZ ? 1 : n); ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                f.ids.push_back(id++);
+                f.x.push_back(static_cast<float>(i + jitter(rng)));
+                f.y.push_back(static_cast<float>(j + jitter(rng)));
+                f.z.push_back(flatZ ? 0.0f : static_cast<float>(k + jitter(rng)));
+            }
+    f.radius.assign(f.ids.size(), 0.5f);
+    f.finalize();
+    return f;
+}
+
+Frame mapped(const Frame& ref, const Map& map) {
+    Frame f;
+    f.ids = ref.ids;
+    f.radius = ref.radius;
+    f.box = ref.box;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        const Vec p = map({ref.x[i], ref.y[i], ref.z[i]});
+        f.x.push_back(static_cast<float>(p[0]));
+        f.y.push_back(static_cast<float>(p[1]));
+        f.z.push_back(static_cast<float>(p[2]));
+    }
+    f.finalize();
+    return f;
+}
+
+// Affine map x -> F x + t (about the packing's centre).
+Map affine(const double (&F)[3][3], Vec t = {0, 0, 0}) {
+    std::array<std::array<double, 3>, 3> m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            m[i][j] = F[i][j];
+    return [m, t](const Vec& p) {
+        Vec out;
+        for (int i = 0; i < 3; ++i)
+            out[i] = m[i][0] * (p[0] - 2) + m[i][1] * (p[1] - 2) + m[i][2] * (p[2] - 2) + 2 + t[i];
+        return out;
+    };
+}
+
+struct Expected {
+    double shear, volumetric;
+};
+
+// E = (F^T F - I)/2 and its invariants, by hand in each test; here only the checks.
+void expectEverywhere(const std::vector<AttributeColumn>& cols, Expected e, double tol = 2e-5) {
+    ASSERT_EQ(cols.size(), 4u);
+    EXPECT_EQ(cols[0].name, "shear_strain");
+    EXPECT_EQ(cols[1].name, "volumetric_strain");
+    EXPECT_EQ(cols[2].name, "d2min");
+    EXPECT_EQ(cols[3].name, "displacement");
+    for (std::size_t i = 0; i < cols[0].floats.size(); ++i) {
+        ASSERT_NEAR(cols[0].floats[i], e.shear, tol) << "row " << i;
+        ASSERT_NEAR(cols[1].floats[i], e.volumetric, tol) << "row " << i;
+        ASSERT_NEAR(cols[2].floats[i], 0.0, 1e-4) << "row " << i; // affine: no residual
+    }
+}
+
+} // namespace
+
+TEST(StrainFromMotion, UniaxialStretch) {
+    const Frame ref = packing(5);
+    const double e = 0.1;
+    const Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const double exx = ((1 + e) * (1 + e) - 1) / 2; // 0.105
+    // von Mises: sqrt(((Exx-0)^2 + 0 + (0-Exx)^2) / 6) = Exx / sqrt(3).
+    expectEverywhere(strainFromMotion(now, ref, 1.5), {exx / std::sqrt(3.0), exx / 3});
+}
+
+TEST(StrainFromMotion, SimpleShear) {
+    const Frame ref = packing(5);
+    const double g = 0.2;
+    const Frame now = mapped(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
+    // F^T F = [[1, g, 0], [g, 1 + g^2, 0], [0, 0, 1]]: Exy = g/2, Eyy = g^2/2.
+    const double exy = g / 2, eyy = g * g / 2;
+    const double shear = std::sqrt(exy * exy + (eyy * eyy + eyy * eyy) / 6);
+    expectEverywhere(strainFromMotion(now, ref, 1.5), {shear, eyy / 3});
+}
+
+TEST(StrainFromMotion, RotationAndTranslationHaveNoStrain) {
+    const Frame ref = packing(5);
+    const double a = 0.7, c = std::cos(a), s = std::sin(a);
+    const Frame now = mapped(ref, affine({{c, -s, 0}, {s, c, 0}, {0, 0, 1}}, {3, -1, 0.5}));
+    const auto cols = strainFromMotion(now, ref, 1.5);
+    expectEverywhere(cols, {0, 0});
+    // Displacement is each sphere's own.
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        const double d = std::hypot(now.x[i] - ref.x[i], now.y[i] - ref.y[i], now.z[i] - ref.z[i]);
+        EXPECT_NEAR(cols[3].floats[i], d, 1e-5);
+    }
+}
+
+TEST(StrainFromMotion, UniformDilation) {
+    const Frame ref = packing(5);
+    const double a = 0.05;
+    const Frame now = mapped(ref, affine({{1 + a, 0, 0}, {0, 1 + a, 0}, {0, 0, 1 + a}}));
+    const double eii = ((1 + a) * (1 + a) - 1) / 2;
+    expectEverywhere(strainFromMotion(now, ref, 1.5), {0, eii});
+}
+
+// One neighbour of the centre sphere moves off the affine field: d2min is the residual of the
+// best-fit F, computed here by the normal equations of the centre's own neighbourhood.
+TEST(StrainFromMotion, NonAffineResidualIsD2min) {
+    const Frame ref = packing(5, 11);
+    const std::size_t centre = 2 + 2 * 5 + 2 * 25; // lattice (2,2,2)
+    const std::size_t moved = centre + 1;          // (3,2,2): a neighbour of the centre
+    Frame now = ref;
+    now.x[moved] += 0.12f;
+    now.z[moved] -= 0.05f;
+    now.finalize();
+    const double cutoff = 1.5;
+    const auto cols = strainFromMotion(now, ref, cutoff);
+
+    double V[3][3] = {}, W[3][3] = {};
+    std::vector<std::pair<Vec, Vec>> xy;
+    for (std::size_t j = 0; j < ref.size(); ++j) {
+        if (j == centre)
+            continue;
+        const Vec X = {double(ref.x[j]) - ref.x[centre], double(ref.y[j]) - ref.y[centre],
+                       double(ref.z[j]) - ref.z[centre]};
+        if (X[0] * X[0] + X[1] * X[1] + X[2] * X[2] > cutoff * cutoff)
+            continue;
+        const Vec Y = {double(now.x[j]) - now.x[centre], double(now.y[j]) - now.y[centre],
+                       double(now.z[j]) - now.z[centre]};
+        xy.push_back({X, Y});
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                V[a][b] += X[a] * X[b];
+                W[a][b] += Y[a] * X[b];
+            }
+    }
+    // F = W V^-1 by Gauss-Jordan on [V | I].
+    double M[3][6];
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 6; ++b)
+            M[a][b] = b < 3 ? V[a][b] : (b - 3 == a ? 1.0 : 0.0);
+    for (int p = 0; p < 3; ++p) {
+        for (int r = 0; r < 3; ++r) {
+            if (r == p)
+                continue;
+            const double f = M[r][p] / M[p][p];
+            for (int b = 0; b < 6; ++b)
+                M[r][b] -= f * M[p][b];
+        }
+    }
+    double F[3][3] = {};
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            for (int k = 0; k < 3; ++k)
+                F[a][b] += W[a][k] * M[k][3 + b] / M[k][k];
+    double d2min = 0;
+    for (const auto& [X, Y] : xy)
+        for (int a = 0; a < 3; ++a) {
+            const double r = Y[a] - (F[a][0] * X[0] + F[a][1] * X[1] + F[a][2] * X[2]);
+            d2min += r * r;
+        }
+    EXPECT_GT(d2min, 1e-3);
+    EXPECT_NEAR(cols[2].floats[centre], d2min, 1e-5 + 1e-4 * d2min);
+    // Spheres far from the moved one keep no residual.
+    EXPECT_NEAR(cols[2].floats[0], 0.0, 1e-6);
+}
+
+// A periodic box: a sphere near a face has neighbours across it, and one that crossed the face
+// (wrapped back into the box) gets the strain it would have had unwrapped.
+TEST(StrainFromMotion, PeriodicBoundariesUseTheMinimumImage) {
+    Frame ref = packing(6, 3);
+    ref.box.known = true;
+    ref.box.lo = {-0.5, -0.5, -0.5};
+    ref.box.hi = {5.5, 5.5, 5.5};
+    ref.box.periodic = {true, true, false};
+    ref.finalize();
+    // A translation by (0.8, -0.3, 0) and a small shear of z against x: wrapped back into the box.
+    auto moveAndWrap = [&](bool wrap) {
+        Frame now = ref;
+        for (std::size_t i = 0; i < now.size(); ++i) {
+            double x = now.x[i] + 0.8 + 0.02 * (now.z[i] - 2.5), y = now.y[i] - 0.3;
+            if (wrap) {
+                x -= 6.0 * std::floor((x + 0.5) / 6.0);
+                y -= 6.0 * std::floor((y + 0.5) / 6.0);
+            }
+            now.x[i] = static_cast<float>(x);
+            now.y[i] = static_cast<float>(y);
+        }
+        now.finalize();
+        return now;
+    };
+    const Frame wrapped = moveAndWrap(true);
+    const auto cols = strainFromMotion(wrapped, ref, 1.5);
+    // Simple shear of x by z, g = 0.02, everywhere, edges included (their neighbours across
+    // the periodic faces count).
+    const double g = 0.02, exz = g / 2, ezz = g * g / 2;
+    const double shear = std::sqrt(exz * exz + (ezz * ezz + ezz * ezz) / 6);
+    std::size_t crossed = 0;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        ASSERT_NEAR(cols[0].floats[i], shear, 2e-5) << "row " << i;
+        ASSERT_NEAR(cols[2].floats[i], 0.0, 1e-4) << "row " << i;
+        const double d = std::hypot(0.8 + 0.02 * (ref.z[i] - 2.5), 0.3);
+        ASSERT_NEAR(cols[3].floats[i], d, 1e-5) << "row " << i;
+        crossed += std::fabs(wrapped.x[i] - ref.x[i]) > 3 ? 1 : 0;
+    }
+    EXPECT_GT(crossed, 20u);
+}
+
+// A triclinic periodic cell (LAMMPS' tilt factors): spheres wrapped into it by the cell vectors.
+TEST(StrainFromMotion, TriclinicCellsWrapAlongTheirEdges) {
+    const double L = 6, xy = 1.5, xz = -1.0, yz = 0.75;
+    Frame ref;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> jitter(-0.12, 0.12);
+    std::int64_t id = 1;
+    for (int k = 0; k < 6; ++k)
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 6; ++i) {
+                // Fractional (i, j, k) / 6 of a = (L,0,0), b = (xy,L,0), c = (xz,yz,L).
+                const double u = i + jitter(rng), v = j + jitter(rng), w = k + jitter(rng);
+                ref.ids.push_back(id++);
+                ref.x.push_back(static_cast<float>(u + v * xy / L + w * xz / L));
+                ref.y.push_back(static_cast<float>(v + w * yz / L));
+                ref.z.push_back(static_cast<float>(w));
+            }
+    ref.radius.assign(ref.ids.size(), 0.5f);
+    ref.box.known = true;
+    ref.box.triclinic = true;
+    ref.box.lo = {0, 0, 0};
+    ref.box.hi = {L, L, L};
+    ref.box.xy = xy;
+    ref.box.xz = xz;
+    ref.box.yz = yz;
+    ref.box.periodic = {true, true, true};
+    ref.finalize();
+    // Every sphere moves by (0.4, 0.9, -0.7); those leaving the cell come back through the
+    // opposite face, shifted by whole cell vectors.
+    Frame now = ref;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        double p[3] = {now.x[i] + 0.4, now.y[i] + 0.9, now.z[i] - 0.7};
+        const double nc = std::floor(p[2] / L);
+        p[2] -= nc * L, p[1] -= nc * yz, p[0] -= nc * xz;
+        const double nb = std::floor((p[1] - p[2] * yz / L) / L);
+        p[1] -= nb * L, p[0] -= nb * xy;
+        const double na = std::floor((p[0] - (p[1] - p[2] * yz / L) * xy / L - p[2] * xz / L) / L);
+        p[0] -= na * L;
+        now.x[i] = static_cast<float>(p[0]);
+        now.y[i] = static_cast<float>(p[1]);
+        now.z[i] = static_cast<float>(p[2]);
+    }
+    now.finalize();
+    const auto cols = strainFromMotion(now, ref, 1.5);
+    const double moved = std::sqrt(0.4 * 0.4 + 0.9 * 0.9 + 0.7 * 0.7);
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        ASSERT_NEAR(cols[0].floats[i], 0.0, 3e-5) << "row " << i;
+        ASSERT_NEAR(cols[2].floats[i], 0.0, 1e-4) << "row " << i;
+        ASSERT_NEAR(cols[3].floats[i], moved, 1e-5) << "row " << i;
+    }
+}
+
+// 2-D data: every centre at z = 0; the in-plane 2 x 2 form (as OVITO's 2-D mode).
+TEST(StrainFromMotion, TwoDimensionalDataUsesThePlaneForm) {
+    const Frame ref = packing(7, 13, /*flatZ=*/true);
+    const double g = 0.1;
+    const Frame now = mapped(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const auto cols = strainFromMotion(now, ref, 1.8); // corners keep 3 neighbours
+    // E = [[0, g/2], [g/2, g^2/2]]: shear = sqrt(Exy^2 + (Exx-Eyy)^2 / 2), vol = (Exx+Eyy)/2.
+    const double exy = g / 2, eyy = g * g / 2;
+    expectEverywhere(cols, {std::sqrt(exy * exy + eyy * eyy / 2), eyy / 2});
+}
+
+// Rows in another order, a sphere gone from the reference (NaN), one gone from the current
+// frame (its neighbours do without it), too few neighbours (NaN).
+TEST(StrainFromMotion, SpheresAreMatchedById) {
+    const Frame ref = packing(5);
+    const double e = 0.1;
+    Frame stretched = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    Frame now;
+    for (std::size_t k = stretched.size(); k-- > 1;) { // reversed; id 1 (row 0) is gone
+        now.ids.push_back(stretched.ids[k]);
+        now.x.push_back(stretched.x[k]);
+        now.y.push_back(stretched.y[k]);
+        now.z.push_back(stretched.z[k]);
+    }
+    now.ids.push_back(1000); // new: not in the reference
+    now.x.push_back(2);
+    now.y.push_back(2);
+    now.z.push_back(2);
+    now.radius.assign(now.ids.size(), 0.5f);
+    now.finalize();
+    const auto cols = strainFromMotion(now, ref, 1.5);
+    const double exx = ((1 + e) * (1 + e) - 1) / 2;
+    for (std::size_t i = 0; i + 1 < now.size(); ++i) {
+        ASSERT_NEAR(cols[0].floats[i], exx / std::sqrt(3.0), 2e-5) << "id " << now.ids[i];
+        ASSERT_NEAR(cols[1].floats[i], exx / 3, 2e-5);
+    }
+    for (const auto& c : cols)
+        EXPECT_TRUE(std::isnan(c.floats.back())) << c.name;
+
+    // Three spheres far apart: no neighbours within the cutoff.
+    Frame sparse;
+    sparse.ids = {1, 2, 3};
+    sparse.x = {0, 10, 20};
+    sparse.y = {0, 0, 5};
+    sparse.z = {0, 3, 0};
+    sparse.radius = {0.5f, 0.5f, 0.5f};
+    sparse.finalize();
+    const auto none = strainFromMotion(sparse, sparse, 1.5);
+    EXPECT_TRUE(std::isnan(none[0].floats[0]));
+    EXPECT_EQ(none[3].floats[0], 0.0f); // it did not move
+}
+
+TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
+    Frame f = packing(4);
+    for (std::size_t i = 0; i < f.size(); ++i)
+        f.radius[i] = i % 3 == 0 ? 0.6f : 0.4f; // median 0.4
+    EXPECT_DOUBLE_EQ(defaultStrainCutoff(f), 1.5 * 0.8f);
+    // Prefixes name the columns.
+    const auto cols = strainFromMotion(f, f, 0, "inc_");
+    EXPECT_EQ(cols[0].name, "inc_shear_strain");
+    EXPECT_EQ(cols[3].name, "inc_displacement");
+    // No radii: from the spacing of a close packing in the centres' bounds.
+    f.radiusIsDefault = true;
+    double volume = 1;
+    for (int a = 0; a < 3; ++a)
+        volume *= double(f.centreMax()[a]) - f.centreMin()[a];
+    EXPECT_NEAR(defaultStrainCutoff(f), 1.5 * std::cbrt(0.64 * volume * 6 / (M_PI * 64)), 1e-9);
+}

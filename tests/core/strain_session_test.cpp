@@ -1,0 +1,179 @@
+// strain.add / strain.remove (issue 36, JOURNAL.md "Strain from motion"): the variables act as
+// columns for thresholds, histograms and CSV, undo, save and reopen with the session, and hostile
+// options are refused naming the field before anything changes.
+#include "core/io/input_error.hpp"
+#include "core/session/session.hpp"
+#include "core/session/session_json.hpp"
+#include "test_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace faultline::core;
+using faultline::test::TempDir;
+
+namespace {
+
+// Three frames of a 6 x 6 x 6 lattice (spacing 1, radius 0.5, ids 1..216) in which the upper
+// half (z >= 3) slides east by 0.3 per frame: a horizontal fault between z = 2 and z = 3.
+std::string writeSlidingBlock(const TempDir& dir) {
+    std::ostringstream text;
+    for (int t = 0; t < 3; ++t) {
+        text << "ITEM: TIMESTEP\n" << t * 100 << "\nITEM: NUMBER OF ATOMS\n216\n"
+             << "ITEM: BOX BOUNDS ff ff ff\n-0.5 7\n-0.5 5.5\n-0.5 5.5\n"
+             << "ITEM: ATOMS id x y z radius\n";
+        int id = 1;
+        for (int z = 0; z < 6; ++z)
+            for (int y = 0; y < 6; ++y)
+                for (int x = 0; x < 6; ++x)
+                    text << id++ << " " << (x + (z >= 3 ? 0.3 * t : 0.0)) << " " << y << " " << z
+                         << " 0.5\n";
+    }
+    return dir.write("slide.dump", text.str());
+}
+
+Json cmd(const char* text) { return Json::parse(text); }
+
+void expectRefused(Session& s, const char* text, const std::string& message) {
+    const SessionState before = s.state();
+    try {
+        s.apply(cmd(text));
+        ADD_FAILURE() << "accepted " << text;
+    } catch (const CommandError& e) {
+        EXPECT_EQ(std::string(e.what()), message);
+    }
+    EXPECT_EQ(s.state(), before) << text;
+}
+
+} // namespace
+
+TEST(StrainSession, IncrementalShearStrainPicksOutTheSlidingPlane) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
+    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.1,"prefix":"inc_"})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    auto frame = s.currentFrame();
+    for (const char* name :
+         {"inc_shear_strain", "inc_volumetric_strain", "inc_d2min", "inc_displacement"})
+        EXPECT_NE(frame->attribute(name), nullptr) << name;
+    s.apply(cmd(R"({"op":"threshold.add","variable":"inc_shear_strain","low":0.05,"high":1e30})"));
+    // Face neighbours only (cutoff 1.1): the layers z = 2 and z = 3 straddle the slip.
+    EXPECT_EQ(s.visibility().visibleCount, 72u);
+    // Displacement since the frame before: 0.3 above, 0 below.
+    s.apply(cmd(R"({"op":"threshold.set","variable":"inc_shear_strain","enabled":false})"));
+    s.apply(cmd(R"({"op":"threshold.add","variable":"inc_displacement","low":0.29,"high":0.31})"));
+    EXPECT_EQ(s.visibility().visibleCount, 108u);
+    // Frame 0 has no frame before it: NaN, which passes no threshold.
+    s.apply(cmd(R"({"op":"frame.set","frame":0})"));
+    EXPECT_EQ(s.visibility().visibleCount, 0u);
+    EXPECT_TRUE(std::isnan(s.currentFrame()->attribute("inc_shear_strain")->floats[0]));
+
+    // Cumulative strain alongside: against frame 0, without a prefix.
+    s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.1})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    s.apply(cmd(R"({"op":"threshold.remove","variable":"inc_displacement"})"));
+    s.apply(cmd(R"({"op":"threshold.add","variable":"displacement","low":0.59,"high":0.61})"));
+    EXPECT_EQ(s.visibility().visibleCount, 108u);
+
+    // A CSV of chosen variables, one row per sphere.
+    const std::string csv = dir.file("s.csv");
+    s.apply({{"op", "export.csv"},
+             {"what", "spheres"},
+             {"path", csv},
+             {"variables", {"shear_strain", "inc_displacement"}}});
+    std::ifstream in(csv);
+    std::string header, row;
+    std::getline(in, header);
+    EXPECT_EQ(header, "id,shear_strain,inc_displacement");
+    int rows = 0;
+    while (std::getline(in, row))
+        ++rows;
+    EXPECT_EQ(rows, 216);
+
+    // Undo takes the cumulative variables away again; the threshold on them is undone first.
+    s.apply(cmd(R"({"op":"undo"})")); // threshold.add
+    s.apply(cmd(R"({"op":"undo"})")); // threshold.remove
+    s.apply(cmd(R"({"op":"undo"})")); // strain.add
+    EXPECT_EQ(s.currentFrame()->attribute("shear_strain"), nullptr);
+    EXPECT_NE(s.currentFrame()->attribute("inc_shear_strain"), nullptr);
+    s.apply(cmd(R"({"op":"redo"})"));
+    EXPECT_NE(s.currentFrame()->attribute("shear_strain"), nullptr);
+
+    // Saved and reopened with the session.
+    const std::string file = dir.file("a.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", file}});
+    Session t;
+    t.apply({{"op", "session.open"}, {"path", file}});
+    ASSERT_EQ(t.state().strains.size(), 2u);
+    EXPECT_EQ(t.state().strains, s.state().strains);
+    EXPECT_NE(t.currentFrame()->attribute("inc_d2min"), nullptr);
+
+    s.apply(cmd(R"({"op":"strain.remove","prefix":"inc_"})"));
+    EXPECT_EQ(s.currentFrame()->attribute("inc_shear_strain"), nullptr);
+    EXPECT_NE(s.currentFrame()->attribute("shear_strain"), nullptr);
+}
+
+TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
+    expectRefused(s, R"({"op":"strain.add"})",
+                  "strain.add: give \"since_frame\" (a frame) or \"since_offset\" (frames "
+                  "before each frame, e.g. -4)");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":0})",
+                  "strain.add: \"cutoff\" must be a number > 0, found 0");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":-1.5})",
+                  "strain.add: \"cutoff\" must be a number > 0, found -1.5");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":"wide"})",
+                  "strain.add: \"cutoff\" must be a number > 0, found \"wide\"");
+    expectRefused(s, R"({"op":"strain.add","since_frame":3})",
+                  "strain.add: \"since_frame\" 3 is out of range 0..2");
+    expectRefused(s, R"({"op":"strain.add","since_frame":-1})",
+                  "strain.add: since_frame must be >= 0");
+    expectRefused(s, R"({"op":"strain.add","since_frame":1.5})",
+                  "strain.add: \"since_frame\" must be a whole number, found 1.5");
+    expectRefused(s, R"({"op":"strain.add","since_offset":0})",
+                  "strain.add: since_offset must not be 0 (a frame against itself has no strain)");
+    expectRefused(s, R"({"op":"strain.add","since_offset":-3})",
+                  "strain.add: \"since_offset\" -3 reaches past all 3 frames");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"since_offset":-1})",
+                  "strain.add: \"since_offset\" goes with no \"since_frame\": give one of them");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"prefix":"a b"})",
+                  "strain.add: prefix may hold only letters, digits, '_', '-' and '.'");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"radius":2})",
+                  "strain.add: unknown field \"radius\" (expected since_frame, since_offset, "
+                  "cutoff, prefix, index)");
+    s.apply(cmd(R"({"op":"strain.add","since_frame":0})"));
+    expectRefused(s, R"({"op":"strain.add","since_offset":-1})",
+                  "strain.add: strain variables with prefix \"\" exist already: strain.remove "
+                  "them first, or give another \"prefix\"");
+    expectRefused(s, R"({"op":"strain.remove","prefix":"inc_"})",
+                  "strain.remove: no strain variables with prefix \"inc_\" (there are \"\")");
+}
+
+TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {
+    TempDir dir;
+    auto load = [&](const std::string& strains) {
+        const std::string path = dir.write(
+            "bad.faultline.json",
+            R"({"format":"faultline-session","schema":1,"strains":)" + strains + "}");
+        try {
+            loadSessionFile(path);
+        } catch (const InputError& e) {
+            return std::string(e.what()).substr(path.size());
+        }
+        return std::string("loaded");
+    };
+    EXPECT_EQ(load(R"([{"since_offset":0}])"),
+              ": strains[0].since_offset: must not be 0 (a frame against itself has no strain)");
+    EXPECT_EQ(load(R"([{"cutoff":1}])"), ": strains[0]: needs \"since_frame\" or \"since_offset\"");
+    EXPECT_EQ(load(R"([{"since_frame":0},{"since_frame":1}])"),
+              ": strains[1].prefix: '' is used twice");
+    EXPECT_EQ(load(R"([{"since_frame":0,"cutoff":-2}])"),
+              ": strains[0].cutoff: must be a number > 0");
+    EXPECT_EQ(load(R"([{"since_frame":0,"prefix":"inc_"}])"), "loaded");
+}
