@@ -3,6 +3,7 @@
 #include "core/model/frame_difference.hpp"
 #include "core/model/periodic_cell.hpp"
 #include "core/motion/strain_spec.hpp"
+#include "core/util/simd8.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 namespace faultline::core {
 
@@ -26,17 +28,25 @@ bool sameIdOrder(const Frame& a, const Frame& b) {
             std::memcmp(a.ids.data(), b.ids.data(), a.ids.size() * sizeof(std::int64_t)) == 0);
 }
 
+constexpr std::uint32_t kNone = ~std::uint32_t(0);
+
+// A reference centre (or a periodic image of one) with where that sphere is now (NaN: gone).
+struct CellPoint {
+    float x, y, z;    // reference
+    float nx, ny, nz; // current
+    std::uint32_t owner; // reference row; the top bit marks an image
+};
+constexpr std::uint32_t kImage = 0x80000000u;
+
 // The reference centres and, on periodic axes, their images within `cutoff` of the centres'
 // bounds, sorted into cubic cells of at least `cutoff`: neighbours of a sphere lie in its cell
-// and the 26 around it, and an image's vector is the minimum-image one.
+// and the 26 around it, an image's vector is the minimum-image one, and a sphere's neighbours
+// are read from memory in order (no lookups by id in the inner loop).
 class NeighbourCells {
   public:
-    NeighbourCells(const Frame& ref, double cutoff) {
+    NeighbourCells(const Frame& ref, const Frame& now, const std::vector<std::uint32_t>& nowRowOf,
+                   double cutoff) {
         const std::size_t n = ref.size();
-        std::vector<float> x(ref.x), y(ref.y), z(ref.z);
-        std::vector<std::uint32_t> owner(n);
-        for (std::size_t i = 0; i < n; ++i)
-            owner[i] = static_cast<std::uint32_t>(i);
         const auto& cmin = ref.centreMin();
         const auto& cmax = ref.centreMax();
         double lo[3], hi[3];
@@ -44,6 +54,12 @@ class NeighbourCells {
             lo[a] = double(cmin[a]) - cutoff;
             hi[a] = double(cmax[a]) + cutoff;
         }
+        std::vector<CellPoint> points(n);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t i = range.begin(); i != range.end(); ++i)
+                                  points[i] = pointOf(ref, now, nowRowOf, i);
+                          });
         const PeriodicCell cell(ref.box);
         if (cell.any && n > 0) {
             const double edge[3][3] = {{cell.lx, 0, 0}, {cell.xy, cell.ly, 0},
@@ -63,15 +79,17 @@ class NeighbourCells {
                             if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                                 q[2] < lo[2] || q[2] > hi[2])
                                 continue;
-                            x.push_back(static_cast<float>(q[0]));
-                            y.push_back(static_cast<float>(q[1]));
-                            z.push_back(static_cast<float>(q[2]));
-                            owner.push_back(static_cast<std::uint32_t>(i));
+                            CellPoint p = points[i];
+                            p.x = static_cast<float>(q[0]);
+                            p.y = static_cast<float>(q[1]);
+                            p.z = static_cast<float>(q[2]);
+                            p.owner |= kImage;
+                            points.push_back(p);
                         }
                     }
         }
         // Cells of at least `cutoff`, no more of them than ~4 per point (sparse or flat sets).
-        const std::size_t points = owner.size();
+        const std::size_t count = points.size();
         m_size = cutoff;
         for (;;) {
             double cells = 1;
@@ -79,17 +97,17 @@ class NeighbourCells {
                 m_dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / m_size) + 1);
                 cells *= m_dims[a];
             }
-            if (cells <= 4.0 * double(points) + 64)
+            if (cells <= 4.0 * double(count) + 64)
                 break;
             m_size *= 1.25;
         }
         for (int a = 0; a < 3; ++a)
             m_lo[a] = lo[a];
-        std::vector<std::uint32_t> cellOf(points);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 16384),
+        std::vector<std::uint32_t> cellOf(count);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t k = r.begin(); k != r.end(); ++k)
-                                  cellOf[k] = cellIndex(x[k], y[k], z[k]);
+                                  cellOf[k] = cellIndex(points[k].x, points[k].y, points[k].z);
                           });
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
         m_start.assign(cells + 1, 0);
@@ -98,11 +116,58 @@ class NeighbourCells {
         for (std::size_t c = 0; c < cells; ++c)
             m_start[c + 1] += m_start[c];
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
-        m_points.resize(points);
-        for (std::size_t k = 0; k < points; ++k)
-            m_points[fill[cellOf[k]]++] = {x[k], y[k], z[k], owner[k]};
+        m_points.resize(count);
+        // Reference positions also as three float arrays, padded for 8-wide loads past the
+        // end (infinitely far: never near).
+        const float far = std::numeric_limits<float>::infinity();
+        m_x.assign(count + 8, far);
+        m_y.assign(count + 8, far);
+        m_z.assign(count + 8, far);
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t at = fill[cellOf[k]]++;
+            m_points[at] = points[k];
+            m_x[at] = points[k].x;
+            m_y[at] = points[k].y;
+            m_z[at] = points[k].z;
+        }
     }
 
+    std::size_t cellCount() const { return m_start.size() - 1; }
+    std::size_t begin(std::size_t cell) const { return m_start[cell]; }
+    std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
+    const CellPoint& point(std::size_t k) const { return m_points[k]; }
+    const float* xs() const { return m_x.data(); }
+    const float* ys() const { return m_y.data(); }
+    const float* zs() const { return m_z.data(); }
+
+    // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
+    // three cells that lie next to each other in memory).
+    template <typename Fn> void around(std::size_t cell, Fn fn) const {
+        const int cx = int(cell % m_dims[0]);
+        const int cy = int((cell / m_dims[0]) % m_dims[1]);
+        const int cz = int(cell / (std::size_t(m_dims[0]) * m_dims[1]));
+        for (int k = std::max(0, cz - 1); k <= std::min(m_dims[2] - 1, cz + 1); ++k)
+            for (int j = std::max(0, cy - 1); j <= std::min(m_dims[1] - 1, cy + 1); ++j) {
+                const std::size_t row = (std::size_t(k) * m_dims[1] + j) * m_dims[0];
+                const std::size_t first = row + std::max(0, cx - 1);
+                const std::size_t last = row + std::min(m_dims[0] - 1, cx + 1);
+                fn(m_start[first], m_start[last + 1]);
+            }
+    }
+
+  private:
+    static CellPoint pointOf(const Frame& ref, const Frame& now,
+                             const std::vector<std::uint32_t>& nowRowOf, std::size_t i) {
+        const std::uint32_t k = nowRowOf[i];
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        return {ref.x[i],
+                ref.y[i],
+                ref.z[i],
+                k == kNone ? nan : now.x[k],
+                k == kNone ? nan : now.y[k],
+                k == kNone ? nan : now.z[k],
+                static_cast<std::uint32_t>(i)};
+    }
     int coord(double v, int axis) const {
         return std::clamp(static_cast<int>((v - m_lo[axis]) / m_size), 0, m_dims[axis] - 1);
     }
@@ -111,30 +176,32 @@ class NeighbourCells {
             (std::size_t(coord(pz, 2)) * m_dims[1] + coord(py, 1)) * m_dims[0] + coord(px, 0));
     }
 
-    struct Point {
-        float x, y, z;
-        std::uint32_t owner; // the reference row it is (an image of)
-    };
-    // fn(point) for every point in the cells around (px, py, pz).
-    template <typename Fn> void around(double px, double py, double pz, Fn fn) const {
-        const int c[3] = {coord(px, 0), coord(py, 1), coord(pz, 2)};
-        for (int k = std::max(0, c[2] - 1); k <= std::min(m_dims[2] - 1, c[2] + 1); ++k)
-            for (int j = std::max(0, c[1] - 1); j <= std::min(m_dims[1] - 1, c[1] + 1); ++j) {
-                const std::size_t row = (std::size_t(k) * m_dims[1] + j) * m_dims[0];
-                const std::size_t first = row + std::max(0, c[0] - 1);
-                const std::size_t last = row + std::min(m_dims[0] - 1, c[0] + 1);
-                for (std::uint32_t p = m_start[first]; p < m_start[last + 1]; ++p)
-                    fn(m_points[p]);
-            }
-    }
-
-  private:
     double m_lo[3] = {0, 0, 0};
     double m_size = 1;
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
-    std::vector<Point> m_points;
+    std::vector<CellPoint> m_points;
+    std::vector<float> m_x, m_y, m_z;
 };
+
+// Appends to `hits` the k in [first, last) whose point lies within sqrt(cutoff2) of (cx, cy, cz),
+// eight at a time; returns the new count. `x`, `y`, `z` are readable 8 past `last`.
+FAULTLINE_HOT std::size_t nearPoints(const float* x, const float* y, const float* z,
+                                     std::size_t first, std::size_t last, float cx, float cy,
+                                     float cz, float cutoff2, std::uint32_t* hits,
+                                     std::size_t count) {
+    using namespace detail::simd8;
+    const v8f px = splat(cx), py = splat(cy), pz = splat(cz), c2 = splat(cutoff2);
+    for (std::size_t k = first; k < last; k += 8) {
+        const v8f dx = load(x + k) - px, dy = load(y + k) - py, dz = load(z + k) - pz;
+        const auto near = dx * dx + dy * dy + dz * dz <= c2;
+        const std::size_t lanes = std::min<std::size_t>(8, last - k);
+        for (std::size_t l = 0; l < lanes; ++l)
+            if (near[l])
+                hits[count++] = static_cast<std::uint32_t>(k + l);
+    }
+    return count;
+}
 
 // The axis every centre of `f` shares (2-D data), or -1.
 int flatAxis(const Frame& f) {
@@ -308,9 +375,24 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             cacheColumnRange(c);
         return cols;
     }
-    const NeighbourCells cells(ref, cutoff);
-    const PeriodicCell refCell(ref.box), nowCell(now.box);
+    if (ref.size() >= kImage)
+        throw std::length_error("strain from motion: more than 2^31 spheres in one frame");
+    // Where each reference sphere is in the current frame.
+    std::vector<std::uint32_t> nowRowOf(ref.size());
     const bool aligned = sameIdOrder(now, ref);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t r = range.begin(); r != range.end(); ++r) {
+                              if (aligned) {
+                                  nowRowOf[r] = static_cast<std::uint32_t>(r);
+                                  continue;
+                              }
+                              const auto k = now.rowOf(ref.ids[r]);
+                              nowRowOf[r] = k ? static_cast<std::uint32_t>(*k) : kNone;
+                          }
+                      });
+    const NeighbourCells cells(ref, now, nowRowOf, cutoff);
+    const PeriodicCell refCell(ref.box), nowCell(now.box);
     const int flat = flatAxis(ref);
     int axes[3] = {0, 1, 2};
     int dim = 3;
@@ -321,51 +403,52 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             if (a != flat)
                 axes[k++] = a;
     }
-    const double cutoff2 = cutoff * cutoff;
+    const float cutoff2 = static_cast<float>(cutoff * cutoff);
     float* shear = cols[0].floats.data();
     float* volumetric = cols[1].floats.data();
     float* d2min = cols[2].floats.data();
     float* displacement = cols[3].floats.data();
+    // Cell by cell, so the neighbours of consecutive spheres share cache lines.
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, now.size(), kGrain),
+        tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                std::size_t r = i;
-                if (!aligned) {
-                    const auto found = ref.rowOf(now.ids[i]);
-                    if (!found)
-                        continue; // not in the reference: NaN
-                    r = *found;
-                }
-                const double p[3] = {ref.x[r], ref.y[r], ref.z[r]};
-                const double q[3] = {now.x[i], now.y[i], now.z[i]};
-                double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-                if (refCell.any)
-                    refCell.wrap(u[0], u[1], u[2]);
-                displacement[i] = static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-                NeighbourSums sums;
-                cells.around(p[0], p[1], p[2], [&](const auto& point) {
-                    if (point.owner == r)
-                        return;
-                    const double X[3] = {point.x - p[0], point.y - p[1], point.z - p[2]};
-                    if (X[0] * X[0] + X[1] * X[1] + X[2] * X[2] > cutoff2)
-                        return;
-                    std::size_t k = point.owner;
-                    if (!aligned) {
-                        const auto found = now.rowOf(ref.ids[point.owner]);
-                        if (!found)
-                            return; // gone from the current frame
-                        k = *found;
+            std::vector<std::uint32_t> hits;
+            for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
+                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
+                    const CellPoint& c = cells.point(self);
+                    if ((c.owner & kImage) || std::isnan(c.nx))
+                        continue; // an image, or a sphere gone from the current frame
+                    const std::size_t i = nowRowOf[c.owner];
+                    double u[3] = {double(c.nx) - c.x, double(c.ny) - c.y, double(c.nz) - c.z};
+                    if (refCell.any)
+                        refCell.wrap(u[0], u[1], u[2]);
+                    displacement[i] =
+                        static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+                    std::size_t count = 0;
+                    cells.around(cell, [&](std::size_t first, std::size_t last) {
+                        if (hits.size() < count + (last - first))
+                            hits.resize(2 * (count + (last - first)));
+                        count = nearPoints(cells.xs(), cells.ys(), cells.zs(), first, last, c.x,
+                                           c.y, c.z, cutoff2, hits.data(), count);
+                    });
+                    NeighbourSums sums;
+                    for (std::size_t h = 0; h < count; ++h) {
+                        const CellPoint& p = cells.point(hits[h]);
+                        if (hits[h] == self || std::isnan(p.nx))
+                            continue;
+                        const double X[3] = {double(p.x) - c.x, double(p.y) - c.y,
+                                             double(p.z) - c.z};
+                        double Y[3] = {double(p.nx) - c.nx, double(p.ny) - c.ny,
+                                       double(p.nz) - c.nz};
+                        if (nowCell.any)
+                            nowCell.wrap(Y[0], Y[1], Y[2]);
+                        sums.add(X, Y);
                     }
-                    double Y[3] = {now.x[k] - q[0], now.y[k] - q[1], now.z[k] - q[2]};
-                    if (nowCell.any)
-                        nowCell.wrap(Y[0], Y[1], Y[2]);
-                    sums.add(X, Y);
-                });
-                const StrainValues v = solve(sums, axes, dim);
-                shear[i] = v.shear;
-                volumetric[i] = v.volumetric;
-                d2min[i] = v.d2min;
+                    const StrainValues v = solve(sums, axes, dim);
+                    shear[i] = v.shear;
+                    volumetric[i] = v.volumetric;
+                    d2min[i] = v.d2min;
+                }
             }
         });
     for (auto& c : cols)

@@ -6,7 +6,7 @@
 
 #include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
-#include "core/surface/detail/simd8.hpp"
+#include "core/util/simd8.hpp"
 #include "core/surface/metaball_field.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "core/surface/detail/plan_fold.hpp"
 
-#include "core/surface/detail/simd8.hpp"
+#include "core/util/simd8.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,260 @@
+// Strain from motion (issue 36), a timed run in one process:
+//  1. 525,000 spheres in a dense packing (jittered hexagonal close packing, ~20 neighbours within
+//     the default cutoff) cut by three thick normal-fault zones, two frames written as a LAMMPS
+//     text dump with the second frame's rows in another order (as LAMMPS writes them): opening
+//     frame 1 (parsed from text, and from the binary frame cache) against computing its strain
+//     against frame 0 (strainFromMotion, and through the dataset with strain.add's spec).
+//  2. 10,000,000 spheres of the same kind in memory: the strain's time and the extra memory it
+//     takes (peak resident set growth, per sphere).
+//  3. With --demo: scrubbing the 3-D demo (frames 8..39, each new) with and without incremental
+//     strain (since_offset -4), each frame's time.
+// Usage: bench_strain [--skip-10m] [--demo]. The dump (~35 MB) is made in a temp folder and
+// deleted at the end.
+#include "core/data/dataset.hpp"
+#include "core/data/frame_cache.hpp"
+#include "core/motion/strain_from_motion.hpp"
+#include "core/synth/demo_model.hpp"
+#include "core/synth/dump_writer.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace faultline::core;
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Resident set now (kB), from /proc/self/statm.
+long residentKb() {
+    std::ifstream in("/proc/self/statm");
+    long size = 0, resident = 0;
+    in >> size >> resident;
+    return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+long peakKb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_maxrss;
+}
+
+// About `n` spheres of radius 0.5 in hexagonal close packing, jittered by 0.05, in a block twice
+// as long (x) as it is high (z) and half as deep (y).
+Frame densePacking(std::size_t n) {
+    const double r = 0.5, dy = 2 * r * std::sqrt(2.0 / 3.0), dz = r * std::sqrt(3.0);
+    // columns * layers * rows = n with columns : layers : rows spacing-weighted 4 : 1 : 2.
+    const double unit = std::cbrt(double(n) * (2 * r) * dy * dz / 8.0);
+    const int columns = std::max(2, int(4 * unit / (2 * r)));
+    const int layers = std::max(2, int(1 * unit / dy));
+    const int rows = std::max(2, int(std::ceil(double(n) / (double(columns) * layers))));
+    Frame f;
+    f.ids.reserve(n);
+    f.x.reserve(n);
+    f.y.reserve(n);
+    f.z.reserve(n);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> jitter(-0.05f, 0.05f);
+    for (int row = 0; row < rows && f.ids.size() < n; ++row)
+        for (int l = 0; l < layers && f.ids.size() < n; ++l)
+            for (int c = 0; c < columns && f.ids.size() < n; ++c) {
+                f.ids.push_back(static_cast<std::int64_t>(f.ids.size()) + 1);
+                f.x.push_back(float(r * (1 + 2 * c + (row & 1) + (l & 1))) + jitter(rng));
+                f.y.push_back(float(r * 1 + l * dy) + jitter(rng));
+                f.z.push_back(float(r * 1 + row * dz + (l & 1) * r / std::sqrt(3.0)) +
+                              jitter(rng));
+            }
+    f.radius.assign(f.ids.size(), float(r));
+    f.box.known = true;
+    f.box.lo = {0, 0, 0};
+    f.box.hi = {r * (2 * columns + 2), layers * dy, rows * dz + r};
+    f.box.periodic = {false, true, false};
+    f.finalize();
+    return f;
+}
+
+// Three normal-fault zones, each 3 diameters thick, dipping 60 degrees, spread along the block:
+// the hanging wall of each slides 0.4 down-dip, ramping across the zone; small noise elsewhere.
+// Rows in a shuffled order.
+Frame faulted(const Frame& ref) {
+    const double length = ref.box.hi[0], height = ref.box.hi[2];
+    const double dip = 60 * M_PI / 180, nx = std::sin(dip), nz = std::cos(dip);
+    const double sx = -std::cos(dip), sz = -std::sin(dip); // down-dip, dipping east... then west
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> noise(-0.01f, 0.01f);
+    std::vector<std::size_t> order(ref.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    Frame f;
+    f.box = ref.box;
+    f.ids.reserve(ref.size());
+    for (std::size_t i : order) {
+        double x = ref.x[i], z = ref.z[i];
+        for (int k = 0; k < 3; ++k) {
+            const double x0 = length * (0.25 + 0.25 * k), sign = k == 1 ? -1.0 : 1.0;
+            // Signed distance from the plane through (x0, height/2).
+            const double d = (x - x0) * nx * sign + (z - height / 2) * nz;
+            const double w = std::clamp(d / 3.0 + 0.5, 0.0, 1.0); // 0 footwall, 1 hanging wall
+            x += 0.4 * w * sx * sign;
+            z += 0.4 * w * sz;
+        }
+        f.ids.push_back(ref.ids[i]);
+        f.x.push_back(float(x) + noise(rng));
+        f.y.push_back(ref.y[i] + noise(rng));
+        f.z.push_back(float(z) + noise(rng));
+        f.radius.push_back(ref.radius[i]);
+    }
+    f.finalize();
+    return f;
+}
+
+void part525k() {
+    const fs::path dir = fs::temp_directory_path() / "faultline-bench-strain";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Frame ref = densePacking(525000);
+    const Frame now = faulted(ref);
+    const std::string dump = (dir / "two.lammpstrj").string();
+    {
+        LammpsDumpWriter w(dump);
+        w.write(ref, {"id", "x", "y", "z", "radius"});
+        w.write(now, {"id", "x", "y", "z", "radius"});
+        w.close();
+    }
+    std::printf("525k: %zu spheres, dump %.1f MB, default cutoff %.3f\n", ref.size(),
+                double(fs::file_size(dump)) / 1e6, defaultStrainCutoff(ref));
+
+    FrameCacheSettings settings;
+    settings.folder = (dir / "cache").string();
+    settings.minFreeDiskBytes = 0;
+    auto cache = std::make_shared<FrameCache>(settings);
+    double parse = 0, cached = 0, strain = 0, derived = 0;
+    const int rounds = 5;
+    std::vector<double> ratios;
+    for (int round = 0; round < rounds; ++round) {
+        // Parsed from text (no cache), then written to and read from the binary cache.
+        auto plain = Dataset::open({dump});
+        plain->setFrameCache(nullptr);
+        auto t0 = std::chrono::steady_clock::now();
+        auto f1 = plain->frame(1);
+        const double p = seconds(t0);
+        auto f0 = plain->frame(0);
+        auto withCache = Dataset::open({dump});
+        withCache->setFrameCache(cache);
+        withCache->frame(1); // fills the cache (first round) or reads it
+        auto again = Dataset::open({dump});
+        again->setFrameCache(cache);
+        t0 = std::chrono::steady_clock::now();
+        again->frame(1);
+        const double c = seconds(t0);
+        t0 = std::chrono::steady_clock::now();
+        auto cols = strainFromMotion(*f1, *f0, 0);
+        const double s = seconds(t0);
+        // Through the dataset: frame 1 derived with the spec (frame 0 and 1 cached as read).
+        plain->setStrains({StrainSpec{false, 0, 0, ""}});
+        t0 = std::chrono::steady_clock::now();
+        auto d = plain->frame(1);
+        const double ds = seconds(t0);
+        parse += p / rounds;
+        cached += c / rounds;
+        strain += s / rounds;
+        derived += ds / rounds;
+        ratios.push_back(s / p);
+        if (round == 0) {
+            std::size_t nan = 0, high = 0;
+            for (float v : cols[0].floats) {
+                nan += std::isnan(v) ? 1 : 0;
+                high += v > 0.05f ? 1 : 0;
+            }
+            std::printf("  shear_strain: %zu NaN, %zu above 0.05 (in the three zones)\n", nan,
+                        high);
+        }
+    }
+    std::sort(ratios.begin(), ratios.end());
+    std::printf("  open frame 1, parsed from text:     %7.1f ms (mean of %d)\n", parse * 1e3,
+                rounds);
+    std::printf("  open frame 1, binary frame cache:   %7.1f ms\n", cached * 1e3);
+    std::printf("  strainFromMotion against frame 0:   %7.1f ms\n", strain * 1e3);
+    std::printf("  dataset frame 1 with strain.add:    %7.1f ms (copy + strain)\n", derived * 1e3);
+    std::printf("  strain / parse: median %.2f, strain / cache read: %.2f\n",
+                ratios[ratios.size() / 2], strain / cached);
+    fs::remove_all(dir);
+}
+
+void part10m() {
+    const long before = residentKb();
+    Frame ref = densePacking(10000000);
+    Frame now = faulted(ref);
+    const long frames = residentKb();
+    const long peakBefore = peakKb();
+    auto t0 = std::chrono::steady_clock::now();
+    auto cols = strainFromMotion(now, ref, 0);
+    const double s = seconds(t0);
+    const long peakAfter = peakKb();
+    std::printf("10M: %zu spheres: frames take %.0f MB; strain %.2f s; peak resident growth "
+                "%.0f MB = %.1f bytes per sphere (of which the 4 result columns: 16)\n",
+                ref.size(), double(frames - before) / 1024, s,
+                double(peakAfter - std::max(peakBefore, frames)) / 1024,
+                double(peakAfter - std::max(peakBefore, frames)) * 1024 / double(ref.size()));
+}
+
+void partDemo() {
+    const std::string file = ensureDemoModel();
+    auto scrub = [&](bool withStrain) {
+        auto ds = Dataset::open({file});
+        if (withStrain)
+            ds->setStrains({StrainSpec{true, -4, 0, "inc_"}});
+        std::vector<double> times;
+        for (std::size_t k = 4; k < ds->frameCount(); ++k) {
+            const auto t0 = std::chrono::steady_clock::now();
+            ds->frame(k);
+            times.push_back(seconds(t0));
+        }
+        return times;
+    };
+    // Warm the page cache and the binary frame cache, then measure each way.
+    scrub(false);
+    const auto plain = scrub(false);
+    const auto strained = scrub(true);
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k < plain.size(); ++k)
+        ratios.push_back(strained[k] / plain[k]);
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    std::printf("demo scrub (frames 4..%zu, each new): median frame %.1f ms plain, %.1f ms with "
+                "incremental strain; ratio median %.2f, worst %.2f\n",
+                plain.size() + 3, median(plain) * 1e3, median(strained) * 1e3, median(ratios),
+                *std::max_element(ratios.begin(), ratios.end()));
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool skip10m = false, demo = false;
+    for (int k = 1; k < argc; ++k) {
+        skip10m = skip10m || std::strcmp(argv[k], "--skip-10m") == 0;
+        demo = demo || std::strcmp(argv[k], "--demo") == 0;
+    }
+    if (demo)
+        partDemo();
+    part525k();
+    if (!skip10m)
+        part10m();
+    return 0;
+}
