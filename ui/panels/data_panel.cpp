@@ -2,6 +2,7 @@
 #include "core/io/frame_source.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/panels/strain_section.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
 
@@ -95,6 +96,8 @@ class DataPanel final : public Panel {
                 ImGui::EndTable();
             }
         }
+        if (ImGui::CollapsingHeader("Strain from motion", ImGuiTreeNodeFlags_DefaultOpen))
+            m_strain.draw(wb);
         if (ImGui::CollapsingHeader("Memory", ImGuiTreeNodeFlags_DefaultOpen)) {
             if (main && main->frame)
                 keyValue("this frame", bytesText(main->frame->memoryBytes()));
@@ -122,6 +125,7 @@ class DataPanel final : public Panel {
     }
 
   private:
+    StrainSection m_strain;
     int m_budgetMb = 0;
     bool m_editingBudget = false;
 

@@ -350,6 +350,14 @@ class HistogramsPanel final : public Panel {
         ImGui::TextDisabled("%s", left.c_str());
         ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetContentRegionMax().x - ImGui::CalcTextSize(right.c_str()).x));
         ImGui::TextDisabled("%s", right.c_str());
+        // NaN (no reference for strain from motion, a sphere gone since it): never passes a
+        // threshold, so say how many there are.
+        if (h->all.nan > 0) {
+            ImGui::TextDisabled("%llu sphere%s without a value (pass no threshold)",
+                                static_cast<unsigned long long>(h->all.nan),
+                                h->all.nan == 1 ? "" : "s");
+            wb.mark("histogram." + var + ".nan");
+        }
         return keep;
     }
 

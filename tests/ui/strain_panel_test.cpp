@@ -1,0 +1,56 @@
+// Issue 36: the Data panel's "Strain from motion" adds strain.add as typed (incremental or
+// cumulative, cutoff, prefix), its variables reach the views' frames, and Remove takes them away.
+#include "panel_fixture.hpp"
+
+#include "ui/dock/panel_ids.hpp"
+
+namespace faultline::test {
+namespace {
+
+using core::Json;
+
+TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
+    openLattice(); // 3 frames
+    headless.showPanel(wb(), ui::panel_ids::kData);
+    headless.retype(wb(), "strain.offset", "1");
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("strain.add").size(), 1u) << wb().lastMessage();
+    EXPECT_EQ(headless.emitted("strain.add")[0],
+              (Json{{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}}));
+    ASSERT_EQ(session.state().strains.size(), 1u);
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    const ui::ViewDisplay* main = wb().mainDisplay();
+    ASSERT_NE(main->frame, nullptr);
+    EXPECT_NE(main->frame->attribute("inc_shear_strain"), nullptr);
+
+    // Cumulative, a typed cutoff: the prefix follows the kind until the user types one.
+    headless.clearEmitted();
+    headless.click(wb(), "strain.cumulative");
+    headless.retype(wb(), "strain.cutoff", "1.2");
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    ASSERT_EQ(headless.emitted("strain.add").size(), 1u) << wb().lastMessage();
+    EXPECT_EQ(headless.emitted("strain.add")[0],
+              (Json{{"op", "strain.add"}, {"since_frame", 0}, {"cutoff", 1.2}}));
+    // The same again is refused with words in the status line; nothing changes.
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    EXPECT_TRUE(wb().lastMessageIsError());
+    EXPECT_NE(wb().lastMessage().find("exist already"), std::string::npos) << wb().lastMessage();
+    EXPECT_EQ(session.state().strains.size(), 2u);
+
+    headless.clearEmitted();
+    headless.click(wb(), "strain.remove.inc_");
+    headless.settle(wb());
+    EXPECT_EQ(headless.emitted("strain.remove"),
+              (std::vector<Json>{{{"op", "strain.remove"}, {"prefix", "inc_"}}}));
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->frame->attribute("inc_shear_strain"), nullptr);
+    EXPECT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
+}
+
+} // namespace
+} // namespace faultline::test

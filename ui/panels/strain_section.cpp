@@ -1,0 +1,127 @@
+#include "ui/panels/strain_section.hpp"
+
+#include "core/motion/strain_from_motion.hpp"
+#include "core/session/items/strain_codec.hpp"
+#include "ui/context/frame_columns.hpp"
+#include "ui/widgets/number_field.hpp"
+#include "ui/widgets/text_fit.hpp"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+
+namespace faultline::ui {
+
+namespace {
+
+std::string describe(const core::StrainSpec& s) {
+    std::string text = s.relative ? "against " + std::to_string(-s.reference) +
+                                        " frame" + (s.reference == -1 ? "" : "s") + " before"
+                                  : "since frame " + std::to_string(s.reference);
+    if (s.relative && s.reference > 0)
+        text = "against " + std::to_string(s.reference) + " frames after";
+    text += s.cutoff > 0 ? ", cutoff " + numberText(s.cutoff) : ", cutoff auto";
+    return text;
+}
+
+} // namespace
+
+void StrainSection::draw(PanelContext& wb) {
+    const auto& ds = wb.dataset();
+    const auto& strains = wb.state().strains;
+    const ViewDisplay* main = wb.mainDisplay();
+    if (strains.empty())
+        ImGui::TextWrapped("Shear and volumetric strain, d2min and displacement of each sphere "
+                           "from how its neighbours moved: faults are where they concentrate.");
+    for (std::size_t k = 0; k < strains.size(); ++k) {
+        const core::StrainSpec& s = strains[k];
+        ImGui::PushID(static_cast<int>(k));
+        const std::string name = (s.prefix.empty() ? std::string("(no prefix)") : s.prefix + "*");
+        const float removeW = buttonWidth("Remove");
+        textElided(name + "  " + describe(s),
+                   ImGui::GetContentRegionAvail().x - removeW - ImGui::GetStyle().ItemSpacing.x);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%sshear_strain, %svolumetric_strain, %sd2min, %sdisplacement",
+                              s.prefix.c_str(), s.prefix.c_str(), s.prefix.c_str(),
+                              s.prefix.c_str());
+        ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
+        if (ImGui::SmallButton("Remove"))
+            wb.emit({{"op", "strain.remove"}, {"prefix", s.prefix}});
+        wb.mark("strain.remove." + s.prefix);
+        ImGui::PopID();
+    }
+    // The frame on screen is still being derived (the view shows the previous one meanwhile).
+    if (ds && !strains.empty() && !ds->isCached(wb.displayFrame()))
+        ImGui::TextDisabled("computing strain for frame %zu...", wb.displayFrame());
+    ImGui::Spacing();
+
+    const float field = ImGui::GetFontSize() * 4;
+    if (ImGui::RadioButton("incremental", m_incremental)) {
+        m_incremental = true;
+        if (!m_prefixEdited)
+            m_prefix = "inc_";
+    }
+    wb.mark("strain.incremental");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each frame against the frame N before it: the faults active then");
+    flowSameLine(checkboxWidth("cumulative"));
+    if (ImGui::RadioButton("cumulative", !m_incremental)) {
+        m_incremental = false;
+        if (!m_prefixEdited)
+            m_prefix = "";
+    }
+    wb.mark("strain.cumulative");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Every frame against one reference frame");
+    // Labels before their fields, so the field is what a click on the item's middle hits.
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(m_incremental ? "frames before" : "since frame");
+    ImGui::SameLine();
+    if (m_incremental) {
+        numberField("##offset", &m_offset, field);
+        m_offset = std::max(1, m_offset);
+        wb.mark("strain.offset");
+    } else {
+        numberField("##since", &m_sinceFrame, field);
+        m_sinceFrame = std::max(0, m_sinceFrame);
+        wb.mark("strain.since");
+    }
+    // The automatic cutoff, shown greyed in the empty field.
+    std::string autoText = "auto";
+    if (main && main->frame)
+        autoText = "auto " + numberText(core::defaultStrainCutoff(*main->frame));
+    flowSameLine(ImGui::CalcTextSize("cutoff").x + ImGui::GetStyle().ItemSpacing.x + field * 1.6f);
+    ImGui::TextUnformatted("cutoff");
+    ImGui::SameLine();
+    numberField("##cutoff", &m_cutoff, "%.4g", field * 1.6f, autoText.c_str(), 0.0);
+    wb.mark("strain.cutoff");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Neighbours within this distance in the reference frame\n"
+                          "(empty: 1.5 x the median diameter)");
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted("prefix");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(field * 1.6f);
+    if (ImGui::InputText("##prefix", &m_prefix))
+        m_prefixEdited = true;
+    wb.mark("strain.prefix");
+    flowSameLine(buttonWidth("Add"));
+    ImGui::BeginDisabled(!ds);
+    if (ImGui::Button("Add")) {
+        core::Json cmd = {{"op", "strain.add"}};
+        if (m_incremental)
+            cmd["since_offset"] = -m_offset;
+        else
+            cmd["since_frame"] = m_sinceFrame;
+        if (m_cutoff > 0)
+            cmd["cutoff"] = m_cutoff;
+        if (!m_prefix.empty())
+            cmd["prefix"] = m_prefix;
+        wb.emit(cmd);
+    }
+    wb.mark("strain.add");
+    ImGui::EndDisabled();
+}
+
+} // namespace faultline::ui
