@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cctype>
 #include <map>
 #include <regex>
@@ -158,6 +159,14 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
         expanded.push_back(expandGlob(pattern));
         if (expanded.back().empty())
             throw InputError(pattern, "no file matches this pattern");
+        // LIGGGHTS' dump custom/vtk writes run_boundingBox_N.vtk beside each run_N.vtk: the
+        // natural pattern run_*.vtk takes both. The boxes are no frames of spheres.
+        if (expanded.back().size() > 1) {
+            std::erase_if(expanded.back(), isVtkRectilinearGrid);
+            if (expanded.back().empty())
+                throw InputError(pattern, "every file this pattern matches is a RECTILINEAR_GRID "
+                                          "(a bounding box), none holds spheres");
+        }
         total += expanded.back().size();
     }
     auto step = [&] {
@@ -313,6 +322,35 @@ deriveFrame(const std::shared_ptr<const Frame>& base, std::size_t index, std::si
     return out;
 }
 
+// What a derived frame holds, for the disk cache's key: each spec and whether its reference
+// exists (the references' own sources are keyed beside it).
+std::string derivedVariant(const std::vector<StrainSpec>& strains, std::size_t index,
+                           std::size_t count) {
+    std::string v = "strain from motion v1";
+    char cutoff[32];
+    for (const auto& s : strains) {
+        std::snprintf(cutoff, sizeof cutoff, "%.17g", s.cutoff);
+        v += std::string(";") + (s.relative ? "offset " : "frame ") + std::to_string(s.reference) +
+             " cutoff " + cutoff + " prefix " + s.prefix +
+             (s.referenceFor(index, count) ? "" : " none");
+    }
+    return v;
+}
+
+// How many of a frame's last columns the specs derive (they come last, in spec order).
+std::size_t trailingDerivedColumns(const Frame& frame, const std::vector<StrainSpec>& strains) {
+    std::vector<std::string> names;
+    for (const auto& s : strains)
+        for (auto v : kStrainVariables)
+            names.push_back(s.prefix + std::string(v));
+    std::size_t n = 0;
+    while (n < frame.attributes.size() &&
+           std::find(names.begin(), names.end(),
+                     frame.attributes[frame.attributes.size() - 1 - n].name) != names.end())
+        ++n;
+    return n;
+}
+
 } // namespace
 
 std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
@@ -342,12 +380,31 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     }
     std::shared_ptr<const Frame> loaded;
     try {
-        if (!base)
-            base = readFrame(index);
-        loaded = strains.empty() && base->derivedColumns == 0
-                     ? base
-                     : deriveFrame(base, index, m_frames.size(), strains,
-                                   [this](std::size_t k) { return baseFrame(k); });
+        // A frame derived before (this run or an earlier one) comes from the disk cache whole.
+        std::shared_ptr<FrameCache> disk = m_loader ? nullptr : frameCache();
+        std::vector<FrameLocation> references;
+        std::string variant;
+        if (disk && disk->enabled() && !strains.empty()) {
+            variant = derivedVariant(strains, index, m_frames.size());
+            for (const auto& spec : strains)
+                if (auto ref = spec.referenceFor(index, m_frames.size()))
+                    references.push_back(m_frames[*ref]);
+            if (auto hit = disk->lookupDerived(m_frames[index], references, variant)) {
+                auto frame = std::make_shared<Frame>(std::move(*hit));
+                frame->derivedColumns = trailingDerivedColumns(*frame, strains);
+                loaded = std::move(frame);
+            }
+        }
+        if (!loaded) {
+            if (!base)
+                base = readFrame(index);
+            loaded = strains.empty() && base->derivedColumns == 0
+                         ? base
+                         : deriveFrame(base, index, m_frames.size(), strains,
+                                       [this](std::size_t k) { return baseFrame(k); });
+            if (!variant.empty())
+                disk->storeDerived(m_frames[index], references, variant, *loaded);
+        }
     } catch (...) {
         std::lock_guard lock(m_mutex);
         if (auto it = m_loading.find(index); it != m_loading.end() && it->second.derived == version)

@@ -28,12 +28,6 @@ namespace {
 
 constexpr std::string_view kExtension = ".flframe";
 
-struct SourceState {
-    std::string key;      // identity + the sources' sizes and mtimes: what makes a file valid
-    std::string identity; // which frame it is: names the file
-    std::uint64_t sourceBytes = 0;
-};
-
 std::optional<SourceState> sourceState(const FrameLocation& location) {
     SourceState s;
     const std::string head = "faultline frame cache v" + std::to_string(kFrameCacheFormatVersion) +
@@ -164,10 +158,51 @@ Frame FrameCache::fetch(const FrameLocation& location) {
     return frame;
 }
 
+namespace {
+
+// The state of a frame derived from `location` and `others` under `variant`.
+std::optional<SourceState> derivedState(const FrameLocation& location,
+                                        const std::vector<FrameLocation>& others,
+                                        const std::string& variant) {
+    auto s = sourceState(location);
+    if (!s)
+        return std::nullopt;
+    s->identity += "derived " + variant + "\n";
+    s->key += "derived " + variant + "\n";
+    for (const auto& other : others) {
+        const auto o = sourceState(other);
+        if (!o)
+            return std::nullopt;
+        s->identity += "from " + o->identity;
+        s->key += "from " + o->key;
+    }
+    return s;
+}
+
+} // namespace
+
 std::optional<Frame> FrameCache::lookup(const FrameLocation& location) {
     if (!enabled())
         return std::nullopt;
-    const auto s = sourceState(location);
+    return lookupState(sourceState(location));
+}
+
+std::optional<Frame> FrameCache::lookupDerived(const FrameLocation& location,
+                                               const std::vector<FrameLocation>& others,
+                                               const std::string& variant) {
+    if (!enabled())
+        return std::nullopt;
+    return lookupState(derivedState(location, others, variant));
+}
+
+void FrameCache::storeDerived(const FrameLocation& location,
+                              const std::vector<FrameLocation>& others, const std::string& variant,
+                              const Frame& frame) {
+    if (enabled())
+        storeState(derivedState(location, others, variant), frame);
+}
+
+std::optional<Frame> FrameCache::lookupState(const std::optional<SourceState>& s) {
     if (!s)
         return std::nullopt;
     const std::string path = (fs::path(m_settings.folder) / fileNameFor(s->identity)).string();
@@ -191,14 +226,16 @@ std::optional<Frame> FrameCache::lookup(const FrameLocation& location) {
 }
 
 void FrameCache::store(const FrameLocation& location, const Frame& frame) {
-    if (!enabled())
-        return;
+    if (enabled())
+        storeState(sourceState(location), frame);
+}
+
+void FrameCache::storeState(const std::optional<SourceState>& s, const Frame& frame) {
     {
         std::lock_guard lock(m_mutex);
         if (m_writesDisabled)
             return;
     }
-    const auto s = sourceState(location);
     if (!s || s->sourceBytes < m_settings.minSourceBytes)
         return;
     std::error_code ec;

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace faultline::core {
 
@@ -28,6 +29,13 @@ std::string defaultFrameCacheFolder();
 // What identifies the source state of a frame: format, timestep, and for each piece its absolute
 // path, byte range, size and mtime (ns). nullopt when a source cannot be stat'ed.
 std::optional<std::string> frameCacheKey(const FrameLocation& location);
+
+// What identifies a cached frame's sources (frame_cache.cpp).
+struct SourceState {
+    std::string key;      // identity + the sources' sizes and mtimes: what makes a file valid
+    std::string identity; // which frame it is: names the file
+    std::uint64_t sourceBytes = 0;
+};
 
 class FrameCache {
   public:
@@ -47,6 +55,15 @@ class FrameCache {
     std::optional<Frame> lookup(const FrameLocation& location);
     // Writes `frame` for `location` unless disabled, too small, or the disk is short; never throws.
     void store(const FrameLocation& location, const Frame& frame);
+
+    // A frame derived from `location` and the frames at `others` (strain from motion against
+    // reference frames), `variant` naming what was derived: valid while every source is as it
+    // was. Same rules as lookup / store.
+    std::optional<Frame> lookupDerived(const FrameLocation& location,
+                                       const std::vector<FrameLocation>& others,
+                                       const std::string& variant);
+    void storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
+                      const std::string& variant, const Frame& frame);
 
     // The file that holds (or would hold) a location's frame; empty when disabled.
     std::string pathFor(const FrameLocation& location) const;
@@ -73,6 +90,8 @@ class FrameCache {
     Stats m_stats;
 
     void noteProblem(const std::string& message, bool disableWrites);
+    std::optional<Frame> lookupState(const std::optional<SourceState>& state);
+    void storeState(const std::optional<SourceState>& state, const Frame& frame);
     void evictOverBudget(const std::string& keep);
 };
 

@@ -1,6 +1,7 @@
 // strain.add / strain.remove (issue 36, JOURNAL.md "Strain from motion"): the variables act as
 // columns for thresholds, histograms and CSV, undo, save and reopen with the session, and hostile
 // options are refused naming the field before anything changes.
+#include "core/data/frame_cache.hpp"
 #include "core/io/input_error.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
@@ -176,4 +177,46 @@ TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {
     EXPECT_EQ(load(R"([{"since_frame":0,"cutoff":-2}])"),
               ": strains[0].cutoff: must be a number > 0");
     EXPECT_EQ(load(R"([{"since_frame":0,"prefix":"inc_"}])"), "loaded");
+}
+
+// Derived frames go to the binary frame cache beside the frames read: a second dataset on the
+// same files gets them without deriving, and a changed spec or source is a miss.
+TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
+    TempDir dir;
+    const std::string dump = writeSlidingBlock(dir);
+    FrameCacheSettings settings;
+    settings.folder = dir.file("cache");
+    settings.minSourceBytes = 0;
+    settings.minFreeDiskBytes = 0;
+    auto cache = std::make_shared<FrameCache>(settings);
+    const std::vector<StrainSpec> strains = {StrainSpec{true, -1, 1.1, "inc_"}};
+    auto first = Dataset::open({dump});
+    first->setFrameCache(cache);
+    first->setStrains(strains);
+    const auto derived = first->frame(2);
+    ASSERT_NE(derived->attribute("inc_shear_strain"), nullptr);
+    const auto writes = cache->stats().writes;
+    EXPECT_GE(writes, 2u); // frame 2 as read (its reference, frame 1, too) and as derived
+
+    auto second = Dataset::open({dump});
+    second->setFrameCache(cache);
+    second->setStrains(strains);
+    const auto hits = cache->stats().hits;
+    const auto again = second->frame(2);
+    EXPECT_EQ(cache->stats().hits, hits + 1);
+    EXPECT_EQ(cache->stats().writes, writes);
+    ASSERT_NE(again->attribute("inc_shear_strain"), nullptr);
+    EXPECT_EQ(again->attribute("inc_shear_strain")->floats,
+              derived->attribute("inc_shear_strain")->floats);
+    EXPECT_EQ(again->derivedColumns, 4u);
+    // Taking the spec away gives the frame as read.
+    second->setStrains({});
+    EXPECT_EQ(second->frame(2)->attribute("inc_shear_strain"), nullptr);
+    EXPECT_EQ(second->frame(2)->derivedColumns, 0u);
+    // Another cutoff is another derived frame.
+    second->setStrains({StrainSpec{true, -1, 1.6, "inc_"}});
+    const auto other = second->frame(2);
+    EXPECT_GT(cache->stats().writes, writes);
+    EXPECT_NE(other->attribute("inc_shear_strain")->floats,
+              derived->attribute("inc_shear_strain")->floats);
 }
