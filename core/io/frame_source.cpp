@@ -9,7 +9,9 @@
 #include "core/io/vtk_legacy.hpp"
 #include "core/io/vtk_xml.hpp"
 
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 
 namespace faultline::core {
 
@@ -77,6 +79,33 @@ FrameLocation pieceOfFile(const std::string& path, FileFormat format, std::int64
 
 } // namespace
 
+std::optional<std::int64_t> numberInFileName(const std::string& path) {
+    std::filesystem::path file = std::filesystem::path(path).filename();
+    // Without its extension (and a compressor's): "run_100.vtk", "data.0012.vtu", "t_5.csv.gz".
+    const std::string ext = file.extension().string();
+    if (ext == ".gz" || ext == ".bz2" || ext == ".xz")
+        file = file.stem();
+    std::string name = file.stem().string();
+    std::size_t end = name.size();
+    while (end > 0 && !std::isdigit(static_cast<unsigned char>(name[end - 1])))
+        --end;
+    std::size_t begin = end;
+    while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1])))
+        --begin;
+    if (begin == end || end - begin > 18)
+        return std::nullopt;
+    return std::stoll(name.substr(begin, end - begin));
+}
+
+bool isVtkRectilinearGrid(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char head[512] = {};
+    in.read(head, sizeof head - 1);
+    const std::string_view text(head, static_cast<std::size_t>(in.gcount()));
+    return text.rfind("# vtk DataFile", 0) == 0 &&
+           text.find("DATASET RECTILINEAR_GRID") != std::string_view::npos;
+}
+
 std::vector<FrameLocation> indexDataFile(const std::string& path) {
     const FileFormat format = detectFormat(path);
     std::vector<FrameLocation> frames;
@@ -119,8 +148,14 @@ std::vector<FrameLocation> indexDataFile(const std::string& path) {
         break;
     }
     default: {
+        // One frame a file, which holds no time (Yade's VTKExporter, LIGGGHTS' custom/vtk, CSV
+        // series): the last number in the file's name is its timestep ("run_49600.vtk").
         FrameLocation loc;
         loc.format = format;
+        if (auto step = numberInFileName(path)) {
+            loc.timestep = *step;
+            loc.time = static_cast<double>(*step);
+        }
         loc.pieces.push_back({path, 0, 0, 1});
         frames.push_back(std::move(loc));
     }

@@ -5,6 +5,7 @@
 #include "core/model/frame.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,12 @@ struct FrameLocation {
     std::uint64_t particleCount = 0; // when the index knows it (LAMMPS), else 0
     std::vector<FramePiece> pieces;  // several for LAMMPS per-processor files
 };
+
+// The last run of digits in a file's name before its extensions ("run_49600.vtk": 49600).
+std::optional<std::int64_t> numberInFileName(const std::string& path);
+// A legacy VTK RECTILINEAR_GRID file: LIGGGHTS' dump custom/vtk writes run_boundingBox_N.vtk
+// beside each frame; a series skips them.
+bool isVtkRectilinearGrid(const std::string& path);
 
 // Every frame one file holds (a .pvd collection expands to the files it lists).
 std::vector<FrameLocation> indexDataFile(const std::string& path);

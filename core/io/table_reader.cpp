@@ -134,6 +134,9 @@ Frame parseTable(const std::string& path, std::string_view text) {
         if (byTab.size() != names.size() && byTab.size() == headerNames(first, 0).size())
             names = std::move(byTab);
     }
+    // DualSPHysics' PartCSV ends every line, the header's too, with ';': no column after it.
+    if (separator && names.size() > 1 && names.back().empty() && header.back() == separator)
+        names.pop_back();
     // Yade's export.text / ymport.text: "#format x_y_z_r" names the columns joined by '_'.
     if (!separator && names.size() == 2 && asciiLower(names[0]) == "format") {
         const std::string spec = names[1];
@@ -142,6 +145,24 @@ Frame parseTable(const std::string& path, std::string_view text) {
             const std::size_t j = std::min(spec.find('_', i), spec.size());
             names.push_back(spec.substr(i, j - i));
             i = j + 1;
+        }
+        // export.textExt(..., format='x_y_z_r_attrs', attrs=[...]) writes each attribute's
+        // values (a vector's three) after the radius, unnamed: attr_1 .. attr_n, n from the
+        // first row.
+        if (!names.empty() && asciiLower(names.back()) == "attrs") {
+            names.pop_back();
+            std::size_t at = pos;
+            std::string_view first;
+            while (at < text.size() && first.empty()) {
+                const std::size_t end = std::min(text.find('\n', at), text.size());
+                const std::string_view l = text.substr(at, end - at);
+                if (l.find_first_not_of(" \t\r") != std::string_view::npos && l.front() != '#')
+                    first = l;
+                at = end + 1;
+            }
+            const std::size_t values = headerNames(first, 0).size();
+            for (std::size_t k = 1; names.size() < values; ++k)
+                names.push_back("attr_" + std::to_string(k));
         }
     }
     const std::uint64_t headerLine = line;

@@ -81,6 +81,28 @@ TEST(TableReader, DualSphysicsSemicolonsAndUnits) {
     EXPECT_TRUE(f.radiusIsDefault);
 }
 
+// Issue 37: DualSPHysics' PartCSV ends every line, the header's too, with ';'.
+TEST(TableReader, DualSphysicsTrailingSemicolonIsNoColumn) {
+    Frame f = parseTable("part.csv", "Pos.x [m];Pos.y [m];Pos.z [m];Idp;Type;\n"
+                                     "0.1;0.2;0.3;7;2;\n0.4;0.5;0.6;9;1;\n");
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_EQ(f.ids[1], 9);
+    EXPECT_EQ(f.attributeNames(), (std::vector<std::string>{"Type"}));
+    EXPECT_EQ(f.attribute("Type")->value(0), 2.0);
+}
+
+// Issue 37: Yade's export.textExt(..., format='x_y_z_r_attrs', attrs=[...]) writes the
+// attributes' values (a vector's three) after the radius, unnamed.
+TEST(TableReader, YadeTextExtAttributesBecomeNumberedColumns) {
+    Frame f = parseTable("yade.txt", "#format x_y_z_r_attrs\n"
+                                     "1 2 3 0.5 7 0.1 0.2 0.3\n4 5 6 0.25 8 -0.1 0 1e-3\n");
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_FLOAT_EQ(f.radius[1], 0.25f);
+    EXPECT_EQ(f.attributeNames(),
+              (std::vector<std::string>{"attr_1", "attr_2", "attr_3", "attr_4"}));
+    EXPECT_FLOAT_EQ(f.attribute("attr_4")->floats[1], 1e-3f);
+}
+
 TEST(TableReader, YadeFormatLineNamesTheColumns) {
     // Yade's export.text(): "#format x_y_z_r", then blank-separated rows.
     Frame f = parseTable("yade.txt", "#format x_y_z_r\n1 2 3 0.5\n4 5 6 0.25\n");
