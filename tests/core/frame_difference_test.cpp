@@ -1,5 +1,6 @@
 #include "core/model/difference_column_cache.hpp"
 #include "core/model/frame_difference.hpp"
+#include "core/session/difference_range.hpp"
 
 #include <gtest/gtest.h>
 
@@ -121,4 +122,27 @@ TEST(DifferenceColumnCache, ComputesOncePerDistinctInputs) {
     // A new frame object with other values is never answered from the cache.
     b = std::make_shared<const Frame>(makeFrame({2, 1}, {0, 0}, {0, 0}, {0, 0}, {7, 1}, {4, 0}));
     EXPECT_EQ(cache.change(b, a, "strain")->floats, (std::vector<float>{5, 0}));
+}
+
+// Issue 41: a movie coloured by "change since frame N" got a new range every frame (red meant
+// 0 early and +10 late). Over all frames, a change is symmetric about zero, displacement from 0.
+TEST(FrameDifference, RangesOverFramesShareOneLegend) {
+    // Three frames of two spheres: strain 0, 1, 3 and then -2, so the change since frame 0 runs
+    // from -2 to 3 over the frames; the second sphere moves 0.5 per frame.
+    std::vector<Frame> frames;
+    const float strains[3][2] = {{0, 0}, {1, -2}, {3, 1}};
+    for (int t = 0; t < 3; ++t)
+        frames.push_back(makeFrame({1, 2}, {0, 0.5f * float(t)}, {0, 0}, {0, 0},
+                                   {strains[t][0], strains[t][1]}, {0, 0}));
+    auto ds = Dataset::fromLoader(3, [&](std::size_t k) { return frames[k]; });
+    ViewState view = mainView();
+    view.colorVariable = "strain";
+    EXPECT_EQ(differenceRangeOverFrames(*ds, view), std::nullopt); // no difference colouring
+    view.difference.mode = ColorDifference::Mode::Change;
+    view.difference.reference = {false, 0};
+    EXPECT_EQ(differenceRangeOverFrames(*ds, view), (ValueRange{-3, 3}));
+    EXPECT_EQ(differenceRangeOverFrames(*ds, view, {1}), (ValueRange{-2, 2}));
+    view.difference.mode = ColorDifference::Mode::Displacement;
+    EXPECT_EQ(differenceRangeOverFrames(*ds, view), (ValueRange{0, 1}));
+    EXPECT_EQ(symmetricAboutZero({0.5, 4}), (ValueRange{-4, 4}));
 }

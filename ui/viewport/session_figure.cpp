@@ -2,6 +2,7 @@
 
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
+#include "core/session/difference_range.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "ui/render/legend_layout.hpp"
@@ -72,10 +73,14 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         }
         scene.colorVariable = core::colorTitle(*view, ref);
         scene.colorColumn = &*difference;
-        if (view->rangeMode == core::RangeMode::Fixed)
+        if (request.colorRange)
+            scene.colorRange = *request.colorRange; // a movie's range, shared by its frames
+        else if (view->rangeMode == core::RangeMode::Fixed)
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
-        else if (difference->min <= difference->max)
-            scene.colorRange = core::ValueRange{difference->min, difference->max};
+        else if (auto all = core::differenceRangeOverFrames(*dataset, *view))
+            // Issue 41: one range over every frame, a change symmetric about zero, so figures
+            // of different frames share a legend and zero is always the middle colour.
+            scene.colorRange = *all;
     } else if (!view->colorVariable.empty()) {
         if (request.colorRange) {
             scene.colorRange = *request.colorRange;
@@ -234,8 +239,17 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
             m_frames.push_back(f);
     // One colour range for every frame: the view's fixed one, else the range over all frames
     // (what rangeMode "all" gives a single figure), so colours mean the same in every frame.
-    if (!fig.colorRange && !view->colorVariable.empty() && view->rangeMode != core::RangeMode::Fixed &&
-        view->difference.mode == core::ColorDifference::Mode::None) {
+    if (!fig.colorRange && view->rangeMode != core::RangeMode::Fixed &&
+        view->difference.mode != core::ColorDifference::Mode::None) {
+        // Change (symmetric about zero) or displacement, over the movie's frames (all of them,
+        // not a shard's: shards must colour as the whole run does).
+        std::vector<std::size_t> frames;
+        for (std::size_t f = m_request.first; f <= m_request.last; f += m_request.step)
+            frames.push_back(f);
+        fig.colorRange = core::differenceRangeOverFrames(*dataset, *view, frames);
+    } else if (!fig.colorRange && !view->colorVariable.empty() &&
+               view->rangeMode != core::RangeMode::Fixed &&
+               view->difference.mode == core::ColorDifference::Mode::None) {
         double lo = 1e300, hi = -1e300;
         for (std::size_t k = 0; k < count; ++k)
             if (const auto* c = dataset->frame(k)->attribute(view->colorVariable)) {

@@ -172,8 +172,19 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
     if (!d.colorTitle.empty()) {
         auto& all = m_allFramesRange.try_emplace(rangeKey, range).first->second;
         all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-        if (v.rangeMode == core::RangeMode::AllFrames)
+        // Issue 41: a change colouring shares one range over the frames seen so far, symmetric
+        // about zero (zero change keeps the map's middle colour at every frame); displacement
+        // starts at 0.
+        const bool change = v.difference.mode == core::ColorDifference::Mode::Change;
+        if (v.rangeMode == core::RangeMode::AllFrames ||
+            v.difference.mode != core::ColorDifference::Mode::None)
             range = all;
+        if (change) {
+            const double m = std::max(std::fabs(range[0]), std::fabs(range[1]));
+            range = {-m, m};
+        } else if (v.difference.mode == core::ColorDifference::Mode::Displacement) {
+            range[0] = 0.0;
+        }
     }
     if (v.rangeMode == core::RangeMode::Fixed)
         range = v.range;
