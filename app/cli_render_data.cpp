@@ -4,6 +4,7 @@
 
 #include "core/data/dataset.hpp"
 #include "core/io/input_error.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/selection/cutting_box.hpp"
 
 #if FAULTLINE_WITH_GUI
@@ -164,7 +165,7 @@ int runRenderData(const Args& args) {
                                        {0.85f, 0.2f, 0.15f}});
             }
             for (const Threshold& t : thresholds) {
-                const core::AttributeColumn* column = frame->attribute(t.variable);
+                const auto column = core::findColumn(*frame, t.variable); // x, y, z too
                 if (!column)
                     throw std::invalid_argument("no variable '" + t.variable + "'");
                 for (std::size_t i = 0; i < frame->size(); ++i) {

@@ -40,6 +40,8 @@ int runReplay(const Args& args) {
                 std::fprintf(stderr, "faultline replay: %s\n", e.what());
                 return 2;
             }
+        } else if (a == "--strict") {
+            options.strict = true;
         } else if (journal.empty() && a.rfind("--", 0) != 0) {
             journal = a;
         } else {
@@ -49,7 +51,7 @@ int runReplay(const Args& args) {
     }
     if (journal.empty()) {
         std::fprintf(stderr, "usage: faultline replay JOURNAL.jsonl [--data PATH...] [--out DIR] "
-                             "[--frames A:B | --shard K/N]\n");
+                             "[--frames A:B | --shard K/N] [--strict]\n");
         return 2;
     }
     core::Session session;
@@ -61,6 +63,9 @@ int runReplay(const Args& args) {
         std::fprintf(stderr, "faultline replay: %s\n", e.what());
         return 2;
     }
+    for (const auto& w : report.warnings)
+        std::fprintf(stderr, "%s:%zu: warning: %s (--strict makes this an error)\n",
+                     journal.c_str(), w.line, w.message.c_str());
     for (const auto& f : report.failures)
         std::fprintf(stderr, "%s:%zu: %s\n", journal.c_str(), f.line, f.message.c_str());
     if (report.stopped)

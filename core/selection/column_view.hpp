@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace faultline::core {
 
@@ -29,5 +31,18 @@ ColumnView viewOf(const AttributeColumn& column);
 // An attribute column by name; failing that the built-in "x", "y", "z" or "radius" columns.
 // nullopt when the frame has no such variable.
 std::optional<ColumnView> findColumn(const Frame& frame, std::string_view variable);
+
+// The smallest and largest finite value of a variable (an attribute's cached range; the centres'
+// bounds for x, y, z); nullopt when the frame has no such variable or no finite value.
+struct VariableRange {
+    double low = 0, high = 0;
+};
+std::optional<VariableRange> variableRange(const Frame& frame, std::string_view variable);
+
+// Every variable name a frame answers to: its attributes, then x, y, z and radius.
+std::vector<std::string> variableNamesOf(const Frame& frame);
+// "no variable 'strian' in this data; did you mean 'strain'?" (the suggestion when a name is
+// a few edits away); empty when the frame has the variable.
+std::string missingVariableNote(const Frame& frame, std::string_view variable);
 
 } // namespace faultline::core

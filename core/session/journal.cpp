@@ -1,5 +1,9 @@
 #include "core/session/journal.hpp"
 
+#include "core/selection/column_view.hpp"
+
+#include <set>
+
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
 #include "core/selection/histogram.hpp"
@@ -197,6 +201,37 @@ std::optional<std::string> checkExpectation(Session& s, const Json& e) {
     throw CommandError("unknown expectation \"" + kind + "\"");
 }
 
+namespace {
+
+// What the session's thresholds, colourings and surface colours name that the current frame
+// lacks, each said once ("threshold on 'strian': no variable 'strian' in this data; did you
+// mean 'strain'?").
+std::vector<std::string> missingVariables(Session& session, std::set<std::string>& warned) {
+    std::vector<std::string> out;
+    const auto frame = session.currentFrame();
+    if (!frame)
+        return out;
+    auto check = [&](const std::string& what, const std::string& variable) {
+        if (variable.empty() || variable == "faults" || !warned.insert(variable).second)
+            return;
+        std::string note = missingVariableNote(*frame, variable);
+        if (note.empty())
+            warned.erase(variable); // present: say it if it goes missing later
+        else
+            out.push_back(what + " '" + variable + "': " + note);
+    };
+    for (const auto& t : session.state().thresholds)
+        check("threshold on", t.variable);
+    for (const auto& v : session.state().views)
+        if (v.difference.mode != ColorDifference::Mode::Displacement)
+            check("view " + v.name + " coloured by", v.colorVariable);
+    for (const auto& st : session.state().surfaces)
+        check("surface of " + st.fault + " coloured by", st.colorBy);
+    return out;
+}
+
+} // namespace
+
 ReplayReport replayJournal(const std::string& path, const ReplayOptions& options,
                            Session& session) {
     const std::string text = readFileBytes(path);
@@ -212,6 +247,7 @@ ReplayReport replayJournal(const std::string& path, const ReplayOptions& options
     session.setFrameSelection(options.frames);
 
     ReplayReport report;
+    std::set<std::string> warned; // each missing variable said once
     for (const auto& line : lines) {
         try {
             if (line.isExpectation) {
@@ -223,6 +259,16 @@ ReplayReport replayJournal(const std::string& path, const ReplayOptions& options
             } else {
                 ++report.commands;
                 session.apply(line.value);
+                for (auto& note : missingVariables(session, warned)) {
+                    if (options.strict) {
+                        report.failures.push_back({line.line, note + " (--strict)"});
+                        report.stopped = true;
+                    } else {
+                        report.warnings.push_back({line.line, std::move(note)});
+                    }
+                }
+                if (report.stopped)
+                    break;
             }
         } catch (const std::exception& e) {
             report.failures.push_back({line.line, e.what()});

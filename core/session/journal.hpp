@@ -28,6 +28,9 @@ struct ReplayOptions {
     std::vector<std::string> data; // --data: re-target data.open to these paths
     std::string outDir;            // --out: where outputs go (default: the journal's folder)
     FrameSelection frames;         // --frames A:B, --shard K/N: per-frame work on these only
+    // --strict: a threshold, colouring or surface colour naming a variable the data lacks stops
+    // the replay (without it, a warning: the analysis would silently keep every sphere).
+    bool strict = false;
 };
 
 struct ReplayFailure {
@@ -40,6 +43,7 @@ struct ReplayReport {
     std::size_t expectations = 0;
     std::vector<ReplayFailure> failures; // failed expectations, and the command that stopped it
     bool stopped = false;                // a command failed; later lines did not run
+    std::vector<ReplayFailure> warnings; // variables the data lacks (errors with --strict)
     bool ok() const { return failures.empty(); }
 };
 

@@ -54,3 +54,22 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
 
 } // namespace
 } // namespace faultline::test
+
+namespace faultline::test {
+namespace {
+
+// Issue 41, item 13: a threshold on a variable the data lacks says so where it is, with the
+// name it probably meant.
+TEST_F(PanelTest, AThresholdOnAMissingVariableSaysSo) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kThresholds);
+    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"strian","low":0,"high":1})"));
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.has(wb(), "thresholds.missing.strian"));
+    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"strain","low":0,"high":1})"));
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "thresholds.missing.strain"));
+}
+
+} // namespace
+} // namespace faultline::test

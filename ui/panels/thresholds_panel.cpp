@@ -8,6 +8,8 @@
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 
+#include "core/selection/column_view.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -68,15 +70,20 @@ class ThresholdsPanel final : public Panel {
             if (frame)
                 if (auto i = wb.columns().info(main->frame, t.variable))
                     info = *i, haveInfo = true;
-            if (frame && !haveInfo) {
-                ImGui::SameLine();
-                ImGui::TextColored(ImVec4(0.8f, 0.45f, 0.1f, 1), "(not in this frame: ignored)");
-            }
             const float removeW = ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
             ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
             if (ImGui::SmallButton("Remove"))
                 toRemove = t.variable;
             wb.mark("thresholds.remove." + t.variable);
+            // Issue 41: a typo ("strian") or data without the column must not pass silently.
+            if (frame && !haveInfo) {
+                const std::string note = core::missingVariableNote(*frame, t.variable) +
+                                         ": this threshold is ignored";
+                ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.1f, 1));
+                ImGui::TextWrapped("%s", note.c_str());
+                ImGui::PopStyleColor();
+                wb.mark("thresholds.missing." + t.variable);
+            }
 
             const bool integer = haveInfo && info.integer;
             // Numbers: committed when the field is left or Enter pressed; empty is open-ended.

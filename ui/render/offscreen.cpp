@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -275,19 +276,36 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
                 throw std::invalid_argument("the colour column has " +
                                             std::to_string(column->size()) + " values for " +
                                             std::to_string(f->size()) + " spheres");
-            if (!column) {
-                std::string names;
+            // Positions are variables too (issue 41): colour by height to see layers offset.
+            const std::vector<float>* position = scene.colorVariable == "x"        ? &f->x
+                                                 : scene.colorVariable == "y"      ? &f->y
+                                                 : scene.colorVariable == "z"      ? &f->z
+                                                 : scene.colorVariable == "radius" ? &f->radius
+                                                                                   : nullptr;
+            if (!column && position) {
+                renderer.setSphereValues(*position);
+                double lo = 1e300, hi = -1e300;
+                for (float v : *position)
+                    if (std::isfinite(v))
+                        lo = std::min<double>(lo, v), hi = std::max<double>(hi, v);
+                renderer.setColorRange(scene.colorRange ? *scene.colorRange
+                                       : lo <= hi       ? core::ValueRange{lo, hi}
+                                                        : core::ValueRange{0, 1});
+            } else if (!column) {
+                std::string names = "x, y, z, radius";
                 for (const std::string& n : f->attributeNames())
-                    names += (names.empty() ? "" : ", ") + n;
+                    names += ", " + n;
                 throw std::invalid_argument("no variable '" + scene.colorVariable +
                                             "' in this frame (it has: " + names + ")");
+            } else {
+                style.integerValues = column->isInteger();
+                renderer.setStyle(style);
+                const std::vector<float> values = columnValues(*column);
+                renderer.setSphereValues(values);
+                renderer.setColorRange(scene.colorRange
+                                           ? *scene.colorRange
+                                           : core::ValueRange{column->min, column->max});
             }
-            style.integerValues = column->isInteger();
-            renderer.setStyle(style);
-            const std::vector<float> values = columnValues(*column);
-            renderer.setSphereValues(values);
-            renderer.setColorRange(scene.colorRange ? *scene.colorRange
-                                                    : core::ValueRange{column->min, column->max});
         }
         if (!scene.visible.empty()) {
             if (scene.visible.size() != f->size())

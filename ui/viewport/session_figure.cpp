@@ -3,6 +3,7 @@
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
 #include "core/session/difference_range.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "ui/render/legend_layout.hpp"
@@ -90,9 +91,9 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
             // The range over every frame, so a series of figures shares one legend.
             double lo = 1e300, hi = -1e300;
             for (std::size_t k = 0; k < dataset->frameCount(); ++k)
-                if (const auto* c = dataset->frame(k)->attribute(view->colorVariable)) {
-                    lo = std::min(lo, c->min);
-                    hi = std::max(hi, c->max);
+                if (const auto r = core::variableRange(*dataset->frame(k), view->colorVariable)) {
+                    lo = std::min(lo, r->low);
+                    hi = std::max(hi, r->high);
                 }
             if (lo <= hi)
                 scene.colorRange = core::ValueRange{lo, hi};
@@ -252,9 +253,9 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
                view->difference.mode == core::ColorDifference::Mode::None) {
         double lo = 1e300, hi = -1e300;
         for (std::size_t k = 0; k < count; ++k)
-            if (const auto* c = dataset->frame(k)->attribute(view->colorVariable)) {
-                lo = std::min(lo, c->min);
-                hi = std::max(hi, c->max);
+            if (const auto r = core::variableRange(*dataset->frame(k), view->colorVariable)) {
+                lo = std::min(lo, r->low);
+                hi = std::max(hi, r->high);
             }
         if (lo <= hi)
             fig.colorRange = core::ValueRange{lo, hi};
