@@ -148,21 +148,33 @@ Frame parseTable(const std::string& path, std::string_view text) {
         }
         // export.textExt(..., format='x_y_z_r_attrs', attrs=[...]) writes each attribute's
         // values (a vector's three) after the radius, unnamed: attr_1 .. attr_n, n from the
-        // first row.
+        // first row. Its `comment` comes as '#' lines after the format line: one naming as
+        // many columns as the rows hold names them.
+        std::vector<std::string> commentNames;
+        while (pos < text.size()) {
+            const std::size_t end = std::min(text.find('\n', pos), text.size());
+            std::string_view l = text.substr(pos, end - pos);
+            const std::size_t first = l.find_first_not_of(" \t\r");
+            if (first != std::string_view::npos && l[first] != '#')
+                break; // the first row
+            if (first != std::string_view::npos && commentNames.empty()) {
+                l.remove_prefix(first + 1);
+                commentNames = headerNames(l, 0);
+            }
+            pos = end + 1;
+            ++line;
+        }
         if (!names.empty() && asciiLower(names.back()) == "attrs") {
             names.pop_back();
-            std::size_t at = pos;
-            std::string_view first;
-            while (at < text.size() && first.empty()) {
-                const std::size_t end = std::min(text.find('\n', at), text.size());
-                const std::string_view l = text.substr(at, end - at);
-                if (l.find_first_not_of(" \t\r") != std::string_view::npos && l.front() != '#')
-                    first = l;
-                at = end + 1;
+            const std::size_t end = std::min(text.find('\n', pos), text.size());
+            const std::size_t values = headerNames(text.substr(pos, end - pos), 0).size();
+            if (commentNames.size() == values && values > names.size()) {
+                for (std::size_t k = names.size(); k < values; ++k)
+                    names.push_back(commentNames[k]);
+            } else {
+                for (std::size_t k = 1; names.size() < values; ++k)
+                    names.push_back("attr_" + std::to_string(k));
             }
-            const std::size_t values = headerNames(first, 0).size();
-            for (std::size_t k = 1; names.size() < values; ++k)
-                names.push_back("attr_" + std::to_string(k));
         }
     }
     const std::uint64_t headerLine = line;
