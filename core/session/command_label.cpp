@@ -107,7 +107,45 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
         return "go to frame " + std::to_string(cmd["frame"].get<long long>());
     if (op == "data.open")
         return "open data";
+    if (op == "data.close")
+        return "close the data";
+    if (op == "session.open")
+        return "open the session";
+    if (op == "session.restore")
+        return "restore the session";
+    if (op == "session.save")
+        return "save the session";
+    if (op == "layout.set")
+        return "rearrange the panels";
+    if (op == "strain.add" || op == "strain.remove") {
+        const std::string prefix = cmd.contains("prefix") && cmd["prefix"].is_string()
+                                       ? cmd["prefix"].get<std::string>()
+                                       : std::string();
+        return std::string(op == "strain.add" ? "add" : "remove") + " strain from motion" +
+               (prefix.empty() ? "" : " (" + prefix + "*)");
+    }
+    if (op == "export.csv" || op == "export.vdb" || op == "export.gltf")
+        return "export " + std::string(op == "export.csv" ? "a CSV" : op == "export.vdb" ? "a VDB grid" : "glTF");
+    if (op == "render")
+        return "render a figure";
     return op.empty() ? std::string("a change") : op;
+}
+
+std::string describeFailure(const nlohmann::json& cmd, const std::string& message) {
+    const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
+                               ? cmd["op"].get<std::string>()
+                               : std::string();
+    if (op == "undo" || op == "redo") {
+        if (message == op + ": nothing to " + op)
+            return "Nothing to " + op;
+        return message;
+    }
+    std::string rest = message;
+    if (!op.empty() && rest.rfind(op + ": ", 0) == 0)
+        rest = rest.substr(op.size() + 2);
+    else if (!op.empty() && rest.rfind(op + " ", 0) == 0)
+        rest = rest.substr(op.size() + 1);
+    return "Could not " + describeCommand(cmd) + ": " + rest;
 }
 
 } // namespace faultline::core

@@ -13,4 +13,8 @@ namespace faultline::core {
 // fault.remove moved (which "from":"visible" does not say), when the caller knows.
 std::string describeCommand(const nlohmann::json& cmd, long long spheresChanged = -1);
 
+// A command's error in the same words: "threshold.set: low must not exceed high" becomes
+// "Could not change the strain threshold: low must not exceed high"; "Nothing to undo".
+std::string describeFailure(const nlohmann::json& cmd, const std::string& message);
+
 } // namespace faultline::core

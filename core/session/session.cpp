@@ -157,15 +157,19 @@ void Session::apply(const Json& cmd) {
         const bool wasModified = modified();
         bool changesState = false;
         Json inverse = run(cmd, changesState);
-        // Time is view state: moving through frames leaves nothing unsaved to ask about.
-        if (op == "frame.set" && !wasModified)
+        // Time and the camera are view state (as in OVITO and ParaView): they leave nothing
+        // unsaved to ask about and make no undo step (issue 41: the first Ctrl+Z after a
+        // rectangle undid a camera move). A session still saves them. Rearranging the panels
+        // stays undoable: a tab dropped on the wrong edge is put back with Ctrl+Z.
+        const bool viewState = op == "frame.set" || op == "camera.set";
+        if (viewState && !wasModified)
             markSaved();
         if (changesState && (op == "data.open" || op == "session.open")) {
             // Opening data or a session starts a new history, as in OVITO and ParaView: an undo
             // past it would leave an empty workbench bound to the file just opened, and a save
             // then writes that emptiness over it (issue 41).
             clearHistory();
-        } else if (changesState && op != "frame.set") {
+        } else if (changesState && !viewState) {
             const bool sized = op == "fault.add" || op == "fault.remove" || op == "fault.create";
             m_undoLabels.push_back(
                 describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1));

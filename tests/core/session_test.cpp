@@ -1,6 +1,7 @@
 #include "core/io/input_error.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/journal.hpp"
+#include "core/session/command_label.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface.hpp"
@@ -104,7 +105,6 @@ TEST(Session, EveryOpUndoesAndRedoesExactly) {
         cmd(R"({"op":"color.set","view":"main","variable":"strain","map":"viridis","range":[0,0.5]})"),
         cmd(R"({"op":"color.set","view":"main","difference":"change","since_offset":-1})"),
         cmd(R"({"op":"color.set","view":"main","difference":"displacement","since_frame":0})"),
-        cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"),
         cmd(R"({"op":"layout.set","layout":{"split":"h"}})"),
         cmd(R"({"op":"view.remove","name":"right"})"),
         cmd(R"({"op":"data.close"})"),
@@ -165,6 +165,28 @@ TEST(Session, FramesAreNoUndoStepsAndUndoSaysWhatItReverts) {
     s.apply(cmd(R"({"op":"threshold.set","variable":"strain","low":0.6})"));
     s.apply(cmd(R"({"op":"frame.set","frame":1})"));
     EXPECT_TRUE(s.modified());
+}
+
+// Issue 41, item 7: camera moves are view state like time: no undo step
+// (the first Ctrl+Z after a rectangle undid a camera move), nothing unsaved to ask about; the
+// status says what failed in words.
+TEST(Session, CameraMovesAreNoUndoSteps) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
+    s.markSaved();
+    s.apply(cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"));
+    EXPECT_FALSE(s.modified());
+    EXPECT_EQ(s.undoLabel(), "make fault F1 (2 spheres)");
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(s.state().fault("F1"), nullptr);
+    EXPECT_EQ(s.state().view("main")->camera.azimuth, 30); // the camera stays where it went
+    EXPECT_EQ(describeFailure(cmd(R"({"op":"threshold.set","variable":"strain","low":2,"high":1})"),
+                              "threshold.set: low must not exceed high"),
+              "Could not change the strain threshold: low must not exceed high");
+    EXPECT_EQ(describeFailure(cmd(R"({"op":"undo"})"), "undo: nothing to undo"), "Nothing to undo");
+    EXPECT_EQ(describeCommand(cmd(R"({"op":"layout.set","layout":{}})")), "rearrange the panels");
 }
 
 TEST(Session, DifferenceColouringIsSavedAndItsReferenceFrameResolves) {

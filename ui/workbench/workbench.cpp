@@ -1,5 +1,7 @@
 #include "ui/workbench/workbench.hpp"
 
+#include "core/session/command_label.hpp"
+
 #include "core/io/input_error.hpp"
 #include "core/selection/visibility.hpp"
 #include "ui/dock/panel_ids.hpp"
@@ -228,11 +230,11 @@ void Workbench::applyPending() {
             else if (op == "export.csv")
                 info("Exported " + cmd.value("path", ""));
         } catch (const core::CommandError& e) {
-            error(e.what());
+            error(core::describeFailure(cmd, e.what())); // words, not the op's name
         } catch (const core::InputError& e) {
-            error(e.what());
+            error(core::describeFailure(cmd, e.what()));
         } catch (const std::exception& e) {
-            error(std::string(cmd.value("op", "command")) + ": " + e.what());
+            error(core::describeFailure(cmd, e.what()));
         }
     }
 }

@@ -362,8 +362,14 @@ void Workbench::drawStatusBar(float height) {
         else
             ImGui::TextUnformatted(message.c_str());
         ImGui::PopClipRect();
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("%s", message.c_str());
+        if (ImGui::IsItemHovered()) { // the whole message, wrapped
+            ImGui::BeginTooltip();
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+            ImGui::TextUnformatted(message.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::EndTooltip();
+        }
+        m_items.markLastItem("status.message");
         ImGui::SameLine();
     }
     ImGui::SameLine(
