@@ -136,6 +136,7 @@ Json Session::execute(const Json& cmd) {
 }
 
 void Session::apply(const Json& cmd) {
+    m_note.clear();
     const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
                                ? cmd["op"].get<std::string>()
                                : std::string();

@@ -82,6 +82,11 @@ class Session {
     };
     Preview preview(std::span<const Json> commands);
 
+    // What the last applied command did beyond its label, for the status line ("moved 37
+    // spheres from C2 to F1"); empty when nothing. Ops add to it while they run.
+    const std::string& lastNote() const { return m_note; }
+    void addNote(const std::string& note) { m_note += (m_note.empty() ? "" : "; ") + note; }
+
     // Ops known to this session: the built-in ones and any registered by outer layers.
     bool knowsOp(const std::string& op) const;
     std::vector<std::string> knownOps() const;
@@ -156,6 +161,7 @@ class Session {
     void syncDerived();
 
     SessionState m_state;
+    std::string m_note;
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
     std::vector<Json> m_undo;         // inverses, most recent last

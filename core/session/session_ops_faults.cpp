@@ -85,7 +85,35 @@ CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
 }
 
 void registerFaultOps(OpTable& ops) {
-    addStateOp(ops, "fault.create", [](Session& s, const Json& cmd) -> Json {
+    // A sphere belongs to at most one fault (issue 41): putting spheres into `keep` takes
+    // them out of every other fault. Returns the commands that give them back, and says what
+    // moved ("moved 37 spheres from C2") in the session's note.
+    auto takeFromOthers = [](Session& s, const std::string& keep,
+                             const std::vector<std::int64_t>& ids) {
+        std::vector<Json> giveBack;
+        std::string moved;
+        for (Fault& other : s.mutableState().faults) {
+            if (other.name == keep)
+                continue;
+            const auto taken = other.remove(ids);
+            if (taken.empty())
+                continue;
+            giveBack.push_back({{"op", "fault.add"}, {"name", other.name}, {"ids", taken}});
+            moved += (moved.empty() ? "" : ", ") + std::to_string(taken.size()) + " from " +
+                     other.name;
+        }
+        if (!moved.empty())
+            s.addNote("moved " + moved + " to " + keep);
+        return giveBack;
+    };
+    // The inverse of an op that put spheres in a fault, with what it took from others after it.
+    auto withGiveBack = [](Json inverse, std::vector<Json> giveBack) -> Json {
+        if (giveBack.empty())
+            return inverse;
+        giveBack.insert(giveBack.begin(), std::move(inverse));
+        return {{"op", "batch"}, {"commands", giveBack}};
+    };
+    addStateOp(ops, "fault.create", [=](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"name", "from", "ids", "color", "notes", "index"});
         Fault f;
         f.name = args::string(cmd, "name");
@@ -112,12 +140,15 @@ void registerFaultOps(OpTable& ops) {
         f = items::patched("fault.create", f, fields);
         const long long index =
             args::optionalInteger(cmd, "index").value_or(static_cast<long long>(faults.size()));
+        const std::vector<std::int64_t> members = f.ids;
         faults.insert(faults.begin() +
                           std::clamp(index, 0LL, static_cast<long long>(faults.size())),
                       std::move(f));
-        return {{"op", "fault.delete"}, {"name", args::string(cmd, "name")}};
+        auto giveBack = takeFromOthers(s, args::string(cmd, "name"), members);
+        return withGiveBack({{"op", "fault.delete"}, {"name", args::string(cmd, "name")}},
+                            std::move(giveBack));
     });
-    addStateOp(ops, "fault.add", [](Session& s, const Json& cmd) -> Json {
+    addStateOp(ops, "fault.add", [=](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"name", "ids", "from"});
         Fault& f = faultOf(s, cmd, "fault.add");
         if (cmd.contains("from") == cmd.contains("ids"))
@@ -131,7 +162,10 @@ void registerFaultOps(OpTable& ops) {
             ids = args::ids(cmd, "ids");
         }
         const auto added = f.add(std::move(ids));
-        return {{"op", "fault.remove"}, {"name", f.name}, {"ids", added}};
+        const std::string name = f.name; // `f` may move when others change
+        auto giveBack = takeFromOthers(s, name, added);
+        return withGiveBack({{"op", "fault.remove"}, {"name", name}, {"ids", added}},
+                            std::move(giveBack));
     });
     addStateOp(ops, "fault.remove", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"name", "ids"});

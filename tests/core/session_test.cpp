@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <filesystem>
 #include <fstream>
 
@@ -775,3 +777,34 @@ TEST(Session, PreviewRunsTheOpsOnACopyAndChangesNothing) {
     EXPECT_EQ(s.undoDepth(), undo);
     EXPECT_FALSE(s.state().fault("F"));
 }
+
+// Issue 41, item 3: a sphere belongs to at most one fault. Putting it into another moves it,
+// says so, and undoes exactly.
+TEST(Session, ASphereBelongsToOneFault) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"C2","ids":[3,4,5]})"));
+    const SessionState before = s.state();
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2,3]})"));
+    EXPECT_EQ(s.lastNote(), "moved 1 from C2 to F1");
+    EXPECT_EQ(s.state().fault("C2")->ids, (std::vector<std::int64_t>{4, 5}));
+    s.apply(cmd(R"({"op":"fault.add","name":"F1","ids":[4,5,9]})"));
+    EXPECT_EQ(s.lastNote(), "moved 2 from C2 to F1");
+    EXPECT_TRUE(s.state().fault("C2")->ids.empty());
+    EXPECT_EQ(s.state().fault("F1")->ids, (std::vector<std::int64_t>{1, 2, 3, 4, 5, 9}));
+    EXPECT_EQ(s.undoLabel(), "add 3 spheres to F1");
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(s.state().fault("C2")->ids, (std::vector<std::int64_t>{4, 5}));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(s.state(), before);
+    s.apply(cmd(R"({"op":"redo"})"));
+    s.apply(cmd(R"({"op":"redo"})"));
+    EXPECT_TRUE(s.state().fault("C2")->ids.empty());
+    // Every sphere in one fault at most.
+    std::set<std::int64_t> seen;
+    for (const auto& f : s.state().faults)
+        for (auto id : f.ids)
+            EXPECT_TRUE(seen.insert(id).second) << id << " in two faults";
+}
+

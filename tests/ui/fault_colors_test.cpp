@@ -71,7 +71,7 @@ TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
     const auto& v = d->colorColumn->floats;
     const auto row = [&](std::int64_t id) { return *d->frame->rowOf(id); };
     EXPECT_FLOAT_EQ(v[row(1)], 1.5f); // A
-    EXPECT_FLOAT_EQ(v[row(2)], 1.5f); // A and B: the first listed wins
+    EXPECT_FLOAT_EQ(v[row(2)], 2.5f); // moved to B when B took it (one fault per sphere)
     EXPECT_FLOAT_EQ(v[row(3)], 2.5f); // B
     EXPECT_FLOAT_EQ(v[row(4)], 0.5f); // none
     // Recolouring a fault recolours at once.

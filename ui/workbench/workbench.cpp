@@ -12,6 +12,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -229,6 +230,11 @@ void Workbench::applyPending() {
                 info("Saved the session to " + cmd.value("path", ""));
             else if (op == "export.csv")
                 info("Exported " + cmd.value("path", ""));
+            else if (!m_session.lastNote().empty()) {
+                std::string note = m_session.lastNote();
+                note[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(note[0])));
+                info(note);
+            }
         } catch (const core::CommandError& e) {
             error(core::describeFailure(cmd, e.what())); // words, not the op's name
         } catch (const core::InputError& e) {
