@@ -210,6 +210,33 @@ TEST_F(PanelTest, AViewColoursByTheChangeSinceAFrame) {
     EXPECT_EQ(wb().mainDisplay()->colorTitle, "strain change since frame 0");
 }
 
+// Issue 41, item 9: in the colour popup, Enter in the "since" frame field applies (even the
+// number shown), and applying closes the popup.
+TEST_F(PanelTest, EnterInTheSinceFieldAppliesAndClosesThePopup) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    session.apply(Json::parse(
+        R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_frame":0})"));
+    headless.settle(wb());
+    headless.click(wb(), "view.colour.main");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(headless.has(wb(), "view.since.main"));
+    headless.clearEmitted();
+    headless.retype(wb(), "view.since.main", "1");
+    headless.frames(wb(), 2);
+    ASSERT_EQ(headless.emitted("color.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("color.set")[0],
+              (Json{{"op", "color.set"}, {"view", "main"}, {"since_frame", 1}}));
+    EXPECT_FALSE(headless.has(wb(), "view.since.main")) << "the popup stays open";
+    // Enter on the number already shown applies too.
+    headless.click(wb(), "view.colour.main");
+    headless.frames(wb(), 2);
+    headless.clearEmitted();
+    headless.retype(wb(), "view.since.main", "1");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(headless.emitted("color.set").size(), 1u);
+}
+
 namespace {
 class RecoveryTest : public PanelTest {
   protected:

@@ -272,3 +272,18 @@ TEST_F(PanelTest, PresetViewsFitTheVisibleSpheres) {
         headless.settle(wb());
     }
 }
+
+namespace faultline::test {
+namespace {
+// Issue 41, item 8: export dialogs open beside the session (or where the last export went), not
+// in the data's folder.
+TEST_F(PanelTest, ExportsOpenBesideTheSession) {
+    openLattice();
+    EXPECT_EQ(wb().exportFolder(), dir.path().string());
+    std::filesystem::create_directories(dir.file("analyses"));
+    wb().saveSessionAs(dir.file("analyses/a.faultline.json"));
+    headless.frames(wb(), 2);
+    EXPECT_EQ(wb().exportFolder(), dir.file("analyses"));
+}
+} // namespace
+} // namespace faultline::test

@@ -349,11 +349,19 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
     if (ImGui::RadioButton("offset from the frame shown (e.g. -10)", m_sinceRelative))
         m_sinceRelative = true, m_sinceEdit = -std::abs(m_sinceEdit);
     const bool edited = numberField("##since", &m_sinceEdit, 110 * wb.scale());
+    // Enter applies even when the number typed is the one shown (issue 41).
+    const bool enter = ImGui::IsItemDeactivated() &&
+                       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false);
+    wb.mark("view.since." + view.name);
     if (!m_sinceRelative)
         m_sinceEdit = std::max(0, m_sinceEdit);
     ImGui::SameLine();
-    if (ImGui::Button("Apply##since") || edited)
+    const bool apply = ImGui::Button("Apply##since");
+    wb.mark("view.since_apply." + view.name);
+    if (apply || edited || enter) {
         since({{"op", "color.set"}, {"view", view.name}});
+        ImGui::CloseCurrentPopup(); // applied: the popup has done its job
+    }
 }
 
 void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {

@@ -143,6 +143,8 @@ class Workbench final : public PanelContext {
     // `then` runs once the session is written.
     void saveSessionAs(const std::string& path, std::function<void()> then = {});
     const std::string& sessionPath() const { return m_sessionPath; }
+    // Where export dialogs open: the last export's folder, else the session's, else the data's.
+    std::string exportFolder() const;
     const std::vector<std::string>& recentFiles() const { return m_recent; }
     // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
     std::size_t frameMemoryBudget() const override;
@@ -259,6 +261,7 @@ class Workbench final : public PanelContext {
     double m_messageTime = 0.0;
 
     std::string m_sessionPath;
+    std::string m_lastExportFolder; // where the last export or screenshot went
     std::vector<std::string> m_recent;
     std::size_t m_frameBudget = 0; // 0: core::defaultFrameMemoryBudget()
     std::optional<std::string> m_screenshotPath;

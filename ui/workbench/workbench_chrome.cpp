@@ -152,11 +152,20 @@ void Workbench::handleShortcuts() {
     }
 }
 
+std::string Workbench::exportFolder() const {
+    if (!m_lastExportFolder.empty())
+        return m_lastExportFolder;
+    if (!m_sessionPath.empty())
+        return folderOf(m_sessionPath);
+    return folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+}
+
 void Workbench::drawMenus() {
     if (!ImGui::BeginMainMenuBar())
         return;
-    const std::string dataFolder =
-        folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+    // Exports open where the last export went, else beside the session file, else the data
+    // (issue 41: they opened in the demo's data folder).
+    const std::string dataFolder = exportFolder();
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open data...", keysOf("open-data")))
             runCommand("open-data");
@@ -225,7 +234,8 @@ void Workbench::drawMenus() {
                 showMovieOptions();
             if (ImGui::MenuItem("Screenshot (PNG)..."))
                 m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save,
-                              "screenshot", {".png"}, "", "faultline-" + stamp() + ".png");
+                              "screenshot", {".png"}, dataFolder,
+                              "faultline-" + stamp() + ".png");
             ImGui::EndMenu();
         }
         ImGui::Separator();
@@ -507,6 +517,8 @@ void Workbench::handleDialog() {
     }
     const std::string& purpose = m_dialog.purpose();
     const std::string path = m_dialog.path();
+    if (purpose.rfind("export", 0) == 0 || purpose == "screenshot")
+        m_lastExportFolder = fs::path(path).parent_path().string();
     if (purpose == "open-data")
         guardUnsaved("Open " + fs::path(path).filename().string(),
                      [this, path] { openData({path}); });
