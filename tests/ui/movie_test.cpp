@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 using namespace faultline;
@@ -176,4 +177,25 @@ TEST_F(PanelTest, TheWorkbenchWritesAMovieFrameByFrameAndJournalsIt) {
     EXPECT_FALSE(std::filesystem::exists(dir.file("out/f_0002.png")));
     EXPECT_EQ(session.journal().size(), before + 1);
     EXPECT_NE(wb().lastMessage().find("cancelled"), std::string::npos) << wb().lastMessage();
+}
+
+// Issue 41, item 4: File > Export > Screenshot captured the closing file dialog. It renders the
+// main view offscreen now, at the view's size on screen, with no panel or dialog in it.
+TEST_F(PanelTest, TheScreenshotIsTheMainViewRenderedOffscreen) {
+    std::string why;
+    if (!ui::sharedOffscreenContext(why))
+        FAULTLINE_NEED_GL("no OpenGL context: " << why);
+    ui::registerRenderOp(session);
+    openLattice();
+    const auto view = headless.rect(wb(), "view.image.main");
+    const std::string path = dir.file("shot.png");
+    wb().screenshotMainView(path);
+    headless.frames(wb(), 2);
+    ASSERT_FALSE(session.journal().empty());
+    const Json cmd = session.journal().back(); // journalled like a replay's render
+    ASSERT_EQ(cmd["op"], "render") << cmd.dump();
+    EXPECT_EQ(cmd["view"], "main");
+    EXPECT_EQ(cmd["size"][0].get<int>(), static_cast<int>(std::lround(view.x1 - view.x0)));
+    ASSERT_TRUE(std::filesystem::exists(path)) << wb().lastMessage();
+    EXPECT_NE(wb().lastMessage().find("Saved the main view"), std::string::npos);
 }

@@ -150,6 +150,9 @@ class Workbench final : public PanelContext {
     std::size_t frameMemoryBudget() const override;
     void setFrameMemoryBudget(std::size_t bytes) override;
     void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
+    // File > Export > Screenshot: the main view rendered offscreen (the journal's render op) at
+    // its size on screen, so no dialog or panel is in it.
+    void screenshotMainView(const std::string& path);
     std::optional<std::string> takeScreenshotRequest();
     bool hasScreenshotRequest() const { return m_screenshotPath.has_value(); }
     const std::string& journalPath() const { return m_journalPath; }

@@ -152,6 +152,18 @@ void Workbench::handleShortcuts() {
     }
 }
 
+void Workbench::screenshotMainView(const std::string& path) {
+    // The main view rendered offscreen at its size on screen, as a journal's render: the
+    // window's own pixels still held the closing file dialog (issue 41).
+    int width = 1280, height = 720;
+    if (const auto r = m_items.find("view.image.main")) {
+        width = std::max(16, static_cast<int>(std::lround((r->x1 - r->x0) * 1.0f)));
+        height = std::max(16, static_cast<int>(std::lround((r->y1 - r->y0) * 1.0f)));
+    }
+    emit({{"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}},
+         [this, path] { info("Saved the main view to " + path); });
+}
+
 std::string Workbench::exportFolder() const {
     if (!m_lastExportFolder.empty())
         return m_lastExportFolder;
@@ -233,7 +245,7 @@ void Workbench::drawMenus() {
                                 dataset() != nullptr))
                 showMovieOptions();
             if (ImGui::MenuItem("Screenshot (PNG)..."))
-                m_dialog.open("Save a screenshot of the window", FileDialog::Mode::Save,
+                m_dialog.open("Save the main view as a PNG", FileDialog::Mode::Save,
                               "screenshot", {".png"}, dataFolder,
                               "faultline-" + stamp() + ".png");
             ImGui::EndMenu();
@@ -530,7 +542,7 @@ void Workbench::handleDialog() {
     else if (purpose == "relocate-data")
         relocateData(path);
     else if (purpose == "screenshot")
-        requestScreenshot(path);
+        screenshotMainView(path);
     else if (purpose == "export-movie")
         exportMovie(path);
     else if (purpose == "export-faults")
