@@ -149,31 +149,48 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
     }
     if (glyphs.size() > 0) {
+        // One merged mesh, a small sphere per glyph with its colour at each vertex: every glTF
+        // reader shows it (Blender 3.4 drops EXT_mesh_gpu_instancing and imported one sphere).
+        // A coarser sphere past 20,000 glyphs keeps big exports in hand (12 vertices, not 42).
         std::vector<V3> sphere;
         std::vector<std::uint32_t> tri;
         icosphere(sphere, tri);
-        tinygltf::Material glyphMaterial;
+        if (glyphs.size() > 20000) {
+            sphere.resize(12);
+            tri = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                   4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                   6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+        }
+        const std::size_t nv = sphere.size(), n = glyphs.size();
+        if (n * nv > std::numeric_limits<std::uint32_t>::max())
+            throw std::runtime_error(path.string() + ": too many spheres for one glTF mesh");
+        std::vector<V3> positions(n * nv), normals(n * nv), colors(n * nv);
+        std::vector<std::uint32_t> indices(n * tri.size());
+        for (std::size_t i = 0; i < n; ++i) {
+            const float r = glyphs.radius[i];
+            const V3 c = glyphs.rgb.empty()
+                             ? V3{1, 1, 1}
+                             : V3{glyphs.rgb[3 * i], glyphs.rgb[3 * i + 1], glyphs.rgb[3 * i + 2]};
+            for (std::size_t k = 0; k < nv; ++k) {
+                positions[i * nv + k] = {glyphs.x[i] + r * sphere[k][0],
+                                         glyphs.y[i] + r * sphere[k][1],
+                                         glyphs.z[i] + r * sphere[k][2]};
+                normals[i * nv + k] = sphere[k];
+                colors[i * nv + k] = c;
+            }
+            for (std::size_t t = 0; t < tri.size(); ++t)
+                indices[i * tri.size() + t] = static_cast<std::uint32_t>(i * nv + tri[t]);
+        }
+        tinygltf::Material glyphMaterial; // vertex colours times white
         glyphMaterial.name = "glyph";
         glyphMaterial.pbrMetallicRoughness.metallicFactor = 0.0;
+        glyphMaterial.pbrMetallicRoughness.roughnessFactor = 0.6;
         model.materials.push_back(glyphMaterial);
-        const int mesh = addMesh(model, "glyph", sphere, sphere, nullptr, tri, 1);
-        std::vector<V3> translation(glyphs.size()), scale(glyphs.size());
-        for (std::size_t i = 0; i < glyphs.size(); ++i) {
-            translation[i] = {glyphs.x[i], glyphs.y[i], glyphs.z[i]};
-            scale[i] = {glyphs.radius[i], glyphs.radius[i], glyphs.radius[i]};
-        }
-        tinygltf::Value::Object attributes;
-        attributes["TRANSLATION"] = tinygltf::Value(addVec3Accessor(model, translation, false, 0));
-        attributes["SCALE"] = tinygltf::Value(addVec3Accessor(model, scale, false, 0));
-        tinygltf::Value::Object instancing;
-        instancing["attributes"] = tinygltf::Value(attributes);
         tinygltf::Node node;
         node.name = "glyphs";
-        node.mesh = mesh;
-        node.extensions["EXT_mesh_gpu_instancing"] = tinygltf::Value(instancing);
+        node.mesh = addMesh(model, "glyphs", positions, normals, &colors, indices, 1);
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
-        model.extensionsUsed.push_back("EXT_mesh_gpu_instancing");
     }
     model.scenes.push_back(scene);
     model.defaultScene = 0;

@@ -1,5 +1,5 @@
 // Exporters for fault surfaces: .vdb (density + colour grids with metadata, for OpenVDB tools and
-// Blender) and .glb (one named node per surface, optionally the glyphs as instanced spheres).
+// Blender) and .glb (one named node per surface, optionally the glyphs as one merged mesh of spheres).
 #pragma once
 
 #include "core/surface/fault_surface.hpp"
@@ -31,9 +31,10 @@ struct GltfSurface {
     const SurfaceMesh *mesh = nullptr;
 };
 
-// Writes a binary glTF 2.0 file. Glyphs (may be empty) become one icosphere mesh drawn at every
-// sphere through EXT_mesh_gpu_instancing (TRANSLATION, SCALE). Throws std::runtime_error naming
-// the path when writing fails.
+// Writes a binary glTF 2.0 file. Glyphs (may be empty) become one merged mesh node "glyphs": a
+// small sphere per glyph (42 vertices, 12 past 20,000 glyphs) with its colour as COLOR_0, so any
+// reader (Blender 3.4 too) shows one sphere per glyph in its colour. Throws std::runtime_error
+// naming the path when writing fails.
 void exportGlb(const std::filesystem::path &path, std::span<const GltfSurface> surfaces,
                const SphereSet &glyphs = {});
 

@@ -8,6 +8,7 @@
 #include <openvdb/openvdb.h>
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -104,7 +105,7 @@ TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
     std::filesystem::remove(path);
 }
 
-TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
+TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
     const Spheres s;
     const auto a = surfaceAt(s, 2.0f);
     const auto b = surfaceAt(s, 2.5f);
@@ -125,7 +126,30 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndInstancedGlyphs) {
         EXPECT_TRUE(prim.attributes.count(attr));
     EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
     EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());
-    EXPECT_TRUE(model.nodes[2].extensions.count("EXT_mesh_gpu_instancing"));
+    // Issue 41, item 5: Blender 3.4 ignores EXT_mesh_gpu_instancing and showed one sphere. The
+    // glyphs are one merged mesh: a 42-vertex sphere per exported sphere, in its colour.
+    EXPECT_TRUE(model.nodes[2].extensions.empty());
+    EXPECT_TRUE(model.extensionsUsed.empty());
+    const auto& glyphs = model.meshes[model.nodes[2].mesh].primitives.at(0);
+    ASSERT_TRUE(glyphs.attributes.count("COLOR_0"));
+    const auto& positions = model.accessors[glyphs.attributes.at("POSITION")];
+    EXPECT_EQ(positions.count, 3u * 42u);
+    EXPECT_EQ(model.accessors[glyphs.indices].count, 3u * 80u * 3u);
+    // Each sphere's vertices lie on it, in its colour: the second is green.
+    const auto& colours = model.accessors[glyphs.attributes.at("COLOR_0")];
+    const auto& view = model.bufferViews[colours.bufferView];
+    const float* rgb = reinterpret_cast<const float*>(
+        model.buffers[view.buffer].data.data() + view.byteOffset + colours.byteOffset);
+    for (std::size_t k = 42; k < 84; ++k) {
+        EXPECT_EQ(rgb[3 * k], 0.0f);
+        EXPECT_EQ(rgb[3 * k + 1], 1.0f);
+    }
+    const auto& pview = model.bufferViews[positions.bufferView];
+    const float* xyz = reinterpret_cast<const float*>(
+        model.buffers[pview.buffer].data.data() + pview.byteOffset + positions.byteOffset);
+    for (std::size_t k = 84; k < 126; ++k) // the third sphere: centre (1.6, 0.2, 0), radius 0.4
+        EXPECT_NEAR(std::hypot(xyz[3 * k] - 1.6f, xyz[3 * k + 1] - 0.2f, xyz[3 * k + 2]), 0.4f,
+                    1e-5f);
     std::filesystem::remove(path);
 }
 

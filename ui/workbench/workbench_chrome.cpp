@@ -231,8 +231,9 @@ void Workbench::drawMenus() {
                               FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"},
                               dataFolder, "faults.glb");
             m_items.markLastItem("menu.export.gltf");
-            if (ImGui::MenuItem("Shown surfaces and spheres (glTF)...", nullptr, false, shown))
-                m_dialog.open("Export the shown surfaces and the visible spheres as glTF",
+            if (ImGui::MenuItem("Shown surfaces and their spheres (glTF)...", nullptr, false,
+                                shown))
+                m_dialog.open("Export the shown surfaces and their spheres as glTF",
                               FileDialog::Mode::Save, "export-gltf+glyphs", {".glb", ".gltf"},
                               dataFolder, "faults.glb");
             ImGui::Separator();
