@@ -41,4 +41,16 @@ std::vector<std::uint32_t> rowsInPolygon(const ScreenMapping& mapping, std::span
                                          std::span<const std::uint8_t> mask,
                                          std::span<const glm::dvec2> polygon);
 
+// Of `candidates` (rows, e.g. those inside a rectangle), the ones the eye sees: front-most at a
+// tenth or more of their disc's pixels (what peeks through the gap between touching spheres in
+// front does not count), among every sphere whose mask byte is non-zero (every
+// row when the mask is empty). A software depth buffer of the spheres' front caps at the view's
+// pixels (at most 1024 on the long side), as OVITO's default selection takes what is visible.
+// Ascending.
+std::vector<std::uint32_t> frontmostRows(const ScreenMapping& mapping, std::span<const float> x,
+                                         std::span<const float> y, std::span<const float> z,
+                                         std::span<const float> radius,
+                                         std::span<const std::uint8_t> mask,
+                                         std::span<const std::uint32_t> candidates);
+
 } // namespace faultline::core

@@ -132,3 +132,41 @@ TEST(ScreenSelection, PerspectiveSkipsCentresBehindTheEye) {
     EXPECT_EQ(idsOf(f, rowsInRectangle(m, f.x, f.y, f.z, {}, {90, 90}, {130, 110})),
               (std::vector<std::int64_t>{1, 2}));
 }
+
+// Issue 41, item 3: a rectangle takes the spheres in view, not the whole depth behind them. Three
+// sheets stacked under each other, seen from above: the top one is all that shows, until the top
+// sheet's corner is hidden; then the sheet under shows there. Perspective views too.
+TEST(ScreenSelection, FrontmostRowsAreTheOnesInView) {
+    std::vector<Sphere> s;
+    for (int k = 0; k < 3; ++k) // sheets at z = 0 (top), -1, -2; ids 101.., 201.., 301..
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 5; ++i)
+                s.push_back({101 + 100 * k + i + 5 * j, i + 0.5, j + 0.5, -1.0 * k});
+    const Frame f = frameOf(s);
+    // Orthographic, looking down -z from above (z = 0 nearest).
+    const ScreenMapping top{glm::ortho(0.0, 10.0, 0.0, 10.0, -1.0, 5.0), {100.0, 100.0}};
+    const auto all = rowsInRectangle(top, f.x, f.y, f.z, {}, {0, 0}, {100, 100});
+    ASSERT_EQ(all.size(), 75u); // through the depth
+    const auto seen = frontmostRows(top, f.x, f.y, f.z, f.radius, {}, all);
+    ASSERT_EQ(seen.size(), 25u);
+    for (std::uint32_t r : seen)
+        EXPECT_LT(f.ids[r], 200);
+    // Hide the top sheet's corner sphere (mask): the one under it shows there.
+    std::vector<std::uint8_t> mask(f.size(), 1);
+    mask[0] = 0;
+    const auto partly = rowsInRectangle(top, f.x, f.y, f.z, mask, {0, 0}, {100, 100});
+    const auto under = frontmostRows(top, f.x, f.y, f.z, f.radius, mask, partly);
+    EXPECT_EQ(under.size(), 25u);
+    EXPECT_NE(std::find(under.begin(), under.end(), 25u), under.end()); // id 201, row 25
+    // A perspective camera above the sheets.
+    const ScreenMapping eye{glm::perspective(glm::radians(60.0), 1.0, 0.5, 50.0) *
+                                glm::lookAt(glm::dvec3(2.5, 2.5, 8.0), glm::dvec3(2.5, 2.5, 0.0),
+                                            glm::dvec3(0, 1, 0)),
+                            {200.0, 200.0}};
+    const auto inEye = rowsInRectangle(eye, f.x, f.y, f.z, {}, {0, 0}, {200, 200});
+    const auto front = frontmostRows(eye, f.x, f.y, f.z, f.radius, {}, inEye);
+    std::size_t topSheet = 0;
+    for (std::uint32_t r : front)
+        topSheet += f.ids[r] < 200 ? 1 : 0;
+    EXPECT_EQ(topSheet, 25u); // (lower spheres peek through the gaps between touching ones)
+}

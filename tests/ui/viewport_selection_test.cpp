@@ -110,7 +110,41 @@ class SelectionTest : public PanelTest {
 
 } // namespace
 
+// Issue 41: by default a rectangle takes the spheres in view; from above, the top layer.
+TEST_F(SelectionTest, ARectangleTakesTheSpheresInViewUnlessThroughTheDepth) {
+    headless.click(wb(), "viewports.tool.rectangle");
+    EXPECT_FALSE(wb().selection().throughDepth);
+    const auto left = column({0, 1});
+    auto [lo, hi] = boundsOf(left);
+    headless.drag(wb(), lo.x, lo.y, hi.x, hi.y, 5, 0);
+    std::vector<std::int64_t> top;
+    for (int x : {0, 1})
+        for (int y = 0; y < 4; ++y)
+            top.push_back(id(x, y, 3));
+    std::sort(top.begin(), top.end());
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    const Json first = headless.emitted()[0];
+    EXPECT_EQ(first["op"], "fault.create");
+    // The top layer, and what the perspective shows of the block's outer faces; no inner sphere.
+    std::vector<std::int64_t> taken = first["ids"].get<std::vector<std::int64_t>>();
+    for (auto t : top)
+        EXPECT_NE(std::find(taken.begin(), taken.end(), t), taken.end()) << t;
+    for (auto t : taken) {
+        const int x = int((t - 1) % 4), y = int((t - 1) / 4 % 4), z = int((t - 1) / 16);
+        EXPECT_TRUE(z == 3 || x == 0 || y == 0 || y == 3) << t << " is inside the block";
+    }
+    EXPECT_LT(taken.size(), left.size() / 2);
+    // Through the depth (the checkbox beside the tools): every layer under the rectangle.
+    headless.click(wb(), "viewports.through_depth");
+    EXPECT_TRUE(wb().selection().throughDepth);
+    headless.clearEmitted();
+    headless.drag(wb(), lo.x, lo.y, hi.x, hi.y, 5, 0);
+    ASSERT_EQ(headless.emitted().size(), 1u);
+    EXPECT_EQ(headless.emitted()[0]["ids"].size(), left.size() - taken.size());
+}
+
 TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
+    wb().selection().throughDepth = true; // whole columns, as OVITO's fence selection
     // 1. Rectangle tool, a drag around the spheres with x in {0, 1}: a new fault of them.
     headless.click(wb(), "viewports.tool.rectangle");
     EXPECT_EQ(wb().selection().tool, ui::ViewportTool::Rectangle);

@@ -102,6 +102,9 @@ struct UiSelection {
     int activeBoxFace = -1;       // the face handle under the mouse or dragged (0..5)
     std::set<std::string> faults; // picked in the Faults panel
     ViewportTool tool = ViewportTool::Orbit;
+    // Rectangle and lasso take the spheres in view (front-most) unless this is set: then every
+    // visible sphere whose centre is inside the shape, through the whole depth (OVITO's fence).
+    bool throughDepth = false;
     // Candidates found in the Faults panel, shown in their colours in the main view until
     // accepted or cleared (accepting one is a fault.create).
     struct CandidatePreview {

@@ -256,6 +256,15 @@ void ViewportCells::drawToolButtons(PanelContext& wb) {
         if (t.tool != ViewportTool::Lasso)
             ImGui::SameLine();
     }
+    // While a shape tool is on: the spheres in view (default) or all through the depth.
+    if (wb.selection().tool != ViewportTool::Orbit) {
+        ImGui::SameLine();
+        ImGui::Checkbox("through the depth", &wb.selection().throughDepth);
+        wb.mark("viewports.through_depth");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Off: the rectangle or lasso takes the spheres you can see.\n"
+                              "On: every visible sphere whose centre is inside, front to back.");
+    }
     ImGui::PopStyleVar();
 }
 

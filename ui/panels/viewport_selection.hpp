@@ -45,7 +45,8 @@ class ViewportSelection {
 
   private:
     bool isClick() const; // the mouse barely moved: pick one sphere
-    std::vector<std::int64_t> idsInShape(const ViewDisplay& d, ImVec2 pos, ImVec2 size) const;
+    std::vector<std::int64_t> idsInShape(const ViewDisplay& d, ImVec2 pos, ImVec2 size,
+                                           bool throughDepth) const;
     std::vector<std::int64_t> idUnder(const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
 
     // The selected fault's visible member rows, kept while the session, frame and visibility
