@@ -13,17 +13,18 @@ namespace faultline::core::detail {
 
 namespace {
 
-// Distinct, legible colours for new faults, in order.
-constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.90f, 0.30f, 0.20f},
-                                                              {0.20f, 0.55f, 0.90f},
-                                                              {0.95f, 0.70f, 0.10f},
-                                                              {0.40f, 0.75f, 0.30f},
-                                                              {0.65f, 0.35f, 0.80f},
-                                                              {0.10f, 0.75f, 0.75f},
-                                                              {0.95f, 0.45f, 0.65f},
-                                                              {0.60f, 0.45f, 0.25f},
-                                                              {0.55f, 0.85f, 0.10f},
-                                                              {0.35f, 0.35f, 0.95f}}};
+// Distinct, legible colours for new faults, in order (Tableau 10, with a dark teal for its grey;
+// issue 41: the old palette's pink and magenta looked alike side by side).
+constexpr std::array<std::array<float, 3>, 10> kFaultPalette{{{0.882f, 0.341f, 0.349f},
+                                                              {0.306f, 0.475f, 0.655f},
+                                                              {0.949f, 0.557f, 0.169f},
+                                                              {0.349f, 0.631f, 0.310f},
+                                                              {0.690f, 0.478f, 0.631f},
+                                                              {0.929f, 0.788f, 0.282f},
+                                                              {0.463f, 0.718f, 0.698f},
+                                                              {0.612f, 0.459f, 0.373f},
+                                                              {1.000f, 0.616f, 0.655f},
+                                                              {0.106f, 0.400f, 0.400f}}};
 
 Fault& faultOf(Session& s, const Json& cmd, const char* op) {
     const std::string name = args::string(cmd, "name");

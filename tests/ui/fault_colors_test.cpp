@@ -113,3 +113,21 @@ TEST_F(PanelTest, UndoAndRedoSayWhatTheyRevert) {
     EXPECT_EQ(wb().lastMessage(), "Redone: make fault F1 (3 spheres)");
     EXPECT_EQ(session.undoLabel(), "make fault F1 (3 spheres)");
 }
+
+// Issue 41, item 10: double-clicking a fault's name renames it in place.
+TEST_F(PanelTest, DoubleClickRenamesAFaultInPlace) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"C2","ids":[1,2]})"));
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.click(wb(), "faults.row.C2");
+    headless.click(wb(), "faults.row.C2");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(headless.has(wb(), "faults.rename.C2"));
+    headless.key(wb(), GLFW_KEY_A, true);
+    headless.type(wb(), "Graben W");
+    headless.key(wb(), GLFW_KEY_ENTER);
+    headless.frames(wb(), 2);
+    EXPECT_NE(session.state().fault("Graben W"), nullptr);
+    EXPECT_EQ(session.state().fault("C2"), nullptr);
+    EXPECT_FALSE(headless.has(wb(), "faults.rename.Graben W"));
+}

@@ -181,6 +181,34 @@ class FaultsPanel final : public Panel {
             ImGui::AlignTextToFramePadding();
             const bool isSelected = selected.count(f.name) > 0;
             const std::string shown = elided(f.name, ImGui::GetContentRegionAvail().x);
+            if (m_renaming == f.name) { // double-clicked: rename in place
+                if (m_renameFocus) {
+                    ImGui::SetKeyboardFocusHere();
+                    m_renameFocus = false;
+                }
+                ImGui::SetNextItemWidth(-1);
+                const bool enter = ImGui::InputText("##rename", &m_renameText,
+                                                    ImGuiInputTextFlags_EnterReturnsTrue |
+                                                        ImGuiInputTextFlags_AutoSelectAll);
+                wb.mark("faults.rename." + f.name);
+                if (enter && !m_renameText.empty() && m_renameText != f.name) {
+                    const std::string next = m_renameText;
+                    wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
+                            [&wb, next] { wb.selection().faults = {next}; });
+                }
+                if (enter || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) ||
+                    (ImGui::IsItemDeactivated() && !enter))
+                    m_renaming.clear();
+                ImGui::TableNextColumn();
+                ImGui::Text("%zu", f.ids.size());
+                ImGui::TableNextColumn();
+                for (const auto& c : extra) {
+                    ImGui::TableNextColumn();
+                    c.cell(wb, f);
+                }
+                ImGui::PopID();
+                continue;
+            }
             if (ImGui::Selectable((shown + "##row").c_str(), isSelected,
                                   ImGuiSelectableFlags_SpanAllColumns |
                                       ImGuiSelectableFlags_AllowItemOverlap)) {
@@ -193,8 +221,13 @@ class FaultsPanel final : public Panel {
                     selected = {f.name};
                 }
             }
-            if (shown != f.name && ImGui::IsItemHovered())
-                ImGui::SetTooltip("%s", f.name.c_str());
+            if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
+                m_renaming = f.name;
+                m_renameText = f.name;
+                m_renameFocus = true;
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s\ndouble-click to rename", f.name.c_str());
             wb.mark("faults.row." + f.name);
             ImGui::TableNextColumn();
             ImGui::Text("%zu", f.ids.size());
@@ -291,6 +324,8 @@ class FaultsPanel final : public Panel {
     std::string m_colorFault;
     float m_color[3] = {1, 0.5f, 0};
     std::string m_editFor, m_name, m_notes;
+    std::string m_renaming, m_renameText; // the fault renamed in place (double-click)
+    bool m_renameFocus = false;
 };
 
 } // namespace
