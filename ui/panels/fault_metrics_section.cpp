@@ -50,6 +50,24 @@ std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* 
     return key;
 }
 
+// The selection per-frame results ran with, in words: "thresholds broken_bonds 3 .. 1e+30;
+// boxes north (keep)" (issue 41: events changed with the thresholds without a word).
+std::string conditionsText(const core::SessionState& s) {
+    std::string thresholds, boxes;
+    char buf[96];
+    for (const auto& t : s.thresholds)
+        if (t.enabled) {
+            std::snprintf(buf, sizeof buf, " %.4g .. %.4g", t.low, t.high);
+            thresholds += (thresholds.empty() ? "" : ", ") + t.variable + buf;
+        }
+    for (const auto& b : s.boxes)
+        if (b.enabled)
+            boxes += (boxes.empty() ? "" : ", ") + b.name +
+                     (b.mode == core::BoxMode::Keep ? " (keep)" : " (cut)");
+    return "thresholds: " + (thresholds.empty() ? std::string("none") : thresholds) +
+           "; boxes: " + (boxes.empty() ? std::string("none") : boxes);
+}
+
 class FaultMetricsSection {
   public:
     void draw(PanelContext& wb) {
@@ -135,8 +153,10 @@ class FaultMetricsSection {
         const std::string key = eventsKey(s, shown, ds.get());
         const bool finding = m_eventsJob && !m_eventsJob->finished();
         ImGui::BeginDisabled(finding);
-        if (ImGui::Button(finding ? "Following..." : "Follow through time"))
+        if (ImGui::Button(finding ? "Following..." : "Follow through time")) {
+            m_followAgain = true;
             findEvents(wb, ds, shown, key);
+        }
         ImGui::EndDisabled();
         wb.mark("faults.metrics.events");
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
@@ -145,7 +165,15 @@ class FaultMetricsSection {
                 "marks A appeared, L linked (two faults become one), S split; Growth plots\n"
                 "the metric of what each fault is in each frame");
         std::vector<PlotMark> marks;
+        // Followed before with other thresholds or boxes: followed again, and said so.
+        if (m_events && m_events->key != key && m_followAgain &&
+            !(m_eventsJob && !m_eventsJob->finished())) {
+            wb.info("Thresholds or boxes changed: following the faults through time again");
+            findEvents(wb, ds, shown, key);
+        }
         const bool followed = m_events && m_events->key == key;
+        if (m_events && !followed)
+            hint("Following again with the new thresholds and boxes...");
         if (followed) {
             flowSameLine(checkboxWidth("Growth"));
             ImGui::Checkbox("Growth", &m_growth);
@@ -154,6 +182,10 @@ class FaultMetricsSection {
             ImGui::TextDisabled("%zu event%s", m_events->count, m_events->count == 1 ? "" : "s");
             wb.mark("faults.metrics.events.shown");
             marks = m_events->marks;
+            hint("%s", ("with " + m_events->conditions).c_str());
+            // Every event, named (a mark on the plot may stand for several).
+            for (const PlotMark& m : m_events->marks)
+                hint("%s", ("frame " + std::to_string(m.frame) + ": " + m.text).c_str());
             if (m_growth) { // the lines follow the candidates instead of the fixed members
                 const core::FaultMetricsSeries& g = m_events->growth;
                 lines.clear();
@@ -203,8 +235,10 @@ class FaultMetricsSection {
         std::vector<PlotMark> marks;     // one per frame and kind
         std::size_t count = 0;           // events
         core::FaultMetricsSeries growth; // metrics of each fault's candidate, frame by frame
+        std::string conditions;          // the thresholds and boxes they ran with
     };
     bool m_growth = false;
+    bool m_followAgain = false; // the user followed once: follow again when the selection changes
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
 
@@ -239,7 +273,7 @@ class FaultMetricsSection {
                             .mask;
                     },
                     faults, options, {}, &tracks);
-                Events events{key, {}, 0, std::move(growth)};
+                Events events{key, {}, 0, std::move(growth), conditionsText(state)};
                 for (const core::FaultEvent& e : core::faultEvents(tracks)) {
                     PlotMark m;
                     m.frame = e.frame;
