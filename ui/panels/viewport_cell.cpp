@@ -131,8 +131,23 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
                                     : std::string("no data: File > Open data, or drop a file here");
         placeholder = {line1, line2};
     }
-    if (tex && !d.frame)
-        placeholder = {"No data: File > Open data, or drop a file here", ""};
+    if (!d.frame) {
+        // Data on its way (the first run builds the demo): say what, and how far, in the view
+        // too (issue 41: only the status bar showed it while the view said "No data").
+        for (const auto& job : wb.jobs().running()) {
+            const std::string title = job->title();
+            if (title.rfind("Making the demo", 0) != 0 && title.rfind("Opening", 0) != 0)
+                continue;
+            const float p = job->progress();
+            placeholder = {title + (p >= 0 ? "  " + std::to_string(int(p * 100)) + "%" : "..."),
+                           title.rfind("Making the demo", 0) == 0
+                               ? "The first run builds the 3-D demo once: about 90 s on 2 cores"
+                               : ""};
+            break;
+        }
+        if (tex && placeholder[0].empty())
+            placeholder = {"No data: File > Open data, or drop a file here", ""};
+    }
     interact(wb, view, d, imgPos, imgSize);
     const core::CameraState cam = m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace && m_drag.view == view.name
                                       ? m_drag.current
@@ -550,10 +565,20 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
         const char* label;
         ImU32 color;
     } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)}, {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)}, {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
+    float pointingAt = 0; // labels of axes seen end-on, stacked beside the origin
     for (const auto& a : axes) {
-        const ImVec2 e(o.x + static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * scale,
-                       o.y - static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * scale);
+        const float dx = static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * scale;
+        const float dy = static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * scale;
+        const ImVec2 e(o.x + dx, o.y - dy);
         dl->AddLine(o, e, a.color, 2.0f * scale);
+        if (std::hypot(dx, dy) < 9 * scale) {
+            // Seen end-on (North in a Front view): a dot, the label to the left of the origin
+            // (issue 41: "Up" and "N" were drawn over each other).
+            dl->AddCircleFilled(o, 2.5f * scale, a.color);
+            dl->AddText(ImVec2(o.x - 16 * scale, o.y - 7 * scale + pointingAt), a.color, a.label);
+            pointingAt += 13 * scale;
+            continue;
+        }
         dl->AddText(ImVec2(e.x + 2 * scale, e.y - 7 * scale), a.color, a.label);
     }
     // Frame label, top left; loading state.
