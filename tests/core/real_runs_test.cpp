@@ -106,3 +106,67 @@ TEST(RealRuns, YadeBrokenBondsAreWhereStrainFromMotionIsHigh) {
     // thick, but 31% of this small sample touch a broken bond).
     EXPECT_GT(inTop, 1.5 * all);
 }
+
+// Issue 36: a real LAMMPS run (examples/lammps/in.extension, Debian's LAMMPS 29 Sep 2021) of
+// sand stretched over a basal velocity discontinuity, written as id x y z radius only. The
+// incremental shear strain from motion (against 4 run frames before, one frame here) picks out
+// the graben's two normal faults: the run's own fault lines (fitted to the strain peaks per
+// depth by tests/data/real_runs/lammps/README.md, dips about 57 degrees) hold the high-strain
+// grains, the footwalls stay quiet. y is periodic, wrapped without image flags.
+TEST(RealRuns, LammpsExtensionIncrementalStrainPicksOutTheGrabenFaults) {
+    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    ASSERT_EQ(ds->frameCount(), 5u);
+    ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
+    const auto last = ds->frame(4);
+    ASSERT_EQ(last->size(), 7533u);
+    EXPECT_TRUE(last->box.periodic[1]);
+    const AttributeColumn* shear = last->attribute("inc_shear_strain");
+    ASSERT_NE(shear, nullptr);
+    // Distance of a grain to the nearer fault line: left x = 33.0 - 0.64 z, right 30.8 + 0.64 z
+    // (measured along x, times the sine of the dip for the distance to the plane).
+    const double s = std::sin(std::atan(1.0 / 0.64));
+    auto toFault = [&](std::size_t i) {
+        const double x = last->x[i], z = last->z[i];
+        return std::min(std::fabs(x - (33.0 - 0.64 * z)), std::fabs(x - (30.8 + 0.64 * z))) * s;
+    };
+    auto inFootwall = [&](std::size_t i) {
+        const double x = last->x[i], z = last->z[i];
+        return (x < 33.0 - 0.64 * z - 4 / s) || (x > 30.8 + 0.64 * z + 4 / s);
+    };
+    std::vector<float> band, footwall;
+    std::vector<std::pair<float, std::size_t>> ranked;
+    std::size_t nan = 0;
+    for (std::size_t i = 0; i < last->size(); ++i) {
+        const float v = shear->floats[i];
+        if (std::isnan(v)) {
+            ++nan;
+            continue;
+        }
+        ranked.push_back({v, i});
+        if (last->z[i] > 2.5 && toFault(i) < 1.5)
+            band.push_back(v);
+        else if (inFootwall(i))
+            footwall.push_back(v);
+    }
+    EXPECT_LT(nan, last->size() / 100); // only grains with too few neighbours
+    auto median = [](std::vector<float> v) {
+        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+        return double(v[v.size() / 2]);
+    };
+    ASSERT_GT(band.size(), 300u);
+    ASSERT_GT(footwall.size(), 2000u);
+    const double inBand = median(band), outside = median(footwall);
+    std::printf("median inc_shear_strain: %.4f in the bands, %.4f in the footwalls\n", inBand,
+                outside);
+    EXPECT_GT(inBand, 50 * outside);
+    // The top tenth of the grains by strain lie on the faults.
+    std::sort(ranked.begin(), ranked.end(), std::greater<>());
+    const std::size_t top = ranked.size() / 10;
+    std::size_t near = 0;
+    for (std::size_t k = 0; k < top; ++k)
+        near += toFault(ranked[k].second) < 3.0 ? 1 : 0;
+    std::printf("top tenth within 3 of a fault: %.2f\n", double(near) / double(top));
+    EXPECT_GT(double(near) / double(top), 0.8);
+    // Frame 0 has no frame before it: no values, none passes a threshold.
+    EXPECT_TRUE(std::isnan(ds->frame(0)->attribute("inc_shear_strain")->floats[0]));
+}
