@@ -11,6 +11,21 @@ namespace faultline::ui {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Opens (once) and begins a modal question in the middle of the window; false while hidden.
+bool beginCentredModal(const char* id) {
+    if (!ImGui::IsPopupOpen(id))
+        ImGui::OpenPopup(id);
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    return ImGui::BeginPopupModal(
+        id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+}
+
+} // namespace
+
 void Workbench::requestQuit() {
     guardUnsaved("Quit", [this] { m_quit = true; });
 }
@@ -39,14 +54,7 @@ const std::vector<std::string>& Workbench::overwriteLoss() const {
 void Workbench::drawOverwritePrompt() {
     if (!m_overwritePrompt)
         return;
-    const char* id = "Replace the file?";
-    if (!ImGui::IsPopupOpen(id))
-        ImGui::OpenPopup(id);
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    if (!ImGui::BeginPopupModal(
-            id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    if (!beginCentredModal("Replace the file?"))
         return;
     const OverwritePrompt& p = *m_overwritePrompt;
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 34.0f);
@@ -94,14 +102,7 @@ std::string Workbench::windowTitle() const {
 void Workbench::drawUnsavedPrompt() {
     if (!m_unsavedPrompt)
         return;
-    const char* id = "Unsaved changes";
-    if (!ImGui::IsPopupOpen(id))
-        ImGui::OpenPopup(id);
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    if (!ImGui::BeginPopupModal(
-            id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    if (!beginCentredModal("Unsaved changes"))
         return;
     const bool reopening = m_unsavedPrompt->reopening;
     ImGui::Text("%s: the session has changes that are not saved.", m_unsavedPrompt->action.c_str());
