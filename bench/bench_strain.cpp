@@ -8,8 +8,8 @@
 //     takes (peak resident set growth, per sphere).
 //  3. With --demo: scrubbing the 3-D demo (frames 8..39, each new) with and without incremental
 //     strain (since_offset -4), each frame's time.
-// Usage: bench_strain [--skip-10m] [--demo]. The dump (~35 MB) is made in a temp folder and
-// deleted at the end.
+// Usage: bench_strain [--skip-10m] [--demo]. The dumps (~42 MB plain, and gzipped) are made in a
+// temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/motion/strain_from_motion.hpp"
@@ -129,8 +129,9 @@ void part525k() {
     const Frame ref = densePacking(525000);
     const Frame now = faulted(ref);
     const std::string dump = (dir / "two.lammpstrj").string();
-    {
-        LammpsDumpWriter w(dump);
+    const std::string gz = (dir / "two.lammpstrj.gz").string(); // as LAMMPS' dump custom/gz
+    for (const auto& [path, level] : {std::pair{dump, 0}, std::pair{gz, 6}}) {
+        LammpsDumpWriter w(path, level);
         w.write(ref, {"id", "x", "y", "z", "radius"});
         w.write(now, {"id", "x", "y", "z", "radius"});
         w.close();
@@ -142,7 +143,7 @@ void part525k() {
     settings.folder = (dir / "cache").string();
     settings.minFreeDiskBytes = 0;
     auto cache = std::make_shared<FrameCache>(settings);
-    double parse = 0, cached = 0, strain = 0, derived = 0;
+    double parse = 0, parseGz = 0, cached = 0, strain = 0, derived = 0;
     const int rounds = 5;
     std::vector<double> ratios;
     for (int round = 0; round < rounds; ++round) {
@@ -153,6 +154,12 @@ void part525k() {
         auto f1 = plain->frame(1);
         const double p = seconds(t0);
         auto f0 = plain->frame(0);
+        auto zipped = Dataset::open({gz});
+        zipped->setFrameCache(nullptr);
+        t0 = std::chrono::steady_clock::now();
+        zipped->frame(1);
+        const double z = seconds(t0);
+        parseGz += z / rounds;
         auto withCache = Dataset::open({dump});
         withCache->setFrameCache(cache);
         withCache->frame(1); // fills the cache (first round) or reads it
@@ -187,11 +194,13 @@ void part525k() {
     std::sort(ratios.begin(), ratios.end());
     std::printf("  open frame 1, parsed from text:     %7.1f ms (mean of %d)\n", parse * 1e3,
                 rounds);
+    std::printf("  open frame 1, parsed from gzip:     %7.1f ms\n", parseGz * 1e3);
     std::printf("  open frame 1, binary frame cache:   %7.1f ms\n", cached * 1e3);
     std::printf("  strainFromMotion against frame 0:   %7.1f ms\n", strain * 1e3);
     std::printf("  dataset frame 1 with strain.add:    %7.1f ms (copy + strain)\n", derived * 1e3);
-    std::printf("  strain / parse: median %.2f, strain / cache read: %.2f\n",
-                ratios[ratios.size() / 2], strain / cached);
+    std::printf("  strain / parse: median %.2f; strain / gzip parse: %.2f; strain / cache read: "
+                "%.2f\n",
+                ratios[ratios.size() / 2], strain / parseGz, strain / cached);
     fs::remove_all(dir);
 }
 
