@@ -161,7 +161,7 @@ Frame parseTable(const std::string& path, std::string_view text) {
                 l.remove_prefix(first + 1);
                 commentNames = headerNames(l, 0);
             }
-            pos = end + 1;
+            pos = std::min(end + 1, text.size()); // a last line without a newline ends it
             ++line;
         }
         if (!names.empty() && asciiLower(names.back()) == "attrs") {

@@ -90,7 +90,11 @@ class NeighbourCells {
         }
         // Cells of at least `cutoff`, no more of them than ~4 per point (sparse or flat sets).
         const std::size_t count = points.size();
-        m_size = cutoff;
+        // No axis gets more than 2^20 cells, whatever the cutoff (a tiny one is no neighbourhood).
+        double extent = 0;
+        for (int a = 0; a < 3; ++a)
+            extent = std::max(extent, hi[a] - lo[a]);
+        m_size = std::max(cutoff, extent / double(1 << 20));
         for (;;) {
             double cells = 1;
             for (int a = 0; a < 3; ++a) {

@@ -3,9 +3,11 @@
 // every frame carry their columns.
 #include "core/session/session_ops.hpp"
 
+#include "core/motion/strain_from_motion.hpp"
 #include "core/session/items/item_codecs.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace faultline::core::detail {
 
@@ -33,6 +35,17 @@ void registerStrainOps(OpTable& ops) {
                                    std::to_string(count) + " frames");
             // The names must not hide a variable the file has.
             if (auto frame = s.currentFrame()) {
+                // A neighbourhood of thousands of spheres is no local strain, and would take
+                // hours: at most 20 times the automatic cutoff.
+                const double automatic = defaultStrainCutoff(*frame);
+                if (spec.cutoff > 20 * automatic) {
+                    char text[160];
+                    std::snprintf(text, sizeof text,
+                                  "strain.add: \"cutoff\" %g is more than 20 times the automatic "
+                                  "one (%g) for this data",
+                                  spec.cutoff, automatic);
+                    throw CommandError(text);
+                }
                 const std::size_t own = frame->attributes.size() - frame->derivedColumns;
                 for (std::size_t k = 0; k < own; ++k)
                     for (auto v : kStrainVariables)

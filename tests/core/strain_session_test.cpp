@@ -131,12 +131,17 @@ TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
                   "strain.add: \"cutoff\" must be a number > 0, found -1.5");
     expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":"wide"})",
                   "strain.add: \"cutoff\" must be a number > 0, found \"wide\"");
+    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":1e300})",
+                  "strain.add: \"cutoff\" 1e+300 is more than 20 times the automatic one (1.5) "
+                  "for this data");
     expectRefused(s, R"({"op":"strain.add","since_frame":3})",
                   "strain.add: \"since_frame\" 3 is out of range 0..2");
     expectRefused(s, R"({"op":"strain.add","since_frame":-1})",
                   "strain.add: since_frame must be >= 0");
     expectRefused(s, R"({"op":"strain.add","since_frame":1.5})",
                   "strain.add: \"since_frame\" must be a whole number, found 1.5");
+    expectRefused(s, R"({"op":"strain.add","since_frame":1e300})",
+                  "strain.add: \"since_frame\" must be a whole number of frames, found 1e+300");
     expectRefused(s, R"({"op":"strain.add","since_offset":0})",
                   "strain.add: since_offset must not be 0 (a frame against itself has no strain)");
     expectRefused(s, R"({"op":"strain.add","since_offset":-3})",

@@ -103,6 +103,19 @@ TEST(TableReader, YadeTextExtAttributesBecomeNumberedColumns) {
     EXPECT_FLOAT_EQ(f.attribute("attr_4")->floats[1], 1e-3f);
 }
 
+// Found by the fuzzer: a '#format ..._attrs' file that ends inside its comment lines read past
+// its end. It is a table of no rows.
+TEST(TableReader, AFormatLineWithOnlyCommentsAfterItHasNoRows) {
+    EXPECT_EQ(parseTable("yade.txt", "#format x_y_z_r_attrs\n# x y z r id").size(), 0u);
+    EXPECT_EQ(parseTable("yade.txt", std::string("#format x_y_z_r_attrs\n# s fro7\tm a "
+                                                 "journal0.0033196\x0b\0\0\0: tw",
+                                                 59))
+                  .size(),
+              0u);
+    const Frame f = parseTable("yade.txt", "#format x_y_z_r_attrs\n# x y z r id\n1 2 3 0.5 7");
+    EXPECT_EQ(f.ids, (std::vector<std::int64_t>{7}));
+}
+
 TEST(TableReader, YadeFormatLineNamesTheColumns) {
     // Yade's export.text(): "#format x_y_z_r", then blank-separated rows.
     Frame f = parseTable("yade.txt", "#format x_y_z_r\n1 2 3 0.5\n4 5 6 0.25\n");

@@ -21,7 +21,12 @@ long long wholeNumber(const ItemReader& f, const char* field) {
     const Json& v = f.get(field);
     if (!v.is_number() || (v.is_number_float() && v.get<double>() != std::floor(v.get<double>())))
         f.fail(field, "must be a whole number", &v);
-    return v.is_number_float() ? static_cast<long long>(v.get<double>()) : v.get<long long>();
+    // Frame numbers and offsets: anything past a billion frames is no frame (and a cast of a
+    // larger double would be undefined).
+    const double d = v.get<double>();
+    if (!(std::fabs(d) < 1e9))
+        f.fail(field, "must be a whole number of frames", &v);
+    return static_cast<long long>(d);
 }
 
 } // namespace
