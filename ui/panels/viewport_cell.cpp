@@ -566,6 +566,7 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
         ImU32 color;
     } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)}, {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)}, {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
     float pointingAt = 0; // labels of axes seen end-on, stacked beside the origin
+    std::vector<ImVec4> placed; // the labels drawn so far (x0, y0, x1, y1)
     for (const auto& a : axes) {
         const float dx = static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * scale;
         const float dy = static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * scale;
@@ -579,7 +580,14 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
             pointingAt += 13 * scale;
             continue;
         }
-        dl->AddText(ImVec2(e.x + 2 * scale, e.y - 7 * scale), a.color, a.label);
+        // Clear of the labels already placed ("Up" and "N" touched in oblique views).
+        ImVec2 at(e.x + 2 * scale, e.y - 7 * scale);
+        const ImVec2 size = ImGui::CalcTextSize(a.label);
+        for (const ImVec4& r : placed)
+            if (at.x < r.z && at.x + size.x > r.x && at.y < r.w && at.y + size.y > r.y)
+                at.x = r.z + 2 * scale;
+        placed.push_back(ImVec4(at.x, at.y, at.x + size.x, at.y + size.y));
+        dl->AddText(at, a.color, a.label);
     }
     // Frame label, top left; loading state.
     if (auto ds = wb.dataset(); ds && d.frame) {
