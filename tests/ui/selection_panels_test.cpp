@@ -179,6 +179,29 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderWhenTheColouringChanges) {
     EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.layer").y0, layerY);
 }
 
+// Issue 41, item 12: reopening a session coloured by a variable showed the histograms in
+// another order (the colour variable first).
+TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderAfterReopeningASession) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    const float strainY = headless.rect(wb(), "histogram.strain").y0;
+    const float layerY = headless.rect(wb(), "histogram.layer").y0;
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"layer"})"));
+    const std::string file = dir.file("h.faultline.json");
+    session.apply({{"op", "session.save"}, {"path", file}});
+    core::Session other;
+    ui::WorkbenchOptions options;
+    ui::Workbench reopened(other, options);
+    headless.frames(reopened, 2);
+    reopened.openSession(file);
+    headless.settle(reopened);
+    headless.showPanel(reopened, ui::panel_ids::kHistograms);
+    headless.settle(reopened);
+    EXPECT_FLOAT_EQ(headless.rect(reopened, "histogram.strain").y0, strainY);
+    EXPECT_FLOAT_EQ(headless.rect(reopened, "histogram.layer").y0, layerY);
+}
+
 // Issue 27: a box extent takes typing after one click; Enter commits one box.set, Escape puts
 // the value back and commits nothing.
 TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {

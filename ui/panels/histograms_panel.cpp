@@ -111,16 +111,14 @@ class HistogramsPanel final : public Panel {
                     out.push_back(v.get<std::string>());
             return out;
         }
-        // Default: the main view's colour variable and the first columns, three at most; chosen
-        // once per dataset, so the list does not reorder itself when the colouring changes.
+        // Default: the file's first three columns, in its order: the same list whatever the
+        // colouring and however the session was reached (issue 41: the order changed after
+        // reopening a session, which took the colour variable first).
         if (wb.dataset().get() == m_defaultFor && !m_default.empty() &&
             std::all_of(m_default.begin(), m_default.end(), [&](const std::string& v) {
                 return v == "radius" || frame.attribute(v);
             }))
             return m_default;
-        const core::ViewState* mainView = wb.state().view("main");
-        if (mainView && !mainView->colorVariable.empty() && frame.attribute(mainView->colorVariable))
-            out.push_back(mainView->colorVariable);
         for (const std::string& n : frame.attributeNames()) {
             if (out.size() >= 3)
                 break;
