@@ -243,11 +243,6 @@ void Dataset::setStrains(std::vector<StrainSpec> strains) {
     ++m_strainsVersion;
 }
 
-std::vector<StrainSpec> Dataset::strains() const {
-    std::lock_guard lock(m_mutex);
-    return m_strains;
-}
-
 std::shared_ptr<const Frame> Dataset::readFrame(std::size_t index) const {
     std::shared_ptr<FrameCache> disk;
     {

@@ -62,7 +62,6 @@ class Dataset {
     // from their own columns, when next asked for. The session keeps this in step with its
     // state (Session::syncDerived).
     void setStrains(std::vector<StrainSpec> strains);
-    std::vector<StrainSpec> strains() const;
 
     // Loads (or returns the cached) frame, blocking; safe to call from several threads. Two
     // threads asking for the same frame share one load. Throws InputError from the reader.

@@ -23,6 +23,7 @@
 namespace faultline::core {
 
 namespace fs = std::filesystem;
+using detail::SourceState;
 
 namespace {
 

@@ -30,12 +30,14 @@ std::string defaultFrameCacheFolder();
 // path, byte range, size and mtime (ns). nullopt when a source cannot be stat'ed.
 std::optional<std::string> frameCacheKey(const FrameLocation& location);
 
+namespace detail {
 // What identifies a cached frame's sources (frame_cache.cpp).
 struct SourceState {
     std::string key;      // identity + the sources' sizes and mtimes: what makes a file valid
     std::string identity; // which frame it is: names the file
     std::uint64_t sourceBytes = 0;
 };
+} // namespace detail
 
 class FrameCache {
   public:
@@ -90,8 +92,8 @@ class FrameCache {
     Stats m_stats;
 
     void noteProblem(const std::string& message, bool disableWrites);
-    std::optional<Frame> lookupState(const std::optional<SourceState>& state);
-    void storeState(const std::optional<SourceState>& state, const Frame& frame);
+    std::optional<Frame> lookupState(const std::optional<detail::SourceState>& state);
+    void storeState(const std::optional<detail::SourceState>& state, const Frame& frame);
     void evictOverBudget(const std::string& keep);
 };
 

@@ -1,11 +1,8 @@
 #include "core/session/journal.hpp"
 
-#include "core/selection/column_view.hpp"
-
-#include <set>
-
 #include "core/io/byte_source.hpp"
 #include "core/io/input_error.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/selection/histogram.hpp"
 #include "core/session/session_json.hpp"
 
@@ -14,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 namespace faultline::core {

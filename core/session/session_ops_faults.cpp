@@ -88,7 +88,7 @@ CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
 void registerFaultOps(OpTable& ops) {
     // A sphere belongs to at most one fault (issue 41): putting spheres into `keep` takes
     // them out of every other fault. Returns the commands that give them back, and says what
-    // moved ("moved 37 spheres from C2") in the session's note.
+    // moved ("moved 37 from C2 to F1") in the session's note.
     auto takeFromOthers = [](Session& s, const std::string& keep,
                              const std::vector<std::int64_t>& ids) {
         std::vector<Json> giveBack;

@@ -5,6 +5,7 @@
 #include "core/faults/fault_export.hpp"
 #include "core/faults/metrics.hpp"
 #include "core/faults/tracking.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/atomic_file.hpp"
 #include "core/session/csv_exports.hpp"
@@ -41,38 +42,22 @@ std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& d
     if (!ds)
         throw CommandError("export.csv: spheres needs open data");
     const auto frame = ds->frame(std::min(st.frame, ds->frameCount() - 1));
-    std::vector<std::string> names;
-    if (cmd.contains("variables")) {
+    // Default: every variable, positions and radius first.
+    std::vector<std::string> names = {"x", "y", "z", "radius"};
+    if (cmd.contains("variables"))
         names = args::strings(cmd, "variables");
-    } else {
-        names = {"x", "y", "z", "radius"};
-        for (const auto& c : frame->attributes)
-            names.push_back(c.name);
-    }
+    else
+        for (const auto& n : variableNamesOf(*frame))
+            if (std::find(names.begin(), names.end(), n) == names.end())
+                names.push_back(n);
     const bool onlyVisible = args::optionalBool(cmd, "only_visible").value_or(false);
-    // Each column as (floats or ints or a position axis).
-    struct Source {
-        const float* floats = nullptr;
-        const std::int32_t* ints = nullptr;
-    };
-    std::vector<Source> sources;
+    std::vector<ColumnView> columns;
     for (const auto& n : names) {
-        if (const AttributeColumn* c = frame->attribute(n))
-            sources.push_back(c->isInteger() ? Source{nullptr, c->ints.data()}
-                                             : Source{c->floats.data(), nullptr});
-        else if (n == "x" || n == "y" || n == "z" || n == "radius")
-            sources.push_back({n == "x"   ? frame->x.data()
-                               : n == "y" ? frame->y.data()
-                               : n == "z" ? frame->z.data()
-                                          : frame->radius.data(),
-                               nullptr});
-        else {
-            std::string known = "x, y, z, radius";
-            for (const auto& c : frame->attributes)
-                known += ", " + c.name;
-            throw CommandError("export.csv: no variable \"" + n + "\" in frame " +
-                               std::to_string(st.frame) + " (it has " + known + ")");
-        }
+        const auto column = findColumn(*frame, n);
+        if (!column)
+            throw CommandError("export.csv: " + missingVariableNote(*frame, n) + " (frame " +
+                               std::to_string(st.frame) + ")");
+        columns.push_back(*column);
     }
     std::vector<std::uint8_t> mask;
     if (onlyVisible) {
@@ -88,12 +73,12 @@ std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& d
         if (onlyVisible && !mask[row])
             continue;
         out += std::to_string(frame->ids[row]);
-        for (const Source& src : sources) {
-            if (src.ints) {
+        for (const ColumnView& c : columns) {
+            if (c.isInteger()) {
                 out += ',';
-                out += std::to_string(src.ints[row]);
+                out += std::to_string(c.ints[row]);
             } else {
-                std::snprintf(buf, sizeof buf, ",%.9g", static_cast<double>(src.floats[row]));
+                std::snprintf(buf, sizeof buf, ",%.9g", static_cast<double>(c.floats[row]));
                 out += buf;
             }
         }

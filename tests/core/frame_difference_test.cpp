@@ -1,6 +1,6 @@
 #include "core/model/difference_column_cache.hpp"
 #include "core/model/frame_difference.hpp"
-#include "core/session/difference_range.hpp"
+#include "core/session/color_range.hpp"
 
 #include <gtest/gtest.h>
 

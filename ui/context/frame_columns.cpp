@@ -1,5 +1,7 @@
 #include "ui/context/frame_columns.hpp"
 
+#include "core/selection/column_view.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,32 +10,15 @@
 namespace faultline::ui {
 
 std::vector<std::string> variableNames(const core::Frame& frame) {
-    std::vector<std::string> out = frame.attributeNames();
-    for (const char* b : {"x", "y", "z", "radius"})
-        if (std::find(out.begin(), out.end(), b) == out.end())
-            out.emplace_back(b);
-    return out;
+    return core::variableNamesOf(frame);
 }
 
 std::optional<VariableInfo> variableInfo(const core::Frame& frame, const std::string& name) {
     if (const core::AttributeColumn* c = frame.attribute(name))
         return VariableInfo{c->min, c->max, c->isInteger()};
-    const std::vector<float>* v = nullptr;
-    if (name == "x")
-        return VariableInfo{frame.centreMin()[0], frame.centreMax()[0], false};
-    if (name == "y")
-        return VariableInfo{frame.centreMin()[1], frame.centreMax()[1], false};
-    if (name == "z")
-        return VariableInfo{frame.centreMin()[2], frame.centreMax()[2], false};
-    if (name == "radius")
-        v = &frame.radius;
-    if (!v)
-        return std::nullopt;
-    VariableInfo info{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), false};
-    for (float f : *v)
-        if (std::isfinite(f))
-            info.min = std::min<double>(info.min, f), info.max = std::max<double>(info.max, f);
-    return info;
+    if (const auto r = core::variableRange(frame, name)) // x, y, z, radius
+        return VariableInfo{r->low, r->high, false};
+    return std::nullopt;
 }
 
 const ColumnCatalog::Entries& ColumnCatalog::of(const std::shared_ptr<const core::Frame>& frame) {

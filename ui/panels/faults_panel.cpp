@@ -179,56 +179,11 @@ class FaultsPanel final : public Panel {
             drawSwatch(wb, f);
             ImGui::TableNextColumn();
             ImGui::AlignTextToFramePadding();
-            const bool isSelected = selected.count(f.name) > 0;
             const std::string shown = elided(f.name, ImGui::GetContentRegionAvail().x);
-            if (m_renaming == f.name) { // double-clicked: rename in place
-                if (m_renameFocus) {
-                    ImGui::SetKeyboardFocusHere();
-                    m_renameFocus = false;
-                }
-                ImGui::SetNextItemWidth(-1);
-                const bool enter = ImGui::InputText("##rename", &m_renameText,
-                                                    ImGuiInputTextFlags_EnterReturnsTrue |
-                                                        ImGuiInputTextFlags_AutoSelectAll);
-                wb.mark("faults.rename." + f.name);
-                if (enter && !m_renameText.empty() && m_renameText != f.name) {
-                    const std::string next = m_renameText;
-                    wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
-                            [&wb, next] { wb.selection().faults = {next}; });
-                }
-                if (enter || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) ||
-                    (ImGui::IsItemDeactivated() && !enter))
-                    m_renaming.clear();
-                ImGui::TableNextColumn();
-                ImGui::Text("%zu", f.ids.size());
-                ImGui::TableNextColumn();
-                for (const auto& c : extra) {
-                    ImGui::TableNextColumn();
-                    c.cell(wb, f);
-                }
-                ImGui::PopID();
-                continue;
-            }
-            if (ImGui::Selectable((shown + "##row").c_str(), isSelected,
-                                  ImGuiSelectableFlags_SpanAllColumns |
-                                      ImGuiSelectableFlags_AllowItemOverlap)) {
-                if (ImGui::GetIO().KeyCtrl) {
-                    if (isSelected)
-                        selected.erase(f.name);
-                    else
-                        selected.insert(f.name);
-                } else {
-                    selected = {f.name};
-                }
-            }
-            if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
-                m_renaming = f.name;
-                m_renameText = f.name;
-                m_renameFocus = true;
-            }
-            if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%s\ndouble-click to rename", f.name.c_str());
-            wb.mark("faults.row." + f.name);
+            if (m_renaming == f.name) // double-clicked: the name cell edits it in place
+                drawRename(wb, f);
+            else
+                drawNameCell(wb, f, shown, selected);
             ImGui::TableNextColumn();
             ImGui::Text("%zu", f.ids.size());
             ImGui::TableNextColumn();
@@ -243,6 +198,53 @@ class FaultsPanel final : public Panel {
             ImGui::PopID();
         }
         ImGui::EndTable();
+    }
+
+    // The name cell: selects (Ctrl: adds to the selection); a double-click renames in place.
+    void drawNameCell(PanelContext& wb, const core::Fault& f, const std::string& shown,
+                      std::set<std::string>& selected) {
+        const bool isSelected = selected.count(f.name) > 0;
+        if (ImGui::Selectable((shown + "##row").c_str(), isSelected,
+                              ImGuiSelectableFlags_SpanAllColumns |
+                                  ImGuiSelectableFlags_AllowItemOverlap)) {
+            if (ImGui::GetIO().KeyCtrl) {
+                if (isSelected)
+                    selected.erase(f.name);
+                else
+                    selected.insert(f.name);
+            } else {
+                selected = {f.name};
+            }
+        }
+        if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
+            m_renaming = f.name;
+            m_renameText = f.name;
+            m_renameFocus = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s\ndouble-click to rename", f.name.c_str());
+        wb.mark("faults.row." + f.name);
+    }
+
+    // The name being edited: Enter renames (fault.set), Escape or leaving the field keeps it.
+    void drawRename(PanelContext& wb, const core::Fault& f) {
+        if (m_renameFocus) {
+            ImGui::SetKeyboardFocusHere();
+            m_renameFocus = false;
+        }
+        ImGui::SetNextItemWidth(-1);
+        const bool enter = ImGui::InputText("##rename", &m_renameText,
+                                            ImGuiInputTextFlags_EnterReturnsTrue |
+                                                ImGuiInputTextFlags_AutoSelectAll);
+        wb.mark("faults.rename." + f.name);
+        if (enter && !m_renameText.empty() && m_renameText != f.name) {
+            const std::string next = m_renameText;
+            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
+                    [&wb, next] { wb.selection().faults = {next}; });
+        }
+        if (enter || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) ||
+            ImGui::IsItemDeactivated())
+            m_renaming.clear();
     }
 
     // A colour square; clicking opens a palette and a picker (committed when the popup closes).

@@ -1,5 +1,7 @@
 #include "ui/render/offscreen.hpp"
 
+#include "core/selection/column_view.hpp"
+
 #include "ui/render/legend_layout.hpp"
 
 #include <epoxy/egl.h> // before GLFW, whose header would bring GL/gl.h
@@ -277,26 +279,15 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
                                             std::to_string(column->size()) + " values for " +
                                             std::to_string(f->size()) + " spheres");
             // Positions are variables too (issue 41): colour by height to see layers offset.
-            const std::vector<float>* position = scene.colorVariable == "x"        ? &f->x
-                                                 : scene.colorVariable == "y"      ? &f->y
-                                                 : scene.colorVariable == "z"      ? &f->z
-                                                 : scene.colorVariable == "radius" ? &f->radius
-                                                                                   : nullptr;
-            if (!column && position) {
-                renderer.setSphereValues(*position);
-                double lo = 1e300, hi = -1e300;
-                for (float v : *position)
-                    if (std::isfinite(v))
-                        lo = std::min<double>(lo, v), hi = std::max<double>(hi, v);
+            const auto position = column ? std::nullopt : core::findColumn(*f, scene.colorVariable);
+            if (position) {
+                renderer.setSphereValues({position->floats, position->size});
+                const auto r = core::variableRange(*f, scene.colorVariable);
                 renderer.setColorRange(scene.colorRange ? *scene.colorRange
-                                       : lo <= hi       ? core::ValueRange{lo, hi}
+                                       : r              ? core::ValueRange{r->low, r->high}
                                                         : core::ValueRange{0, 1});
             } else if (!column) {
-                std::string names = "x, y, z, radius";
-                for (const std::string& n : f->attributeNames())
-                    names += ", " + n;
-                throw std::invalid_argument("no variable '" + scene.colorVariable +
-                                            "' in this frame (it has: " + names + ")");
+                throw std::invalid_argument(core::missingVariableNote(*f, scene.colorVariable));
             } else {
                 style.integerValues = column->isInteger();
                 renderer.setStyle(style);

@@ -2,8 +2,7 @@
 
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
-#include "core/session/difference_range.hpp"
-#include "core/selection/column_view.hpp"
+#include "core/session/color_range.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "ui/render/legend_layout.hpp"
@@ -78,7 +77,7 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
             scene.colorRange = *request.colorRange; // a movie's range, shared by its frames
         else if (view->rangeMode == core::RangeMode::Fixed)
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
-        else if (auto all = core::differenceRangeOverFrames(*dataset, *view))
+        else if (auto all = core::colorRangeOverFrames(*dataset, *view))
             // Issue 41: one range over every frame, a change symmetric about zero, so figures
             // of different frames share a legend and zero is always the middle colour.
             scene.colorRange = *all;
@@ -89,14 +88,7 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
             scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
         } else if (view->rangeMode == core::RangeMode::AllFrames) {
             // The range over every frame, so a series of figures shares one legend.
-            double lo = 1e300, hi = -1e300;
-            for (std::size_t k = 0; k < dataset->frameCount(); ++k)
-                if (const auto r = core::variableRange(*dataset->frame(k), view->colorVariable)) {
-                    lo = std::min(lo, r->low);
-                    hi = std::max(hi, r->high);
-                }
-            if (lo <= hi)
-                scene.colorRange = core::ValueRange{lo, hi};
+            scene.colorRange = core::colorRangeOverFrames(*dataset, *view);
         }
     }
     for (const auto& b : session.state().boxes)
@@ -240,25 +232,14 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
             m_frames.push_back(f);
     // One colour range for every frame: the view's fixed one, else the range over all frames
     // (what rangeMode "all" gives a single figure), so colours mean the same in every frame.
-    if (!fig.colorRange && view->rangeMode != core::RangeMode::Fixed &&
-        view->difference.mode != core::ColorDifference::Mode::None) {
-        // Change (symmetric about zero) or displacement, over the movie's frames (all of them,
-        // not a shard's: shards must colour as the whole run does).
+    if (!fig.colorRange && view->rangeMode != core::RangeMode::Fixed) {
+        // A difference over the movie's frames (all of them, not a shard's: shards must colour
+        // as the whole run does); a variable over every frame of the data.
         std::vector<std::size_t> frames;
-        for (std::size_t f = m_request.first; f <= m_request.last; f += m_request.step)
-            frames.push_back(f);
-        fig.colorRange = core::differenceRangeOverFrames(*dataset, *view, frames);
-    } else if (!fig.colorRange && !view->colorVariable.empty() &&
-               view->rangeMode != core::RangeMode::Fixed &&
-               view->difference.mode == core::ColorDifference::Mode::None) {
-        double lo = 1e300, hi = -1e300;
-        for (std::size_t k = 0; k < count; ++k)
-            if (const auto r = core::variableRange(*dataset->frame(k), view->colorVariable)) {
-                lo = std::min(lo, r->low);
-                hi = std::max(hi, r->high);
-            }
-        if (lo <= hi)
-            fig.colorRange = core::ValueRange{lo, hi};
+        if (view->difference.mode != core::ColorDifference::Mode::None)
+            for (std::size_t f = m_request.first; f <= m_request.last; f += m_request.step)
+                frames.push_back(f);
+        fig.colorRange = core::colorRangeOverFrames(*dataset, *view, frames);
     }
     // One camera: the view's, or fitted to the first and last frames of the range together.
     if (!fig.camera && view->camera.distance <= 0) {

@@ -1,5 +1,7 @@
 #include "ui/workbench/view_composer.hpp"
 
+#include "core/session/color_range.hpp"
+
 #include "core/selection/visibility.hpp"
 
 #include <algorithm>
@@ -180,8 +182,8 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
             v.difference.mode != core::ColorDifference::Mode::None)
             range = all;
         if (change) {
-            const double m = std::max(std::fabs(range[0]), std::fabs(range[1]));
-            range = {-m, m};
+            const core::ValueRange r = core::symmetricAboutZero({range[0], range[1]});
+            range = {r.low, r.high};
         } else if (v.difference.mode == core::ColorDifference::Mode::Displacement) {
             range[0] = 0.0;
         }

@@ -157,8 +157,8 @@ void Workbench::screenshotMainView(const std::string& path) {
     // window's own pixels still held the closing file dialog (issue 41).
     int width = 1280, height = 720;
     if (const auto r = m_items.find("view.image.main")) {
-        width = std::max(16, static_cast<int>(std::lround((r->x1 - r->x0) * 1.0f)));
-        height = std::max(16, static_cast<int>(std::lround((r->y1 - r->y0) * 1.0f)));
+        width = std::max(16, static_cast<int>(std::lround(r->x1 - r->x0)));
+        height = std::max(16, static_cast<int>(std::lround(r->y1 - r->y0)));
     }
     emit({{"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}},
          [this, path] { info("Saved the main view to " + path); });

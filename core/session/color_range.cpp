@@ -1,6 +1,7 @@
-#include "core/session/difference_range.hpp"
+#include "core/session/color_range.hpp"
 
 #include "core/model/frame_difference.hpp"
+#include "core/selection/column_view.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,6 +53,26 @@ std::optional<ValueRange> differenceRangeOverFrames(const Dataset& dataset, cons
     if (view.difference.mode == ColorDifference::Mode::Change)
         return symmetricAboutZero({lo, hi});
     return ValueRange{0.0, hi};
+}
+
+std::optional<ValueRange> colorRangeOverFrames(const Dataset& dataset, const ViewState& view,
+                                               const std::vector<std::size_t>& frames) {
+    if (view.difference.mode != ColorDifference::Mode::None)
+        return differenceRangeOverFrames(dataset, view, frames);
+    if (view.colorVariable.empty())
+        return std::nullopt;
+    double lo = 1e300, hi = -1e300;
+    auto take = [&](std::size_t k) {
+        if (const auto r = variableRange(*dataset.frame(k), view.colorVariable))
+            lo = std::min(lo, r->low), hi = std::max(hi, r->high);
+    };
+    if (frames.empty())
+        for (std::size_t k = 0; k < dataset.frameCount(); ++k)
+            take(k);
+    for (std::size_t k : frames)
+        if (k < dataset.frameCount())
+            take(k);
+    return lo <= hi ? std::optional(ValueRange{lo, hi}) : std::nullopt;
 }
 
 } // namespace faultline::core

@@ -1,6 +1,6 @@
-// The colour range of a view's difference colouring over many frames (issue 41): a movie or a
-// series of figures coloured by "change since frame 20" shares one legend, and a change is
-// symmetric about zero, so zero change is always the map's middle colour.
+// The colour range of a view over many frames, so a movie or a series of figures shares one
+// legend (issue 41: a movie coloured by "change since frame 20" took each frame's own range);
+// a change is symmetric about zero, so zero change is always the map's middle colour.
 #pragma once
 
 #include "core/color/colormap.hpp"
@@ -20,5 +20,11 @@ ValueRange symmetricAboutZero(ValueRange range);
 // view colours by no difference or no frame has a value.
 std::optional<ValueRange> differenceRangeOverFrames(const Dataset& dataset, const ViewState& view,
                                                     std::vector<std::size_t> frames = {});
+
+// What a view's colours span over `frames` (every frame when empty): its difference column's
+// range as above, else its variable's (x, y, z too) over those frames; nothing without a
+// variable or a value.
+std::optional<ValueRange> colorRangeOverFrames(const Dataset& dataset, const ViewState& view,
+                                               const std::vector<std::size_t>& frames = {});
 
 } // namespace faultline::core
