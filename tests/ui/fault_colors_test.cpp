@@ -74,10 +74,17 @@ TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
     EXPECT_FLOAT_EQ(v[row(2)], 2.5f); // moved to B when B took it (one fault per sphere)
     EXPECT_FLOAT_EQ(v[row(3)], 2.5f); // B
     EXPECT_FLOAT_EQ(v[row(4)], 0.5f); // none
+    // Issue 41, item 10: the legend names each fault in its colour, spheres in none last.
+    ASSERT_EQ(d->legend.size(), 3u);
+    EXPECT_EQ(d->legend[0].name, "A");
+    EXPECT_EQ(d->legend[0].color, glm::vec3(1, 0, 0));
+    EXPECT_EQ(d->legend[1].name, "B");
+    EXPECT_EQ(d->legend[2].name, "no fault");
     // Recolouring a fault recolours at once.
     session.apply(Json::parse(R"({"op":"fault.set","name":"A","color":[0,1,0]})"));
     headless.frames(wb(), 2);
     EXPECT_EQ(wb().mainDisplay()->palette[1], glm::vec3(0, 1, 0));
+    EXPECT_EQ(wb().mainDisplay()->legend[0].color, glm::vec3(0, 1, 0));
 }
 
 TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {

@@ -79,6 +79,7 @@ struct ViewDisplay {
     std::string colorTitle;
     std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
     std::vector<glm::vec3> palette;    // categories (faults, candidates): colorColumn holds k + 0.5
+    std::vector<LegendEntry> legend;   // categories' names and colours, for the legend
     bool loading() const { return !frame || shownFrame != wantedFrame; }
 };
 
@@ -112,6 +113,7 @@ struct UiSelection {
         std::shared_ptr<const core::VisibilityResult> visibility; // of the main view when found
         core::CandidateOptions options;
         core::CandidateSet set;
+        std::vector<core::CandidateShape> shapes; // per candidate: orientation, diffuse or not
         CategoryColoring coloring;
     };
     std::optional<CandidatePreview> candidates;

@@ -157,8 +157,9 @@ GlRenderer::FontTexture* GlRenderer::font(int pixelHeight) {
 
 void GlRenderer::drawLegend(const RenderTarget& target) {
     m_stats.legendTicks = 0;
-    const bool legend = m_style.showLegend && m_hasValues;
-    if (!legend && m_style.caption.empty())
+    const bool categories = m_style.showLegend && !m_style.categories.empty();
+    const bool legend = m_style.showLegend && m_hasValues && !categories;
+    if (!legend && !categories && m_style.caption.empty())
         return;
     const float scale = legendScale(target.width, target.height, m_style.legendScale);
     FontTexture* labels = font(legendLabelPixels(scale));
@@ -174,6 +175,23 @@ void GlRenderer::drawLegend(const RenderTarget& target) {
         dark ? glm::vec4(0.93f, 0.93f, 0.93f, 1.0f) : glm::vec4(0.10f, 0.10f, 0.12f, 1.0f);
 
     std::vector<OverlayVertex> solid, bar, labelText, titleText;
+    if (categories) {
+        const LegendLayout layout = layoutCategoryLegend(
+            m_style.categories, m_style.legendTitle, labels ? &labels->atlas : nullptr,
+            title ? &title->atlas : nullptr, target.width, target.height, scale);
+        m_stats.legendTicks = layout.swatches.size();
+        addRect(solid, layout.panel, panel);
+        const float o = layout.outline;
+        for (std::size_t i = 0; i < layout.swatches.size(); ++i) {
+            const LegendRect& r = layout.swatches[i];
+            addRect(solid, {r.x0 - o, r.y0 - o, r.x1 + o, r.y1 + o}, ink);
+            addRect(solid, r, glm::vec4(layout.swatchColors[i], 1.0f));
+        }
+        for (const GlyphQuad& g : layout.labelGlyphs)
+            addQuad(labelText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+        for (const GlyphQuad& g : layout.titleGlyphs)
+            addQuad(titleText, g.x0, g.y0, g.x1, g.y1, g.u0, g.v0, g.u1, g.v1, ink);
+    }
     if (legend) {
         const std::vector<core::LegendTick> ticks =
             core::legendTicks(m_range, 6, m_style.integerValues);

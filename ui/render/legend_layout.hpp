@@ -5,6 +5,10 @@
 #include "core/color/legend_ticks.hpp"
 #include "ui/render/text_atlas.hpp"
 
+#include <glm/vec3.hpp>
+
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +25,15 @@ struct LegendLayout {
     std::vector<GlyphQuad> labelGlyphs; // in the label font's atlas
     std::vector<GlyphQuad> titleGlyphs; // in the title font's atlas
     float outline = 1.0f;               // bar outline width
+    // A legend of categories (fault names): a colour square per entry, its name beside it.
+    std::vector<LegendRect> swatches;
+    std::vector<glm::vec3> swatchColors;
+};
+
+// One named colour of a categories legend ("Graben W" in its fault's colour).
+struct LegendEntry {
+    std::string name;
+    glm::vec3 color{0.0f};
 };
 
 // Size factor of the legend: 1 at 720 pixels high, proportional above (never below 0.8),
@@ -34,5 +47,23 @@ inline int legendTitlePixels(float scale) { return static_cast<int>(16.0f * scal
 LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::string_view title,
                           const FontAtlas* labelFont, const FontAtlas* titleFont, int width,
                           int height, float scale);
+
+// A legend of named colours at the right edge, centred vertically, the title above: one row per
+// entry, as many as fit in 80% of the height; the rest summed up in a last row "+ 12 more".
+// Names wider than a quarter of the image are shortened with "...".
+LegendLayout layoutCategoryLegend(std::span<const LegendEntry> entries, std::string_view title,
+                                  const FontAtlas* labelFont, const FontAtlas* titleFont, int width,
+                                  int height, float scale);
+
+// The font at a pixel height, loaded once per process and shared (thread-safe); null when the
+// font file cannot be read. For measuring text where no renderer is at hand (camera fits).
+const FontAtlas* sharedFontAtlas(int pixelHeight);
+
+// How many pixels from the image's right edge the legend takes (its margin included), for a
+// camera fit that keeps the model beside it: the layout above with the shared fonts. Categories
+// when `entries` is not empty, else a colour bar over `range`.
+float legendStripPixels(std::string_view title, core::ValueRange range, bool integerValues,
+                        std::span<const LegendEntry> entries, int width, int height,
+                        float userScale = 1.0f);
 
 } // namespace faultline::ui

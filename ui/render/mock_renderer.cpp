@@ -91,8 +91,11 @@ void MockRenderer::render(const core::Camera& camera, const RenderTarget& target
     m_stats.meshTriangles = m_meshTriangles;
     m_stats.boxes = m_boxes.size();
     m_stats.handles = m_selected ? 6 : 0;
-    const bool legend = m_style.showLegend && m_hasValues;
-    m_stats.legendTicks = legend ? core::legendTicks(m_range, 6, m_style.integerValues).size() : 0;
+    const bool categories = m_style.showLegend && !m_style.categories.empty();
+    const bool legend = categories || (m_style.showLegend && m_hasValues);
+    m_stats.legendTicks = categories ? m_style.categories.size()
+                          : legend   ? core::legendTicks(m_range, 6, m_style.integerValues).size()
+                                     : 0;
 
     record("clear", target.transparent ? 0 : 1);
     if (!m_visible.empty())

@@ -232,6 +232,20 @@ bool showsLegend(const SceneDescription& scene) {
     return scene.style.showLegend && scene.frame && !scene.colorVariable.empty();
 }
 
+double legendPixels(const SceneDescription& scene, int width, int height) {
+    core::ValueRange range{0, 1};
+    if (scene.colorRange)
+        range = *scene.colorRange;
+    else if (scene.frame)
+        if (const core::AttributeColumn* c = scene.colorColumn ? scene.colorColumn
+                                                : scene.frame->attribute(scene.colorVariable))
+            range = {c->min, c->max};
+    const std::string& title =
+        scene.style.legendTitle.empty() ? scene.colorVariable : scene.style.legendTitle;
+    return legendStripPixels(title, range, scene.style.integerValues, scene.style.categories,
+                             width, height, scene.style.legendScale);
+}
+
 core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
                           core::ViewPreset preset) {
     core::Aabb box;
@@ -257,7 +271,7 @@ core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
     // Leave the legend its strip on the right: fit the rest, then shift the scene left.
     double legend = 0.0;
     if (showsLegend(scene))
-        legend = std::min(0.4 * width, 115.0 * legendScale(width, height, scene.style.legendScale));
+        legend = std::min(0.45 * width, legendPixels(scene, width, height));
     core::fitBox(camera, box, (width - legend) / double(height), 1.08);
     core::pan(camera, {-legend / width, 0.0}, double(width) / height);
     return camera;

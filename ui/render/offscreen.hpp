@@ -45,6 +45,8 @@ core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
                           core::ViewPreset preset = core::ViewPreset::Iso);
 // Whether the scene's image gets a colour-bar legend.
 bool showsLegend(const SceneDescription& scene);
+// Pixels from the right edge that the scene's legend takes in a width x height image.
+double legendPixels(const SceneDescription& scene, int width, int height);
 
 // Loads the scene into a renderer (any back end): spheres, values, range, map, mask, meshes,
 // boxes, style. Throws std::invalid_argument naming the variable when the frame lacks it.

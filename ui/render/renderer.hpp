@@ -6,6 +6,7 @@
 #include "core/color/colormap.hpp"
 #include "core/view/box_handles.hpp"
 #include "core/view/camera.hpp"
+#include "ui/render/legend_layout.hpp"
 #include "ui/render/png_image.hpp"
 
 #include <glm/vec3.hpp>
@@ -66,6 +67,8 @@ struct RenderStyle {
     float lineWidth = 2.0f;                             // box edges, pixels at the output size
     bool showLegend = true;                             // drawn only when sphere values are set
     std::string legendTitle;                            // the variable's name
+    // Not empty: the legend names these colours (faults) instead of showing a colour bar.
+    std::vector<LegendEntry> categories;
     bool integerValues = false; // legend ticks at whole numbers (e.g. broken bonds)
     float legendScale = 1.0f;   // on top of the automatic size (output height / 720)
     std::string caption;        // a label in the top-left corner (a movie frame's timestep)

@@ -2,6 +2,7 @@
 
 #include "core/faults/candidates.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <functional>
 
@@ -28,31 +29,47 @@ CategoryColoring faultColoring(const core::Frame& frame, std::span<const core::F
     CategoryColoring out;
     auto column = emptyColumn(kFaultsVariable, frame.size());
     out.palette.push_back(kUncategorised);
+    out.names.push_back("no fault");
     // Later faults first, so the first fault listed paints last and wins.
     for (std::size_t k = faults.size(); k-- > 0;)
         for (std::int64_t id : faults[k].ids)
             if (auto row = frame.rowOf(id))
                 column->floats[*row] = static_cast<float>(k + 1) + 0.5f;
-    for (const auto& f : faults)
+    for (const auto& f : faults) {
         out.palette.push_back(glm::vec3(f.color[0], f.color[1], f.color[2]));
+        out.names.push_back(f.name);
+    }
     finish(*column, out.palette.size());
     out.values = std::move(column);
     return out;
 }
 
-CategoryColoring candidateColoring(std::span<const std::int32_t> rowLabel, std::size_t count) {
+CategoryColoring candidateColoring(std::span<const std::int32_t> rowLabel, std::size_t count,
+                                   std::string_view prefix) {
     CategoryColoring out;
     auto column = emptyColumn("candidates", rowLabel.size());
     for (std::size_t i = 0; i < rowLabel.size(); ++i)
         if (rowLabel[i] >= 0 && static_cast<std::size_t>(rowLabel[i]) < count)
             column->floats[i] = static_cast<float>(rowLabel[i] + 1) + 0.5f;
     out.palette.push_back(kUncategorised);
+    out.names.push_back("no candidate");
     for (std::size_t k = 0; k < count; ++k) {
         const auto c = core::candidateColor(k);
         out.palette.push_back(glm::vec3(c[0], c[1], c[2]));
+        out.names.push_back(std::string(prefix) + std::to_string(k + 1));
     }
     finish(*column, out.palette.size());
     out.values = std::move(column);
+    return out;
+}
+
+std::vector<LegendEntry> legendEntries(const CategoryColoring& coloring) {
+    std::vector<LegendEntry> out;
+    const std::size_t n = std::min(coloring.palette.size(), coloring.names.size());
+    for (std::size_t k = 1; k < n; ++k)
+        out.push_back({coloring.names[k], coloring.palette[k]});
+    if (n > 0)
+        out.push_back({coloring.names[0], coloring.palette[0]});
     return out;
 }
 

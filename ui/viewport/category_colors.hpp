@@ -5,12 +5,15 @@
 
 #include "core/faults/fault.hpp"
 #include "core/model/frame.hpp"
+#include "ui/render/legend_layout.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace faultline::ui {
@@ -23,12 +26,18 @@ inline constexpr glm::vec3 kUncategorised{0.78f, 0.78f, 0.76f};
 struct CategoryColoring {
     std::shared_ptr<const core::AttributeColumn> values; // one per row of the frame
     std::vector<glm::vec3> palette;                      // [0]: uncategorised
+    std::vector<std::string> names;                      // one per palette colour
 };
+
+// The legend of a categories colouring: its named colours, "no fault" (uncategorised) last.
+std::vector<LegendEntry> legendEntries(const CategoryColoring& coloring);
 
 // Members of faults in their fault's colour (the first fault listed wins).
 CategoryColoring faultColoring(const core::Frame& frame, std::span<const core::Fault> faults);
 // Rows labelled 0..count-1 (-1: none) in the candidates' colours (core::candidateColor).
-CategoryColoring candidateColoring(std::span<const std::int32_t> rowLabel, std::size_t count);
+// Named prefix + "1".."count", as fault.candidates would name them.
+CategoryColoring candidateColoring(std::span<const std::int32_t> rowLabel, std::size_t count,
+                                   std::string_view prefix = "C");
 // Changes when anything faultColoring depends on changes (members, colours, order).
 std::uint64_t faultColoringKey(std::span<const core::Fault> faults);
 

@@ -132,6 +132,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
     for (const auto& c : scene.palette)
         sig << '|' << c.r << ',' << c.g << ',' << c.b;
+    for (const auto& e : scene.legend)
+        sig << '|' << e.name;
     for (const auto& b : scene.boxes)
         sig << '|' << b.min[0] << ',' << b.min[1] << ',' << b.min[2] << ',' << b.max[0] << ','
             << b.max[1] << ',' << b.max[2] << ',' << int(b.mode) << ',' << b.enabled;
@@ -166,7 +168,10 @@ void GlViewRenderer::render(const ViewScene& scene) {
         r.setBoxes(boxes, handles);
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
-        style.showLegend = !scene.colorVariable.empty() && scene.palette.empty();
+        style.showLegend =
+            !scene.colorVariable.empty() && (scene.palette.empty() || !scene.legend.empty());
+        if (!scene.palette.empty())
+            style.categories = scene.legend;
         style.contextPoints = scene.contextPoints;
         r.setStyle(style);
         r.render(toRenderCamera(scene.camera), RenderTarget{scene.width, scene.height, 1, false});

@@ -114,10 +114,10 @@ void ViewComposer::update(const Inputs& in) {
             d.visibilityKey = key ^ reinterpret_cast<std::uintptr_t>(d.frame.get());
         }
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
+        resolveColors(v, d, channel, in.selection);
         d.camera = cameras[v.name];
         if (d.camera.distance <= 0 && d.frame)
-            d.camera = in.fit(v, d.camera, d.bounds.lo, d.bounds.hi);
-        resolveColors(v, d, channel, in.selection);
+            d.camera = in.fit(v, d, d.camera);
         d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, in.now, d.visibility);
         next.push_back(std::move(d));
         ++channel;
@@ -138,6 +138,7 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
                                  const UiSelection& selection) {
     d.colorColumn.reset();
     d.palette.clear();
+    d.legend.clear();
     d.colorTitle = v.colorVariable;
     d.colorRange = {0, 1};
     if (!d.frame)
@@ -145,6 +146,7 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
     if (const CategoryColoring* cat = categoriesFor(v, d, selection)) {
         d.colorColumn = cat->values;
         d.palette = cat->palette;
+        d.legend = legendEntries(*cat);
         d.colorTitle = d.colorColumn->name;
         d.colorRange = {0.0, static_cast<double>(d.palette.size())};
         return;

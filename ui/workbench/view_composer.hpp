@@ -29,9 +29,9 @@ class ViewComposer {
         std::size_t base = 0;
         double now = 0.0;
         const UiSelection& selection;
-        // A view's camera fitted to [lo, hi] (Workbench::fitCamera: the view's size, legend).
-        std::function<core::CameraState(const core::ViewState&, core::CameraState,
-                                        const std::array<double, 3>&, const std::array<double, 3>&)>
+        // A view's camera fitted to its bounds, beside its legend (Workbench::fitCamera).
+        std::function<core::CameraState(const core::ViewState&, const ViewDisplay&,
+                                        core::CameraState)>
             fit;
     };
     void update(const Inputs& in);

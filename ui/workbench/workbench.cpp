@@ -360,23 +360,36 @@ void Workbench::updatePlayback() {
 
 void Workbench::updateDisplay() {
     m_composer.update({m_previews, displayFrame(), m_now, m_selection,
-                       [this](const core::ViewState& v, core::CameraState c,
-                              const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
-                           return fitCamera(v, c, lo, hi);
+                       [this](const core::ViewState& v, const ViewDisplay& d, core::CameraState c) {
+                           return fitCameraBeside(v, &d, c, d.bounds.lo, d.bounds.hi);
                        }});
 }
 
 core::CameraState Workbench::fitCamera(const core::ViewState& v, core::CameraState camera,
                                        const std::array<double, 3>& lo,
                                        const std::array<double, 3>& hi) const {
+    return fitCameraBeside(v, m_composer.view(v.name), camera, lo, hi);
+}
+
+core::CameraState Workbench::fitCameraBeside(const core::ViewState& v, const ViewDisplay* d,
+                                             core::CameraState camera,
+                                             const std::array<double, 3>& lo,
+                                             const std::array<double, 3>& hi) const {
     double w = 16, h = 9;
     if (auto r = m_items.find("view.image." + v.name); r && r->y1 > r->y0)
         w = r->x1 - r->x0, h = r->y1 - r->y0;
-    // Leave the colour legend (drawn at the right edge, about 110 px at 720 px high) its own
-    // strip, and centre the model in the rest.
+    // Leave the legend (drawn at the right edge) its own strip, measured as it will be drawn
+    // (its title, tick labels or fault names), and centre the model in the rest (issue 41: a
+    // long title's legend covered the block's east end).
     double legend = 0;
-    if (!v.colorVariable.empty() && m_renderer)
-        legend = std::min(0.35 * w, 110.0 * std::max(0.8, std::min(h, w * 0.75) / 720.0));
+    if (!v.colorVariable.empty() && m_renderer) {
+        const std::string title = d && !d->colorTitle.empty() ? d->colorTitle : v.colorVariable;
+        const core::ValueRange range =
+            d ? core::ValueRange{d->colorRange[0], d->colorRange[1]} : core::ValueRange{0, 1};
+        const std::vector<LegendEntry> none;
+        legend = legendStripPixels(title, range, false, d ? d->legend : none, int(w), int(h));
+        legend = std::min(0.45 * w, legend);
+    }
     fitBesideLegend(camera, lo, hi, w, h, legend);
     return camera;
 }
@@ -400,6 +413,7 @@ void Workbench::renderViews() {
         scene.colorMap = v->colorMap;
         scene.surfaces = d.surfaces;
         scene.palette = d.palette;
+        scene.legend = d.legend;
         scene.contextPoints = v->contextPoints;
         scene.colorRange = d.colorRange;
         scene.camera = d.camera;

@@ -68,6 +68,10 @@ class Workbench final : public PanelContext {
     core::CameraState fitCamera(const core::ViewState& view, core::CameraState camera,
                                 const std::array<double, 3>& lo,
                                 const std::array<double, 3>& hi) const override;
+    // fitCamera with what the view shows (its legend's title, range or names) when known.
+    core::CameraState fitCameraBeside(const core::ViewState& view, const ViewDisplay* shown,
+                                      core::CameraState camera, const std::array<double, 3>& lo,
+                                      const std::array<double, 3>& hi) const;
     const std::vector<core::CuttingBox>& displayBoxes() const override {
         return m_composer.displayBoxes();
     }
