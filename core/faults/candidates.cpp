@@ -1,6 +1,7 @@
 #include "core/faults/candidates.hpp"
 
 #include "core/faults/fault_network.hpp"
+#include "core/faults/plane_fit.hpp"
 #include "core/faults/sphere_cells.hpp"
 
 #include <tbb/blocked_range.h>
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -204,6 +206,49 @@ std::array<float, 3> candidateColor(std::size_t index) {
     default: rgb[0] = val, rgb[1] = p, rgb[2] = q; break;
     }
     return {float(rgb[0]), float(rgb[1]), float(rgb[2])};
+}
+
+CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> ids) {
+    CandidateShape out;
+    std::vector<Vec3d> points;
+    points.reserve(ids.size());
+    for (std::int64_t id : ids)
+        if (auto row = frame.rowOf(id))
+            points.push_back({frame.x[*row], frame.y[*row], frame.z[*row]});
+    const auto& lo = frame.centreMin();
+    const auto& hi = frame.centreMax();
+    const int thin = sectionAxis({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const PlaneFit fit = fitPlane(points, thin);
+    if (!fit.valid)
+        return out;
+    out.valid = true;
+    out.dip = fit.orientation.dip;
+    out.dipDirection = fit.orientation.dipDirection;
+    // Across: the spread along the normal. Within: the smaller spread in the plane; in a
+    // section (the plane holds the thin axis) the spread along the fault, the largest one.
+    double across = 0;
+    for (const Vec3d& p : points) {
+        const double d = (p[0] - fit.centroid[0]) * fit.normal[0] +
+                         (p[1] - fit.centroid[1]) * fit.normal[1] +
+                         (p[2] - fit.centroid[2]) * fit.normal[2];
+        across += d * d;
+    }
+    across /= double(points.size());
+    const double within = thin >= 0 ? fit.eigenvalues[2] : fit.eigenvalues[1];
+    out.thicknessRatio = within > 0 ? std::sqrt(across / within) : 1.0;
+    out.diffuse = out.thicknessRatio > kDiffuseThicknessRatio;
+    return out;
+}
+
+std::string diffuseNote(const CandidateShape& shape) {
+    if (!shape.valid || !shape.diffuse)
+        return {};
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "diffuse: its spheres fill a volume (thickness %.2f of its width), not one "
+                  "fault plane",
+                  shape.thicknessRatio);
+    return text;
 }
 
 std::vector<Fault> faultsFromCandidates(std::span<const Candidate> candidates,

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -65,6 +66,22 @@ CandidateSet candidatesFromGroups(const Frame& frame, std::span<const std::int32
 // "network" | "connected", and back; parseCandidateMethod throws std::invalid_argument.
 std::string_view candidateMethodName(CandidateMethod method);
 CandidateMethod parseCandidateMethod(std::string_view name);
+
+// How sheet-like a group of spheres is. thicknessRatio: the spread across the best-fit plane
+// over the smaller spread within it (sqrt of the two smallest covariance eigenvalues' ratio):
+// near 0 for a thin band, 1 for a blob as thick as it is wide. A diffuse group (ratio above
+// kDiffuseThicknessRatio) is distributed damage filling a volume, not a fault surface: its dip
+// says little (issue 41: sub-vertical "faults" in the graben's centre).
+inline constexpr double kDiffuseThicknessRatio = 0.5;
+struct CandidateShape {
+    bool valid = false; // >= 3 members in the frame with a determined plane
+    double dip = 0, dipDirection = 0;
+    double thicknessRatio = 0;
+    bool diffuse = false;
+};
+CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> ids);
+// "diffuse: spheres fill a volume (thickness 0.62 of the width), not one fault plane", or "".
+std::string diffuseNote(const CandidateShape& shape);
 
 // The n-th of a sequence of distinct colours (golden-angle hues), for showing candidates.
 std::array<float, 3> candidateColor(std::size_t index);

@@ -33,6 +33,20 @@ FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault) {
     return s;
 }
 
+Fault faultAsFormed(const Frame& frame, const Fault& fault,
+                    std::span<const VariableThreshold> thresholds) {
+    if (std::none_of(thresholds.begin(), thresholds.end(),
+                     [](const VariableThreshold& t) { return t.enabled; }))
+        return fault;
+    const VisibilityResult passing = computeVisibility(frame, {}, thresholds);
+    Fault formed = fault;
+    formed.ids.clear();
+    for (std::int64_t id : fault.ids)
+        if (auto row = frame.rowOf(id); row && passing.mask[*row])
+            formed.ids.push_back(id);
+    return formed;
+}
+
 Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility) {
     Fault f;
     f.name = "visible spheres"; // in exports (grid and node names) and messages

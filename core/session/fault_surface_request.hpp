@@ -32,6 +32,14 @@ struct FaultSpheres {
 };
 FaultSpheres gatherFaultSpheres(const Frame& frame, const Fault& fault);
 
+// The part of a fault formed in a frame: its members whose row passes every enabled threshold
+// there (a NaN value passes none; a threshold on a variable the frame lacks is ignored, as
+// everywhere), with the fault's name and colour; the whole fault when no threshold is enabled.
+// Surfaces are built from it, so a fault's surface grows with the fault through time and is not
+// drawn at frames before any of its spheres passed (issue 41). Boxes do not cut it.
+Fault faultAsFormed(const Frame& frame, const Fault& fault,
+                    std::span<const VariableThreshold> thresholds);
+
 // The surface source kVisibleSpheres (session_state.hpp) in a frame: the visible rows' ids as a
 // fault in a neutral colour, named "visible spheres" in exports and messages, so that builds,
 // caches and exports take it as they take a fault.

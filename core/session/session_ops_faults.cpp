@@ -309,8 +309,11 @@ void registerFaultOps(OpTable& ops) {
             if (s.state().fault(f.name))
                 throw CommandError("fault.candidates: a fault named \"" + f.name +
                                    "\" exists already (choose another \"prefix\")");
-            batch.push_back(
-                {{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}});
+            Json create = {{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}};
+            // Distributed damage is accepted too, but says what it is (issue 41).
+            if (std::string note = diffuseNote(candidateShape(*frame, f.ids)); !note.empty())
+                create["notes"] = note;
+            batch.push_back(std::move(create));
         }
         return s.execute({{"op", "batch"}, {"commands", batch}});
     });

@@ -25,8 +25,8 @@ constexpr std::initializer_list<const char*> kSurfaceFields{
     "fault",    "kernel", "voxel", "iso",         "visible",      "opacity",
     "color_by", "map",    "range", "color_reach", "initial_color"};
 
-// What a surface named `name` is built from in the current frame: the fault, or the visible
-// spheres (kVisibleSpheres).
+// What a surface named `name` is built from in the current frame: the fault as formed there
+// (its members passing the thresholds), or the visible spheres (kVisibleSpheres).
 Fault sourceOf(Session& s, const std::string& name, const char* op) {
     if (isVisibleSpheres(name)) {
         auto frame = s.currentFrame();
@@ -37,7 +37,8 @@ Fault sourceOf(Session& s, const std::string& name, const char* op) {
     const Fault* fault = s.state().fault(name);
     if (!fault)
         throw CommandError(std::string(op) + ": no fault named \"" + name + "\"");
-    return *fault;
+    auto frame = s.currentFrame();
+    return frame ? faultAsFormed(*frame, *fault, s.state().thresholds) : *fault;
 }
 
 // The settings a command asks for, over the fault's current ones.
@@ -95,6 +96,12 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     if (!frame)
         throw CommandError(std::string(op) + ": no data is open");
     const Fault fault = sourceOf(s, st.fault, op);
+    if (fault.ids.empty() && !isVisibleSpheres(st.fault))
+        if (const Fault* whole = s.state().fault(st.fault); whole && !whole->ids.empty())
+            throw CommandError(std::string(op) + ": none of " + st.fault + "'s " +
+                               std::to_string(whole->ids.size()) +
+                               " spheres passes the thresholds in frame " +
+                               std::to_string(s.state().frame) + ": it has not formed there yet");
     try {
         return buildFaultSurface(*frame, {fault, st});
     } catch (const std::exception& e) {

@@ -1,3 +1,4 @@
+#include "core/faults/candidates.hpp"
 #include "core/io/input_error.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/journal.hpp"
@@ -808,3 +809,53 @@ TEST(Session, ASphereBelongsToOneFault) {
             EXPECT_TRUE(seen.insert(id).second) << id << " in two faults";
 }
 
+
+// Issue 41, item 11: a fault's surface is built from what of it has formed in the frame shown
+// (its members passing the thresholds), so it is not drawn before any of its spheres passed.
+TEST(Session, AFaultsSurfaceIsWhatOfItHasFormedInTheFrame) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    // x = 2 and x = 3 (32 spheres); strain = x/3 + frame.
+    s.apply(cmd(R"({"op":"box.add","name":"east","min":[2,0,0],"max":[3,3,3]})"));
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(cmd(R"({"op":"box.remove","name":"east"})"));
+    const Fault whole = *s.state().fault("F1");
+    ASSERT_EQ(whole.ids.size(), 32u);
+    s.apply(cmd(R"({"op":"threshold.add","variable":"strain","low":2.8,"high":1e30})"));
+    auto frame0 = s.currentFrame();
+    EXPECT_TRUE(faultAsFormed(*frame0, whole, s.state().thresholds).ids.empty());
+    expectRefused(s, R"({"op":"surface.build","fault":"F1"})",
+                  "none of F1's 32 spheres passes the thresholds in frame 0: it has not formed");
+    s.apply(cmd(R"({"op":"frame.set","frame":2})")); // x = 3 passes (strain 3), x = 2 not (2.67)
+    const Fault formed = faultAsFormed(*s.currentFrame(), whole, s.state().thresholds);
+    EXPECT_EQ(formed.ids.size(), 16u);
+    EXPECT_EQ(formed.name, "F1");
+    EXPECT_EQ(formed.color, whole.color);
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","voxel":0.25})"));
+    // No threshold enabled: the whole fault, as before.
+    s.apply(cmd(R"({"op":"threshold.set","variable":"strain","enabled":false})"));
+    EXPECT_EQ(faultAsFormed(*s.currentFrame(), whole, s.state().thresholds).ids.size(), 32u);
+}
+
+// Issue 41, item 11: distributed damage accepted as candidates says so in the fault's notes.
+TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
+    TempDir dir;
+    Session s;
+    openTwoWalls(s, dir); // two thin walls: sheets
+    s.apply(cmd(R"({"op":"fault.candidates","min_size":10})"));
+    ASSERT_EQ(s.state().faults.size(), 2u);
+    EXPECT_EQ(s.state().faults[0].notes, "");
+    s.apply(cmd(R"({"op":"undo"})"));
+    // Three layers of the 4x4x4 block: a blob, nearly as thick as it is wide.
+    s.apply(cmd(R"({"op":"box.remove","name":"west"})"));
+    s.apply(cmd(R"({"op":"box.set","name":"east","min":[0,0,0],"max":[3,3,2]})"));
+    s.apply(cmd(R"({"op":"fault.candidates","min_size":10,"method":"connected"})"));
+    ASSERT_EQ(s.state().faults.size(), 1u);
+    EXPECT_NE(s.state().faults[0].notes.find("diffuse"), std::string::npos)
+        << s.state().faults[0].notes;
+    const CandidateShape sheet = candidateShape(*s.currentFrame(), std::vector<std::int64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16});
+    EXPECT_TRUE(sheet.valid);
+    EXPECT_FALSE(sheet.diffuse); // the z = 0 layer
+    EXPECT_NEAR(sheet.dip, 0.0, 1e-6);
+}

@@ -31,8 +31,21 @@ const core::Fault*
 SurfaceStore::sourceOf(const core::SessionState& state, const std::string& name,
                        const std::shared_ptr<const core::Frame>& frame,
                        const std::shared_ptr<const core::VisibilityResult>& visibility) const {
-    if (!core::isVisibleSpheres(name))
-        return state.fault(name);
+    if (!core::isVisibleSpheres(name)) {
+        const core::Fault* fault = state.fault(name);
+        if (!fault || !frame ||
+            std::none_of(state.thresholds.begin(), state.thresholds.end(),
+                         [](const core::VariableThreshold& t) { return t.enabled; }))
+            return fault;
+        for (auto& f : m_formedSources)
+            if (f.frame == frame && f.thresholds == state.thresholds && f.source == *fault)
+                return &f.formed;
+        if (m_formedSources.size() >= 16)
+            m_formedSources.erase(m_formedSources.begin());
+        m_formedSources.push_back(
+            {frame, state.thresholds, *fault, core::faultAsFormed(*frame, *fault, state.thresholds)});
+        return &m_formedSources.back().formed;
+    }
     if (!frame || !visibility)
         return nullptr;
     for (auto& v : m_visibleSources)
@@ -56,7 +69,7 @@ SurfaceStore::surfacesFor(const core::SessionState& state, std::size_t frameInde
         if (!settings.visible)
             continue;
         const core::Fault* fault = sourceOf(state, settings.fault, frame, visibility);
-        if (!fault || !fault->visible)
+        if (!fault || !fault->visible || fault->ids.empty()) // none formed in this frame yet
             continue;
         const auto key = keyOf(settings, *fault, frameIndex);
         if (!key)
@@ -148,6 +161,11 @@ SurfaceStore::status(const core::SessionState& state, const std::string& fault,
     const core::Fault* source = sourceOf(state, fault, frame, visibility);
     if (!source)
         return {};
+    if (source->ids.empty() && !core::isVisibleSpheres(fault) && frame) {
+        SurfaceStatus s;
+        s.state = SurfaceStatus::State::NotFormed;
+        return s;
+    }
     const auto key = keyOf(*settings, *source, frameIndex);
     if (!key)
         return {};
@@ -193,6 +211,7 @@ void SurfaceStore::clear() {
             e.job->cancel();
     m_entries.clear();
     m_visibleSources.clear(); // they hold frames of the data being closed
+    m_formedSources.clear();
     m_cache->clear();
 }
 

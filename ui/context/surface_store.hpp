@@ -22,7 +22,8 @@
 namespace faultline::ui {
 
 struct SurfaceStatus {
-    enum class State { None, Waiting, Building, Ready, Failed };
+    // NotFormed: none of the fault's spheres passes the thresholds in this frame (no surface).
+    enum class State { None, Waiting, Building, Ready, Failed, NotFormed };
     State state = State::None;
     float progress = -1.0f; // Building: 0..1, < 0 unknown
     std::string error;      // Failed
@@ -57,8 +58,9 @@ class SurfaceStore {
                          const std::shared_ptr<const core::Frame>& frame = nullptr,
                          const std::shared_ptr<const core::VisibilityResult>& visibility =
                              nullptr) const;
-    // What a surface setting is built from in a view showing `frame`: the fault, or the visible
-    // spheres (kept while the frame and visibility stay the same). Null when there is none; valid
+    // What a surface setting is built from in a view showing `frame`: the fault as formed there
+    // (core::faultAsFormed: its members passing the thresholds; none before it formed), or the
+    // visible spheres (kept while the frame and visibility stay the same). Null when there is none; valid
     // until the next call (copy it to keep it).
     const core::Fault* sourceOf(
         const core::SessionState& state, const std::string& name,
@@ -97,6 +99,12 @@ class SurfaceStore {
         core::Fault fault;
     };
     mutable std::vector<VisibleSource> m_visibleSources; // most recent last, a few views' worth
+    struct FormedSource { // a fault as formed in a frame (core::faultAsFormed)
+        std::shared_ptr<const core::Frame> frame;
+        std::vector<core::VariableThreshold> thresholds;
+        core::Fault source, formed;
+    };
+    mutable std::vector<FormedSource> m_formedSources; // most recent last
     std::uint64_t m_tick = 1;
     std::size_t m_buildsStarted = 0;
 };

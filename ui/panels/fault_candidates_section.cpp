@@ -114,6 +114,24 @@ class FaultCandidatesSection {
                                    ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
                 ImGui::TableNextColumn();
                 ImGui::Text("#%d  %zu spheres", k + 1, cands[static_cast<std::size_t>(k)].size());
+                if (static_cast<std::size_t>(k) < preview->shapes.size()) {
+                    const core::CandidateShape& shape = preview->shapes[static_cast<std::size_t>(k)];
+                    if (shape.valid) {
+                        ImGui::SameLine();
+                        ImGui::TextDisabled("dip %.0f%s %03.0f", shape.dip, "\xC2\xB0",
+                                            shape.dipDirection);
+                    }
+                    if (shape.diffuse) {
+                        ImGui::SameLine();
+                        ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "diffuse");
+                        if (ImGui::IsItemHovered())
+                            ImGui::SetTooltip(
+                                "Its spheres fill a volume (thickness %.2f of its width) rather\n"
+                                "than a sheet: distributed damage, not one fault plane, so its\n"
+                                "dip says little. Accepted, the fault's notes say so.",
+                                shape.thicknessRatio);
+                    }
+                }
                 ImGui::TableNextColumn();
                 const bool done = m_accepted.count(k) > 0;
                 ImGui::BeginDisabled(done || stale);
@@ -150,15 +168,17 @@ class FaultCandidatesSection {
             m_finding->cancel();
         m_finding = wb.jobs().start(
             "Finding fault candidates",
-            [this, &wb, options, frame = main.frame,
-             visibility = main.visibility](JobControl&) -> std::function<void()> {
+            [this, &wb, options, frame = main.frame, visibility = main.visibility,
+             prefix = m_prefix](JobControl&) -> std::function<void()> {
                 const auto t0 = std::chrono::steady_clock::now();
                 UiSelection::CandidatePreview p;
                 p.frame = frame;
                 p.visibility = visibility;
                 p.options = options;
                 p.set = core::findCandidates(*frame, visibility->mask, options);
-                p.coloring = candidateColoring(p.set.rowLabel, p.set.candidates.size());
+                p.coloring = candidateColoring(p.set.rowLabel, p.set.candidates.size(), prefix);
+                for (const auto& c : p.set.candidates)
+                    p.shapes.push_back(core::candidateShape(*frame, c.ids));
                 const double ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                         .count();
@@ -182,7 +202,12 @@ class FaultCandidatesSection {
         const auto& cand = wb.selection().candidates->set.candidates[static_cast<std::size_t>(k)];
         const std::string name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
-        wb.emit({{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}},
+        core::Json cmd = {{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}};
+        const auto& shapes = wb.selection().candidates->shapes;
+        if (static_cast<std::size_t>(k) < shapes.size())
+            if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]); !note.empty())
+                cmd["notes"] = note;
+        wb.emit(cmd,
                 [this, &wb, k, name] {
                     m_accepted.insert(k);
                     wb.selection().faults = {name};

@@ -53,6 +53,8 @@ std::string statusText(const SurfaceStatus& st) {
     }
     case State::Failed:
         return "failed";
+    case State::NotFormed:
+        return "not formed yet";
     case State::None:
         break;
     }
@@ -320,6 +322,10 @@ class SurfacesPanel final : public Panel {
 
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
+        else if (status.state == SurfaceStatus::State::NotFormed)
+            ImGui::TextWrapped("Not formed in this frame: none of %s's spheres passes the "
+                               "thresholds here, so no surface is drawn.",
+                               sourceLabel(fault).c_str());
         else if (status.state == SurfaceStatus::State::Ready && status.triangles == 0) {
             // Say why nothing shows, and offer the way back.
             char why[160];

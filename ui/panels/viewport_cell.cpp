@@ -557,9 +557,11 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
                     dl->AddCircle(*p, (lit ? 7.0f : 5.5f) * scale, col, 16, 1.5f * scale);
                 }
     }
-    // Axes: east, north, up, in the lower left corner.
+    // Axes: east, north, up, in the lower left corner; smaller in a small view, where the full
+    // size covered the model (issue 41: a 640x420 window).
     const CameraBasis basis = cameraBasis(cam);
-    const ImVec2 o(pos.x + 38 * scale, pos.y + size.y - 38 * scale);
+    const float triad = scale * std::clamp(std::min(size.x, size.y) / (360.0f * scale), 0.6f, 1.0f);
+    const ImVec2 o(pos.x + 38 * triad, pos.y + size.y - 38 * triad);
     const struct {
         glm::dvec3 dir;
         const char* label;
@@ -568,11 +570,11 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
     float pointingAt = 0; // labels of axes seen end-on, stacked beside the origin
     std::vector<ImVec4> placed; // the labels drawn so far (x0, y0, x1, y1)
     for (const auto& a : axes) {
-        const float dx = static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * scale;
-        const float dy = static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * scale;
+        const float dx = static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * triad;
+        const float dy = static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * triad;
         const ImVec2 e(o.x + dx, o.y - dy);
         dl->AddLine(o, e, a.color, 2.0f * scale);
-        if (std::hypot(dx, dy) < 9 * scale) {
+        if (std::hypot(dx, dy) < 9 * triad) {
             // Seen end-on (North in a Front view): a dot, the label to the left of the origin
             // (issue 41: "Up" and "N" were drawn over each other).
             dl->AddCircleFilled(o, 2.5f * scale, a.color);

@@ -60,7 +60,8 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         scene.colorColumn = categories.values.get();
         scene.colorMap = core::ColorMapSpec{core::ColorMapKind::Palette, 10, categories.palette};
         scene.colorRange = core::ValueRange{0.0, double(categories.palette.size())};
-        scene.style.showLegend = false;
+        scene.style.categories = legendEntries(categories); // the faults' names
+
     } else if (view->difference.mode != core::ColorDifference::Mode::None) {
         const std::size_t ref = core::referenceFrame(*view, frameIndex, dataset->frameCount());
         const auto refFrame = dataset->frame(ref);
@@ -99,8 +100,13 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
                                                                  : glm::vec3(0.85f, 0.25f, 0.2f)});
     // Visible fault surfaces, as the workbench shows them.
     std::optional<core::Fault> visibleSpheres; // the visible spheres' surface source, if shown
+    std::optional<core::Fault> formed;         // a fault as formed in this frame
     for (const auto& st : session.state().surfaces) {
         const core::Fault* fault = session.state().fault(st.fault);
+        if (fault && st.visible) {
+            formed = core::faultAsFormed(*frame, *fault, session.state().thresholds);
+            fault = &*formed;
+        }
         if (st.visible && core::isVisibleSpheres(st.fault)) {
             visibleSpheres = core::visibleSpheresFault(*frame, visibility);
             fault = &*visibleSpheres;
@@ -124,10 +130,7 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         const auto& lo = frame->centreMin();
         const auto& hi = frame->centreMax();
         const double w = request.width, h = request.height;
-        const double legend =
-            showsLegend(scene)
-                ? std::min(0.4 * w, 115.0 * legendScale(request.width, request.height, 1.0f))
-                : 0.0;
+        const double legend = showsLegend(scene) ? std::min(0.45 * w, legendPixels(scene, w, h)) : 0.0;
         fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, legend);
     }
     scene.camera = toRenderCamera(camera);
