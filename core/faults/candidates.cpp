@@ -217,7 +217,8 @@ CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> 
             points.push_back({frame.x[*row], frame.y[*row], frame.z[*row]});
     const auto& lo = frame.centreMin();
     const auto& hi = frame.centreMax();
-    const int thin = sectionAxis({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const int thin =
+        sectionAxisOfSpheres({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}, 2.0 * frame.meanRadius());
     const PlaneFit fit = fitPlane(points, thin);
     if (!fit.valid)
         return out;

@@ -154,7 +154,7 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
                        double(frame.centreMax()[1]) - frame.centreMin()[1],
                        double(frame.centreMax()[2]) - frame.centreMin()[2]};
     // A single layer (extent within a radius) is left alone: there the layer may be the fault.
-    int section = sectionAxis(extent);
+    int section = sectionAxisOfSpheres(extent, 2.0 * frame.meanRadius());
     if (section >= 0 && !(extent[section] > m.meanRadius))
         section = -1;
     const PlaneFit fit = fitPlane(points, section);

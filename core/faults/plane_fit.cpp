@@ -143,6 +143,21 @@ int sectionAxis(const Vec3d& extent, double ratio) {
     return largest > 0 ? thin : -1;
 }
 
+int sectionAxisOfSpheres(const Vec3d& extent, double meanDiameter) {
+    if (const int thin = sectionAxis(extent); thin >= 0)
+        return thin;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (extent[a] < extent[axis])
+            axis = a;
+    const double longest = std::max({extent[0], extent[1], extent[2]});
+    // At least 3 diameters: a single (perhaps tilted) layer of spheres may be the fault itself.
+    return meanDiameter > 0 && extent[axis] >= 3.0 * meanDiameter &&
+                   extent[axis] < 8.0 * meanDiameter && extent[axis] < 0.25 * longest
+               ? axis
+               : -1;
+}
+
 PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis) {
     PlaneFit fit;
     fit.count = points.size();

@@ -61,5 +61,10 @@ PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis = -1);
 // The axis a model is thin along (extent below `ratio` of its largest extent), or -1: such a
 // model is a section, and faults in it are planes containing that axis.
 int sectionAxis(const Vec3d& extent, double ratio = 0.1);
+// The same for a model of spheres of this mean diameter: also an axis only a few spheres thick
+// (3 to 8 diameters: one tilted layer may be the fault itself) and under a quarter of the largest extent, as fault candidates' network
+// method orients them (a granular sandbox a few grains deep, periodic or between walls). Stable
+// through a run, where the ratio alone flips as the model stretches.
+int sectionAxisOfSpheres(const Vec3d& extent, double meanDiameter);
 
 } // namespace faultline::core

@@ -66,8 +66,10 @@ void Frame::finalize() {
                                         std::to_string(c.size()) + " values for " +
                                         std::to_string(n) + " particles");
     // Ranges of every column at once: each is a pass over memory, independent of the others.
-    const std::size_t tasks = attributes.size() + 3;
+    const std::size_t tasks = attributes.size() + 4;
     double axisRange[3][2] = {};
+    double radiusSum = 0;
+    std::size_t radiusCount = 0;
     tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t k) {
         if (k < attributes.size()) {
             auto& c = attributes[k];
@@ -75,12 +77,19 @@ void Frame::finalize() {
                 rangeOf(c.floats, c.min, c.max);
             else
                 rangeOf(c.ints, c.min, c.max);
+        } else if (k == attributes.size() + 3) {
+            for (float r : radius)
+                if (r > 0 && std::isfinite(r)) {
+                    radiusSum += r;
+                    ++radiusCount;
+                }
         } else {
             const std::vector<float>* axes[3] = {&x, &y, &z};
             const std::size_t a = k - attributes.size();
             rangeOf(*axes[a], axisRange[a][0], axisRange[a][1]);
         }
     });
+    m_meanRadius = radiusCount ? radiusSum / double(radiusCount) : 0.0;
     for (int a = 0; a < 3; ++a) {
         m_centreMin[a] = static_cast<float>(axisRange[a][0]);
         m_centreMax[a] = static_cast<float>(axisRange[a][1]);

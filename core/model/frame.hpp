@@ -73,6 +73,8 @@ class Frame {
     // Bounds of the sphere centres (not radii). Valid after finalize().
     const std::array<float, 3>& centreMin() const { return m_centreMin; }
     const std::array<float, 3>& centreMax() const { return m_centreMax; }
+    // Mean of the finite positive radii (0 when none). Valid after finalize().
+    double meanRadius() const { return m_meanRadius; }
 
     // Heap bytes held by this frame (columns and the id map).
     std::size_t memoryBytes() const;
@@ -84,6 +86,7 @@ class Frame {
     std::vector<std::uint32_t> m_rowsSortedById; // sparse map
     std::array<float, 3> m_centreMin{0, 0, 0};
     std::array<float, 3> m_centreMax{0, 0, 0};
+    double m_meanRadius = 0;
 };
 
 inline constexpr float kDefaultRadius = 0.5f;

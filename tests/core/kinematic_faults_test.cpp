@@ -1,0 +1,100 @@
+// Issue 37: kinematic truth. The faults of the real DEM runs read from how their spheres moved
+// (rigid blocks and the planes between them), without any strain threshold; what the fault
+// candidates are checked against (fault_candidates_real_runs_test.cpp).
+#include "core/data/dataset.hpp"
+#include "core/motion/kinematic_faults.hpp"
+#include "test_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace faultline::core;
+
+namespace {
+
+std::string run(const std::string& name) { return faultline::test::dataFile("real_runs/" + name); }
+
+void print(const char* what, const KinematicResult& k) {
+    std::printf("%s: %zu blocks (", what, k.blocks.size());
+    for (std::size_t b = 0; b < k.blocks.size(); ++b)
+        std::printf("%s%zu", b ? ", " : "", k.blockSizes[b]);
+    std::printf(")\n");
+    for (const KinematicFault& f : k.faults)
+        std::printf("  %zu|%zu: dip %.1f toward %.0f at (%.3g, %.3g, %.3g), %zu midpoints, rms %.2f d, "
+                    "slip %.2f d, width %.1f d%s\n",
+                    f.blockA, f.blockB, f.plane.orientation.dip, f.plane.orientation.dipDirection,
+                    f.plane.centroid[0], f.plane.centroid[1], f.plane.centroid[2], f.midpoints,
+                    f.rms / k.meanDiameter, f.slip / k.meanDiameter, f.width / k.meanDiameter,
+                    f.identifiable ? "" : " (not identifiable)");
+}
+
+std::vector<KinematicFault> identifiable(const KinematicResult& k) {
+    std::vector<KinematicFault> out;
+    for (const auto& f : k.faults)
+        if (f.identifiable)
+            out.push_back(f);
+    return out;
+}
+
+} // namespace
+
+// The LAMMPS graben (examples/lammps/in.extension): three blocks (two footwalls, the graben)
+// between the last two frames, and the two normal faults between them, dipping about 55 degrees
+// towards each other; the graben's floor between the faults' feet near x = 31.
+TEST(KinematicFaults, TheLammpsGrabenIsThreeBlocksAndTwoNormalFaults) {
+    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    for (auto [a, b] : {std::pair<std::size_t, std::size_t>{3, 4}, {2, 4}}) {
+        const KinematicResult k = kinematicFaults(*ds->frame(a), *ds->frame(b));
+        print(("LAMMPS extension " + std::to_string(a) + " -> " + std::to_string(b)).c_str(), k);
+        ASSERT_EQ(k.blocks.size(), 3u);
+        const auto faults = identifiable(k);
+        ASSERT_EQ(faults.size(), 2u);
+        const KinematicFault& east = faults[0].plane.orientation.dipDirection < 180 ? faults[0] : faults[1];
+        const KinematicFault& west = &east == &faults[0] ? faults[1] : faults[0];
+        EXPECT_NEAR(east.plane.orientation.dipDirection, 90, 3);
+        EXPECT_NEAR(west.plane.orientation.dipDirection, 270, 3);
+        EXPECT_NEAR(east.plane.orientation.dip, 56, 3);
+        EXPECT_NEAR(west.plane.orientation.dip, 56, 3);
+        // On the README's lines: left x = 33.0 - 0.64 z, right 30.8 + 0.64 z (within 2 d).
+        const Vec3d& ce = east.plane.centroid;
+        const Vec3d& cw = west.plane.centroid;
+        EXPECT_NEAR(ce[0], 33.0 - 0.64 * ce[2], 2.0 / std::sin(std::atan(1 / 0.64)));
+        EXPECT_NEAR(cw[0], 30.8 + 0.64 * cw[2], 2.0 / std::sin(std::atan(1 / 0.64)));
+        EXPECT_LT(east.rms, 1.0 * k.meanDiameter);
+    }
+}
+
+// Yade's bonded shear box (examples/yade/shear_box.py): the two grips and what sticks to them
+// move as two blocks; between them one gently dipping shear band.
+TEST(KinematicFaults, TheYadeShearBoxIsTwoBlocksAndOneBand) {
+    auto ds = Dataset::open({run("yade/shear-spheres-*.vtk")});
+    ASSERT_EQ(ds->frameCount(), 3u);
+    const KinematicResult k = kinematicFaults(*ds->frame(1), *ds->frame(2));
+    print("Yade shear box 1 -> 2", k);
+    const auto faults = identifiable(k);
+    ASSERT_EQ(faults.size(), 1u);
+    EXPECT_NEAR(faults[0].plane.orientation.dip, 10, 4);
+}
+
+// LIGGGHTS' shortening (examples/liggghts/in.shortening) thickens a wedge in front of the
+// pusher diffusely: no boundary between rigid blocks there is a fault by the rules above.
+TEST(KinematicFaults, TheLiggghtsWedgeHasNoSharpFault) {
+    auto ds = Dataset::open({run("liggghts/run.dump.gz")});
+    const KinematicResult k = kinematicFaults(*ds->frame(2), *ds->frame(3));
+    print("LIGGGHTS shortening 2 -> 3", k);
+    EXPECT_TRUE(identifiable(k).empty());
+}
+
+TEST(KinematicFaults, OneRigidBodyHasNoFaultAndTooFewSpheresAreRefused) {
+    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    const KinematicResult same = kinematicFaults(*ds->frame(4), *ds->frame(4));
+    EXPECT_TRUE(same.faults.empty());
+    Frame tiny;
+    tiny.ids = {1, 2};
+    tiny.x = tiny.y = tiny.z = {0, 1};
+    tiny.radius = {0.5f, 0.5f};
+    tiny.finalize();
+    EXPECT_THROW(kinematicFaults(tiny, tiny), std::invalid_argument);
+}
