@@ -17,6 +17,11 @@ namespace {
 
 // A sphere is grown through only when its neighbourhood is this planar (1 - l1 / l2).
 constexpr float kPlanarityMin = 0.6f;
+// The same in a section model, where planarity is that of a band in the section's plane: a
+// real run's shear band (4-5 grains thick, as thick as the neighbourhood is wide) reads about
+// 0.5-0.7 there, and with 0.6 most of it was left over and joined to the wrong fault
+// (issue 37, the LAMMPS graben: candidates 20 degrees off the kinematic faults).
+constexpr float kSectionPlanarityMin = 0.5f;
 // Fewer neighbours than this within the radius: no orientation (scattered spheres).
 constexpr std::uint32_t kMinNeighbours = 8;
 // The running normal along a growth path keeps this share of its past at each step.
@@ -284,14 +289,14 @@ Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
 
 // Step 2: regions grown from the most planar spheres. Per slot its region or -1, and the
 // running normal it was admitted with.
-std::size_t grow(const Graph& g, const Orientations& o, double angle,
+std::size_t grow(const Graph& g, const Orientations& o, double angle, float planarityMin,
                  std::vector<std::int32_t>& region, std::vector<F3>& ref) {
     const std::size_t n = o.normal.size();
     region.assign(n, -1);
     ref = o.normal;
     std::vector<std::uint32_t> seeds;
     for (std::uint32_t i = 0; i < n; ++i)
-        if (o.planarity[i] >= kPlanarityMin)
+        if (o.planarity[i] >= planarityMin)
             seeds.push_back(i);
     std::stable_sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
         return o.planarity[a] > o.planarity[b];
@@ -310,7 +315,7 @@ std::size_t grow(const Graph& g, const Orientations& o, double angle,
             const F3 ri = ref[i];
             for (std::uint32_t e = g.start[i]; e < g.start[i + 1]; ++e) {
                 const std::uint32_t j = g.adj[e];
-                if (region[j] >= 0 || o.planarity[j] < kPlanarityMin)
+                if (region[j] >= 0 || o.planarity[j] < planarityMin)
                     continue;
                 const float c = dotf(o.normal[j], ri);
                 if (std::fabs(c) < cosTol)
@@ -713,7 +718,8 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     const double onSurface = std::max(0.5 * zoneThickness, 1.5 * meanRadius);
     std::vector<std::int32_t> region;
     std::vector<F3> ref;
-    const std::size_t regionCount = grow(graph, o, options.angle, region, ref);
+    const std::size_t regionCount = grow(graph, o, options.angle,
+                                         thin >= 0 ? kSectionPlanarityMin : kPlanarityMin, region, ref);
     join(wide, wideToLink, region, regionCount, options.angle, meanRadius, thin);
     dissolveJunctionRegions(wide, wideToLink, region, ref, regionCount, radius, onSurface);
 
