@@ -279,6 +279,22 @@ std::vector<FaultFrameMetrics> computeFrameMetrics(const Frame& frame, std::size
                                                    const MetricsOptions& options) {
     DisplacementColumns displacement{frame.attribute("x0"), frame.attribute("y0"),
                                      frame.attribute("z0")};
+    // No initial positions in the file: the reference positions of strain from motion
+    // (ref_x, ref_y, ref_z; unprefixed first, so a cumulative set since frame 0 is preferred).
+    if (!displacement.present()) {
+        auto refs = [&](const std::string& prefix) {
+            return DisplacementColumns{frame.attribute(prefix + "ref_x"),
+                                       frame.attribute(prefix + "ref_y"),
+                                       frame.attribute(prefix + "ref_z")};
+        };
+        displacement = refs("");
+        for (const AttributeColumn& c : frame.attributes) {
+            if (displacement.present())
+                break;
+            if (c.name.size() > 5 && c.name.ends_with("ref_x"))
+                displacement = refs(c.name.substr(0, c.name.size() - 5));
+        }
+    }
     std::unique_ptr<detail::SphereGrid> grid;
     if (options.computeThrow && displacement.present() && !faults.empty())
         grid = std::make_unique<detail::SphereGrid>(frame);

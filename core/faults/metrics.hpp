@@ -26,7 +26,7 @@ struct MetricsOptions {
 enum class ThrowStatus {
     Ok,
     Disabled,       // MetricsOptions::computeThrow is false
-    NoDisplacement, // the frame has no x0, y0, z0 columns
+    NoDisplacement, // the frame has no x0, y0, z0 columns (nor strain from motion's ref_x...)
     NoPlane,        // the plane is undefined (fewer than 3 members, or a line)
     TooFewSamples,  // fewer than throwMinSamples spheres on one side
 };

@@ -412,6 +412,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     float* volumetric = cols[1].floats.data();
     float* d2min = cols[2].floats.data();
     float* displacement = cols[3].floats.data();
+    float* refX = cols[4].floats.data();
+    float* refY = cols[5].floats.data();
+    float* refZ = cols[6].floats.data();
     // Cell by cell, so the neighbours of consecutive spheres share cache lines.
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
@@ -428,6 +431,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                         refCell.wrap(u[0], u[1], u[2]);
                     displacement[i] =
                         static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+                    refX[i] = static_cast<float>(double(c.nx) - u[0]);
+                    refY[i] = static_cast<float>(double(c.ny) - u[1]);
+                    refZ[i] = static_cast<float>(double(c.nz) - u[2]);
                     std::size_t count = 0;
                     cells.around(cell, [&](std::size_t first, std::size_t last) {
                         if (hits.size() < count + (last - first))

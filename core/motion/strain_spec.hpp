@@ -23,7 +23,10 @@ struct StrainSpec {
 };
 
 // The variables each spec adds, without its prefix, in column order.
-inline constexpr std::array<std::string_view, 4> kStrainVariables = {
-    "shear_strain", "volumetric_strain", "d2min", "displacement"};
+// ref_x, ref_y, ref_z: where each sphere was in the reference frame, as the minimum image next to
+// where it is now (issue 41: reference positions are variables too; fault throw measures the
+// offset of these since the reference frame where the file has no x0, y0, z0).
+inline constexpr std::array<std::string_view, 7> kStrainVariables = {
+    "shear_strain", "volumetric_strain", "d2min", "displacement", "ref_x", "ref_y", "ref_z"};
 
 } // namespace faultline::core

@@ -4,6 +4,7 @@
 // export.textExt with attributes). Each reads as the program meant it.
 #include "core/data/dataset.hpp"
 #include "core/motion/strain_from_motion.hpp"
+#include "core/session/session.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <sstream>
 
 using namespace faultline::core;
 
@@ -169,4 +172,56 @@ TEST(RealRuns, LammpsExtensionIncrementalStrainPicksOutTheGrabenFaults) {
     EXPECT_GT(double(near) / double(top), 0.8);
     // Frame 0 has no frame before it: no values, none passes a threshold.
     EXPECT_TRUE(std::isnan(ds->frame(0)->attribute("inc_shear_strain")->floats[0]));
+}
+
+// Issue 37: through time on the real LAMMPS run. Candidates of the last frame's incremental
+// strain, followed back: both graben faults appear in frame 1 (the run's timestep 50000, the
+// first with a frame before it) and their throw, measured from strain from motion's reference
+// positions since frame 0 (the dump has no x0, y0, z0), grows in every frame (normal faults:
+// negative throw).
+TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
+    faultline::test::TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {run("lammps/dump.extension.gz")}}});
+    s.apply({{"op", "frame.set"}, {"frame", 4}});
+    s.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
+    s.apply({{"op", "strain.add"}, {"since_frame", 0}});
+    s.apply({{"op", "threshold.add"}, {"variable", "inc_shear_strain"}, {"low", 0.15}, {"high", 1e30}});
+    s.apply({{"op", "fault.candidates"}, {"min_size", 50}, {"prefix", "F"}});
+    ASSERT_EQ(s.state().faults.size(), 2u);
+    // Reference positions are variables: where each grain was in frame 0 (y across the periodic
+    // boundary as the minimum image next to where it is now).
+    const auto now = s.currentFrame();
+    const auto first = s.dataset()->frame(0);
+    for (std::size_t i = 0; i < now->size(); i += 97) {
+        const std::size_t r = *first->rowOf(now->ids[i]);
+        EXPECT_NEAR(now->attribute("ref_x")->floats[i], first->x[r], 1e-3);
+        EXPECT_NEAR(now->attribute("ref_z")->floats[i], first->z[r], 1e-3);
+        const double dy = std::fabs(now->attribute("ref_y")->floats[i] - first->y[r]);
+        EXPECT_TRUE(dy < 1e-3 || std::fabs(dy - 6.0) < 1e-3) << dy;
+    }
+    s.apply({{"op", "export.csv"}, {"what", "fault_events"}, {"path", dir.file("events.csv")}});
+    s.apply({{"op", "export.csv"}, {"what", "fault_growth"}, {"path", dir.file("growth.csv")}});
+    EXPECT_EQ(faultline::test::slurp(dir.file("events.csv")),
+              "frame,kind,faults\n1,appeared,F1\n1,appeared,F2\n");
+    // growth: frame,fault,count,dip,dip_direction,strike,thickness,area,throw,...
+    std::istringstream growth(faultline::test::slurp(dir.file("growth.csv")));
+    std::string line;
+    std::getline(growth, line);
+    std::map<std::string, std::vector<double>> throws;
+    while (std::getline(growth, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');)
+            f.push_back(c);
+        if (std::stoi(f[0]) >= 1)
+            throws[f[1]].push_back(std::stod(f[8]));
+    }
+    for (const auto& [fault, t] : throws) {
+        ASSERT_EQ(t.size(), 4u) << fault;
+        std::printf("%s throw by frame: %.2f %.2f %.2f %.2f\n", fault.c_str(), t[0], t[1], t[2], t[3]);
+        for (std::size_t k = 1; k < t.size(); ++k)
+            EXPECT_LT(t[k], t[k - 1] - 0.5) << fault << " frame " << k + 1;
+        EXPECT_LT(t.back(), -3.5); // the plate moved 8 grain diameters in all
+    }
 }

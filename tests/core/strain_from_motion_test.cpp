@@ -70,7 +70,9 @@ struct Expected {
 
 // E = (F^T F - I)/2 and its invariants, by hand in each test; here only the checks.
 void expectEverywhere(const std::vector<AttributeColumn>& cols, Expected e, double tol = 2e-5) {
-    ASSERT_EQ(cols.size(), 4u);
+    ASSERT_EQ(cols.size(), 7u);
+    EXPECT_EQ(cols[4].name, "ref_x");
+    EXPECT_EQ(cols[6].name, "ref_z");
     EXPECT_EQ(cols[0].name, "shear_strain");
     EXPECT_EQ(cols[1].name, "volumetric_strain");
     EXPECT_EQ(cols[2].name, "d2min");
