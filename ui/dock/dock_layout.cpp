@@ -131,6 +131,19 @@ DockLayout DockLayout::defaultLayout() {
     return l;
 }
 
+DockLayout DockLayout::defaultLayout(float windowWidth) {
+    if (!(windowWidth > 0) || windowWidth >= kCompactWidth)
+        return defaultLayout();
+    using namespace panel_ids;
+    DockLayout l;
+    auto side = leaf({kData, kBoxes, kThresholds, kHistograms, kFaults, kSurfaces});
+    auto centre = split(SplitAxis::Vertical, 0.8f, leaf({kViewports}), leaf({kTimeline}));
+    const float ratio = std::clamp(260.0f / windowWidth, 0.2f, 0.5f);
+    l.m_root = split(SplitAxis::Horizontal, ratio, std::move(side), std::move(centre));
+    forEach(*l.m_root, [&](DockNode& n) { n.id = l.nextId(); });
+    return l;
+}
+
 std::optional<DockLayout> DockLayout::fromJson(const json& doc, const std::vector<std::string>& known,
                                                std::string* why) {
     auto fail = [&](const std::string& reason) -> std::optional<DockLayout> {

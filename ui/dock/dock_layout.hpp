@@ -42,6 +42,11 @@ class DockLayout {
     // Data, boxes and thresholds on the left, the viewports large in the centre above the
     // timeline, histograms and faults on the right.
     static DockLayout defaultLayout();
+    // The default for a window this many logical pixels wide: below kCompactWidth one column of
+    // every side panel as tabs (about 260 pixels, the width the panels are laid out for) beside
+    // the views, instead of two columns too narrow to read (issue 41: a 640x420 window).
+    static constexpr float kCompactWidth = 1000.0f;
+    static DockLayout defaultLayout(float windowWidth);
 
     // Builds a layout from its JSON form. Unknown or repeated panels are dropped, ratios are
     // clamped and empty areas removed; nullopt (with the reason) when the document is not a

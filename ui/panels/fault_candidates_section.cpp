@@ -118,8 +118,10 @@ class FaultCandidatesSection {
                     const core::CandidateShape& shape = preview->shapes[static_cast<std::size_t>(k)];
                     if (shape.valid) {
                         ImGui::SameLine();
-                        ImGui::TextDisabled("dip %.0f%s %03.0f", shape.dip, "\xC2\xB0",
+                        ImGui::TextDisabled("%.0f%s/%03.0f", shape.dip, "\xC2\xB0",
                                             shape.dipDirection);
+                        if (ImGui::IsItemHovered())
+                            ImGui::SetTooltip("dip / dip direction (degrees)");
                     }
                     if (shape.diffuse) {
                         ImGui::SameLine();

@@ -4,6 +4,7 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/icon_button.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
 
@@ -63,8 +64,13 @@ class TimelinePanel final : public Panel {
             ImGui::AlignTextToFramePadding();
             ImGui::TextDisabled("no data");
         }
-        const float right = 3 * 90 * wb.scale();
-        ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 12 * wb.scale(), ImGui::GetContentRegionMax().x - right));
+        // Rate, loop and jump at the right end of the row; below the text when the panel is too
+        // narrow for both (issue 41: at 640x420 they were drawn over "frame 39 of 40").
+        const ImGuiStyle& style = ImGui::GetStyle();
+        const float right = 80 * wb.scale() + checkboxWidth("Loop") + 60 * wb.scale() + 2 * style.ItemSpacing.x;
+        const float textEnd = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;
+        if (textEnd + 12 * wb.scale() + right <= ImGui::GetContentRegionMax().x)
+            ImGui::SameLine(std::max(textEnd + 12 * wb.scale(), ImGui::GetContentRegionMax().x - right));
         ImGui::SetNextItemWidth(80 * wb.scale());
         char rate[32];
         std::snprintf(rate, sizeof rate, "%g fps", pb.fps);

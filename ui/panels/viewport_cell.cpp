@@ -160,6 +160,7 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     const float cx = imgPos.x + imgSize.x * 0.5f, cy = imgPos.y + imgSize.y * 0.5f;
     for (int k = 0; k < 2; ++k)
         if (!placeholder[k].empty()) {
+            placeholder[k] = elided(placeholder[k], imgSize.x - 8 * wb.scale()); // narrow views
             const ImVec2 t = ImGui::CalcTextSize(placeholder[k].c_str());
             dl->AddText(ImVec2(cx - t.x * 0.5f, k == 0 ? cy - t.y : cy + 4), IM_COL32(110, 116, 128, 255),
                         placeholder[k].c_str());
@@ -199,8 +200,11 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
                                                     : title + " (" + core::colorMapName(view.colorMap) + ")";
     const ImGuiStyle& style = ImGui::GetStyle();
     float reserve = 0.0f;
+    // In a narrow view the linked box goes without its label (the tooltip says it).
+    const bool narrow = width < 340 * scale;
+    const char* linkedLabel = narrow ? "##linked" : "linked";
     if (wb.state().views.size() > 1)
-        reserve += checkboxWidth("linked") + style.ItemSpacing.x;
+        reserve += (narrow ? ImGui::GetFrameHeight() : checkboxWidth("linked")) + style.ItemSpacing.x;
     if (view.name != "main")
         reserve += ImGui::GetFrameHeight() + style.ItemSpacing.x;
     const float room = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x - reserve -
@@ -220,7 +224,7 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     ImGui::SameLine();
     if (wb.state().views.size() > 1) {
         bool linked = view.linkedCamera;
-        if (ImGui::Checkbox("linked", &linked))
+        if (ImGui::Checkbox(linkedLabel, &linked))
             wb.emit({{"op", "view.set"}, {"name", view.name}, {"linked_camera", linked}});
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Linked cameras move together; unlink to look at this view on its own.");

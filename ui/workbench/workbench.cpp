@@ -201,6 +201,15 @@ void Workbench::drawDock(float top, float bottom) {
             if (id == p->id())
                 p->draw(*this);
     };
+    // Until the user arranges the panels, the default layout follows the window's width.
+    if (m_layoutFollowsWindow) {
+        const float width = io.DisplaySize.x / std::max(m_scale, 0.1f);
+        const bool compact = width < DockLayout::kCompactWidth;
+        if (compact ? width != m_layoutWidth : m_layoutWidth != 0) {
+            m_layout = DockLayout::defaultLayout(compact ? width : 0.0f);
+            m_layoutWidth = compact ? width : 0.0f;
+        }
+    }
     const float gap = std::round(3 * m_scale);
     if (m_dock.draw(m_layout, ImVec2(gap, top + gap),
                     ImVec2(io.DisplaySize.x - 2 * gap, bottom - top - 2 * gap), m_scale, cb,
@@ -262,6 +271,8 @@ void Workbench::syncWithSession() {
         const bool empty =
             m_adoptedLayout.is_null() || (m_adoptedLayout.is_object() && m_adoptedLayout.empty());
         std::string why;
+        m_layoutFollowsWindow = empty;
+        m_layoutWidth = 0;
         if (empty)
             m_layout = DockLayout::defaultLayout();
         else if (auto l = DockLayout::fromJson(m_adoptedLayout, panel_ids::all(), &why))

@@ -245,6 +245,8 @@ class Workbench final : public PanelContext {
     ViewComposer m_composer{m_session, m_frames, m_columns, m_surfaces}; // what the views show
     ItemRegistry m_items;
     DockLayout m_layout;
+    bool m_layoutFollowsWindow = true; // the default layout, not arranged by the user yet
+    float m_layoutWidth = 0;           // the window width a compact default was made for
     core::Json m_adoptedLayout; // the session's layout as last adopted
     DockSpace m_dock;
     FileDialog m_dialog;
