@@ -3,6 +3,8 @@
 #include "ui/widgets/item_registry.hpp"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace faultline::ui {
 
@@ -68,11 +70,40 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
     dl->AddRectFilled(min, ImVec2(min.x + width, min.y + height), color(ImGuiCol_TitleBg));
     float x = min.x + 2 * scale;
     const float padX = 10 * scale;
+    // Tabs that do not all fit (a narrow column of many panels): as many as fit, the active one
+    // among them, and a button at the end listing every panel of the area.
+    float needed = 2 * scale;
+    for (const std::string& panel : area.tabs)
+        needed += ImGui::CalcTextSize(cb.titleOf(panel)).x + 2 * padX + 2 * scale;
+    const bool overflow = needed > width;
+    const float listW = overflow ? ImGui::GetFrameHeight() + 2 * scale : 0.0f;
+    std::vector<std::string> shown;
+    {
+        float used = 2 * scale;
+        for (const std::string& panel : area.tabs) {
+            const float w = ImGui::CalcTextSize(cb.titleOf(panel)).x + 2 * padX + 2 * scale;
+            if (used + w > width - listW)
+                break;
+            shown.push_back(panel);
+            used += w;
+        }
+        if (overflow && std::find(shown.begin(), shown.end(), area.active) == shown.end() &&
+            !area.active.empty()) {
+            const float activeW = ImGui::CalcTextSize(cb.titleOf(area.active)).x + 2 * padX + 2 * scale;
+            while (!shown.empty() && used + activeW > width - listW) {
+                used -= ImGui::CalcTextSize(cb.titleOf(shown.back())).x + 2 * padX + 2 * scale;
+                shown.pop_back();
+            }
+            shown.push_back(area.active);
+        }
+        if (!overflow)
+            shown = area.tabs;
+    }
     std::string toClose;
-    for (const std::string& panel : area.tabs) {
+    for (const std::string& panel : shown) {
         const char* title = cb.titleOf(panel);
         const float textW = ImGui::CalcTextSize(title).x;
-        float tabW = std::min(textW + 2 * padX, std::max(40 * scale, min.x + width - x - 2 * scale));
+        float tabW = std::min(textW + 2 * padX, std::max(40 * scale, min.x + width - listW - x - 2 * scale));
         if (tabW < 24 * scale)
             break;
         ImGui::SetCursorScreenPos(ImVec2(x, min.y + 2 * scale));
@@ -109,6 +140,27 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
         ImGui::PopClipRect();
         ImGui::PopID();
         x += tabW + 2 * scale;
+    }
+    if (overflow) {
+        const float bw = ImGui::GetFrameHeight();
+        ImGui::SetCursorScreenPos(ImVec2(min.x + width - bw - 2 * scale, min.y + 2 * scale));
+        ImGui::PushID(area.id);
+        if (ImGui::Button("\xC2\xBB", ImVec2(bw, height - 4 * scale))) // a right guillemet
+            ImGui::OpenPopup("##alltabs");
+        if (items)
+            items->markLastItem("tabs.more." + std::to_string(area.id));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Every panel here");
+        if (ImGui::BeginPopup("##alltabs")) {
+            for (const std::string& panel : area.tabs) {
+                if (ImGui::Selectable(cb.titleOf(panel), area.active == panel))
+                    area.active = panel;
+                if (items)
+                    items->markLastItem("tabs.list." + panel);
+            }
+            ImGui::EndPopup();
+        }
+        ImGui::PopID();
     }
     (void)style;
     if (!toClose.empty()) {

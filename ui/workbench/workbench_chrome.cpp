@@ -405,7 +405,7 @@ void Workbench::drawHelp() {
     const ImGuiIO& io = ImGui::GetIO();
     if (m_showHelp) {
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         ImGui::SetNextWindowSize(ImVec2(620 * m_scale, 0), ImGuiCond_Appearing);
         if (ImGui::Begin("Keyboard and mouse", &m_showHelp,
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
@@ -436,7 +436,7 @@ void Workbench::drawHelp() {
     }
     if (m_showAbout) {
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::Begin("About Faultline", &m_showAbout,
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize |
                              ImGuiWindowFlags_NoCollapse)) {
@@ -461,7 +461,7 @@ void Workbench::drawPrompts() {
         if (!ImGui::IsPopupOpen("Recover unsaved work?"))
             ImGui::OpenPopup("Recover unsaved work?");
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, flags)) {
             ImGui::TextUnformatted("Faultline did not close normally last time.");
             ImGui::Text("Its session was autosaved%s%s.", m_recovery->savedAt.empty() ? "" : " at ",
@@ -485,7 +485,7 @@ void Workbench::drawPrompts() {
         if (!ImGui::IsPopupOpen("Where is the data?"))
             ImGui::OpenPopup("Where is the data?");
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Where is the data?", nullptr, flags)) {
             const auto& md = *m_missingData;
             ImGui::Text("The data of %s is not where it was saved:",

@@ -128,7 +128,7 @@ void Workbench::drawMovie() {
     }
     if (m_movie) {
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::Begin("Writing the movie", nullptr,
                          ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                              ImGuiWindowFlags_NoCollapse)) {
@@ -148,7 +148,7 @@ void Workbench::drawMovie() {
     if (!m_showMovieOptions)
         return;
     ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                            ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+                            ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     if (ImGui::Begin("Export movie", &m_showMovieOptions,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                          ImGuiWindowFlags_NoCollapse)) {
