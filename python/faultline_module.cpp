@@ -1,0 +1,303 @@
+// `import faultline`: the Python module over core/ (issue 38). Datasets and frames as numpy
+// arrays that view the frame's own memory, and sessions that run the journal's ops (JOURNAL.md)
+// given as dicts, with undo, redo, save and load. Nothing here computes anything itself.
+#include "core/data/dataset.hpp"
+#include "core/io/input_error.hpp"
+#include "core/session/command_args.hpp"
+#include "core/session/session.hpp"
+#include "core/session/session_json.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace faultline;
+
+namespace {
+
+using FramePtr = std::shared_ptr<const core::Frame>;
+
+// A read-only numpy view of `data` that keeps `owner` (the frame) alive as long as it lives.
+template <typename T>
+py::array view(const FramePtr& owner, const std::vector<T>& data) {
+    auto* keep = new FramePtr(owner);
+    py::capsule base(keep, [](void* p) { delete static_cast<FramePtr*>(p); });
+    py::array out(py::dtype::of<T>(), {py::ssize_t(data.size())}, {py::ssize_t(sizeof(T))},
+                  data.data(), base);
+    py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return out;
+}
+
+core::Json toJson(const py::handle& obj) {
+    const std::string text = py::module_::import("json").attr("dumps")(obj).cast<std::string>();
+    return core::Json::parse(text);
+}
+
+py::object fromJson(const core::Json& j) {
+    if (j.is_null())
+        return py::none();
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+std::vector<std::string> pathsOf(const py::object& paths) {
+    if (py::isinstance<py::str>(paths))
+        return {paths.cast<std::string>()};
+    std::vector<std::string> out;
+    for (const auto& p : paths)
+        out.push_back(py::str(p).cast<std::string>());
+    return out;
+}
+
+class PyFrame {
+  public:
+    explicit PyFrame(FramePtr f) : m_frame(std::move(f)) {}
+    std::size_t size() const { return m_frame->size(); }
+    py::array ids() const { return view(m_frame, m_frame->ids); }
+    py::array x() const { return view(m_frame, m_frame->x); }
+    py::array y() const { return view(m_frame, m_frame->y); }
+    py::array z() const { return view(m_frame, m_frame->z); }
+    py::array radius() const { return view(m_frame, m_frame->radius); }
+    py::array positions() const { // the frame keeps x, y, z apart: an N x 3 copy
+        const std::size_t n = m_frame->size();
+        py::array_t<float> out({py::ssize_t(n), py::ssize_t(3)});
+        auto a = out.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < n; ++i) {
+            a(py::ssize_t(i), 0) = m_frame->x[i];
+            a(py::ssize_t(i), 1) = m_frame->y[i];
+            a(py::ssize_t(i), 2) = m_frame->z[i];
+        }
+        return out;
+    }
+    std::vector<std::string> columns() const {
+        std::vector<std::string> out;
+        for (const auto& c : m_frame->attributes)
+            out.push_back(c.name);
+        return out;
+    }
+    py::array column(const std::string& name) const {
+        if (name == "x")
+            return x();
+        if (name == "y")
+            return y();
+        if (name == "z")
+            return z();
+        if (name == "radius")
+            return radius();
+        if (name == "id")
+            return ids();
+        const core::AttributeColumn* c = m_frame->attribute(name);
+        if (!c)
+            throw py::key_error("no column named '" + name + "' (columns: " +
+                                py::str(py::cast(columns())).cast<std::string>() + ")");
+        return c->type == core::ColumnType::Float32 ? view(m_frame, c->floats) : view(m_frame, c->ints);
+    }
+    py::dict box() const {
+        const core::SimulationBox& b = m_frame->box;
+        py::dict d;
+        d["lo"] = py::make_tuple(b.lo[0], b.lo[1], b.lo[2]);
+        d["hi"] = py::make_tuple(b.hi[0], b.hi[1], b.hi[2]);
+        d["periodic"] = py::make_tuple(b.periodic[0], b.periodic[1], b.periodic[2]);
+        d["tilt"] = py::make_tuple(b.xy, b.xz, b.yz);
+        d["triclinic"] = b.triclinic;
+        d["from_file"] = b.known;
+        return d;
+    }
+    const FramePtr& frame() const { return m_frame; }
+
+  private:
+    FramePtr m_frame;
+};
+
+class PyDataset {
+  public:
+    explicit PyDataset(std::shared_ptr<core::Dataset> ds) : m_ds(std::move(ds)) {}
+    std::size_t size() const { return m_ds->frameCount(); }
+    PyFrame frame(long long index) const {
+        const long long n = static_cast<long long>(m_ds->frameCount());
+        if (index < 0)
+            index += n;
+        if (index < 0 || index >= n)
+            throw py::index_error("frame " + std::to_string(index) + " out of range 0.." +
+                                  std::to_string(n - 1));
+        FramePtr f;
+        {
+            py::gil_scoped_release release;
+            f = m_ds->frame(std::size_t(index));
+        }
+        return PyFrame(std::move(f));
+    }
+    long long timestep(std::size_t index) const { return m_ds->location(index).timestep; }
+    const std::shared_ptr<core::Dataset>& dataset() const { return m_ds; }
+
+  private:
+    std::shared_ptr<core::Dataset> m_ds;
+};
+
+PyDataset openData(const py::object& paths) {
+    const auto list = pathsOf(paths);
+    std::shared_ptr<core::Dataset> ds;
+    {
+        py::gil_scoped_release release;
+        ds = core::Dataset::open(list);
+    }
+    return PyDataset(std::move(ds));
+}
+
+class PySession {
+  public:
+    PySession() = default;
+    py::object run(const py::dict& cmd) {
+        const core::Json j = toJson(cmd);
+        {
+            py::gil_scoped_release release;
+            m_session.apply(j);
+        }
+        return py::none();
+    }
+    bool undo() {
+        py::gil_scoped_release release;
+        return m_session.undo();
+    }
+    bool redo() {
+        py::gil_scoped_release release;
+        return m_session.redo();
+    }
+    void save(const std::string& path) { run(py::dict(py::arg("op") = "session.save", py::arg("path") = path)); }
+    py::object state() const { return fromJson(core::sessionToJson(m_session.state(), "")); }
+    std::optional<PyDataset> dataset() const {
+        if (!m_session.dataset())
+            return std::nullopt;
+        return PyDataset(m_session.dataset());
+    }
+    std::optional<PyFrame> frame() {
+        FramePtr f;
+        {
+            py::gil_scoped_release release;
+            f = m_session.currentFrame();
+        }
+        if (!f)
+            return std::nullopt;
+        return PyFrame(std::move(f));
+    }
+    py::array visible() {
+        const core::VisibilityResult* v;
+        {
+            py::gil_scoped_release release;
+            v = &m_session.visibility();
+        }
+        py::array_t<bool> out(py::ssize_t(v->mask.size()));
+        auto a = out.mutable_unchecked<1>();
+        for (std::size_t i = 0; i < v->mask.size(); ++i)
+            a(py::ssize_t(i)) = v->mask[i] != 0;
+        return out;
+    }
+    py::dict faults() const {
+        py::dict d;
+        for (const auto& f : m_session.state().faults)
+            d[py::str(f.name)] = py::array_t<std::int64_t>(py::ssize_t(f.ids.size()), f.ids.data());
+        return d;
+    }
+    bool canUndo() const { return m_session.canUndo(); }
+    bool canRedo() const { return m_session.canRedo(); }
+    std::string undoLabel() const { return m_session.undoLabel(); }
+
+  private:
+    core::Session m_session;
+};
+
+} // namespace
+
+PYBIND11_MODULE(faultline, m) {
+    m.doc() = R"doc(Faultline: find, name and follow faults in Discrete Element Models.
+
+The same core as the workbench and `faultline replay`:
+
+    import faultline
+    ds = faultline.open("run/dump.*.gz")          # every reader; globs; .gz
+    f = ds.frame(-1)                               # a frame: numpy views of its columns
+    f.ids, f.x, f.radius, f["strain"]              # no copies (read-only views)
+    s = faultline.Session("run/dump.*.gz")         # journal ops as dicts (JOURNAL.md)
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    s.run({"op": "threshold.add", "variable": "inc_shear_strain", "low": 0.15, "high": 1e30})
+    s.run({"op": "fault.candidates", "min_size": 50})
+    s.faults                                       # {"C1": ids, ...}
+    s.save("analysis.faultline.json")              # opens in the workbench
+
+Errors are Python exceptions with the messages the CLI prints: faultline.InputError (a file that
+cannot be read: path, line or byte, what was expected) and faultline.CommandError (an op refused).
+)doc";
+    m.attr("__version__") = "0.1.0";
+    static py::exception<core::InputError> inputError(m, "InputError", PyExc_ValueError);
+    static py::exception<core::CommandError> commandError(m, "CommandError", PyExc_RuntimeError);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p)
+                std::rethrow_exception(p);
+        } catch (const core::InputError& e) {
+            inputError(e.what());
+        } catch (const core::CommandError& e) {
+            commandError(e.what());
+        }
+    });
+
+    py::class_<PyFrame>(m, "Frame", "One timestep's spheres. Arrays view the frame's memory (read-only); "
+                                    "`positions` is an N x 3 copy (the frame keeps x, y, z apart).")
+        .def("__len__", &PyFrame::size)
+        .def_property_readonly("ids", &PyFrame::ids, "particle ids (int64), a view")
+        .def_property_readonly("x", &PyFrame::x, "x of the centres (float32), a view")
+        .def_property_readonly("y", &PyFrame::y, "y of the centres (float32), a view")
+        .def_property_readonly("z", &PyFrame::z, "z of the centres (float32), a view")
+        .def_property_readonly("radius", &PyFrame::radius, "radii (float32), a view")
+        .def_property_readonly("positions", &PyFrame::positions, "N x 3 centres (float32), a copy")
+        .def_property_readonly("columns", &PyFrame::columns, "the variables' names, in file order")
+        .def_property_readonly("box", &PyFrame::box, "the simulation box: lo, hi, periodic, tilt")
+        .def("__getitem__", &PyFrame::column, py::arg("name"),
+             "a variable (float32 or int32), or x, y, z, radius, id: a view")
+        .def("__contains__", [](const PyFrame& f, const std::string& name) {
+            return f.frame()->attribute(name) != nullptr || name == "x" || name == "y" ||
+                   name == "z" || name == "radius" || name == "id";
+        });
+
+    py::class_<PyDataset>(m, "Dataset", "Frames of a DEM run, loaded lazily.")
+        .def("__len__", &PyDataset::size)
+        .def("frame", &PyDataset::frame, py::arg("index"), "frame `index` (negative: from the end)")
+        .def("timestep", &PyDataset::timestep, py::arg("index"), "the timestep of frame `index`");
+
+    m.def("open", &openData, py::arg("paths"),
+          "Open DEM output: one path, a glob (`dump.*.gz`) or a list of them; every reader "
+          "(LAMMPS/LIGGGHTS dumps, VTK legacy and XML, CSV, Yade, MercuryDPM). Raises InputError.");
+
+    py::class_<PySession>(m, "Session", "A Faultline session: the journal's ops (JOURNAL.md) as dicts.")
+        .def(py::init([](const py::object& paths) {
+                 auto s = std::make_unique<PySession>();
+                 if (!paths.is_none())
+                     s->run(py::dict(py::arg("op") = "data.open", py::arg("paths") = py::cast(pathsOf(paths))));
+                 return s;
+             }),
+             py::arg("paths") = py::none(), "A new session, with data opened when paths are given.")
+        .def_static("load", [](const std::string& path) {
+                auto s = std::make_unique<PySession>();
+                s->run(py::dict(py::arg("op") = "session.open", py::arg("path") = path));
+                return s;
+            }, py::arg("path"), "A saved session (.faultline.json), with its data.")
+        .def("run", &PySession::run, py::arg("command"),
+             "Run one journal op, e.g. {'op': 'fault.candidates', 'min_size': 50}, undo and redo "
+             "included. Raises CommandError, having changed nothing.")
+        .def("undo", &PySession::undo, "Undo the last change; False when there is none.")
+        .def("redo", &PySession::redo, "Redo what undo reverted; False when there is none.")
+        .def("save", &PySession::save, py::arg("path"), "Save (session.save): opens in the workbench.")
+        .def_property_readonly("can_undo", &PySession::canUndo)
+        .def_property_readonly("can_redo", &PySession::canRedo)
+        .def_property_readonly("undo_label", &PySession::undoLabel, "what undo would revert, in words")
+        .def_property_readonly("state", &PySession::state, "everything a saved session holds, as a dict")
+        .def_property_readonly("dataset", &PySession::dataset, "the open data, or None")
+        .def_property_readonly("frame", &PySession::frame, "the current frame, or None")
+        .def_property_readonly("visible", &PySession::visible,
+                               "per sphere of the current frame: passes the boxes, thresholds and fault filter (a copy)")
+        .def_property_readonly("faults", &PySession::faults, "{name: member ids} (copies)");
+}

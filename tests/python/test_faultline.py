@@ -1,0 +1,111 @@
+"""Issue 38: the Python module over the same core (run by CTest: python.pytest)."""
+import csv
+import os
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import faultline
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "data")
+LAMMPS = os.path.join(DATA, "real_runs", "lammps", "dump.extension.gz")
+
+
+def test_arrays_equal_what_the_core_writes(tmp_path):
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "frame.set", "frame": 4})
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    out = tmp_path / "spheres.csv"
+    s.run({"op": "export.csv", "what": "spheres", "path": str(out), "variables": ["x", "z", "inc_shear_strain"]})
+    rows = list(csv.DictReader(open(out)))
+    f = s.frame
+    assert len(f) == len(rows) == 7533
+    by_id = {int(r["id"]): r for r in rows}
+    ids = f.ids
+    for i in range(0, len(f), 101):
+        r = by_id[int(ids[i])]
+        assert f.x[i] == pytest.approx(float(r["x"]), abs=1e-4)
+        assert f["z"][i] == pytest.approx(float(r["z"]), abs=1e-4)
+        v = f["inc_shear_strain"][i]
+        assert (np.isnan(v) and r["inc_shear_strain"].lower() == "nan") or v == pytest.approx(float(r["inc_shear_strain"]), rel=1e-5)
+    assert f.box["periodic"] == (False, True, False)
+    assert f.positions.shape == (7533, 3) and f.positions[5, 2] == f.z[5]
+
+
+def test_columns_view_the_frame_without_copying():
+    f = faultline.open(LAMMPS).frame(2)
+    x1, x2 = f.x, f["x"]
+    assert x1.__array_interface__["data"][0] == x2.__array_interface__["data"][0]
+    assert x1.base is not None and not x1.flags.writeable and not x1.flags.owndata
+    r = f.radius
+    del f  # the arrays keep the frame alive
+    assert r.mean() == pytest.approx(0.5, abs=0.01)
+    with pytest.raises(ValueError):
+        x1[0] = 1.0
+    with pytest.raises(KeyError, match="no column named 'strian'"):
+        faultline.open(LAMMPS).frame(0)["strian"]
+
+
+def test_a_hostile_file_raises_the_readers_message(tmp_path):
+    bad = tmp_path / "truncated.dump"
+    bad.write_text("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS pp pp pp\n"
+                   "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n2 0.5\n")
+    with pytest.raises(faultline.InputError, match="truncated.dump"):
+        faultline.open(str(bad)).frame(0)
+    with pytest.raises(faultline.InputError, match="no file matches"):
+        faultline.open(str(tmp_path / "none.*.gz"))
+
+
+def test_refused_ops_raise_and_change_nothing():
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "threshold.add", "variable": "z", "low": 5, "high": 10})
+    before = s.state
+    with pytest.raises(faultline.CommandError, match="low must not exceed high"):
+        s.run({"op": "threshold.set", "variable": "z", "low": 20, "high": 10})
+    assert s.state == before
+
+
+def test_candidates_undo_redo_save_and_load(tmp_path):
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "frame.set", "frame": 4})
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    s.run({"op": "threshold.add", "variable": "inc_shear_strain", "low": 0.15, "high": 1e30})
+    assert s.visible.sum() == 971
+    s.run({"op": "fault.candidates", "min_size": 50, "prefix": "F"})
+    assert sorted(s.faults) == ["F1", "F2"]
+    assert s.undo() and s.faults == {}
+    assert s.redo() and len(s.faults["F1"]) == 511
+    path = tmp_path / "py.faultline.json"
+    s.save(str(path))
+    t = faultline.Session.load(str(path))
+    assert {k: list(v) for k, v in t.faults.items()} == {k: list(v) for k, v in s.faults.items()}
+    assert t.state["thresholds"] == s.state["thresholds"]
+
+
+def test_long_calls_release_the_gil():
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "frame.set", "frame": 4})
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    for _ in range(5):  # strain of every frame, candidates: seconds of C++ in all
+        s.run({"op": "strain.add", "since_frame": 0, "prefix": "c%d_" % _})
+        s.frame
+    end = time.perf_counter()
+    stop.set()
+    t.join()
+    during = [x for x in ticks if start <= x <= end]
+    assert end - start > 0.05
+    assert len(during) > 0.3 * (end - start) / 0.002  # the thread kept running
