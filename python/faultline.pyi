@@ -45,6 +45,14 @@ class Dataset:
 def open(paths: Union[str, Sequence[str]]) -> Dataset:
     """Open DEM output (a path, a glob or a list); raises InputError."""
 
+class generate:
+    @staticmethod
+    def demo() -> str:
+        """The demo model's dump, generated once per user (one to two minutes)."""
+    @staticmethod
+    def planes(size: str = "small", path: str = "planes.dump.gz", seed: int = -1) -> tuple[str, dict[str, Any]]:
+        """Planted planar faults written as a LAMMPS dump; returns (path, truth)."""
+
 class Session:
     """A Faultline session: the journal's ops (JOURNAL.md) as dicts."""
     def __init__(self, paths: Union[None, str, Sequence[str]] = None) -> None: ...
@@ -70,3 +78,11 @@ class Session:
     def visible(self) -> npt.NDArray[np.bool_]: ...
     @property
     def faults(self) -> dict[str, npt.NDArray[np.int64]]: ...
+    def render(self, view: str = "main", size: tuple[int, int] = (1280, 720), frame: Optional[int] = None,
+               transparent: bool = False) -> npt.NDArray[np.uint8]:
+        """The view drawn offscreen: H x W x 4 RGBA."""
+    def fault_metrics(self) -> np.ndarray:
+        """Every fault's metrics in every frame, a structured array (export.csv fault_metrics)."""
+    def fault_growth(self) -> np.ndarray: ...
+    def fault_events(self) -> np.ndarray: ...
+    def spheres(self, variables: Optional[Sequence[str]] = None, only_visible: bool = False) -> np.ndarray: ...

@@ -6,11 +6,20 @@
 #include "core/session/command_args.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "core/synth/demo_model.hpp"
+#include "core/synth/dump_writer.hpp"
+#include "core/synth/planes_model.hpp"
+#ifdef FAULTLINE_PYTHON_RENDER
+#include "ui/viewport/session_figure.hpp"
+#endif
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -150,7 +159,32 @@ PyDataset openData(const py::object& paths) {
 
 class PySession {
   public:
-    PySession() = default;
+    PySession() {
+#ifdef FAULTLINE_PYTHON_RENDER
+        ui::registerRenderOp(m_session); // the journal's render op, as faultline replay has it
+#endif
+    }
+#ifdef FAULTLINE_PYTHON_RENDER
+    // A view as the workbench and `faultline render` draw it: H x W x 4 uint8 (RGBA), offscreen
+    // (a hidden window with a display, EGL without one).
+    py::array render(const std::string& view, std::pair<int, int> size, std::optional<std::size_t> frame,
+                     bool transparent) {
+        ui::FigureRequest request;
+        request.view = view;
+        request.width = size.first;
+        request.height = size.second;
+        request.frame = frame;
+        request.transparent = transparent;
+        ui::RgbaImage image;
+        {
+            py::gil_scoped_release release;
+            image = ui::renderSessionImage(m_session, request);
+        }
+        py::array_t<std::uint8_t> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
+        std::memcpy(out.mutable_data(), image.pixels.data(), image.pixels.size());
+        return out;
+    }
+#endif
     py::object run(const py::dict& cmd) {
         const core::Json j = toJson(cmd);
         {
@@ -202,6 +236,32 @@ class PySession {
             d[py::str(f.name)] = py::array_t<std::int64_t>(py::ssize_t(f.ids.size()), f.ids.data());
         return d;
     }
+    // A CSV the core writes (export.csv), read back as a numpy structured array: the same
+    // values the CLI and the workbench export, one column per field.
+    py::object table(const std::string& what, const py::object& variables, bool onlyVisible) {
+        namespace fs = std::filesystem;
+        const fs::path dir = fs::temp_directory_path() /
+                             ("faultline-py-" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+        fs::create_directories(dir);
+        const std::string path = (dir / (what + ".csv")).string();
+        py::dict cmd(py::arg("op") = "export.csv", py::arg("what") = what, py::arg("path") = path);
+        if (!variables.is_none())
+            cmd["variables"] = variables;
+        if (onlyVisible)
+            cmd["only_visible"] = true;
+        try {
+            run(cmd);
+        } catch (...) {
+            fs::remove_all(dir);
+            throw;
+        }
+        py::object np = py::module_::import("numpy");
+        py::object out = np.attr("genfromtxt")(path, py::arg("delimiter") = ",", py::arg("names") = true,
+                                               py::arg("dtype") = py::none(), py::arg("encoding") = "utf-8",
+                                               py::arg("ndmin") = 1);
+        fs::remove_all(dir);
+        return out;
+    }
     bool canUndo() const { return m_session.canUndo(); }
     bool canRedo() const { return m_session.canRedo(); }
     std::string undoLabel() const { return m_session.undoLabel(); }
@@ -209,6 +269,32 @@ class PySession {
   private:
     core::Session m_session;
 };
+
+// faultline.generate.planes: the planted-planes model written as a LAMMPS dump, and its truth.
+py::tuple generatePlanes(const std::string& size, const std::string& path, int seed) {
+    core::PlanesModelOptions options;
+    if (size == "network")
+        options = core::planesNetworkOptions();
+    else if (size == "small" || size == "medium" || size == "large")
+        options = core::planesOptionsFor(size == "small"    ? core::ModelSize::Small
+                                         : size == "medium" ? core::ModelSize::Medium
+                                                            : core::ModelSize::Large);
+    else
+        throw py::value_error("size must be small, medium, large or network, not '" + size + "'");
+    if (seed >= 0)
+        options.seed = static_cast<std::uint64_t>(seed);
+    std::string truth;
+    {
+        py::gil_scoped_release release;
+        const core::PlanesModel model = core::generatePlanesModel(options);
+        core::LammpsDumpWriter writer(path, path.ends_with(".gz") ? 1 : 0);
+        for (const core::Frame& f : model.frames)
+            writer.write(f, core::extensionDumpColumns());
+        writer.close();
+        truth = core::planesTruthJson(model);
+    }
+    return py::make_tuple(path, py::module_::import("json").attr("loads")(truth));
+}
 
 } // namespace
 
@@ -272,6 +358,18 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
           "Open DEM output: one path, a glob (`dump.*.gz`) or a list of them; every reader "
           "(LAMMPS/LIGGGHTS dumps, VTK legacy and XML, CSV, Yade, MercuryDPM). Raises InputError.");
 
+    py::module_ generate = m.def_submodule("generate", "The built-in model generators.");
+    generate.def("demo", [] {
+        py::gil_scoped_release release;
+        return core::ensureDemoModel();
+    }, "The demo model's dump (the 3-D extension block the workbench opens), generated once per "
+       "user (one to two minutes) and reused.");
+    generate.def("planes", &generatePlanes, py::arg("size") = "small", py::arg("path") = "planes.dump.gz",
+                 py::arg("seed") = -1,
+                 "Planted planar faults in a block (small ~7k spheres, medium ~34k, large ~270k, "
+                 "network ~154k: crossing, ending and listric faults), written as a LAMMPS dump at "
+                 "`path`. Returns (path, truth): the faults' planes, throws and members per frame.");
+
     py::class_<PySession>(m, "Session", "A Faultline session: the journal's ops (JOURNAL.md) as dicts.")
         .def(py::init([](const py::object& paths) {
                  auto s = std::make_unique<PySession>();
@@ -299,5 +397,23 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
         .def_property_readonly("frame", &PySession::frame, "the current frame, or None")
         .def_property_readonly("visible", &PySession::visible,
                                "per sphere of the current frame: passes the boxes, thresholds and fault filter (a copy)")
-        .def_property_readonly("faults", &PySession::faults, "{name: member ids} (copies)");
+        .def_property_readonly("faults", &PySession::faults, "{name: member ids} (copies)")
+#ifdef FAULTLINE_PYTHON_RENDER
+        .def("render", &PySession::render, py::arg("view") = "main",
+             py::arg("size") = std::make_pair(1280, 720), py::arg("frame") = py::none(),
+             py::arg("transparent") = false,
+             "The view drawn offscreen as an H x W x 4 uint8 RGBA array (size is (width, height)); "
+             "no display needed (EGL)")
+#endif
+        .def("fault_metrics", [](PySession& s) { return s.table("fault_metrics", py::none(), false); },
+             "Every fault's metrics in every frame (export.csv fault_metrics) as a numpy "
+             "structured array: frame, fault, count, dip, dip_direction, throw, ...")
+        .def("fault_growth", [](PySession& s) { return s.table("fault_growth", py::none(), false); },
+             "The metrics of what each fault is in each frame, followed through time")
+        .def("fault_events", [](PySession& s) { return s.table("fault_events", py::none(), false); },
+             "When faults appeared, linked and split: frame, kind, faults")
+        .def("spheres", [](PySession& s, const py::object& variables, bool onlyVisible) {
+                 return s.table("spheres", variables, onlyVisible);
+             }, py::arg("variables") = py::none(), py::arg("only_visible") = false,
+             "The current frame's spheres: id and the variables asked for (export.csv spheres)");
 }

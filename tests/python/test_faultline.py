@@ -109,3 +109,47 @@ def test_long_calls_release_the_gil():
     during = [x for x in ticks if start <= x <= end]
     assert end - start > 0.05
     assert len(during) > 0.3 * (end - start) / 0.002  # the thread kept running
+
+
+def test_metrics_events_and_spheres_as_structured_arrays():
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "frame.set", "frame": 4})
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    s.run({"op": "strain.add", "since_frame": 0})
+    s.run({"op": "threshold.add", "variable": "inc_shear_strain", "low": 0.15, "high": 1e30})
+    s.run({"op": "fault.candidates", "min_size": 50, "prefix": "F"})
+    m = s.fault_metrics()
+    assert set(m["fault"]) == {"F1", "F2"} and len(m) == 10  # 5 frames x 2 faults
+    last = m[(m["frame"] == 4) & (m["fault"] == "F1")][0]
+    assert 45 < last["dip"] < 60 and last["dip_direction"] == 90
+    e = s.fault_events()
+    assert list(e["kind"]) == ["appeared", "appeared"] and list(e["frame"]) == [1, 1]
+    g = s.fault_growth()
+    f1 = g[g["fault"] == "F1"]
+    assert f1["throw"][-1] < f1["throw"][1] < 0  # normal fault, throw growing
+    sp = s.spheres(["inc_shear_strain"], only_visible=True)
+    assert len(sp) == 971 and (sp["inc_shear_strain"] >= 0.15).all()
+
+
+def test_planted_planes_are_generated_and_found(tmp_path):
+    path, truth = faultline.generate.planes("small", str(tmp_path / "planes.dump.gz"), seed=7)
+    ds = faultline.open(path)
+    assert len(ds) == len(truth["faults"][0]["members"])
+    s = faultline.Session(path)
+    s.run({"op": "frame.set", "frame": len(ds) - 1})
+    s.run({"op": "threshold.add", "variable": "broken_bonds", "low": 1, "high": 1e9})
+    s.run({"op": "fault.candidates", "min_size": 50})
+    assert len(s.faults) >= len(truth["faults"])
+    with pytest.raises(ValueError, match="size must be"):
+        faultline.generate.planes("huge")
+
+
+def test_render_returns_the_view_as_an_rgba_array():
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "color.set", "view": "main", "variable": "z"})
+    img = s.render("main", (320, 200))
+    assert img.shape == (200, 320, 4) and img.dtype == np.uint8
+    assert img[..., 3].min() == 255                     # opaque
+    assert len(np.unique(img.reshape(-1, 4), axis=0)) > 50  # shaded spheres and a legend, not blank
+    with pytest.raises(faultline.CommandError, match="no view named"):
+        s.render("nowhere", (64, 64))
