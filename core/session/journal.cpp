@@ -257,6 +257,8 @@ ReplayReport replayJournal(const std::string& path, const ReplayOptions& options
             } else {
                 ++report.commands;
                 session.apply(line.value);
+                if (!session.lastNote().empty()) // what the op wants said ("no faults made: ...")
+                    report.warnings.push_back({line.line, session.lastNote()});
                 for (auto& note : missingVariables(session, warned)) {
                     if (options.strict) {
                         report.failures.push_back({line.line, note + " (--strict)"});

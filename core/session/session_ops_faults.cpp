@@ -298,12 +298,18 @@ void registerFaultOps(OpTable& ops) {
         if (!frame)
             throw CommandError("fault.candidates: no data is open");
         const CandidateSet set = findCandidates(*frame, s.visibility().mask, options);
-        if (set.candidates.empty())
-            throw CommandError("fault.candidates: no group of at least " +
-                               std::to_string(options.minSize) + " visible spheres" +
-                               (options.method == CandidateMethod::Network
-                                    ? " that follows a fault (try \"method\": \"connected\")"
-                                    : " linked"));
+        if (set.candidates.empty()) {
+            // Nothing found is an answer, not an error: a loop over frames (or a journal re-run
+            // on other data) goes on, and the note says so (the status line, replay's output).
+            // The empty batch is still one undo step, so an undo after it undoes nothing else.
+            s.addNote("no faults made: no group of at least " + std::to_string(options.minSize) +
+                      " visible spheres" +
+                      (options.method == CandidateMethod::Network
+                           ? " that follows a fault in frame " + std::to_string(s.state().frame) +
+                                 " (try \"method\": \"connected\")"
+                           : " linked in frame " + std::to_string(s.state().frame)));
+            return s.execute({{"op", "batch"}, {"commands", Json::array()}});
+        }
         Json batch = Json::array();
         for (const Fault& f : faultsFromCandidates(set.candidates, prefix)) {
             if (s.state().fault(f.name))
