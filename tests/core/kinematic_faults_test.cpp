@@ -98,3 +98,19 @@ TEST(KinematicFaults, OneRigidBodyHasNoFaultAndTooFewSpheresAreRefused) {
     tiny.finalize();
     EXPECT_THROW(kinematicFaults(tiny, tiny), std::invalid_argument);
 }
+
+// The LAMMPS shortening run (examples/lammps/in.shortening): a wall pushes sand against a fixed
+// one; between the kept frames 1 and 2 (3 to 6 diameters of push) the wedge rides up a thrust
+// dipping about 35 degrees towards the pusher (west) over the resting foreland. Later pairs
+// deform the wedge internally: no sharp boundary there.
+TEST(KinematicFaults, TheLammpsShorteningFormsAThrust) {
+    auto ds = Dataset::open({run("lammps/dump.shortening.gz")});
+    ASSERT_EQ(ds->frameCount(), 5u);
+    const KinematicResult k = kinematicFaults(*ds->frame(1), *ds->frame(2));
+    print("LAMMPS shortening 1 -> 2", k);
+    const auto faults = identifiable(k);
+    ASSERT_EQ(faults.size(), 1u);
+    EXPECT_NEAR(faults[0].plane.orientation.dip, 35, 4);
+    EXPECT_NEAR(faults[0].plane.orientation.dipDirection, 270, 5);
+    EXPECT_NEAR(faults[0].plane.centroid[0], 22.9, 3.0);
+}
