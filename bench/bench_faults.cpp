@@ -180,6 +180,34 @@ void BM_CandidatesMillion(benchmark::State& state) {
 }
 BENCHMARK(BM_CandidatesMillion)->Unit(benchmark::kMillisecond)->Iterations(3);
 
+// The same rift as a threshold on a real run's noisy strain sees it (issue 37: thick bands
+// whose strain is noisy): a fifth of each band's spheres fall below the threshold, and one
+// sphere in fifty of the rest of the block passes it, scattered (about 1,060,000 visible).
+const SlabScene& noisyMillionScene() {
+    static const SlabScene scene = [] {
+        SlabScene s = millionScene();
+        std::uint64_t state = 0x9e3779b97f4a7c15ull;
+        auto uniform = [&] {
+            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+            return double(state >> 11) / double(1ull << 53);
+        };
+        for (std::size_t r = 0; r < s.frame.size(); ++r) {
+            const double u = uniform();
+            if (s.visible[r] && u < 0.2)
+                s.visible[r] = 0, s.slabOf[r] = -1;
+            else if (!s.visible[r] && u < 0.02)
+                s.visible[r] = 1;
+        }
+        return s;
+    }();
+    return scene;
+}
+
+void BM_CandidatesMillionNoisy(benchmark::State& state) {
+    runCandidates(state, noisyMillionScene(), CandidateMethod::Network);
+}
+BENCHMARK(BM_CandidatesMillionNoisy)->Unit(benchmark::kMillisecond)->Iterations(3);
+
 // 50 x 50 x 40 = 100,000 spheres, all visible: one component, every sphere linked.
 void BM_CandidatesAllVisible(benchmark::State& state) {
     static const Frame frame = lattice(50, 50, 40, 0.0, 2);
