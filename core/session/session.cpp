@@ -56,6 +56,23 @@ Session::Session() {
 
 Session::~Session() = default;
 
+namespace {
+// A dock layout without what a click or a splitter drag changes (each area's active tab, the
+// splits' ratios): which panels are where.
+Json layoutShape(Json layout) {
+    if (layout.is_object()) {
+        layout.erase("active");
+        layout.erase("ratio");
+        for (auto& [key, value] : layout.items())
+            value = layoutShape(value);
+    } else if (layout.is_array()) {
+        for (auto& value : layout)
+            value = layoutShape(value);
+    }
+    return layout;
+}
+} // namespace
+
 bool Session::knowsOp(const std::string& op) const {
     return op == "undo" || op == "redo" || m_ops.count(op) > 0;
 }
@@ -156,13 +173,18 @@ void Session::apply(const Json& cmd) {
         };
         const long long sizeBefore = faultSize();
         const bool wasModified = modified();
+        const Json layoutBefore = op == "layout.set" ? m_state.dockLayout : Json();
         bool changesState = false;
         Json inverse = run(cmd, changesState);
-        // Time and the camera are view state (as in OVITO and ParaView): they leave nothing
-        // unsaved to ask about and make no undo step (issue 41: the first Ctrl+Z after a
-        // rectangle undid a camera move). A session still saves them. Rearranging the panels
-        // stays undoable: a tab dropped on the wrong edge is put back with Ctrl+Z.
-        const bool viewState = op == "frame.set" || op == "camera.set";
+        // Time, the camera, the panel shown in each area and the splitters' places are view
+        // state (as in OVITO and ParaView): they leave nothing unsaved to ask about and make no
+        // undo step (issue 41: the first Ctrl+Z after a rectangle undid a camera move; a click
+        // on a tab became an undo step that emptied the redo history, so cancelling a save
+        // prompt lost what redo would have brought back). A session still saves them. Moving a
+        // panel to another area stays undoable: a tab dropped on the wrong edge goes back.
+        const bool viewState =
+            op == "frame.set" || op == "camera.set" ||
+            (op == "layout.set" && layoutShape(layoutBefore) == layoutShape(m_state.dockLayout));
         if (viewState && !wasModified)
             markSaved();
         if (changesState && (op == "data.open" || op == "session.open")) {

@@ -177,6 +177,7 @@ TEST(Session, CameraMovesAreNoUndoSteps) {
     TempDir dir;
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.2,"first":{"tabs":["data","faults"],"active":"data"},"second":{"tabs":["viewports"]}}}})"));
     s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
     s.markSaved();
     s.apply(cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"));
@@ -185,6 +186,10 @@ TEST(Session, CameraMovesAreNoUndoSteps) {
     ASSERT_TRUE(s.undo());
     EXPECT_EQ(s.state().fault("F1"), nullptr);
     EXPECT_EQ(s.state().view("main")->camera.azimuth, 30); // the camera stays where it went
+    // Nor does a click on a tab or a splitter drag: redo keeps what it would bring back.
+    s.apply(cmd(R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.3,"first":{"tabs":["data","faults"],"active":"faults"},"second":{"tabs":["viewports"]}}}})"));
+    EXPECT_TRUE(s.canRedo());
+    EXPECT_EQ(s.redoLabel(), "make fault F1 (2 spheres)");
     EXPECT_EQ(describeFailure(cmd(R"({"op":"threshold.set","variable":"strain","low":2,"high":1})"),
                               "threshold.set: low must not exceed high"),
               "Could not change the strain threshold: low must not exceed high");

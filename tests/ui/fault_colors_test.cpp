@@ -43,10 +43,10 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     headless.click(wb(), "candidates.accept.1");
     const auto created = headless.emitted("fault.create");
     ASSERT_EQ(created.size(), 1u);
-    EXPECT_EQ(created[0]["name"], "F1");
+    EXPECT_EQ(created[0]["name"], "C1"); // as the list and the legend name it
     EXPECT_EQ(created[0]["ids"].size(), 16u);
-    ASSERT_NE(session.state().fault("F1"), nullptr);
-    EXPECT_EQ(wb().selection().faults, (std::set<std::string>{"F1"}));
+    ASSERT_NE(session.state().fault("C1"), nullptr);
+    EXPECT_EQ(wb().selection().faults, (std::set<std::string>{"C1"}));
     // Accept all: the journal's op with the same parameters, under another prefix.
     session.undo();
     headless.frames(wb(), 2);

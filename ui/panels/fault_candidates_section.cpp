@@ -113,7 +113,9 @@ class FaultCandidatesSection {
                                    ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
                                    ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
                 ImGui::TableNextColumn();
-                ImGui::Text("#%d  %zu spheres", k + 1, cands[static_cast<std::size_t>(k)].size());
+                ImGui::Text("#%d  %zu", k + 1, cands[static_cast<std::size_t>(k)].size());
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%zu spheres", cands[static_cast<std::size_t>(k)].size());
                 if (static_cast<std::size_t>(k) < preview->shapes.size()) {
                     const core::CandidateShape& shape = preview->shapes[static_cast<std::size_t>(k)];
                     if (shape.valid) {
@@ -202,7 +204,10 @@ class FaultCandidatesSection {
 
     void accept(PanelContext& wb, int k) {
         const auto& cand = wb.selection().candidates->set.candidates[static_cast<std::size_t>(k)];
-        const std::string name = nextFaultName(wb.state());
+        // Named as the list and the legend call it (prefix + number), unless that name is taken.
+        std::string name = m_prefix + std::to_string(k + 1);
+        if (m_prefix.empty() || wb.state().fault(name))
+            name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
         core::Json cmd = {{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}};
         const auto& shapes = wb.selection().candidates->shapes;

@@ -50,14 +50,18 @@ std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* 
     return key;
 }
 
-// The selection per-frame results ran with, in words: "thresholds broken_bonds 3 .. 1e+30;
+// The selection per-frame results ran with, in words: "thresholds broken_bonds 3 .. max;
 // boxes north (keep)" (issue 41: events changed with the thresholds without a word).
 std::string conditionsText(const core::SessionState& s) {
     std::string thresholds, boxes;
     char buf[96];
     for (const auto& t : s.thresholds)
         if (t.enabled) {
-            std::snprintf(buf, sizeof buf, " %.4g .. %.4g", t.low, t.high);
+            char low[32], high[32]; // open ends in words, as the Thresholds panel says them
+            std::snprintf(low, sizeof low, "%.4g", t.low);
+            std::snprintf(high, sizeof high, "%.4g", t.high);
+            std::snprintf(buf, sizeof buf, " %s .. %s", t.low <= -1e29 ? "min" : low,
+                          t.high >= 1e29 ? "max" : high);
             thresholds += (thresholds.empty() ? "" : ", ") + t.variable + buf;
         }
     for (const auto& b : s.boxes)
@@ -168,7 +172,9 @@ class FaultMetricsSection {
         // Followed before with other thresholds or boxes: followed again, and said so.
         if (m_events && m_events->key != key && m_followAgain &&
             !(m_eventsJob && !m_eventsJob->finished())) {
-            wb.info("Thresholds or boxes changed: following the faults through time again");
+            wb.info(m_events->conditions != conditionsText(s)
+                        ? "Thresholds or boxes changed: following the faults through time again"
+                        : "The faults shown changed: following them through time again");
             findEvents(wb, ds, shown, key);
         }
         const bool followed = m_events && m_events->key == key;

@@ -343,9 +343,16 @@ class SurfacesPanel final : public Panel {
                 emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}},
                                     true);
             wb.mark("surfaces.empty_wrap");
-        } else if (status.state == SurfaceStatus::State::Ready)
-            hint("%zu spheres, %zu triangles, %.2f s", status.spheres,
-                                status.triangles, status.seconds);
+        } else if (status.state == SurfaceStatus::State::Ready) {
+            const core::Fault* whole = s.fault(fault);
+            if (whole && status.spheres < whole->ids.size()) // only part of it formed here
+                hint("%zu of its %zu spheres pass the thresholds in this frame; %zu triangles, "
+                     "%.2f s",
+                     status.spheres, whole->ids.size(), status.triangles, status.seconds);
+            else
+                hint("%zu spheres, %zu triangles, %.2f s", status.spheres, status.triangles,
+                     status.seconds);
+        }
 
         const bool exists = s.surface(fault) != nullptr;
         ImGui::BeginDisabled(!wb.dataset());
