@@ -9,10 +9,17 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <vector>
 
 namespace faultline::core {
 
 namespace {
+
+// Vertices stay in the model's coordinates (z up, as DEM codes write them); each node turns
+// them -90 degrees about x into glTF's y-up frame, so Blender, three.js and other viewers stand
+// the model upright (issue 41 walkthrough: faults.glb loaded on its side). Quaternion x, y, z, w.
+const std::vector<double> kZUpToYUp{-0.70710678118654752, 0.0, 0.0, 0.70710678118654752};
+
 
 using V3 = std::array<float, 3>;
 
@@ -142,6 +149,7 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
             throw std::invalid_argument("exportGlb: surface '" + s.name + "' has no mesh");
         tinygltf::Node node;
         node.name = s.name;
+        node.rotation = kZUpToYUp;
         if (s.mesh->triangleCount() > 0)
             node.mesh = addMesh(model, s.name, s.mesh->positions, s.mesh->normals, &s.mesh->colors,
                                 s.mesh->indices, 0);
@@ -188,6 +196,7 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
         model.materials.push_back(glyphMaterial);
         tinygltf::Node node;
         node.name = "glyphs";
+        node.rotation = kZUpToYUp;
         node.mesh = addMesh(model, "glyphs", positions, normals, &colors, indices, 1);
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);

@@ -121,6 +121,12 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
     EXPECT_EQ(model.nodes[0].name, "F1");
     EXPECT_EQ(model.nodes[1].name, "F2");
     EXPECT_EQ(model.nodes[2].name, "glyphs");
+    // z up (the model's) turned into glTF's y up by each node: -90 degrees about x.
+    for (const auto& n : model.nodes) {
+        ASSERT_EQ(n.rotation.size(), 4u);
+        EXPECT_NEAR(n.rotation[0], -std::sqrt(0.5), 1e-9);
+        EXPECT_NEAR(n.rotation[3], std::sqrt(0.5), 1e-9);
+    }
     const auto& prim = model.meshes[model.nodes[0].mesh].primitives.at(0);
     for (const char* attr : {"POSITION", "NORMAL", "COLOR_0"})
         EXPECT_TRUE(prim.attributes.count(attr));
