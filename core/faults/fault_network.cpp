@@ -2,6 +2,7 @@
 
 #include "core/faults/plane_fit.hpp"
 #include "core/faults/sphere_cells.hpp"
+#include "core/util/union_find.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -53,22 +54,8 @@ F3 normalized(const F3& v) {
     return len > 0 ? F3{v[0] / len, v[1] / len, v[2] / len} : F3{0, 0, 1};
 }
 
-// Union-find over regions (sequential), smaller index as root: deterministic.
-struct RegionSets {
-    std::vector<std::uint32_t> parent;
-    explicit RegionSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-    std::uint32_t find(std::uint32_t x) {
-        while (parent[x] != x)
-            x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(std::uint32_t a, std::uint32_t b) {
-        a = find(a);
-        b = find(b);
-        if (a != b)
-            parent[std::max(a, b)] = std::min(a, b);
-    }
-};
+// Union-find over regions: smaller index as root, deterministic.
+using RegionSets = UnionFind;
 
 // The thin axis of a section model, or -1: thinner than the neighbourhood's diameter and than a
 // quarter of the model's longest side, so a neighbourhood cannot see a plane's tilt along it.

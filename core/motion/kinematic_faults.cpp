@@ -2,6 +2,7 @@
 
 #include "core/faults/sphere_cells.hpp"
 #include "core/model/periodic_cell.hpp"
+#include "core/util/union_find.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,20 +28,6 @@ double median(std::vector<double> v) {
     return *mid;
 }
 
-struct Sets {
-    std::vector<std::uint32_t> parent;
-    explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-    std::uint32_t find(std::uint32_t x) {
-        while (parent[x] != x)
-            x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(std::uint32_t a, std::uint32_t b) {
-        a = find(a), b = find(b);
-        if (a != b)
-            parent[std::max(a, b)] = std::min(a, b);
-    }
-};
 
 // Solves the 6x6 system m x = b by Gaussian elimination with partial pivoting; false when
 // singular.
@@ -111,12 +98,15 @@ RigidMotion fitRigid(const std::vector<Vec3d>& p, const std::vector<Vec3d>& u,
 double transitionWidth(const std::vector<Vec3d>& pos, const std::vector<Vec3d>& u,
                        const std::vector<std::int32_t>& label, std::int32_t a, std::int32_t b,
                        const PlaneFit& plane, double d, const PeriodicCell& cell) {
-    Vec3d ua{}, ub{};
+    Vec3d ua{}, ub{}; // each block's median motion
     for (int k = 0; k < 3; ++k) {
         std::vector<double> ca, cb;
-        for (std::size_t i = 0; i < pos.size(); ++i)
-            (label[i] == a ? ca : label[i] == b ? cb : ca).push_back(label[i] == a || label[i] == b ? u[i][k] : NAN);
-        std::erase_if(ca, [](double v) { return std::isnan(v); });
+        for (std::size_t i = 0; i < pos.size(); ++i) {
+            if (label[i] == a)
+                ca.push_back(u[i][k]);
+            else if (label[i] == b)
+                cb.push_back(u[i][k]);
+        }
         ua[k] = median(std::move(ca));
         ub[k] = median(std::move(cb));
     }
@@ -245,7 +235,7 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
     std::vector<std::int32_t> label(n, -1);
     std::vector<RigidMotion> motions;
     {
-        Sets sets(n);
+        UnionFind sets(n);
         for (const auto& [i, j] : pairs)
             if (norm(sub(u[i], u[j])) < tol)
                 sets.unite(i, j);
@@ -275,7 +265,7 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
         }
         // Pieces of one block smaller than a block take their neighbours' majority.
         for (int round = 0; round < 5; ++round) {
-            Sets same(n);
+            UnionFind same(n);
             for (const auto& [i, j] : pairs)
                 if (label[i] == label[j])
                     same.unite(i, j);
