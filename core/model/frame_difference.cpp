@@ -145,4 +145,34 @@ AttributeColumn displacementSince(const Frame& now, const Frame& reference) {
     return out;
 }
 
+std::optional<std::pair<double, double>> maskedRange(const Frame& frame, std::string_view variable,
+                                                     const std::vector<std::uint8_t>& mask) {
+    const ColumnReader column(frame, variable);
+    if (column.missing() || mask.size() != frame.size())
+        return std::nullopt;
+    using Range = std::pair<double, double>;
+    constexpr Range kEmpty{std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity()};
+    const Range r = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, frame.size(), kGrain), kEmpty,
+        [&](const tbb::blocked_range<std::size_t>& rows, Range acc) {
+            for (std::size_t row = rows.begin(); row != rows.end(); ++row) {
+                if (!mask[row])
+                    continue;
+                const double v = column(row);
+                if (std::isfinite(v)) {
+                    acc.first = std::min(acc.first, v);
+                    acc.second = std::max(acc.second, v);
+                }
+            }
+            return acc;
+        },
+        [](Range a, Range b) {
+            return Range{std::min(a.first, b.first), std::max(a.second, b.second)};
+        });
+    if (r.first > r.second)
+        return std::nullopt;
+    return r;
+}
+
 } // namespace faultline::core

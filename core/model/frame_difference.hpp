@@ -4,7 +4,11 @@
 
 #include "core/model/frame.hpp"
 
+#include <cstdint>
+#include <optional>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace faultline::core {
 
@@ -22,5 +26,12 @@ AttributeColumn displacementSince(const Frame& now, const Frame& reference);
 // Caches a float column's min and max (NaN ignored; 0 and 0 when every value is NaN), in
 // parallel, as Frame::finalize does for a file's columns.
 void cacheColumnRange(AttributeColumn& column);
+
+// The finite values' min and max of `variable` (an attribute, or x, y, z or radius) over the rows
+// whose `mask` byte is non-zero, in parallel: a view's "this frame" colour range counts only
+// the spheres it shows (issue 41). Nothing when the frame lacks the variable, `mask` does not
+// have a byte per row, or no such row has a finite value.
+std::optional<std::pair<double, double>> maskedRange(const Frame& frame, std::string_view variable,
+                                                     const std::vector<std::uint8_t>& mask);
 
 } // namespace faultline::core

@@ -146,3 +146,17 @@ TEST(FrameDifference, RangesOverFramesShareOneLegend) {
     EXPECT_EQ(differenceRangeOverFrames(*ds, view), (ValueRange{0, 1}));
     EXPECT_EQ(symmetricAboutZero({0.5, 4}), (ValueRange{-4, 4}));
 }
+
+// Issue 41: "this frame's min to max" counted the spheres thresholds hid, so a few hidden
+// outliers squeezed the shown spheres into one colour.
+TEST(FrameDifference, MaskedRangeCountsOnlyTheRowsShown) {
+    const Frame f = makeFrame({1, 2, 3, 4}, {0, 1, 2, 3}, {0, 0, 0, 0}, {0, 0, 0, 0},
+                              {0.1f, 0.2f, NAN, 50.0f}, {0, 1, 2, 7});
+    const std::vector<std::uint8_t> shown{1, 1, 1, 0};
+    EXPECT_EQ(maskedRange(f, "strain", shown), (std::pair<double, double>{0.1f, 0.2f})); // NaN out
+    EXPECT_EQ(maskedRange(f, "broken_bonds", shown), (std::pair<double, double>{0, 2}));
+    EXPECT_EQ(maskedRange(f, "x", shown), (std::pair<double, double>{0, 2}));
+    EXPECT_EQ(maskedRange(f, "strain", {0, 0, 1, 0}), std::nullopt); // only a NaN shown
+    EXPECT_EQ(maskedRange(f, "missing", shown), std::nullopt);
+    EXPECT_EQ(maskedRange(f, "strain", {1, 1}), std::nullopt); // not a byte per row
+}

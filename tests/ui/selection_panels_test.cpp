@@ -224,3 +224,19 @@ TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {
     EXPECT_TRUE(headless.emitted("box.set").empty());
     EXPECT_DOUBLE_EQ(session.state().box("b")->min[1], 0.0);
 }
+
+// Issue 41: a view's "this frame's min to max" spans the spheres it shows.
+TEST_F(PanelTest, TheFramesColourRangeSpansTheSpheresShown) {
+    openLattice();
+    session.apply(Json{{"op", "color.set"}, {"view", "main"}, {"variable", "layer"}});
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorRange, (std::array<double, 2>{0, 3}));
+    session.apply(Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 1}, {"high", 2}});
+    headless.settle(wb());
+    ASSERT_EQ(visible(), 32u);
+    EXPECT_EQ(wb().mainDisplay()->colorRange, (std::array<double, 2>{1, 2}));
+    // "all frames seen" and "fixed" keep their meaning.
+    session.apply(Json{{"op", "color.set"}, {"view", "main"}, {"range_mode", "all"}});
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorRange, (std::array<double, 2>{0, 3}));
+}

@@ -90,6 +90,12 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         } else if (view->rangeMode == core::RangeMode::AllFrames) {
             // The range over every frame, so a series of figures shares one legend.
             scene.colorRange = core::colorRangeOverFrames(*dataset, *view);
+        } else if (visibility.visibleCount > 0 && visibility.visibleCount < frame->size()) {
+            // "this frame's min to max": over the spheres shown, as the workbench does.
+            if (auto r = core::maskedRange(*frame, view->colorVariable, visibility.mask))
+                scene.colorRange = r->first < r->second
+                                       ? core::ValueRange{r->first, r->second}
+                                       : core::ValueRange{r->first - 0.5, r->first + 0.5};
         }
     }
     for (const auto& b : session.state().boxes)

@@ -2,6 +2,7 @@
 
 #include "core/session/color_range.hpp"
 
+#include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
 
 #include <algorithm>
@@ -189,6 +190,26 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         } else if (v.difference.mode == core::ColorDifference::Mode::Displacement) {
             range[0] = 0.0;
         }
+    }
+    // Issue 41: "this frame's min to max" spans the spheres the view shows, not those that
+    // thresholds, boxes or the faults shown hide.
+    if (v.rangeMode == core::RangeMode::CurrentFrame &&
+        v.difference.mode == core::ColorDifference::Mode::None && !v.colorVariable.empty() &&
+        d.visibility && d.visibility->visibleCount > 0 &&
+        d.visibility->visibleCount < d.frame->size()) {
+        auto hit = std::find_if(m_visibleRanges.begin(), m_visibleRanges.end(), [&](const auto& e) {
+            return e.visibility == d.visibility && e.variable == v.colorVariable;
+        });
+        if (hit == m_visibleRanges.end()) {
+            if (m_visibleRanges.size() >= 8)
+                m_visibleRanges.erase(m_visibleRanges.begin());
+            m_visibleRanges.push_back({d.visibility, v.colorVariable,
+                                       core::maskedRange(*d.frame, v.colorVariable,
+                                                         d.visibility->mask)});
+            hit = m_visibleRanges.end() - 1;
+        }
+        if (hit->range)
+            range = {hit->range->first, hit->range->second};
     }
     if (v.rangeMode == core::RangeMode::Fixed)
         range = v.range;

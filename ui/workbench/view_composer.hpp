@@ -66,6 +66,12 @@ class ViewComposer {
     };
     std::vector<VisibilityEntry> m_visibilityCache;
     std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable
+    struct VisibleRangeEntry { // a variable's range over a view's visible spheres
+        std::shared_ptr<const core::VisibilityResult> visibility;
+        std::string variable;
+        std::optional<std::pair<double, double>> range;
+    };
+    std::vector<VisibleRangeEntry> m_visibleRanges; // the views' latest, a few at most
     struct FaultColoringEntry {
         std::shared_ptr<const core::Frame> frame;
         std::uint64_t key = 0;
