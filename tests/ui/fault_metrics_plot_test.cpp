@@ -207,6 +207,39 @@ TEST_F(FaultMetricsPanel, PlotFollowsTheFrameAndGoesToTheFrameClicked) {
     EXPECT_FALSE(headless.has(wb(), "faults.metrics.progress"));
 }
 
+// Issue 41: the plot drew the fixed members' metrics from frame 0, before their fault formed.
+// A series says from which frame its members have broken bonds; without the variable, from 0.
+TEST(FaultMetricsCache, ASeriesSaysFromWhichFrameItsFaultFormed) {
+    auto loader = [](std::size_t k) {
+        core::Frame f = sheetAt(k);
+        core::AttributeColumn bonds;
+        bonds.name = "broken_bonds";
+        bonds.type = core::ColumnType::Int32;
+        bonds.ints.assign(f.size(), 0);
+        if (k >= 2)
+            bonds.ints[4] = 1; // the centre sphere breaks at frame 2
+        f.attributes = {bonds};
+        f.finalize();
+        return f;
+    };
+    auto broken = core::Dataset::fromLoader(4, loader);
+    auto plain = core::Dataset::fromLoader(4, sheetAt);
+    ui::JobRunner jobs;
+    ui::FaultMetricsCache cache;
+    core::Fault f = faultOf("F1", {1, 2, 3, 4, 5, 6, 7, 8, 9});
+    const core::Fault* faults[] = {&f};
+    cache.request(jobs, 0, broken, faults);
+    jobs.waitAll();
+    jobs.poll();
+    ASSERT_NE(cache.find(broken, f), nullptr);
+    EXPECT_EQ(cache.find(broken, f)->formedFrom(), 2u);
+    cache.request(jobs, 0, plain, faults);
+    jobs.waitAll();
+    jobs.poll();
+    ASSERT_NE(cache.find(plain, f), nullptr);
+    EXPECT_EQ(cache.find(plain, f)->formedFrom(), 0u);
+}
+
 TEST_F(FaultMetricsPanel, PlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
     openLattice();
     // Only the wall x = 1 is visible: one fault, there from the first frame.

@@ -26,6 +26,12 @@ FaultMetricsCache::~FaultMetricsCache() {
         m_state->job->cancel();
 }
 
+std::size_t FaultMetricsCache::Series::formedFrom() const {
+    const auto it = std::find_if(frames.begin(), frames.end(),
+                                 [](const core::FaultFrameMetrics& m) { return m.broken > 0; });
+    return it == frames.end() ? 0 : static_cast<std::size_t>(it - frames.begin());
+}
+
 // A fault's series is kept under core::hashMemberIds of its members (not its name, colour or
 // notes).
 std::shared_ptr<const FaultMetricsCache::Series>

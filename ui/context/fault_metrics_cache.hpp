@@ -20,6 +20,9 @@ class FaultMetricsCache {
     // One fault's metrics, frame by frame (frames[k].frame == k).
     struct Series {
         std::vector<core::FaultFrameMetrics> frames;
+        // The first frame in which any member has a broken bond: before it the fault has not
+        // formed (issue 41). 0 when no frame counts broken bonds.
+        std::size_t formedFrom() const;
     };
 
     FaultMetricsCache();

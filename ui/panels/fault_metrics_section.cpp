@@ -122,15 +122,21 @@ class FaultMetricsSection {
         // The values of each fault, and what is still being computed.
         m_values.assign(shown.size(), {});
         std::vector<PlotLine> lines;
-        std::size_t pending = 0;
+        std::size_t pending = 0, unformed = 0;
         for (std::size_t k = 0; k < shown.size(); ++k) {
             auto series = m_cache.find(ds, *shown[k]);
             if (!series) {
                 ++pending;
                 continue;
             }
-            for (const auto& m : series->frames)
-                m_values[k].push_back(field.value(m));
+            // Issue 41: the fixed members exist before their fault formed; the line starts at
+            // the frame where the first of their bonds broke (when the data counts broken bonds).
+            const std::size_t formed = series->formedFrom();
+            for (std::size_t f = 0; f < series->frames.size(); ++f)
+                m_values[k].push_back(f < formed ? std::numeric_limits<double>::quiet_NaN()
+                                                 : field.value(series->frames[f]));
+            if (formed > 0)
+                ++unformed;
             lines.push_back({shown[k]->name, m_values[k], colorOf(*shown[k])});
         }
         if (pending > 0) {
@@ -227,6 +233,10 @@ class FaultMetricsSection {
             if (in.frame && !wb.playback().playing)
                 wb.jumpToFrame(static_cast<long long>(*in.frame));
             m_scrub.reset();
+        }
+        if (unformed > 0 && !(m_events && m_events->key == key && m_growth)) {
+            hint("Each line starts where its fault's first bonds broke");
+            wb.mark("faults.metrics.from_formed");
         }
         drawRanges(wb, shown);
         if (m_cache.lastSeconds() > 0 && pending == 0)
