@@ -150,9 +150,21 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
         tinygltf::Node node;
         node.name = s.name;
         node.rotation = kZUpToYUp;
+        int materialIndex = 0;
+        if (s.opacity < 1.0) {
+            // A see-through surface, as the workbench draws it (issue 41): glTF readers
+            // (Blender, three.js) blend by the base colour's alpha.
+            tinygltf::Material seeThrough = material;
+            seeThrough.name = "fault-surface-" + s.name;
+            seeThrough.alphaMode = "BLEND";
+            seeThrough.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0,
+                                                               std::clamp(s.opacity, 0.0, 1.0)};
+            model.materials.push_back(seeThrough);
+            materialIndex = static_cast<int>(model.materials.size()) - 1;
+        }
         if (s.mesh->triangleCount() > 0)
             node.mesh = addMesh(model, s.name, s.mesh->positions, s.mesh->normals, &s.mesh->colors,
-                                s.mesh->indices, 0);
+                                s.mesh->indices, materialIndex);
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
     }
@@ -197,7 +209,8 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
         tinygltf::Node node;
         node.name = "glyphs";
         node.rotation = kZUpToYUp;
-        node.mesh = addMesh(model, "glyphs", positions, normals, &colors, indices, 1);
+        node.mesh = addMesh(model, "glyphs", positions, normals, &colors, indices,
+                            static_cast<int>(model.materials.size()) - 1);
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
     }

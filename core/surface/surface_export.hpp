@@ -29,6 +29,7 @@ void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> su
 struct GltfSurface {
     std::string name; // node and mesh name
     const SurfaceMesh *mesh = nullptr;
+    double opacity = 1.0; // under 1: its own material, alphaMode BLEND, base colour alpha
 };
 
 // Writes a binary glTF 2.0 file. Glyphs (may be empty) become one merged mesh node "glyphs": a

@@ -109,7 +109,7 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
     const Spheres s;
     const auto a = surfaceAt(s, 2.0f);
     const auto b = surfaceAt(s, 2.5f);
-    const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2", &b.mesh}};
+    const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2", &b.mesh, 0.8}};
     const auto path = tempPath("faults.glb");
     fc::exportGlb(path, surfaces, s.set());
 
@@ -132,6 +132,16 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
         EXPECT_TRUE(prim.attributes.count(attr));
     EXPECT_EQ(model.accessors[prim.attributes.at("POSITION")].count, a.mesh.positions.size());
     EXPECT_EQ(model.accessors[prim.indices].count, a.mesh.indices.size());
+    // Issue 41: an opaque surface is opaque; one at opacity 0.8 blends at 0.8, as in the views.
+    const auto& opaque = model.materials.at(prim.material);
+    EXPECT_EQ(opaque.alphaMode, "OPAQUE");
+    const auto& seeThrough =
+        model.materials.at(model.meshes[model.nodes[1].mesh].primitives.at(0).material);
+    EXPECT_EQ(seeThrough.alphaMode, "BLEND");
+    EXPECT_NEAR(seeThrough.pbrMetallicRoughness.baseColorFactor.at(3), 0.8, 1e-9);
+    EXPECT_TRUE(seeThrough.doubleSided);
+    EXPECT_EQ(model.materials.at(model.meshes[model.nodes[2].mesh].primitives.at(0).material).name,
+              "glyph");
     // Issue 41, item 5: Blender 3.4 ignores EXT_mesh_gpu_instancing and showed one sphere. The
     // glyphs are one merged mesh: a 42-vertex sphere per exported sphere, in its colour.
     EXPECT_TRUE(model.nodes[2].extensions.empty());
