@@ -59,6 +59,32 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     EXPECT_FALSE(wb().selection().candidates.has_value());
 }
 
+// Issue 41: accepting a candidate took spheres out of existing faults with only a status line
+// after the fact. Each candidate row says beforehand how many of its spheres faults hold.
+TEST_F(PanelTest, CandidateRowsSayWhichSpheresAcceptingWouldMove) {
+    openLattice();
+    twoWalls(session);
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 2u);
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "candidates.overlap.1"));
+    EXPECT_FALSE(headless.has(wb(), "candidates.overlap.2"));
+    // Spheres 1 (x = 0) and 4 (x = 3): one in each wall.
+    session.apply(Json::parse(R"({"op":"fault.create","name":"W","ids":[1,4]})"));
+    headless.frames(wb(), 2);
+    headless.click(wb(), "faults.section.Metrics over time"); // folded: the list in view
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.has(wb(), "candidates.overlap.1"));
+    EXPECT_TRUE(headless.has(wb(), "candidates.overlap.2"));
+    headless.click(wb(), "candidates.accept.1");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(session.state().fault("W")->ids.size(), 1u); // one moved into C1
+    EXPECT_FALSE(headless.has(wb(), "candidates.overlap.1")); // accepted
+    EXPECT_TRUE(headless.has(wb(), "candidates.overlap.2"));
+}
+
 TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"A","ids":[1,2],"color":[1,0,0]})"));

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <set>
+#include <unordered_map>
 
 namespace faultline::ui {
 
@@ -92,6 +93,7 @@ class FaultCandidatesSection {
         wb.mark("candidates.accept_all");
         ImGui::EndDisabled();
 
+        updateOverlaps(wb, *preview);
         const float rowH = ImGui::GetFrameHeightWithSpacing();
         const float h = std::min(rowH * (static_cast<float>(cands.size()) + 0.5f), rowH * 8.0f);
         if (!ImGui::BeginTable("##candidates", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
@@ -135,6 +137,24 @@ class FaultCandidatesSection {
                                 "dip says little. Accepted, the fault's notes say so.",
                                 shape.thicknessRatio);
                     }
+                }
+                if (const std::size_t kk = static_cast<std::size_t>(k);
+                    kk < m_overlaps.size() && !m_overlaps[kk].empty() && !m_accepted.count(k)) {
+                    // Issue 41: accepting takes these spheres out of the faults they are in;
+                    // say so before the click, not only in the status line after it.
+                    std::size_t shared = 0;
+                    std::string where;
+                    for (const auto& [fault, n] : m_overlaps[kk]) {
+                        shared += n;
+                        where += (where.empty() ? "" : ", ") + fault + " (" + std::to_string(n) + ")";
+                    }
+                    ImGui::SameLine();
+                    ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "shares %zu", shared);
+                    wb.mark("candidates.overlap." + std::to_string(k + 1));
+                    if (ImGui::IsItemHovered())
+                        ImGui::SetTooltip("%zu of its spheres are in %s.\nAccepting moves them into "
+                                          "the new fault (undo gives them back).",
+                                          shared, where.c_str());
                 }
                 ImGui::TableNextColumn();
                 const bool done = m_accepted.count(k) > 0;
@@ -190,11 +210,44 @@ class FaultCandidatesSection {
                 return [this, &wb, shared, ms] {
                     m_millis = ms;
                     m_accepted.clear();
+                    m_overlapsVersion = ~0ull; // a new preview: its overlaps are worked out anew
                     wb.selection().candidates = std::move(*shared);
                 };
             },
             [&wb](const std::string& why) { wb.error("Cannot find candidates: " + why); },
             wb.now());
+    }
+
+    // Per candidate, the faults that hold some of its spheres and how many: worked out again
+    // when the session or the preview changes (one pass over the faults' and candidates' ids).
+    std::vector<std::vector<std::pair<std::string, std::size_t>>> m_overlaps;
+    std::uint64_t m_overlapsVersion = ~0ull;
+    const core::CandidateSet* m_overlapsSet = nullptr;
+
+    void updateOverlaps(PanelContext& wb, const UiSelection::CandidatePreview& preview) {
+        if (m_overlapsVersion == wb.sessionVersion() && m_overlapsSet == &preview.set &&
+            m_overlaps.size() == preview.set.candidates.size())
+            return;
+        m_overlapsVersion = wb.sessionVersion();
+        m_overlapsSet = &preview.set;
+        const auto& faults = wb.state().faults;
+        std::unordered_map<std::int64_t, std::size_t> owner; // id -> fault index
+        for (std::size_t f = 0; f < faults.size(); ++f)
+            for (std::int64_t id : faults[f].ids)
+                owner.emplace(id, f);
+        m_overlaps.assign(preview.set.candidates.size(), {});
+        if (owner.empty())
+            return;
+        std::vector<std::size_t> counts(faults.size());
+        for (std::size_t c = 0; c < preview.set.candidates.size(); ++c) {
+            std::fill(counts.begin(), counts.end(), 0);
+            for (std::int64_t id : preview.set.candidates[c].ids)
+                if (auto it = owner.find(id); it != owner.end())
+                    ++counts[it->second];
+            for (std::size_t f = 0; f < faults.size(); ++f)
+                if (counts[f] > 0)
+                    m_overlaps[c].emplace_back(faults[f].name, counts[f]);
+        }
     }
 
     void clear(PanelContext& wb) {

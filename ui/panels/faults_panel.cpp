@@ -136,8 +136,10 @@ class FaultsPanel final : public Panel {
         }
         for (const auto& section : wb.extensions().faultSections) {
             ImGui::Spacing();
-            if (ImGui::CollapsingHeader(section.title.c_str(),
-                                        section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+            const bool open = ImGui::CollapsingHeader(
+                section.title.c_str(), section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+            wb.mark("faults.section." + section.title);
+            if (open)
                 section.draw(wb);
         }
     }
