@@ -199,3 +199,35 @@ TEST_F(PanelTest, TheScreenshotIsTheMainViewRenderedOffscreen) {
     ASSERT_TRUE(std::filesystem::exists(path)) << wb().lastMessage();
     EXPECT_NE(wb().lastMessage().find("Saved the main view"), std::string::npos);
 }
+
+// Issue 41: the figure was always the view's size on screen. Its options window sets a preset
+// or typed size and a transparent background, which the render op records.
+TEST_F(PanelTest, TheFigureTakesASizeAndATransparentBackground) {
+    std::string why;
+    if (!ui::sharedOffscreenContext(why))
+        FAULTLINE_NEED_GL("no OpenGL context: " << why);
+    ui::registerRenderOp(session);
+    openLattice();
+    wb().showFigureOptions();
+    headless.frames(wb(), 2);
+    headless.click(wb(), "figure.size.custom");
+    headless.retype(wb(), "figure.width", "320", GLFW_KEY_TAB);
+    headless.retype(wb(), "figure.height", "200", GLFW_KEY_TAB);
+    headless.click(wb(), "figure.transparent");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(wb().figureSize(), (std::pair<int, int>{320, 200}));
+    headless.click(wb(), "figure.save"); // the file dialog opens in its place
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "figure.save"));
+    const std::string path = dir.file("figure.png");
+    wb().screenshotMainView(path); // what the dialog's path leads to
+    headless.frames(wb(), 2);
+    const Json cmd = session.journal().back();
+    ASSERT_EQ(cmd["op"], "render") << cmd.dump();
+    EXPECT_EQ(cmd["size"], (Json{320, 200}));
+    EXPECT_EQ(cmd["transparent"], true);
+    ASSERT_TRUE(std::filesystem::exists(path)) << wb().lastMessage();
+    // The presets.
+    wb().figureOptions.size = 2;
+    EXPECT_EQ(wb().figureSize(), (std::pair<int, int>{3840, 2160}));
+}

@@ -158,6 +158,7 @@ void Workbench::frame(double now) {
     drawHelp();
     drawPrompts();
     drawMovie();
+    drawFigureOptions();
     drawUnsavedPrompt();
     drawOverwritePrompt();
 

@@ -136,6 +136,15 @@ class Workbench final : public PanelContext {
     };
     MovieOptions movieOptions;
     void showMovieOptions(); // opens the options window on every frame of the data
+    // The main view as a figure (issue 41: it was always the view's size on screen): its size
+    // as on screen, a preset or typed, and an optional transparent background.
+    struct FigureOptions {
+        int size = 0; // 0 as on screen, 1 1920 x 1080, 2 3840 x 2160, 3 the width and height
+        int width = 1920, height = 1080;
+        bool transparent = false;
+    };
+    FigureOptions figureOptions;
+    void showFigureOptions() { m_showFigureOptions = true; }
     // Renders the main view over the options' frames to `path` (the journal's render with
     // "frames"), one frame per UI frame (frames load ahead in the background); progress and
     // Cancel in a small window; journalled once written.
@@ -154,9 +163,11 @@ class Workbench final : public PanelContext {
     std::size_t frameMemoryBudget() const override;
     void setFrameMemoryBudget(std::size_t bytes) override;
     void requestScreenshot(const std::string& path) { m_screenshotPath = path; }
-    // File > Export > Screenshot: the main view rendered offscreen (the journal's render op) at
-    // its size on screen, so no dialog or panel is in it.
+    // File > Export > Figure: the main view rendered offscreen (the journal's render op) at the
+    // figure options' size (as on screen by default), so no dialog or panel is in it.
     void screenshotMainView(const std::string& path);
+    std::pair<int, int> figureSize() const; // in pixels, from the figure options
+    std::pair<int, int> mainViewPixels() const; // the main view's size on screen
     std::optional<std::string> takeScreenshotRequest();
     bool hasScreenshotRequest() const { return m_screenshotPath.has_value(); }
     const std::string& journalPath() const { return m_journalPath; }
@@ -226,6 +237,7 @@ class Workbench final : public PanelContext {
     void drawHelp();
     void drawPrompts();
     void drawMovie(); // the options window and the running export's progress
+    void drawFigureOptions();
     void drawUnsavedPrompt();
     void handleShortcuts();
     void handleDialog();
@@ -286,6 +298,7 @@ class Workbench final : public PanelContext {
     bool m_showHelp = false;
     bool m_showAbout = false;
     bool m_showMovieOptions = false;
+    bool m_showFigureOptions = false;
     struct UnsavedPrompt {
         std::string action;
         std::function<void()> proceed;

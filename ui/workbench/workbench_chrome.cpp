@@ -155,13 +155,86 @@ void Workbench::handleShortcuts() {
 void Workbench::screenshotMainView(const std::string& path) {
     // The main view rendered offscreen at its size on screen, as a journal's render: the
     // window's own pixels still held the closing file dialog (issue 41).
-    int width = 1280, height = 720;
-    if (const auto r = m_items.find("view.image.main")) {
-        width = std::max(16, static_cast<int>(std::lround(r->x1 - r->x0)));
-        height = std::max(16, static_cast<int>(std::lround(r->y1 - r->y0)));
+    const auto [width, height] = figureSize();
+    core::Json cmd = {{"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}};
+    if (figureOptions.transparent)
+        cmd["transparent"] = true;
+    emit(cmd, [this, path] { info("Saved the main view to " + path); });
+}
+
+std::pair<int, int> Workbench::figureSize() const {
+    switch (figureOptions.size) {
+    case 1:
+        return {1920, 1080};
+    case 2:
+        return {3840, 2160};
+    case 3:
+        return {std::clamp(figureOptions.width, 16, 7680), std::clamp(figureOptions.height, 16, 4320)};
+    default:
+        return mainViewPixels();
     }
-    emit({{"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}},
-         [this, path] { info("Saved the main view to " + path); });
+}
+
+std::pair<int, int> Workbench::mainViewPixels() const {
+    if (const auto r = m_items.find("view.image.main"))
+        return {std::max(16, static_cast<int>(std::lround(r->x1 - r->x0))),
+                std::max(16, static_cast<int>(std::lround(r->y1 - r->y0)))};
+    return {1280, 720};
+}
+
+void Workbench::drawFigureOptions() {
+    if (!m_showFigureOptions)
+        return;
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                            ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    if (ImGui::Begin("Figure of the main view", &m_showFigureOptions,
+                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                         ImGuiWindowFlags_NoCollapse)) {
+        FigureOptions& o = figureOptions;
+        ImGui::TextUnformatted("The main view as it is now, rendered again at the size asked.");
+        const auto [screenW, screenH] = mainViewPixels();
+        char label[64];
+        std::snprintf(label, sizeof label, "As on screen (%d x %d)", screenW, screenH);
+        ImGui::RadioButton(label, &o.size, 0);
+        m_items.markLastItem("figure.size.screen");
+        ImGui::RadioButton("1920 x 1080", &o.size, 1);
+        m_items.markLastItem("figure.size.hd");
+        ImGui::SameLine();
+        ImGui::RadioButton("3840 x 2160", &o.size, 2);
+        m_items.markLastItem("figure.size.4k");
+        ImGui::RadioButton("Width", &o.size, 3);
+        m_items.markLastItem("figure.size.custom");
+        ImGui::SameLine();
+        ImGui::PushItemWidth(80 * m_scale);
+        if (ImGui::InputInt("##width", &o.width, 0))
+            o.size = 3;
+        m_items.markLastItem("figure.width");
+        ImGui::SameLine();
+        ImGui::TextUnformatted("Height");
+        ImGui::SameLine();
+        if (ImGui::InputInt("##height", &o.height, 0))
+            o.size = 3;
+        m_items.markLastItem("figure.height");
+        ImGui::PopItemWidth();
+        o.width = std::clamp(o.width, 16, 7680);
+        o.height = std::clamp(o.height, 16, 4320);
+        ImGui::Checkbox("Transparent background", &o.transparent);
+        m_items.markLastItem("figure.transparent");
+        const auto [w, h] = figureSize();
+        ImGui::TextDisabled("%d x %d pixels; the camera frames the same part of the model", w, h);
+        if (ImGui::Button("Save as...")) {
+            m_showFigureOptions = false;
+            m_dialog.open("Save the main view as a PNG", FileDialog::Mode::Save, "screenshot",
+                          {".png"}, exportFolder(), "faultline-" + stamp() + ".png");
+        }
+        m_items.markLastItem("figure.save");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel"))
+            m_showFigureOptions = false;
+        m_items.markLastItem("figure.cancel");
+    }
+    ImGui::End();
 }
 
 std::string Workbench::exportFolder() const {
@@ -245,10 +318,8 @@ void Workbench::drawMenus() {
             if (ImGui::MenuItem("Movie (MP4) or frames (PNG)...", nullptr, false,
                                 dataset() != nullptr))
                 showMovieOptions();
-            if (ImGui::MenuItem("Screenshot (PNG)..."))
-                m_dialog.open("Save the main view as a PNG", FileDialog::Mode::Save,
-                              "screenshot", {".png"}, dataFolder,
-                              "faultline-" + stamp() + ".png");
+            if (ImGui::MenuItem("Figure of the main view (PNG)..."))
+                showFigureOptions();
             ImGui::EndMenu();
         }
         ImGui::Separator();
