@@ -1,4 +1,5 @@
 #include "core/faults/tracking.hpp"
+#include "core/util/union_find.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -153,48 +154,70 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
     std::size_t frames = 0;
     for (const FaultTrack& t : tracks)
         frames = std::max(frames, t.points.size());
+    const std::size_t n = tracks.size();
     auto candidateAt = [&](std::size_t fault, std::size_t frame) -> std::int32_t {
         const auto& points = tracks[fault].points;
         return frame < points.size() ? points[frame].match.candidate : -1;
     };
-    // Faults grouped by the candidate they match in a frame (candidate -> faults, ascending).
-    auto groups = [&](std::size_t frame) {
-        std::map<std::int32_t, std::vector<std::size_t>> byCandidate;
-        for (std::size_t k = 0; k < tracks.size(); ++k)
-            if (const std::int32_t c = candidateAt(k, frame); c >= 0)
-                byCandidate[c].push_back(k);
-        return byCandidate;
+    // Two faults in a frame: 1 in one candidate, 0 in different ones, -1 when either matches
+    // none.
+    auto raw = [&](std::size_t f, std::size_t i, std::size_t j) -> int {
+        const std::int32_t a = candidateAt(i, f), b = candidateAt(j, f);
+        return a < 0 || b < 0 ? -1 : int(a == b);
     };
-    std::vector<std::uint8_t> seen(tracks.size(), 0);
-    std::map<std::int32_t, std::vector<std::size_t>> before;
+    // Issue 41: at a low threshold two faults joined by a few spheres flicker, linked one
+    // frame and split the next, over and over. A relation that differs from the same one in
+    // the frames before and after is that flicker, read as the frames around it.
+    auto together = [&](std::size_t f, std::size_t i, std::size_t j) -> int {
+        const int r = raw(f, i, j);
+        if (r < 0 || f == 0 || f + 1 >= frames)
+            return r;
+        const int before = raw(f - 1, i, j), after = raw(f + 1, i, j);
+        return before >= 0 && before == after ? before : r;
+    };
+    // Faults grouped in a frame: the components of "together", each ascending, ordered by
+    // their first fault.
+    auto groups = [&](std::size_t f) {
+        UnionFind sets(n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = i + 1; j < n; ++j)
+                if (together(f, i, j) == 1)
+                    sets.unite(std::uint32_t(i), std::uint32_t(j));
+        std::map<std::uint32_t, std::vector<std::size_t>> byRoot;
+        for (std::size_t k = 0; k < n; ++k)
+            if (candidateAt(k, f) >= 0)
+                byRoot[sets.find(std::uint32_t(k))].push_back(k);
+        std::vector<std::vector<std::size_t>> out;
+        for (auto& [root, members] : byRoot)
+            if (members.size() >= 2)
+                out.push_back(std::move(members));
+        return out;
+    };
+    std::vector<std::uint8_t> seen(n, 0);
+    std::vector<std::vector<std::size_t>> before;
     for (std::size_t f = 0; f < frames; ++f) {
-        const auto now = groups(f);
-        for (std::size_t k = 0; k < tracks.size(); ++k)
+        auto now = groups(f);
+        for (std::size_t k = 0; k < n; ++k)
             if (!seen[k] && candidateAt(k, f) >= 0) {
                 seen[k] = 1;
                 events.push_back({f, FaultEventKind::Appeared, {k}});
             }
         if (f > 0) {
-            // Groups of one frame whose faults match two or more candidates in the other.
+            // Groups of one frame with two faults apart in the other.
             auto parted = [&](const auto& groupsIn, std::size_t other, FaultEventKind kind) {
-                std::vector<FaultEvent> found;
-                for (const auto& [c, members] : groupsIn) {
-                    std::set<std::int32_t> there;
-                    for (std::size_t k : members)
-                        if (const std::int32_t e = candidateAt(k, other); e >= 0)
-                            there.insert(e);
-                    if (members.size() >= 2 && there.size() >= 2)
-                        found.push_back({f, kind, members});
+                for (const auto& members : groupsIn) {
+                    bool apart = false;
+                    for (std::size_t a = 0; a < members.size() && !apart; ++a)
+                        for (std::size_t b = a + 1; b < members.size() && !apart; ++b)
+                            apart = together(other, members[a], members[b]) == 0;
+                    if (apart)
+                        events.push_back({f, kind, members});
                 }
-                std::sort(found.begin(), found.end(), [](const FaultEvent& a, const FaultEvent& b) {
-                    return a.faults < b.faults;
-                });
-                events.insert(events.end(), found.begin(), found.end());
             };
             parted(now, f - 1, FaultEventKind::Linked);
             parted(before, f, FaultEventKind::Split);
         }
-        before = now;
+        before = std::move(now);
     }
     return events;
 }
@@ -209,8 +232,9 @@ std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLo
     const std::vector<std::size_t> frames = selection.frames(frameCount);
     if (frames.empty())
         return {};
-    // A point per frame up to the last selected one; frames never tracked match nothing.
-    const std::size_t end = frames.back() + 1;
+    // A point per frame up to the one after the last selected; frames never tracked match
+    // nothing.
+    const std::size_t end = std::min(frameCount, frames.back() + 2);
     std::vector<FaultTrack> tracks(faults.size());
     for (auto& t : tracks) {
         t.points.resize(end);
@@ -233,11 +257,11 @@ std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLo
                 firstSeen[k] = std::min(firstSeen[k], f);
         }
     };
-    for (const std::size_t f : frames) { // linked and split compare a frame with the one before
-        if (f > 0)
-            track(f - 1);
-        track(f);
-    }
+    // Linked and split compare a frame with the one before, each read with the frames around
+    // it (a one-frame flicker is no event): frames f - 2 to f + 1.
+    for (const std::size_t f : frames)
+        for (std::size_t g = f >= 2 ? f - 2 : 0; g <= f + 1 && g < end; ++g)
+            track(g);
     // "Appeared" needs every frame before a fault's first match.
     for (std::size_t f = 0; f < end; ++f)
         if (!tracked[f] &&

@@ -73,7 +73,10 @@ FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoade
 
 // What happened to tracked faults between two frames, read from their tracks: a fault first
 // matched a candidate (appeared), faults matched to different candidates in the frame before
-// share one now (linked), or faults that shared one now match different ones (split).
+// share one now (linked), or faults that shared one now match different ones (split). Whether
+// two faults share a candidate in a frame is read with the frames around it: a one-frame
+// flicker (together in one frame, apart in the frames before and after, or the reverse) is no
+// event (issue 41: at low thresholds faults linked and split every other frame).
 enum class FaultEventKind { Appeared, Linked, Split };
 std::string_view faultEventKindName(FaultEventKind kind); // appeared | linked | split
 

@@ -101,3 +101,56 @@ TEST(FaultTracking, TrackFollowsAGrowingFault) {
         3, [&](std::size_t i) { return frames[i]; }, visible, faults, connected());
     EXPECT_TRUE(lean[0].points[2].members.empty());
 }
+
+// Issue 41: at low thresholds two faults joined by a few spheres linked one frame and split
+// the next, over and over. A one-frame flicker is no event; a lasting link or split is, at the
+// frame it happens; and a shard's events are the unsharded run's in its frames.
+TEST(FaultTracking, AOneFrameFlickerIsNoEvent) {
+    // Lines y = 0 (ids 1..5) and y = 3 (ids 11..15), bridged by ids 30, 31 in the frames
+    // marked 1 (the bridge is hidden in the others).
+    const int joined[] = {0, 0, 1, 0, 0, 1, 1, 1, 0, 1, 1, 0, 0};
+    const std::size_t n = std::size(joined);
+    std::vector<Frame> frames;
+    for (std::size_t f = 0; f < n; ++f) {
+        std::vector<Sphere> s;
+        for (int i = 1; i <= 5; ++i)
+            s.push_back({i, double(i), 0, 0});
+        for (int i = 11; i <= 15; ++i)
+            s.push_back({i, double(i - 10), 3, 0});
+        s.push_back({30, 3, 1, 0});
+        s.push_back({31, 3, 2, 0});
+        frames.push_back(frameOf(s));
+    }
+    const std::vector<Fault> faults = {faultOf("A", {1, 2, 3, 4, 5}),
+                                       faultOf("B", {11, 12, 13, 14, 15})};
+    const FrameLoader load = [&](std::size_t f) {
+        return std::shared_ptr<const Frame>(&frames[f], [](const Frame*) {});
+    };
+    const VisibleMaskFn visible = [&](const Frame& frame, std::size_t f) {
+        std::vector<std::uint8_t> mask(frame.size(), 1);
+        if (!joined[f])
+            for (std::int64_t id : {30, 31})
+                mask[*frame.rowOf(id)] = 0;
+        return mask;
+    };
+    CandidateOptions options = connected();
+    options.minSize = 3;
+    const auto events = faultEvents(trackFaults(n, load, visible, faults, options));
+    const std::vector<FaultEvent> expected = {
+        {0, FaultEventKind::Appeared, {0}},
+        {0, FaultEventKind::Appeared, {1}},
+        {5, FaultEventKind::Linked, {0, 1}}, // frame 2 alone was a flicker
+        {11, FaultEventKind::Split, {0, 1}}, // and frame 8 too
+    };
+    EXPECT_EQ(events, expected);
+    // Each frame as its own shard: the same events there.
+    for (std::size_t f = 0; f < n; ++f) {
+        FrameSelection one;
+        one.first = one.last = f;
+        std::vector<FaultEvent> there;
+        for (const auto& e : events)
+            if (e.frame == f)
+                there.push_back(e);
+        EXPECT_EQ(trackedFaultEvents(n, load, visible, faults, options, one), there) << f;
+    }
+}
