@@ -141,7 +141,7 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
     material.doubleSided = true;
     material.pbrMetallicRoughness.metallicFactor = 0.0;
     material.pbrMetallicRoughness.roughnessFactor = 0.8;
-    model.materials.push_back(material);
+    int opaqueMaterial = -1; // added when a surface needs it (an unused one is a validator note)
     tinygltf::Scene scene;
     scene.name = "faults";
     for (const auto& s : surfaces) {
@@ -150,21 +150,25 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
         tinygltf::Node node;
         node.name = s.name;
         node.rotation = kZUpToYUp;
-        int materialIndex = 0;
-        if (s.opacity < 1.0) {
-            // A see-through surface, as the workbench draws it (issue 41): glTF readers
-            // (Blender, three.js) blend by the base colour's alpha.
-            tinygltf::Material seeThrough = material;
-            seeThrough.name = "fault-surface-" + s.name;
-            seeThrough.alphaMode = "BLEND";
-            seeThrough.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0,
-                                                               std::clamp(s.opacity, 0.0, 1.0)};
-            model.materials.push_back(seeThrough);
-            materialIndex = static_cast<int>(model.materials.size()) - 1;
-        }
-        if (s.mesh->triangleCount() > 0)
+        if (s.mesh->triangleCount() > 0) {
+            int materialIndex = opaqueMaterial;
+            if (s.opacity >= 1.0 && opaqueMaterial < 0) {
+                model.materials.push_back(material);
+                materialIndex = opaqueMaterial = static_cast<int>(model.materials.size()) - 1;
+            } else if (s.opacity < 1.0) {
+                // A see-through surface, as the workbench draws it (issue 41): glTF readers
+                // (Blender, three.js) blend by the base colour's alpha.
+                tinygltf::Material seeThrough = material;
+                seeThrough.name = "fault-surface-" + s.name;
+                seeThrough.alphaMode = "BLEND";
+                seeThrough.pbrMetallicRoughness.baseColorFactor = {
+                    1.0, 1.0, 1.0, std::clamp(s.opacity, 0.0, 1.0)};
+                model.materials.push_back(seeThrough);
+                materialIndex = static_cast<int>(model.materials.size()) - 1;
+            }
             node.mesh = addMesh(model, s.name, s.mesh->positions, s.mesh->normals, &s.mesh->colors,
                                 s.mesh->indices, materialIndex);
+        }
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
     }
