@@ -3,6 +3,7 @@
 #include "core/color/legend_ticks.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -139,22 +140,32 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
         dl->AddText(ImVec2(0.5f * (x0 + x1 - ts.x), 0.5f * (y0 + y1 - ts.y)), muted, none);
     }
     dl->PopClipRect();
-    // Marks: a dashed line and a letter above the plot (letters of one frame side by side).
+    // Marks: a dashed line and a letter at the top of the plot. A letter goes in the first row
+    // where it overlaps no other (issue 41: marks of neighbouring frames were drawn over each
+    // other); past three rows it is left to the tooltip.
     {
-        std::size_t previous = std::size_t(-1);
-        float shift = 0;
+        constexpr int kRows = 3;
+        std::array<float, kRows> rowEnd;
+        rowEnd.fill(-std::numeric_limits<float>::infinity());
+        const float letterW = ImGui::CalcTextSize("W").x, rowH = ImGui::GetTextLineHeight();
         for (const PlotMark& m : marks) {
             if (m.frame >= frameCount)
                 continue;
-            shift = m.frame == previous ? shift + ImGui::CalcTextSize("W").x : 0;
-            previous = m.frame;
             const float xx = toX(m.frame);
             const float dash = 4 * scale;
             for (float yy = y0; yy < y1; yy += 2 * dash)
                 dl->AddLine(ImVec2(xx, yy), ImVec2(xx, std::min(y1, yy + dash)), m.color,
                             1.5f * scale);
-            const char label[2] = {m.letter, 0};
-            dl->AddText(ImVec2(xx + 2 * scale + shift, y0 + 1 * scale), m.color, label);
+            const float left = xx + 2 * scale;
+            for (int row = 0; row < kRows; ++row) {
+                const float at = std::max(left, rowEnd[std::size_t(row)]);
+                if (at > left + letterW) // too far from its line: try the next row
+                    continue;
+                const char label[2] = {m.letter, 0};
+                dl->AddText(ImVec2(at, y0 + 1 * scale + float(row) * rowH), m.color, label);
+                rowEnd[std::size_t(row)] = at + letterW;
+                break;
+            }
         }
     }
 
