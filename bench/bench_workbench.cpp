@@ -10,8 +10,13 @@
 #include <benchmark/benchmark.h>
 #include <imgui.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <set>
+#include <thread>
 
 using namespace faultline;
 
@@ -130,6 +135,67 @@ void BM_OrbitDragFrame(benchmark::State& state) {
     b.frame();
 }
 BENCHMARK(BM_OrbitDragFrame)->Unit(benchmark::kMillisecond);
+
+// Issue 41: "Follow through time" on the demo (204,800 spheres, 40 frames, broken_bonds >= 1,
+// the last frame's candidates as faults), as a user runs it from the Faults panel: the first
+// time, then again after the faults shown changed (each frame's candidates are kept, so only
+// the matching and the metrics run again). Needs the demo: faultline generate --demo.
+void BM_FollowThroughTimeDemo(benchmark::State& state) {
+    const char* home = std::getenv("HOME");
+    const std::string demo = std::string(home ? home : "") +
+                             "/.local/share/faultline/demo/block-v2.lammpstrj.gz";
+    if (!std::filesystem::exists(demo)) {
+        state.SkipWithError("no demo: run faultline generate --demo");
+        return;
+    }
+    Bench b;
+    b.session.apply({{"op", "data.open"}, {"paths", {demo}}});
+    b.session.apply({{"op", "frame.set"}, {"frame", 39}});
+    b.session.apply({{"op", "threshold.add"}, {"variable", "broken_bonds"}, {"low", 1}, {"high", 1e30}});
+    b.session.apply({{"op", "fault.candidates"}, {"min_size", 200}, {"prefix", "C"}});
+    std::set<std::string> all;
+    for (const auto& f : b.session.state().faults)
+        all.insert(f.name);
+    b.wb->selection().faults = all;
+    b.wb->layout().setActive(ui::panel_ids::kFaults);
+    for (int k = 0; k < 4; ++k)
+        b.frame();
+    auto waitShown = [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int k = 0; k < 100000; ++k) {
+            b.frame();
+            if (b.wb->items().find("faults.metrics.events.shown") && !b.wb->jobs().busy())
+                break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    double first = 0, again = 0;
+    for (auto _ : state) {
+        // Metrics of the fixed members first, so they do not count below.
+        for (int k = 0; k < 100000 && b.wb->jobs().busy(); ++k) {
+            b.frame();
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        const ui::ItemRect r = b.rect("faults.metrics.events");
+        ImGuiIO& io = ImGui::GetIO();
+        io.MousePos = ImVec2(r.cx(), r.cy());
+        b.frame();
+        io.MouseDown[0] = true;
+        b.frame();
+        io.MouseDown[0] = false;
+        first = waitShown();
+        std::set<std::string> some(all.begin(), std::next(all.begin(), std::ptrdiff_t(all.size() / 2)));
+        b.wb->selection().faults = some;
+        b.frame();
+        b.frame();
+        again = waitShown();
+    }
+    state.counters["faults"] = static_cast<double>(all.size());
+    state.counters["first_s"] = first;
+    state.counters["again_s"] = again;
+}
+BENCHMARK(BM_FollowThroughTimeDemo)->Unit(benchmark::kSecond)->Iterations(1);
 
 } // namespace
 

@@ -90,11 +90,28 @@ std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& l
     return tracks;
 }
 
+CandidatesFn candidatesOfVisible(const VisibleMaskFn& visibleMask,
+                                 const CandidateOptions& options) {
+    return [visibleMask, options](const Frame& frame, std::size_t f) {
+        return std::make_shared<const CandidateSet>(
+            findCandidates(frame, visibleMask(frame, f), options));
+    };
+}
+
 FaultMetricsSeries
 trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
                      const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
                      const CandidateOptions& options, const MetricsOptions& metrics,
                      std::vector<FaultTrack>* tracks, const FrameSelection& selection) {
+    return trackedMetricsSeries(frameCount, load, candidatesOfVisible(visibleMask, options),
+                                faults, metrics, tracks, selection);
+}
+
+FaultMetricsSeries
+trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                     const CandidatesFn& candidates, std::span<const Fault> faults,
+                     const MetricsOptions& metrics, std::vector<FaultTrack>* tracks,
+                     const FrameSelection& selection) {
     FaultMetricsSeries series;
     if (tracks)
         tracks->assign(faults.size(), FaultTrack{});
@@ -116,7 +133,8 @@ trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
         if (!wanted && std::all_of(seeded.begin(), seeded.end(), [](std::uint8_t s) { return s; }))
             continue;
         const std::shared_ptr<const Frame> frame = load(f);
-        const CandidateSet set = findCandidates(*frame, visibleMask(*frame, f), options);
+        const std::shared_ptr<const CandidateSet> found = candidates(*frame, f);
+        const CandidateSet& set = *found;
         const std::vector<CandidateMatch> matches = matchFaults(*frame, set, faults);
         for (std::size_t k = 0; k < faults.size(); ++k) {
             if (tracks && wanted)

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,13 @@ std::vector<FaultTrack> trackFaults(std::size_t frameCount, const FrameLoader& l
                                     const CandidateOptions& options = {}, bool keepMembers = false,
                                     const FrameSelection& selection = {});
 
+// A frame's candidates: findCandidates on its visible mask, or a cache of earlier results
+// (the workbench keeps them while the thresholds and boxes stay, so following other faults
+// does not search every frame again).
+using CandidatesFn =
+    std::function<std::shared_ptr<const CandidateSet>(const Frame&, std::size_t frame)>;
+CandidatesFn candidatesOfVisible(const VisibleMaskFn& visibleMask, const CandidateOptions& options);
+
 // Growth: each fault's metrics frame by frame on what the fault is in that frame, the candidate
 // that matches it (as trackFaults), not its fixed members; where no candidate matches, the row
 // has count 0 and undefined values. Rows and seeds as computeMetricsSeries gives them. With
@@ -67,6 +75,13 @@ FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoade
                                         const VisibleMaskFn& visibleMask,
                                         std::span<const Fault> faults,
                                         const CandidateOptions& options = {},
+                                        const MetricsOptions& metrics = {},
+                                        std::vector<FaultTrack>* tracks = nullptr,
+                                        const FrameSelection& selection = {});
+// The same with each frame's candidates from `candidates`.
+FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                                        const CandidatesFn& candidates,
+                                        std::span<const Fault> faults,
                                         const MetricsOptions& metrics = {},
                                         std::vector<FaultTrack>* tracks = nullptr,
                                         const FrameSelection& selection = {});

@@ -17,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
+#include <map>
 #include <optional>
 
 namespace faultline::ui {
@@ -49,6 +51,38 @@ std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* 
     key += "|filter" + std::to_string(int(s.faultFilter.mode)) + s.faultFilter.fault;
     return key;
 }
+
+// What the visible spheres of every frame depend on: the data, boxes, thresholds, and the
+// faults only when the fault filter or a hidden fault takes spheres out.
+std::string visibleKey(const core::SessionState& s, const void* dataset) {
+    std::string key = eventsKey(s, {}, dataset);
+    const bool rowsMasked =
+        s.faultFilter.mode != core::FaultFilter::Mode::All ||
+        std::any_of(s.faults.begin(), s.faults.end(), [](const core::Fault& f) { return !f.visible; });
+    if (rowsMasked)
+        for (const auto& f : s.faults)
+            key += "|m" + std::to_string(core::hashMemberIds(f.ids)) + (f.visible ? "v" : "h");
+    return key;
+}
+
+// Each frame's candidates of the visible spheres, kept while what the spheres shown depend on
+// stays the same (issue 41: following other faults searched every frame again, 12-15 s on the
+// demo). Shared with the background jobs; at most kBudget bytes, past which frames are searched
+// again when needed.
+struct CandidateMemo {
+    static constexpr std::size_t kBudget = std::size_t(512) << 20;
+    std::string key;
+    std::mutex mutex;
+    std::map<std::size_t, std::shared_ptr<const core::CandidateSet>> frames;
+    std::size_t bytes = 0;
+
+    static std::size_t sizeOf(const core::CandidateSet& set) {
+        std::size_t b = set.rowLabel.size() * sizeof(std::int32_t);
+        for (const auto& c : set.candidates)
+            b += c.ids.size() * sizeof(std::int64_t);
+        return b;
+    }
+};
 
 // The selection per-frame results ran with, in words: "thresholds broken_bonds 3 .. max;
 // boxes north (keep)" (issue 41: events changed with the thresholds without a word).
@@ -257,6 +291,7 @@ class FaultMetricsSection {
     bool m_followAgain = false; // the user followed once: follow again when the selection changes
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
+    std::shared_ptr<CandidateMemo> m_memo;
 
     // Tracks of the faults over every frame (candidates as fault.candidates' defaults, of the
     // visible spheres as the session's boxes, thresholds and fault filter say), in the
@@ -266,14 +301,41 @@ class FaultMetricsSection {
         std::vector<core::Fault> faults;
         for (const core::Fault* f : shown)
             faults.push_back(*f);
+        const std::string memoKey = visibleKey(wb.state(), ds.get());
+        if (!m_memo || m_memo->key != memoKey) { // a job still running keeps its own
+            m_memo = std::make_shared<CandidateMemo>();
+            m_memo->key = memoKey;
+        }
         m_eventsJob = wb.jobs().start(
             "Finding fault links and splits",
-            [this, ds, faults = std::move(faults), state = wb.state(),
-             key](JobControl& control) -> std::function<void()> {
+            [this, ds, faults = std::move(faults), state = wb.state(), key,
+             memo = m_memo](JobControl& control) -> std::function<void()> {
                 core::CandidateOptions options;
                 options.minSize = core::kDefaultCandidateMinSize;
                 const std::size_t frames = ds->frameCount();
                 std::vector<core::FaultTrack> tracks;
+                const core::CandidatesFn search = core::candidatesOfVisible(
+                    [&state](const core::Frame& frame, std::size_t) {
+                        const auto rowMask = core::Session::faultRowMask(state, frame);
+                        return core::computeVisibility(frame, state.boxes, state.thresholds,
+                                                       rowMask.get())
+                            .mask;
+                    },
+                    options);
+                const auto remembered = [&](const core::Frame& frame, std::size_t f) {
+                    {
+                        std::lock_guard lock(memo->mutex);
+                        if (auto it = memo->frames.find(f); it != memo->frames.end())
+                            return it->second;
+                    }
+                    auto set = search(frame, f);
+                    std::lock_guard lock(memo->mutex);
+                    const std::size_t bytes = CandidateMemo::sizeOf(*set);
+                    if (memo->bytes + bytes <= CandidateMemo::kBudget &&
+                        memo->frames.emplace(f, set).second)
+                        memo->bytes += bytes;
+                    return set;
+                };
                 core::FaultMetricsSeries growth = core::trackedMetricsSeries(
                     frames,
                     [ds, &control, frames](std::size_t k) {
@@ -282,13 +344,7 @@ class FaultMetricsSection {
                             throw std::runtime_error("cancelled");
                         return ds->frame(k);
                     },
-                    [&state](const core::Frame& frame, std::size_t) {
-                        const auto rowMask = core::Session::faultRowMask(state, frame);
-                        return core::computeVisibility(frame, state.boxes, state.thresholds,
-                                                       rowMask.get())
-                            .mask;
-                    },
-                    faults, options, {}, &tracks);
+                    remembered, faults, {}, &tracks);
                 Events events{key, {}, 0, std::move(growth), conditionsText(state)};
                 for (const core::FaultEvent& e : core::faultEvents(tracks)) {
                     PlotMark m;
