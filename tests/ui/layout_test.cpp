@@ -103,6 +103,8 @@ void checkEveryPanel(float width, float height) {
             R"({"op":"threshold.add","variable":"broken_bonds","low":2,"high":12})",
             R"({"op":"surface.set","fault":"F2","kernel":"compact","iso":0.3,"visible":true})",
             R"({"op":"view.add","name":"view 2","frame":1})",
+            // Three views side by side: at 640 pixels each header takes two rows.
+            R"({"op":"view.add","name":"view 3","frame":2})",
             R"({"op":"frame.set","frame":3})",
             R"({"op":"color.set","view":"main","variable":"broken_bonds","difference":"change","since_frame":1})",
         })

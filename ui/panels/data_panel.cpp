@@ -129,11 +129,14 @@ class DataPanel final : public Panel {
     int m_budgetMb = 0;
     bool m_editingBudget = false;
 
-    // "key   value", the value shortened to the panel (all of it in a tooltip).
+    // "key   value", the value wrapped at the panel's edge in its column (issue 41: a narrow
+    // panel cut "39 (timestep 3..." and the extent).
     static void keyValue(const char* key, const std::string& value) {
         ImGui::TextDisabled("%s", key);
         ImGui::SameLine(ImGui::GetFontSize() * 8);
-        textElided(value);
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(value.c_str());
+        ImGui::PopTextWrapPos();
     }
 };
 

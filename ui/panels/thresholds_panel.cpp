@@ -64,13 +64,16 @@ class ThresholdsPanel final : public Panel {
                 wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"enabled", enabled}});
             wb.mark("thresholds.enabled." + t.variable);
             ImGui::SameLine();
-            ImGui::TextUnformatted(t.variable.c_str());
             VariableInfo info{};
             bool haveInfo = false;
             if (frame)
                 if (auto i = wb.columns().info(main->frame, t.variable))
                     info = *i, haveInfo = true;
             const float removeW = ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
+            // A long name in a narrow panel ends in "..." before Remove (all of it on hover).
+            textElided(t.variable, std::max(1.0f, ImGui::GetContentRegionMax().x - removeW -
+                                                      ImGui::GetCursorPosX() -
+                                                      ImGui::GetStyle().ItemSpacing.x));
             ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
             if (ImGui::SmallButton("Remove"))
                 toRemove = t.variable;

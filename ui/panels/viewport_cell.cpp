@@ -106,7 +106,7 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     static const ViewDisplay kEmpty;
     const ViewDisplay& d = dp ? *dp : kEmpty;
     ImGui::PushID(view.name.c_str());
-    const float headerH = ImGui::GetFrameHeight() + 6 * wb.scale();
+    const float headerH = headerHeight(wb, size.x);
     drawHeader(wb, view, d, pos, size.x);
     const ImVec2 imgPos(pos.x, pos.y + headerH);
     const ImVec2 imgSize(size.x, std::max(1.0f, size.y - headerH));
@@ -169,17 +169,31 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     ImGui::PopID();
 }
 
+// A view narrower than this puts its colour and linked box on a second header row (issue 41:
+// three views side by side in a 640-pixel window cut the frame and colour buttons).
+float ViewportCells::headerHeight(PanelContext& wb, float width) {
+    const float row = ImGui::GetFrameHeight() + 6 * wb.scale();
+    return width < kTwoRowHeader * wb.scale() ? row + ImGui::GetFrameHeightWithSpacing() : row;
+}
+
 void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width) {
     const float scale = wb.scale();
-    const float h = ImGui::GetFrameHeight() + 6 * scale;
+    const float h = headerHeight(wb, width);
+    const bool twoRows = width < kTwoRowHeader * scale;
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(pos, ImVec2(pos.x + width, pos.y + h), ImGui::GetColorU32(ImGuiCol_MenuBarBg));
     ImGui::SetCursorScreenPos(ImVec2(pos.x + 6 * scale, pos.y + 3 * scale));
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted(view.name.c_str());
     ImGui::SameLine();
-    // Frame binding.
-    const std::string binding = bindingText(view.frame);
+    // Frame binding, shortened to what the row leaves (the tooltip says it all).
+    const std::string fullBinding = bindingText(view.frame);
+    float bindingRoom = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x -
+                        2 * ImGui::GetStyle().FramePadding.x;
+    if (view.name != "main")
+        bindingRoom -= ImGui::GetFrameHeight() + ImGui::GetStyle().ItemSpacing.x;
+    const std::string binding =
+        twoRows ? elided(fullBinding, std::max(bindingRoom, ImGui::CalcTextSize("...").x)) : fullBinding;
     if (ImGui::Button((binding + "##binding").c_str())) {
         m_frameRelative = view.frame.relative;
         m_frameEdit = static_cast<int>(view.frame.value);
@@ -190,7 +204,11 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
         ImGui::SetTooltip("Shows frame %zu (timestep %lld). Click to bind this view to another frame.", d.wantedFrame,
                           static_cast<long long>(wb.dataset()->location(d.wantedFrame).timestep));
     drawFramePopup(wb, view);
-    ImGui::SameLine();
+    if (twoRows)
+        ImGui::SetCursorScreenPos(
+            ImVec2(pos.x + 6 * scale, pos.y + 3 * scale + ImGui::GetFrameHeightWithSpacing()));
+    else
+        ImGui::SameLine();
     // Colour: the button takes what is left of the header beside the linked box and the close
     // button, its label shortened to fit (the whole of it in the tooltip). Categories (faults,
     // candidates) have no colour map to name.
@@ -573,7 +591,11 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
     } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)}, {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)}, {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
     float pointingAt = 0; // labels of axes seen end-on, stacked beside the origin
     std::vector<ImVec4> placed; // the labels drawn so far (x0, y0, x1, y1)
+    // A view under 150 pixels tall has no room for the axes beside the model and its labels.
+    const bool roomForAxes = size.y >= 150 * scale;
     for (const auto& a : axes) {
+        if (!roomForAxes)
+            break;
         const float dx = static_cast<float>(glm::dot(a.dir, basis.right)) * 26 * triad;
         const float dy = static_cast<float>(glm::dot(a.dir, basis.up)) * 26 * triad;
         const ImVec2 e(o.x + dx, o.y - dy);
@@ -598,11 +620,23 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
     // Frame label, top left; loading state.
     if (auto ds = wb.dataset(); ds && d.frame) {
         char text[128];
-        std::snprintf(text, sizeof text, "frame %zu   timestep %lld", d.shownFrame, static_cast<long long>(ds->location(d.shownFrame).timestep));
-        dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), IM_COL32(60, 64, 72, 255), text);
+        const long long timestep = static_cast<long long>(ds->location(d.shownFrame).timestep);
+        std::snprintf(text, sizeof text, "frame %zu   timestep %lld", d.shownFrame, timestep);
+        float line = 0;
+        const ImU32 ink = IM_COL32(60, 64, 72, 255);
+        if (ImGui::CalcTextSize(text).x + 16 * scale <= size.x) {
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), ink, text);
+            line = 1;
+        } else { // a narrow view: one per line (issue 41: "frame 29 timeste" was cut)
+            std::snprintf(text, sizeof text, "frame %zu", d.shownFrame);
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), ink, text);
+            std::snprintf(text, sizeof text, "timestep %lld", timestep);
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeight()), ink, text);
+            line = 2;
+        }
         if (d.loading()) {
             std::snprintf(text, sizeof text, "loading frame %zu...", d.wantedFrame);
-            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeightWithSpacing()), IM_COL32(190, 110, 20, 255), text);
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + line * ImGui::GetTextLineHeightWithSpacing()), IM_COL32(190, 110, 20, 255), text);
         }
     }
 }

@@ -30,6 +30,8 @@ class ViewportCells {
 
   private:
     void drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
+    static constexpr float kTwoRowHeader = 300.0f; // logical pixels
+    static float headerHeight(PanelContext& wb, float width);
     void drawColourPopup(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d);
     void drawDifference(PanelContext& wb, const core::ViewState& view);
     void drawFramePopup(PanelContext& wb, const core::ViewState& view);

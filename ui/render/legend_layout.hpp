@@ -39,6 +39,10 @@ struct LegendEntry {
 // Size factor of the legend: 1 at 720 pixels high, proportional above (never below 0.8),
 // userScale on top.
 float legendScale(int width, int height, float userScale);
+// Whether an image this size has room for a legend beside the model: a smaller view shows
+// none (issue 41: in three views side by side in a 640-pixel window it covered the model and the
+// frame label); its header still names the variable.
+inline bool roomForLegend(int width, int height) { return width >= 220 && height >= 150; }
 inline int legendLabelPixels(float scale) { return static_cast<int>(14.0f * scale + 0.5f); }
 inline int legendTitlePixels(float scale) { return static_cast<int>(16.0f * scale + 0.5f); }
 

@@ -1,4 +1,5 @@
 #include "ui/viewport/gl_view_renderer.hpp"
+#include "ui/render/legend_layout.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/view/box_handles.hpp"
@@ -168,8 +169,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         r.setBoxes(boxes, handles);
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
-        style.showLegend =
-            !scene.colorVariable.empty() && (scene.palette.empty() || !scene.legend.empty());
+        style.showLegend = roomForLegend(scene.width, scene.height) && !scene.colorVariable.empty() &&
+                           (scene.palette.empty() || !scene.legend.empty());
         if (!scene.palette.empty())
             style.categories = scene.legend;
         style.contextPoints = scene.contextPoints;

@@ -394,7 +394,7 @@ core::CameraState Workbench::fitCameraBeside(const core::ViewState& v, const Vie
     // (its title, tick labels or fault names), and centre the model in the rest (issue 41: a
     // long title's legend covered the block's east end).
     double legend = 0;
-    if (!v.colorVariable.empty() && m_renderer) {
+    if (!v.colorVariable.empty() && m_renderer && roomForLegend(int(w), int(h))) {
         const std::string title = d && !d->colorTitle.empty() ? d->colorTitle : v.colorVariable;
         const core::ValueRange range =
             d ? core::ValueRange{d->colorRange[0], d->colorRange[1]} : core::ValueRange{0, 1};
