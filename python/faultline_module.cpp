@@ -17,11 +17,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "core/session/fault_surface_request.hpp"
+
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace py = pybind11;
@@ -61,6 +67,42 @@ std::vector<std::string> pathsOf(const py::object& paths) {
         out.push_back(py::str(p).cast<std::string>());
     return out;
 }
+
+// Runs `work` on a worker thread while the calling thread waits without the GIL; every 50 ms
+// it takes the GIL so Python can handle signals. Ctrl+C sets `stop` (long work checks it and
+// ends early) and raises KeyboardInterrupt here once the work has ended. Errors of the work are
+// raised as they are.
+template <typename F>
+auto interruptible(std::atomic<bool>& stop, F&& work) -> decltype(work()) {
+    using R = decltype(work());
+    stop = false;
+    std::packaged_task<R()> task(std::forward<F>(work));
+    std::future<R> result = task.get_future();
+    bool interrupted = false;
+    {
+        py::gil_scoped_release release;
+        std::thread worker(std::move(task));
+        while (result.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+            py::gil_scoped_acquire acquire;
+            if (PyErr_CheckSignals() != 0) {
+                interrupted = true;
+                stop = true;
+                break;
+            }
+        }
+        worker.join();
+    }
+    if (interrupted)
+        throw py::error_already_set(); // the KeyboardInterrupt PyErr_CheckSignals set
+    return result.get();
+}
+
+// The surface builder's interrupter, stopped by Ctrl+C.
+struct StopFlag : core::Interrupter {
+    std::atomic<bool>& stop;
+    explicit StopFlag(std::atomic<bool>& s) : stop(s) {}
+    bool wasInterrupted(int) override { return stop.load(); }
+};
 
 class PyFrame {
   public:
@@ -187,11 +229,47 @@ class PySession {
 #endif
     py::object run(const py::dict& cmd) {
         const core::Json j = toJson(cmd);
-        {
+        // Rendering keeps to this thread (its offscreen GL context is current here); anything
+        // else runs where Ctrl+C can stop it.
+        if (j.is_object() && j.value("op", std::string()) == "render") {
             py::gil_scoped_release release;
             m_session.apply(j);
+            return py::none();
         }
+        m_session.setInterruptCheck([this] { return m_stop.load(); });
+        interruptible(m_stop, [&] { m_session.apply(j); });
         return py::none();
+    }
+    // A fault's surface in the current frame, as export.gltf builds it: vertices (N x 3 float32,
+    // the model's coordinates), triangles (M x 3 uint32, counter-clockwise from outside),
+    // colours (N x 3 float32 RGB in 0..1) and normals (N x 3 float32).
+    py::dict surface(const std::string& fault) {
+        const core::FaultSurfaceRequest request = core::surfaceRequestFor(m_session, fault, "surface");
+        const auto frame = m_session.currentFrame();
+        if (!frame)
+            throw core::CommandError("surface: no data is open");
+        core::SurfaceResult built = interruptible(m_stop, [&] {
+            StopFlag flag(m_stop);
+            return core::buildFaultSurface(*frame, request, &flag);
+        });
+        const core::SurfaceMesh& mesh = built.mesh;
+        auto rows = [](const std::vector<std::array<float, 3>>& v) {
+            py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(3)});
+            if (!v.empty())
+                std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(v[0]));
+            return out;
+        };
+        py::array_t<std::uint32_t> triangles({py::ssize_t(mesh.triangleCount()), py::ssize_t(3)});
+        if (!mesh.indices.empty())
+            std::memcpy(triangles.mutable_data(), mesh.indices.data(),
+                        mesh.indices.size() * sizeof(std::uint32_t));
+        py::dict out;
+        out["vertices"] = rows(mesh.positions);
+        out["triangles"] = triangles;
+        out["colours"] = rows(mesh.colors);
+        out["normals"] = rows(mesh.normals);
+        out["iso"] = built.iso;
+        return out;
     }
     bool undo() {
         py::gil_scoped_release release;
@@ -262,12 +340,25 @@ class PySession {
         fs::remove_all(dir);
         return out;
     }
+    // As a pandas DataFrame when asked (ImportError saying so when pandas is missing).
+    static py::object asTable(py::object array, bool pandas) {
+        if (!pandas)
+            return array;
+        py::object pd;
+        try {
+            pd = py::module_::import("pandas");
+        } catch (py::error_already_set&) {
+            throw py::import_error("pandas=True needs pandas (Debian: apt-get install python3-pandas)");
+        }
+        return pd.attr("DataFrame")(array);
+    }
     bool canUndo() const { return m_session.canUndo(); }
     bool canRedo() const { return m_session.canRedo(); }
     std::string undoLabel() const { return m_session.undoLabel(); }
 
   private:
     core::Session m_session;
+    std::atomic<bool> m_stop{false};
 };
 
 // faultline.generate.planes: the planted-planes model written as a LAMMPS dump, and its truth.
@@ -405,15 +496,27 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
              "The view drawn offscreen as an H x W x 4 uint8 RGBA array (size is (width, height)); "
              "no display needed (EGL)")
 #endif
-        .def("fault_metrics", [](PySession& s) { return s.table("fault_metrics", py::none(), false); },
+        .def("fault_metrics", [](PySession& s, bool pandas) {
+                 return PySession::asTable(s.table("fault_metrics", py::none(), false), pandas);
+             }, py::arg("pandas") = false,
              "Every fault's metrics in every frame (export.csv fault_metrics) as a numpy "
-             "structured array: frame, fault, count, dip, dip_direction, throw, ...")
-        .def("fault_growth", [](PySession& s) { return s.table("fault_growth", py::none(), false); },
+             "structured array (pandas=True: a DataFrame): frame, fault, count, dip, "
+             "dip_direction, throw, ...")
+        .def("fault_growth", [](PySession& s, bool pandas) {
+                 return PySession::asTable(s.table("fault_growth", py::none(), false), pandas);
+             }, py::arg("pandas") = false,
              "The metrics of what each fault is in each frame, followed through time")
-        .def("fault_events", [](PySession& s) { return s.table("fault_events", py::none(), false); },
+        .def("fault_events", [](PySession& s, bool pandas) {
+                 return PySession::asTable(s.table("fault_events", py::none(), false), pandas);
+             }, py::arg("pandas") = false,
              "When faults appeared, linked and split: frame, kind, faults")
-        .def("spheres", [](PySession& s, const py::object& variables, bool onlyVisible) {
-                 return s.table("spheres", variables, onlyVisible);
+        .def("spheres", [](PySession& s, const py::object& variables, bool onlyVisible, bool pandas) {
+                 return PySession::asTable(s.table("spheres", variables, onlyVisible), pandas);
              }, py::arg("variables") = py::none(), py::arg("only_visible") = false,
-             "The current frame's spheres: id and the variables asked for (export.csv spheres)");
+             py::arg("pandas") = false,
+             "The current frame's spheres: id and the variables asked for (export.csv spheres)")
+        .def("surface", &PySession::surface, py::arg("fault"),
+             "A fault's surface in the current frame, as export.gltf builds it, as a dict of "
+             "arrays: vertices (N x 3 float32), triangles (M x 3 uint32), colours (N x 3, RGB "
+             "0..1), normals (N x 3), and the iso-value used");
 }

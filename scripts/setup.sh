@@ -11,7 +11,7 @@ packages=(
     xvfb xauth libgl1-mesa-dri libglx-mesa0 libegl1 libegl-mesa0 mesa-utils
     libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
     slurm-wlm munge bc fonts-dejavu-core
-    pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
 )
 
 missing=()

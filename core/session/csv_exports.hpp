@@ -8,6 +8,7 @@
 #include "core/session/command_args.hpp"
 #include "core/session/session_state.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -17,7 +18,10 @@ namespace faultline::core {
 // events: "method", "link", "min_size", "angle", "radius")}; the other
 // fields are not looked at. Rows over time only for the selected frames (replay --frames,
 // --shard). Throws CommandError (what is wrong, or that data is needed).
+// `beforeFrame`, when given, runs before each frame is read (it may throw to stop the export:
+// the Python module's Ctrl+C).
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& data,
-                          const Json& cmd, const FrameSelection& frames = {});
+                          const Json& cmd, const FrameSelection& frames = {},
+                          const std::function<void()>& beforeFrame = {});
 
 } // namespace faultline::core

@@ -70,6 +70,12 @@ struct FaultSurfaceRequest {
     SurfaceSettings settings;
 };
 
+class Session;
+// A fault's surface request as the session's exports build it: the fault as formed in the
+// current frame (or the visible spheres) with its surface settings (the defaults when it has
+// none). Throws CommandError, prefixed with `op`, for a name that is no fault.
+FaultSurfaceRequest surfaceRequestFor(Session& s, const std::string& fault, const char* op);
+
 // The members present in a frame in the colours their surface gives them (Figure 4): the
 // fault's, or the setting's colour map of its colorBy variable. Throws CommandError when the
 // frame has no such variable.

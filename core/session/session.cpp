@@ -419,4 +419,9 @@ const VisibilityResult& Session::visibility() {
     return m_visibility;
 }
 
+void Session::throwIfInterrupted(std::string_view op) const {
+    if (m_interruptCheck && m_interruptCheck())
+        throw CommandError(std::string(op) + ": interrupted");
+}
+
 } // namespace faultline::core

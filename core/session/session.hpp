@@ -38,6 +38,11 @@ class Session {
     void markSaved() { m_savedVersion = m_version; }
     // For session.open's handler: the state it installs counts as saved once the op completes.
     void markSavedAfterThisOp() { m_markSavedAfterOp = true; }
+    // Long ops (exports over every frame) ask between frames whether to stop: a check that
+    // returns true stops them with CommandError("<op>: interrupted") (the Python module's
+    // Ctrl+C). None by default.
+    void setInterruptCheck(std::function<bool()> check) { m_interruptCheck = std::move(check); }
+    void throwIfInterrupted(std::string_view op) const;
 
     // Runs one command (including {"op":"undo"} and {"op":"redo"}) and records it in the journal.
     void apply(const Json& cmd);
@@ -167,6 +172,7 @@ class Session {
     std::vector<Json> m_undo;         // inverses, most recent last
     std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
     bool m_markSavedAfterOp = false;
+    std::function<bool()> m_interruptCheck;
     std::vector<Json> m_redo;          // commands that redo, most recent last
     std::vector<std::string> m_undoLabels, m_redoLabels; // describeCommand of each entry
     void journalLine(const Json& cmd); // after any reserved places

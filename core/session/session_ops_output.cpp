@@ -90,7 +90,8 @@ std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& d
 } // namespace
 
 std::string exportCsvText(const SessionState& state, const std::shared_ptr<Dataset>& ds,
-                          const Json& cmd, const FrameSelection& frames) {
+                          const Json& cmd, const FrameSelection& frames,
+                          const std::function<void()>& beforeFrame) {
     const std::string what = args::string(cmd, "what");
     if (what == "faults")
         return faultsCsv(state.faults);
@@ -102,7 +103,11 @@ std::string exportCsvText(const SessionState& state, const std::shared_ptr<Datas
                            "fault_growth, fault_tracks or fault_events");
     if (!ds)
         throw CommandError("export.csv: " + what + " needs open data");
-    const FrameLoader load = [ds](std::size_t k) { return ds->frame(k); };
+    const FrameLoader load = [ds, &beforeFrame](std::size_t k) {
+        if (beforeFrame)
+            beforeFrame();
+        return ds->frame(k);
+    };
     if (what == "fault_metrics")
         return faultMetricsCsv(
             computeMetricsSeries(ds->frameCount(), load, state.faults, {}, frames));
@@ -144,7 +149,8 @@ void registerOutputOps(OpTable& ops) {
         args::onlyFields(cmd, {"what", "path", "link", "min_size", "method", "angle", "radius",
                                "variables", "only_visible"});
         const std::string path = s.outputPath(args::string(cmd, "path"));
-        const std::string text = exportCsvText(s.state(), s.dataset(), cmd, s.frameSelection());
+        const std::string text = exportCsvText(s.state(), s.dataset(), cmd, s.frameSelection(),
+                                               [&s] { s.throwIfInterrupted("export.csv"); });
         try {
             writeFileAtomically(path, text);
         } catch (const std::exception& e) {

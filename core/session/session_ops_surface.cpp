@@ -187,3 +187,11 @@ void registerSurfaceOps(OpTable& ops) {
 }
 
 } // namespace faultline::core::detail
+
+namespace faultline::core {
+
+FaultSurfaceRequest surfaceRequestFor(Session& s, const std::string& fault, const char* op) {
+    return detail::requestOf(s, fault, op);
+}
+
+} // namespace faultline::core

@@ -153,3 +153,83 @@ def test_render_returns_the_view_as_an_rgba_array():
     assert len(np.unique(img.reshape(-1, 4), axis=0)) > 50  # shaded spheres and a legend, not blank
     with pytest.raises(faultline.CommandError, match="no view named"):
         s.render("nowhere", (64, 64))
+
+
+def _graben_faults():
+    s = faultline.Session(LAMMPS)
+    s.run({"op": "frame.set", "frame": 4})
+    s.run({"op": "strain.add", "since_offset": -1, "prefix": "inc_"})
+    s.run({"op": "threshold.add", "variable": "inc_shear_strain", "low": 0.15, "high": 1e30})
+    s.run({"op": "fault.candidates", "min_size": 50, "prefix": "F"})
+    return s
+
+
+def _glb_accessor_counts(path):
+    import json
+    import struct
+    data = open(path, "rb").read()
+    assert data[:4] == b"glTF"
+    length, kind = struct.unpack_from("<I4s", data, 12)
+    assert kind == b"JSON"
+    doc = json.loads(data[20:20 + length])
+    return doc, [a["count"] for a in doc["accessors"]]
+
+
+def test_a_surface_comes_as_arrays_equal_to_the_gltf(tmp_path):
+    s = _graben_faults()
+    surf = s.surface("F1")
+    v, t, c, n = surf["vertices"], surf["triangles"], surf["colours"], surf["normals"]
+    assert v.dtype == np.float32 and v.shape[1] == 3 and len(v) > 100
+    assert t.dtype == np.uint32 and t.shape[1] == 3 and t.max() < len(v)
+    assert c.shape == v.shape and 0 <= c.min() and c.max() <= 1
+    assert np.allclose(np.linalg.norm(n, axis=1), 1, atol=1e-3)
+    # The surface wraps F1's spheres (those passing the thresholds): around their box.
+    ids = s.faults["F1"]
+    f = s.frame
+    rows = np.isin(f.ids, ids) & s.visible
+    lo, hi = f.positions[rows].min(axis=0), f.positions[rows].max(axis=0)
+    assert (v.min(axis=0) <= lo + 1).all() and (v.max(axis=0) >= hi - 1).all()
+    # The same mesh export.gltf writes.
+    s.run({"op": "export.gltf", "faults": ["F1"], "path": str(tmp_path / "f1.glb")})
+    doc, counts = _glb_accessor_counts(tmp_path / "f1.glb")
+    prim = doc["meshes"][0]["primitives"][0]
+    assert counts[prim["attributes"]["POSITION"]] == len(v)
+    assert counts[prim["indices"]] == t.size
+    with pytest.raises(faultline.CommandError, match="no fault named"):
+        s.surface("nowhere")
+
+
+def test_tables_as_pandas_dataframes():
+    s = _graben_faults()
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError, match="python3-pandas"):
+            s.fault_metrics(pandas=True)
+        return
+    m = s.fault_metrics(pandas=True)
+    assert list(m.columns[:3]) == ["frame", "fault", "count"]
+    assert len(m) == 10 and set(m["fault"]) == {"F1", "F2"}
+    assert len(s.spheres(["inc_shear_strain"], only_visible=True, pandas=True)) == 971
+
+
+def test_ctrl_c_stops_a_long_call_and_the_session_goes_on(tmp_path):
+    import signal
+    path, _ = faultline.generate.planes("large", str(tmp_path / "planes.dump.gz"), seed=3)
+    s = faultline.Session(path)
+    s.run({"op": "frame.set", "frame": len(s.dataset) - 1})
+    s.run({"op": "threshold.add", "variable": "broken_bonds", "low": 1, "high": 1e9})
+    s.run({"op": "fault.candidates", "min_size": 50})
+    before = s.state
+    # Following every fault through 10 frames of 268,800 spheres takes 1.6 s; Ctrl+C after 0.3 s.
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        s.run({"op": "export.csv", "what": "fault_events", "path": str(tmp_path / "e.csv")})
+    stopped = time.perf_counter() - start
+    timer.join()
+    assert stopped < 3.0, stopped
+    assert not (tmp_path / "e.csv").exists()
+    assert s.state == before  # nothing changed, and the session still works
+    s.run({"op": "frame.set", "frame": 0})

@@ -285,8 +285,12 @@ void Workbench::exportCsv(core::Json cmd) {
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
         [this, snapshot = state(), data = m_session.dataset(), cmd, path,
-         at = place->place](JobControl&) -> std::function<void()> {
-            core::writeFileAtomically(path, core::exportCsvText(snapshot, data, cmd));
+         at = place->place](JobControl& control) -> std::function<void()> {
+            // Cancel in the status bar stops it between frames; no file is written.
+            core::writeFileAtomically(path, core::exportCsvText(snapshot, data, cmd, {}, [&control] {
+                                          if (control.cancelled())
+                                              throw std::runtime_error("cancelled");
+                                      }));
             return [this, cmd, path, at] {
                 m_session.settleAction(at, cmd); // replayed like any export, where it was asked for
                 info("Exported " + path);
