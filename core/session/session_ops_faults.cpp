@@ -213,8 +213,12 @@ void registerFaultOps(OpTable& ops) {
                         {"fault", items::toJson(*it)},
                         {"index", it - state.faults.begin()}};
         if (SurfaceSettings* surface = state.surface(name)) {
+            // Back where it was among the surfaces (issue 42: undo put it last, so a refused
+            // batch that deleted and restored a fault reordered the surfaces).
+            const auto at = surface - state.surfaces.data();
             inverse["surface"] = items::toJson(*surface);
-            state.surfaces.erase(state.surfaces.begin() + (surface - state.surfaces.data()));
+            inverse["surface_index"] = at;
+            state.surfaces.erase(state.surfaces.begin() + at);
         }
         if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
             inverse = {{"op", "batch"},
@@ -225,7 +229,7 @@ void registerFaultOps(OpTable& ops) {
         return inverse;
     });
     addStateOp(ops, "fault.restore", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"fault", "index", "surface"});
+        args::onlyFields(cmd, {"fault", "index", "surface", "surface_index"});
         Fault f = items::patchedField("fault.restore", Fault{}, cmd, "fault", {"name"});
         auto& state = s.mutableState();
         if (state.fault(f.name) || isVisibleSpheres(f.name))
@@ -234,7 +238,12 @@ void registerFaultOps(OpTable& ops) {
             SurfaceSettings st;
             st.fault = f.name;
             st = items::patchedField("fault.restore", st, cmd, "surface");
-            state.surfaces.push_back(st);
+            const long long at = args::optionalInteger(cmd, "surface_index")
+                                     .value_or(static_cast<long long>(state.surfaces.size()));
+            state.surfaces.insert(
+                state.surfaces.begin() +
+                    std::clamp(at, 0LL, static_cast<long long>(state.surfaces.size())),
+                st);
         }
         const long long index = args::optionalInteger(cmd, "index")
                                     .value_or(static_cast<long long>(state.faults.size()));
@@ -251,6 +260,10 @@ void registerFaultOps(OpTable& ops) {
         const std::string into = args::string(cmd, "into");
         if (names.size() < 2)
             throw CommandError("fault.merge: \"names\" needs at least two faults");
+        for (std::size_t k = 0; k < names.size(); ++k)
+            if (std::find(names.begin(), names.begin() + std::ptrdiff_t(k), names[k]) !=
+                names.begin() + std::ptrdiff_t(k))
+                throw CommandError("fault.merge: \"names\" lists \"" + names[k] + "\" twice");
         std::vector<std::int64_t> ids;
         for (const auto& n : names) {
             const Fault* f = s.state().fault(n);
