@@ -106,7 +106,7 @@ Json Session::run(const Json& cmd, bool& changesState) {
         ++m_version;
     }
     if (m_markSavedAfterOp)
-        m_savedVersion = m_version;
+        markSaved();
     m_markSavedAfterOp = false;
     return inverse;
 }
@@ -197,7 +197,9 @@ void Session::apply(const Json& cmd) {
             m_undoLabels.push_back(
                 describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1));
             m_undo.push_back(std::move(inverse));
+            m_undoSerials.push_back(m_nextSerial++);
             m_redo.clear();
+            m_redoSerials.clear();
             m_redoLabels.clear();
         }
     }
@@ -273,6 +275,13 @@ std::size_t Session::pendingActions() const {
 }
 
 void Session::clearHistory() {
+    // A new history starts at a new position; an unmodified session stays unmodified.
+    const bool wasSaved = historyPosition() == m_savedPosition;
+    m_undoSerials.clear();
+    m_redoSerials.clear();
+    m_historyStart = m_nextSerial++;
+    if (wasSaved && m_version == m_savedVersion)
+        m_savedPosition = m_historyStart;
     m_undo.clear();
     m_redo.clear();
     m_undoLabels.clear();
@@ -285,6 +294,8 @@ bool Session::undo() {
     bool changes = false;
     Json redo = run(m_undo.back(), changes);
     m_undo.pop_back();
+    m_redoSerials.push_back(m_undoSerials.back());
+    m_undoSerials.pop_back();
     m_redo.push_back(std::move(redo));
     m_redoLabels.push_back(m_undoLabels.back());
     m_undoLabels.pop_back();
@@ -297,6 +308,8 @@ bool Session::redo() {
     bool changes = false;
     Json undo = run(m_redo.back(), changes);
     m_redo.pop_back();
+    m_undoSerials.push_back(m_redoSerials.back());
+    m_redoSerials.pop_back();
     m_undo.push_back(std::move(undo));
     m_undoLabels.push_back(m_redoLabels.back());
     m_redoLabels.pop_back();

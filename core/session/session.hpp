@@ -34,8 +34,15 @@ class Session {
     std::uint64_t version() const { return m_version; } // grows with every change
     // Changed since the state was last saved (session.save) or opened (session.open); a new
     // session is unmodified. markSaved() makes the current state the saved one.
-    bool modified() const { return m_version != m_savedVersion; }
-    void markSaved() { m_savedVersion = m_version; }
+    // Undoing back to the saved state, or redoing back to it, leaves it unmodified (issue 42:
+    // four undos and four redos after a save asked to save again).
+    bool modified() const {
+        return m_version != m_savedVersion && historyPosition() != m_savedPosition;
+    }
+    void markSaved() {
+        m_savedVersion = m_version;
+        m_savedPosition = historyPosition();
+    }
     // For session.open's handler: the state it installs counts as saved once the op completes.
     void markSavedAfterThisOp() { m_markSavedAfterOp = true; }
     // Long ops (exports over every frame) ask between frames whether to stop: a check that
@@ -171,6 +178,13 @@ class Session {
     std::shared_ptr<Dataset> m_dataset;
     std::vector<Json> m_undo;         // inverses, most recent last
     std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
+    // Where in its history the state is: the step on top of the undo stack (each step has a
+    // serial), or the start of the history when none. Saved at markSaved().
+    std::vector<std::uint64_t> m_undoSerials, m_redoSerials;
+    std::uint64_t m_historyStart = 0, m_nextSerial = 1, m_savedPosition = 0;
+    std::uint64_t historyPosition() const {
+        return m_undoSerials.empty() ? m_historyStart : m_undoSerials.back();
+    }
     bool m_markSavedAfterOp = false;
     std::function<bool()> m_interruptCheck;
     std::vector<Json> m_redo;          // commands that redo, most recent last

@@ -170,6 +170,39 @@ TEST(Session, FramesAreNoUndoStepsAndUndoSaysWhatItReverts) {
     EXPECT_TRUE(s.modified());
 }
 
+// Issue 42 (a walkthrough): four undos and four redos back to the saved state still asked to
+// save; undoing back to it leaves the session unmodified too, and opening is saved.
+TEST(Session, UndoAndRedoBackToTheSavedStateLeaveItUnmodified) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    EXPECT_TRUE(s.modified());
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
+    s.apply(cmd(R"({"op":"fault.add","name":"F1","ids":[3]})"));
+    const std::string path = dir.file("a.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", path}});
+    EXPECT_FALSE(s.modified());
+    s.undo(), s.undo();
+    EXPECT_TRUE(s.modified());
+    s.redo();
+    EXPECT_TRUE(s.modified());
+    s.redo();
+    EXPECT_FALSE(s.modified()); // back where it was saved
+    s.apply(cmd(R"({"op":"fault.add","name":"F1","ids":[4]})"));
+    EXPECT_TRUE(s.modified());
+    s.undo();
+    EXPECT_FALSE(s.modified());
+    s.undo();
+    s.apply(cmd(R"({"op":"fault.add","name":"F1","ids":[5]})")); // another branch
+    EXPECT_TRUE(s.modified());
+    Session o;
+    o.apply({{"op", "session.open"}, {"path", path}});
+    EXPECT_FALSE(o.modified());
+    o.apply(cmd(R"({"op":"fault.add","name":"F1","ids":[6]})"));
+    o.undo();
+    EXPECT_FALSE(o.modified());
+}
+
 // Issue 41, item 7: camera moves are view state like time: no undo step
 // (the first Ctrl+Z after a rectangle undid a camera move), nothing unsaved to ask about; the
 // status says what failed in words.
