@@ -83,6 +83,15 @@ TEST_F(PanelTest, CandidateRowsSayWhichSpheresAcceptingWouldMove) {
     EXPECT_EQ(session.state().fault("W")->ids.size(), 1u); // one moved into C1
     EXPECT_FALSE(headless.has(wb(), "candidates.overlap.1")); // accepted
     EXPECT_TRUE(headless.has(wb(), "candidates.overlap.2"));
+    // Accepting the other takes W's last sphere: W goes too, in the same undo step (a
+    // walkthrough: an emptied fault stayed in the list, the legend and the metrics).
+    headless.click(wb(), "candidates.accept.2");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(session.state().fault("W"), nullptr);
+    EXPECT_EQ(session.state().faults.size(), 2u);
+    session.undo();
+    ASSERT_NE(session.state().fault("W"), nullptr);
+    EXPECT_EQ(session.state().fault("W")->ids.size(), 1u);
 }
 
 TEST_F(PanelTest, TheFaultsVariableColoursMembersInTheirFaultsColour) {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -88,7 +89,9 @@ class FaultCandidatesSection {
                 cmd["method"] = "connected";
             else if (preview->options.angle != core::kDefaultCandidateAngle)
                 cmd["angle"] = preview->options.angle;
-            wb.emit(cmd, [&wb] { wb.selection().candidates.reset(); });
+            updateOverlaps(wb, *preview);
+            wb.emit(withEmptiedRemoved(wb, cmd, m_overlaps),
+                    [&wb] { wb.selection().candidates.reset(); });
         }
         wb.mark("candidates.accept_all");
         ImGui::EndDisabled();
@@ -115,20 +118,30 @@ class FaultCandidatesSection {
                                    ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
                                    ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
                 ImGui::TableNextColumn();
+                // What follows the size wraps in its cell rather than run under Accept (a
+                // walkthrough: "shares N" was hidden at the default width).
+                const float cellRight = ImGui::GetCursorScreenPos().x + ImGui::GetContentRegionAvail().x;
+                const auto besideOrBelow = [cellRight](const char* text) {
+                    if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x +
+                            ImGui::CalcTextSize(text).x <= cellRight)
+                        ImGui::SameLine();
+                };
                 ImGui::Text("#%d  %zu", k + 1, cands[static_cast<std::size_t>(k)].size());
                 if (ImGui::IsItemHovered())
                     ImGui::SetTooltip("%zu spheres", cands[static_cast<std::size_t>(k)].size());
                 if (static_cast<std::size_t>(k) < preview->shapes.size()) {
                     const core::CandidateShape& shape = preview->shapes[static_cast<std::size_t>(k)];
                     if (shape.valid) {
-                        ImGui::SameLine();
-                        ImGui::TextDisabled("%.0f%s/%03.0f", shape.dip, "\xC2\xB0",
-                                            shape.dipDirection);
+                        char orientation[32];
+                        std::snprintf(orientation, sizeof orientation, "%.0f%s/%03.0f", shape.dip,
+                                      "\xC2\xB0", shape.dipDirection);
+                        besideOrBelow(orientation);
+                        ImGui::TextDisabled("%s", orientation);
                         if (ImGui::IsItemHovered())
                             ImGui::SetTooltip("dip / dip direction (degrees)");
                     }
                     if (shape.diffuse) {
-                        ImGui::SameLine();
+                        besideOrBelow("diffuse");
                         ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "diffuse");
                         if (ImGui::IsItemHovered())
                             ImGui::SetTooltip(
@@ -148,8 +161,10 @@ class FaultCandidatesSection {
                         shared += n;
                         where += (where.empty() ? "" : ", ") + fault + " (" + std::to_string(n) + ")";
                     }
-                    ImGui::SameLine();
-                    ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "shares %zu", shared);
+                    char sharesText[32];
+                    std::snprintf(sharesText, sizeof sharesText, "shares %zu", shared);
+                    besideOrBelow(sharesText);
+                    ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "%s", sharesText);
                     wb.mark("candidates.overlap." + std::to_string(k + 1));
                     if (ImGui::IsItemHovered())
                         ImGui::SetTooltip("%zu of its spheres are in %s.\nAccepting moves them into "
@@ -250,6 +265,25 @@ class FaultCandidatesSection {
         }
     }
 
+    // The command, and deleting the faults it would leave with no sphere (a walkthrough: Accept
+    // all left an empty C1 in the list, the legend and the metrics), as one undo step. The op
+    // itself keeps emptied faults (journals count on it).
+    static core::Json withEmptiedRemoved(
+        PanelContext& wb, core::Json cmd,
+        const std::vector<std::vector<std::pair<std::string, std::size_t>>>& overlaps) {
+        std::map<std::string, std::size_t> taken;
+        for (const auto& row : overlaps)
+            for (const auto& [fault, n] : row)
+                taken[fault] += n;
+        core::Json batch = core::Json::array({cmd});
+        for (const auto& [fault, n] : taken)
+            if (const core::Fault* f = wb.state().fault(fault); f && n >= f->ids.size())
+                batch.push_back({{"op", "fault.delete"}, {"name", fault}});
+        if (batch.size() == 1)
+            return cmd;
+        return {{"op", "batch"}, {"commands", batch}};
+    }
+
     void clear(PanelContext& wb) {
         wb.selection().candidates.reset();
         m_accepted.clear();
@@ -267,7 +301,10 @@ class FaultCandidatesSection {
         if (static_cast<std::size_t>(k) < shapes.size())
             if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]); !note.empty())
                 cmd["notes"] = note;
-        wb.emit(cmd,
+        updateOverlaps(wb, *wb.selection().candidates);
+        const std::vector<std::vector<std::pair<std::string, std::size_t>>> mine = {
+            m_overlaps.at(static_cast<std::size_t>(k))};
+        wb.emit(withEmptiedRemoved(wb, cmd, mine),
                 [this, &wb, k, name] {
                     m_accepted.insert(k);
                     wb.selection().faults = {name};
