@@ -156,13 +156,19 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
             for (float yy = y0; yy < y1; yy += 2 * dash)
                 dl->AddLine(ImVec2(xx, yy), ImVec2(xx, std::min(y1, yy + dash)), m.color,
                             1.5f * scale);
-            const float left = xx + 2 * scale;
+            // Right of its line, or left of it at the plot's right edge (the last frame's).
+            const float left = std::min(xx + 2 * scale, x1 - letterW - 2 * scale);
             for (int row = 0; row < kRows; ++row) {
                 const float at = std::max(left, rowEnd[std::size_t(row)]);
-                if (at > left + letterW) // too far from its line: try the next row
+                if (at > left + letterW || at + letterW > x1) // too far: try the next row
                     continue;
                 const char label[2] = {m.letter, 0};
-                dl->AddText(ImVec2(at, y0 + 1 * scale + float(row) * rowH), m.color, label);
+                const ImVec2 p(at, y0 + 1 * scale + float(row) * rowH);
+                // On a patch of the plot's background, so a line through it does not hide it.
+                dl->AddRectFilled(ImVec2(p.x - 1 * scale, p.y),
+                                  ImVec2(p.x + ImGui::CalcTextSize(label).x + 1 * scale, p.y + rowH),
+                                  ImGui::GetColorU32(ImGuiCol_FrameBg));
+                dl->AddText(p, m.color, label);
                 rowEnd[std::size_t(row)] = at + letterW;
                 break;
             }
