@@ -46,7 +46,10 @@ std::string demoLikeDump() {
     return text;
 }
 
-void checkEveryPanel(float width, float height) {
+// `layout`: a layout.set to apply first; `only`: count problems only in windows whose name holds
+// one of these (empty: every window).
+void checkEveryPanel(float width, float height, const char* layout = nullptr,
+                     std::vector<std::string> only = {}) {
     TempDir dir;
     core::Session session;
     HeadlessUi headless(width, height);
@@ -71,6 +74,10 @@ void checkEveryPanel(float width, float height) {
     wb->openData({dir.file("demo_like.dump")});
     headless.settle(*wb);
     ASSERT_NE(session.dataset(), nullptr);
+    if (layout) {
+        session.apply(Json::parse(layout));
+        headless.settle(*wb);
+    }
 
     std::ostringstream found;
     std::set<std::string> seen; // a window shows the same problem whichever panel is in front
@@ -85,6 +92,10 @@ void checkEveryPanel(float width, float height) {
                 if (p.what.rfind("\"West-dippinggraben", 0) == 0 &&
                     p.what.find("(trimmed to its box)") != std::string::npos &&
                     p.window.find("content.faults") != std::string::npos)
+                    continue;
+                if (!only.empty() && std::none_of(only.begin(), only.end(), [&](const std::string& w) {
+                        return p.window.find(w) != std::string::npos;
+                    }))
                     continue;
                 if (seen.insert(p.window + p.what).second) {
                     ++count;
@@ -130,6 +141,20 @@ TEST(Layout, NoTextIsCutOffOrOverlapsAt1280x800) { checkEveryPanel(1280, 800); }
 TEST(Layout, NoTextIsCutOffOrOverlapsAt1920x1080) { checkEveryPanel(1920, 1080); }
 // Issue 41, item 12: a small window (a laptop's split screen).
 TEST(Layout, NoTextIsCutOffOrOverlapsAt640x420) { checkEveryPanel(640, 420); }
+
+// A walkthrough's own layout at 640 pixels: three columns, the left one 128 pixels wide. The
+// threshold's name and the Data panel's values vanished there. Checked: the Thresholds and
+// Boxes panels (the Data panel's values now wrap under their keys there, but something in it
+// still reaches 53 px past the edge on the first frame; the views and the Faults panel still
+// cut a little: not yet fixed).
+TEST(Layout, NoTextIsCutOffInANarrowColumnAt640x420) {
+    checkEveryPanel(640, 420, R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.2,
+        "a":{"tabs":["data","thresholds","boxes"]},
+        "b":{"split":"h","ratio":0.6,
+            "a":{"split":"v","ratio":0.7,"a":{"tabs":["viewports"]},"b":{"tabs":["timeline"]}},
+            "b":{"split":"v","ratio":0.4,"a":{"tabs":["histograms"]},"b":{"tabs":["faults","surfaces"]}}}}}})",
+                    {"content.thresholds", "content.boxes"});
+}
 
 // The checker itself: it finds a label cut off by its window and two texts drawn over each other.
 TEST(Layout, TheCheckerFindsCutOffAndOverlappingText) {

@@ -1,4 +1,5 @@
 #include "ui/dock/dock_space.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include "ui/widgets/item_registry.hpp"
 
@@ -136,7 +137,12 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
                               ImDrawFlags_RoundCornersTop);
         ImGui::PushClipRect(a, b, true);
         const ImU32 textColor = active ? color(ImGuiCol_Text) : color(ImGuiCol_Text, 0.72f);
-        dl->AddText(ImVec2(x + padX, a.y + (b.y - a.y - ImGui::GetTextLineHeight()) * 0.5f), textColor, title);
+        // A tab narrower than its title shows it shortened (all of it on hover).
+        const std::string shownTitle = elided(title, tabW - 2 * padX);
+        dl->AddText(ImVec2(x + padX, a.y + (b.y - a.y - ImGui::GetTextLineHeight()) * 0.5f), textColor,
+                    shownTitle.c_str());
+        if (hovered && shownTitle != title)
+            ImGui::SetTooltip("%s", title);
         ImGui::PopClipRect();
         ImGui::PopID();
         x += tabW + 2 * scale;

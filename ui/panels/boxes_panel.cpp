@@ -107,7 +107,7 @@ class BoxesPanel final : public Panel {
         }
         sel = s.box(wb.selection().box);
         if (!sel) {
-            ImGui::TextDisabled("Select a box to edit it.");
+            hint("Select a box to edit it.");
             return;
         }
         drawEditor(wb, *sel, model);

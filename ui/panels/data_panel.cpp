@@ -3,6 +3,7 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/panels/strain_section.hpp"
+#include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 #include "ui/context/frame_columns.hpp"
 
@@ -25,7 +26,7 @@ class DataPanel final : public Panel {
             wb.fileDialog().open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},
                                  "");
         wb.mark("data.open");
-        ImGui::SameLine();
+        flowSameLine(buttonWidth("Close"));
         ImGui::BeginDisabled(!ds);
         if (ImGui::Button("Close"))
             wb.emit({{"op", "data.close"}});
@@ -42,12 +43,13 @@ class DataPanel final : public Panel {
         if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
             const auto files = ds->files();
             const auto& loc = ds->location(0);
-            ImGui::TextDisabled("%zu file%s, %s", files.size(), files.size() == 1 ? "" : "s",
-                                std::string(core::formatName(loc.format)).c_str());
+            hint("%zu file%s, %s", files.size(), files.size() == 1 ? "" : "s",
+                 std::string(core::formatName(loc.format)).c_str());
             const std::size_t shown = std::min<std::size_t>(files.size(), 6);
             for (std::size_t k = 0; k < shown; ++k) {
                 const std::string name = std::filesystem::path(files[k]).filename().string();
-                ImGui::BulletText("%s", name.c_str());
+                ImGui::Bullet();
+                textElided(name); // the whole path on hover
                 if (ImGui::IsItemHovered())
                     ImGui::SetTooltip("%s", files[k].c_str());
             }
@@ -74,18 +76,26 @@ class DataPanel final : public Panel {
             }
         }
         if (main && main->frame && ImGui::CollapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
-            if (ImGui::BeginTable("##columns", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+            // A narrow panel keeps the names and gives the type and range on hover.
+            const bool wide = ImGui::GetContentRegionAvail().x >= ImGui::GetFontSize() * 16;
+            if (ImGui::BeginTable("##columns", wide ? 4 : 1, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
                                                      ImGuiTableFlags_SizingStretchProp)) {
                 ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.4f);
-                ImGui::TableSetupColumn("type", ImGuiTableColumnFlags_WidthStretch, 0.6f);
-                ImGui::TableSetupColumn("min", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-                ImGui::TableSetupColumn("max", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+                if (wide) {
+                    ImGui::TableSetupColumn("type", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+                    ImGui::TableSetupColumn("min", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+                    ImGui::TableSetupColumn("max", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+                }
                 ImGui::TableHeadersRow();
                 for (const auto& [name, col] : wb.columns().of(main->frame)) {
                     const VariableInfo* info = &col;
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
-                    textElided(name);
+                    if (!textElided(name) && !wide && ImGui::IsItemHovered())
+                        ImGui::SetTooltip("%s  %s  %s .. %s", name.c_str(), info->integer ? "int" : "float",
+                                          numberText(info->min).c_str(), numberText(info->max).c_str());
+                    if (!wide)
+                        continue;
                     ImGui::TableNextColumn();
                     ImGui::TextDisabled("%s", info->integer ? "int" : "float");
                     ImGui::TableNextColumn();
@@ -103,14 +113,16 @@ class DataPanel final : public Panel {
                 keyValue("this frame", bytesText(main->frame->memoryBytes()));
             keyValue("frames cached", bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));
             // The budget of frames kept in memory (older ones are dropped, prefetch stays inside).
+            const bool beside = ImGui::GetContentRegionAvail().x >= ImGui::GetFontSize() * 15;
             ImGui::TextDisabled("budget");
-            ImGui::SameLine(ImGui::GetFontSize() * 8);
+            if (beside) // a narrow panel puts the field under its name
+                ImGui::SameLine(ImGui::GetFontSize() * 8);
             if (!ImGui::IsItemActive() && !m_editingBudget)
                 m_budgetMb = static_cast<int>(wb.frameMemoryBudget() >> 20);
             ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x -
                                                  ImGui::CalcTextSize("MB").x -
                                                  ImGui::GetStyle().ItemInnerSpacing.x,
-                                             ImGui::GetFontSize() * 4, ImGui::GetFontSize() * 7));
+                                             ImGui::GetFontSize() * 3, ImGui::GetFontSize() * 7));
             ImGui::InputInt("MB##budget", &m_budgetMb, 256, 1024);
             m_editingBudget = ImGui::IsItemActive();
             wb.mark("data.budget");
@@ -131,12 +143,20 @@ class DataPanel final : public Panel {
 
     // "key   value", the value wrapped at the panel's edge in its column (issue 41: a narrow
     // panel cut "39 (timestep 3..." and the extent).
+    // In a panel too narrow for the two columns the value goes under its key.
     static void keyValue(const char* key, const std::string& value) {
+        const float column = ImGui::GetFontSize() * 8;
+        const bool beside = ImGui::GetContentRegionAvail().x >= column + ImGui::GetFontSize() * 5;
         ImGui::TextDisabled("%s", key);
-        ImGui::SameLine(ImGui::GetFontSize() * 8);
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextUnformatted(value.c_str());
-        ImGui::PopTextWrapPos();
+        if (beside)
+            ImGui::SameLine(column);
+        else
+            ImGui::Indent();
+        ImGui::BeginGroup();
+        textWrappedAtSpaces(value);
+        ImGui::EndGroup();
+        if (!beside)
+            ImGui::Unindent();
     }
 };
 

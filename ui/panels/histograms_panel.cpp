@@ -55,7 +55,10 @@ class HistogramsPanel final : public Panel {
         ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x,
                                          ImGui::CalcTextSize("Add a histogram...").x +
                                              ImGui::GetFrameHeight() + 2 * style.FramePadding.x));
-        if (ImGui::BeginCombo("##addhist", "Add a histogram...")) {
+        const std::string addLabel = elided("Add a histogram...", ImGui::CalcItemWidth() -
+                                                                      ImGui::GetFrameHeight() -
+                                                                      2 * style.FramePadding.x);
+        if (ImGui::BeginCombo("##addhist", addLabel.c_str())) {
             for (const auto& [v, info] : wb.columns().of(main->frame))
                 if (std::find(vars.begin(), vars.end(), v) == vars.end() && ImGui::Selectable(v.c_str())) {
                     vars.push_back(v);

@@ -32,8 +32,8 @@ void StrainSection::draw(PanelContext& wb) {
     const auto& strains = wb.state().strains;
     const ViewDisplay* main = wb.mainDisplay();
     if (strains.empty())
-        ImGui::TextWrapped("Shear and volumetric strain, d2min and displacement of each sphere "
-                           "from how its neighbours moved: faults are where they concentrate.");
+        textWrappedAtSpaces("Shear and volumetric strain, d2min and displacement of each sphere "
+                            "from how its neighbours moved: faults are where they concentrate.");
     for (std::size_t k = 0; k < strains.size(); ++k) {
         const core::StrainSpec& s = strains[k];
         ImGui::PushID(static_cast<int>(k));
@@ -77,7 +77,7 @@ void StrainSection::draw(PanelContext& wb) {
     // Labels before their fields, so the field is what a click on the item's middle hits.
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted(m_incremental ? "frames before" : "since frame");
-    ImGui::SameLine();
+    flowSameLine(field); // a narrow panel puts fields under their labels
     if (m_incremental) {
         numberField("##offset", &m_offset, field);
         m_offset = std::max(1, m_offset);
@@ -93,7 +93,7 @@ void StrainSection::draw(PanelContext& wb) {
         autoText = "auto " + numberText(core::defaultStrainCutoff(*main->frame));
     flowSameLine(ImGui::CalcTextSize("cutoff").x + ImGui::GetStyle().ItemSpacing.x + field * 1.6f);
     ImGui::TextUnformatted("cutoff");
-    ImGui::SameLine();
+    flowSameLine(field * 1.6f);
     numberField("##cutoff", &m_cutoff, "%.4g", field * 1.6f, autoText.c_str(), 0.0);
     wb.mark("strain.cutoff");
     if (ImGui::IsItemHovered())
@@ -101,7 +101,7 @@ void StrainSection::draw(PanelContext& wb) {
                           "(empty: 1.5 x the median diameter)");
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted("prefix");
-    ImGui::SameLine();
+    flowSameLine(field * 1.6f);
     ImGui::SetNextItemWidth(field * 1.6f);
     if (ImGui::InputText("##prefix", &m_prefix))
         m_prefixEdited = true;

@@ -31,8 +31,11 @@ class ThresholdsPanel final : public Panel {
 
         // Add a threshold on a variable that has none.
         ImGui::BeginDisabled(!frame);
-        ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x, 220 * scale));
-        if (ImGui::BeginCombo("##addthreshold", "Add a threshold on...")) {
+        const float comboW = std::min(ImGui::GetContentRegionAvail().x, 220 * scale);
+        ImGui::SetNextItemWidth(comboW);
+        const std::string addLabel = elided("Add a threshold on...", comboW - ImGui::GetFrameHeight() -
+                                                                          2 * ImGui::GetStyle().FramePadding.x);
+        if (ImGui::BeginCombo("##addthreshold", addLabel.c_str())) {
             if (frame)
                 for (const auto& [v, vinfo] : wb.columns().of(main->frame)) {
                     if (wb.state().threshold(v))
@@ -70,11 +73,15 @@ class ThresholdsPanel final : public Panel {
                 if (auto i = wb.columns().info(main->frame, t.variable))
                     info = *i, haveInfo = true;
             const float removeW = ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
-            // A long name in a narrow panel ends in "..." before Remove (all of it on hover).
-            textElided(t.variable, std::max(1.0f, ImGui::GetContentRegionMax().x - removeW -
-                                                      ImGui::GetCursorPosX() -
-                                                      ImGui::GetStyle().ItemSpacing.x));
-            ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
+            // A long name in a narrow panel ends in "..." before Remove (all of it on hover);
+            // in a very narrow one Remove goes on the next row, so the name keeps its room.
+            const float room = ImGui::GetContentRegionMax().x - removeW - ImGui::GetCursorPosX() -
+                               ImGui::GetStyle().ItemSpacing.x;
+            const bool removeBeside =
+                room >= std::min(ImGui::CalcTextSize(t.variable.c_str()).x, ImGui::GetFontSize() * 6);
+            textElided(t.variable, removeBeside ? std::max(1.0f, room) : 0.0f);
+            if (removeBeside)
+                ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
             if (ImGui::SmallButton("Remove"))
                 toRemove = t.variable;
             wb.mark("thresholds.remove." + t.variable);

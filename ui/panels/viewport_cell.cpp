@@ -158,6 +158,11 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     if (m_selection.view() == view.name)
         m_selection.drawOutline(dl, wb.scale());
     const float cx = imgPos.x + imgSize.x * 0.5f, cy = imgPos.y + imgSize.y * 0.5f;
+    // Below the frame label (two lines at most) and above the axes, or not at all in a view too
+    // short for both.
+    const float lineH = ImGui::GetTextLineHeightWithSpacing();
+    if (imgSize.y < 6 * lineH + 8 * wb.scale())
+        placeholder = {};
     for (int k = 0; k < 2; ++k)
         if (!placeholder[k].empty()) {
             placeholder[k] = elided(placeholder[k], imgSize.x - 8 * wb.scale()); // narrow views
@@ -631,7 +636,9 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
             std::snprintf(text, sizeof text, "frame %zu", d.shownFrame);
             dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), ink, text);
             std::snprintf(text, sizeof text, "timestep %lld", timestep);
-            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeight()), ink, text);
+            const std::string step = elided(text, size.x - 16 * scale);
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeight()), ink,
+                        step.c_str());
             line = 2;
         }
         if (d.loading()) {

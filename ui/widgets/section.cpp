@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include <cstdarg>
+#include <cstdio>
 
 namespace faultline::ui {
 
@@ -21,8 +22,12 @@ void sectionHeader(const std::string& title) {
 void hint(const char* format, ...) {
     va_list args;
     va_start(args, format);
+    char buffer[2048];
+    std::vsnprintf(buffer, sizeof buffer, format, args);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrappedV(format, args);
+    ImGui::BeginGroup(); // one item, as the wrapped text was
+    textWrappedAtSpaces(buffer);
+    ImGui::EndGroup();
     ImGui::PopStyleColor();
     va_end(args);
 }

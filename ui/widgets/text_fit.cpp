@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+
 namespace faultline::ui {
 
 std::string elided(const std::string& text, float width) {
@@ -34,6 +36,38 @@ bool textElided(const std::string& text, float width) {
     if (cut && ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", text.c_str());
     return cut;
+}
+
+std::vector<std::string> wrapAtSpaces(const std::string& text, float width) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        const std::string paragraph = text.substr(start, end - start);
+        std::string line;
+        std::size_t k = 0;
+        while (k < paragraph.size()) {
+            const std::size_t next = std::min(paragraph.find(' ', k), paragraph.size());
+            const std::string word = paragraph.substr(k, next - k);
+            const std::string longer = line.empty() ? word : line + " " + word;
+            if (!line.empty() && ImGui::CalcTextSize(longer.c_str()).x > width) {
+                lines.push_back(line);
+                line = word;
+            } else {
+                line = longer;
+            }
+            k = next + 1;
+        }
+        lines.push_back(line);
+        start = end + 1;
+    }
+    return lines;
+}
+
+void textWrappedAtSpaces(const std::string& text) {
+    const float width = std::max(ImGui::GetContentRegionAvail().x, ImGui::GetFontSize());
+    for (const std::string& line : wrapAtSpaces(text, width))
+        ImGui::TextUnformatted(line.c_str());
 }
 
 void flowSameLine(float width) {

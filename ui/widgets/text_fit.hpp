@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace faultline::ui {
 
@@ -13,6 +14,12 @@ std::string elided(const std::string& text, float width);
 // Draws `text` shortened to the space left on this line (or `width` when given); when
 // shortened, hovering shows all of it. Returns whether it was shortened.
 bool textElided(const std::string& text, float width = 0.0f);
+// `text` broken into lines no wider than `width` at spaces and newlines only: ImGui's own
+// wrapping also breaks after '.', which split "58.503" into "58." and "503". A word wider than
+// `width` keeps a line of its own.
+std::vector<std::string> wrapAtSpaces(const std::string& text, float width);
+// Draws `text` wrapped at spaces to the space left in the window or column.
+void textWrappedAtSpaces(const std::string& text);
 // Before an item that is not the first of a row: stays on the row when an item `width` pixels
 // wide still fits, else starts a new row. `buttonWidth(label)` is the width of a button.
 void flowSameLine(float width);
