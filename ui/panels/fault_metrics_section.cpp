@@ -230,8 +230,23 @@ class FaultMetricsSection {
             marks = m_events->marks;
             hint("%s", ("with " + m_events->conditions).c_str());
             // Every event, named (a mark on the plot may stand for several).
-            for (const PlotMark& m : m_events->marks)
+            // The first few events in words, the rest behind a toggle (a walkthrough: 46 lines
+            // pushed the plot a screen down); the plot's tooltip names each frame's events.
+            constexpr std::size_t kListed = 6;
+            const std::size_t listed =
+                m_allEvents ? m_events->marks.size() : std::min(kListed, m_events->marks.size());
+            for (std::size_t k = 0; k < listed; ++k) {
+                const PlotMark& m = m_events->marks[k];
                 hint("%s", ("frame " + std::to_string(m.frame) + ": " + m.text).c_str());
+            }
+            if (m_events->marks.size() > kListed) {
+                char more[64];
+                std::snprintf(more, sizeof more, m_allEvents ? "fewer##events" : "%zu more##events",
+                              m_events->marks.size() - kListed);
+                if (ImGui::SmallButton(more))
+                    m_allEvents = !m_allEvents;
+                wb.mark("faults.metrics.events.more");
+            }
             if (m_growth) { // the lines follow the candidates instead of the fixed members
                 const core::FaultMetricsSeries& g = m_events->growth;
                 lines.clear();
@@ -288,6 +303,7 @@ class FaultMetricsSection {
         std::string conditions;          // the thresholds and boxes they ran with
     };
     bool m_growth = false;
+    bool m_allEvents = false; // every event listed, not only the first few
     bool m_followAgain = false; // the user followed once: follow again when the selection changes
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
