@@ -44,7 +44,7 @@ for name in "${targets[@]}"; do
         "${dict[@]}" -artifact_prefix="$artifacts/fuzz_$name-" -print_final_stats=1 \
         "$corpus" "${seeds[@]}" 2>"$log" || { tail -40 "$log"; echo "fuzz_$name: crash"; exit 1; }
     execs=$(grep -o "stat::number_of_executed_units: [0-9]*" "$log" | awk '{print $2}')
-    rate=$(grep -o "stat::average_exec_per_sec: [0-9]*" "$log" | awk '{print $2}')
+    rate=$(( ${execs:-0} / (minutes * 60) ))
     cov=$(grep -o "cov: [0-9]*" "$log" | tail -1 | awk '{print $2}')
     printf "%-14s %12s %8s %8s %6s\n" "$name" "$execs" "$rate" "$cov" "$(ls "$corpus" | wc -l)"
 done
