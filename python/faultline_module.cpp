@@ -18,6 +18,7 @@
 #include <pybind11/stl.h>
 
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/journal.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -229,6 +230,22 @@ class PySession {
 #endif
     py::object run(const py::dict& cmd) {
         const core::Json j = toJson(cmd);
+        // An expectation line ({"expect": "visible_count", "equals": 12}) is checked as
+        // `faultline replay` checks it: AssertionError with "expected .., actual .." when not.
+        if (j.is_object() && j.contains("expect")) {
+            if (!j["expect"].is_string() || !core::isKnownExpectation(j["expect"].get<std::string>()))
+                throw core::CommandError("unknown expectation " + j["expect"].dump());
+            std::optional<std::string> failed;
+            {
+                py::gil_scoped_release release;
+                failed = core::checkExpectation(m_session, j);
+            }
+            if (failed) {
+                PyErr_SetString(PyExc_AssertionError, (j.dump() + ": " + *failed).c_str());
+                throw py::error_already_set();
+            }
+            return py::none();
+        }
         // Rendering keeps to this thread (its offscreen GL context is current here); anything
         // else runs where Ctrl+C can stop it.
         if (j.is_object() && j.value("op", std::string()) == "render") {
@@ -476,7 +493,9 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
             }, py::arg("path"), "A saved session (.faultline.json), with its data.")
         .def("run", &PySession::run, py::arg("command"),
              "Run one journal op, e.g. {'op': 'fault.candidates', 'min_size': 50}, undo and redo "
-             "included. Raises CommandError, having changed nothing.")
+             "included. Raises CommandError, having changed nothing. An expectation line "
+             "({'expect': 'visible_count', 'equals': 12}) is checked as faultline replay checks "
+             "it: AssertionError saying expected and actual when it does not hold.")
         .def("undo", &PySession::undo, "Undo the last change; False when there is none.")
         .def("redo", &PySession::redo, "Redo what undo reverted; False when there is none.")
         .def("save", &PySession::save, py::arg("path"), "Save (session.save): opens in the workbench.")

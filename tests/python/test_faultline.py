@@ -233,3 +233,14 @@ def test_ctrl_c_stops_a_long_call_and_the_session_goes_on(tmp_path):
     assert not (tmp_path / "e.csv").exists()
     assert s.state == before  # nothing changed, and the session still works
     s.run({"op": "frame.set", "frame": 0})
+
+
+def test_expectations_are_checked_as_replay_checks_them():
+    s = _graben_faults()
+    n = int(s.visible.sum())
+    s.run({"expect": "visible_count", "equals": n})
+    with pytest.raises(AssertionError, match="expected %d" % (n + 1)):
+        s.run({"expect": "visible_count", "equals": n + 1})
+    s.run({"expect": "fault_size", "name": "F1", "equals": len(s.faults["F1"])})
+    with pytest.raises(faultline.CommandError, match="unknown expectation"):
+        s.run({"expect": "nonsense"})
