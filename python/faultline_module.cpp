@@ -29,6 +29,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace py = pybind11;
@@ -70,9 +71,10 @@ std::vector<std::string> pathsOf(const py::object& paths) {
 }
 
 // Runs `work` on a worker thread while the calling thread waits without the GIL; every 50 ms
-// it takes the GIL so Python can handle signals. Ctrl+C sets `stop` (long work checks it and
-// ends early) and raises KeyboardInterrupt here once the work has ended. Errors of the work are
-// raised as they are.
+// it takes the GIL so Python can handle signals. Ctrl+C sets `stop`: work that checks it (exports
+// over frames, surfaces) ends early having changed nothing, and KeyboardInterrupt is raised
+// here; work with no check finishes and takes effect, and Python raises KeyboardInterrupt right
+// after it returns, as for any C call. Errors of the work are raised as they are.
 template <typename F>
 auto interruptible(std::atomic<bool>& stop, F&& work) -> decltype(work()) {
     using R = decltype(work());
@@ -93,9 +95,25 @@ auto interruptible(std::atomic<bool>& stop, F&& work) -> decltype(work()) {
         }
         worker.join();
     }
-    if (interrupted)
-        throw py::error_already_set(); // the KeyboardInterrupt PyErr_CheckSignals set
-    return result.get();
+    if (!interrupted)
+        return result.get();
+    try {
+        if constexpr (std::is_void_v<R>) {
+            result.get();
+            PyErr_Clear();
+            PyErr_SetInterrupt();
+            return;
+        } else {
+            R value = result.get();
+            PyErr_Clear();
+            PyErr_SetInterrupt();
+            return value;
+        }
+    } catch (const py::error_already_set&) {
+        throw;
+    } catch (...) {
+        throw py::error_already_set(); // stopped at a check: the KeyboardInterrupt set above
+    }
 }
 
 // The surface builder's interrupter, stopped by Ctrl+C.
