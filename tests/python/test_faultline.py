@@ -82,6 +82,16 @@ def test_candidates_undo_redo_save_and_load(tmp_path):
     t = faultline.Session.load(str(path))
     assert {k: list(v) for k, v in t.faults.items()} == {k: list(v) for k, v in s.faults.items()}
     assert t.state["thresholds"] == s.state["thresholds"]
+    # The workbench's own opening of a session file: `faultline render SESSION` opens it as the
+    # workbench does and draws its main view.
+    cli = os.environ.get("FAULTLINE_CLI")
+    if cli:
+        import subprocess
+        out = tmp_path / "from_python.png"
+        r = subprocess.run([cli, "render", str(path), "--out", str(out), "--size", "160x120"],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stdout + r.stderr
+        assert out.stat().st_size > 1000
 
 
 def test_long_calls_release_the_gil():
