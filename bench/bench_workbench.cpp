@@ -84,6 +84,16 @@ struct Bench {
         ImGui::Render();
         time += 1.0 / 60.0;
     }
+    // UI frames (5 ms apart, as background jobs run) until `done`; the seconds it took.
+    template <typename Done>
+    double framesUntil(Done done) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int k = 0; k < 100000 && !done(); ++k) {
+            frame();
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
     ui::ItemRect rect(const std::string& name) { return wb->items().find(name).value_or(ui::ItemRect{}); }
 };
 
@@ -161,22 +171,14 @@ void BM_FollowThroughTimeDemo(benchmark::State& state) {
     for (int k = 0; k < 4; ++k)
         b.frame();
     auto waitShown = [&] {
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int k = 0; k < 100000; ++k) {
-            b.frame();
-            if (b.wb->items().find("faults.metrics.events.shown") && !b.wb->jobs().busy())
-                break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        }
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return b.framesUntil([&] {
+            return b.wb->items().find("faults.metrics.events.shown") && !b.wb->jobs().busy();
+        });
     };
     double first = 0, again = 0;
     for (auto _ : state) {
         // Metrics of the fixed members first, so they do not count below.
-        for (int k = 0; k < 100000 && b.wb->jobs().busy(); ++k) {
-            b.frame();
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        }
+        b.framesUntil([&] { return !b.wb->jobs().busy(); });
         const ui::ItemRect r = b.rect("faults.metrics.events");
         ImGuiIO& io = ImGui::GetIO();
         io.MousePos = ImVec2(r.cx(), r.cy());
