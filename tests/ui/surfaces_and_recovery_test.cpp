@@ -4,6 +4,7 @@
 #include "panel_fixture.hpp"
 
 #include "core/session/autosave.hpp"
+#include "core/session/color_range.hpp"
 #include "core/session/session_json.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/render/mock_renderer.hpp"
@@ -208,6 +209,30 @@ TEST_F(PanelTest, AViewColoursByTheChangeSinceAFrame) {
     session.undo();
     headless.settle(wb());
     EXPECT_EQ(wb().mainDisplay()->colorTitle, "strain change since frame 0");
+}
+
+// Issue 41: the live view's range over "all frames" was the frames seen so far (a change since
+// frame 0 shown only at frame 0 spanned nothing) while figures took every frame; the legends
+// differed until every frame had been visited. The view now takes the range over every frame,
+// worked out in the background, as figures do.
+TEST_F(PanelTest, TheLiveRangeOverAllFramesIsTheFiguresRange) {
+    openLattice();
+    session.apply(Json::parse(
+        R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_frame":0})"));
+    headless.settle(wb());
+    const auto figure = core::colorRangeOverFrames(*session.dataset(), session.state().views[0]);
+    ASSERT_TRUE(figure.has_value());
+    EXPECT_GT(figure->high, 1.0); // strain rises by one a frame
+    EXPECT_EQ(wb().mainDisplay()->colorRange[0], figure->low);
+    EXPECT_EQ(wb().mainDisplay()->colorRange[1], figure->high);
+    // A plain variable under "all frames": the same, before the other frames were shown.
+    session.apply(Json::parse(
+        R"({"op":"color.set","view":"main","difference":"none","range_mode":"all"})"));
+    headless.settle(wb());
+    const auto plain = core::colorRangeOverFrames(*session.dataset(), session.state().views[0]);
+    ASSERT_TRUE(plain.has_value());
+    EXPECT_EQ(wb().mainDisplay()->colorRange[0], plain->low);
+    EXPECT_EQ(wb().mainDisplay()->colorRange[1], plain->high);
 }
 
 // Issue 41, item 9: in the colour popup, Enter in the "since" frame field applies (even the

@@ -351,7 +351,7 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     const struct {
         const char* mode;
         const char* label;
-    } modes[] = {{"frame", "this frame's min to max (spheres shown)"}, {"all", "all frames seen (steady in playback)"}, {"fixed", "fixed"}};
+    } modes[] = {{"frame", "this frame's min to max (spheres shown)"}, {"all", "all frames (steady in playback)"}, {"fixed", "fixed"}};
     for (const auto& m : modes)
         if (const bool on = core::rangeModeName(view.rangeMode) == m.mode; ImGui::RadioButton(m.label, on) && !on) {
             core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 
 namespace faultline::ui {
 
@@ -29,8 +30,9 @@ std::array<double, 2> widen(std::array<double, 2> r) {
 } // namespace
 
 ViewComposer::ViewComposer(core::Session& session, FrameStore& frames, ColumnCatalog& columns,
-                           SurfaceStore& surfaces)
-    : m_session(session), m_frames(frames), m_columns(columns), m_surfaces(surfaces) {}
+                           SurfaceStore& surfaces, JobRunner& jobs)
+    : m_session(session), m_frames(frames), m_columns(columns), m_surfaces(surfaces),
+      m_jobs(jobs) {}
 
 const ViewDisplay* ViewComposer::view(const std::string& name) const {
     for (const auto& v : m_views)
@@ -43,7 +45,64 @@ void ViewComposer::reset() {
     m_views.clear();
     m_visibilityCache.clear();
     m_allFramesRange.clear();
+    for (auto& [key, exact] : m_exactRanges)
+        if (exact->job)
+            exact->job->cancel();
+    m_exactRanges.clear();
     m_differences.clear();
+}
+
+std::optional<std::array<double, 2>>
+ViewComposer::exactAllFramesRange(const core::ViewState& v) {
+    const auto ds = m_session.dataset();
+    if (!ds || ds->frameCount() == 0)
+        return std::nullopt;
+    // What the range depends on: the data, the variable, the difference and the strain
+    // variables derived from motion (a strain.add with other options changes their values).
+    std::ostringstream key;
+    key << ds.get() << '|' << v.colorVariable << '|' << int(v.difference.mode) << '|'
+        << v.difference.reference.relative << '|' << v.difference.reference.value;
+    for (const core::StrainSpec& s : m_session.state().strains)
+        key << "|s" << s.relative << ',' << s.reference << ',' << s.cutoff << ',' << s.prefix;
+    auto [it, inserted] = m_exactRanges.try_emplace(key.str());
+    if (!inserted)
+        return it->second->ready ? it->second->range : std::nullopt;
+    if (m_exactRanges.size() > 16) { // a few colourings at most are shown at once
+        for (auto e = m_exactRanges.begin(); e != m_exactRanges.end(); ++e)
+            if (e != it) {
+                if (e->second->job)
+                    e->second->job->cancel();
+                m_exactRanges.erase(e);
+                break;
+            }
+    }
+    auto exact = it->second = std::make_shared<ExactRange>();
+    core::ViewState view = v;
+    view.rangeMode = core::RangeMode::AllFrames;
+    exact->job = m_jobs.start(
+        "Colour range over all frames",
+        [ds, view, exact](JobControl& control) -> std::function<void()> {
+            // Frame by frame, so it can stop; the union of each frame's range is the range
+            // over all frames (each already symmetric about zero for a change).
+            std::optional<core::ValueRange> all;
+            const std::size_t n = ds->frameCount();
+            for (std::size_t k = 0; k < n; ++k) {
+                if (control.cancelled())
+                    return {};
+                control.setProgress(float(k) / float(n));
+                if (const auto r = core::colorRangeOverFrames(*ds, view, {k}))
+                    all = all ? core::ValueRange{std::min(all->low, r->low),
+                                                 std::max(all->high, r->high)}
+                              : *r;
+            }
+            return [exact, all] {
+                if (all)
+                    exact->range = std::array<double, 2>{all->low, all->high};
+                exact->ready = true;
+            };
+        },
+        [exact](const std::string&) { exact->ready = true; }, 0.0);
+    return std::nullopt;
 }
 
 void ViewComposer::update(const Inputs& in) {
@@ -180,10 +239,16 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         // Issue 41: a change colouring shares one range over the frames seen so far, symmetric
         // about zero (zero change keeps the map's middle colour at every frame); displacement
         // starts at 0.
+        // Once the range over every frame is worked out (in the background), the view takes it,
+        // as figures and movies do.
         const bool change = v.difference.mode == core::ColorDifference::Mode::Change;
         if (v.rangeMode == core::RangeMode::AllFrames ||
-            v.difference.mode != core::ColorDifference::Mode::None)
+            v.difference.mode != core::ColorDifference::Mode::None) {
             range = all;
+            if (v.rangeMode != core::RangeMode::Fixed)
+                if (const auto exact = exactAllFramesRange(v))
+                    range = *exact;
+        }
         if (change) {
             const core::ValueRange r = core::symmetricAboutZero({range[0], range[1]});
             range = {r.low, r.high};

@@ -21,7 +21,7 @@ namespace faultline::ui {
 class ViewComposer {
   public:
     ViewComposer(core::Session& session, FrameStore& frames, ColumnCatalog& columns,
-                 SurfaceStore& surfaces);
+                 SurfaceStore& surfaces, JobRunner& jobs);
 
     // What the views show after this frame's previews, with frame `base` as the current one.
     struct Inputs {
@@ -48,6 +48,9 @@ class ViewComposer {
   private:
     void resolveColors(const core::ViewState& view, ViewDisplay& d, std::size_t channel,
                        const UiSelection& selection);
+    // The colour range over every frame of the data, as figures and movies take it
+    // (core::colorRangeOverFrames), worked out in the background; nothing until it is ready.
+    std::optional<std::array<double, 2>> exactAllFramesRange(const core::ViewState& view);
     const CategoryColoring* categoriesFor(const core::ViewState& view, const ViewDisplay& d,
                                           const UiSelection& selection);
 
@@ -65,7 +68,16 @@ class ViewComposer {
         std::shared_ptr<const core::VisibilityResult> result;
     };
     std::vector<VisibilityEntry> m_visibilityCache;
-    std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable
+    JobRunner& m_jobs;
+    std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable: frames seen
+    // Issue 41: the live view's "all frames" range was the frames seen so far while figures
+    // took every frame, so the legends differed until each frame had been shown.
+    struct ExactRange {
+        std::shared_ptr<Job> job;
+        std::optional<std::array<double, 2>> range; // set when the job is done
+        bool ready = false;
+    };
+    std::map<std::string, std::shared_ptr<ExactRange>> m_exactRanges; // by what they depend on
     struct VisibleRangeEntry { // a variable's range over a view's visible spheres
         std::shared_ptr<const core::VisibilityResult> visibility;
         std::string variable;

@@ -254,7 +254,8 @@ class Workbench final : public PanelContext {
     ColumnCatalog m_columns;
     JobRunner m_jobs;
     SurfaceStore m_surfaces{m_jobs};
-    ViewComposer m_composer{m_session, m_frames, m_columns, m_surfaces}; // what the views show
+    // What the views show.
+    ViewComposer m_composer{m_session, m_frames, m_columns, m_surfaces, m_jobs};
     ItemRegistry m_items;
     DockLayout m_layout;
     bool m_layoutFollowsWindow = true; // the default layout, not arranged by the user yet
