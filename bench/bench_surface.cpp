@@ -8,6 +8,7 @@
 //  - 26,000 spheres at voxel 0.5 (the ParaView comparison in the issue).
 #include "bench/fault_zone.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/session.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/metaball_field.hpp"
 #include "core/surface/metaball_reference.hpp"
@@ -20,6 +21,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <cmath>
 #include <string>
 #include <sys/resource.h>
@@ -372,6 +378,254 @@ void BM_SpreadOpenVdb(benchmark::State& state, float divisor) {
     state.counters["peak_rss_mb"] = peakRssMiB();
 }
 
+//-----------------------------------------------------------------------------
+// Issue 40: the whole op on the selections users make, against OpenVDB.
+//-----------------------------------------------------------------------------
+
+// A session holding one selection as fault "F1" in the current frame, as a user builds its
+// surface: the data opened, a threshold, fault.create from the visible spheres.
+struct OpCase {
+    std::unique_ptr<fc::Session> session;
+    fb::FaultZone spheres; // F1's spheres (for OpenVDB)
+    double meanRadius = 0.0;
+    std::string error;    // why the case cannot run here
+};
+
+std::string benchDir() {
+    const auto dir = std::filesystem::temp_directory_path() / "faultline-bench-surface";
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+// The 525k-sphere block of spreadFaultZones (HCP, radius 1, 200 x 130 x 110) as a LAMMPS dump
+// with each sphere's distance to the nearest of the three zones' mid-planes ("zone_distance"),
+// which a threshold cuts as one on strain would: every sphere of a zone about a diameter thick.
+std::string writeZonesBlock() {
+    const std::string path = benchDir() + "/zones525k.lammpstrj";
+    if (std::filesystem::exists(path))
+        return path;
+    constexpr double r = 1.0;
+    constexpr double size[3] = {200.0, 130.0, 110.0};
+    const double dip = 60.0 * 3.14159265358979 / 180.0;
+    const double normals[3][3] = {{std::sin(dip), 0.0, std::cos(dip)},
+                                  {-std::sin(dip), 0.0, std::cos(dip)},
+                                  {0.0, std::sin(dip), std::cos(dip)}};
+    const double points[3][3] = {{70.0, 65.0, 55.0}, {130.0, 65.0, 55.0}, {100.0, 65.0, 55.0}};
+    const int nk = static_cast<int>(size[2] / (2 * std::sqrt(6.0) / 3 * r));
+    const int nj = static_cast<int>(size[1] / (std::sqrt(3.0) * r));
+    const int ni = static_cast<int>(size[0] / (2 * r));
+    std::string body;
+    std::size_t n = 0;
+    char line[160];
+    for (int k = 0; k < nk; ++k)
+        for (int j = 0; j < nj; ++j)
+            for (int i = 0; i < ni; ++i) {
+                const int kk = k % 2;
+                const double p[3] = {(2.0 * i + ((j + k) % 2)) * r + r,
+                                     std::sqrt(3.0) * (j + kk / 3.0) * r + r,
+                                     2.0 * std::sqrt(6.0) / 3.0 * k * r + r};
+                double dist = 1e9;
+                for (int f = 0; f < 3; ++f)
+                    dist = std::min(dist, std::abs((p[0] - points[f][0]) * normals[f][0] +
+                                                   (p[1] - points[f][1]) * normals[f][1] +
+                                                   (p[2] - points[f][2]) * normals[f][2]));
+                ++n;
+                std::snprintf(line, sizeof line, "%zu %.4f %.4f %.4f 1 %.4f\n", n, p[0], p[1],
+                              p[2], dist);
+                body += line;
+            }
+    std::ofstream out(path + ".part", std::ios::binary);
+    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" << n
+        << "\nITEM: BOX BOUNDS ff ff ff\n0 202\n0 132\n0 112\nITEM: ATOMS id x y z radius "
+           "zone_distance\n"
+        << body;
+    out.close();
+    std::filesystem::rename(path + ".part", path);
+    return path;
+}
+
+// A fault zone as a LAMMPS dump of its spheres alone (the sparse spread and compact cases).
+std::string writeZone(const fb::FaultZone& z, const std::string& name) {
+    const std::string path = benchDir() + "/" + name + ".lammpstrj";
+    if (std::filesystem::exists(path))
+        return path;
+    std::ofstream out(path, std::ios::binary);
+    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" << z.x.size()
+        << "\nITEM: ATOMS id x y z radius\n";
+    char line[128];
+    for (std::size_t i = 0; i < z.x.size(); ++i) {
+        std::snprintf(line, sizeof line, "%zu %.5f %.5f %.5f %.5f\n", i + 1, z.x[i], z.y[i],
+                      z.z[i], z.radius[i]);
+        out << line;
+    }
+    return path;
+}
+
+OpCase openCase(const std::string& name) {
+    OpCase c;
+    c.session = std::make_unique<fc::Session>();
+    auto& s = *c.session;
+    try {
+        if (name == "zones525k") {
+            s.apply({{"op", "data.open"}, {"paths", {writeZonesBlock()}}});
+            s.apply(fc::Json::parse(
+                R"({"op":"threshold.add","variable":"zone_distance","low":0,"high":0.6})"));
+        } else if (name == "demo_bb3") {
+            const char* home = std::getenv("HOME");
+            const std::string demo = std::string(home ? home : "") +
+                                     "/.local/share/faultline/demo/block-v2.lammpstrj.gz";
+            if (!std::filesystem::exists(demo)) {
+                c.error = "no demo: run faultline generate --demo";
+                return c;
+            }
+            s.apply({{"op", "data.open"}, {"paths", {demo}}});
+            s.apply({{"op", "frame.set"}, {"frame", s.dataset()->frameCount() - 1}});
+            s.apply(fc::Json::parse(
+                R"({"op":"threshold.add","variable":"broken_bonds","low":3,"high":1e30})"));
+        } else if (name == "lammps_bands") {
+            // The real LAMMPS extension run's shear bands (tests/replay/lammps_extension_strain).
+            const std::string run =
+                std::string(FAULTLINE_SOURCE_DIR) + "/tests/data/real_runs/lammps/dump.extension.gz";
+            s.apply({{"op", "data.open"}, {"paths", {run}}});
+            s.apply(fc::Json::parse(R"({"op":"frame.set","frame":4})"));
+            s.apply(fc::Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
+            s.apply(fc::Json::parse(
+                R"({"op":"threshold.add","variable":"inc_shear_strain","low":0.15,"high":1e30})"));
+        } else if (name == "sparse_spread") {
+            s.apply({{"op", "data.open"}, {"paths", {writeZone(spread(), "spread10k")}}});
+        } else if (name == "compact_50k") {
+            s.apply({{"op", "data.open"}, {"paths", {writeZone(zone(50000), "compact50k")}}});
+        } else {
+            c.error = "unknown case " + name;
+            return c;
+        }
+        s.apply(fc::Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+        const fc::Fault* f = s.state().fault("F1");
+        const fc::FaultSpheres fs = fc::gatherFaultSpheres(*s.currentFrame(), *f);
+        c.spheres.x = fs.x, c.spheres.y = fs.y, c.spheres.z = fs.z, c.spheres.radius = fs.radius;
+        c.spheres.rgb = fs.rgb;
+        double sum = 0.0;
+        for (float r : fs.radius)
+            sum += r;
+        c.meanRadius = fs.radius.empty() ? 1.0 : sum / double(fs.radius.size());
+    } catch (const std::exception& e) {
+        c.error = e.what();
+    }
+    return c;
+}
+
+OpCase& opCase(const std::string& name) {
+    static std::map<std::string, OpCase> cases;
+    auto it = cases.find(name);
+    if (it == cases.end())
+        it = cases.emplace(name, openCase(name)).first;
+    return it->second;
+}
+
+// surface.build on F1 as a user runs it (the wrapping iso, the default iso-slider range, the
+// fault's colour), both kernels at voxel = mean radius / divisor, against OpenVDB's
+// ParticlesToLevelSet + volumeToMesh on the same spheres at the same voxel, interleaved rounds
+// (medians). Counters: each one's ms and ratio, the phases of one build (wrapping iso, plan,
+// coarse levels, blocks, colour, mesh), the spheres, whether the planner saw a sparse set, and
+// the process's peak RSS growth over the first build of each kernel (run one case per process
+// for a figure of that case alone).
+void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor) {
+    OpCase& c = opCase(name);
+    if (!c.error.empty()) {
+        state.SkipWithError(c.error.c_str());
+        return;
+    }
+    fc::Session& s = *c.session;
+    const float voxel = float(c.meanRadius / divisor);
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t0) {
+        return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    };
+    const std::pair<const char*, const char*> kernels[] = {{"inverse", "inverse"},
+                                                           {"inverse_square", "inverse-square"}};
+    auto buildOp = [&](const char* kernel) {
+        s.apply({{"op", "surface.build"}, {"fault", "F1"}, {"kernel", kernel}, {"voxel", voxel}});
+    };
+    // Phases of one build per kernel, and the memory it takes.
+    for (const auto& [key, kernel] : kernels) {
+        const double before = peakRssMiB();
+        auto t0 = Clock::now();
+        buildOp(kernel);
+        state.counters[std::string(key) + "_first_ms"] = ms(t0);
+        state.counters[std::string(key) + "_peak_rss_growth_mb"] = peakRssMiB() - before;
+        const fc::SurfaceSettings st = *s.state().surface("F1");
+        const fc::Fault formed =
+            fc::faultAsFormed(*s.currentFrame(), *s.state().fault("F1"), s.state().thresholds);
+        t0 = Clock::now();
+        (void)fc::faultWrappingIso(*s.currentFrame(), formed, st);
+        state.counters[std::string(key) + "_wrap_iso_ms"] = ms(t0);
+        const fc::SurfaceResult r = fc::buildFaultSurface(*s.currentFrame(), {formed, st});
+        const auto& stats = r.field->stats();
+        const std::string k(key);
+        state.counters[k + "_plan_ms"] = 1e3 * stats.planSeconds;
+        state.counters[k + "_levels_ms"] = 1e3 * stats.levelsSeconds;
+        state.counters[k + "_blocks_ms"] = 1e3 * stats.blocksSeconds;
+        state.counters[k + "_color_ms"] = 1e3 * stats.colorSeconds;
+        state.counters[k + "_mesh_ms"] = 1e3 * stats.meshSeconds;
+        state.counters[k + "_blocks"] = double(stats.blocks);
+        state.counters[k + "_triangles"] = double(r.mesh.triangleCount());
+        state.counters[k + "_sparse"] = fc::MetaballField(c.spheres.set(), r.field->params(),
+                                                          voxel)
+                                            .sparse();
+    }
+    const ZoneParticles particles{&c.spheres};
+    const int rounds = std::max(1, std::atoi(std::getenv("FAULTLINE_BENCH_ROUNDS")
+                                                 ? std::getenv("FAULTLINE_BENCH_ROUNDS")
+                                                 : "3"));
+    std::vector<double> vdb;
+    std::map<std::string, std::vector<double>> ours, ratio;
+    for (auto _ : state)
+        for (int round = 0; round < rounds; ++round) {
+            auto t0 = Clock::now();
+            { const OpenVdbSurface theirs = openVdbOnce(particles, voxel); }
+            vdb.push_back(ms(t0));
+            for (const auto& [key, kernel] : kernels) {
+                t0 = Clock::now();
+                buildOp(kernel);
+                ours[key].push_back(ms(t0));
+                ratio[key].push_back(ours[key].back() / vdb.back());
+            }
+        }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    state.counters["spheres"] = double(c.spheres.x.size());
+    state.counters["voxel"] = voxel;
+    state.counters["openvdb_ms"] = median(vdb);
+    for (const auto& [key, kernel] : kernels) {
+        state.counters[std::string(key) + "_ms"] = median(ours[key]);
+        state.counters["ratio_" + std::string(key)] = median(ratio[key]);
+    }
+    state.counters["peak_rss_mb"] = peakRssMiB();
+}
+
+// The accuracy the op's speed is bought with, on the same selections: the field against
+// Algorithm 1 on every stride-th planned block, both kernels at the wrapping iso.
+void BM_SurfaceOpSampledError(benchmark::State& state, const char* name, float divisor,
+                              fc::MetaballKernel kernel, int stride) {
+    OpCase& c = opCase(name);
+    if (!c.error.empty()) {
+        state.SkipWithError(c.error.c_str());
+        return;
+    }
+    fc::Session& s = *c.session;
+    const float voxel = float(c.meanRadius / divisor);
+    s.apply({{"op", "surface.build"},
+             {"fault", "F1"},
+             {"kernel", std::string(fc::kernelName(kernel))},
+             {"voxel", voxel}});
+    const fc::Fault formed =
+        fc::faultAsFormed(*s.currentFrame(), *s.state().fault("F1"), s.state().thresholds);
+    const fc::SurfaceParams p = fc::surfaceParamsOf(*s.state().surface("F1"), formed);
+    sampledError(state, c.spheres, p, voxel, stride);
+}
+
 } // namespace
 
 BENCHMARK_CAPTURE(BM_Surface, inverse_square_50k, fc::MetaballKernel::InverseSquare, 50000, 0.25f)
@@ -480,4 +734,23 @@ void ratioRuns(benchmark::internal::Benchmark* b) {
 BENCHMARK_CAPTURE(BM_CompactRatio, compact_ratio_50k, 50000, 0.25f)->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SpreadRatio, spread_ratio_r2, 2.0f)->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SpreadRatio, spread_ratio_r3, 3.0f)->Apply(ratioRuns);
+// Issue 40's cases, whole op against OpenVDB: three dense zones from a 525k block, the demo's
+// last frame at broken_bonds >= 3, a real LAMMPS run's shear bands, the sparse spread set and
+// the compact 50k zone; r/2 and r/3.
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_zones525k_r2, "zones525k", 2.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_zones525k_r3, "zones525k", 3.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_demo_bb3_r2, "demo_bb3", 2.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_demo_bb3_r3, "demo_bb3", 3.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_lammps_bands_r2, "lammps_bands", 2.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_lammps_bands_r3, "lammps_bands", 3.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_sparse_spread_r2, "sparse_spread", 2.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_sparse_spread_r3, "sparse_spread", 3.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_compact_50k_r2, "compact_50k", 2.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_compact_50k_r3, "compact_50k", 3.0f)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_r3, "demo_bb3", 3.0f,
+                  fc::MetaballKernel::Inverse, 199)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_square_r3, "demo_bb3", 3.0f,
+                  fc::MetaballKernel::InverseSquare, 199)->Apply(ratioRuns);
+BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_zones525k_inverse_r3, "zones525k", 3.0f,
+                  fc::MetaballKernel::Inverse, 199)->Apply(ratioRuns);
 BENCHMARK_MAIN();

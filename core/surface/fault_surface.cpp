@@ -210,6 +210,11 @@ std::size_t SurfaceField::memoryBytes() const {
 
 SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
                            Interrupter *interrupter) {
+    return buildSurface(spheres, params, interrupter, MultilevelTuning{});
+}
+
+SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
+                           Interrupter *interrupter, const MultilevelTuning &tuning) {
     validate(spheres, params);
     ensureOpenVdbInitialized();
     auto impl = std::make_unique<SurfaceField::Impl>();
@@ -221,7 +226,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
         throw SurfaceRequestError("voxel size resolves to zero");
 
     auto t0 = Clock::now();
-    impl->field = std::make_unique<MetaballField>(spheres, params, h);
+    impl->field = std::make_unique<MetaballField>(spheres, params, h, tuning);
     MetaballField &field = *impl->field;
     const SurfacePlan plan =
         planSurface(field, impl->isoMin, impl->isoMax, params.memoryBudgetBytes, interrupter);

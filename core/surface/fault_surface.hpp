@@ -79,6 +79,10 @@ struct SurfaceResult {
 // need) and SurfaceCancelled when the interrupter asks to stop.
 SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
                            Interrupter *interrupter = nullptr);
+// The same with the field's speed knobs (tests compare ways of planning; results agree).
+struct MultilevelTuning;
+SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
+                           Interrupter *interrupter, const MultilevelTuning &tuning);
 
 // Where vertex normals come from: the field's gradient (Algorithm 1 line 8) either evaluated
 // analytically at each vertex (exact near field plus the interpolated smooth levels), or by

@@ -63,6 +63,8 @@ struct MultilevelTuning {
     // ... and level 1 at least this many voxels apart: its nodes' window sums, not the few
     // near spheres, are what a sparse set's field costs (bench_surface's spread-out cases).
     int sparseMinRatio = 4;
+    bool foldPlanning = true;     // inverse kernels plan by folds; false: by the tree's bounds
+                                  // as the compact kernel does (tests compare the two)
     int maxOpen = 256;            // planning: tree nodes opened per block bound
     int probeOpen = 40;           // planning: after this many openings, give up on a bound
     double giveUpRatio = 2.0;     // whose high is over ratio * isoMin and low under isoMax / ratio
@@ -90,7 +92,7 @@ class MetaballField {
     const SurfaceParams &params() const { return m_params; }
     // Inverse kernels: whether the median sphere has under 8 mean radii of weight within 3 mean
     // radii (touching spheres have about 20), as in a strain-threshold selection spread over a
-    // block. Sparse sets take a wider near cutoff and are planned by folds (surface_plan.cpp).
+    // block. Sparse sets take a wider near cutoff and a coarser level 1.
     bool sparse() const { return m_sparse; }
     // The inverse kernels' power and the squared distance below which they are clamped.
     const InverseKernel &inverseKernel() const { return m_kernel; }
