@@ -61,11 +61,25 @@ Fault visibleSpheresFault(const Frame& frame, const VisibilityResult& visibility
     return f;
 }
 
+namespace {
+// The one colour of a surface without colorBy: the setting's, else the fault's.
+std::array<float, 3> plainColour(const SurfaceSettings& settings, const Fault& fault) {
+    if (!settings.color || !settings.colorBy.empty())
+        return fault.color;
+    return {static_cast<float>((*settings.color)[0]), static_cast<float>((*settings.color)[1]),
+            static_cast<float>((*settings.color)[2])};
+}
+} // namespace
+
 FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest& request) {
     const SurfaceSettings& st = request.settings;
     FaultSpheres s = gatherFaultSpheres(frame, request.fault);
-    if (st.colorBy.empty())
+    if (st.colorBy.empty()) {
+        const std::array<float, 3> c = plainColour(st, request.fault);
+        for (std::size_t k = 0; k + 2 < s.rgb.size(); k += 3)
+            s.rgb[k] = c[0], s.rgb[k + 1] = c[1], s.rgb[k + 2] = c[2];
         return s;
+    }
     // An attribute, or one of the built-in columns (as a view colours by them).
     const auto column = findColumn(frame, st.colorBy);
     if (!column)
@@ -104,7 +118,7 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& faul
     params.voxelSize = static_cast<float>(settings.voxel);
     // (Clamped into float's range: validation refuses what is far too large.)
     params.colorReach = static_cast<float>(std::min(settings.colorReach.value_or(0.0), 1e30));
-    params.initialColor = fault.color;
+    params.initialColor = plainColour(settings, fault);
     if (settings.initialColor) {
         for (int k = 0; k < 3; ++k)
             params.initialColor[k] = static_cast<float>((*settings.initialColor)[k]);
@@ -118,7 +132,7 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
                         const SurfaceParams& params) {
     std::uint64_t members = hashMemberIds(fault.ids);
     auto mix = [&](std::uint64_t v) { members = (members ^ v) * 0x100000001b3ull; };
-    for (float c : fault.color)
+    for (float c : plainColour(settings, fault))
         mix(std::bit_cast<std::uint32_t>(c));
     mix(settings.colorReach ? 1 : 0); // none: from the mean radius (params hold 0)
     if (!settings.colorBy.empty()) {

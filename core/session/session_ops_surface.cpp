@@ -23,7 +23,7 @@ Json settingsJson(const SurfaceSettings& st) {
 // surface.build's and surface.set's fields.
 constexpr std::initializer_list<const char*> kSurfaceFields{
     "fault",    "kernel", "voxel", "iso",         "visible",      "opacity",
-    "color_by", "map",    "range", "color_reach", "initial_color"};
+    "color_by", "map",    "range", "color_reach", "initial_color", "color"};
 
 // What a surface named `name` is built from in the current frame: the fault as formed there
 // (its members passing the thresholds), or the visible spheres (kVisibleSpheres).

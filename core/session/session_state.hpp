@@ -110,6 +110,9 @@ struct SurfaceSettings {
     std::optional<double> colorReach; // none: with colorBy twice the spheres' mean radius (a
                                       // surface at a wrapping iso lies up to 3 radii out where it
                                       // is concave), else 0 (one colour needs no reach)
+    // Without colorBy, the surface's one colour (issue 41: a surface in its fault's colour is
+    // hard to see among that fault's spheres); none: the fault's.
+    std::optional<std::array<double, 3>> color;
     std::optional<std::array<double, 3>> initialColor; // none: the fault's; white with colorBy
                                                        // (no sphere in reach, not a low value)
     bool operator==(const SurfaceSettings&) const = default;

@@ -509,6 +509,45 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     EXPECT_EQ(colorMapName(s.state().surface("F1")->colorMap), "gray");
 }
 
+// Issue 41: a surface in its fault's colour was hard to see among the fault's spheres. "color"
+// gives the surface one colour of its own: every vertex takes it, the cache tells it apart, it
+// is saved, undone, refused out of range, and a colouring by a variable takes over from it.
+TEST(Session, ASurfaceTakesAColourOfItsOwn) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(
+        cmd(R"({"op":"surface.build","fault":"F1","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    const SurfaceSettings plain = *s.state().surface("F1");
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color":[0.1,0.9,0.2]})"));
+    const SurfaceSettings own = *s.state().surface("F1");
+    const Fault& f1 = *s.state().fault("F1");
+    const SurfaceResult r = buildFaultSurface(*s.currentFrame(), {f1, own});
+    ASSERT_FALSE(r.mesh.colors.empty());
+    for (const auto& c : r.mesh.colors) {
+        EXPECT_NEAR(c[0], 0.1f, 1e-4f);
+        EXPECT_NEAR(c[1], 0.9f, 1e-4f);
+        EXPECT_NEAR(c[2], 0.2f, 1e-4f);
+    }
+    const SurfaceParams params = surfaceParamsOf(own, f1);
+    EXPECT_NE(surfaceKeyOf(0, f1, own, params).members,
+              surfaceKeyOf(0, f1, plain, surfaceParamsOf(plain, f1)).members);
+    const std::string file = dir.file("own.faultline.json");
+    s.apply({{"op", "session.save"}, {"path", file}});
+    EXPECT_EQ(loadSessionFile(file), s.state());
+    expectRefused(s, R"({"op":"surface.set","fault":"F1","color":[0,0,1.5]})", "\"color\"");
+    // Coloured by a variable, the own colour no longer applies (the map does).
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color_by":"strain","map":"gray"})"));
+    const SurfaceResult byStrain =
+        buildFaultSurface(*s.currentFrame(), {f1, *s.state().surface("F1")});
+    for (const auto& c : byStrain.mesh.colors)
+        EXPECT_NEAR(c[0], c[1], 1e-3f); // gray
+    s.apply(cmd(R"({"op":"undo"})"));
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(*s.state().surface("F1"), plain);
+}
+
 // JOURNAL.md: surface.build without "iso" (or with "iso":"wrap") takes the iso-value that wraps
 // the fault's spheres, as a new surface in the workbench does; an explicit number is kept.
 TEST(Session, ASurfaceBuiltWithoutAnIsoValueWrapsItsSpheres) {

@@ -169,6 +169,39 @@ TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     EXPECT_EQ(session.state().surface("F1")->colorBy, "layer");
 }
 
+// Issue 41: "own colour" in the colour menu gives the surface a colour apart from its fault's
+// (the fault's complement to start with), shown in the views and in the surfaces' list; "fault
+// colour" takes it back.
+TEST_F(PanelTest, ASurfaceTakesAColourOfItsOwnFromThePanel) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(R"({"op":"fault.set","name":"F1","color":[1,0.5,0]})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5})"));
+    headless.showPanel(wb(), ui::panel_ids::kSurfaces);
+    headless.settle(wb());
+    pickFromCombo("surfaces.color_by", "surfaces.color_by.own");
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("surface.set")[0],
+              (Json{{"op", "surface.set"},
+                    {"fault", "F1"},
+                    {"color_by", ""},
+                    {"color", {0.0, 0.5, 1.0}}}));
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "surfaces.colour"));
+    ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
+    const auto& mesh = *wb().mainDisplay()->surfaces[0].mesh;
+    ASSERT_FALSE(mesh.colors.empty());
+    EXPECT_NEAR(mesh.colors[0], 0.0f, 1e-3f);
+    EXPECT_NEAR(mesh.colors[1], 0.5f, 1e-3f);
+    EXPECT_NEAR(mesh.colors[2], 1.0f, 1e-3f);
+    headless.clearEmitted();
+    pickFromCombo("surfaces.color_by", "surfaces.color_by.plain");
+    ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("surface.set")[0],
+              (Json{{"op", "surface.set"}, {"fault", "F1"}, {"color_by", ""}, {"color", nullptr}}));
+    EXPECT_FALSE(session.state().surface("F1")->color.has_value());
+}
+
 TEST_F(PanelTest, SurfaceSettingsAreCommandsAndABadRequestSaysWhy) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));

@@ -92,6 +92,8 @@ class SurfacesPanel final : public Panel {
     double m_reach = 0.0;
     bool m_gltfGlyphs = false; // glTF exports carry the spheres as instanced glyphs too
     std::string m_editingReach;
+    std::array<float, 3> m_colour{1, 1, 1}; // the own colour being edited
+    std::string m_editingColour;
 
     // Emits `cmd` (a surface.set) with the iso-value that wraps the fault's spheres in the shown
     // frame, found in the background (about 600 field sums over all of them). Without one (no
@@ -184,7 +186,10 @@ class SurfacesPanel final : public Panel {
                                     "follows thresholds, boxes and time)"
                                   : "Show the metaball surface through this fault's spheres");
         ImGui::TableNextColumn();
-        const ImVec4 colour(color[0], color[1], color[2], 1.0f);
+        ImVec4 colour(color[0], color[1], color[2], 1.0f);
+        if (st && st->colorBy.empty() && st->color) // its own colour
+            colour = ImVec4(float((*st->color)[0]), float((*st->color)[1]),
+                            float((*st->color)[2]), 1.0f);
         ImGui::ColorButton("##c", colour,
                            ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
                            ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
@@ -392,10 +397,27 @@ class SurfacesPanel final : public Panel {
         // Fields 170 px wide where the panel allows, leaving room for their labels.
         const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
         const std::string plain = core::isVisibleSpheres(st.fault) ? "one colour" : "fault colour";
+        // Issue 41: a surface in its fault's colour is hard to see among the fault's spheres; a
+        // colour of its own sets it apart.
+        const char* custom = "own colour";
+        const bool own = st.colorBy.empty() && st.color;
         ImGui::SetNextItemWidth(w);
-        if (ImGui::BeginCombo("colour", st.colorBy.empty() ? plain.c_str() : st.colorBy.c_str())) {
-            if (ImGui::Selectable(plain.c_str(), st.colorBy.empty()) && !st.colorBy.empty())
-                set({{"color_by", ""}});
+        if (ImGui::BeginCombo("colour", own                  ? custom
+                                        : st.colorBy.empty() ? plain.c_str()
+                                                             : st.colorBy.c_str())) {
+            if (ImGui::Selectable(plain.c_str(), st.colorBy.empty() && !own) &&
+                (!st.colorBy.empty() || own))
+                set({{"color_by", ""}, {"color", nullptr}});
+            wb.mark("surfaces.color_by.plain");
+            if (ImGui::Selectable(custom, own) && !own) {
+                // Starts from the fault's colour turned to its complement: apart at once.
+                std::array<double, 3> c{0.9, 0.9, 0.9};
+                if (const core::Fault* f = s.fault(st.fault))
+                    for (int k = 0; k < 3; ++k)
+                        c[k] = 1.0 - f->color[k];
+                set({{"color_by", ""}, {"color", c}});
+            }
+            wb.mark("surfaces.color_by.own");
             if (main && main->frame)
                 for (const auto& [v, info] : wb.columns().of(main->frame)) {
                     const bool picked = ImGui::Selectable(v.c_str(), v == st.colorBy);
@@ -424,6 +446,18 @@ class SurfacesPanel final : public Panel {
         wb.mark("surfaces.like_view");
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip("Colour the surface by the main view's variable, map and range");
+        if (own) {
+            if (m_editingColour != st.fault || !ImGui::IsAnyItemActive()) {
+                for (int k = 0; k < 3; ++k)
+                    m_colour[k] = static_cast<float>((*st.color)[k]);
+                m_editingColour = st.fault;
+            }
+            ImGui::SetNextItemWidth(w);
+            ImGui::ColorEdit3("surface colour", m_colour.data(), ImGuiColorEditFlags_NoInputs);
+            if (ImGui::IsItemDeactivatedAfterEdit())
+                set({{"color", {m_colour[0], m_colour[1], m_colour[2]}}});
+            wb.mark("surfaces.colour");
+        }
         if (!st.colorBy.empty()) {
             ImGui::SetNextItemWidth(w);
             const std::string currentMap = core::colorMapName(st.colorMap);

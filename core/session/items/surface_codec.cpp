@@ -15,6 +15,7 @@ Json toJson(const SurfaceSettings& st) {
     j["color_reach"] = st.colorReach ? Json(*st.colorReach) : Json(nullptr);
     j["range"] = st.colorRange ? Json(*st.colorRange) : Json(nullptr);
     j["initial_color"] = st.initialColor ? Json(*st.initialColor) : Json(nullptr);
+    j["color"] = st.color ? Json(*st.color) : Json(nullptr);
     return j;
 }
 
@@ -71,6 +72,7 @@ void patch(SurfaceSettings& st, const ItemReader& f) {
         }
     }
     readOptional<3>(f, "initial_color", st.initialColor, kColour);
+    readOptional<3>(f, "color", st.color, kColour);
 }
 
 void validate(const SurfaceSettings& st) {
@@ -90,6 +92,10 @@ void validate(const SurfaceSettings& st) {
         for (double c : *st.initialColor)
             if (c < 0 || c > 1)
                 bad("initial_color", kColour);
+    if (st.color)
+        for (double c : *st.color)
+            if (c < 0 || c > 1)
+                bad("color", kColour);
 }
 
 } // namespace faultline::core::items

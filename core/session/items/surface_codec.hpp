@@ -8,9 +8,10 @@
 
 namespace faultline::core::items {
 
-// kernel, voxel, iso, visible, opacity, color_by, map, range, color_reach, initial_color.
+// kernel, voxel, iso, visible, opacity, color_by, map, range, color_reach, initial_color, color.
 Json toJson(const SurfaceSettings& settings);
-// Reads the fields present; "range", "color_reach" and "initial_color" may be null (none).
+// Reads the fields present; "range", "color_reach", "initial_color" and "color" may be null
+// (none).
 void patch(SurfaceSettings& settings, const ItemReader& fields);
 // voxel >= 0, iso > 0, opacity in [0, 1], a colour map, low < high, reach >= 0, colours in
 // [0, 1].
