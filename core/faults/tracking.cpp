@@ -183,59 +183,94 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
         const std::int32_t a = candidateAt(i, f), b = candidateAt(j, f);
         return a < 0 || b < 0 ? -1 : int(a == b);
     };
-    // Issue 41: at a low threshold two faults joined by a few spheres flicker, linked one
-    // frame and split the next, over and over. A relation that differs from the same one in
-    // the frames before and after is that flicker, read as the frames around it.
+    // Issue 41: at a low threshold two faults joined by a few spheres flicker, linked for a
+    // frame or two and split again, over and over (46 events for 9 faults on the demo when only
+    // one-frame flicker was read as such). A pair's relation changes only once the new one
+    // holds for kSettleFrames frames in a row: the relation in a
+    // frame is that of the latest such settled run starting at or before it, else the first
+    // one seen. Frames where either fault matches nothing stay unknown (-1). A change in the
+    // last kSettleFrames - 1 frames is not settled: the data ends before it could be.
+    std::vector<std::vector<std::int8_t>> pair(n * n);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+            auto& out = pair[i * n + j];
+            out.assign(frames, -1);
+            int state = -1;
+            for (std::size_t f = 0; f < frames; ++f) {
+                const int r = raw(f, i, j);
+                if (r < 0)
+                    continue;
+                if (state < 0) {
+                    state = r;
+                } else if (r != state) {
+                    bool settled = f + kSettleFrames <= frames;
+                    for (std::size_t g = f + 1; g < f + kSettleFrames && settled; ++g)
+                        settled = raw(g, i, j) == r;
+                    if (settled)
+                        state = r;
+                }
+                out[f] = std::int8_t(state);
+            }
+        }
     auto together = [&](std::size_t f, std::size_t i, std::size_t j) -> int {
-        const int r = raw(f, i, j);
-        if (r < 0 || f == 0 || f + 1 >= frames)
-            return r;
-        const int before = raw(f - 1, i, j), after = raw(f + 1, i, j);
-        return before >= 0 && before == after ? before : r;
+        return pair[std::min(i, j) * n + std::max(i, j)][f];
     };
-    // Faults grouped in a frame: the components of "together", each ascending, ordered by
-    // their first fault.
-    auto groups = [&](std::size_t f) {
+    // Faults grouped in a frame: the components of "together" (a label per fault, -1 when it
+    // matches nothing), so that groups are consistent: settling pairs one by one could leave
+    // 1-4 and 4-7 together but 1-7 apart, read as a link and a split of one group at once.
+    auto components = [&](std::size_t f) {
         UnionFind sets(n);
         for (std::size_t i = 0; i < n; ++i)
             for (std::size_t j = i + 1; j < n; ++j)
                 if (together(f, i, j) == 1)
                     sets.unite(std::uint32_t(i), std::uint32_t(j));
-        std::map<std::uint32_t, std::vector<std::size_t>> byRoot;
+        std::vector<std::int64_t> label(n, -1);
         for (std::size_t k = 0; k < n; ++k)
             if (candidateAt(k, f) >= 0)
-                byRoot[sets.find(std::uint32_t(k))].push_back(k);
+                label[k] = sets.find(std::uint32_t(k));
+        return label;
+    };
+    // The groups of two or more, each ascending, ordered by their first fault.
+    auto groupsOf = [&](const std::vector<std::int64_t>& label) {
+        std::map<std::int64_t, std::vector<std::size_t>> byRoot;
+        for (std::size_t k = 0; k < n; ++k)
+            if (label[k] >= 0)
+                byRoot[label[k]].push_back(k);
         std::vector<std::vector<std::size_t>> out;
         for (auto& [root, members] : byRoot)
             if (members.size() >= 2)
                 out.push_back(std::move(members));
+        std::sort(out.begin(), out.end());
         return out;
     };
     std::vector<std::uint8_t> seen(n, 0);
-    std::vector<std::vector<std::size_t>> before;
+    std::vector<std::int64_t> labelBefore;
     for (std::size_t f = 0; f < frames; ++f) {
-        auto now = groups(f);
+        const std::vector<std::int64_t> label = components(f);
         for (std::size_t k = 0; k < n; ++k)
             if (!seen[k] && candidateAt(k, f) >= 0) {
                 seen[k] = 1;
                 events.push_back({f, FaultEventKind::Appeared, {k}});
             }
         if (f > 0) {
-            // Groups of one frame with two faults apart in the other.
-            auto parted = [&](const auto& groupsIn, std::size_t other, FaultEventKind kind) {
-                for (const auto& members : groupsIn) {
+            // Groups of one frame with two faults in different groups in the other (both
+            // matched there).
+            auto parted = [&](const std::vector<std::int64_t>& in,
+                              const std::vector<std::int64_t>& other, FaultEventKind kind) {
+                for (const auto& members : groupsOf(in)) {
                     bool apart = false;
                     for (std::size_t a = 0; a < members.size() && !apart; ++a)
                         for (std::size_t b = a + 1; b < members.size() && !apart; ++b)
-                            apart = together(other, members[a], members[b]) == 0;
+                            apart = other[members[a]] >= 0 && other[members[b]] >= 0 &&
+                                    other[members[a]] != other[members[b]];
                     if (apart)
                         events.push_back({f, kind, members});
                 }
             };
-            parted(now, f - 1, FaultEventKind::Linked);
-            parted(before, f, FaultEventKind::Split);
+            parted(label, labelBefore, FaultEventKind::Linked);
+            parted(labelBefore, label, FaultEventKind::Split);
         }
-        before = std::move(now);
+        labelBefore = label;
     }
     return events;
 }
@@ -250,9 +285,9 @@ std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLo
     const std::vector<std::size_t> frames = selection.frames(frameCount);
     if (frames.empty())
         return {};
-    // A point per frame up to the one after the last selected; frames never tracked match
-    // nothing.
-    const std::size_t end = std::min(frameCount, frames.back() + 2);
+    // A point per frame up to the last one a selected frame's relations are read from; frames
+    // never tracked match nothing.
+    const std::size_t end = std::min(frameCount, frames.back() + kSettleFrames);
     std::vector<FaultTrack> tracks(faults.size());
     for (auto& t : tracks) {
         t.points.resize(end);
@@ -275,11 +310,45 @@ std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLo
                 firstSeen[k] = std::min(firstSeen[k], f);
         }
     };
-    // Linked and split compare a frame with the one before, each read with the frames around
-    // it (a one-frame flicker is no event): frames f - 2 to f + 1.
-    for (const std::size_t f : frames)
-        for (std::size_t g = f >= 2 ? f - 2 : 0; g <= f + 1 && g < end; ++g)
+    // Linked and split compare a frame with the one before. A pair's relation there is that of
+    // the latest run of kSettleFrames equal relations starting at or before it (or the first
+    // relation seen): frames f - 1 to f + kSettleFrames - 1, and earlier ones, kSettleFrames at
+    // a time, until every pair has such a run starting before f - 1 (or frame 0 is reached).
+    auto settledBefore = [&](std::size_t lo, std::size_t f) {
+        // Whether each pair's relation has a settled run starting in [lo, f - 1]; and the
+        // relation is known from lo on (lo = 0: from the first frame).
+        if (lo == 0)
+            return true;
+        for (std::size_t i = 0; i < faults.size(); ++i)
+            for (std::size_t j = i + 1; j < faults.size(); ++j) {
+                bool found = false;
+                for (std::size_t g = lo; g + 1 <= f && !found; ++g) {
+                    auto rel = [&](std::size_t h) {
+                        const auto a = tracks[i].points[h].match.candidate;
+                        const auto b = tracks[j].points[h].match.candidate;
+                        return a < 0 || b < 0 ? -1 : int(a == b);
+                    };
+                    const int r = rel(g);
+                    found = r >= 0 && g + kSettleFrames <= end;
+                    for (std::size_t h = g + 1; h < g + kSettleFrames && found; ++h)
+                        found = rel(h) == r;
+                }
+                if (!found)
+                    return false;
+            }
+        return true;
+    };
+    for (const std::size_t f : frames) {
+        std::size_t lo = f >= 1 ? f - 1 : 0;
+        for (std::size_t g = lo; g < f + kSettleFrames && g < end; ++g)
             track(g);
+        while (!settledBefore(lo, f)) {
+            const std::size_t next = lo >= kSettleFrames ? lo - kSettleFrames : 0;
+            for (std::size_t g = next; g < lo; ++g)
+                track(g);
+            lo = next;
+        }
+    }
     // "Appeared" needs every frame before a fault's first match.
     for (std::size_t f = 0; f < end; ++f)
         if (!tracked[f] &&

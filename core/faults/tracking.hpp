@@ -89,9 +89,11 @@ FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoade
 // What happened to tracked faults between two frames, read from their tracks: a fault first
 // matched a candidate (appeared), faults matched to different candidates in the frame before
 // share one now (linked), or faults that shared one now match different ones (split). Whether
-// two faults share a candidate in a frame is read with the frames around it: a one-frame
-// flicker (together in one frame, apart in the frames before and after, or the reverse) is no
-// event (issue 41: at low thresholds faults linked and split every other frame).
+// two faults share a candidate changes only once the new relation holds for kSettleFrames
+// frames in a row: a link or split undone within fewer frames is flicker, no event (issue 41:
+// at low thresholds faults linked and split every other frame or two), and one in the last
+// kSettleFrames - 1 frames is not settled yet (no event).
+inline constexpr std::size_t kSettleFrames = 3;
 enum class FaultEventKind { Appeared, Linked, Split };
 std::string_view faultEventKindName(FaultEventKind kind); // appeared | linked | split
 
@@ -107,8 +109,9 @@ struct FaultEvent {
 std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks);
 
 // The events of the selected frames, tracking only the frames they need: each selected frame,
-// the frame before it, and earlier frames as far as needed to know whether a fault appeared
-// before. Equal to the unselected run's events in those frames.
+// the frame before it and the kSettleFrames - 1 after, earlier frames back to a settled
+// relation of every pair, and as far as needed to know whether a fault appeared before. Equal
+// to the unselected run's events in those frames.
 std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLoader& load,
                                            const VisibleMaskFn& visibleMask,
                                            std::span<const Fault> faults,
