@@ -40,7 +40,7 @@ class DataPanel final : public Panel {
             return;
         }
         ImGui::Spacing();
-        if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (collapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
             const auto files = ds->files();
             const auto& loc = ds->location(0);
             hint("%zu file%s, %s", files.size(), files.size() == 1 ? "" : "s",
@@ -57,7 +57,7 @@ class DataPanel final : public Panel {
                 ImGui::TextDisabled("... and %zu more", files.size() - shown);
         }
         const ViewDisplay* main = wb.mainDisplay();
-        if (ImGui::CollapsingHeader("Frames", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (collapsingHeader("Frames", ImGuiTreeNodeFlags_DefaultOpen)) {
             const std::size_t f = wb.displayFrame();
             keyValue("frames", std::to_string(ds->frameCount()));
             keyValue("current", std::to_string(f) + "  (timestep " + std::to_string(ds->location(f).timestep) + ")");
@@ -75,7 +75,7 @@ class DataPanel final : public Panel {
                     ImGui::TextDisabled("no id column: row numbers are the ids");
             }
         }
-        if (main && main->frame && ImGui::CollapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (main && main->frame && collapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
             // A narrow panel keeps the names and gives the type and range on hover.
             const bool wide = ImGui::GetContentRegionAvail().x >= ImGui::GetFontSize() * 16;
             if (ImGui::BeginTable("##columns", wide ? 4 : 1, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
@@ -106,9 +106,9 @@ class DataPanel final : public Panel {
                 ImGui::EndTable();
             }
         }
-        if (ImGui::CollapsingHeader("Strain from motion", ImGuiTreeNodeFlags_DefaultOpen))
+        if (collapsingHeader("Strain from motion", ImGuiTreeNodeFlags_DefaultOpen))
             m_strain.draw(wb);
-        if (ImGui::CollapsingHeader("Memory", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (collapsingHeader("Memory", ImGuiTreeNodeFlags_DefaultOpen)) {
             if (main && main->frame)
                 keyValue("this frame", bytesText(main->frame->memoryBytes()));
             keyValue("frames cached", bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));

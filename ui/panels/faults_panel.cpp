@@ -97,7 +97,7 @@ class FaultsPanel final : public Panel {
         // Which spheres faults let through.
         ImGui::AlignTextToFramePadding();
         ImGui::TextUnformatted("Show");
-        ImGui::SameLine();
+        flowSameLine(ImGui::GetFontSize() * 7); // a narrow panel: the menu under its label
         const auto& filter = s.faultFilter;
         std::string current = filter.mode == core::FaultFilter::Mode::All ? "all spheres"
                               : filter.mode == core::FaultFilter::Mode::Labelled
@@ -136,8 +136,8 @@ class FaultsPanel final : public Panel {
         }
         for (const auto& section : wb.extensions().faultSections) {
             ImGui::Spacing();
-            const bool open = ImGui::CollapsingHeader(
-                section.title.c_str(), section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+            const bool open = collapsingHeader(
+                section.title, section.defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
             wb.mark("faults.section." + section.title);
             if (open)
                 section.draw(wb);
@@ -309,10 +309,16 @@ class FaultsPanel final : public Panel {
             wb.emit({{"op", "fault.set"}, {"name", f.name}, {"notes", m_notes}});
         wb.mark("faults.notes");
         ImGui::BeginDisabled(!haveVisible);
-        if (ImGui::Button("Add the visible spheres"))
+        // A narrow panel shortens the labels (the whole on hover) rather than cut them.
+        const bool shortLabels =
+            ImGui::GetContentRegionAvail().x < buttonWidth("Remove the visible spheres");
+        if (ImGui::Button(shortLabels ? "Add visible###add" : "Add the visible spheres###add"))
             wb.emit({{"op", "fault.add"}, {"name", f.name}, {"from", "visible"}});
-        flowSameLine(buttonWidth("Remove the visible spheres"));
-        if (ImGui::Button("Remove the visible spheres")) {
+        if (shortLabels && ImGui::IsItemHovered())
+            ImGui::SetTooltip("Add the visible spheres to %s", f.name.c_str());
+        flowSameLine(buttonWidth(shortLabels ? "Remove visible" : "Remove the visible spheres"));
+        if (ImGui::Button(shortLabels ? "Remove visible###remove"
+                                      : "Remove the visible spheres###remove")) {
             const ViewDisplay* main = wb.mainDisplay();
             std::vector<std::int64_t> ids;
             for (std::size_t row = 0; row < main->visibility->mask.size(); ++row)
@@ -322,6 +328,8 @@ class FaultsPanel final : public Panel {
             if (!ids.empty())
                 wb.emit({{"op", "fault.remove"}, {"name", f.name}, {"ids", ids}});
         }
+        if (shortLabels && ImGui::IsItemHovered())
+            ImGui::SetTooltip("Remove the visible spheres from %s", f.name.c_str());
         ImGui::EndDisabled();
     }
 

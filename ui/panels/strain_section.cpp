@@ -57,7 +57,13 @@ void StrainSection::draw(PanelContext& wb) {
     ImGui::Spacing();
 
     const float field = ImGui::GetFontSize() * 4;
-    if (ImGui::RadioButton("incremental", m_incremental)) {
+    // Radio labels shortened in a very narrow panel (the whole on hover), not cut at the edge.
+    auto radioLabel = [](const char* label) {
+        const float room = ImGui::GetContentRegionAvail().x - ImGui::GetFrameHeight() -
+                           ImGui::GetStyle().ItemInnerSpacing.x;
+        return elided(label, room) + "###" + label;
+    };
+    if (ImGui::RadioButton(radioLabel("incremental").c_str(), m_incremental)) {
         m_incremental = true;
         if (!m_prefixEdited)
             m_prefix = "inc_";
@@ -66,7 +72,7 @@ void StrainSection::draw(PanelContext& wb) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Each frame against the frame N before it: the faults active then");
     flowSameLine(checkboxWidth("cumulative"));
-    if (ImGui::RadioButton("cumulative", !m_incremental)) {
+    if (ImGui::RadioButton(radioLabel("cumulative").c_str(), !m_incremental)) {
         m_incremental = false;
         if (!m_prefixEdited)
             m_prefix = "";

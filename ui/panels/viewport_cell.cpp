@@ -195,7 +195,9 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     const std::string fullBinding = bindingText(view.frame);
     float bindingRoom = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x -
                         2 * ImGui::GetStyle().FramePadding.x;
-    if (view.name != "main")
+    // The close button ends the first row, or the second in a two-row header (a view a third
+    // of 300 pixels wide left the frame binding no room beside it: its "..." lay under the x).
+    if (view.name != "main" && !twoRows)
         bindingRoom -= ImGui::GetFrameHeight() + ImGui::GetStyle().ItemSpacing.x;
     const std::string binding =
         twoRows ? elided(fullBinding, std::max(bindingRoom, ImGui::CalcTextSize("...").x)) : fullBinding;
@@ -255,7 +257,8 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     if (view.name != "main") {
         const float bw = ImGui::GetFrameHeight();
         ImGui::SameLine();
-        ImGui::SetCursorScreenPos(ImVec2(pos.x + width - bw - 6 * scale, pos.y + 3 * scale));
+        const float rowY = pos.y + 3 * scale + (twoRows ? ImGui::GetFrameHeightWithSpacing() : 0.0f);
+        ImGui::SetCursorScreenPos(ImVec2(pos.x + width - bw - 6 * scale, rowY));
         if (ImGui::Button("x", ImVec2(bw, 0)))
             wb.emit({{"op", "view.remove"}, {"name", view.name}});
         if (ImGui::IsItemHovered())

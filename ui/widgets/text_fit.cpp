@@ -88,4 +88,17 @@ float buttonWidth(const char* label) {
     return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
 }
 
+bool collapsingHeader(const std::string& label, int flags) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    // The arrow and the frame's padding on both sides come before and after the label.
+    const float room = ImGui::GetContentRegionAvail().x - ImGui::GetFontSize() -
+                       style.FramePadding.x * 5 - style.ItemInnerSpacing.x -
+                       style.WindowPadding.x;
+    const std::string shown = elided(label, room);
+    const bool open = ImGui::CollapsingHeader((shown + "###" + label).c_str(), flags);
+    if (shown != label && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", label.c_str());
+    return open;
+}
+
 } // namespace faultline::ui

@@ -27,5 +27,9 @@ float buttonWidth(const char* label);
 // The width of a checkbox with its label (also of a field `fieldWidth` wide with its label).
 float checkboxWidth(const char* label);
 float labelledWidth(float fieldWidth, const char* label);
+// ImGui::CollapsingHeader with its label shortened to the window's width (a header's label
+// past the edge is cut without a word and widens the window's content); the whole label on
+// hover. `flags`: ImGuiTreeNodeFlags.
+bool collapsingHeader(const std::string& label, int flags = 0);
 
 } // namespace faultline::ui
