@@ -175,7 +175,9 @@ TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     EXPECT_EQ(wb().selection().tool, ui::ViewportTool::Lasso);
     headless.clearEmitted();
     const std::vector<std::int64_t> post{id(3, 0, 0), id(3, 0, 1), id(3, 0, 2), id(3, 0, 3)};
-    auto [plo, phi] = boundsOf(post);
+    // Named copies: clang 14's lambdas cannot capture structured bindings.
+    const auto postBounds = boundsOf(post);
+    const ImVec2 plo = postBounds.first, phi = postBounds.second;
     withKeys(false, true, [&] {
         headless.moveTo(wb(), plo.x, plo.y);
         headless.button(wb(), 0, true);
@@ -194,7 +196,8 @@ TEST_F(SelectionTest, RectangleCtrlClickLassoAndRemoveAreOneCommandEach) {
     headless.key(wb(), GLFW_KEY_R);
     headless.clearEmitted();
     const auto first = column({0});
-    auto [rlo, rhi] = boundsOf(first);
+    const auto firstBounds = boundsOf(first); // (clang 14: no bindings in lambdas)
+    const ImVec2 rlo = firstBounds.first, rhi = firstBounds.second;
     withKeys(true, false, [&] { headless.drag(wb(), rlo.x, rlo.y, rhi.x, rhi.y); });
     ASSERT_EQ(headless.emitted().size(), 1u);
     EXPECT_EQ(headless.emitted()[0],

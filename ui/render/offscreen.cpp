@@ -192,6 +192,12 @@ OffscreenContext::~OffscreenContext() {
     glfwDestroyWindow(m_window);
 }
 
+bool OffscreenContext::isCurrent() const {
+    if (m_egl)
+        return eglGetCurrentContext() == m_egl->context;
+    return glfwGetCurrentContext() == m_window; // null (and an error) once GLFW was terminated
+}
+
 void OffscreenContext::makeCurrent() {
     if (m_egl)
         eglMakeCurrent(m_egl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_egl->context);
@@ -224,6 +230,16 @@ OffscreenContext* sharedOffscreenContext(std::string& why) {
         return nullptr;
     }
     context->makeCurrent();
+    if (!context->isCurrent()) {
+        // GLFW was terminated since (a workbench window closed in this process, as in the
+        // tests), taking the hidden window with it: make another. The old one is left as it
+        // is (destroying its window now would touch a GLFW that no longer knows it).
+        context = OffscreenContext::create(failure).release();
+        if (!context) {
+            why = failure;
+            return nullptr;
+        }
+    }
     t_eglCurrent = context->kind() != "glfw";
     return context;
 }

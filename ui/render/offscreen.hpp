@@ -69,6 +69,9 @@ class OffscreenContext {
     OffscreenContext(const OffscreenContext&) = delete;
     OffscreenContext& operator=(const OffscreenContext&) = delete;
     void makeCurrent();
+    // Whether this context is the current one on this thread (false once GLFW was terminated
+    // under a GLFW context, as a closed workbench window does).
+    bool isCurrent() const;
     // "glfw" or "egl (surfaceless)" / "egl (device N)": what made the context.
     const std::string& kind() const { return m_kind; }
     struct Egl; // EGL display and context (offscreen.cpp)
