@@ -6,12 +6,20 @@
 // - the session saves and opens again as the same state;
 // - undo all, then redo all, gives the same state;
 // - the autosave file opens as a session.
+// - the views draw with OpenGL (every FAULTLINE_SOAK_GL_EVERY checks, default 4: every 200
+//   actions) with no GL error (strict checks: FAULTLINE_GL_CHECKS=1, as the test command
+//   sets), where a context can be had (under the test command, FAULTLINE_REQUIRE_GL=1, it must).
 // FAULTLINE_SOAK_ACTIONS (default 20000, under a minute) and FAULTLINE_SOAK_SEED (default 1)
-// set the run. It runs headless (no OpenGL: the views are not drawn, their input is handled);
+// set the run. Between checks the views are not drawn (their input is handled);
 // scripts/soak.sh runs it long. A failure names the seed and the action, so it reproduces.
+#include <epoxy/gl.h> // before GLFW's GL/gl.h
+
+#include "gl_required.hpp"
 #include "panel_fixture.hpp"
 
 #include "core/session/session_json.hpp"
+#include "ui/render/offscreen.hpp"
+#include "ui/viewport/gl_view_renderer.hpp"
 
 #include <GLFW/glfw3.h>
 
@@ -61,6 +69,17 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
     session.apply({{"op", "fault.create"}, {"name", "F1"}, {"ids", {2, 6, 10, 14}}});
     headless.settle(wb());
 
+    // The views' OpenGL renderer, used at the checks (llvmpipe draws too slowly for every
+    // frame of a fast random run).
+    std::string noGl;
+    std::unique_ptr<ui::GlViewRenderer> gl;
+    if (ui::sharedOffscreenContext(noGl))
+        gl = std::make_unique<ui::GlViewRenderer>(ui::RendererBackend::OpenGL);
+    else if (const char* required = std::getenv("FAULTLINE_REQUIRE_GL"); required && *required == '1')
+        FAIL() << "no OpenGL context: " << noGl << " (FAULTLINE_REQUIRE_GL=1)";
+    const long long glEvery = std::max(1LL, envNumber("FAULTLINE_SOAK_GL_EVERY", 4));
+    long long checks = 0, drawn = 0;
+
     std::mt19937 rng(seed);
     auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
     const int keys[] = {GLFW_KEY_Z, GLFW_KEY_Y, GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_HOME,
@@ -93,6 +112,25 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
         EXPECT_FALSE(session.modified()) << "seed " << seed << ", after action " << at
                                          << ": back at the saved state, yet unsaved";
         headless.frames(wb(), 2);
+        if (gl && ++checks % glEvery == 0) {
+            // Every view drawn as the workbench draws it, and OpenGL reports no error.
+            ui::sharedOffscreenContext(noGl); // current on this thread
+            wb().setRenderer(gl.get());
+            try {
+                headless.frames(wb(), 2);
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << "seed " << seed << ", after action " << at
+                              << ": drawing the views failed: " << e.what() << "\n"
+                              << log.str();
+            }
+            wb().setRenderer(nullptr);
+            const GLenum error = glGetError();
+            EXPECT_EQ(error, GLenum(GL_NO_ERROR))
+                << "seed " << seed << ", after action " << at << ": GL error 0x" << std::hex
+                << error << "\n"
+                << log.str();
+            ++drawn;
+        }
         const std::string recovery = dir.file("state/recovery.faultline.json");
         if (std::filesystem::exists(recovery)) {
             core::Session fromAutosave;
@@ -161,8 +199,9 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("soak: seed %u, %lld actions (clicks %zu, drags %zu, keys %zu, typing %zu, "
-                "wheel %zu) in %.1f s: %.0f actions per minute\n",
+                "wheel %zu) in %.1f s: %.0f actions per minute; views drawn with %s %lld times\n",
                 seed, actions, counts[0], counts[1], counts[2], counts[3], counts[4], seconds,
-                60.0 * double(actions) / std::max(seconds, 1e-9));
+                60.0 * double(actions) / std::max(seconds, 1e-9), gl ? "OpenGL" : "no OpenGL",
+                drawn);
     std::filesystem::current_path(cwd);
 }
