@@ -25,7 +25,7 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 # Debian's libtbb is not instrumented, so TSan could not see its hand-offs between threads).
 # Every test runs inside an arena of 8 TBB threads (FAULTLINE_TBB_THREADS=8, even on 2 cores),
 # beside our own threads (background jobs, the prefetcher, caches). Any report fails the run
-# (cmake/tsan-suppressions.txt). Where the TBB source cannot be had, TBB runs inline against
+# (cmake/tsan-suppressions.txt names what is not ours: OpenVDB's and Mesa's own). Where the TBB source cannot be had, TBB runs inline against
 # Debian's library (FAULTLINE_TBB_THREADS=1) and the run says so.
 tsan="${FAULTLINE_TSAN_DIR:-$here/build-tsan}"
 tbbThreads=8
@@ -57,7 +57,8 @@ for k in 0 1; do
     wait "${pids[$k]}" || { tail -80 "$tsan/tsan-shard-$k.log"; echo "tsan: shard $k failed"; exit 1; }
 done
 # The workbench's tests (panels, background jobs, the soak's random use; GL under Xvfb).
-(cd "$tsan/tests" && FAULTLINE_SOAK_ACTIONS=4000 xvfb-run -a -s "-screen 0 1920x1080x24 -noreset" \
+(cd "$tsan/tests" && FAULTLINE_SOAK_ACTIONS=4000 FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1 \
+    LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe xvfb-run -a -s "-screen 0 1920x1080x24 -noreset" \
     "$tsan/tests/faultline_ui_tests" >"$tsan/tsan-ui.log" 2>&1) ||
     { tail -80 "$tsan/tsan-ui.log"; echo "tsan: workbench tests failed"; exit 1; }
 echo "tsan: $(grep -h "tests from .* test suites ran" "$tsan"/tsan-shard-*.log "$tsan/tsan-ui.log" |
