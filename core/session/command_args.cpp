@@ -1,5 +1,7 @@
 #include "core/session/command_args.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace faultline::core::args {
@@ -118,21 +120,28 @@ std::vector<std::string> strings(const Json& cmd, const char* field) {
     return out;
 }
 
-void onlyFields(const Json& cmd, std::initializer_list<const char*> allowed) {
+void onlyFields(const Json& cmd, std::initializer_list<const char*> keys,
+                const std::vector<std::string>& itemFields) {
     for (auto it = cmd.begin(); it != cmd.end(); ++it) {
         if (it.key() == "op")
             continue;
-        bool ok = false;
-        for (const char* a : allowed)
+        bool ok = std::find(itemFields.begin(), itemFields.end(), it.key()) != itemFields.end();
+        for (const char* a : keys)
             ok |= it.key() == a;
         if (!ok) {
             std::string list;
-            for (const char* a : allowed)
+            for (const char* a : keys)
+                list += std::string(list.empty() ? "" : ", ") + a;
+            for (const std::string& a : itemFields)
                 list += std::string(list.empty() ? "" : ", ") + a;
             throw CommandError(opOf(cmd) + ": unknown field \"" + it.key() + "\" (expected " +
                                (list.empty() ? std::string("none") : list) + ")");
         }
     }
+}
+
+void onlyFields(const Json& cmd, std::initializer_list<const char*> allowed) {
+    onlyFields(cmd, allowed, {});
 }
 
 } // namespace faultline::core::args

@@ -36,6 +36,9 @@ std::vector<std::int64_t> ids(const Json& cmd, const char* field);
 std::vector<std::string> strings(const Json& cmd, const char* field);
 // Fails on any field not in `allowed` (a typo in a journal must not pass silently).
 void onlyFields(const Json& cmd, std::initializer_list<const char*> allowed);
+// The same with an item's fields (items/*_codec.hpp: fieldNames) and the command's own keys.
+void onlyFields(const Json& cmd, std::initializer_list<const char*> keys,
+                const std::vector<std::string>& itemFields);
 } // namespace args
 
 } // namespace faultline::core

@@ -208,7 +208,8 @@ void registerDataOps(OpTable& ops) {
         return inverse;
     });
     addStateOp(ops, "camera.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"view", "target", "distance", "azimuth", "elevation", "fov_y", "orthographic"});
+        static const std::vector<std::string> fields = items::cameraFieldNames();
+        args::onlyFields(cmd, {"view"}, fields); // the camera's fields: one table, in its codec
         ViewState& v = viewOf(s, cmd);
         const CameraState c = items::patched("camera.set", v.camera, cmd);
         Json inverse = items::toJson(v.camera);

@@ -20,10 +20,11 @@ Json settingsJson(const SurfaceSettings& st) {
     return j;
 }
 
-// surface.build's and surface.set's fields.
-constexpr std::initializer_list<const char*> kSurfaceFields{
-    "fault",    "kernel", "voxel", "iso",         "visible",      "opacity",
-    "color_by", "map",    "range", "color_reach", "initial_color", "color"};
+// surface.build's and surface.set's fields: "fault" and the settings' (one table, in the codec).
+void onlySurfaceFields(const Json& cmd) {
+    static const std::vector<std::string> fields = items::surfaceFieldNames();
+    args::onlyFields(cmd, {"fault"}, fields);
+}
 
 // What a surface named `name` is built from in the current frame: the fault as formed there
 // (its members passing the thresholds), or the visible spheres (kVisibleSpheres).
@@ -135,13 +136,13 @@ std::shared_ptr<const Frame> frameOf(Session& s, const char* op) {
 
 void registerSurfaceOps(OpTable& ops) {
     addStateOp(ops, "surface.build", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, kSurfaceFields);
+        onlySurfaceFields(cmd);
         const SurfaceSettings st = settingsFrom(s, cmd, "surface.build");
         build(s, st, "surface.build"); // a request that cannot be built is refused here
         return storeSettings(s, st);
     });
     addStateOp(ops, "surface.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, kSurfaceFields);
+        onlySurfaceFields(cmd);
         return storeSettings(s, settingsFrom(s, cmd, "surface.set"));
     });
     addStateOp(ops, "surface.remove", [](Session& s, const Json& cmd) -> Json {

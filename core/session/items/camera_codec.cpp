@@ -2,19 +2,30 @@
 
 namespace faultline::core::items {
 
-Json toJson(const CameraState& c) {
-    return {{"target", c.target},       {"distance", c.distance}, {"azimuth", c.azimuth},
-            {"elevation", c.elevation}, {"fov_y", c.fovY},        {"orthographic", c.orthographic}};
+namespace {
+// Each field once: its JSON and how it is read.
+template <auto Member> void readInto(CameraState& c, const ItemReader& f, const char* name) {
+    f.read(name, c.*Member);
 }
+const Field<CameraState> kFields[] = {
+    {"target", [](const CameraState& c) { return Json(c.target); }, readInto<&CameraState::target>},
+    {"distance", [](const CameraState& c) { return Json(c.distance); },
+     readInto<&CameraState::distance>},
+    {"azimuth", [](const CameraState& c) { return Json(c.azimuth); },
+     readInto<&CameraState::azimuth>},
+    {"elevation", [](const CameraState& c) { return Json(c.elevation); },
+     readInto<&CameraState::elevation>},
+    {"fov_y", [](const CameraState& c) { return Json(c.fovY); }, readInto<&CameraState::fovY>},
+    {"orthographic", [](const CameraState& c) { return Json(c.orthographic); },
+     readInto<&CameraState::orthographic>},
+};
+} // namespace
 
-void patch(CameraState& c, const ItemReader& f) {
-    f.read("target", c.target);
-    f.read("distance", c.distance);
-    f.read("azimuth", c.azimuth);
-    f.read("elevation", c.elevation);
-    f.read("fov_y", c.fovY);
-    f.read("orthographic", c.orthographic);
-}
+Json toJson(const CameraState& c) { return fieldsToJson(c, kFields); }
+
+void patch(CameraState& c, const ItemReader& f) { patchFields(c, f, kFields); }
+
+std::vector<std::string> cameraFieldNames() { return fieldNames(kFields); }
 
 void validate(const CameraState& c, const std::string& prefix) {
     if (c.distance < 0)

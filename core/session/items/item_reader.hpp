@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace faultline::core::items {
 
@@ -69,5 +70,31 @@ class ItemReader {
 };
 
 [[noreturn]] void breaks(const std::string& path, const std::string& what);
+
+// An item's fields declared once (issue 39): each field's name, its value as JSON and how it is
+// read, from which come the item's toJson, its patch and the fields a command accepts.
+template <typename T> struct Field {
+    const char* name;
+    Json (*get)(const T&);                                // the field's value
+    void (*read)(T&, const ItemReader&, const char* name); // reads it, when present
+};
+template <typename T, std::size_t N> Json fieldsToJson(const T& item, const Field<T> (&table)[N]) {
+    Json j = Json::object();
+    for (const Field<T>& f : table)
+        j[f.name] = f.get(item);
+    return j;
+}
+template <typename T, std::size_t N>
+void patchFields(T& item, const ItemReader& reader, const Field<T> (&table)[N]) {
+    for (const Field<T>& f : table)
+        f.read(item, reader, f.name);
+}
+template <typename T, std::size_t N>
+std::vector<std::string> fieldNames(const Field<T> (&table)[N]) {
+    std::vector<std::string> names;
+    for (const Field<T>& f : table)
+        names.emplace_back(f.name);
+    return names;
+}
 
 } // namespace faultline::core::items

@@ -4,21 +4,6 @@
 
 namespace faultline::core::items {
 
-Json toJson(const SurfaceSettings& st) {
-    Json j = {{"kernel", std::string(kernelName(st.kernel))},
-              {"voxel", st.voxel},
-              {"iso", st.iso},
-              {"visible", st.visible},
-              {"opacity", st.opacity},
-              {"color_by", st.colorBy},
-              {"map", colorMapName(st.colorMap)}};
-    j["color_reach"] = st.colorReach ? Json(*st.colorReach) : Json(nullptr);
-    j["range"] = st.colorRange ? Json(*st.colorRange) : Json(nullptr);
-    j["initial_color"] = st.initialColor ? Json(*st.initialColor) : Json(nullptr);
-    j["color"] = st.color ? Json(*st.color) : Json(nullptr);
-    return j;
-}
-
 namespace {
 
 // An array of N finite numbers, or null for none.
@@ -51,29 +36,62 @@ constexpr const char* kColour = "must be [r, g, b] with components in [0, 1], or
     throw ItemError(ItemError::Kind::Field, field, what);
 }
 
+Json optional(const auto& value) { return value ? Json(*value) : Json(nullptr); }
+
+// Each field once: its JSON and how it is read ("range", "color_reach", "initial_color" and
+// "color" take null for none).
+const Field<SurfaceSettings> kFields[] = {
+    {"kernel", [](const SurfaceSettings& st) { return Json(std::string(kernelName(st.kernel))); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         f.readNamed(n, st.kernel, parseKernel, "must be inverse, inverse-square or compact");
+     }},
+    {"voxel", [](const SurfaceSettings& st) { return Json(st.voxel); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.voxel); }},
+    {"iso", [](const SurfaceSettings& st) { return Json(st.iso); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.iso); }},
+    {"visible", [](const SurfaceSettings& st) { return Json(st.visible); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.visible); }},
+    {"opacity", [](const SurfaceSettings& st) { return Json(st.opacity); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.opacity); }},
+    {"color_by", [](const SurfaceSettings& st) { return Json(st.colorBy); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.colorBy); }},
+    {"map", [](const SurfaceSettings& st) { return Json(colorMapName(st.colorMap)); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         f.readNamed(n, st.colorMap, parseJournalColorMap, "names no colour map");
+     }},
+    {"range", [](const SurfaceSettings& st) { return optional(st.colorRange); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         readOptional<2>(f, n, st.colorRange, kRange);
+     }},
+    {"color_reach", [](const SurfaceSettings& st) { return optional(st.colorReach); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         if (!f.has(n))
+             return;
+         if (f.get(n).is_null()) {
+             st.colorReach.reset();
+             return;
+         }
+         double reach = 0;
+         f.read(n, reach);
+         st.colorReach = reach;
+     }},
+    {"initial_color", [](const SurfaceSettings& st) { return optional(st.initialColor); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         readOptional<3>(f, n, st.initialColor, kColour);
+     }},
+    {"color", [](const SurfaceSettings& st) { return optional(st.color); },
+     [](SurfaceSettings& st, const ItemReader& f, const char* n) {
+         readOptional<3>(f, n, st.color, kColour);
+     }},
+};
+
 } // namespace
 
-void patch(SurfaceSettings& st, const ItemReader& f) {
-    f.readNamed("kernel", st.kernel, parseKernel, "must be inverse, inverse-square or compact");
-    f.read("voxel", st.voxel);
-    f.read("iso", st.iso);
-    f.read("visible", st.visible);
-    f.read("opacity", st.opacity);
-    f.read("color_by", st.colorBy);
-    f.readNamed("map", st.colorMap, parseJournalColorMap, "names no colour map");
-    readOptional<2>(f, "range", st.colorRange, kRange);
-    if (f.has("color_reach")) {
-        if (f.get("color_reach").is_null()) {
-            st.colorReach.reset();
-        } else {
-            double reach = 0;
-            f.read("color_reach", reach);
-            st.colorReach = reach;
-        }
-    }
-    readOptional<3>(f, "initial_color", st.initialColor, kColour);
-    readOptional<3>(f, "color", st.color, kColour);
-}
+Json toJson(const SurfaceSettings& st) { return fieldsToJson(st, kFields); }
+
+void patch(SurfaceSettings& st, const ItemReader& f) { patchFields(st, f, kFields); }
+
+std::vector<std::string> surfaceFieldNames() { return fieldNames(kFields); }
 
 void validate(const SurfaceSettings& st) {
     if (st.voxel < 0)

@@ -13,6 +13,9 @@ Json toJson(const SurfaceSettings& settings);
 // Reads the fields present; "range", "color_reach", "initial_color" and "color" may be null
 // (none).
 void patch(SurfaceSettings& settings, const ItemReader& fields);
+// The fields, in the table they are declared in once (what surface.set and surface.build accept
+// besides "fault").
+std::vector<std::string> surfaceFieldNames();
 // voxel >= 0, iso > 0, opacity in [0, 1], a colour map, low < high, reach >= 0, colours in
 // [0, 1].
 void validate(const SurfaceSettings& settings);
