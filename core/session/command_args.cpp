@@ -129,10 +129,10 @@ void onlyFields(const Json& cmd, std::initializer_list<const char*> keys,
         for (const char* a : keys)
             ok |= it.key() == a;
         if (!ok) {
-            std::string list;
-            for (const char* a : keys)
-                list += std::string(list.empty() ? "" : ", ") + a;
+            std::string list; // the item's fields, then the command's own
             for (const std::string& a : itemFields)
+                list += std::string(list.empty() ? "" : ", ") + a;
+            for (const char* a : keys)
                 list += std::string(list.empty() ? "" : ", ") + a;
             throw CommandError(opOf(cmd) + ": unknown field \"" + it.key() + "\" (expected " +
                                (list.empty() ? std::string("none") : list) + ")");

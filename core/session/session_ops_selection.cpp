@@ -15,11 +15,21 @@ template <typename T> std::size_t indexArg(const Json& cmd, const std::vector<T>
     return static_cast<std::size_t>(std::clamp(i, 0LL, static_cast<long long>(items.size())));
 }
 
+// The items' fields, from their codecs' tables.
+const std::vector<std::string>& boxFields() {
+    static const std::vector<std::string> fields = items::boxFieldNames();
+    return fields;
+}
+const std::vector<std::string>& thresholdFields() {
+    static const std::vector<std::string> fields = items::thresholdFieldNames();
+    return fields;
+}
+
 } // namespace
 
 void registerSelectionOps(OpTable& ops) {
     addStateOp(ops, "box.add", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"name", "min", "max", "mode", "enabled", "index"});
+        args::onlyFields(cmd, {"index"}, boxFields());
         const std::string name = args::string(cmd, "name");
         if (name.empty() || s.state().box(name))
             throw CommandError("box.add: a box named \"" + name + "\" exists already");
@@ -29,7 +39,7 @@ void registerSelectionOps(OpTable& ops) {
         return {{"op", "box.remove"}, {"name", b.name}};
     });
     addStateOp(ops, "box.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"name", "min", "max", "mode", "enabled", "rename"});
+        args::onlyFields(cmd, {"rename"}, boxFields());
         const std::string name = args::string(cmd, "name");
         CuttingBox* b = s.mutableState().box(name);
         if (!b)
@@ -64,7 +74,7 @@ void registerSelectionOps(OpTable& ops) {
     });
 
     addStateOp(ops, "threshold.add", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"variable", "low", "high", "enabled", "index"});
+        args::onlyFields(cmd, {"index"}, thresholdFields());
         const std::string variable = args::string(cmd, "variable");
         if (variable.empty() || s.state().threshold(variable))
             throw CommandError("threshold.add: \"" + variable +
@@ -75,7 +85,7 @@ void registerSelectionOps(OpTable& ops) {
         return {{"op", "threshold.remove"}, {"variable", t.variable}};
     });
     addStateOp(ops, "threshold.set", [](Session& s, const Json& cmd) -> Json {
-        args::onlyFields(cmd, {"variable", "low", "high", "enabled"});
+        args::onlyFields(cmd, {}, thresholdFields());
         const std::string variable = args::string(cmd, "variable");
         VariableThreshold* t = s.mutableState().threshold(variable);
         if (!t)

@@ -2,21 +2,29 @@
 
 namespace faultline::core::items {
 
-Json toJson(const CuttingBox& b) {
-    return {{"name", b.name},
-            {"min", b.min},
-            {"max", b.max},
-            {"mode", std::string(boxModeName(b.mode))},
-            {"enabled", b.enabled}};
-}
+namespace {
+// Each field once: its JSON and how it is read.
+const Field<CuttingBox> kFields[] = {
+    {"name", [](const CuttingBox& b) { return Json(b.name); },
+     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.name); }},
+    {"min", [](const CuttingBox& b) { return Json(b.min); },
+     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.min); }},
+    {"max", [](const CuttingBox& b) { return Json(b.max); },
+     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.max); }},
+    {"mode", [](const CuttingBox& b) { return Json(std::string(boxModeName(b.mode))); },
+     [](CuttingBox& b, const ItemReader& f, const char* n) {
+         f.readNamed(n, b.mode, parseBoxMode, "must be keep or cut");
+     }},
+    {"enabled", [](const CuttingBox& b) { return Json(b.enabled); },
+     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.enabled); }},
+};
+} // namespace
 
-void patch(CuttingBox& b, const ItemReader& f) {
-    f.read("name", b.name);
-    f.read("min", b.min);
-    f.read("max", b.max);
-    f.readNamed("mode", b.mode, parseBoxMode, "must be keep or cut");
-    f.read("enabled", b.enabled);
-}
+Json toJson(const CuttingBox& b) { return fieldsToJson(b, kFields); }
+
+void patch(CuttingBox& b, const ItemReader& f) { patchFields(b, f, kFields); }
+
+std::vector<std::string> boxFieldNames() { return fieldNames(kFields); }
 
 void validate(const CuttingBox& b) {
     if (b.name.empty())

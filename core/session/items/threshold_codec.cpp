@@ -2,16 +2,25 @@
 
 namespace faultline::core::items {
 
-Json toJson(const VariableThreshold& t) {
-    return {{"variable", t.variable}, {"low", t.low}, {"high", t.high}, {"enabled", t.enabled}};
-}
+namespace {
+// Each field once: its JSON and how it is read.
+const Field<VariableThreshold> kFields[] = {
+    {"variable", [](const VariableThreshold& t) { return Json(t.variable); },
+     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.variable); }},
+    {"low", [](const VariableThreshold& t) { return Json(t.low); },
+     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.low); }},
+    {"high", [](const VariableThreshold& t) { return Json(t.high); },
+     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.high); }},
+    {"enabled", [](const VariableThreshold& t) { return Json(t.enabled); },
+     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.enabled); }},
+};
+} // namespace
 
-void patch(VariableThreshold& t, const ItemReader& f) {
-    f.read("variable", t.variable);
-    f.read("low", t.low);
-    f.read("high", t.high);
-    f.read("enabled", t.enabled);
-}
+Json toJson(const VariableThreshold& t) { return fieldsToJson(t, kFields); }
+
+void patch(VariableThreshold& t, const ItemReader& f) { patchFields(t, f, kFields); }
+
+std::vector<std::string> thresholdFieldNames() { return fieldNames(kFields); }
 
 void validate(const VariableThreshold& t) {
     if (t.variable.empty())
