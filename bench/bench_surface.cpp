@@ -404,36 +404,17 @@ std::string writeZonesBlock() {
     const std::string path = benchDir() + "/zones525k.lammpstrj";
     if (std::filesystem::exists(path))
         return path;
-    constexpr double r = 1.0;
-    constexpr double size[3] = {200.0, 130.0, 110.0};
-    const double dip = 60.0 * 3.14159265358979 / 180.0;
-    const double normals[3][3] = {{std::sin(dip), 0.0, std::cos(dip)},
-                                  {-std::sin(dip), 0.0, std::cos(dip)},
-                                  {0.0, std::sin(dip), std::cos(dip)}};
-    const double points[3][3] = {{70.0, 65.0, 55.0}, {130.0, 65.0, 55.0}, {100.0, 65.0, 55.0}};
-    const int nk = static_cast<int>(size[2] / (2 * std::sqrt(6.0) / 3 * r));
-    const int nj = static_cast<int>(size[1] / (std::sqrt(3.0) * r));
-    const int ni = static_cast<int>(size[0] / (2 * r));
     std::string body;
     std::size_t n = 0;
     char line[160];
-    for (int k = 0; k < nk; ++k)
-        for (int j = 0; j < nj; ++j)
-            for (int i = 0; i < ni; ++i) {
-                const int kk = k % 2;
-                const double p[3] = {(2.0 * i + ((j + k) % 2)) * r + r,
-                                     std::sqrt(3.0) * (j + kk / 3.0) * r + r,
-                                     2.0 * std::sqrt(6.0) / 3.0 * k * r + r};
-                double dist = 1e9;
-                for (int f = 0; f < 3; ++f)
-                    dist = std::min(dist, std::abs((p[0] - points[f][0]) * normals[f][0] +
-                                                   (p[1] - points[f][1]) * normals[f][1] +
-                                                   (p[2] - points[f][2]) * normals[f][2]));
-                ++n;
-                std::snprintf(line, sizeof line, "%zu %.4f %.4f %.4f 1 %.4f\n", n, p[0], p[1],
-                              p[2], dist);
-                body += line;
-            }
+    fb::forEachFaultedBlockSphere([&](const double* p, const double* across) {
+        const double dist =
+            std::min({std::abs(across[0]), std::abs(across[1]), std::abs(across[2])});
+        ++n;
+        std::snprintf(line, sizeof line, "%zu %.4f %.4f %.4f 1 %.4f\n", n, p[0], p[1], p[2],
+                      dist);
+        body += line;
+    });
     std::ofstream out(path + ".part", std::ios::binary);
     out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" << n
         << "\nITEM: BOX BOUNDS ff ff ff\n0 202\n0 132\n0 112\nITEM: ATOMS id x y z radius "

@@ -70,13 +70,12 @@ inline FaultZone hcpFaultZone(std::size_t count, float r, float thickness) {
 
 namespace faultline::bench {
 
-// What a user selects in a whole faulted block (issue 23): the high-strain spheres of three
-// planar fault zones that cross a 200 x 130 x 110 block of touching spheres (HCP, radius r = 1),
-// 60-degree dips (to the east, the west and the north), zones 3 radii thick, thinned evenly to
-// about `count` spheres as a strain threshold thins them. Spread out: the selection's bounding
-// box is the whole block, and most of it is far from any sphere.
-inline FaultZone spreadFaultZones(std::size_t count) {
-    constexpr double r = 1.0, halfThickness = 1.5;
+// The faulted block of the spread-out benchmarks: a 200 x 130 x 110 block of touching spheres
+// (HCP, radius 1) crossed by three planar fault zones with 60-degree dips (to the east, the
+// west and the north). Calls f(p, across) for every sphere, with its signed distances to the
+// three zones' mid-planes.
+template <typename F> void forEachFaultedBlockSphere(F f) {
+    constexpr double r = 1.0;
     constexpr double size[3] = {200.0, 130.0, 110.0};
     const double dip = 60.0 * 3.14159265358979 / 180.0;
     // Unit normals and a point on each plane.
@@ -84,7 +83,6 @@ inline FaultZone spreadFaultZones(std::size_t count) {
                                   {-std::sin(dip), 0.0, std::cos(dip)},
                                   {0.0, std::sin(dip), std::cos(dip)}};
     const double points[3][3] = {{70.0, 65.0, 55.0}, {130.0, 65.0, 55.0}, {100.0, 65.0, 55.0}};
-    std::vector<std::array<double, 4>> members; // x, y, z, which zone
     const int nk = static_cast<int>(size[2] / (2 * std::sqrt(6.0) / 3 * r));
     const int nj = static_cast<int>(size[1] / (std::sqrt(3.0) * r));
     const int ni = static_cast<int>(size[0] / (2 * r));
@@ -95,16 +93,29 @@ inline FaultZone spreadFaultZones(std::size_t count) {
                 const double p[3] = {(2.0 * i + ((j + k) % 2)) * r + r,
                                      std::sqrt(3.0) * (j + kk / 3.0) * r + r,
                                      2.0 * std::sqrt(6.0) / 3.0 * k * r + r};
-                for (int f = 0; f < 3; ++f) {
-                    const double across = (p[0] - points[f][0]) * normals[f][0] +
-                                          (p[1] - points[f][1]) * normals[f][1] +
-                                          (p[2] - points[f][2]) * normals[f][2];
-                    if (std::abs(across) <= halfThickness) {
-                        members.push_back({p[0], p[1], p[2], double(f)});
-                        break;
-                    }
-                }
+                double across[3];
+                for (int z = 0; z < 3; ++z)
+                    across[z] = (p[0] - points[z][0]) * normals[z][0] +
+                                (p[1] - points[z][1]) * normals[z][1] +
+                                (p[2] - points[z][2]) * normals[z][2];
+                f(p, across);
             }
+}
+
+// What a user selects in a whole faulted block (issue 23): the high-strain spheres of
+// forEachFaultedBlockSphere's three zones, 3 radii thick, thinned evenly to about `count` spheres
+// as a strain threshold thins them. Spread out: the selection's bounding box is the whole block,
+// and most of it is far from any sphere.
+inline FaultZone spreadFaultZones(std::size_t count) {
+    constexpr double r = 1.0, halfThickness = 1.5, height = 110.0;
+    std::vector<std::array<double, 4>> members; // x, y, z, which zone
+    forEachFaultedBlockSphere([&](const double* p, const double* across) {
+        for (int f = 0; f < 3; ++f)
+            if (std::abs(across[f]) <= halfThickness) {
+                members.push_back({p[0], p[1], p[2], double(f)});
+                break;
+            }
+    });
     // Thin evenly (a fixed hash of the index, so every run keeps the same spheres).
     const double keep = std::min(1.0, double(count) / double(members.size()));
     FaultZone zone;
@@ -120,7 +131,7 @@ inline FaultZone spreadFaultZones(std::size_t count) {
         zone.y.push_back(float(c[1]));
         zone.z.push_back(float(c[2]));
         zone.radius.push_back(float(r));
-        const float t = float(c[2] / size[2]);
+        const float t = float(c[2] / height);
         zone.rgb.insert(zone.rgb.end(), {t, float(c[3]) / 2.0f, 1.0f - t});
     }
     return zone;
