@@ -76,8 +76,10 @@ class BoxesPanel final : public Panel {
         // The list.
         const float rowH = ImGui::GetFrameHeightWithSpacing();
         const float listH = std::min<float>(static_cast<float>(s.boxes.size()) * rowH + rowH, 7.5f * rowH);
-        if (ImGui::BeginTable("##boxes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter | ImGuiTableFlags_ScrollY,
-                              ImVec2(0, listH))) {
+        if (beginScrollingTable("##boxes", 3,
+                                ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
+                                    ImGuiTableFlags_ScrollY,
+                                listH)) {
             ImGui::TableSetupColumn("on", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
             ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
             ImGui::TableSetupColumn("mode", ImGuiTableColumnFlags_WidthFixed, 70 * wb.scale());

@@ -99,8 +99,8 @@ class FaultCandidatesSection {
         updateOverlaps(wb, *preview);
         const float rowH = ImGui::GetFrameHeightWithSpacing();
         const float h = std::min(rowH * (static_cast<float>(cands.size()) + 0.5f), rowH * 8.0f);
-        if (!ImGui::BeginTable("##candidates", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
-                               ImVec2(0, h)))
+        if (!beginScrollingTable("##candidates", 3,
+                                 ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, h))
             return;
         ImGui::TableSetupColumn("c", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
         ImGui::TableSetupColumn("size", ImGuiTableColumnFlags_WidthStretch);

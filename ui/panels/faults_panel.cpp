@@ -153,10 +153,10 @@ class FaultsPanel final : public Panel {
         const float rowH = ImGui::GetFrameHeightWithSpacing();
         const float tableH =
             std::min(rowH * (static_cast<float>(s.faults.size()) + 1.2f), rowH * 9.0f);
-        if (!ImGui::BeginTable("##faults", columns,
-                               ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
-                                   ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable,
-                               ImVec2(0, tableH)))
+        if (!beginScrollingTable("##faults", columns,
+                                 ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
+                                     ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable,
+                                 tableH))
             return;
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed,

@@ -147,8 +147,8 @@ class SurfacesPanel final : public Panel {
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingStretchProp;
         const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size() + 1, 6) + 1);
-        if (!ImGui::BeginTable("##surfaces", 3, flags,
-                               ImVec2(0, rows * ImGui::GetFrameHeightWithSpacing())))
+        if (!beginScrollingTable("##surfaces", 3, flags,
+                                 rows * ImGui::GetFrameHeightWithSpacing()))
             return;
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableSetupColumn("shown", ImGuiTableColumnFlags_WidthFixed);

@@ -43,4 +43,17 @@ void helpMarker(const char* text) {
     }
 }
 
+bool beginScrollingTable(const char* id, int columns, int flags, float height) {
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, height);
+    // With a margin: ImGui rounds the child window's clipped rectangle, and one that keeps under
+    // a pixel of it is hidden all the same.
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    if (!ImGui::IsRectVisible(ImVec2(at.x + 2, at.y + 2),
+                              ImVec2(at.x + size.x - 2, at.y + size.y - 2))) {
+        ImGui::Dummy(size);
+        return false;
+    }
+    return ImGui::BeginTable(id, columns, flags, ImVec2(0, height));
+}
+
 } // namespace faultline::ui
