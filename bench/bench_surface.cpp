@@ -503,6 +503,16 @@ OpCase& opCase(const std::string& name) {
     return it->second;
 }
 
+// The case, or null with the benchmark skipped saying why.
+OpCase* readyCase(benchmark::State& state, const char* name) {
+    OpCase& c = opCase(name);
+    if (!c.error.empty()) {
+        state.SkipWithError(c.error.c_str());
+        return nullptr;
+    }
+    return &c;
+}
+
 // surface.build on F1 as a user runs it (the wrapping iso, the default iso-slider range, the
 // fault's colour), both kernels at voxel = mean radius / divisor, against OpenVDB's
 // ParticlesToLevelSet + volumeToMesh on the same spheres at the same voxel, interleaved rounds
@@ -511,11 +521,10 @@ OpCase& opCase(const std::string& name) {
 // the process's peak RSS growth over the first build of each kernel (run one case per process
 // for a figure of that case alone).
 void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor) {
-    OpCase& c = opCase(name);
-    if (!c.error.empty()) {
-        state.SkipWithError(c.error.c_str());
+    OpCase* found = readyCase(state, name);
+    if (!found)
         return;
-    }
+    OpCase& c = *found;
     fc::Session& s = *c.session;
     const float voxel = float(c.meanRadius / divisor);
     using Clock = std::chrono::steady_clock;
@@ -590,11 +599,10 @@ void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor)
 // Algorithm 1 on every stride-th planned block, both kernels at the wrapping iso.
 void BM_SurfaceOpSampledError(benchmark::State& state, const char* name, float divisor,
                               fc::MetaballKernel kernel, int stride) {
-    OpCase& c = opCase(name);
-    if (!c.error.empty()) {
-        state.SkipWithError(c.error.c_str());
+    OpCase* found = readyCase(state, name);
+    if (!found)
         return;
-    }
+    OpCase& c = *found;
     fc::Session& s = *c.session;
     const float voxel = float(c.meanRadius / divisor);
     s.apply({{"op", "surface.build"},

@@ -167,6 +167,20 @@ std::string_view faultEventKindName(FaultEventKind kind) {
     return "appeared";
 }
 
+namespace {
+// Two tracked faults in a frame: 1 in one candidate, 0 in different ones, -1 when either
+// matches none (or the frame was not tracked).
+int pairRelation(std::span<const FaultTrack> tracks, std::size_t frame, std::size_t i,
+                 std::size_t j) {
+    auto candidateAt = [&](std::size_t fault) -> std::int32_t {
+        const auto& points = tracks[fault].points;
+        return frame < points.size() ? points[frame].match.candidate : -1;
+    };
+    const std::int32_t a = candidateAt(i), b = candidateAt(j);
+    return a < 0 || b < 0 ? -1 : int(a == b);
+}
+} // namespace
+
 std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
     std::vector<FaultEvent> events;
     std::size_t frames = 0;
@@ -177,11 +191,8 @@ std::vector<FaultEvent> faultEvents(std::span<const FaultTrack> tracks) {
         const auto& points = tracks[fault].points;
         return frame < points.size() ? points[frame].match.candidate : -1;
     };
-    // Two faults in a frame: 1 in one candidate, 0 in different ones, -1 when either matches
-    // none.
-    auto raw = [&](std::size_t f, std::size_t i, std::size_t j) -> int {
-        const std::int32_t a = candidateAt(i, f), b = candidateAt(j, f);
-        return a < 0 || b < 0 ? -1 : int(a == b);
+    auto raw = [&](std::size_t f, std::size_t i, std::size_t j) {
+        return pairRelation(tracks, f, i, j);
     };
     // Issue 41: at a low threshold two faults joined by a few spheres flicker, linked for a
     // frame or two and split again, over and over (46 events for 9 faults on the demo when only
@@ -323,11 +334,7 @@ std::vector<FaultEvent> trackedFaultEvents(std::size_t frameCount, const FrameLo
             for (std::size_t j = i + 1; j < faults.size(); ++j) {
                 bool found = false;
                 for (std::size_t g = lo; g + 1 <= f && !found; ++g) {
-                    auto rel = [&](std::size_t h) {
-                        const auto a = tracks[i].points[h].match.candidate;
-                        const auto b = tracks[j].points[h].match.candidate;
-                        return a < 0 || b < 0 ? -1 : int(a == b);
-                    };
+                    auto rel = [&](std::size_t h) { return pairRelation(tracks, h, i, j); };
                     const int r = rel(g);
                     found = r >= 0 && g + kSettleFrames <= end;
                     for (std::size_t h = g + 1; h < g + kSettleFrames && found; ++h)

@@ -4,19 +4,16 @@ namespace faultline::core::items {
 
 namespace {
 // Each field once: its JSON and how it is read.
-const Field<CuttingBox> kFields[] = {
-    {"name", [](const CuttingBox& b) { return Json(b.name); },
-     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.name); }},
-    {"min", [](const CuttingBox& b) { return Json(b.min); },
-     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.min); }},
-    {"max", [](const CuttingBox& b) { return Json(b.max); },
-     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.max); }},
-    {"mode", [](const CuttingBox& b) { return Json(std::string(boxModeName(b.mode))); },
-     [](CuttingBox& b, const ItemReader& f, const char* n) {
+using B = CuttingBox;
+const Field<B> kFields[] = {
+    member<B, &B::name>("name"),
+    member<B, &B::min>("min"),
+    member<B, &B::max>("max"),
+    {"mode", [](const B& b) { return Json(std::string(boxModeName(b.mode))); },
+     [](B& b, const ItemReader& f, const char* n) {
          f.readNamed(n, b.mode, parseBoxMode, "must be keep or cut");
      }},
-    {"enabled", [](const CuttingBox& b) { return Json(b.enabled); },
-     [](CuttingBox& b, const ItemReader& f, const char* n) { f.read(n, b.enabled); }},
+    member<B, &B::enabled>("enabled"),
 };
 } // namespace
 

@@ -4,20 +4,11 @@ namespace faultline::core::items {
 
 namespace {
 // Each field once: its JSON and how it is read.
-template <auto Member> void readInto(CameraState& c, const ItemReader& f, const char* name) {
-    f.read(name, c.*Member);
-}
-const Field<CameraState> kFields[] = {
-    {"target", [](const CameraState& c) { return Json(c.target); }, readInto<&CameraState::target>},
-    {"distance", [](const CameraState& c) { return Json(c.distance); },
-     readInto<&CameraState::distance>},
-    {"azimuth", [](const CameraState& c) { return Json(c.azimuth); },
-     readInto<&CameraState::azimuth>},
-    {"elevation", [](const CameraState& c) { return Json(c.elevation); },
-     readInto<&CameraState::elevation>},
-    {"fov_y", [](const CameraState& c) { return Json(c.fovY); }, readInto<&CameraState::fovY>},
-    {"orthographic", [](const CameraState& c) { return Json(c.orthographic); },
-     readInto<&CameraState::orthographic>},
+using C = CameraState;
+const Field<C> kFields[] = {
+    member<C, &C::target>("target"),       member<C, &C::distance>("distance"),
+    member<C, &C::azimuth>("azimuth"),     member<C, &C::elevation>("elevation"),
+    member<C, &C::fovY>("fov_y"),          member<C, &C::orthographic>("orthographic"),
 };
 } // namespace
 

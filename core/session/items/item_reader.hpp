@@ -78,6 +78,15 @@ template <typename T> struct Field {
     Json (*get)(const T&);                                // the field's value
     void (*read)(T&, const ItemReader&, const char* name); // reads it, when present
 };
+// A field that is one member, written as JSON and read with ItemReader::read as it is.
+template <typename T, auto Member> Json memberJson(const T& item) { return Json(item.*Member); }
+template <typename T, auto Member>
+void readMember(T& item, const ItemReader& reader, const char* name) {
+    reader.read(name, item.*Member);
+}
+template <typename T, auto Member> constexpr Field<T> member(const char* name) {
+    return {name, memberJson<T, Member>, readMember<T, Member>};
+}
 template <typename T, std::size_t N> Json fieldsToJson(const T& item, const Field<T> (&table)[N]) {
     Json j = Json::object();
     for (const Field<T>& f : table)

@@ -45,16 +45,11 @@ const Field<SurfaceSettings> kFields[] = {
      [](SurfaceSettings& st, const ItemReader& f, const char* n) {
          f.readNamed(n, st.kernel, parseKernel, "must be inverse, inverse-square or compact");
      }},
-    {"voxel", [](const SurfaceSettings& st) { return Json(st.voxel); },
-     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.voxel); }},
-    {"iso", [](const SurfaceSettings& st) { return Json(st.iso); },
-     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.iso); }},
-    {"visible", [](const SurfaceSettings& st) { return Json(st.visible); },
-     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.visible); }},
-    {"opacity", [](const SurfaceSettings& st) { return Json(st.opacity); },
-     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.opacity); }},
-    {"color_by", [](const SurfaceSettings& st) { return Json(st.colorBy); },
-     [](SurfaceSettings& st, const ItemReader& f, const char* n) { f.read(n, st.colorBy); }},
+    member<SurfaceSettings, &SurfaceSettings::voxel>("voxel"),
+    member<SurfaceSettings, &SurfaceSettings::iso>("iso"),
+    member<SurfaceSettings, &SurfaceSettings::visible>("visible"),
+    member<SurfaceSettings, &SurfaceSettings::opacity>("opacity"),
+    member<SurfaceSettings, &SurfaceSettings::colorBy>("color_by"),
     {"map", [](const SurfaceSettings& st) { return Json(colorMapName(st.colorMap)); },
      [](SurfaceSettings& st, const ItemReader& f, const char* n) {
          f.readNamed(n, st.colorMap, parseJournalColorMap, "names no colour map");

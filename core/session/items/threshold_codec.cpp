@@ -4,15 +4,12 @@ namespace faultline::core::items {
 
 namespace {
 // Each field once: its JSON and how it is read.
-const Field<VariableThreshold> kFields[] = {
-    {"variable", [](const VariableThreshold& t) { return Json(t.variable); },
-     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.variable); }},
-    {"low", [](const VariableThreshold& t) { return Json(t.low); },
-     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.low); }},
-    {"high", [](const VariableThreshold& t) { return Json(t.high); },
-     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.high); }},
-    {"enabled", [](const VariableThreshold& t) { return Json(t.enabled); },
-     [](VariableThreshold& t, const ItemReader& f, const char* n) { f.read(n, t.enabled); }},
+using T = VariableThreshold;
+const Field<T> kFields[] = {
+    member<T, &T::variable>("variable"),
+    member<T, &T::low>("low"),
+    member<T, &T::high>("high"),
+    member<T, &T::enabled>("enabled"),
 };
 } // namespace
 
