@@ -379,6 +379,7 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
          double(after.centreMax()[1]) - after.centreMin()[1],
          double(after.centreMax()[2]) - after.centreMin()[2]},
         d);
+    out.sectionAxis = thin;
     for (std::size_t a = 0; a < k; ++a)
         for (std::size_t b = a + 1; b < k; ++b) {
             const double quiet = std::max(std::min(out.blockMisfit[a], out.blockMisfit[b]), options.floor * d);
@@ -433,6 +434,7 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
             f.midpoints = mids.size();
             f.plane = fit;
             f.rms = rmsOf(fit, mids);
+            f.points = std::move(mids);
             f.slip = norm(sub(out.blocks[a].at(fit.centroid), out.blocks[b].at(fit.centroid)));
             f.width = transitionWidth(pos, u, label, std::int32_t(a), std::int32_t(b), fit, d, cell);
             f.identifiable = f.midpoints >= 30 && f.rms < 1.5 * d && f.slip > 3.0 * rough &&

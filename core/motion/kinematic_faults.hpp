@@ -53,7 +53,8 @@ struct RigidMotion {
 struct KinematicFault {
     std::size_t blockA = 0, blockB = 0; // blockA < blockB
     std::size_t midpoints = 0;          // after trimming
-    PlaneFit plane;                     // through the midpoints (later frame's positions)
+    std::vector<Vec3d> points;          // those midpoints (later frame's positions)
+    PlaneFit plane;                     // through the midpoints
     double rms = 0;                     // midpoints' RMS distance to the plane, world units
     double slip = 0;                    // |motion A - motion B| at the plane's centroid
     double width = 0;                   // 10-90 % width of the change of motion across it
@@ -62,6 +63,7 @@ struct KinematicFault {
 
 struct KinematicResult {
     double meanDiameter = 0;
+    int sectionAxis = -1; // a section model's thin axis (fault planes contain it), else -1
     std::vector<std::int32_t> blockOfRow; // per row of `after`: block, or -1 (not in `before`)
     std::vector<RigidMotion> blocks;      // largest block first
     std::vector<std::size_t> blockSizes;

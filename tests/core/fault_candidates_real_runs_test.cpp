@@ -30,7 +30,35 @@ struct Match {
     std::size_t candidate = 0;
     double dipError = 0, dirError = 0, distance = 0; // distance in mean diameters
     std::size_t size = 0;
+    // Against the truth over the part of the fault the candidate spans (the kinematic
+    // midpoints within the candidate's down-dip range): a curved fault of which only the deep
+    // part strains in an increment is matched against that part's dip.
+    double localDip = NAN, localDipError = 90, localDirError = 180;
 };
+
+// The truth plane refitted through its midpoints that lie within the down-dip span (10th to
+// 90th percentile) of the candidate's members; invalid when fewer than 30 are left.
+PlaneFit localTruth(const KinematicResult& truth, const KinematicFault& f, const Frame& after,
+                    const Fault& candidate) {
+    const Vec3d down = downDipVector(f.plane.normal);
+    auto along = [&](const Vec3d& p) {
+        return (p[0] - f.plane.centroid[0]) * down[0] + (p[1] - f.plane.centroid[1]) * down[1] +
+               (p[2] - f.plane.centroid[2]) * down[2];
+    };
+    std::vector<double> span;
+    for (std::int64_t id : candidate.ids)
+        if (auto row = after.rowOf(id))
+            span.push_back(along({after.x[*row], after.y[*row], after.z[*row]}));
+    if (span.size() < 3)
+        return {};
+    std::sort(span.begin(), span.end());
+    const double lo = span[span.size() / 10], hi = span[span.size() * 9 / 10];
+    std::vector<Vec3d> within;
+    for (const Vec3d& p : f.points)
+        if (const double s = along(p); s >= lo && s <= hi)
+            within.push_back(p);
+    return within.size() >= 30 ? fitPlane(within, truth.sectionAxis) : PlaneFit{};
+}
 
 // Each identifiable kinematic fault of before -> after against the candidates of `after`'s
 // spheres whose `variable` is at least its `percentile`. Prints a line per fault.
@@ -94,11 +122,17 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
                         f.plane.orientation.dipDirection);
             best.dipError = 90;
         } else {
+            const FaultFrameMetrics& m = metrics[best.candidate];
+            if (const PlaneFit local = localTruth(truth, f, after, faults[best.candidate]); local.valid) {
+                best.localDip = local.orientation.dip;
+                best.localDipError = std::fabs(m.dip - local.orientation.dip);
+                best.localDirError = angleBetween(m.dipDirection, local.orientation.dipDirection);
+            }
             std::printf("  truth dip %.1f/%03.0f: C%zu (%zu spheres) dip %.1f/%03.0f, errors %.1f / %.1f "
-                        "degrees, %.2f d from the plane\n",
+                        "degrees, %.2f d from the plane; over its span the truth dips %.1f (error %.1f)\n",
                         f.plane.orientation.dip, f.plane.orientation.dipDirection, best.candidate + 1,
-                        best.size, metrics[best.candidate].dip, metrics[best.candidate].dipDirection,
-                        best.dipError, best.dirError, best.distance);
+                        best.size, m.dip, m.dipDirection, best.dipError, best.dirError, best.distance,
+                        best.localDip, best.localDipError);
         }
         out.push_back(best);
     }
@@ -119,10 +153,13 @@ void expectMatched(const std::vector<Match>& matches, std::size_t faults) {
 } // namespace
 
 // The graben's two faults each their own candidate, within 5 degrees of dip, 15 of dip direction
-// and 2 diameters, at every whole percentile from the 85th to the 89th. Above, the right
-// fault's shallow half no longer passes (its grains strain less in this increment and stand
-// apart), and the deep half left dips steeper: 5.3 degrees off at the 90th, 6.9 at 92.5, 10.6 at
-// 95 (printed, not asserted: issue 37's closing note).
+// and 2 diameters, at every whole percentile from the 85th to the 89th. The faults are curved
+// (steeper at depth, flatter near the surface: the truth planes' midpoints lie up to 1.5 d off a
+// plane), and above the 89th only their deep parts strain enough in this increment: the right
+// fault's candidate is its deep half, 5.3 degrees steeper than the whole fault's plane at the
+// 90th, 6.9 at 92.5 and 10.6 at 95. Against the truth over the part each candidate spans it is
+// 0.2 and 1.6 degrees off at the 90th and 92.5th (asserted) and 5.9 at the 95th (printed, not
+// asserted: issue 37's closing note).
 TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To89AndHowFarAbove) {
     auto ds = Dataset::open({run("lammps/dump.extension.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
@@ -135,8 +172,13 @@ TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To89AndHowFarAbove) {
                                  "inc_shear_strain", p, 50);
         ASSERT_EQ(above.size(), 2u);
         EXPECT_NE(above[0].candidate, above[1].candidate) << "the V came out as one candidate";
-        for (const Match& m : above)
+        for (const Match& m : above) {
             EXPECT_LE(m.dipError, 12.0);
+            EXPECT_LE(m.distance, 2.0);
+            EXPECT_LE(m.dirError, 15.0);
+            if (p < 95)
+                EXPECT_LE(m.localDipError, 5.0) << "against the truth over the candidate's span";
+        }
     }
 }
 
