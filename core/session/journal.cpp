@@ -5,6 +5,7 @@
 #include "core/selection/column_view.hpp"
 #include "core/selection/histogram.hpp"
 #include "core/session/session_json.hpp"
+#include "core/util/image_compare.hpp"
 
 #include <stb/stb_image.h>
 
@@ -23,6 +24,11 @@ namespace {
 const char* kExpectations[] = {"visible_count", "fault_size", "fault_count", "histogram",
                                "file_exists",   "image",      "frame"};
 
+// An image expectation without "min_ssim": renders that pass the mean and pixel limits score
+// above 0.98 here; 0.95 catches a changed structure (a missing edge, a shifted shape) the
+// byte mean can hide.
+constexpr double kDefaultMinSsim = 0.95;
+
 std::string describe(const Json& v) { return v.dump(); }
 
 std::optional<std::string> mismatch(const Json& expected, const Json& actual) {
@@ -31,10 +37,12 @@ std::optional<std::string> mismatch(const Json& expected, const Json& actual) {
     return "expected " + describe(expected) + ", actual " + describe(actual);
 }
 
-// Mean |a - b| over all bytes at most maxDiff; with maxPixels, also at most that many pixels
-// whose largest channel difference exceeds 48 of 255 (a missing small feature shows there).
-std::optional<std::string> compareImages(const std::string& path, const std::string& reference,
-                                         double maxDiff, std::optional<long long> maxPixels) {
+// The image at `path` against `reference` (core/util/image_compare.hpp): mean |a - b| over all
+// bytes at most maxDiff, with maxPixels at most that many pixels differing by more than 48 of
+// 255 in a channel, and an SSIM of at least minSsim.
+std::optional<std::string> imageFileMismatch(const std::string& path, const std::string& reference,
+                                             double maxDiff, std::optional<long long> maxPixels,
+                                             double minSsim) {
     int w1, h1, c1, w2, h2, c2;
     unsigned char* a = stbi_load(path.c_str(), &w1, &h1, &c1, 4);
     if (!a)
@@ -44,35 +52,7 @@ std::optional<std::string> compareImages(const std::string& path, const std::str
         stbi_image_free(a);
         return "cannot read reference image " + reference;
     }
-    std::optional<std::string> result;
-    if (w1 != w2 || h1 != h2) {
-        result = "expected size " + std::to_string(w2) + "x" + std::to_string(h2) + ", actual " +
-                 std::to_string(w1) + "x" + std::to_string(h1);
-    } else {
-        double sum = 0;
-        const std::size_t n = static_cast<std::size_t>(w1) * static_cast<std::size_t>(h1) * 4;
-        for (std::size_t k = 0; k < n; ++k)
-            sum += std::abs(static_cast<int>(a[k]) - static_cast<int>(b[k]));
-        const double mean = sum / static_cast<double>(n);
-        long long far = 0;
-        for (std::size_t k = 0; k < n; k += 4) {
-            int worst = 0;
-            for (int c = 0; c < 4; ++c)
-                worst = std::max(worst,
-                                 std::abs(static_cast<int>(a[k + c]) - static_cast<int>(b[k + c])));
-            far += worst > 48;
-        }
-        if (mean > maxDiff) {
-            std::ostringstream msg;
-            msg << "expected mean abs diff <= " << maxDiff << ", actual " << mean;
-            result = msg.str();
-        } else if (maxPixels && far > *maxPixels) {
-            std::ostringstream msg;
-            msg << "expected at most " << *maxPixels << " pixels differing by more than 48, actual "
-                << far;
-            result = msg.str();
-        }
-    }
+    auto result = imageMismatch({w1, h1, a}, {w2, h2, b}, maxDiff, maxPixels, minSsim);
     stbi_image_free(a);
     stbi_image_free(b);
     return result;
@@ -189,12 +169,13 @@ std::optional<std::string> checkExpectation(Session& s, const Json& e) {
                " to exist and be non-empty, actual: " + (fs::exists(p, ec) ? "empty" : "missing");
     }
     if (kind == "image") {
-        args::onlyFields(
-            e, {"expect", "path", "reference", "max_mean_abs_diff", "max_differing_pixels"});
-        return compareImages(s.outputPath(args::string(e, "path")),
-                             s.inputPath(args::string(e, "reference")),
-                             args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0),
-                             args::optionalInteger(e, "max_differing_pixels"));
+        args::onlyFields(e, {"expect", "path", "reference", "max_mean_abs_diff",
+                             "max_differing_pixels", "min_ssim"});
+        return imageFileMismatch(s.outputPath(args::string(e, "path")),
+                                 s.inputPath(args::string(e, "reference")),
+                                 args::optionalNumber(e, "max_mean_abs_diff").value_or(2.0),
+                                 args::optionalInteger(e, "max_differing_pixels"),
+                                 args::optionalNumber(e, "min_ssim").value_or(kDefaultMinSsim));
     }
     throw CommandError("unknown expectation \"" + kind + "\"");
 }

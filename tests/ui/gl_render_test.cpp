@@ -21,6 +21,8 @@ namespace {
 constexpr double kTolerance = 1.5;
 // Pixels allowed to differ by more than 48 of 255 in some channel (antialiasing on edges).
 constexpr std::size_t kMaxDifferingPixels = 24;
+// Mean SSIM of the luma (core/util/image_compare.hpp): the references score 0.99 or more.
+constexpr double kMinSsim = 0.97;
 
 class GlRender : public ::testing::Test {
   protected:
@@ -51,6 +53,10 @@ class GlRender : public ::testing::Test {
         const std::size_t far = differingPixels(image, reference);
         EXPECT_LE(far, kMaxDifferingPixels) << name << ": " << far << " pixels differ by more "
                                             << "than 48 of 255; see " << out << " against " << ref;
+        // And the same structure (shading, edges, where things are) as a reader sees it.
+        const double ssim = structuralSimilarity(image, reference);
+        EXPECT_GE(ssim, kMinSsim) << name << ": SSIM " << ssim << "; see " << out << " against "
+                                  << ref;
     }
 };
 

@@ -1,5 +1,7 @@
 #include "ui/render/png_image.hpp"
 
+#include "core/util/image_compare.hpp"
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -30,28 +32,26 @@ RgbaImage readPng(const std::string& path) {
     return image;
 }
 
+namespace {
+// An image whose pixels do not fill width x height compares as no size at all.
+core::ImageView view(const RgbaImage& im) {
+    if (im.width < 0 || im.height < 0 ||
+        im.pixels.size() != std::size_t(im.width) * std::size_t(im.height) * 4)
+        return {-1, -1, nullptr};
+    return {im.width, im.height, im.pixels.data()};
+}
+} // namespace
+
 double meanAbsDiff(const RgbaImage& a, const RgbaImage& b) {
-    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size())
-        return std::numeric_limits<double>::infinity();
-    if (a.pixels.empty())
-        return 0.0;
-    std::uint64_t sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i)
-        sum += static_cast<std::uint64_t>(std::abs(int(a.pixels[i]) - int(b.pixels[i])));
-    return double(sum) / double(a.pixels.size());
+    return core::compareImages(view(a), view(b)).meanAbsDiff;
 }
 
 std::size_t differingPixels(const RgbaImage& a, const RgbaImage& b, int threshold) {
-    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size())
-        return a.pixels.size() / 4;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i + 3 < a.pixels.size(); i += 4) {
-        int worst = 0;
-        for (int c = 0; c < 4; ++c)
-            worst = std::max(worst, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
-        count += worst > threshold;
-    }
-    return count;
+    return core::compareImages(view(a), view(b), threshold).differing;
+}
+
+double structuralSimilarity(const RgbaImage& a, const RgbaImage& b) {
+    return core::structuralSimilarity(view(a), view(b));
 }
 
 } // namespace faultline::ui

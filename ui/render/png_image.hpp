@@ -1,5 +1,5 @@
 // RGBA8 images as the renderer hands them out, PNG files (stb_image_write / stb_image), and the
-// mean absolute difference used by image tests and the journal's `expect image`.
+// comparisons (core/util/image_compare.hpp) used by image tests and the journal's `expect image`.
 #pragma once
 
 #include <cstdint>
@@ -30,5 +30,7 @@ double meanAbsDiff(const RgbaImage& a, const RgbaImage& b);
 // (a box handle, a thin edge) shows here even where the mean over all bytes hardly moves. The
 // pixel count of `a` when sizes differ.
 std::size_t differingPixels(const RgbaImage& a, const RgbaImage& b, int threshold = 48);
+// Mean SSIM of the two images' luma (core/util/image_compare.hpp); 0 when sizes differ.
+double structuralSimilarity(const RgbaImage& a, const RgbaImage& b);
 
 } // namespace faultline::ui
