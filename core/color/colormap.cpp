@@ -1,4 +1,5 @@
 #include "core/color/colormap.hpp"
+#include "core/util/enum_names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -216,27 +217,16 @@ ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size) {
     return tex;
 }
 
-std::string_view rangeModeName(RangeMode mode) {
-    switch (mode) {
-    case RangeMode::CurrentFrame:
-        return "frame";
-    case RangeMode::AllFrames:
-        return "all";
-    case RangeMode::Fixed:
-        return "fixed";
-    }
-    return "frame";
-}
+namespace {
+constexpr EnumName<RangeMode> kRangeModes[] = {{RangeMode::CurrentFrame, "frame"},
+                                               {RangeMode::AllFrames, "all"},
+                                               {RangeMode::Fixed, "fixed"}};
+} // namespace
+
+std::string_view rangeModeName(RangeMode mode) { return nameIn(kRangeModes, mode, "frame"); }
 
 std::optional<RangeMode> parseRangeMode(std::string_view name) {
-    const std::string n = lower(name);
-    if (n == "frame")
-        return RangeMode::CurrentFrame;
-    if (n == "all")
-        return RangeMode::AllFrames;
-    if (n == "fixed")
-        return RangeMode::Fixed;
-    return std::nullopt;
+    return valueIn(kRangeModes, name, NameCase::Ignore);
 }
 
 ValueRange widenDegenerate(ValueRange r) {

@@ -1,4 +1,5 @@
 #include "core/faults/candidates.hpp"
+#include "core/util/enum_names.hpp"
 
 #include "core/faults/fault_network.hpp"
 #include "core/faults/plane_fit.hpp"
@@ -176,16 +177,20 @@ CandidateSet findCandidates(const Frame& frame, std::span<const std::uint8_t> vi
     return candidatesFromGroups(frame, groups.groupOfRow, groups.groupCount, options.minSize);
 }
 
+namespace {
+constexpr EnumName<CandidateMethod> kMethods[] = {{CandidateMethod::Network, "network"},
+                                                  {CandidateMethod::Connected, "connected"}};
+} // namespace
+
 std::string_view candidateMethodName(CandidateMethod method) {
-    return method == CandidateMethod::Connected ? "connected" : "network";
+    return nameIn(kMethods, method, "network");
 }
 
 CandidateMethod parseCandidateMethod(std::string_view name) {
-    if (name == "network")
-        return CandidateMethod::Network;
-    if (name == "connected")
-        return CandidateMethod::Connected;
-    throw std::invalid_argument("method must be network or connected, not \"" + std::string(name) + "\"");
+    if (const auto method = valueIn(kMethods, name))
+        return *method;
+    throw std::invalid_argument("method must be " + namesIn(kMethods, " or ") + ", not \"" +
+                                std::string(name) + "\"");
 }
 
 std::array<float, 3> candidateColor(std::size_t index) {

@@ -1,4 +1,5 @@
 #include "core/faults/metrics.hpp"
+#include "core/util/enum_names.hpp"
 
 #include "core/faults/sphere_grid.hpp"
 #include "core/faults/tracking.hpp"
@@ -258,20 +259,16 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
 
 } // namespace
 
+namespace {
+constexpr EnumName<ThrowStatus> kThrowStatuses[] = {{ThrowStatus::Ok, "ok"},
+                                                    {ThrowStatus::Disabled, "disabled"},
+                                                    {ThrowStatus::NoDisplacement, "no_displacement"},
+                                                    {ThrowStatus::NoPlane, "no_plane"},
+                                                    {ThrowStatus::TooFewSamples, "too_few_samples"}};
+} // namespace
+
 std::string_view throwStatusName(ThrowStatus status) {
-    switch (status) {
-    case ThrowStatus::Ok:
-        return "ok";
-    case ThrowStatus::Disabled:
-        return "disabled";
-    case ThrowStatus::NoDisplacement:
-        return "no_displacement";
-    case ThrowStatus::NoPlane:
-        return "no_plane";
-    case ThrowStatus::TooFewSamples:
-        return "too_few_samples";
-    }
-    return "unknown";
+    return nameIn(kThrowStatuses, status, "unknown");
 }
 
 std::vector<FaultFrameMetrics> computeFrameMetrics(const Frame& frame, std::size_t frameIndex,

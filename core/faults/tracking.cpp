@@ -1,4 +1,5 @@
 #include "core/faults/tracking.hpp"
+#include "core/util/enum_names.hpp"
 #include "core/util/union_find.hpp"
 
 #include <tbb/parallel_for.h>
@@ -155,16 +156,14 @@ trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
     return series;
 }
 
+namespace {
+constexpr EnumName<FaultEventKind> kEventKinds[] = {{FaultEventKind::Appeared, "appeared"},
+                                                    {FaultEventKind::Linked, "linked"},
+                                                    {FaultEventKind::Split, "split"}};
+} // namespace
+
 std::string_view faultEventKindName(FaultEventKind kind) {
-    switch (kind) {
-    case FaultEventKind::Appeared:
-        return "appeared";
-    case FaultEventKind::Linked:
-        return "linked";
-    case FaultEventKind::Split:
-        return "split";
-    }
-    return "appeared";
+    return nameIn(kEventKinds, kind, "appeared");
 }
 
 namespace {

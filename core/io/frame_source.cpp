@@ -1,4 +1,5 @@
 #include "core/io/frame_source.hpp"
+#include "core/util/enum_names.hpp"
 
 #include "core/io/byte_source.hpp"
 #include "core/io/extxyz.hpp"
@@ -15,25 +16,17 @@
 
 namespace faultline::core {
 
-std::string_view formatName(FileFormat format) {
-    switch (format) {
-    case FileFormat::LammpsDump:
-        return "LAMMPS dump";
-    case FileFormat::VtkLegacy:
-        return "VTK legacy";
-    case FileFormat::VtkXml:
-        return "VTK XML";
-    case FileFormat::VtkCollection:
-        return "VTK collection (.pvd)";
-    case FileFormat::Table:
-        return "CSV / text table";
-    case FileFormat::Xyz:
-        return "XYZ / extended XYZ";
-    case FileFormat::MercuryData:
-        return "MercuryDPM .data";
-    }
-    return "?";
-}
+namespace {
+constexpr EnumName<FileFormat> kFormats[] = {{FileFormat::LammpsDump, "LAMMPS dump"},
+                                             {FileFormat::VtkLegacy, "VTK legacy"},
+                                             {FileFormat::VtkXml, "VTK XML"},
+                                             {FileFormat::VtkCollection, "VTK collection (.pvd)"},
+                                             {FileFormat::Table, "CSV / text table"},
+                                             {FileFormat::Xyz, "XYZ / extended XYZ"},
+                                             {FileFormat::MercuryData, "MercuryDPM .data"}};
+} // namespace
+
+std::string_view formatName(FileFormat format) { return nameIn(kFormats, format); }
 
 FileFormat detectFormat(const std::string& path) {
     ByteSource probe(path); // throws a clear error for a missing or unreadable file

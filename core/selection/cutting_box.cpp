@@ -1,15 +1,14 @@
 #include "core/selection/cutting_box.hpp"
+#include "core/util/enum_names.hpp"
 
 namespace faultline::core {
 
-std::string_view boxModeName(BoxMode mode) { return mode == BoxMode::Keep ? "keep" : "cut"; }
+namespace {
+constexpr EnumName<BoxMode> kBoxModes[] = {{BoxMode::Keep, "keep"}, {BoxMode::Cut, "cut"}};
+} // namespace
 
-std::optional<BoxMode> parseBoxMode(std::string_view text) {
-    if (text == "keep")
-        return BoxMode::Keep;
-    if (text == "cut")
-        return BoxMode::Cut;
-    return std::nullopt;
-}
+std::string_view boxModeName(BoxMode mode) { return nameIn(kBoxModes, mode, "cut"); }
+
+std::optional<BoxMode> parseBoxMode(std::string_view text) { return valueIn(kBoxModes, text); }
 
 } // namespace faultline::core

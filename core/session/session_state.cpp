@@ -1,4 +1,5 @@
 #include "core/session/session_state.hpp"
+#include "core/util/enum_names.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/surface/surface_params.hpp"
@@ -9,16 +10,15 @@
 
 namespace faultline::core {
 
+namespace {
+constexpr EnumName<ColorDifference::Mode> kDifferenceModes[] = {
+    {ColorDifference::Mode::None, "none"},
+    {ColorDifference::Mode::Change, "change"},
+    {ColorDifference::Mode::Displacement, "displacement"}};
+} // namespace
+
 std::string_view differenceModeName(ColorDifference::Mode mode) {
-    switch (mode) {
-    case ColorDifference::Mode::Change:
-        return "change";
-    case ColorDifference::Mode::Displacement:
-        return "displacement";
-    case ColorDifference::Mode::None:
-        break;
-    }
-    return "none";
+    return nameIn(kDifferenceModes, mode, "none");
 }
 
 std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count) {
@@ -42,11 +42,7 @@ std::string colorTitle(const ViewState& view, std::size_t referenceFrame) {
 }
 
 std::optional<ColorDifference::Mode> parseDifferenceMode(std::string_view name) {
-    for (auto m : {ColorDifference::Mode::None, ColorDifference::Mode::Change,
-                   ColorDifference::Mode::Displacement})
-        if (differenceModeName(m) == name)
-            return m;
-    return std::nullopt;
+    return valueIn(kDifferenceModes, name);
 }
 
 namespace {

@@ -1,28 +1,20 @@
 #include "core/surface/surface_params.hpp"
+#include "core/util/enum_names.hpp"
 
 #include <bit>
 #include <cstring>
 
 namespace faultline::core {
 
-std::string_view kernelName(MetaballKernel kernel) {
-    switch (kernel) {
-    case MetaballKernel::Inverse:
-        return "inverse";
-    case MetaballKernel::InverseSquare:
-        return "inverse-square";
-    case MetaballKernel::Compact:
-        return "compact";
-    }
-    return "?";
-}
+namespace {
+constexpr EnumName<MetaballKernel> kKernels[] = {{MetaballKernel::Inverse, "inverse"},
+                                                 {MetaballKernel::InverseSquare, "inverse-square"},
+                                                 {MetaballKernel::Compact, "compact"}};
+} // namespace
 
-std::optional<MetaballKernel> parseKernel(std::string_view name) {
-    for (auto k : {MetaballKernel::Inverse, MetaballKernel::InverseSquare, MetaballKernel::Compact})
-        if (kernelName(k) == name)
-            return k;
-    return std::nullopt;
-}
+std::string_view kernelName(MetaballKernel kernel) { return nameIn(kKernels, kernel); }
+
+std::optional<MetaballKernel> parseKernel(std::string_view name) { return valueIn(kKernels, name); }
 
 float resolvedVoxelSize(const SurfaceParams &params, double meanRadius) {
     if (params.voxelSize > 0.0f)

@@ -1,6 +1,6 @@
 #include "core/view/camera.hpp"
+#include "core/util/enum_names.hpp"
 
-#include "core/util/ascii.hpp"
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/geometric.hpp>
@@ -30,49 +30,26 @@ glm::dvec3 trackballPoint(glm::dvec2 p) {
 
 } // namespace
 
-std::string_view projectionName(Projection p) {
-    return p == Projection::Orthographic ? "orthographic" : "perspective";
-}
+namespace {
+constexpr EnumName<Projection> kProjections[] = {{Projection::Perspective, "perspective"},
+                                                 {Projection::Orthographic, "orthographic"},
+                                                 {Projection::Orthographic, "ortho"}};
+constexpr EnumName<ViewPreset> kViewPresets[] = {
+    {ViewPreset::Front, "front"}, {ViewPreset::Back, "back"},     {ViewPreset::Left, "left"},
+    {ViewPreset::Side, "side"},   {ViewPreset::Top, "top"},       {ViewPreset::Bottom, "bottom"},
+    {ViewPreset::Iso, "iso"},     {ViewPreset::Side, "right"}};
+} // namespace
+
+std::string_view projectionName(Projection p) { return nameIn(kProjections, p, "perspective"); }
 
 std::optional<Projection> parseProjection(std::string_view name) {
-    const std::string n = asciiLower(name);
-    if (n == "perspective")
-        return Projection::Perspective;
-    if (n == "orthographic" || n == "ortho")
-        return Projection::Orthographic;
-    return std::nullopt;
+    return valueIn(kProjections, name, NameCase::Ignore);
 }
 
-std::string_view viewPresetName(ViewPreset p) {
-    switch (p) {
-    case ViewPreset::Front:
-        return "front";
-    case ViewPreset::Back:
-        return "back";
-    case ViewPreset::Left:
-        return "left";
-    case ViewPreset::Side:
-        return "side";
-    case ViewPreset::Top:
-        return "top";
-    case ViewPreset::Bottom:
-        return "bottom";
-    case ViewPreset::Iso:
-        return "iso";
-    }
-    return "front";
-}
+std::string_view viewPresetName(ViewPreset p) { return nameIn(kViewPresets, p, "front"); }
 
 std::optional<ViewPreset> parseViewPreset(std::string_view name) {
-    const std::string n = asciiLower(name);
-    for (ViewPreset p : {ViewPreset::Front, ViewPreset::Back, ViewPreset::Left, ViewPreset::Side,
-                         ViewPreset::Top, ViewPreset::Bottom, ViewPreset::Iso}) {
-        if (n == viewPresetName(p))
-            return p;
-    }
-    if (n == "right")
-        return ViewPreset::Side;
-    return std::nullopt;
+    return valueIn(kViewPresets, name, NameCase::Ignore);
 }
 
 glm::dvec3 Camera::forward() const { return orientation * glm::dvec3(0.0, 0.0, -1.0); }
