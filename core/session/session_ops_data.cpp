@@ -158,40 +158,18 @@ void registerDataOps(OpTable& ops) {
                         {"difference", differenceModeName(v.difference.mode)}};
         inverse[v.difference.reference.relative ? "since_offset" : "since_frame"] = v.difference.reference.value;
         ViewState next = v;
-        if (auto var = args::optionalString(cmd, "variable"))
-            next.colorVariable = *var;
-        if (auto map = args::optionalString(cmd, "map")) {
-            // The renderers' own parser decides, so the two cannot disagree on a name.
-            const auto parsed = parseJournalColorMap(*map);
-            if (!parsed) {
-                std::string known;
-                for (const std::string& name : colorMapNames())
-                    known += (known.empty() ? "" : ", ") + name;
-                throw CommandError("color.set: unknown map \"" + *map + "\" (" + known + ")");
-            }
-            next.colorMap = *parsed;
+        // The view codec reads what color.set shares with a view's "color" (variable, map,
+        // range_mode, range) and checks the whole view, so the op and session files agree.
+        const items::ItemReader fields(cmd);
+        try {
+            items::patchColor(next, fields);
+            fields.readNamed("difference", next.difference.mode, parseDifferenceMode,
+                             "must be none, change or displacement");
+        } catch (const items::ItemError& e) {
+            throw CommandError(items::commandMessage("color.set", e));
         }
-        if (cmd.contains("range")) {
-            const Json& r = cmd["range"];
-            if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
-                !(r[0].get<double>() < r[1].get<double>()))
-                throw CommandError("color.set: \"range\" must be [low, high] with low < high");
-            next.range = {r[0].get<double>(), r[1].get<double>()};
-            next.rangeMode = RangeMode::Fixed;
-        }
-        if (auto mode = args::optionalString(cmd, "range_mode")) {
-            const auto parsed = parseRangeMode(*mode);
-            if (!parsed)
-                throw CommandError("color.set: \"range_mode\" must be frame, all or fixed");
-            next.rangeMode = *parsed;
-        }
-        // Difference colouring: "change" of the variable, or "displacement", since a frame.
-        if (auto diff = args::optionalString(cmd, "difference")) {
-            const auto mode = parseDifferenceMode(*diff);
-            if (!mode)
-                throw CommandError("color.set: \"difference\" must be none, change or displacement");
-            next.difference.mode = *mode;
-        }
+        if (cmd.contains("range") && !cmd.contains("range_mode"))
+            next.rangeMode = RangeMode::Fixed; // a range given is the range shown
         if (cmd.contains("since_frame") && cmd.contains("since_offset"))
             throw CommandError("color.set: give \"since_frame\" (absolute) or \"since_offset\" (relative), not both");
         if (auto f = args::optionalInteger(cmd, "since_frame")) {
@@ -201,8 +179,6 @@ void registerDataOps(OpTable& ops) {
         }
         if (auto o = args::optionalInteger(cmd, "since_offset"))
             next.difference.reference = {true, *o};
-        if (next.difference.mode == ColorDifference::Mode::Change && next.colorVariable.empty())
-            throw CommandError("color.set: \"difference\":\"change\" needs a \"variable\"");
         items::checked("color.set", next);
         v = next;
         return inverse;

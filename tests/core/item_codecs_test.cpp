@@ -81,7 +81,8 @@ TEST(ItemCodecs, AViewsRulesHoldForFilesAsForCommands) {
         return std::string("accepted");
     };
     EXPECT_EQ(fileError(R"({"name":"v","color":{"map":"rainbow"}})"),
-              "views[1].color.map: names no colour map");
+              "views[1].color.map: names no colour map (blue-red, viridis, diverging, pastel, "
+              "bands, gray)");
     EXPECT_EQ(fileError(R"({"name":"v","color":{"difference":{"mode":"change"}}})"),
               "views[1].color.difference.mode: change needs a variable");
     EXPECT_EQ(fileError(R"({"name":"v","frame":{"relative":false,"value":2.5}})"),

@@ -343,7 +343,14 @@ TEST(Session, RejectedCommandsChangeNothing) {
             "view.remove: the main view cannot be removed");
     rejects(
         R"({"op":"color.set","map":"rainbow"})",
-        "color.set: unknown map \"rainbow\" (blue-red, viridis, diverging, pastel, bands, gray)");
+        "color.set: \"map\" names no colour map (blue-red, viridis, diverging, pastel, bands, "
+        "gray), found \"rainbow\"");
+    // color.set reads and checks through the view codec: its rules are a session file's.
+    rejects(R"({"op":"color.set","range":[2,1]})", "color.set: color.range must have low < high");
+    rejects(R"({"op":"color.set","range_mode":"al"})",
+            "color.set: \"range_mode\" must be frame, all or fixed, found \"al\"");
+    rejects(R"({"op":"color.set","variable":"","difference":"change"})",
+            "color.set: color.difference.mode change needs a variable");
     rejects(R"({"op":"data.open","paths":["/nonexistent/file.dump"]})",
             "data.open: /nonexistent/file.dump: cannot open: No such file or directory");
     rejects(R"({"op":"warp"})", "unknown op \"warp\"");

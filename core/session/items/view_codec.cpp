@@ -45,22 +45,38 @@ void readBinding(const ItemReader& f, FrameBinding& b) {
 
 } // namespace
 
+namespace {
+const std::string& colorMapChoices() {
+    static const std::string text = [] {
+        std::string known;
+        for (const std::string& name : colorMapNames())
+            known += (known.empty() ? "" : ", ") + name;
+        return "names no colour map (" + known + ")";
+    }();
+    return text;
+}
+} // namespace
+
+void patchColor(ViewState& v, const ItemReader& c) {
+    c.read("variable", v.colorVariable);
+    c.readNamed("map", v.colorMap, parseJournalColorMap, colorMapChoices().c_str());
+    c.readNamed("range_mode", v.rangeMode, parseRangeMode, "must be frame, all or fixed");
+    if (c.has("range")) {
+        const Json& r = c.get("range");
+        if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
+            !std::isfinite(r[0].get<double>()) || !std::isfinite(r[1].get<double>()))
+            c.fail("range", "must be [low, high]", &r);
+        v.range = {r[0].get<double>(), r[1].get<double>()};
+    }
+}
+
 void patch(ViewState& v, const ItemReader& f) {
     f.read("name", v.name);
     if (f.has("frame"))
         readBinding(ItemReader(f.get("frame"), f.path("frame.")), v.frame);
     if (f.has("color")) {
         const ItemReader c(f.get("color"), f.path("color."));
-        c.read("variable", v.colorVariable);
-        c.readNamed("map", v.colorMap, parseJournalColorMap, "names no colour map");
-        c.readNamed("range_mode", v.rangeMode, parseRangeMode, "must be frame, all or fixed");
-        if (c.has("range")) {
-            const Json& r = c.get("range");
-            if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
-                !std::isfinite(r[0].get<double>()) || !std::isfinite(r[1].get<double>()))
-                c.fail("range", "must be [low, high]", &r);
-            v.range = {r[0].get<double>(), r[1].get<double>()};
-        }
+        patchColor(v, c);
         if (c.has("difference")) {
             const ItemReader d(c.get("difference"), c.path("difference."));
             d.readNamed("mode", v.difference.mode, parseDifferenceMode,

@@ -14,6 +14,10 @@ Json toJson(const ViewState& view);
 // range, difference {mode, reference {relative, value}}}, camera {...}, linked_camera,
 // context_points.
 void patch(ViewState& view, const ItemReader& fields);
+// The colouring's plain fields, as a view's "color" object and color.set both give them:
+// variable, map, range_mode, range (the difference differs in shape: an object in files,
+// "difference" and since_frame / since_offset in the op).
+void patchColor(ViewState& view, const ItemReader& fields);
 // A name; an absolute frame >= 0; a known colour map and range mode; low < high; a change
 // colouring has a variable; the camera's rules (camera_codec.hpp).
 void validate(const ViewState& view);
