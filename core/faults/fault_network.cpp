@@ -1,3 +1,14 @@
+// Index of this file:
+// [SECTION] Tuning constants
+// [SECTION] Helpers: vectors, region sets, a section's thin axis
+// [SECTION] Link graph
+// [SECTION] Step 1: each sphere's neighbourhood plane
+// [SECTION] Step 2: regions grown from the most planar spheres
+// [SECTION] Step 3: coplanar regions facing each other join
+// [SECTION] Step 3b: where faults cross
+// [SECTION] Step 4: leftover spheres go to the nearest surface
+// [SECTION] faultNetworkGroups: the steps in order
+
 #include "core/faults/fault_network.hpp"
 
 #include "core/faults/plane_fit.hpp"
@@ -15,6 +26,10 @@
 namespace faultline::core::detail {
 
 namespace {
+
+//-----------------------------------------------------------------------------
+// [SECTION] Tuning constants
+//-----------------------------------------------------------------------------
 
 // A sphere is grown through only when its neighbourhood is this planar (1 - l1 / l2).
 constexpr float kPlanarityMin = 0.6f;
@@ -44,6 +59,10 @@ constexpr std::size_t kJunctionSample = 256;
 constexpr double kLeftoverReach = 3.0;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
 constexpr double kRadiusOverThickness = 2.5;
+
+//-----------------------------------------------------------------------------
+// [SECTION] Helpers: vectors, region sets, a section's thin axis
+//-----------------------------------------------------------------------------
 
 using F3 = std::array<float, 3>;
 
@@ -77,6 +96,10 @@ struct Graph {
     std::vector<std::uint32_t> start, adj;
     std::vector<std::uint32_t> component;
 };
+
+//-----------------------------------------------------------------------------
+// [SECTION] Link graph
+//-----------------------------------------------------------------------------
 
 Graph linkGraph(const SphereCells& cells, double link) {
     const std::size_t n = cells.size();
@@ -138,6 +161,10 @@ struct Orientations {
     std::vector<float> planarity; // per link slot; 0 without an orientation
     std::vector<float> thickness; // per link slot: sqrt(12 l1), the width of an even slab
 };
+
+//-----------------------------------------------------------------------------
+// [SECTION] Step 1: each sphere's neighbourhood plane
+//-----------------------------------------------------------------------------
 
 // Step 1: per sphere, the plane of its neighbourhood: the spheres within `radius` that are
 // linked to it through other spheres (so a fault nearby but apart does not tilt it). Spheres are
@@ -274,6 +301,10 @@ Orientations orient(const Frame& frame, std::span<const std::uint32_t> rows,
     return o;
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Step 2: regions grown from the most planar spheres
+//-----------------------------------------------------------------------------
+
 // Step 2: regions grown from the most planar spheres. Per slot its region or -1, and the
 // running normal it was admitted with.
 std::size_t grow(const Graph& g, const Orientations& o, double angle, float planarityMin,
@@ -318,6 +349,10 @@ std::size_t grow(const Graph& g, const Orientations& o, double angle, float plan
     }
     return static_cast<std::size_t>(regions);
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Step 3: coplanar regions facing each other join
+//-----------------------------------------------------------------------------
 
 // Step 3: regions that face each other and are coplanar there become one group.
 // Regions are per link slot; the wide cells find who faces whom.
@@ -429,6 +464,10 @@ void join(const SphereCells& cells, std::span<const std::uint32_t> wideToLink,
             g = std::int32_t(sets.find(std::uint32_t(g)));
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Step 3b: where faults cross
+//-----------------------------------------------------------------------------
+
 // Step 3b: where faults cross, the spheres of both zones can look like a plane of their own
 // (the bisector of the two). Such a region is smaller than a fault next to it and most of its
 // spheres lie on that fault's surfaces: it is dissolved, and its spheres are left over.
@@ -505,6 +544,10 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
             2 * onOthers[std::size_t(g)] > sampled[std::size_t(g)])
             g = -1;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Step 4: leftover spheres go to the nearest surface
+//-----------------------------------------------------------------------------
 
 // Step 4: spheres a few links from a group go to the group whose surface passes nearest.
 // Everything per link slot; the wide cells find the grouped spheres within the radius.
@@ -683,6 +726,10 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
 }
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] faultNetworkGroups: the steps in order
+//-----------------------------------------------------------------------------
 
 NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_t> visible,
                                  const CandidateOptions& options) {

@@ -1,3 +1,12 @@
+// Index of this file:
+// [SECTION] Text helpers
+// [SECTION] The reader: whole file
+// [SECTION] Positions for errors
+// [SECTION] Lines and tokens
+// [SECTION] Values
+// [SECTION] Sections: preamble, points, cells, fields, attributes
+// [SECTION] Entry points
+
 #include "core/io/vtk_legacy.hpp"
 
 #include "core/io/input_error.hpp"
@@ -19,6 +28,10 @@ using detail::VtkScalar;
 namespace {
 
 constexpr std::uint64_t kMaxPoints = 0xFFFFFFFEull; // Frame rows are addressed by uint32
+
+//-----------------------------------------------------------------------------
+// [SECTION] Text helpers
+//-----------------------------------------------------------------------------
 
 std::string upper(std::string_view s) {
     std::string out(s);
@@ -56,6 +69,10 @@ std::string decodeName(std::string_view s) {
     }
     return out;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] The reader: whole file
+//-----------------------------------------------------------------------------
 
 // One keyword line split into words, and where it starts.
 struct HeaderLine {
@@ -128,7 +145,10 @@ class LegacyReader {
     }
 
   private:
-    // ---- positions for errors -----------------------------------------------------------
+    //-----------------------------------------------------------------------------
+    // [SECTION] Positions for errors
+    //-----------------------------------------------------------------------------
+
     [[noreturn]] void fail(const HeaderLine& h, const std::string& message) const {
         if (m_afterBinary)
             throw InputError(m_path, InputError::Where::Byte, h.offset, message);
@@ -140,7 +160,10 @@ class LegacyReader {
         throw InputError(m_path, InputError::Where::Line, line, message);
     }
 
-    // ---- lines and tokens ---------------------------------------------------------------
+    //-----------------------------------------------------------------------------
+    // [SECTION] Lines and tokens
+    //-----------------------------------------------------------------------------
+
     // The next raw line (without its end), false at the end of the data.
     bool nextLine(std::string_view& line, std::uint64_t& lineNo, std::uint64_t& offset) {
         if (m_pos >= m_data.size())
@@ -232,7 +255,10 @@ class LegacyReader {
         return *t;
     }
 
-    // ---- values -------------------------------------------------------------------------
+    //-----------------------------------------------------------------------------
+    // [SECTION] Values
+    //-----------------------------------------------------------------------------
+
     static std::uint64_t product(std::uint64_t a, std::uint64_t b) {
         std::uint64_t r;
         if (__builtin_mul_overflow(a, b, &r) || r > (1ull << 56))
@@ -334,7 +360,10 @@ class LegacyReader {
         readValues(values, type, nullptr, what);
     }
 
-    // ---- sections -----------------------------------------------------------------------
+    //-----------------------------------------------------------------------------
+    // [SECTION] Sections: preamble, points, cells, fields, attributes
+    //-----------------------------------------------------------------------------
+
     void readPreamble() {
         HeaderLine h;
         std::string_view line;
@@ -527,6 +556,10 @@ class LegacyReader {
 };
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] Entry points
+//-----------------------------------------------------------------------------
 
 bool looksLikeVtkLegacy(std::string_view head) {
     if (head.substr(0, 3) == "\xEF\xBB\xBF")

@@ -1,5 +1,9 @@
 // MetaballField, evaluation (see metaball_field.cpp for the algorithm): blocks of voxels (the
 // levels interpolated plus the near sums), colours, and single points with gradients.
+//
+// Index of this file:
+// [SECTION] Evaluating blocks
+// [SECTION] Near field and points
 
 #include "core/surface/metaball_field.hpp"
 

@@ -1,3 +1,11 @@
+// Index of this file:
+// [SECTION] Vectors and constants
+// [SECTION] The model's state
+// [SECTION] Building and settling the block
+// [SECTION] Contacts and bonds
+// [SECTION] Forces and integration
+// [SECTION] Advancing and snapshots
+
 #include "core/synth/extension_model.hpp"
 
 #include "core/synth/hcp_lattice.hpp"
@@ -17,6 +25,10 @@
 namespace faultline::core {
 
 namespace {
+
+//-----------------------------------------------------------------------------
+// [SECTION] Vectors and constants
+//-----------------------------------------------------------------------------
 
 struct V3 {
     double x = 0, y = 0, z = 0;
@@ -40,6 +52,10 @@ constexpr double kRelayShare = 0.5;
 double quantize(double v, double step) { return std::round(v / step) * step; }
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] The model's state
+//-----------------------------------------------------------------------------
 
 // Basal spheres move kinematically; side spheres (the first and last of every row) are welded
 // in x to the end plates but free in y and z, so the model settles and slides along them.
@@ -97,6 +113,10 @@ struct ExtensionModel::State {
     void computeSphereForces(std::vector<V3>& acc);
     double integrate(const std::vector<V3>& acc);
 };
+
+//-----------------------------------------------------------------------------
+// [SECTION] Building and settling the block
+//-----------------------------------------------------------------------------
 
 ExtensionModel::ExtensionModel(const ExtensionModelOptions& options)
     : m(std::make_unique<State>()) {
@@ -224,6 +244,10 @@ std::int64_t ExtensionModel::frameStep(int frame) const {
 }
 double ExtensionModel::timeStep() const { return m->dt; }
 double ExtensionModel::gravity() const { return m->g; }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Contacts and bonds
+//-----------------------------------------------------------------------------
 
 void ExtensionModel::State::buildContacts() {
     // Cell grid over the current extent, cells one cut-off wide, spheres counting-sorted by cell
@@ -356,6 +380,10 @@ void ExtensionModel::State::computeBondForces() {
                       });
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Forces and integration
+//-----------------------------------------------------------------------------
+
 void ExtensionModel::State::computeSphereForces(std::vector<V3>& acc) {
     const double k = kStiffness, c = bondDashpot, mu = opt.friction, alpha = opt.localDamping;
     const double reach = 2 * kRadius;
@@ -451,6 +479,10 @@ double ExtensionModel::State::integrate(const std::vector<V3>& acc) {
         },
         [](double a, double b) { return std::max(a, b); });
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Advancing and snapshots
+//-----------------------------------------------------------------------------
 
 void ExtensionModel::advance(std::int64_t steps) {
     State& s = *m;

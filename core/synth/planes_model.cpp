@@ -1,3 +1,11 @@
+// Index of this file:
+// [SECTION] Geometry: vectors, discs, planes
+// [SECTION] Offsetting points across faults
+// [SECTION] Checking options
+// [SECTION] Presets
+// [SECTION] Generating the model
+// [SECTION] The network preset, truth JSON and files
+
 #include "core/synth/planes_model.hpp"
 
 #include "core/synth/dump_writer.hpp"
@@ -23,6 +31,10 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 double dotv(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+//-----------------------------------------------------------------------------
+// [SECTION] Geometry: vectors, discs, planes
+//-----------------------------------------------------------------------------
+
 Vec addScaled(const Vec& a, double s, const Vec& b) {
     return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
 }
@@ -81,6 +93,10 @@ double discGap(const PlaneFaultSpec& a, const Vec& na, const PlaneFaultSpec& b, 
     sampleAgainst(b, nb, a, na);
     return best;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Offsetting points across faults
+//-----------------------------------------------------------------------------
 
 // Where a point lies relative to a fault's surface: signed distance h (positive on the side the
 // upward normal points to, the hanging wall), distance rho from the centre within the surface,
@@ -168,6 +184,10 @@ class FaultSurface {
     std::vector<double> m_traceDip;
 };
 
+//-----------------------------------------------------------------------------
+// [SECTION] Checking options
+//-----------------------------------------------------------------------------
+
 void check(const PlanesModelOptions& o) {
     auto need = [](bool ok, const std::string& what) {
         if (!ok)
@@ -200,6 +220,10 @@ std::array<double, 3> planeNormal(double dip, double dipDirection) {
     return {std::sin(d) * std::sin(a), std::sin(d) * std::cos(a), std::cos(d)};
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Presets
+//-----------------------------------------------------------------------------
+
 PlanesModelOptions planesOptionsFor(ModelSize size) {
     PlanesModelOptions o;
     switch (size) {
@@ -220,6 +244,10 @@ PlanesModelOptions planesOptionsFor(ModelSize size) {
     }
     return o;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Generating the model
+//-----------------------------------------------------------------------------
 
 PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
     check(options);
@@ -429,6 +457,10 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
             model.shared.push_back(all[i]);
     return model;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] The network preset, truth JSON and files
+//-----------------------------------------------------------------------------
 
 PlanesModelOptions planesNetworkOptions() {
     PlanesModelOptions o;

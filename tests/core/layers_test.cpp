@@ -116,3 +116,49 @@ TEST(Layers, UiFoldersIncludeEachOtherOneWayOnly) {
     for (const auto& [pair, where] : cycles(graph))
         ADD_FAILURE() << "ui/ folders include each other: " << pair << ": " << where;
 }
+
+// Files of more than 500 lines open with an index of their sections ("// Index of this file:"
+// then a "// [SECTION] title" line per section, as imgui_demo.cpp does) and carry a marker per
+// section in that order, so a reader can jump between them (issue 39).
+TEST(Layers, LongFilesOpenWithAnIndexOfTheirSections) {
+    std::vector<std::string> problems;
+    for (const char* top : {"app", "core", "ui"})
+        for (const auto& entry : fs::recursive_directory_iterator(sourceRoot() / top)) {
+            if (!entry.is_regular_file() || entry.path().extension() != ".cpp")
+                continue;
+            std::ifstream in(entry.path());
+            std::vector<std::string> lines;
+            for (std::string text; std::getline(in, text);)
+                lines.push_back(text);
+            if (lines.size() <= 500)
+                continue;
+            const std::string name = fs::relative(entry.path(), sourceRoot()).string();
+            std::vector<std::string> index, markers;
+            bool inIndex = false;
+            const std::string tag = "// [SECTION] ";
+            for (std::size_t i = 0; i < lines.size(); ++i) {
+                const std::string& l = lines[i];
+                const std::size_t at = l.find(tag);
+                if (l.rfind("// Index of this file:", 0) == 0) {
+                    inIndex = true;
+                } else if (inIndex && l.rfind(tag, 0) == 0) {
+                    index.push_back(l.substr(tag.size()));
+                } else {
+                    inIndex = false;
+                    if (at != std::string::npos && l.find_first_not_of(' ') == at)
+                        markers.push_back(l.substr(at + tag.size()));
+                }
+            }
+            if (index.size() < 2)
+                problems.push_back(name + ": " + std::to_string(lines.size()) +
+                                   " lines and no index of at least two sections");
+            else if (index != markers)
+                problems.push_back(name + ": its index and its [SECTION] markers differ");
+        }
+    EXPECT_TRUE(problems.empty()) << [&] {
+        std::string all;
+        for (const auto& p : problems)
+            all += p + "\n";
+        return all;
+    }();
+}

@@ -2,6 +2,13 @@
 // Algorithm 1): show or hide it, its kernel, voxel size, iso-value and opacity, the state of its
 // background build, and exports to OpenVDB and glTF. Settings are surface.set commands; builds
 // run in the workbench's SurfaceStore.
+//
+// Index of this file:
+// [SECTION] Helpers
+// [SECTION] The panel
+// [SECTION] The table of surfaces
+// [SECTION] A surface's settings and exports
+// [SECTION] A surface's colour
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/section.hpp"
@@ -26,6 +33,10 @@ namespace faultline::ui {
 namespace {
 
 const char* kKernels[] = {"inverse", "inverse-square", "compact"};
+
+//-----------------------------------------------------------------------------
+// [SECTION] Helpers
+//-----------------------------------------------------------------------------
 
 // How the panel names a surface source.
 std::string sourceLabel(const std::string& name) {
@@ -60,6 +71,10 @@ std::string statusText(const SurfaceStatus& st) {
     }
     return "";
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] The panel
+//-----------------------------------------------------------------------------
 
 class SurfacesPanel final : public Panel {
   public:
@@ -142,6 +157,10 @@ class SurfacesPanel final : public Panel {
                                           : std::string(core::kVisibleSpheres);
         return m_fault;
     }
+
+    //-----------------------------------------------------------------------------
+    // [SECTION] The table of surfaces
+    //-----------------------------------------------------------------------------
 
     void drawTable(PanelContext& wb, const core::SessionState& s, std::size_t frame) {
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
@@ -230,6 +249,10 @@ class SurfacesPanel final : public Panel {
         return wb.surfaces().status(s, name, frame, main ? main->frame : nullptr,
                                     main ? main->visibility : nullptr);
     }
+
+    //-----------------------------------------------------------------------------
+    // [SECTION] A surface's settings and exports
+    //-----------------------------------------------------------------------------
 
     void drawSettings(PanelContext& wb, const core::SessionState& s, const std::string& fault,
                       std::size_t frame) {
@@ -391,6 +414,10 @@ class SurfacesPanel final : public Panel {
     // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and
     // the reach w within which a voxel takes a sphere's colour.
     template <typename Set>
+    //-----------------------------------------------------------------------------
+    // [SECTION] A surface's colour
+    //-----------------------------------------------------------------------------
+
     void drawColour(PanelContext& wb, const core::SessionState& s, const core::SurfaceSettings& st,
                     const Set& set) {
         const ViewDisplay* main = wb.mainDisplay();

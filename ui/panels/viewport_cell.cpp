@@ -1,3 +1,10 @@
+// Index of this file:
+// [SECTION] Helpers
+// [SECTION] Commands for every view: presets, fit, projection
+// [SECTION] Drawing a view and its header
+// [SECTION] Tool buttons and popups: frame, colour, difference
+// [SECTION] Mouse and keys: camera, selection, box handles
+
 #include "ui/panels/viewport_cell.hpp"
 
 #include "core/session/items/camera_codec.hpp"
@@ -18,6 +25,10 @@ namespace faultline::ui {
 
 namespace {
 
+//-----------------------------------------------------------------------------
+// [SECTION] Helpers
+//-----------------------------------------------------------------------------
+
 std::string bindingText(const core::FrameBinding& b) {
     if (!b.relative)
         return "frame " + std::to_string(b.value);
@@ -36,6 +47,10 @@ glm::dvec3 faceCentre(const std::array<double, 3>& mn, const std::array<double, 
 double sceneRadius(const ViewDisplay& d) { return d.frame ? d.sceneRadius : 1.0; }
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] Commands for every view: presets, fit, projection
+//-----------------------------------------------------------------------------
 
 void ViewportCells::emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill) {
     core::Json batch = core::Json::array();
@@ -100,6 +115,10 @@ void ViewportCells::setOrthographic(PanelContext& wb, bool ortho) {
             cmd["distance"] = d->camera.distance, cmd["target"] = d->camera.target;
     });
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Drawing a view and its header
+//-----------------------------------------------------------------------------
 
 void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 pos, ImVec2 size) {
     const ViewDisplay* dp = wb.view(view.name);
@@ -266,6 +285,10 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     }
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Tool buttons and popups: frame, colour, difference
+//-----------------------------------------------------------------------------
+
 // What the selection tools do, for their tooltips.
 constexpr const char* kSelectHelp =
     "\nThe visible spheres whose centres fall inside (front and back) go\n"
@@ -417,6 +440,10 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
         ImGui::CloseCurrentPopup(); // applied: the popup has done its job
     }
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Mouse and keys: camera, selection, box handles
+//-----------------------------------------------------------------------------
 
 void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {
     const ImGuiIO& io = ImGui::GetIO();

@@ -1,8 +1,18 @@
+// Index of this file:
+// [SECTION] Shared GLSL: header, colour maps, shading
+// [SECTION] Sphere impostors
+// [SECTION] Points, meshes and lines
+// [SECTION] Screen-space passes: ambient occlusion and the rest
+
 #include "ui/render/gl_shaders.hpp"
 
 namespace faultline::ui::gl::shaders {
 
 namespace {
+
+//-----------------------------------------------------------------------------
+// [SECTION] Shared GLSL: header, colour maps, shading
+//-----------------------------------------------------------------------------
 
 const char* kHeader = "#version 410 core\n";
 
@@ -46,6 +56,10 @@ vec3 shade(vec3 srgb, vec3 n, vec3 V) {
 )";
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] Sphere impostors
+//-----------------------------------------------------------------------------
 
 std::string sphereVertex(bool perspective) {
     return std::string(kHeader) +
@@ -225,6 +239,10 @@ void main() {
 )";
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Points, meshes and lines
+//-----------------------------------------------------------------------------
+
 std::string pointVertex() {
     return std::string(kHeader) + R"(
 uniform samplerBuffer uSpheres;
@@ -344,6 +362,10 @@ layout(location = 0) out vec4 oColor;
 void main() { oColor = vColor; }
 )";
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Screen-space passes: ambient occlusion and the rest
+//-----------------------------------------------------------------------------
 
 std::string fullscreenVertex() {
     return std::string(kHeader) + R"(

@@ -1,4 +1,12 @@
 // The workbench's frame around the panels: main menu, keyboard shortcuts, status bar, help.
+//
+// Index of this file:
+// [SECTION] Keyboard commands and shortcuts
+// [SECTION] Screenshots and figure sizes
+// [SECTION] Main menu
+// [SECTION] Status bar
+// [SECTION] Help window
+// [SECTION] Prompts and file dialogs
 #include "ui/workbench/workbench.hpp"
 
 #include "ui/dock/panel_ids.hpp"
@@ -33,6 +41,10 @@ std::string folderOf(const std::string& path) {
 }
 
 } // namespace
+
+//-----------------------------------------------------------------------------
+// [SECTION] Keyboard commands and shortcuts
+//-----------------------------------------------------------------------------
 
 // Every keyboard command: the keys as the help window and the menus show them, what it does,
 // and what it runs. Mouse gestures (no key) are in the help window only. The handler, the help
@@ -152,6 +164,10 @@ void Workbench::handleShortcuts() {
     }
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Screenshots and figure sizes
+//-----------------------------------------------------------------------------
+
 void Workbench::screenshotMainView(const std::string& path) {
     // The main view rendered offscreen at its size on screen, as a journal's render: the
     // window's own pixels still held the closing file dialog (issue 41).
@@ -244,6 +260,10 @@ std::string Workbench::exportFolder() const {
         return folderOf(m_sessionPath);
     return folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Main menu
+//-----------------------------------------------------------------------------
 
 void Workbench::drawMenus() {
     if (!ImGui::BeginMainMenuBar())
@@ -382,6 +402,10 @@ void Workbench::drawMenus() {
     ImGui::EndMainMenuBar();
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Status bar
+//-----------------------------------------------------------------------------
+
 void Workbench::drawStatusBar(float height) {
     const ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(0, io.DisplaySize.y - height));
@@ -472,6 +496,10 @@ void Workbench::drawStatusBar(float height) {
     ImGui::End();
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Help window
+//-----------------------------------------------------------------------------
+
 void Workbench::drawHelp() {
     const ImGuiIO& io = ImGui::GetIO();
     if (m_showHelp) {
@@ -522,6 +550,10 @@ void Workbench::drawHelp() {
         ImGui::End();
     }
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Prompts and file dialogs
+//-----------------------------------------------------------------------------
 
 // Questions that wait for the user: recover a crashed run's session; where moved data went.
 void Workbench::drawPrompts() {
