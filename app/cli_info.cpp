@@ -32,7 +32,7 @@ namespace {
 
 void printFrame(std::string& out, const core::Frame& f) {
     appendf(out, "  spheres: %zu%s\n", f.size(),
-                f.idsAreRowNumbers ? " (no id column: ids are row numbers)" : "");
+            f.idsAreRowNumbers ? " (no id column: ids are row numbers)" : "");
     appendf(out, "  radius: %s", f.radiusIsDefault ? "none in file, default " : "");
     if (f.size() > 0) {
         auto [mn, mx] = std::minmax_element(f.radius.begin(), f.radius.end());
@@ -42,17 +42,17 @@ void printFrame(std::string& out, const core::Frame& f) {
     }
     const auto& b = f.box;
     appendf(out, "  box: [%g %g] x [%g %g] x [%g %g]%s%s\n", b.lo[0], b.hi[0], b.lo[1], b.hi[1],
-                b.lo[2], b.hi[2], b.triclinic ? " triclinic" : "",
-                b.known ? "" : " (bounds of the centres)");
+            b.lo[2], b.hi[2], b.triclinic ? " triclinic" : "",
+            b.known ? "" : " (bounds of the centres)");
     appendf(out, "  centres: [%g %g] x [%g %g] x [%g %g]\n", f.centreMin()[0], f.centreMax()[0],
-                f.centreMin()[1], f.centreMax()[1], f.centreMin()[2], f.centreMax()[2]);
+            f.centreMin()[1], f.centreMax()[1], f.centreMin()[2], f.centreMax()[2]);
     appendf(out, "  columns: %zu\n", f.attributes.size());
     if (f.columnsAssumed)
         appendf(out, "  note: the file names no columns ('ITEM: ATOMS' alone, an old-style dump);\n"
-                    "        read as LAMMPS' atom style: id type xs ys zs (then ix iy iz)\n");
+                     "        read as LAMMPS' atom style: id type xs ys zs (then ix iy iz)\n");
     for (const auto& c : f.attributes)
         appendf(out, "    %-24s %-6s %g .. %g\n", c.name.c_str(), c.isInteger() ? "int" : "float",
-                    c.min, c.max);
+                c.min, c.max);
 }
 } // namespace
 
@@ -68,10 +68,10 @@ int runInfo(const Args& args) {
             auto ds = core::Dataset::open({path});
             const auto& first = ds->location(0);
             appendf(out, "%s\n  format: %s\n  frames: %zu", path.c_str(),
-                        std::string(core::formatName(first.format)).c_str(), ds->frameCount());
+                    std::string(core::formatName(first.format)).c_str(), ds->frameCount());
             if (ds->frameCount() > 1)
                 appendf(out, " (timesteps %lld .. %lld)", static_cast<long long>(first.timestep),
-                            static_cast<long long>(ds->location(ds->frameCount() - 1).timestep));
+                        static_cast<long long>(ds->location(ds->frameCount() - 1).timestep));
             appendf(out, "\n");
             if (ds->files().size() > 1)
                 appendf(out, "  files: %zu\n", ds->files().size());

@@ -2,12 +2,12 @@
 // warm and cold) and parsed from text, on a 10-frame LAMMPS dump; plus difference columns.
 // The data (~270 MB text, ~210 MB cache) is made in a temp folder and deleted at the end
 // (FAULTLINE_BENCH_KEEP=1 keeps it for the next run).
-#include "core/io/frame_source.hpp"
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_cache_format.hpp"
-#include "core/model/frame_difference.hpp"
 #include "core/data/frame_prefetcher.hpp"
+#include "core/io/frame_source.hpp"
+#include "core/model/frame_difference.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -27,12 +27,15 @@ std::string writeDump(const std::string& name, int frames) {
     std::mt19937 rng(42);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int t = 0; t < frames; ++t) {
-        std::fprintf(f, "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS pp pp ff\n"
-                        "0 200\n0 40\n0 80\nITEM: ATOMS id type x y z radius strain broken_bonds layer\n",
-                     t * 1000, kSpheres);
+        std::fprintf(
+            f,
+            "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS pp pp ff\n"
+            "0 200\n0 40\n0 80\nITEM: ATOMS id type x y z radius strain broken_bonds layer\n",
+            t * 1000, kSpheres);
         for (std::size_t i = 0; i < kSpheres; ++i)
-            std::fprintf(f, "%zu 1 %.5f %.5f %.5f 0.5 %.5g %d %d\n", i + 1, 200 * u(rng), 40 * u(rng),
-                         80 * u(rng), 0.3 * u(rng), static_cast<int>(12 * u(rng)), static_cast<int>(8 * u(rng)));
+            std::fprintf(f, "%zu 1 %.5f %.5f %.5f 0.5 %.5g %d %d\n", i + 1, 200 * u(rng),
+                         40 * u(rng), 80 * u(rng), 0.3 * u(rng), static_cast<int>(12 * u(rng)),
+                         static_cast<int>(8 * u(rng)));
     }
     std::fclose(f);
     return path;
@@ -49,7 +52,8 @@ void BM_ReadFileOnly(benchmark::State& state) {
         std::string bytes = readFileBytes(path);
         benchmark::DoNotOptimize(bytes.data());
     }
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(state.iterations() *
+                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 void BM_FaultlineLammpsParse(benchmark::State& state) {
@@ -61,7 +65,8 @@ void BM_FaultlineLammpsParse(benchmark::State& state) {
         if (frame.size() != kSpheres)
             state.SkipWithError("wrong sphere count");
     }
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(state.iterations() *
+                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 // The reader a first version would write: getline for the header, >> for every value.
@@ -83,7 +88,8 @@ void BM_NaiveIfstreamParse(benchmark::State& state) {
             }
         benchmark::DoNotOptimize(columns[2].data());
     }
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(state.iterations() *
+                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 void BM_IndexMultiFrameDump(benchmark::State& state) {
@@ -93,7 +99,8 @@ void BM_IndexMultiFrameDump(benchmark::State& state) {
         if (frames.size() != 8)
             state.SkipWithError("wrong frame count");
     }
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(state.iterations() *
+                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 void BM_ReadMultiFrameFileOnly(benchmark::State& state) {
@@ -104,7 +111,8 @@ void BM_ReadMultiFrameFileOnly(benchmark::State& state) {
         while (source.read(buffer.data(), buffer.size()) > 0) {
         }
     }
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(state.iterations() *
+                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 } // namespace

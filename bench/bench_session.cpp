@@ -19,8 +19,12 @@ std::vector<Json> recordedCommands(std::size_t n) {
         const std::string box = "b" + std::to_string(k);
         cmds.push_back({{"op", "box.add"}, {"name", box}, {"min", {0, 0, 0}}, {"max", {1, 2, 3}}});
         cmds.push_back({{"op", "box.set"}, {"name", box}, {"max", {2, 2, 2}}, {"mode", "cut"}});
-        cmds.push_back({{"op", "threshold.add"}, {"variable", "v" + std::to_string(k)}, {"low", 0}, {"high", 1}});
-        cmds.push_back({{"op", "threshold.set"}, {"variable", "v" + std::to_string(k)}, {"low", 0.5}});
+        cmds.push_back({{"op", "threshold.add"},
+                        {"variable", "v" + std::to_string(k)},
+                        {"low", 0},
+                        {"high", 1}});
+        cmds.push_back(
+            {{"op", "threshold.set"}, {"variable", "v" + std::to_string(k)}, {"low", 0.5}});
         std::vector<std::int64_t> ids(20);
         for (auto& id : ids)
             id = static_cast<std::int64_t>(rng() % 100000);
@@ -61,7 +65,8 @@ SessionState bigSession() {
 }
 
 const std::string& sessionPath() {
-    static const std::string p = (std::filesystem::temp_directory_path() / "faultline-bench.faultline.json").string();
+    static const std::string p =
+        (std::filesystem::temp_directory_path() / "faultline-bench.faultline.json").string();
     return p;
 }
 

@@ -77,8 +77,7 @@ Frame densePacking(std::size_t n) {
                 f.ids.push_back(static_cast<std::int64_t>(f.ids.size()) + 1);
                 f.x.push_back(float(r * (1 + 2 * c + (row & 1) + (l & 1))) + jitter(rng));
                 f.y.push_back(float(r * 1 + l * dy) + jitter(rng));
-                f.z.push_back(float(r * 1 + row * dz + (l & 1) * r / std::sqrt(3.0)) +
-                              jitter(rng));
+                f.z.push_back(float(r * 1 + row * dz + (l & 1) * r / std::sqrt(3.0)) + jitter(rng));
             }
     f.radius.assign(f.ids.size(), float(r));
     f.box.known = true;

@@ -21,12 +21,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <cmath>
 #include <string>
 #include <sys/resource.h>
 #include <utility>
@@ -299,8 +299,8 @@ void BM_SpreadPlan(benchmark::State& state, fc::MetaballKernel kernel) {
     std::size_t blocks = 0;
     for (auto _ : state) {
         fc::MetaballField field(z.set(), p, p.voxelSize);
-        const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor,
-                                          p.iso * p.isoRangeFactor, p.memoryBudgetBytes, nullptr);
+        const auto plan = fc::planSurface(field, p.iso / p.isoRangeFactor, p.iso * p.isoRangeFactor,
+                                          p.memoryBudgetBytes, nullptr);
         blocks = plan.blocks.size();
     }
     state.counters["blocks"] = double(blocks);
@@ -388,7 +388,7 @@ struct OpCase {
     std::unique_ptr<fc::Session> session;
     fb::FaultZone spheres; // F1's spheres (for OpenVDB)
     double meanRadius = 0.0;
-    std::string error;    // why the case cannot run here
+    std::string error; // why the case cannot run here
 };
 
 std::string benchDir() {
@@ -411,12 +411,12 @@ std::string writeZonesBlock() {
         const double dist =
             std::min({std::abs(across[0]), std::abs(across[1]), std::abs(across[2])});
         ++n;
-        std::snprintf(line, sizeof line, "%zu %.4f %.4f %.4f 1 %.4f\n", n, p[0], p[1], p[2],
-                      dist);
+        std::snprintf(line, sizeof line, "%zu %.4f %.4f %.4f 1 %.4f\n", n, p[0], p[1], p[2], dist);
         body += line;
     });
     std::ofstream out(path + ".part", std::ios::binary);
-    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" << n
+    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n"
+        << n
         << "\nITEM: BOX BOUNDS ff ff ff\n0 202\n0 132\n0 112\nITEM: ATOMS id x y z radius "
            "zone_distance\n"
         << body;
@@ -431,12 +431,12 @@ std::string writeZone(const fb::FaultZone& z, const std::string& name) {
     if (std::filesystem::exists(path))
         return path;
     std::ofstream out(path, std::ios::binary);
-    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" << z.x.size()
-        << "\nITEM: ATOMS id x y z radius\n";
+    out << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n"
+        << z.x.size() << "\nITEM: ATOMS id x y z radius\n";
     char line[128];
     for (std::size_t i = 0; i < z.x.size(); ++i) {
-        std::snprintf(line, sizeof line, "%zu %.5f %.5f %.5f %.5f\n", i + 1, z.x[i], z.y[i],
-                      z.z[i], z.radius[i]);
+        std::snprintf(line, sizeof line, "%zu %.5f %.5f %.5f %.5f\n", i + 1, z.x[i], z.y[i], z.z[i],
+                      z.radius[i]);
         out << line;
     }
     return path;
@@ -465,8 +465,8 @@ OpCase openCase(const std::string& name) {
                 R"({"op":"threshold.add","variable":"broken_bonds","low":3,"high":1e30})"));
         } else if (name == "lammps_bands") {
             // The real LAMMPS extension run's shear bands (tests/replay/lammps_extension_strain).
-            const std::string run =
-                std::string(FAULTLINE_SOURCE_DIR) + "/tests/data/real_runs/lammps/dump.extension.gz";
+            const std::string run = std::string(FAULTLINE_SOURCE_DIR) +
+                                    "/tests/data/real_runs/lammps/dump.extension.gz";
             s.apply({{"op", "data.open"}, {"paths", {run}}});
             s.apply(fc::Json::parse(R"({"op":"frame.set","frame":4})"));
             s.apply(fc::Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
@@ -559,9 +559,8 @@ void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor)
         state.counters[k + "_mesh_ms"] = 1e3 * stats.meshSeconds;
         state.counters[k + "_blocks"] = double(stats.blocks);
         state.counters[k + "_triangles"] = double(r.mesh.triangleCount());
-        state.counters[k + "_sparse"] = fc::MetaballField(c.spheres.set(), r.field->params(),
-                                                          voxel)
-                                            .sparse();
+        state.counters[k + "_sparse"] =
+            fc::MetaballField(c.spheres.set(), r.field->params(), voxel).sparse();
     }
     const ZoneParticles particles{&c.spheres};
     const int rounds = std::max(1, std::atoi(std::getenv("FAULTLINE_BENCH_ROUNDS")
@@ -708,8 +707,11 @@ BENCHMARK_CAPTURE(BM_SpreadPlan, spread_plan_inverse_r2, fc::MetaballKernel::Inv
     ->Unit(benchmark::kMillisecond)
     ->Iterations(10)
     ->UseRealTime();
-BENCHMARK(BM_SpreadRemesh)->Name("spread_remesh_inverse_r2")->Unit(benchmark::kMillisecond)
-    ->Iterations(10)->UseRealTime();
+BENCHMARK(BM_SpreadRemesh)
+    ->Name("spread_remesh_inverse_r2")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(10)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_r3, fc::MetaballKernel::Inverse, 3.0f)
     ->Apply(spreadRuns);
 BENCHMARK_CAPTURE(BM_SpreadSurface, spread_inverse_square_r3, fc::MetaballKernel::InverseSquare,
@@ -737,9 +739,12 @@ BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_sparse_spread_r3, "sparse_spread", 3.0f)
 BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_compact_50k_r2, "compact_50k", 2.0f)->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpRatio, op_compact_50k_r3, "compact_50k", 3.0f)->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_r3, "demo_bb3", 3.0f,
-                  fc::MetaballKernel::Inverse, 199)->Apply(ratioRuns);
+                  fc::MetaballKernel::Inverse, 199)
+    ->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_square_r3, "demo_bb3", 3.0f,
-                  fc::MetaballKernel::InverseSquare, 199)->Apply(ratioRuns);
+                  fc::MetaballKernel::InverseSquare, 199)
+    ->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_zones525k_inverse_r3, "zones525k", 3.0f,
-                  fc::MetaballKernel::Inverse, 199)->Apply(ratioRuns);
+                  fc::MetaballKernel::Inverse, 199)
+    ->Apply(ratioRuns);
 BENCHMARK_MAIN();

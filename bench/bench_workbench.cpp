@@ -37,9 +37,12 @@ core::Frame latticeFrame(std::size_t index) {
         for (int j = 0; j < kNy; ++j)
             for (int i = 0; i < kNx; ++i, ++row) {
                 f.ids[row] = static_cast<std::int64_t>(row) + 1;
-                f.x[row] = static_cast<float>(i), f.y[row] = static_cast<float>(j), f.z[row] = static_cast<float>(k);
-                const double fault = std::exp(-std::pow((i - 75 - 0.5 * (k - 35)) / 3.0, 2)); // a dipping band
-                strain[row] = static_cast<float>(0.01 * (index + 1) * fault + 0.001 * ((row * 2654435761u) % 1000) / 1000.0);
+                f.x[row] = static_cast<float>(i), f.y[row] = static_cast<float>(j),
+                f.z[row] = static_cast<float>(k);
+                const double fault =
+                    std::exp(-std::pow((i - 75 - 0.5 * (k - 35)) / 3.0, 2)); // a dipping band
+                strain[row] = static_cast<float>(0.01 * (index + 1) * fault +
+                                                 0.001 * ((row * 2654435761u) % 1000) / 1000.0);
                 broken[row] = std::floor(12 * fault * (index + 1) / 3.0);
                 layer[row] = static_cast<float>(k / 7);
             }
@@ -85,8 +88,7 @@ struct Bench {
         time += 1.0 / 60.0;
     }
     // UI frames (5 ms apart, as background jobs run) until `done`; the seconds it took.
-    template <typename Done>
-    double framesUntil(Done done) {
+    template <typename Done> double framesUntil(Done done) {
         const auto t0 = std::chrono::steady_clock::now();
         for (int k = 0; k < 100000 && !done(); ++k) {
             frame();
@@ -94,7 +96,9 @@ struct Bench {
         }
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    ui::ItemRect rect(const std::string& name) { return wb->items().find(name).value_or(ui::ItemRect{}); }
+    ui::ItemRect rect(const std::string& name) {
+        return wb->items().find(name).value_or(ui::ItemRect{});
+    }
 };
 
 void BM_IdleFrame(benchmark::State& state) {
@@ -117,7 +121,8 @@ void BM_ThresholdDragFrame(benchmark::State& state) {
     int step = 0;
     std::size_t visible = 0;
     for (auto _ : state) {
-        io.MousePos = ImVec2(r.x0 + (r.x1 - r.x0) * (0.5f + 0.002f * static_cast<float>(step++ % 100)), r.cy());
+        io.MousePos = ImVec2(
+            r.x0 + (r.x1 - r.x0) * (0.5f + 0.002f * static_cast<float>(step++ % 100)), r.cy());
         b.frame();
         visible = b.wb->mainDisplay()->visibility->visibleCount;
     }
@@ -152,8 +157,8 @@ BENCHMARK(BM_OrbitDragFrame)->Unit(benchmark::kMillisecond);
 // the matching and the metrics run again). Needs the demo: faultline generate --demo.
 void BM_FollowThroughTimeDemo(benchmark::State& state) {
     const char* home = std::getenv("HOME");
-    const std::string demo = std::string(home ? home : "") +
-                             "/.local/share/faultline/demo/block-v2.lammpstrj.gz";
+    const std::string demo =
+        std::string(home ? home : "") + "/.local/share/faultline/demo/block-v2.lammpstrj.gz";
     if (!std::filesystem::exists(demo)) {
         state.SkipWithError("no demo: run faultline generate --demo");
         return;
@@ -161,7 +166,8 @@ void BM_FollowThroughTimeDemo(benchmark::State& state) {
     Bench b;
     b.session.apply({{"op", "data.open"}, {"paths", {demo}}});
     b.session.apply({{"op", "frame.set"}, {"frame", 39}});
-    b.session.apply({{"op", "threshold.add"}, {"variable", "broken_bonds"}, {"low", 1}, {"high", 1e30}});
+    b.session.apply(
+        {{"op", "threshold.add"}, {"variable", "broken_bonds"}, {"low", 1}, {"high", 1e30}});
     b.session.apply({{"op", "fault.candidates"}, {"min_size", 200}, {"prefix", "C"}});
     std::set<std::string> all;
     for (const auto& f : b.session.state().faults)
@@ -187,7 +193,8 @@ void BM_FollowThroughTimeDemo(benchmark::State& state) {
         b.frame();
         io.MouseDown[0] = false;
         first = waitShown();
-        std::set<std::string> some(all.begin(), std::next(all.begin(), std::ptrdiff_t(all.size() / 2)));
+        std::set<std::string> some(all.begin(),
+                                   std::next(all.begin(), std::ptrdiff_t(all.size() / 2)));
         b.wb->selection().faults = some;
         b.frame();
         b.frame();

@@ -26,7 +26,7 @@ namespace fc = faultline::core;
 namespace {
 
 struct Case {
-    const char *name;
+    const char* name;
     fb::FaultZone spheres;
     std::array<double, 3> outside; // a point one unit outside the set: the iso-value there
 };
@@ -65,7 +65,8 @@ Case lattice(int nx, int ny, int nz) {
 
 Case zone(std::size_t count) {
     const double dip = 60.0 * 3.14159265358979 / 180.0, d = 4.0 / 2 + 1.0;
-    return {"hcp zone", fb::hcpFaultZone(count, 0.5f, 4.0f),
+    return {"hcp zone",
+            fb::hcpFaultZone(count, 0.5f, 4.0f),
             {0.3, d * std::sin(dip), d * std::cos(dip)}};
 }
 
@@ -74,7 +75,8 @@ struct Measured {
 };
 
 // Largest error over the kept voxels, the field's estimate of it, level 1's error term.
-Measured measure(const Case &c, fc::MetaballKernel kernel, int kappa, int coarseKappa, float voxel) {
+Measured measure(const Case& c, fc::MetaballKernel kernel, int kappa, int coarseKappa,
+                 float voxel) {
     const auto set = c.spheres.set();
     fc::SurfaceParams p;
     p.kernel = kernel;
@@ -91,7 +93,7 @@ Measured measure(const Case &c, fc::MetaballKernel kernel, int kappa, int coarse
     const double clamp = 4.0 * isoMax;
     double worst = 0.0;
     float density[fc::kBlockVoxels];
-    for (const auto &o : plan.blocks) {
+    for (const auto& o : plan.blocks) {
         field.evaluateBlock(o, density, nullptr);
         const auto dense = fc::algorithm1Dense(set, p, o, {8, 8, 8}, voxel);
         for (int i = 0; i < 8; ++i)
@@ -116,9 +118,9 @@ void coarseLevels() {
     for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
         std::printf("%s, coarse levels\n", std::string(fc::kernelName(kernel)).c_str());
         double overall = 0.0, overallTotal = 0.0;
-        for (const auto &[kappa, coarse] : {std::pair{5, 3}, {6, 4}, {8, 5}, {8, 8}}) {
+        for (const auto& [kappa, coarse] : {std::pair{5, 3}, {6, 4}, {8, 5}, {8, 8}}) {
             double worst = 0.0, worstTotal = 0.0;
-            for (const auto &c : cases)
+            for (const auto& c : cases)
                 for (float voxel : {0.17f, 0.25f}) {
                     const Measured m = measure(c, kernel, kappa, coarse, voxel);
                     worst = std::max(worst, m.error / m.coarse);
@@ -137,7 +139,7 @@ void coarseLevels() {
     }
 }
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
     const std::string only = argc > 1 ? argv[1] : "";
     if (only != "near")
         coarseLevels();
@@ -150,15 +152,16 @@ int main(int argc, char **argv) {
         for (int kappa = 3; kappa <= 8; ++kappa)
             for (int coarse : {std::max(3, kappa / 2 + 1), 5, 8}) {
                 double worst = 0.0, perScale = 0.0;
-                for (const auto &c : cases)
+                for (const auto& c : cases)
                     for (float voxel : {0.125f, 0.15f, 0.17f, 0.2f, 0.25f, 0.3f}) {
                         const Measured m = measure(c, kernel, kappa, coarse, voxel);
                         worst = std::max(worst, m.error / m.estimate);
                         perScale = std::max(perScale, m.error / m.term0);
                     }
                 overall = std::max(overall, worst);
-                std::printf("  kappa %d coarse %d: largest error / estimate %.3f, error / term0 %.3g\n",
-                            kappa, coarse, worst, perScale);
+                std::printf(
+                    "  kappa %d coarse %d: largest error / estimate %.3f, error / term0 %.3g\n",
+                    kappa, coarse, worst, perScale);
                 std::fflush(stdout);
             }
         std::printf("  largest error / estimate: %.3f\n", overall);

@@ -51,10 +51,10 @@ inline FaultZone hcpFaultZone(std::size_t count, float r, float thickness) {
                 kept.push_back({{p[0], p[1], p[2]}, std::max(std::abs(a), std::abs(b))});
             }
     std::sort(kept.begin(), kept.end(),
-              [](const Candidate &a, const Candidate &b) { return a.key < b.key; });
+              [](const Candidate& a, const Candidate& b) { return a.key < b.key; });
     kept.resize(std::min(kept.size(), count));
     FaultZone zone;
-    for (const auto &c : kept) {
+    for (const auto& c : kept) {
         zone.x.push_back(static_cast<float>(c.p[0]));
         zone.y.push_back(static_cast<float>(c.p[1]));
         zone.z.push_back(static_cast<float>(c.p[2]));
@@ -126,7 +126,7 @@ inline FaultZone spreadFaultZones(std::size_t count) {
         h ^= h >> 29;
         if (double(h >> 11) / double(1ull << 53) >= keep)
             continue;
-        const auto &c = members[m];
+        const auto& c = members[m];
         zone.x.push_back(float(c[0]));
         zone.y.push_back(float(c[1]));
         zone.z.push_back(float(c[2]));

@@ -40,8 +40,7 @@ namespace {
 using FramePtr = std::shared_ptr<const core::Frame>;
 
 // A read-only numpy view of `data` that keeps `owner` (the frame) alive as long as it lives.
-template <typename T>
-py::array view(const FramePtr& owner, const std::vector<T>& data) {
+template <typename T> py::array view(const FramePtr& owner, const std::vector<T>& data) {
     auto* keep = new FramePtr(owner);
     py::capsule base(keep, [](void* p) { delete static_cast<FramePtr*>(p); });
     py::array out(py::dtype::of<T>(), {py::ssize_t(data.size())}, {py::ssize_t(sizeof(T))},
@@ -75,8 +74,7 @@ std::vector<std::string> pathsOf(const py::object& paths) {
 // over frames, surfaces) ends early having changed nothing, and KeyboardInterrupt is raised
 // here; work with no check finishes and takes effect, and Python raises KeyboardInterrupt right
 // after it returns, as for any C call. Errors of the work are raised as they are.
-template <typename F>
-auto interruptible(std::atomic<bool>& stop, F&& work) -> decltype(work()) {
+template <typename F> auto interruptible(std::atomic<bool>& stop, F&& work) -> decltype(work()) {
     using R = decltype(work());
     stop = false;
     std::packaged_task<R()> task(std::forward<F>(work));
@@ -164,7 +162,8 @@ class PyFrame {
         if (!c)
             throw py::key_error("no column named '" + name + "' (columns: " +
                                 py::str(py::cast(columns())).cast<std::string>() + ")");
-        return c->type == core::ColumnType::Float32 ? view(m_frame, c->floats) : view(m_frame, c->ints);
+        return c->type == core::ColumnType::Float32 ? view(m_frame, c->floats)
+                                                    : view(m_frame, c->ints);
     }
     py::dict box() const {
         const core::SimulationBox& b = m_frame->box;
@@ -228,8 +227,8 @@ class PySession {
 #ifdef FAULTLINE_PYTHON_RENDER
     // A view as the workbench and `faultline render` draw it: H x W x 4 uint8 (RGBA), offscreen
     // (a hidden window with a display, EGL without one).
-    py::array render(const std::string& view, std::pair<int, int> size, std::optional<std::size_t> frame,
-                     bool transparent) {
+    py::array render(const std::string& view, std::pair<int, int> size,
+                     std::optional<std::size_t> frame, bool transparent) {
         ui::FigureRequest request;
         request.view = view;
         request.width = size.first;
@@ -241,7 +240,8 @@ class PySession {
             py::gil_scoped_release release;
             image = ui::renderSessionImage(m_session, request);
         }
-        py::array_t<std::uint8_t> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
+        py::array_t<std::uint8_t> out(
+            {py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
         std::memcpy(out.mutable_data(), image.pixels.data(), image.pixels.size());
         return out;
     }
@@ -251,7 +251,8 @@ class PySession {
         // An expectation line ({"expect": "visible_count", "equals": 12}) is checked as
         // `faultline replay` checks it: AssertionError with "expected .., actual .." when not.
         if (j.is_object() && j.contains("expect")) {
-            if (!j["expect"].is_string() || !core::isKnownExpectation(j["expect"].get<std::string>()))
+            if (!j["expect"].is_string() ||
+                !core::isKnownExpectation(j["expect"].get<std::string>()))
                 throw core::CommandError("unknown expectation " + j["expect"].dump());
             std::optional<std::string> failed;
             {
@@ -279,7 +280,8 @@ class PySession {
     // the model's coordinates), triangles (M x 3 uint32, counter-clockwise from outside),
     // colours (N x 3 float32 RGB in 0..1) and normals (N x 3 float32).
     py::dict surface(const std::string& fault) {
-        const core::FaultSurfaceRequest request = core::surfaceRequestFor(m_session, fault, "surface");
+        const core::FaultSurfaceRequest request =
+            core::surfaceRequestFor(m_session, fault, "surface");
         const auto frame = m_session.currentFrame();
         if (!frame)
             throw core::CommandError("surface: no data is open");
@@ -314,7 +316,9 @@ class PySession {
         py::gil_scoped_release release;
         return m_session.redo();
     }
-    void save(const std::string& path) { run(py::dict(py::arg("op") = "session.save", py::arg("path") = path)); }
+    void save(const std::string& path) {
+        run(py::dict(py::arg("op") = "session.save", py::arg("path") = path));
+    }
     py::object state() const { return fromJson(core::sessionToJson(m_session.state(), "")); }
     std::optional<PyDataset> dataset() const {
         if (!m_session.dataset())
@@ -353,8 +357,9 @@ class PySession {
     // values the CLI and the workbench export, one column per field.
     py::object table(const std::string& what, const py::object& variables, bool onlyVisible) {
         namespace fs = std::filesystem;
-        const fs::path dir = fs::temp_directory_path() /
-                             ("faultline-py-" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+        const fs::path dir =
+            fs::temp_directory_path() /
+            ("faultline-py-" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
         fs::create_directories(dir);
         const std::string path = (dir / (what + ".csv")).string();
         py::dict cmd(py::arg("op") = "export.csv", py::arg("what") = what, py::arg("path") = path);
@@ -369,9 +374,9 @@ class PySession {
             throw;
         }
         py::object np = py::module_::import("numpy");
-        py::object out = np.attr("genfromtxt")(path, py::arg("delimiter") = ",", py::arg("names") = true,
-                                               py::arg("dtype") = py::none(), py::arg("encoding") = "utf-8",
-                                               py::arg("ndmin") = 1);
+        py::object out = np.attr("genfromtxt")(
+            path, py::arg("delimiter") = ",", py::arg("names") = true,
+            py::arg("dtype") = py::none(), py::arg("encoding") = "utf-8", py::arg("ndmin") = 1);
         fs::remove_all(dir);
         return out;
     }
@@ -383,7 +388,8 @@ class PySession {
         try {
             pd = py::module_::import("pandas");
         } catch (py::error_already_set&) {
-            throw py::import_error("pandas=True needs pandas (Debian: apt-get install python3-pandas)");
+            throw py::import_error(
+                "pandas=True needs pandas (Debian: apt-get install python3-pandas)");
         }
         return pd.attr("DataFrame")(array);
     }
@@ -457,8 +463,9 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
         }
     });
 
-    py::class_<PyFrame>(m, "Frame", "One timestep's spheres. Arrays view the frame's memory (read-only); "
-                                    "`positions` is an N x 3 copy (the frame keeps x, y, z apart).")
+    py::class_<PyFrame>(m, "Frame",
+                        "One timestep's spheres. Arrays view the frame's memory (read-only); "
+                        "`positions` is an N x 3 copy (the frame keeps x, y, z apart).")
         .def("__len__", &PyFrame::size)
         .def_property_readonly("ids", &PyFrame::ids, "particle ids (int64), a view")
         .def_property_readonly("x", &PyFrame::x, "x of the centres (float32), a view")
@@ -485,30 +492,39 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
           "(LAMMPS/LIGGGHTS dumps, VTK legacy and XML, CSV, Yade, MercuryDPM). Raises InputError.");
 
     py::module_ generate = m.def_submodule("generate", "The built-in model generators.");
-    generate.def("demo", [] {
-        py::gil_scoped_release release;
-        return core::ensureDemoModel();
-    }, "The demo model's dump (the 3-D extension block the workbench opens), generated once per "
-       "user (one to two minutes) and reused.");
-    generate.def("planes", &generatePlanes, py::arg("size") = "small", py::arg("path") = "planes.dump.gz",
-                 py::arg("seed") = -1,
-                 "Planted planar faults in a block (small ~7k spheres, medium ~34k, large ~270k, "
-                 "network ~154k: crossing, ending and listric faults), written as a LAMMPS dump at "
-                 "`path`. Returns (path, truth): the faults' planes, throws and members per frame.");
+    generate.def(
+        "demo",
+        [] {
+            py::gil_scoped_release release;
+            return core::ensureDemoModel();
+        },
+        "The demo model's dump (the 3-D extension block the workbench opens), generated once per "
+        "user (one to two minutes) and reused.");
+    generate.def(
+        "planes", &generatePlanes, py::arg("size") = "small", py::arg("path") = "planes.dump.gz",
+        py::arg("seed") = -1,
+        "Planted planar faults in a block (small ~7k spheres, medium ~34k, large ~270k, "
+        "network ~154k: crossing, ending and listric faults), written as a LAMMPS dump at "
+        "`path`. Returns (path, truth): the faults' planes, throws and members per frame.");
 
-    py::class_<PySession>(m, "Session", "A Faultline session: the journal's ops (JOURNAL.md) as dicts.")
+    py::class_<PySession>(m, "Session",
+                          "A Faultline session: the journal's ops (JOURNAL.md) as dicts.")
         .def(py::init([](const py::object& paths) {
                  auto s = std::make_unique<PySession>();
                  if (!paths.is_none())
-                     s->run(py::dict(py::arg("op") = "data.open", py::arg("paths") = py::cast(pathsOf(paths))));
+                     s->run(py::dict(py::arg("op") = "data.open",
+                                     py::arg("paths") = py::cast(pathsOf(paths))));
                  return s;
              }),
              py::arg("paths") = py::none(), "A new session, with data opened when paths are given.")
-        .def_static("load", [](const std::string& path) {
+        .def_static(
+            "load",
+            [](const std::string& path) {
                 auto s = std::make_unique<PySession>();
                 s->run(py::dict(py::arg("op") = "session.open", py::arg("path") = path));
                 return s;
-            }, py::arg("path"), "A saved session (.faultline.json), with its data.")
+            },
+            py::arg("path"), "A saved session (.faultline.json), with its data.")
         .def("run", &PySession::run, py::arg("command"),
              "Run one journal op, e.g. {'op': 'fault.candidates', 'min_size': 50}, undo and redo "
              "included. Raises CommandError, having changed nothing. An expectation line "
@@ -516,15 +532,19 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
              "it: AssertionError saying expected and actual when it does not hold.")
         .def("undo", &PySession::undo, "Undo the last change; False when there is none.")
         .def("redo", &PySession::redo, "Redo what undo reverted; False when there is none.")
-        .def("save", &PySession::save, py::arg("path"), "Save (session.save): opens in the workbench.")
+        .def("save", &PySession::save, py::arg("path"),
+             "Save (session.save): opens in the workbench.")
         .def_property_readonly("can_undo", &PySession::canUndo)
         .def_property_readonly("can_redo", &PySession::canRedo)
-        .def_property_readonly("undo_label", &PySession::undoLabel, "what undo would revert, in words")
-        .def_property_readonly("state", &PySession::state, "everything a saved session holds, as a dict")
+        .def_property_readonly("undo_label", &PySession::undoLabel,
+                               "what undo would revert, in words")
+        .def_property_readonly("state", &PySession::state,
+                               "everything a saved session holds, as a dict")
         .def_property_readonly("dataset", &PySession::dataset, "the open data, or None")
         .def_property_readonly("frame", &PySession::frame, "the current frame, or None")
         .def_property_readonly("visible", &PySession::visible,
-                               "per sphere of the current frame: passes the boxes, thresholds and fault filter (a copy)")
+                               "per sphere of the current frame: passes the boxes, thresholds and "
+                               "fault filter (a copy)")
         .def_property_readonly("faults", &PySession::faults, "{name: member ids} (copies)")
 #ifdef FAULTLINE_PYTHON_RENDER
         .def("render", &PySession::render, py::arg("view") = "main",
@@ -533,25 +553,37 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
              "The view drawn offscreen as an H x W x 4 uint8 RGBA array (size is (width, height)); "
              "no display needed (EGL)")
 #endif
-        .def("fault_metrics", [](PySession& s, bool pandas) {
-                 return PySession::asTable(s.table("fault_metrics", py::none(), false), pandas);
-             }, py::arg("pandas") = false,
-             "Every fault's metrics in every frame (export.csv fault_metrics) as a numpy "
-             "structured array (pandas=True: a DataFrame): frame, fault, count, dip, "
-             "dip_direction, throw, ...")
-        .def("fault_growth", [](PySession& s, bool pandas) {
-                 return PySession::asTable(s.table("fault_growth", py::none(), false), pandas);
-             }, py::arg("pandas") = false,
-             "The metrics of what each fault is in each frame, followed through time")
-        .def("fault_events", [](PySession& s, bool pandas) {
-                 return PySession::asTable(s.table("fault_events", py::none(), false), pandas);
-             }, py::arg("pandas") = false,
-             "When faults appeared, linked and split: frame, kind, faults")
-        .def("spheres", [](PySession& s, const py::object& variables, bool onlyVisible, bool pandas) {
-                 return PySession::asTable(s.table("spheres", variables, onlyVisible), pandas);
-             }, py::arg("variables") = py::none(), py::arg("only_visible") = false,
-             py::arg("pandas") = false,
-             "The current frame's spheres: id and the variables asked for (export.csv spheres)")
+        .def(
+            "fault_metrics",
+            [](PySession& s, bool pandas) {
+                return PySession::asTable(s.table("fault_metrics", py::none(), false), pandas);
+            },
+            py::arg("pandas") = false,
+            "Every fault's metrics in every frame (export.csv fault_metrics) as a numpy "
+            "structured array (pandas=True: a DataFrame): frame, fault, count, dip, "
+            "dip_direction, throw, ...")
+        .def(
+            "fault_growth",
+            [](PySession& s, bool pandas) {
+                return PySession::asTable(s.table("fault_growth", py::none(), false), pandas);
+            },
+            py::arg("pandas") = false,
+            "The metrics of what each fault is in each frame, followed through time")
+        .def(
+            "fault_events",
+            [](PySession& s, bool pandas) {
+                return PySession::asTable(s.table("fault_events", py::none(), false), pandas);
+            },
+            py::arg("pandas") = false,
+            "When faults appeared, linked and split: frame, kind, faults")
+        .def(
+            "spheres",
+            [](PySession& s, const py::object& variables, bool onlyVisible, bool pandas) {
+                return PySession::asTable(s.table("spheres", variables, onlyVisible), pandas);
+            },
+            py::arg("variables") = py::none(), py::arg("only_visible") = false,
+            py::arg("pandas") = false,
+            "The current frame's spheres: id and the variables asked for (export.csv spheres)")
         .def("surface", &PySession::surface, py::arg("fault"),
              "A fault's surface in the current frame, as export.gltf builds it, as a dict of "
              "arrays: vertices (N x 3 float32), triangles (M x 3 uint32), colours (N x 3, RGB "

@@ -175,7 +175,8 @@ glm::vec3 sampleColorMap(const ColorMapSpec& spec, double t) {
         if (spec.palette.empty())
             return kNanColor;
         const int count = static_cast<int>(spec.palette.size());
-        return spec.palette[static_cast<std::size_t>(std::min(static_cast<int>(std::floor(t * count)), count - 1))];
+        return spec.palette[static_cast<std::size_t>(
+            std::min(static_cast<int>(std::floor(t * count)), count - 1))];
     }
     }
     return kNanColor;
@@ -218,9 +219,8 @@ ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size) {
 }
 
 namespace {
-constexpr EnumName<RangeMode> kRangeModes[] = {{RangeMode::CurrentFrame, "frame"},
-                                               {RangeMode::AllFrames, "all"},
-                                               {RangeMode::Fixed, "fixed"}};
+constexpr EnumName<RangeMode> kRangeModes[] = {
+    {RangeMode::CurrentFrame, "frame"}, {RangeMode::AllFrames, "all"}, {RangeMode::Fixed, "fixed"}};
 } // namespace
 
 std::string_view rangeModeName(RangeMode mode) { return nameIn(kRangeModes, mode, "frame"); }

@@ -24,7 +24,7 @@ enum class ColorMapKind {
 
 struct ColorMapSpec {
     ColorMapKind kind = ColorMapKind::BlueRed;
-    int bands = 10; // Bands only: how many bands cover the range (1..1024)
+    int bands = 10;                   // Bands only: how many bands cover the range (1..1024)
     std::vector<glm::vec3> palette{}; // Palette only: one colour per category, range [0, size]
     bool operator==(const ColorMapSpec&) const = default;
 };

@@ -1,15 +1,15 @@
 #include "core/data/dataset.hpp"
 
-#include "core/io/input_error.hpp"
 #include "core/data/frame_cache.hpp"
+#include "core/io/input_error.hpp"
 #include "core/motion/strain_from_motion.hpp"
 
 #include <glob.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cctype>
+#include <cstdio>
 #include <map>
 #include <regex>
 

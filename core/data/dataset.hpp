@@ -94,8 +94,8 @@ class Dataset {
         std::uint64_t derived; // the strains version it was derived for; kRead: as read
     };
     static constexpr std::uint64_t kRead = ~std::uint64_t(0);
-    std::vector<StrainSpec> m_strains;    // guarded by m_mutex
-    std::uint64_t m_strainsVersion = 0;   // grows with each new list
+    std::vector<StrainSpec> m_strains;  // guarded by m_mutex
+    std::uint64_t m_strainsVersion = 0; // grows with each new list
     bool currentLocked(const CacheEntry& e) const {
         return e.derived == m_strainsVersion || (e.derived == kRead && m_strains.empty());
     }

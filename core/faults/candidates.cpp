@@ -11,9 +11,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 #include <cassert>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -129,26 +129,27 @@ CandidateSet findConnected(const Frame& frame, std::span<const std::uint8_t> vis
             return dx * dx + dy * dy + dz * dz < limit * limit;
         };
         // Each pair of cells once: a cell with itself, and with every neighbour of higher index.
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.cellCount(), 256),
-                          [&](const auto& range) {
-            for (std::size_t c = range.begin(); c != range.end(); ++c) {
-                const std::uint32_t b = cells.cellBegin(c), e = cells.cellEnd(c);
-                cells.forEachNeighbourCell(c, [&](std::size_t other) {
-                    if (other < c)
-                        return;
-                    for (std::uint32_t i = b; i < e; ++i)
-                        for (std::uint32_t j = other == c ? i + 1 : cells.cellBegin(other);
-                             j < cells.cellEnd(other); ++j)
-                            if (linked(i, j))
-                                sets.unite(i, j);
-                });
-            }
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, cells.cellCount(), 256), [&](const auto& range) {
+                for (std::size_t c = range.begin(); c != range.end(); ++c) {
+                    const std::uint32_t b = cells.cellBegin(c), e = cells.cellEnd(c);
+                    cells.forEachNeighbourCell(c, [&](std::size_t other) {
+                        if (other < c)
+                            return;
+                        for (std::uint32_t i = b; i < e; ++i)
+                            for (std::uint32_t j = other == c ? i + 1 : cells.cellBegin(other);
+                                 j < cells.cellEnd(other); ++j)
+                                if (linked(i, j))
+                                    sets.unite(i, j);
+                    });
+                }
+            });
     }
     std::vector<std::int32_t> group(frame.size(), -1);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i)
-            group[cells.row[i]] = static_cast<std::int32_t>(sets.find(static_cast<std::uint32_t>(i)));
+            group[cells.row[i]] =
+                static_cast<std::int32_t>(sets.find(static_cast<std::uint32_t>(i)));
     });
     std::size_t groups = n;
     for (std::size_t row = 0; row < frame.size(); ++row)
@@ -171,8 +172,9 @@ CandidateSet findCandidates(const Frame& frame, std::span<const std::uint8_t> vi
         throw std::invalid_argument("candidate angle must lie between 0 and 90 degrees, not " +
                                     std::to_string(options.angle));
     if (!(options.radius >= 0) || !std::isfinite(options.radius))
-        throw std::invalid_argument("candidate neighbourhood radius must be a finite number >= 0, not " +
-                                    std::to_string(options.radius));
+        throw std::invalid_argument(
+            "candidate neighbourhood radius must be a finite number >= 0, not " +
+            std::to_string(options.radius));
     const detail::NetworkGroups groups = detail::faultNetworkGroups(frame, visible, options);
     return candidatesFromGroups(frame, groups.groupOfRow, groups.groupCount, options.minSize);
 }
@@ -197,18 +199,31 @@ std::array<float, 3> candidateColor(std::size_t index) {
     // Hue steps of the golden angle keep consecutive colours far apart; three value levels
     // separate colours whose hues come close again after many steps.
     const double hue = std::fmod(0.1 + 0.381966011250105 * static_cast<double>(index), 1.0) * 6.0;
-    const double sat = 0.75, val = (index / 7) % 3 == 1 ? 0.75 : ((index / 7) % 3 == 2 ? 0.6 : 0.95);
+    const double sat = 0.75,
+                 val = (index / 7) % 3 == 1 ? 0.75 : ((index / 7) % 3 == 2 ? 0.6 : 0.95);
     const int sector = static_cast<int>(hue) % 6;
     const double f = hue - std::floor(hue);
     const double p = val * (1 - sat), q = val * (1 - sat * f), t = val * (1 - sat * (1 - f));
     double rgb[3];
     switch (sector) {
-    case 0: rgb[0] = val, rgb[1] = t, rgb[2] = p; break;
-    case 1: rgb[0] = q, rgb[1] = val, rgb[2] = p; break;
-    case 2: rgb[0] = p, rgb[1] = val, rgb[2] = t; break;
-    case 3: rgb[0] = p, rgb[1] = q, rgb[2] = val; break;
-    case 4: rgb[0] = t, rgb[1] = p, rgb[2] = val; break;
-    default: rgb[0] = val, rgb[1] = p, rgb[2] = q; break;
+    case 0:
+        rgb[0] = val, rgb[1] = t, rgb[2] = p;
+        break;
+    case 1:
+        rgb[0] = q, rgb[1] = val, rgb[2] = p;
+        break;
+    case 2:
+        rgb[0] = p, rgb[1] = val, rgb[2] = t;
+        break;
+    case 3:
+        rgb[0] = p, rgb[1] = q, rgb[2] = val;
+        break;
+    case 4:
+        rgb[0] = t, rgb[1] = p, rgb[2] = val;
+        break;
+    default:
+        rgb[0] = val, rgb[1] = p, rgb[2] = q;
+        break;
     }
     return {float(rgb[0]), float(rgb[1]), float(rgb[2])};
 }
@@ -222,8 +237,8 @@ CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> 
             points.push_back({frame.x[*row], frame.y[*row], frame.z[*row]});
     const auto& lo = frame.centreMin();
     const auto& hi = frame.centreMax();
-    const int thin =
-        sectionAxisOfSpheres({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}, 2.0 * frame.meanRadius());
+    const int thin = sectionAxisOfSpheres({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]},
+                                          2.0 * frame.meanRadius());
     const PlaneFit fit = fitPlane(points, thin);
     if (!fit.valid)
         return out;

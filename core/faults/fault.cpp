@@ -17,7 +17,8 @@ bool Fault::contains(std::int64_t id) const {
 std::vector<std::int64_t> Fault::add(std::vector<std::int64_t> more) {
     normalizeIds(more);
     std::vector<std::int64_t> added;
-    std::set_difference(more.begin(), more.end(), ids.begin(), ids.end(), std::back_inserter(added));
+    std::set_difference(more.begin(), more.end(), ids.begin(), ids.end(),
+                        std::back_inserter(added));
     if (!added.empty()) {
         std::vector<std::int64_t> merged;
         merged.reserve(ids.size() + added.size());
@@ -30,11 +31,13 @@ std::vector<std::int64_t> Fault::add(std::vector<std::int64_t> more) {
 std::vector<std::int64_t> Fault::remove(std::vector<std::int64_t> less) {
     normalizeIds(less);
     std::vector<std::int64_t> removed;
-    std::set_intersection(less.begin(), less.end(), ids.begin(), ids.end(), std::back_inserter(removed));
+    std::set_intersection(less.begin(), less.end(), ids.begin(), ids.end(),
+                          std::back_inserter(removed));
     if (!removed.empty()) {
         std::vector<std::int64_t> kept;
         kept.reserve(ids.size() - removed.size());
-        std::set_difference(ids.begin(), ids.end(), removed.begin(), removed.end(), std::back_inserter(kept));
+        std::set_difference(ids.begin(), ids.end(), removed.begin(), removed.end(),
+                            std::back_inserter(kept));
         ids = std::move(kept);
     }
     return removed;

@@ -791,8 +791,8 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     const double onSurface = std::max(0.5 * zoneThickness, 1.5 * meanRadius);
     std::vector<std::int32_t> region;
     std::vector<F3> ref;
-    const std::size_t regionCount = grow(graph, o, options.angle,
-                                         thin >= 0 ? kSectionPlanarityMin : kPlanarityMin, region, ref);
+    const std::size_t regionCount = grow(
+        graph, o, options.angle, thin >= 0 ? kSectionPlanarityMin : kPlanarityMin, region, ref);
     join(wide, wideToLink, region, regionCount, options.angle, meanRadius, thin);
     dissolveJunctionRegions(wide, wideToLink, region, ref, regionCount, radius, onSurface);
 

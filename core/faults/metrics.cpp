@@ -260,11 +260,12 @@ FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::si
 } // namespace
 
 namespace {
-constexpr EnumName<ThrowStatus> kThrowStatuses[] = {{ThrowStatus::Ok, "ok"},
-                                                    {ThrowStatus::Disabled, "disabled"},
-                                                    {ThrowStatus::NoDisplacement, "no_displacement"},
-                                                    {ThrowStatus::NoPlane, "no_plane"},
-                                                    {ThrowStatus::TooFewSamples, "too_few_samples"}};
+constexpr EnumName<ThrowStatus> kThrowStatuses[] = {
+    {ThrowStatus::Ok, "ok"},
+    {ThrowStatus::Disabled, "disabled"},
+    {ThrowStatus::NoDisplacement, "no_displacement"},
+    {ThrowStatus::NoPlane, "no_plane"},
+    {ThrowStatus::TooFewSamples, "too_few_samples"}};
 } // namespace
 
 std::string_view throwStatusName(ThrowStatus status) {

@@ -42,7 +42,8 @@ SymmetricEigen3 eigenSymmetric3(const Mat3d& m) {
                 continue;
             }
             const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
-            const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
+            const double t =
+                (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
             const double c = 1.0 / std::sqrt(t * t + 1.0);
             const double s = t * c;
             for (int k = 0; k < 3; ++k) { // A <- A J

@@ -12,7 +12,8 @@ using Vec3d = std::array<double, 3>;
 using Mat3d = std::array<std::array<double, 3>, 3>;
 
 // Eigen decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations (robust for
-// repeated and tiny eigenvalues). values ascending; vectors[i] is the unit eigenvector of values[i].
+// repeated and tiny eigenvalues). values ascending; vectors[i] is the unit eigenvector of
+// values[i].
 struct SymmetricEigen3 {
     Vec3d values{0, 0, 0};
     std::array<Vec3d, 3> vectors{};
@@ -41,10 +42,10 @@ Vec3d strikeVector(const Vec3d& canonical);
 Vec3d downDipVector(const Vec3d& canonical);
 
 struct PlaneFit {
-    bool valid = false;  // >= 3 points and a unique smallest eigenvalue direction
+    bool valid = false; // >= 3 points and a unique smallest eigenvalue direction
     std::size_t count = 0;
     Vec3d centroid{0, 0, 0};
-    Vec3d normal{0, 0, 0}; // canonical; eigenvector of the smallest covariance eigenvalue
+    Vec3d normal{0, 0, 0};      // canonical; eigenvector of the smallest covariance eigenvalue
     Vec3d eigenvalues{0, 0, 0}; // of the population covariance, ascending
     PlaneOrientation orientation;
 };
@@ -62,9 +63,10 @@ PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis = -1);
 // model is a section, and faults in it are planes containing that axis.
 int sectionAxis(const Vec3d& extent, double ratio = 0.1);
 // The same for a model of spheres of this mean diameter: also an axis only a few spheres thick
-// (3 to 8 diameters: one tilted layer may be the fault itself) and under a quarter of the largest extent, as fault candidates' network
-// method orients them (a granular sandbox a few grains deep, periodic or between walls). Stable
-// through a run, where the ratio alone flips as the model stretches.
+// (3 to 8 diameters: one tilted layer may be the fault itself) and under a quarter of the largest
+// extent, as fault candidates' network method orients them (a granular sandbox a few grains deep,
+// periodic or between walls). Stable through a run, where the ratio alone flips as the model
+// stretches.
 int sectionAxisOfSpheres(const Vec3d& extent, double meanDiameter);
 
 } // namespace faultline::core

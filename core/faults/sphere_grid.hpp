@@ -37,7 +37,8 @@ class SphereGrid {
         const double c = std::floor((v - m_origin[axis]) / m_cell);
         if (!(c > 0))
             return 0;
-        return std::min<std::int64_t>(m_dims[axis] - 1, static_cast<std::int64_t>(std::min(c, 1e9)));
+        return std::min<std::int64_t>(m_dims[axis] - 1,
+                                      static_cast<std::int64_t>(std::min(c, 1e9)));
     }
 
     Vec3d m_origin{0, 0, 0};
@@ -73,21 +74,24 @@ void SphereGrid::forEachNearPlane(const Vec3d& lo, const Vec3d& hi, const Vec3d&
             centre[b] = m_origin[b] + (double(index[b]) + 0.5) * m_cell;
             centre[c] = m_origin[c] + (double(index[c]) + 0.5) * m_cell;
             // Along a, the plane distance of a cell centre runs linearly; keep |s| <= slack.
-            const double s0 = normal[b] * (centre[b] - point[b]) + normal[c] * (centre[c] - point[c]);
+            const double s0 =
+                normal[b] * (centre[b] - point[b]) + normal[c] * (centre[c] - point[c]);
             double t0 = point[a] + (-slack - s0) / normal[a];
             double t1 = point[a] + (slack - s0) / normal[a];
             if (t0 > t1)
                 std::swap(t0, t1);
             const double i0 = std::ceil((t0 - m_origin[a]) / m_cell - 0.5);
             const double i1 = std::floor((t1 - m_origin[a]) / m_cell - 0.5);
-            const std::int64_t from = std::max<std::int64_t>(first[a], std::int64_t(std::max(i0, -1.0)));
-            const std::int64_t to = std::min<std::int64_t>(last[a], std::int64_t(std::min(i1, 1e9)));
+            const std::int64_t from =
+                std::max<std::int64_t>(first[a], std::int64_t(std::max(i0, -1.0)));
+            const std::int64_t to =
+                std::min<std::int64_t>(last[a], std::int64_t(std::min(i1, 1e9)));
             for (index[a] = from; index[a] <= to; ++index[a]) {
                 centre[a] = m_origin[a] + (double(index[a]) + 0.5) * m_cell;
                 if (!acceptCell(centre))
                     continue;
-                const std::size_t cell = std::size_t(
-                    index[0] + m_dims[0] * (index[1] + m_dims[1] * index[2]));
+                const std::size_t cell =
+                    std::size_t(index[0] + m_dims[0] * (index[1] + m_dims[1] * index[2]));
                 for (std::uint32_t k = m_start[cell]; k < m_start[cell + 1]; ++k)
                     visit(k);
             }

@@ -104,15 +104,16 @@ trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
                      const VisibleMaskFn& visibleMask, std::span<const Fault> faults,
                      const CandidateOptions& options, const MetricsOptions& metrics,
                      std::vector<FaultTrack>* tracks, const FrameSelection& selection) {
-    return trackedMetricsSeries(frameCount, load, candidatesOfVisible(visibleMask, options),
-                                faults, metrics, tracks, selection);
+    return trackedMetricsSeries(frameCount, load, candidatesOfVisible(visibleMask, options), faults,
+                                metrics, tracks, selection);
 }
 
-FaultMetricsSeries
-trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
-                     const CandidatesFn& candidates, std::span<const Fault> faults,
-                     const MetricsOptions& metrics, std::vector<FaultTrack>* tracks,
-                     const FrameSelection& selection) {
+FaultMetricsSeries trackedMetricsSeries(std::size_t frameCount, const FrameLoader& load,
+                                        const CandidatesFn& candidates,
+                                        std::span<const Fault> faults,
+                                        const MetricsOptions& metrics,
+                                        std::vector<FaultTrack>* tracks,
+                                        const FrameSelection& selection) {
     FaultMetricsSeries series;
     if (tracks)
         tracks->assign(faults.size(), FaultTrack{});

@@ -83,7 +83,8 @@ std::string readFileBytes(const std::string& path, std::uint64_t offset, std::ui
     const std::uint64_t limit = source.maxUncompressedSize();
     if (offset > limit || (length > 0 && offset + length > limit))
         throw InputError(path, InputError::Where::Byte, offset,
-                         "range of " + std::to_string(length) + " bytes lies beyond the file's end");
+                         "range of " + std::to_string(length) +
+                             " bytes lies beyond the file's end");
     if (offset > 0)
         source.seek(offset);
     std::string bytes;

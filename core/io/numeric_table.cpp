@@ -12,7 +12,6 @@
 #include <limits>
 #include <optional>
 
-
 namespace faultline::core {
 
 namespace {
@@ -61,7 +60,8 @@ class RowParser {
                 if (t.requireFinite && !std::isfinite(v))
                     return "column '" + t.name + "' must be finite, found " +
                            quoteForError(token(tokenStart, end));
-                if (!m_nonInteger[c] && (d != std::trunc(d) || hasFractionSyntax(tokenStart, r.ptr)))
+                if (!m_nonInteger[c] &&
+                    (d != std::trunc(d) || hasFractionSyntax(tokenStart, r.ptr)))
                     m_nonInteger[c] = true;
                 t.floats[row] = v;
                 p = r.ptr;
@@ -85,8 +85,8 @@ class RowParser {
         while (p < end && (isBlank(*p) || (m_separator && *p == m_separator)))
             ++p;
         if (p < end)
-            return "expected " + std::to_string(columns) + " values, found more: " +
-                   quoteForError(token(p, end));
+            return "expected " + std::to_string(columns) +
+                   " values, found more: " + quoteForError(token(p, end));
         return std::nullopt;
     }
 
@@ -102,7 +102,8 @@ class RowParser {
             ++q;
         return {p, static_cast<std::size_t>(q - p)};
     }
-    std::string badToken(const char* p, const char* end, std::size_t c, const char* expected) const {
+    std::string badToken(const char* p, const char* end, std::size_t c,
+                         const char* expected) const {
         return "column " + std::to_string(c + 1) + " ('" + m_targets[c].name + "'): expected " +
                expected + ", found " + quoteForError(token(p, end));
     }
@@ -185,7 +186,8 @@ NumericTableLayout layoutNumericTable(std::string_view text, const NumericTableS
     std::size_t end = starts[last];
     for (std::size_t r = rowStart[last]; r < spec.rows; ++r) {
         const void* nl = std::memchr(text.data() + end, '\n', text.size() - end);
-        end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data()) + 1 : text.size();
+        end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text.data()) + 1
+                 : text.size();
     }
     if (spec.rows == 0) {
         last = 0;
@@ -223,7 +225,8 @@ void parseNumericTable(std::string_view text, const NumericTableLayout& layout,
         const char* end = text.data() + starts[k + 1];
         std::size_t row = rowStart[k];
         while (p < end) {
-            const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+            const char* nl =
+                static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
             const char* lineEnd = nl ? nl : end;
             if (auto err = parser.parseLine(p, lineEnd, row)) {
                 errors[k] = ChunkError{row, std::move(*err)};

@@ -13,18 +13,18 @@ namespace faultline::core {
 struct TableColumnTarget {
     enum class Kind { Float, Int64, Skip };
     Kind kind = Kind::Skip;
-    float* floats = nullptr;        // Kind::Float: row-indexed destination
-    std::int64_t* ints = nullptr;   // Kind::Int64: row-indexed destination
-    bool requireFinite = false;     // Kind::Float: NaN or Inf is an error (positions, radii)
-    std::string name;               // for error messages
-    bool sawNonInteger = false;     // out, Kind::Float: some value was not a plain integer
+    float* floats = nullptr;      // Kind::Float: row-indexed destination
+    std::int64_t* ints = nullptr; // Kind::Int64: row-indexed destination
+    bool requireFinite = false;   // Kind::Float: NaN or Inf is an error (positions, radii)
+    std::string name;             // for error messages
+    bool sawNonInteger = false;   // out, Kind::Float: some value was not a plain integer
 };
 
 struct NumericTableSpec {
-    std::string path;             // for errors
-    std::uint64_t firstLine = 1;  // line number of the first row in the file (1-based)
-    std::size_t rows = 0;         // exact number of rows the text must hold
-    char separator = 0;           // extra separator besides blanks (',' for CSV), or 0
+    std::string path;            // for errors
+    std::uint64_t firstLine = 1; // line number of the first row in the file (1-based)
+    std::size_t rows = 0;        // exact number of rows the text must hold
+    char separator = 0;          // extra separator besides blanks (',' for CSV), or 0
 };
 
 // Where the rows of a table lie: found by counting newlines in parallel, once.

@@ -44,10 +44,11 @@ bool TextLineReader::next(std::string_view& line) {
             const std::size_t len =
                 nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - start) : m_end - m_pos;
             if (std::memchr(start, '\0', len))
-                throw InputError(m_source.path(), InputError::Where::Byte,
-                                 offset() + static_cast<std::size_t>(
-                                                static_cast<const char*>(std::memchr(start, '\0', len)) - start),
-                                 "binary data (a NUL byte) where text was expected");
+                throw InputError(
+                    m_source.path(), InputError::Where::Byte,
+                    offset() + static_cast<std::size_t>(
+                                   static_cast<const char*>(std::memchr(start, '\0', len)) - start),
+                    "binary data (a NUL byte) where text was expected");
             line = std::string_view(start, len);
             m_pos += len + (nl ? 1 : 0);
             ++m_line;

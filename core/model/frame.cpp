@@ -110,7 +110,8 @@ void Frame::finalize() {
         return;
     auto [mnIt, mxIt] = std::minmax_element(ids.begin(), ids.end());
     const std::int64_t idMin = *mnIt, idMax = *mxIt;
-    const auto span = static_cast<unsigned long long>(idMax) - static_cast<unsigned long long>(idMin);
+    const auto span =
+        static_cast<unsigned long long>(idMax) - static_cast<unsigned long long>(idMin);
     if (span <= 2ull * n + 1024ull) {
         m_idBase = idMin;
         m_rowById.assign(span + 1, kNoRow);
@@ -129,9 +130,8 @@ void Frame::finalize() {
                   [this](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
         for (std::size_t k = 1; k < n; ++k)
             if (ids[m_rowsSortedById[k]] == ids[m_rowsSortedById[k - 1]])
-                throw std::invalid_argument("particle id " +
-                                            std::to_string(ids[m_rowsSortedById[k]]) +
-                                            " appears twice");
+                throw std::invalid_argument(
+                    "particle id " + std::to_string(ids[m_rowsSortedById[k]]) + " appears twice");
     }
 }
 
@@ -159,14 +159,16 @@ AttributeColumn makeAttribute(std::string name, std::vector<float>&& values, boo
 
 bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& values) {
     static constexpr std::string_view kCounting[] = {
-        "type", "mol", "molecule", "proc", "procp1", "ix", "iy", "iz", "image", "species",
-        "speciestype", "layer", "band", "cluster", "broken_bonds", "bonds", "coordination",
-        "contacts", "flag", "group", "index", "count"};
+        "type", "mol",     "molecule",     "proc",    "procp1",       "ix",
+        "iy",   "iz",      "image",        "species", "speciestype",  "layer",
+        "band", "cluster", "broken_bonds", "bonds",   "coordination", "contacts",
+        "flag", "group",   "index",        "count"};
     const std::string lower = asciiLower(name);
     for (std::string_view known : kCounting)
-        if (lower == known || (lower.size() > known.size() &&
-                               lower.compare(lower.size() - known.size(), known.size(), known) == 0 &&
-                               (lower[lower.size() - known.size() - 1] == '_')))
+        if (lower == known ||
+            (lower.size() > known.size() &&
+             lower.compare(lower.size() - known.size(), known.size(), known) == 0 &&
+             (lower[lower.size() - known.size() - 1] == '_')))
             return true;
     for (float v : values)
         if (v != values.front())
@@ -178,7 +180,8 @@ std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {
     if (!m_rowById.empty()) {
         if (id < m_idBase)
             return std::nullopt;
-        const auto offset = static_cast<unsigned long long>(id) - static_cast<unsigned long long>(m_idBase);
+        const auto offset =
+            static_cast<unsigned long long>(id) - static_cast<unsigned long long>(m_idBase);
         if (offset >= m_rowById.size() || m_rowById[offset] == kNoRow)
             return std::nullopt;
         return m_rowById[offset];
@@ -191,10 +194,10 @@ std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {
 }
 
 std::size_t Frame::memoryBytes() const {
-    std::size_t bytes = ids.capacity() * sizeof(std::int64_t) +
-                        (x.capacity() + y.capacity() + z.capacity() + radius.capacity()) *
-                            sizeof(float) +
-                        (m_rowById.capacity() + m_rowsSortedById.capacity()) * sizeof(std::uint32_t);
+    std::size_t bytes =
+        ids.capacity() * sizeof(std::int64_t) +
+        (x.capacity() + y.capacity() + z.capacity() + radius.capacity()) * sizeof(float) +
+        (m_rowById.capacity() + m_rowsSortedById.capacity()) * sizeof(std::uint32_t);
     for (const auto& c : attributes)
         bytes += c.floats.capacity() * sizeof(float) + c.ints.capacity() * sizeof(std::int32_t) +
                  c.name.capacity();

@@ -103,7 +103,6 @@ void cacheColumnRange(AttributeColumn& c) {
     }
 }
 
-
 AttributeColumn variableChange(const Frame& now, const Frame& reference,
                                std::string_view variable) {
     const ColumnReader current(now, variable);

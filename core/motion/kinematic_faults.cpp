@@ -28,7 +28,6 @@ double median(std::vector<double> v) {
     return *mid;
 }
 
-
 // Solves the 6x6 system m x = b by Gaussian elimination with partial pivoting; false when
 // singular.
 bool solve6(std::array<std::array<double, 7>, 6> m, std::array<double, 6>& x) {
@@ -68,9 +67,8 @@ RigidMotion fitRigid(const std::vector<Vec3d>& p, const std::vector<Vec3d>& u,
     std::array<std::array<double, 7>, 6> n{};
     for (std::uint32_t i : members) {
         const Vec3d q = sub(p[i], m.centre);
-        const double rows[3][6] = {{1, 0, 0, 0, q[2], -q[1]},
-                                   {0, 1, 0, -q[2], 0, q[0]},
-                                   {0, 0, 1, q[1], -q[0], 0}};
+        const double rows[3][6] = {
+            {1, 0, 0, 0, q[2], -q[1]}, {0, 1, 0, -q[2], 0, q[0]}, {0, 0, 1, q[1], -q[0], 0}};
         for (int r = 0; r < 3; ++r)
             for (int a = 0; a < 6; ++a) {
                 for (int b = 0; b < 6; ++b)
@@ -121,12 +119,14 @@ double transitionWidth(const std::vector<Vec3d>& pos, const std::vector<Vec3d>& 
                dz = pos[i][2] - plane.centroid[2];
         cell.wrap(dx, dy, dz);
         const double s = dx * plane.normal[0] + dy * plane.normal[1] + dz * plane.normal[2];
-        const Vec3d along{dx - s * plane.normal[0], dy - s * plane.normal[1], dz - s * plane.normal[2]};
+        const Vec3d along{dx - s * plane.normal[0], dy - s * plane.normal[1],
+                          dz - s * plane.normal[2]};
         if (std::fabs(s) >= 6 * d || norm(along) >= 12 * d)
             continue;
         const Vec3d rel = sub(u[i], ub);
         const double fraction = (rel[0] * slip[0] + rel[1] * slip[1] + rel[2] * slip[2]) / slip2;
-        bins[std::size_t(std::clamp(int(std::floor((s / d + 6) * 2)), 0, kBins - 1))].push_back(fraction);
+        bins[std::size_t(std::clamp(int(std::floor((s / d + 6) * 2)), 0, kBins - 1))].push_back(
+            fraction);
     }
     std::vector<double> med(kBins, NAN);
     for (int k = 0; k < kBins; ++k)
@@ -137,7 +137,8 @@ double transitionWidth(const std::vector<Vec3d>& pos, const std::vector<Vec3d>& 
     int nl = 0, nh = 0;
     for (int k = 0; k < kBins; ++k)
         if (!std::isnan(med[std::size_t(k)]))
-            (k < kBins / 2 ? (low += med[std::size_t(k)], ++nl) : (high += med[std::size_t(k)], ++nh));
+            (k < kBins / 2 ? (low += med[std::size_t(k)], ++nl)
+                           : (high += med[std::size_t(k)], ++nh));
     const bool rising = nl && nh ? high / nh >= low / nl : true;
     auto crossing = [&](double t) {
         for (int k = 0; k + 1 < kBins; ++k) {
@@ -187,8 +188,8 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
     }
     const std::size_t n = rows.size();
     if (n < 2 * options.minBlock)
-        throw std::invalid_argument("kinematic faults: the frames share only " +
-                                    std::to_string(n) + " spheres");
+        throw std::invalid_argument("kinematic faults: the frames share only " + std::to_string(n) +
+                                    " spheres");
     const double d = 2.0 * radiusSum / double(n);
     out.meanDiameter = d;
 
@@ -227,7 +228,8 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
     std::vector<double> spread(n);
     for (std::size_t i = 0; i < n; ++i)
         spread[i] = norm(sub(u[i], mu));
-    std::nth_element(spread.begin(), spread.begin() + std::ptrdiff_t(0.9 * double(n - 1)), spread.end());
+    std::nth_element(spread.begin(), spread.begin() + std::ptrdiff_t(0.9 * double(n - 1)),
+                     spread.end());
     const double s90 = spread[std::size_t(0.9 * double(n - 1))];
     const double tol = std::max(options.beta * s90, options.floor * d);
     const std::size_t minBlock =
@@ -284,13 +286,16 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
             }
             std::map<std::uint32_t, std::int32_t> relabel;
             for (const auto& [piece, v] : votes) {
-                const auto best = std::max_element(
-                    v.begin(), v.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+                const auto best =
+                    std::max_element(v.begin(), v.end(), [](const auto& x, const auto& y) {
+                        return x.second < y.second;
+                    });
                 relabel[piece] = best->first;
             }
             bool changed = false;
             for (std::uint32_t i = 0; i < n; ++i)
-                if (auto it = relabel.find(same.find(i)); it != relabel.end() && it->second != label[i])
+                if (auto it = relabel.find(same.find(i));
+                    it != relabel.end() && it->second != label[i])
                     label[i] = it->second, changed = true;
             if (!changed)
                 break;
@@ -316,7 +321,8 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
         double least = options.minInterior;
         if (big > 2)
             for (std::size_t b = 0; b < k; ++b) {
-                const double share = double(interior[b]) / double(std::max<std::size_t>(size[b], 1));
+                const double share =
+                    double(interior[b]) / double(std::max<std::size_t>(size[b], 1));
                 if (size[b] >= minBlock && share < least)
                     least = share, dissolve = long(b);
             }
@@ -355,7 +361,8 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
         ++size[std::size_t(l)];
     std::vector<std::size_t> order(k);
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
     std::vector<std::int32_t> rank(k);
     for (std::size_t r = 0; r < k; ++r)
         rank[order[r]] = std::int32_t(r);
@@ -374,23 +381,25 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
     }
 
     // 4. Faults between blocks.
-    const int thin = sectionAxisOfSpheres(
-        {double(after.centreMax()[0]) - after.centreMin()[0],
-         double(after.centreMax()[1]) - after.centreMin()[1],
-         double(after.centreMax()[2]) - after.centreMin()[2]},
-        d);
+    const int thin = sectionAxisOfSpheres({double(after.centreMax()[0]) - after.centreMin()[0],
+                                           double(after.centreMax()[1]) - after.centreMin()[1],
+                                           double(after.centreMax()[2]) - after.centreMin()[2]},
+                                          d);
     out.sectionAxis = thin;
     for (std::size_t a = 0; a < k; ++a)
         for (std::size_t b = a + 1; b < k; ++b) {
-            const double quiet = std::max(std::min(out.blockMisfit[a], out.blockMisfit[b]), options.floor * d);
-            const double rough = std::max({out.blockMisfit[a], out.blockMisfit[b], options.floor * d});
+            const double quiet =
+                std::max(std::min(out.blockMisfit[a], out.blockMisfit[b]), options.floor * d);
+            const double rough =
+                std::max({out.blockMisfit[a], out.blockMisfit[b], options.floor * d});
             std::vector<Vec3d> mids;
             for (const auto& [i, j] : pairs) {
                 const bool ab = (label[i] == std::int32_t(a) && label[j] == std::int32_t(b)) ||
                                 (label[i] == std::int32_t(b) && label[j] == std::int32_t(a));
                 if (!ab)
                     continue;
-                double dx = pos[j][0] - pos[i][0], dy = pos[j][1] - pos[i][1], dz = pos[j][2] - pos[i][2];
+                double dx = pos[j][0] - pos[i][0], dy = pos[j][1] - pos[i][1],
+                       dz = pos[j][2] - pos[i][2];
                 cell.wrap(dx, dy, dz);
                 const Vec3d mid{pos[i][0] + 0.5 * dx, pos[i][1] + 0.5 * dy, pos[i][2] + 0.5 * dz};
                 if (norm(sub(out.blocks[a].at(mid), out.blocks[b].at(mid))) >
@@ -436,13 +445,15 @@ KinematicResult kinematicFaults(const Frame& before, const Frame& after,
             f.rms = rmsOf(fit, mids);
             f.points = std::move(mids);
             f.slip = norm(sub(out.blocks[a].at(fit.centroid), out.blocks[b].at(fit.centroid)));
-            f.width = transitionWidth(pos, u, label, std::int32_t(a), std::int32_t(b), fit, d, cell);
+            f.width =
+                transitionWidth(pos, u, label, std::int32_t(a), std::int32_t(b), fit, d, cell);
             f.identifiable = f.midpoints >= 30 && f.rms < 1.5 * d && f.slip > 3.0 * rough &&
                              f.width <= options.maxWidth * d;
             out.faults.push_back(f);
         }
-    std::stable_sort(out.faults.begin(), out.faults.end(),
-                     [](const KinematicFault& x, const KinematicFault& y) { return x.midpoints > y.midpoints; });
+    std::stable_sort(
+        out.faults.begin(), out.faults.end(),
+        [](const KinematicFault& x, const KinematicFault& y) { return x.midpoints > y.midpoints; });
     return out;
 }
 

@@ -33,10 +33,10 @@
 namespace faultline::core {
 
 struct KinematicOptions {
-    double beta = 0.08;             // seed tolerance, of the spread of motion
-    double floor = 0.01;            // smallest seed tolerance, mean diameters
-    double cutoff = 1.5;            // neighbours, mean diameters
-    std::size_t minBlock = 30;      // spheres
+    double beta = 0.08;        // seed tolerance, of the spread of motion
+    double floor = 0.01;       // smallest seed tolerance, mean diameters
+    double cutoff = 1.5;       // neighbours, mean diameters
+    std::size_t minBlock = 30; // spheres
     double minBlockFraction = 0.005;
     int rounds = 5;
     double minInterior = 0.5;
@@ -67,8 +67,8 @@ struct KinematicResult {
     std::vector<std::int32_t> blockOfRow; // per row of `after`: block, or -1 (not in `before`)
     std::vector<RigidMotion> blocks;      // largest block first
     std::vector<std::size_t> blockSizes;
-    std::vector<double> blockMisfit;      // median |u - predicted|, world units
-    std::vector<KinematicFault> faults;   // most midpoints first
+    std::vector<double> blockMisfit;    // median |u - predicted|, world units
+    std::vector<KinematicFault> faults; // most midpoints first
 };
 
 // Throws std::invalid_argument when the frames share fewer than 2 * minBlock ids.

@@ -32,8 +32,8 @@ constexpr std::uint32_t kNone = ~std::uint32_t(0);
 
 // A reference centre (or a periodic image of one) with where that sphere is now (NaN: gone).
 struct CellPoint {
-    float x, y, z;    // reference
-    float nx, ny, nz; // current
+    float x, y, z;       // reference
+    float nx, ny, nz;    // current
     std::uint32_t owner; // reference row; the top bit marks an image
 };
 constexpr std::uint32_t kImage = 0x80000000u;
@@ -62,8 +62,8 @@ class NeighbourCells {
                           });
         const PeriodicCell cell(ref.box);
         if (cell.any && n > 0) {
-            const double edge[3][3] = {{cell.lx, 0, 0}, {cell.xy, cell.ly, 0},
-                                       {cell.xz, cell.yz, cell.lz}};
+            const double edge[3][3] = {
+                {cell.lx, 0, 0}, {cell.xy, cell.ly, 0}, {cell.xz, cell.yz, cell.lz}};
             for (int na = -1; na <= 1; ++na)
                 for (int nb = -1; nb <= 1; ++nb)
                     for (int nc = -1; nc <= 1; ++nc) {
@@ -74,8 +74,7 @@ class NeighbourCells {
                         for (int a = 0; a < 3; ++a)
                             s[a] = na * edge[0][a] + nb * edge[1][a] + nc * edge[2][a];
                         for (std::size_t i = 0; i < n; ++i) {
-                            const double q[3] = {ref.x[i] + s[0], ref.y[i] + s[1],
-                                                 ref.z[i] + s[2]};
+                            const double q[3] = {ref.x[i] + s[0], ref.y[i] + s[1], ref.z[i] + s[2]};
                             if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                                 q[2] < lo[2] || q[2] > hi[2])
                                 continue;
@@ -302,9 +301,9 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
     out.d2min = static_cast<float>(std::max(0.0, yy - fw));
     if (dim == 3) {
         const double dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
-        out.shear = static_cast<float>(
-            std::sqrt(E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
-                      (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0));
+        out.shear =
+            static_cast<float>(std::sqrt(E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
+                                         (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0));
         out.volumetric = static_cast<float>((E[0][0] + E[1][1] + E[2][2]) / 3.0);
     } else {
         const double d = E[0][0] - E[1][1];

@@ -77,11 +77,12 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
         row[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j) {
             const std::size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1,
-                               diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                                                   std::tolower(static_cast<unsigned char>(b[j - 1]))
-                                               ? 0
-                                               : 1)});
+            row[j] =
+                std::min({row[j] + 1, row[j - 1] + 1,
+                          diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                              std::tolower(static_cast<unsigned char>(b[j - 1]))
+                                          ? 0
+                                          : 1)});
             diagonal = up;
         }
     }

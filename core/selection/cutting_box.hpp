@@ -11,7 +11,7 @@ namespace faultline::core {
 
 enum class BoxMode { Keep, Cut };
 
-std::string_view boxModeName(BoxMode mode);           // "keep" | "cut"
+std::string_view boxModeName(BoxMode mode);            // "keep" | "cut"
 std::optional<BoxMode> parseBoxMode(std::string_view); // nullopt when neither
 
 struct CuttingBox {

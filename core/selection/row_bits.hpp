@@ -36,7 +36,8 @@ inline float nearestFloatBound(double d) {
     if (std::isnan(d))
         return std::numeric_limits<float>::quiet_NaN();
     if (std::isinf(d))
-        return d > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+        return d > 0 ? std::numeric_limits<float>::infinity()
+                     : -std::numeric_limits<float>::infinity();
     if (d > kMax)
         return std::numeric_limits<float>::max();
     if (d < -kMax)

@@ -88,8 +88,7 @@ Plan makePlan(const Frame& frame, std::span<const CuttingBox> boxes,
         if (auto column = findColumn(frame, threshold.variable)) {
             assert(column->size == frame.size() && "Frame::finalize() checks column sizes");
             plan.tests.push_back(makeTest(*column, threshold));
-        }
-        else
+        } else
             noteMissing(missing, threshold.variable);
     }
     return plan;

@@ -13,7 +13,9 @@ namespace faultline::core {
 namespace fs = std::filesystem;
 
 namespace {
-std::string markerPath(const std::string& folder) { return (fs::path(folder) / "recovery.json").string(); }
+std::string markerPath(const std::string& folder) {
+    return (fs::path(folder) / "recovery.json").string();
+}
 
 std::string nowIso() {
     const std::time_t t = std::time(nullptr);

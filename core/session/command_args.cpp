@@ -44,7 +44,9 @@ std::optional<std::string> optionalString(const Json& cmd, const char* field) {
     return string(cmd, field);
 }
 
-double number(const Json& cmd, const char* field) { return toNumber(cmd, field, require(cmd, field)); }
+double number(const Json& cmd, const char* field) {
+    return toNumber(cmd, field, require(cmd, field));
+}
 
 std::optional<double> optionalNumber(const Json& cmd, const char* field) {
     if (!cmd.contains(field))

@@ -125,7 +125,9 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
                (prefix.empty() ? "" : " (" + prefix + "*)");
     }
     if (op == "export.csv" || op == "export.vdb" || op == "export.gltf")
-        return "export " + std::string(op == "export.csv" ? "a CSV" : op == "export.vdb" ? "a VDB grid" : "glTF");
+        return "export " + std::string(op == "export.csv"   ? "a CSV"
+                                       : op == "export.vdb" ? "a VDB grid"
+                                                            : "glTF");
     if (op == "render")
         return "render a figure";
     return op.empty() ? std::string("a change") : op;

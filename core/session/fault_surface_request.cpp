@@ -218,8 +218,8 @@ void writeFaultsGlb(const Frame& frame, std::span<const FaultSurfaceRequest> req
         results.push_back(buildFaultSurface(frame, r, interrupter, reuse));
     std::vector<GltfSurface> surfaces;
     for (std::size_t k = 0; k < requests.size(); ++k)
-        surfaces.push_back({requests[k].fault.name, &results[k].mesh,
-                            requests[k].settings.opacity});
+        surfaces.push_back(
+            {requests[k].fault.name, &results[k].mesh, requests[k].settings.opacity});
     // Optionally the member spheres as instanced glyphs, in the colours their surface gives them.
     FaultSpheres all;
     if (glyphs)

@@ -53,8 +53,9 @@ inline constexpr std::array<float, 3> kVisibleSpheresColor{0.78f, 0.8f, 0.84f};
 // their radius + colorReach.
 SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& fault);
 
-// wrappingIso (core/surface/metaball_reference.hpp) for a fault's spheres in a frame with these settings, to three significant digits
-// (what the Surfaces panel writes into a surface.set); none when no member is in the frame.
+// wrappingIso (core/surface/metaball_reference.hpp) for a fault's spheres in a frame with these
+// settings, to three significant digits (what the Surfaces panel writes into a surface.set); none
+// when no member is in the frame.
 std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
                                        const SurfaceSettings& settings);
 

@@ -16,14 +16,16 @@ std::string packSortedIds(const std::vector<std::int64_t>& ids) {
     };
     if (!ids.empty()) {
         const auto first = static_cast<std::uint64_t>(ids.front());
-        put((first << 1) ^ static_cast<std::uint64_t>(ids.front() >> 63)); // zigzag: may be negative
+        put((first << 1) ^
+            static_cast<std::uint64_t>(ids.front() >> 63)); // zigzag: may be negative
         for (std::size_t k = 1; k < ids.size(); ++k)
             put(static_cast<std::uint64_t>(ids[k]) - static_cast<std::uint64_t>(ids[k - 1]) - 1);
     }
     return encodeBase64(bytes);
 }
 
-std::optional<std::vector<std::int64_t>> unpackSortedIds(std::string_view packed, std::string& error) {
+std::optional<std::vector<std::int64_t>> unpackSortedIds(std::string_view packed,
+                                                         std::string& error) {
     std::string bytes;
     std::size_t offset = 0;
     if (!decodeBase64(packed, bytes, error, offset)) {

@@ -16,6 +16,7 @@ std::string packSortedIds(const std::vector<std::int64_t>& ids);
 
 // The ids, or nullopt with `error` set on bad base64, a truncated varint, an overflow, or more
 // ids than the text can hold.
-std::optional<std::vector<std::int64_t>> unpackSortedIds(std::string_view packed, std::string& error);
+std::optional<std::vector<std::int64_t>> unpackSortedIds(std::string_view packed,
+                                                         std::string& error);
 
 } // namespace faultline::core

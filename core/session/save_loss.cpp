@@ -20,9 +20,7 @@ std::string withThousands(std::size_t n) {
     return out;
 }
 
-std::string spheres(std::size_t n) {
-    return withThousands(n) + (n == 1 ? " sphere" : " spheres");
-}
+std::string spheres(std::size_t n) { return withThousands(n) + (n == 1 ? " sphere" : " spheres"); }
 
 std::string counted(std::size_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);

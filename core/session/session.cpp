@@ -163,10 +163,10 @@ void Session::apply(const Json& cmd) {
             throw CommandError(op + ": nothing to " + op);
     } else {
         // fault.add / fault.remove / fault.create: how many spheres they moved, for the label.
-        const std::string name = op.rfind("fault.", 0) == 0 && cmd.contains("name") &&
-                                         cmd["name"].is_string()
-                                     ? cmd["name"].get<std::string>()
-                                     : std::string();
+        const std::string name =
+            op.rfind("fault.", 0) == 0 && cmd.contains("name") && cmd["name"].is_string()
+                ? cmd["name"].get<std::string>()
+                : std::string();
         auto faultSize = [&]() -> long long {
             const Fault* f = name.empty() ? nullptr : m_state.fault(name);
             return f ? static_cast<long long>(f->ids.size()) : 0;

@@ -78,8 +78,12 @@ class Session {
     // there is nothing to undo or redo. Time (frame.set) is view state, as in OVITO and
     // ParaView: moving through frames makes no undo step (and keeps what redo would repeat), and
     // does not make an unmodified session modified.
-    std::string undoLabel() const { return m_undoLabels.empty() ? std::string() : m_undoLabels.back(); }
-    std::string redoLabel() const { return m_redoLabels.empty() ? std::string() : m_redoLabels.back(); }
+    std::string undoLabel() const {
+        return m_undoLabels.empty() ? std::string() : m_undoLabels.back();
+    }
+    std::string redoLabel() const {
+        return m_redoLabels.empty() ? std::string() : m_redoLabels.back();
+    }
 
     // What a live edit (a drag of a box face, a histogram threshold, the camera) would show,
     // without applying it: `commands` run in order through the same ops as apply() on the
@@ -187,10 +191,10 @@ class Session {
     }
     bool m_markSavedAfterOp = false;
     std::function<bool()> m_interruptCheck;
-    std::vector<Json> m_redo;          // commands that redo, most recent last
+    std::vector<Json> m_redo;                            // commands that redo, most recent last
     std::vector<std::string> m_undoLabels, m_redoLabels; // describeCommand of each entry
-    void journalLine(const Json& cmd); // after any reserved places
-    void flushJournal();               // the lines no open place holds back
+    void journalLine(const Json& cmd);                   // after any reserved places
+    void flushJournal();                                 // the lines no open place holds back
     void checkAction(const Json& cmd) const;
 
     std::vector<Json> m_journal;

@@ -32,7 +32,6 @@ std::string resolve(const std::string& path, const std::string& baseDir) {
     return (fs::path(baseDir) / path).lexically_normal().string();
 }
 
-
 // One item read by its codec (items/*_codec.hpp), errors located in the file.
 template <typename T>
 T readItem(const Json& j, const std::string& where, const std::string& file,
@@ -70,7 +69,6 @@ Json migrate(Json doc, int from, const std::string& path) {
 
 } // namespace
 
-
 Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     Json doc;
     doc["format"] = "faultline-session";
@@ -96,7 +94,8 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     for (const auto& f : s.faults)
         faults.push_back(items::toJson(f));
     doc["faults"] = faults;
-    doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)}, {"fault", s.faultFilter.fault}};
+    doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)},
+                           {"fault", s.faultFilter.fault}};
     Json surfaces = Json::array();
     for (const auto& sf : s.surfaces) {
         Json j = items::toJson(sf);
@@ -114,9 +113,11 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     return doc;
 }
 
-SessionState sessionFromJson(const Json& input, const std::string& baseDir, const std::string& path) {
+SessionState sessionFromJson(const Json& input, const std::string& baseDir,
+                             const std::string& path) {
     if (!input.is_object() || input.value("format", std::string()) != "faultline-session")
-        throw InputError(path, "not a Faultline session (expected \"format\": \"faultline-session\")");
+        throw InputError(path,
+                         "not a Faultline session (expected \"format\": \"faultline-session\")");
     if (!input.contains("schema") || !input["schema"].is_number_integer())
         throw InputError(path, "session has no integer \"schema\" version");
     const int schema = input["schema"].get<int>();
@@ -185,8 +186,8 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
         for (std::size_t k = 0; k < strains.size(); ++k) {
             const StrainSpec st = readItem<StrainSpec>(strains[k], at("strains", k), path, {});
             if (!strains[k].contains("since_frame") && !strains[k].contains("since_offset"))
-                throw InputError(path, at("strains", k) +
-                                           ": needs \"since_frame\" or \"since_offset\"");
+                throw InputError(path,
+                                 at("strains", k) + ": needs \"since_frame\" or \"since_offset\"");
             for (const auto& other : s.strains)
                 if (other.prefix == st.prefix)
                     throw InputError(path, at("strains", k) + ".prefix: '" + st.prefix +
@@ -242,7 +243,8 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir, cons
 Json parseJsonText(const std::string& text, const std::string& path, std::size_t maxDepth) {
     Json::parser_callback_t limitDepth = [&](int depth, Json::parse_event_t, Json&) {
         if (static_cast<std::size_t>(depth) > maxDepth)
-            throw InputError(path, "JSON nested deeper than " + std::to_string(maxDepth) + " levels");
+            throw InputError(path,
+                             "JSON nested deeper than " + std::to_string(maxDepth) + " levels");
         return true;
     };
     try {
@@ -256,7 +258,8 @@ Json parseJsonText(const std::string& text, const std::string& path, std::size_t
         // e.g. out_of_range for a number beyond double (1e999): found by fuzz_journal.
         std::string msg = e.what();
         const auto bracket = msg.find("] ");
-        throw InputError(path, "invalid JSON: " + (bracket != std::string::npos ? msg.substr(bracket + 2) : msg));
+        throw InputError(path, "invalid JSON: " +
+                                   (bracket != std::string::npos ? msg.substr(bracket + 2) : msg));
     }
 }
 

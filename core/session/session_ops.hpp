@@ -23,10 +23,11 @@ inline void addAction(OpTable& ops, const char* name, Session::OpHandler h) {
 }
 // An op of the contract whose feature has not landed yet: a clear error, never a silent pass.
 inline void addNotYet(OpTable& ops, const char* name, const char* feature) {
-    ops[name] = {[name = std::string(name), feature = std::string(feature)](Session&, const Json&) -> Json {
-                     throw CommandError(name + ": not available yet (" + feature + ")");
-                 },
-                 false};
+    ops[name] = {
+        [name = std::string(name), feature = std::string(feature)](Session&, const Json&) -> Json {
+            throw CommandError(name + ": not available yet (" + feature + ")");
+        },
+        false};
 }
 
 // "link" and "min_size" of fault.candidates and export.csv fault_tracks, with the journal's

@@ -82,7 +82,8 @@ void registerDataOps(OpTable& ops) {
         if (name.empty() || s.state().view(name))
             throw CommandError("view.add: a view named \"" + name + "\" exists already");
         if (cmd.contains("frame") && cmd.contains("offset"))
-            throw CommandError("view.add: give \"frame\" (absolute) or \"offset\" (relative), not both");
+            throw CommandError(
+                "view.add: give \"frame\" (absolute) or \"offset\" (relative), not both");
         ViewState v = *s.state().view("main"); // same colours and camera as the main view
         v.name = name;
         if (auto f = args::optionalInteger(cmd, "frame")) {
@@ -93,9 +94,11 @@ void registerDataOps(OpTable& ops) {
             v.frame = {true, args::optionalInteger(cmd, "offset").value_or(0)};
         }
         auto& views = s.mutableState().views;
-        const auto index = std::min<std::size_t>(
-            static_cast<std::size_t>(std::max(0LL, args::optionalInteger(cmd, "index").value_or(static_cast<long long>(views.size())))),
-            views.size());
+        const auto index =
+            std::min<std::size_t>(static_cast<std::size_t>(std::max(
+                                      0LL, args::optionalInteger(cmd, "index")
+                                               .value_or(static_cast<long long>(views.size())))),
+                                  views.size());
         items::checked("view.add", v);
         views.insert(views.begin() + static_cast<long>(index), v);
         return {{"op", "view.remove"}, {"name", name}};
@@ -106,7 +109,10 @@ void registerDataOps(OpTable& ops) {
         if (s.state().view(v.name))
             throw CommandError("view.restore: a view named \"" + v.name + "\" exists already");
         auto& views = s.mutableState().views;
-        const auto index = std::min<std::size_t>(static_cast<std::size_t>(std::max(0LL, args::optionalInteger(cmd, "index").value_or(0))), views.size());
+        const auto index =
+            std::min<std::size_t>(static_cast<std::size_t>(std::max(
+                                      0LL, args::optionalInteger(cmd, "index").value_or(0))),
+                                  views.size());
         views.insert(views.begin() + static_cast<long>(index), v);
         return {{"op", "view.remove"}, {"name", v.name}};
     });
@@ -116,10 +122,12 @@ void registerDataOps(OpTable& ops) {
         if (name == "main")
             throw CommandError("view.remove: the main view cannot be removed");
         auto& views = s.mutableState().views;
-        auto it = std::find_if(views.begin(), views.end(), [&](const ViewState& v) { return v.name == name; });
+        auto it = std::find_if(views.begin(), views.end(),
+                               [&](const ViewState& v) { return v.name == name; });
         if (it == views.end())
             throw CommandError("view.remove: no view named \"" + name + "\"");
-        Json inverse = {{"op", "view.restore"}, {"view", items::toJson(*it)}, {"index", it - views.begin()}};
+        Json inverse = {
+            {"op", "view.restore"}, {"view", items::toJson(*it)}, {"index", it - views.begin()}};
         views.erase(it);
         return inverse;
     });
@@ -127,8 +135,11 @@ void registerDataOps(OpTable& ops) {
         args::onlyFields(cmd, {"name", "frame", "offset", "linked_camera", "context_points"});
         ViewState& v = viewOf(s, cmd, "name");
         if (cmd.contains("frame") && cmd.contains("offset"))
-            throw CommandError("view.set: give \"frame\" (absolute) or \"offset\" (relative), not both");
-        Json inverse = {{"op", "view.set"}, {"name", v.name}, {"linked_camera", v.linkedCamera},
+            throw CommandError(
+                "view.set: give \"frame\" (absolute) or \"offset\" (relative), not both");
+        Json inverse = {{"op", "view.set"},
+                        {"name", v.name},
+                        {"linked_camera", v.linkedCamera},
                         {"context_points", v.contextPoints}};
         inverse[v.frame.relative ? "offset" : "frame"] = v.frame.value;
         FrameBinding binding = v.frame;
@@ -153,10 +164,15 @@ void registerDataOps(OpTable& ops) {
         args::onlyFields(cmd, {"view", "variable", "map", "range", "range_mode", "difference",
                                "since_frame", "since_offset"});
         ViewState& v = viewOf(s, cmd);
-        Json inverse = {{"op", "color.set"}, {"view", v.name}, {"variable", v.colorVariable},
-                        {"map", colorMapName(v.colorMap)}, {"range_mode", std::string(rangeModeName(v.rangeMode))}, {"range", v.range},
+        Json inverse = {{"op", "color.set"},
+                        {"view", v.name},
+                        {"variable", v.colorVariable},
+                        {"map", colorMapName(v.colorMap)},
+                        {"range_mode", std::string(rangeModeName(v.rangeMode))},
+                        {"range", v.range},
                         {"difference", differenceModeName(v.difference.mode)}};
-        inverse[v.difference.reference.relative ? "since_offset" : "since_frame"] = v.difference.reference.value;
+        inverse[v.difference.reference.relative ? "since_offset" : "since_frame"] =
+            v.difference.reference.value;
         ViewState next = v;
         // The view codec reads what color.set shares with a view's "color" (variable, map,
         // range_mode, range) and checks the whole view, so the op and session files agree.
@@ -171,7 +187,8 @@ void registerDataOps(OpTable& ops) {
         if (cmd.contains("range") && !cmd.contains("range_mode"))
             next.rangeMode = RangeMode::Fixed; // a range given is the range shown
         if (cmd.contains("since_frame") && cmd.contains("since_offset"))
-            throw CommandError("color.set: give \"since_frame\" (absolute) or \"since_offset\" (relative), not both");
+            throw CommandError("color.set: give \"since_frame\" (absolute) or \"since_offset\" "
+                               "(relative), not both");
         if (auto f = args::optionalInteger(cmd, "since_frame")) {
             if (*f < 0)
                 throw CommandError("color.set: \"since_frame\" must be >= 0");
@@ -202,7 +219,9 @@ void registerDataOps(OpTable& ops) {
         const Json& layout = args::require(cmd, "layout");
         if (!layout.is_object())
             throw CommandError("layout.set: \"layout\" must be an object");
-        Json inverse = {{"op", "layout.set"}, {"layout", s.state().dockLayout.is_null() ? Json::object() : s.state().dockLayout}};
+        Json inverse = {
+            {"op", "layout.set"},
+            {"layout", s.state().dockLayout.is_null() ? Json::object() : s.state().dockLayout}};
         s.mutableState().dockLayout = layout;
         return inverse;
     });

@@ -100,8 +100,8 @@ void registerFaultOps(OpTable& ops) {
             if (taken.empty())
                 continue;
             giveBack.push_back({{"op", "fault.add"}, {"name", other.name}, {"ids", taken}});
-            moved += (moved.empty() ? "" : ", ") + std::to_string(taken.size()) + " from " +
-                     other.name;
+            moved +=
+                (moved.empty() ? "" : ", ") + std::to_string(taken.size()) + " from " + other.name;
         }
         if (!moved.empty())
             s.addNote("moved " + moved + " to " + keep);
@@ -328,7 +328,8 @@ void registerFaultOps(OpTable& ops) {
             if (s.state().fault(f.name))
                 throw CommandError("fault.candidates: a fault named \"" + f.name +
                                    "\" exists already (choose another \"prefix\")");
-            Json create = {{"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}};
+            Json create = {
+                {"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}};
             // Distributed damage is accepted too, but says what it is (issue 41).
             if (std::string note = diffuseNote(candidateShape(*frame, f.ids)); !note.empty())
                 create["notes"] = note;

@@ -38,7 +38,8 @@ std::vector<FaultTrack> trackedFaults(const SessionState& st, const std::shared_
 }
 
 // what = spheres: "id,<variables>", a row per sphere of the current frame (or its visible ones).
-std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& ds, const Json& cmd) {
+std::string spheresCsv(const SessionState& st, const std::shared_ptr<Dataset>& ds,
+                       const Json& cmd) {
     if (!ds)
         throw CommandError("export.csv: spheres needs open data");
     const auto frame = ds->frame(std::min(st.frame, ds->frameCount() - 1));

@@ -11,7 +11,8 @@ namespace faultline::core::detail {
 namespace {
 
 template <typename T> std::size_t indexArg(const Json& cmd, const std::vector<T>& items) {
-    const long long i = args::optionalInteger(cmd, "index").value_or(static_cast<long long>(items.size()));
+    const long long i =
+        args::optionalInteger(cmd, "index").value_or(static_cast<long long>(items.size()));
     return static_cast<std::size_t>(std::clamp(i, 0LL, static_cast<long long>(items.size())));
 }
 
@@ -63,7 +64,8 @@ void registerSelectionOps(OpTable& ops) {
         args::onlyFields(cmd, {"name"});
         const std::string name = args::string(cmd, "name");
         auto& boxes = s.mutableState().boxes;
-        auto it = std::find_if(boxes.begin(), boxes.end(), [&](const CuttingBox& b) { return b.name == name; });
+        auto it = std::find_if(boxes.begin(), boxes.end(),
+                               [&](const CuttingBox& b) { return b.name == name; });
         if (it == boxes.end())
             throw CommandError("box.remove: no box named \"" + name + "\"");
         Json inverse = items::toJson(*it);
@@ -100,7 +102,8 @@ void registerSelectionOps(OpTable& ops) {
         args::onlyFields(cmd, {"variable"});
         const std::string variable = args::string(cmd, "variable");
         auto& list = s.mutableState().thresholds;
-        auto it = std::find_if(list.begin(), list.end(), [&](const VariableThreshold& t) { return t.variable == variable; });
+        auto it = std::find_if(list.begin(), list.end(),
+                               [&](const VariableThreshold& t) { return t.variable == variable; });
         if (it == list.end())
             throw CommandError("threshold.remove: no threshold on \"" + variable + "\"");
         Json inverse = items::toJson(*it);

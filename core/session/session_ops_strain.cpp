@@ -55,11 +55,10 @@ void registerStrainOps(OpTable& ops) {
                                                "\" already: give a \"prefix\"");
             }
         }
-        const long long at = args::optionalInteger(cmd, "index").value_or(
-            static_cast<long long>(strains.size()));
-        strains.insert(strains.begin() +
-                           std::clamp(at, 0LL, static_cast<long long>(strains.size())),
-                       spec);
+        const long long at =
+            args::optionalInteger(cmd, "index").value_or(static_cast<long long>(strains.size()));
+        strains.insert(
+            strains.begin() + std::clamp(at, 0LL, static_cast<long long>(strains.size())), spec);
         return {{"op", "strain.remove"}, {"prefix", spec.prefix}};
     });
     addStateOp(ops, "strain.remove", [](Session& s, const Json& cmd) -> Json {

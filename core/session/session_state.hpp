@@ -57,8 +57,8 @@ ViewState mainView();
 struct ViewState {
     std::string name;
     FrameBinding frame;
-    std::string colorVariable; // empty: a plain colour
-    ColorMapSpec colorMap{ColorMapKind::BlueRed}; // a journal name ("blue-red") only in JSON
+    std::string colorVariable;                     // empty: a plain colour
+    ColorMapSpec colorMap{ColorMapKind::BlueRed};  // a journal name ("blue-red") only in JSON
     RangeMode rangeMode = RangeMode::CurrentFrame; // "frame" | "all" | "fixed" in JSON
     std::array<double, 2> range{0, 1};             // used when rangeMode is Fixed
     ColorDifference difference;
@@ -104,7 +104,7 @@ struct SurfaceSettings {
     // Figure 4 colour: a voxel takes the colour of each sphere whose radius + colorReach holds
     // it (averaged), else the initial colour. The spheres take the fault's colour or, with
     // colorBy, a colour map of that variable over colorRange (none: its range in the frame).
-    std::string colorBy; // "": the fault's colour
+    std::string colorBy;                          // "": the fault's colour
     ColorMapSpec colorMap{ColorMapKind::Viridis}; // a journal name only in JSON
     std::optional<std::array<double, 2>> colorRange;
     std::optional<double> colorReach; // none: with colorBy twice the spheres' mean radius (a

@@ -31,7 +31,7 @@ float clampValue(float isoMax) { return 4.0f * isoMax; }
 
 constexpr float kMaxColorReachRadii = 100.0f;
 
-void validate(const SphereSet &s, const SurfaceParams &p) {
+void validate(const SphereSet& s, const SurfaceParams& p) {
     if (s.size() == 0)
         throw SurfaceRequestError("cannot build a surface from an empty sphere set");
     if (!s.consistent())
@@ -122,7 +122,7 @@ std::vector<BlockSide> blockSides(const std::vector<Coord3>& blocks,
                                   float isoMax) {
     std::unordered_map<std::uint64_t, std::size_t> index;
     index.reserve(blocks.size());
-    auto key = [](const Coord3 &o) { return detail::packKey({o[0] >> 3, o[1] >> 3, o[2] >> 3}); };
+    auto key = [](const Coord3& o) { return detail::packKey({o[0] >> 3, o[1] >> 3, o[2] >> 3}); };
     for (std::size_t b = 0; b < blocks.size(); ++b)
         index.emplace(key(blocks[b]), b);
     std::vector<BlockSide> sides(blocks.size(), BlockSide::Crossing);
@@ -159,12 +159,12 @@ void ensureOpenVdbInitialized() {
 
 SurfaceField::SurfaceField(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
 SurfaceField::~SurfaceField() = default;
-const SurfaceParams &SurfaceField::params() const { return m_impl->params; }
+const SurfaceParams& SurfaceField::params() const { return m_impl->params; }
 float SurfaceField::voxelSize() const { return m_impl->field->voxelSize(); }
 std::size_t SurfaceField::sphereCount() const { return m_impl->field->sphereCount(); }
 float SurfaceField::isoMin() const { return m_impl->isoMin; }
 float SurfaceField::isoMax() const { return m_impl->isoMax; }
-const SurfaceStats &SurfaceField::stats() const { return m_impl->stats; }
+const SurfaceStats& SurfaceField::stats() const { return m_impl->stats; }
 std::array<float, 2> SurfaceField::storedRange() const {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (auto it = m_impl->density->cbeginValueOn(); it; ++it) {
@@ -182,7 +182,7 @@ std::array<float, 2> SurfaceField::storedRange() const {
 }
 
 float SurfaceField::maxAtCentres() const {
-    const auto &s = m_impl->field->tree().spheres();
+    const auto& s = m_impl->field->tree().spheres();
     const SphereSet set{s.x, s.y, s.z, s.r, {}};
     const std::size_t n = s.size(), samples = std::min<std::size_t>(n, 256);
     double most = 0.0;
@@ -195,7 +195,7 @@ float SurfaceField::maxAtCentres() const {
 
 std::array<float, 2> SurfaceField::isoSliderRange() const {
     std::call_once(m_impl->sliderOnce, [this] {
-        const auto &s = m_impl->field->tree().spheres();
+        const auto& s = m_impl->field->tree().spheres();
         const auto r = core::isoSliderRange(SphereSet{s.x, s.y, s.z, s.r, {}}, m_impl->params);
         m_impl->slider = {static_cast<float>(r[0]), static_cast<float>(r[1])};
     });
@@ -208,13 +208,13 @@ std::size_t SurfaceField::memoryBytes() const {
            m_impl->field->gridBytes();
 }
 
-SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
-                           Interrupter *interrupter) {
+SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params,
+                           Interrupter* interrupter) {
     return buildSurface(spheres, params, interrupter, MultilevelTuning{});
 }
 
-SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
-                           Interrupter *interrupter, const MultilevelTuning &tuning) {
+SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params,
+                           Interrupter* interrupter, const MultilevelTuning& tuning) {
     validate(spheres, params);
     ensureOpenVdbInitialized();
     auto impl = std::make_unique<SurfaceField::Impl>();
@@ -227,7 +227,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
 
     auto t0 = Clock::now();
     impl->field = std::make_unique<MetaballField>(spheres, params, h, tuning);
-    MetaballField &field = *impl->field;
+    MetaballField& field = *impl->field;
     const SurfacePlan plan =
         planSurface(field, impl->isoMin, impl->isoMax, params.memoryBudgetBytes, interrupter);
     impl->stats.planSeconds = secondsSince(t0);
@@ -239,8 +239,8 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     field.prepare(plan.blocks, interrupter);
     impl->stats.levelsSeconds = secondsSince(t0);
     const auto tBlocks = Clock::now();
-    std::vector<FloatLeaf *> densityLeaves(plan.blocks.size(), nullptr);
-    std::vector<ColorLeaf *> colorLeaves(plan.blocks.size(), nullptr);
+    std::vector<FloatLeaf*> densityLeaves(plan.blocks.size(), nullptr);
+    std::vector<ColorLeaf*> colorLeaves(plan.blocks.size(), nullptr);
     std::vector<BlockRange> ranges(plan.blocks.size());
     const float clamp = clampValue(impl->isoMax);
     const openvdb::Vec3s initial(params.initialColor[0], params.initialColor[1],
@@ -248,9 +248,9 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     // A block's stored values, clamped, in a new leaf.
-    auto storeBlock = [&](std::size_t b, float *density) {
-        const auto &o = plan.blocks[b];
-        auto *dl = new FloatLeaf(openvdb::Coord(o[0], o[1], o[2]), 0.0f, true);
+    auto storeBlock = [&](std::size_t b, float* density) {
+        const auto& o = plan.blocks[b];
+        auto* dl = new FloatLeaf(openvdb::Coord(o[0], o[1], o[2]), 0.0f, true);
         for (int n = 0; n < kBlockVoxels; ++n)
             density[n] = std::min(density[n], clamp);
         ranges[b] = blockRange(density);
@@ -271,7 +271,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
             skipped[b] = 1;
             const float lo = std::min(static_cast<float>(bounds.low), clamp);
             const float hi = std::min(static_cast<float>(bounds.high), clamp);
-            BlockRange &r = ranges[b];
+            BlockRange& r = ranges[b];
             r.lo = lo, r.hi = hi;
             std::fill(std::begin(r.faceLo), std::end(r.faceLo), lo);
             std::fill(std::begin(r.faceHi), std::end(r.faceHi), hi);
@@ -284,9 +284,9 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
             cancelled = true;
     });
     if (cancelled) {
-        for (auto *l : densityLeaves)
+        for (auto* l : densityLeaves)
             delete l;
-        for (auto *l : colorLeaves)
+        for (auto* l : colorLeaves)
             delete l;
         throw SurfaceCancelled();
     }
@@ -295,7 +295,7 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     impl->density->setTransform(transform);
     impl->color = openvdb::Vec3SGrid::create(initial);
     impl->color->setTransform(transform->copy());
-    for (const auto &[lo, hi] : plan.inside)
+    for (const auto& [lo, hi] : plan.inside)
         impl->density->tree().sparseFill(openvdb::CoordBBox(openvdb::Coord(lo[0], lo[1], lo[2]),
                                                             openvdb::Coord(hi[0], hi[1], hi[2])),
                                          clamp, false);
@@ -317,11 +317,11 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     tbb::parallel_for(std::size_t{0}, plan.blocks.size(), [&](std::size_t b) {
         if (sides[b] != BlockSide::Crossing)
             return;
-        const auto &o = plan.blocks[b];
+        const auto& o = plan.blocks[b];
         Vec3f color[kBlockVoxels];
         field.evaluateColor(o, color);
-        auto *cl = new ColorLeaf(openvdb::Coord(o[0], o[1], o[2]), initial, true);
-        openvdb::Vec3s *out = cl->buffer().data();
+        auto* cl = new ColorLeaf(openvdb::Coord(o[0], o[1], o[2]), initial, true);
+        openvdb::Vec3s* out = cl->buffer().data();
         for (int n = 0; n < kBlockVoxels; ++n)
             out[n] = openvdb::Vec3s(color[n][0], color[n][1], color[n][2]);
         colorLeaves[b] = cl;
@@ -357,19 +357,19 @@ SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params
     auto shared = std::make_shared<SurfaceField>(std::move(impl));
     t0 = Clock::now();
     result.mesh = remesh(*shared, params.iso, interrupter);
-    const_cast<SurfaceStats &>(shared->stats()).meshSeconds = secondsSince(t0);
+    const_cast<SurfaceStats&>(shared->stats()).meshSeconds = secondsSince(t0);
     result.field = std::move(shared);
     return result;
 }
 
-SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrupter,
+SurfaceMesh remesh(const SurfaceField& surface, float iso, Interrupter* interrupter,
                    NormalSource normalSource) {
     if (!surface.supportsIso(iso))
         throw SurfaceRequestError("iso-value " + std::to_string(iso) + " is outside [" +
                                   std::to_string(surface.isoMin()) + ", " +
                                   std::to_string(surface.isoMax()) +
                                   "] that this surface's grid holds; rebuild the surface");
-    const auto &impl = surface.impl();
+    const auto& impl = surface.impl();
     if (interrupter)
         interrupter->start("mesh");
     SurfaceMesh mesh;
@@ -389,14 +389,14 @@ SurfaceMesh remesh(const SurfaceField &surface, float iso, Interrupter *interrup
     // confirms it (and would flip a mesh whose normals all point the other way).
     double agreement = 0.0;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3 * 17) {
-        const auto &a = mesh.positions[mesh.indices[t]];
-        const auto &b = mesh.positions[mesh.indices[t + 1]];
-        const auto &c = mesh.positions[mesh.indices[t + 2]];
+        const auto& a = mesh.positions[mesh.indices[t]];
+        const auto& b = mesh.positions[mesh.indices[t + 1]];
+        const auto& c = mesh.positions[mesh.indices[t + 2]];
         const Vec3f u{b[0] - a[0], b[1] - a[1], b[2] - a[2]},
             v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         const Vec3f n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                       u[0] * v[1] - u[1] * v[0]};
-        const auto &m = mesh.normals[mesh.indices[t]];
+        const auto& m = mesh.normals[mesh.indices[t]];
         agreement += n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
     }
     if (agreement < 0.0)

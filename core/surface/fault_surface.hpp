@@ -44,14 +44,14 @@ class SurfaceField {
     explicit SurfaceField(std::unique_ptr<Impl> impl);
     ~SurfaceField();
 
-    const SurfaceParams &params() const;
+    const SurfaceParams& params() const;
     float voxelSize() const;
     std::size_t sphereCount() const;
     // Iso-values this grid re-meshes exactly: [iso / isoRangeFactor, iso * isoRangeFactor].
     float isoMin() const;
     float isoMax() const;
     bool supportsIso(float iso) const { return iso >= isoMin() && iso <= isoMax(); }
-    const SurfaceStats &stats() const;
+    const SurfaceStats& stats() const;
     // Smallest and largest value the density grid stores (values are clamped at 4 isoMax): an
     // empty mesh at an iso above the largest says the iso lies above the field everywhere.
     std::array<float, 2> storedRange() const;
@@ -62,7 +62,7 @@ class SurfaceField {
     // computed on the first call (about a tenth of a second at most) and kept.
     std::array<float, 2> isoSliderRange() const;
     std::size_t memoryBytes() const;
-    const Impl &impl() const { return *m_impl; }
+    const Impl& impl() const { return *m_impl; }
 
   private:
     std::unique_ptr<Impl> m_impl;
@@ -77,12 +77,12 @@ struct SurfaceResult {
 // Builds the field, colour and mesh. Throws SurfaceRequestError before any work for a bad
 // request (no spheres, bad numbers, over the memory budget: the message says how much it would
 // need) and SurfaceCancelled when the interrupter asks to stop.
-SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
-                           Interrupter *interrupter = nullptr);
+SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params,
+                           Interrupter* interrupter = nullptr);
 // The same with the field's speed knobs (tests compare ways of planning; results agree).
 struct MultilevelTuning;
-SurfaceResult buildSurface(const SphereSet &spheres, const SurfaceParams &params,
-                           Interrupter *interrupter, const MultilevelTuning &tuning);
+SurfaceResult buildSurface(const SphereSet& spheres, const SurfaceParams& params,
+                           Interrupter* interrupter, const MultilevelTuning& tuning);
 
 // Where vertex normals come from: the field's gradient (Algorithm 1 line 8) either evaluated
 // analytically at each vertex (exact near field plus the interpolated smooth levels), or by
@@ -92,7 +92,7 @@ enum class NormalSource { Analytic, Grid };
 
 // The iso-surface of an existing field at another iso-value (no field recomputation). Throws
 // SurfaceRequestError when iso lies outside [isoMin, isoMax] (a rebuild is needed).
-SurfaceMesh remesh(const SurfaceField &field, float iso, Interrupter *interrupter = nullptr,
+SurfaceMesh remesh(const SurfaceField& field, float iso, Interrupter* interrupter = nullptr,
                    NormalSource normals = NormalSource::Grid);
 
 } // namespace faultline::core

@@ -20,7 +20,6 @@ namespace {
 // the model upright (issue 41 walkthrough: faults.glb loaded on its side). Quaternion x, y, z, w.
 const std::vector<double> kZUpToYUp{-0.70710678118654752, 0.0, 0.0, 0.70710678118654752};
 
-
 using V3 = std::array<float, 3>;
 
 // Appends raw data to the single buffer, 4-byte aligned; returns the new buffer view's index.
@@ -161,8 +160,8 @@ void exportGlb(const std::filesystem::path& path, std::span<const GltfSurface> s
                 tinygltf::Material seeThrough = material;
                 seeThrough.name = "fault-surface-" + s.name;
                 seeThrough.alphaMode = "BLEND";
-                seeThrough.pbrMetallicRoughness.baseColorFactor = {
-                    1.0, 1.0, 1.0, std::clamp(s.opacity, 0.0, 1.0)};
+                seeThrough.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0,
+                                                                   std::clamp(s.opacity, 0.0, 1.0)};
                 model.materials.push_back(seeThrough);
                 materialIndex = static_cast<int>(model.materials.size()) - 1;
             }

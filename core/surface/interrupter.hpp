@@ -11,7 +11,7 @@ class Interrupter {
   public:
     virtual ~Interrupter() = default;
     // A new stage begins ("plan", "field", "mesh", ...).
-    virtual void start(const char *stage) { (void)stage; }
+    virtual void start(const char* stage) { (void)stage; }
     // Returns true to cancel. percent is the stage's progress in [0, 100], or -1 when unknown.
     // Must be thread-safe: it is called from worker threads.
     virtual bool wasInterrupted(int percent = -1) {
@@ -30,7 +30,7 @@ class SurfaceCancelled : public std::runtime_error {
 // Thrown for a request that is refused before any work starts (empty set, memory budget, ...).
 class SurfaceRequestError : public std::runtime_error {
   public:
-    explicit SurfaceRequestError(const std::string &message) : std::runtime_error(message) {}
+    explicit SurfaceRequestError(const std::string& message) : std::runtime_error(message) {}
 };
 
 } // namespace faultline::core

@@ -26,8 +26,8 @@
 // Sections:
 //   [SECTION] Error model: constants, weights, budget (metaball_field_common.hpp)
 //   [SECTION] Kernels: softened inner parts, power coefficients (metaball_field_common.hpp)
-//   [SECTION] Construction and the choice of cutoffs (MetaballField::MetaballField, errorScale): this file
-//   [SECTION] Bounds over boxes (MetaballField::bounds): metaball_field_plan.cpp
+//   [SECTION] Construction and the choice of cutoffs (MetaballField::MetaballField, errorScale):
+//   this file [SECTION] Bounds over boxes (MetaballField::bounds): metaball_field_plan.cpp
 //   [SECTION] Planning levels (planLevels, levelsEstimate, errorTerm): metaball_field_plan.cpp
 //   [SECTION] Preparing the levels (prepare and its steps): metaball_field_levels.cpp
 //   [SECTION] Evaluating blocks (evaluateBlock, ...): metaball_field_eval.cpp
@@ -86,10 +86,9 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
             // Level 1 at least two voxels apart (else it has more nodes than there are voxels);
             // the near cutoff about nearCutoffRadii radii.
             const double target = nearRadii * mean;
-            const int ratio =
-                std::max(m_sparse ? std::max(m_tuning.minRatio, m_tuning.sparseMinRatio)
-                                  : m_tuning.minRatio,
-                         static_cast<int>(std::lround(target / (kappa * m_h))));
+            const int ratio = std::max(
+                m_sparse ? std::max(m_tuning.minRatio, m_tuning.sparseMinRatio) : m_tuning.minRatio,
+                static_cast<int>(std::lround(target / (kappa * m_h))));
             for (int coarse = std::max(kKappaMin, kappa / 2 + 1); coarse <= kKappaMax; ++coarse) {
                 if (m_tuning.coarseKappa > 0 &&
                     coarse != std::max(m_tuning.coarseKappa, kappa / 2 + 1))
@@ -102,9 +101,9 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
         // Cheapest first: the first whose estimate fits is the choice, and the dearer ones need
         // no estimate (each costs tree walks at up to eight cutoffs).
         std::stable_sort(candidates.begin(), candidates.end(),
-                         [](const Choice &a, const Choice &b) { return a.cost < b.cost; });
+                         [](const Choice& a, const Choice& b) { return a.cost < b.cost; });
         std::optional<std::size_t> best;
-        auto estimate = [&](Choice &c, double stopAbove) {
+        auto estimate = [&](Choice& c, double stopAbove) {
             applyChoice(c);
             const std::array<double, 2> weights = errorWeights(c.kappa, c.coarse, m_kernel.p);
             const auto scale = errorScale(&m_densest, nullptr, weights, stopAbove);
@@ -146,7 +145,7 @@ MetaballField::MetaballField(const SphereSet& spheres, const SurfaceParams& para
 bool MetaballField::isSparse() const {
     // Touching spheres (HCP) put about 20 radii of weight within 3 radii of a sphere; a sparse
     // selection (the high-strain spheres of fault zones spread over a block) puts a few.
-    const auto &s = m_tree.spheres();
+    const auto& s = m_tree.spheres();
     const std::size_t n = s.size(), samples = std::min<std::size_t>(n, 64);
     if (samples == 0)
         return false;
@@ -160,7 +159,7 @@ bool MetaballField::isSparse() const {
     return within[samples / 2] < kSparseNeighbours;
 }
 
-void MetaballField::applyChoice(const CutoffChoice &c) {
+void MetaballField::applyChoice(const CutoffChoice& c) {
     m_kappa = c.kappa;
     m_coarseKappa = c.coarse;
     m_ratio1 = c.ratio;
@@ -183,16 +182,16 @@ double MetaballField::cutoff(int l) const {
     return double(m_coarseKappa) * double(m_ratio1) * m_h * std::ldexp(1.0, l);
 }
 
-std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo,
-                                                std::vector<double> *terms,
-                                                const std::array<double, 2> &weights,
+std::array<double, 2> MetaballField::errorScale(std::map<double, double>* memo,
+                                                std::vector<double>* terms,
+                                                const std::array<double, 2>& weights,
                                                 double stopAbove) const {
     // The densest weight within each cutoff over cutoff^p: the size of what each level
     // interpolates. [0]: level 1 (spacing a_0 / kappa), [1]: the coarser levels together.
-    const auto &s = m_tree.spheres();
+    const auto& s = m_tree.spheres();
     const std::size_t n = s.size();
     const std::size_t samples = std::min<std::size_t>(n, 256);
-    const auto &box = centreBox();
+    const auto& box = centreBox();
     double span2 = 0.0;
     for (int k = 0; k < 3; ++k)
         span2 += double(box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
@@ -208,7 +207,7 @@ std::array<double, 2> MetaballField::errorScale(std::map<double, double> *memo,
         } else {
             densest = tbb::parallel_reduce(
                 tbb::blocked_range<std::size_t>(0, samples), 0.0,
-                [&](const tbb::blocked_range<std::size_t> &range, double most) {
+                [&](const tbb::blocked_range<std::size_t>& range, double most) {
                     for (std::size_t q = range.begin(); q != range.end(); ++q) {
                         const std::size_t i = q * n / samples;
                         most = std::max(most, weightWithin({s.x[i], s.y[i], s.z[i]}, a));
@@ -243,10 +242,9 @@ double MetaballField::reach(double iso) const {
     return m_kernel.p == 2 ? std::sqrt(ratio) : ratio;
 }
 
-
 std::size_t MetaballField::coarseNodeCount() const {
     std::size_t n = 0;
-    for (const auto &l : m_levels)
+    for (const auto& l : m_levels)
         n += l->neededCount();
     return n;
 }

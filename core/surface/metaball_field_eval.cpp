@@ -168,11 +168,10 @@ FAULTLINE_HOT void nearBounds2(const NearList& list, const Box& box, float a2, f
     nearBoundsBody<2>(list, box, a2, minD2, soft, lower, lo, hi);
 }
 
-// Figure 4 colour along a row of 8 voxels (z indices k0 .. k0 + 7): per voxel, the sum of the colours of
-// the spheres whose radius + reachAdd holds it, and their number.
-FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList &list,
-                            float reachAdd, float red[8], float green[8], float blue[8],
-                            float count[8]) {
+// Figure 4 colour along a row of 8 voxels (z indices k0 .. k0 + 7): per voxel, the sum of the
+// colours of the spheres whose radius + reachAdd holds it, and their number.
+FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList& list, float reachAdd,
+                            float red[8], float green[8], float blue[8], float count[8]) {
     using simd8::splat;
     using simd8::v8f;
     v8f z;
@@ -203,7 +202,7 @@ FAULTLINE_HOT void colorRow(float x, float y, int k0, float h, const NearList &l
 // [SECTION] Evaluating blocks
 //-----------------------------------------------------------------------------
 
-void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
+void MetaballField::evaluateColor(const Coord3& o, Vec3f* color) const {
     thread_local NearList colors;
     const Box box = blockBox(o, m_h);
     colors.clear();
@@ -216,8 +215,8 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
     for (int i = 0; i < kBlockDim; ++i)
         for (int j = 0; j < kBlockDim; ++j) {
             float red[8], green[8], blue[8], n[8];
-            colorRow((o[0] + i) * m_h, (o[1] + j) * m_h, o[2], m_h, colors,
-                     m_params.colorReach, red, green, blue, n);
+            colorRow((o[0] + i) * m_h, (o[1] + j) * m_h, o[2], m_h, colors, m_params.colorReach,
+                     red, green, blue, n);
             for (int k = 0; k < kBlockDim; ++k)
                 color[blockOffset(i, j, k)] =
                     n[k] > 0.0f ? Vec3f{red[k] / n[k], green[k] / n[k], blue[k] / n[k]}
@@ -225,7 +224,7 @@ void MetaballField::evaluateColor(const Coord3 &o, Vec3f *color) const {
         }
 }
 
-void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color) const {
+void MetaballField::evaluateBlock(const Coord3& o, float* density, Vec3f* color) const {
     // One tree walk per block for the spheres within a0, then one list per 4^3 octant filtered
     // from it (shorter lists than the block's); the colour has its own far shorter list: only
     // spheres whose radius + reach can hold a voxel of the block.
@@ -238,8 +237,8 @@ void MetaballField::evaluateBlock(const Coord3 &o, float *density, Vec3f *color)
         detail::addInterpolated(*m_levels.front(), m_ratio1, o, {8, 8, 8}, density);
 }
 
-int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, float isoMin,
-                                               float isoMax, FieldBounds *bounds) const {
+int MetaballField::evaluateBlockUnlessOneSided(const Coord3& o, float* density, float isoMin,
+                                               float isoMax, FieldBounds* bounds) const {
     if (m_params.kernel == MetaballKernel::Compact || m_levels.empty()) {
         evaluateBlock(o, density, nullptr);
         return 0;
@@ -285,13 +284,13 @@ int MetaballField::evaluateBlockUnlessOneSided(const Coord3 &o, float *density, 
 // [SECTION] Near field and points
 //-----------------------------------------------------------------------------
 
-void MetaballField::gatherNear(const Coord3 &o, NearList &block) const {
+void MetaballField::gatherNear(const Coord3& o, NearList& block) const {
     const Box box = blockBox(o, m_h);
     block.clear();
     m_grid.gather(box, m_a0, block, false);
 }
 
-void MetaballField::nearValues(const Coord3 &o, const NearList &block, float *density) const {
+void MetaballField::nearValues(const Coord3& o, const NearList& block, float* density) const {
     const float a2 = m_a0 * m_a0;
     const bool compact = m_params.kernel == MetaballKernel::Compact;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
@@ -342,14 +341,14 @@ namespace {
 
 // Near field and its analytic gradient (Algorithm 1 line 8) at one point.
 template <int P>
-[[gnu::always_inline]] inline void nearGradientBody(const NearList &list, const Vec3f &p, float a2,
+[[gnu::always_inline]] inline void nearGradientBody(const NearList& list, const Vec3f& p, float a2,
                                                     float minD2, float invC2,
-                                                    const SoftenedKernel &soft, float out[4]) {
+                                                    const SoftenedKernel& soft, float out[4]) {
     const std::size_t count = list.size();
-    const float *lx = list.x.data();
-    const float *ly = list.y.data();
-    const float *lz = list.z.data();
-    const float *lr = list.r.data();
+    const float* lx = list.x.data();
+    const float* ly = list.y.data();
+    const float* lz = list.z.data();
+    const float* lr = list.r.data();
     const float invSoft = 1.0f / soft.a2;
     float f = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
 #pragma omp simd reduction(+ : f, gx, gy, gz)
@@ -387,23 +386,23 @@ template <int P>
     out[3] = gz;
 }
 
-FAULTLINE_HOT void nearGradient0(const NearList &list, const Vec3f &p, float a2, float minD2,
-                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+FAULTLINE_HOT void nearGradient0(const NearList& list, const Vec3f& p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel& soft, float out[4]) {
     nearGradientBody<0>(list, p, a2, minD2, invC2, soft, out);
 }
-FAULTLINE_HOT void nearGradient1(const NearList &list, const Vec3f &p, float a2, float minD2,
-                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+FAULTLINE_HOT void nearGradient1(const NearList& list, const Vec3f& p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel& soft, float out[4]) {
     nearGradientBody<1>(list, p, a2, minD2, invC2, soft, out);
 }
-FAULTLINE_HOT void nearGradient2(const NearList &list, const Vec3f &p, float a2, float minD2,
-                                 float invC2, const SoftenedKernel &soft, float out[4]) {
+FAULTLINE_HOT void nearGradient2(const NearList& list, const Vec3f& p, float a2, float minD2,
+                                 float invC2, const SoftenedKernel& soft, float out[4]) {
     nearGradientBody<2>(list, p, a2, minD2, invC2, soft, out);
 }
 
 } // namespace
 
-void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, Vec3f *gradient,
-                            Vec3f *color) const {
+void MetaballField::sumNear(const NearList& list, const Vec3f& p, float& value, Vec3f* gradient,
+                            Vec3f* color) const {
     (void)color;
     const float a2 = m_a0 * m_a0;
     const float invC2 = 1.0f / (m_params.compactReach * m_params.compactReach);
@@ -419,14 +418,14 @@ void MetaballField::sumNear(const NearList &list, const Vec3f &p, float &value, 
         *gradient = {(*gradient)[0] + out[1], (*gradient)[1] + out[2], (*gradient)[2] + out[3]};
 }
 
-void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
-                                   Vec3f *gradients) const {
+void MetaballField::evaluatePoints(std::span<const Vec3f> points, float* values,
+                                   Vec3f* gradients) const {
     // Group the points by a prepared block next to them: one neighbour list and one coarse
     // patch per group.
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
     std::vector<std::uint32_t> orphans;
     for (std::size_t n = 0; n < points.size(); ++n) {
-        const auto &p = points[n];
+        const auto& p = points[n];
         int cell[3];
         for (int k = 0; k < 3; ++k)
             cell[k] = static_cast<int>(std::floor(p[k] / m_h));
@@ -444,14 +443,14 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
         if (!found)
             orphans.push_back(static_cast<std::uint32_t>(n));
     }
-    std::vector<const std::vector<std::uint32_t> *> groupList;
+    std::vector<const std::vector<std::uint32_t>*> groupList;
     std::vector<std::uint32_t> groupBlock;
-    for (const auto &[block, members] : groups) {
+    for (const auto& [block, members] : groups) {
         groupList.push_back(&members);
         groupBlock.push_back(block);
     }
     tbb::parallel_for(std::size_t{0}, groupList.size(), [&](std::size_t g) {
-        const auto &members = *groupList[g];
+        const auto& members = *groupList[g];
         const Coord3 origin = m_blockOrigins[groupBlock[g]];
         thread_local NearList list;
         list.clear();
@@ -460,7 +459,7 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
         m_tree.gather(box, m_a0, list, false);
         thread_local std::vector<float> patch;
         detail::Int3 s0{0, 0, 0}, sd{0, 0, 0};
-        const FieldLevel *level1 = m_levels.empty() ? nullptr : m_levels.front().get();
+        const FieldLevel* level1 = m_levels.empty() ? nullptr : m_levels.front().get();
         if (level1) {
             for (int k = 0; k < 3; ++k) {
                 s0[k] = floorDiv(origin[k] - 1, m_ratio1) - detail::kTapsBelow;
@@ -469,7 +468,7 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
             detail::gatherPatch(*level1, s0, sd, patch);
         }
         for (std::uint32_t n : members) {
-            const Vec3f &p = points[n];
+            const Vec3f& p = points[n];
             float value = 0.0f;
             Vec3f grad{0, 0, 0};
             sumNear(list, p, value, &grad, nullptr);
@@ -490,7 +489,7 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
                 float sz[nt][nt], dz[nt][nt];
                 for (int i = 0; i < nt; ++i)
                     for (int j = 0; j < nt; ++j) {
-                        const float *row =
+                        const float* row =
                             &patch[(static_cast<std::size_t>(b[0] + i) * sd[1] + b[1] + j) * sd[2] +
                                    b[2]];
                         float a = 0.0f, d = 0.0f;
@@ -525,9 +524,9 @@ void MetaballField::evaluatePoints(std::span<const Vec3f> points, float *values,
         }
     });
     // Points away from every prepared block: sum every sphere (rare; correct, slow).
-    const auto &s = m_tree.spheres();
+    const auto& s = m_tree.spheres();
     for (std::uint32_t n : orphans) {
-        const Vec3f &p = points[n];
+        const Vec3f& p = points[n];
         float value = 0.0f;
         Vec3f grad{0, 0, 0};
         for (std::size_t q = 0; q < s.size(); ++q) {

@@ -125,7 +125,7 @@ FAULTLINE_HOT void windowRow(int power, bool top, float x, float y, const float*
 
 // prepare(): index the blocks, choose the cutoffs for the levels they need, choose which
 // coarse levels sum grid charges, then compute every level's needed nodes from the top down.
-void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter *interrupter) {
+void MetaballField::prepare(std::span<const Coord3> blocks, Interrupter* interrupter) {
     indexBlocks(blocks);
     m_levels.clear();
     m_spareLevels.clear();
@@ -153,7 +153,7 @@ void MetaballField::chooseCutoffsFor(std::span<const Coord3> blocks) {
     const CutoffChoice chosen{m_kappa, m_coarseKappa, m_ratio1, m_estimatedError, 0.0};
     const double budget = errorBudget(m_params);
     bool cheaper = false;
-    for (const CutoffChoice &c : m_cheaper) {
+    for (const CutoffChoice& c : m_cheaper) {
         applyChoice(c);
         std::vector<double> terms;
         errorScale(&m_densest, &terms);
@@ -207,8 +207,8 @@ std::vector<std::optional<ChargeGrid>> MetaballField::chooseChargeLevels() {
 
 // Computes the nodes the blocks need, from the coarsest level down: each level adds its window
 // sums (sumWindows) to the interpolation of the level above.
-void MetaballField::computeLevels(const std::vector<std::optional<ChargeGrid>> &charges,
-                                  Interrupter *interrupter) {
+void MetaballField::computeLevels(const std::vector<std::optional<ChargeGrid>>& charges,
+                                  Interrupter* interrupter) {
     // A top level with charges sums all of them: one list for all its nodes.
     WindowList topCharges;
     if (!charges.empty() && charges.back())
@@ -218,18 +218,18 @@ void MetaballField::computeLevels(const std::vector<std::optional<ChargeGrid>> &
     // Compute from the coarsest level down: each level adds its window sum to the degree-5
     // interpolation of the level above.
     std::size_t totalBricks = 0;
-    for (const auto &l : m_levels)
+    for (const auto& l : m_levels)
         totalBricks += l->bricks.size();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     for (int li = static_cast<int>(m_levels.size()) - 1; li >= 0; --li) {
-        FieldLevel &level = *m_levels[li];
-        const FieldLevel *above =
+        FieldLevel& level = *m_levels[li];
+        const FieldLevel* above =
             li + 1 < static_cast<int>(m_levels.size()) ? m_levels[li + 1].get() : nullptr;
         tbb::parallel_for(std::size_t{0}, level.bricks.size(), [&](std::size_t bi) {
             if (cancelled.load(std::memory_order_relaxed))
                 return;
-            Brick &brick = level.bricks[bi];
+            Brick& brick = level.bricks[bi];
             sumWindows(level, brick, charges[li] ? &*charges[li] : nullptr, topCharges);
             if (above) {
                 const detail::Int3 t0{brick.origin[0] + brick.lo[0], brick.origin[1] + brick.lo[1],
@@ -259,9 +259,9 @@ void MetaballField::computeLevels(const std::vector<std::optional<ChargeGrid>> &
 
 // One brick's window sums: each needed node sums the spheres (or charges) within the level's
 // cutoff, through the level's window kernels.
-void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const ChargeGrid *grid,
-                               const WindowList &topCharges) const {
-    const auto &s = m_tree.spheres();
+void MetaballField::sumWindows(const FieldLevel& level, Brick& brick, const ChargeGrid* grid,
+                               const WindowList& topCharges) const {
+    const auto& s = m_tree.spheres();
     const WindowKernels kernels(level.below, level.own, m_kernel.minD2);
     const InverseKernel kernel = m_kernel;
     // Nodes in 4^3 groups, each with its own sphere ranges: the window (a ball of radius
@@ -272,9 +272,8 @@ void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const Char
             for (int gz = brick.lo[2] & ~(kGroup - 1); gz <= brick.hi[2]; gz += kGroup) {
                 int needed[kGroup * kGroup * kGroup], count = 0;
                 for (int c = 0; c < kGroup * kGroup * kGroup; ++c) {
-                    const int off =
-                        Brick::offset(gi + c / (kGroup * kGroup),
-                                      gj + (c / kGroup) % kGroup, gz + c % kGroup);
+                    const int off = Brick::offset(gi + c / (kGroup * kGroup),
+                                                  gj + (c / kGroup) % kGroup, gz + c % kGroup);
                     if (brick.needed(off))
                         needed[count++] = off;
                 }
@@ -283,10 +282,9 @@ void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const Char
                 // What every node of the group sums, contiguous: all spheres at the top
                 // level (straight from the tree's arrays) or all its charges, else the
                 // spheres or charges of the window, gathered once per group and padded.
-                const float *px = s.x.data(), *py = s.y.data(), *pz = s.z.data(),
-                            *pw = s.r.data();
+                const float *px = s.x.data(), *py = s.y.data(), *pz = s.z.data(), *pw = s.r.data();
                 std::size_t len = s.size();
-                                const int g[3] = {gi, gj, gz};
+                const int g[3] = {gi, gj, gz};
                 thread_local WindowList window;
                 if (grid && level.top) {
                     px = topCharges.x.data(), py = topCharges.y.data();
@@ -298,20 +296,18 @@ void MetaballField::sumWindows(const FieldLevel &level, Brick &brick, const Char
                                       brick.origin[2] + g[2]},
                                      kGroup, level.cutoff, window);
                     } else {
-                        thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>>
-                            ranges;
+                        thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
                         ranges.clear();
                         Box box;
                         for (int k = 0; k < 3; ++k) {
                             box.lo[k] = (brick.origin[k] + g[k]) * level.spacing;
-                            box.hi[k] =
-                                (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
+                            box.hi[k] = (brick.origin[k] + g[k] + kGroup - 1) * level.spacing;
                         }
                         m_tree.gatherRanges(box, level.cutoff, ranges);
                         window.clear();
-                        for (const auto &range : ranges) {
-                            auto copy = [&](const std::vector<float> &from,
-                                            std::vector<float> &to) {
+                        for (const auto& range : ranges) {
+                            auto copy = [&](const std::vector<float>& from,
+                                            std::vector<float>& to) {
                                 to.insert(to.end(), from.begin() + range.first,
                                           from.begin() + range.second);
                             };

@@ -122,9 +122,9 @@ FAULTLINE_HOT double directWeightWithin(const float* px, const float* py, const 
 
 } // namespace
 
-void detail::addDirectBounds(int power, const float *x, const float *y, const float *z,
-                             const float *r, std::size_t count, const Box &box, float minD2,
-                             double &low, double &high) {
+void detail::addDirectBounds(int power, const float* x, const float* y, const float* z,
+                             const float* r, std::size_t count, const Box& box, float minD2,
+                             double& low, double& high) {
     double lo = 0.0, hi = 0.0;
     (power == 1 ? directBounds1 : directBounds2)(x, y, z, r, count, box, minD2, 0.0f, lo, hi);
     // Float sums of positive terms, count / 8 per lane: each within that many roundings
@@ -134,11 +134,11 @@ void detail::addDirectBounds(int power, const float *x, const float *y, const fl
     high += hi * (1.0 + widen);
 }
 
-double MetaballField::weightWithin(const Vec3f &p, double a) const {
+double MetaballField::weightWithin(const Vec3f& p, double a) const {
     const Box point{{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
     const float a2 = static_cast<float>(a * a);
-    const auto &nodes = m_tree.nodes();
-    const auto &s = m_tree.spheres();
+    const auto& nodes = m_tree.nodes();
+    const auto& s = m_tree.spheres();
     if (s.size() <= kDirectBoundsSpheres)
         return directWeightWithin(s.x.data(), s.y.data(), s.z.data(), s.r.data(), s.size(), p, a2);
     double sum = 0.0;
@@ -146,7 +146,7 @@ double MetaballField::weightWithin(const Vec3f &p, double a) const {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const auto &node = nodes[stack[--top]];
+        const auto& node = nodes[stack[--top]];
         if (detail::minDistance2(node.box, point) >= a2)
             continue;
         if (detail::maxDistance2(node.box, point) < a2) {
@@ -169,12 +169,12 @@ double MetaballField::weightWithin(const Vec3f &p, double a) const {
 // [SECTION] Bounds over boxes
 //-----------------------------------------------------------------------------
 
-FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double isoMin, double isoMax,
+FieldBounds MetaballField::bounds(const Coord3& lo, const Coord3& hi, double isoMin, double isoMax,
                                   int maxOpen) const {
     const Box box = voxelBox(lo, hi, m_h);
     const BoundKernel k{m_params.kernel, m_kernel, m_params.compactReach};
-    const auto &nodes = m_tree.nodes();
-    const auto &s = m_tree.spheres();
+    const auto& nodes = m_tree.nodes();
+    const auto& s = m_tree.spheres();
     if (s.size() <= kDirectBoundsSpheres) {
         double low = 0.0, high = 0.0;
         const float invReach2 = 1.0f / (m_params.compactReach * m_params.compactReach);
@@ -192,10 +192,10 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
         double gap; // weight * (kHigh - kLow): how much opening it can tighten the bounds
         double low, high;
         std::int32_t node;
-        bool operator<(const Item &o) const { return gap < o.gap; }
+        bool operator<(const Item& o) const { return gap < o.gap; }
     };
     auto itemFor = [&](std::int32_t index) {
-        const auto &node = nodes[index];
+        const auto& node = nodes[index];
         const float dmin2 = detail::minDistance2(node.box, box);
         if (m_params.kernel == MetaballKernel::Compact) {
             const float big = m_params.compactReach * node.rmax;
@@ -227,7 +227,7 @@ FieldBounds MetaballField::bounds(const Coord3 &lo, const Coord3 &hi, double iso
             break;
         low -= item.low;
         high -= item.high;
-        const auto &node = nodes[item.node];
+        const auto& node = nodes[item.node];
         if (node.leaf()) {
             for (std::uint32_t i = node.begin; i < node.end; ++i) {
                 const Box centre{{s.x[i], s.y[i], s.z[i]}, {s.x[i], s.y[i], s.z[i]}};
@@ -265,7 +265,7 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
         auto level1 = std::make_unique<FieldLevel>();
         level1->spacing = m_ratio1 * m_h;
         level1->ratio = m_ratio1;
-        for (const auto &o : blocks) {
+        for (const auto& o : blocks) {
             detail::Int3 lo, hi;
             for (int k = 0; k < 3; ++k) {
                 lo[k] = floorDiv(o[k] - 1, m_ratio1) - detail::kTapsBelow;
@@ -274,10 +274,10 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
             level1->mark(lo, hi);
         }
         m_span2 = 0.0;
-        const auto &cb = centreBox();
+        const auto& cb = centreBox();
         for (int k = 0; k < 3; ++k) {
             double lo = cb.lo[k], hi = cb.hi[k];
-            for (const auto &b : level1->bricks) {
+            for (const auto& b : level1->bricks) {
                 lo = std::min(lo, double(b.origin[k] + b.lo[k]) * level1->spacing);
                 hi = std::max(hi, double(b.origin[k] + b.hi[k]) * level1->spacing);
             }
@@ -286,15 +286,15 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
         m_levels.push_back(std::move(level1));
     }
     // Levels above the last choice's top wait in m_spareLevels.
-    for (auto &spare : m_spareLevels)
+    for (auto& spare : m_spareLevels)
         m_levels.push_back(std::move(spare));
     m_spareLevels.clear();
-    for (auto &level : m_levels)
+    for (auto& level : m_levels)
         level->top = false;
     const double n = static_cast<double>(sphereCount());
     const double span2 = m_span2;
     for (int l = 1;; ++l) {
-        FieldLevel &level = *m_levels[l - 1];
+        FieldLevel& level = *m_levels[l - 1];
         const float aBelow = static_cast<float>(cutoff(l - 1));
         level.below =
             l == 1 ? m_soft0 : SoftenedKernel(m_kernel.p, aBelow, m_tuning.softeningOrder);
@@ -311,7 +311,7 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
             int samples = 0;
             const std::size_t stride = std::max<std::size_t>(1, level.bricks.size() / 32);
             for (std::size_t bi = 0; bi < level.bricks.size(); bi += stride) {
-                const Brick &b = level.bricks[bi];
+                const Brick& b = level.bricks[bi];
                 for (int off = 0; off < 512; ++off)
                     if (b.needed(off)) {
                         const Vec3f p{(b.origin[0] + (off >> 6)) * level.spacing,
@@ -341,7 +341,7 @@ void MetaballField::planLevels(std::span<const Coord3> blocks) {
         auto next = std::make_unique<FieldLevel>();
         next->spacing = 2.0f * level.spacing;
         next->ratio = 2;
-        for (const auto &b : level.bricks) {
+        for (const auto& b : level.bricks) {
             detail::Int3 lo, hi;
             for (int k = 0; k < 3; ++k) {
                 lo[k] = floorDiv(b.origin[k] + b.lo[k], 2) - detail::kTapsBelow;

@@ -8,12 +8,12 @@ constexpr std::size_t kMeshesPerEntry = 4;
 
 SurfaceCache::SurfaceCache(std::size_t budgetBytes) : m_budget(budgetBytes) {}
 
-std::size_t SurfaceCache::meshBytes(const SurfaceMesh &mesh) {
+std::size_t SurfaceCache::meshBytes(const SurfaceMesh& mesh) {
     return mesh.positions.size() * 3 * sizeof(std::array<float, 3>) +
            mesh.indices.size() * sizeof(std::uint32_t);
 }
 
-std::list<SurfaceCache::Entry>::iterator SurfaceCache::lookup(const SurfaceKey &key) {
+std::list<SurfaceCache::Entry>::iterator SurfaceCache::lookup(const SurfaceKey& key) {
     for (auto it = m_entries.begin(); it != m_entries.end(); ++it)
         if (it->key == key) {
             m_entries.splice(m_entries.begin(), m_entries, it);
@@ -22,25 +22,25 @@ std::list<SurfaceCache::Entry>::iterator SurfaceCache::lookup(const SurfaceKey &
     return m_entries.end();
 }
 
-SurfaceResult SurfaceCache::find(const SurfaceKey &key, float iso) const {
+SurfaceResult SurfaceCache::find(const SurfaceKey& key, float iso) const {
     std::lock_guard lock(m_mutex);
-    for (const auto &e : m_entries)
+    for (const auto& e : m_entries)
         if (e.key == key)
-            for (const auto &[meshIso, mesh] : e.meshes)
+            for (const auto& [meshIso, mesh] : e.meshes)
                 if (meshIso == iso)
                     return {e.field, mesh, iso};
     return {};
 }
 
-SurfaceResult SurfaceCache::get(const SurfaceKey &key, const SurfaceParams &params,
-                                const std::function<SphereSet()> &gather,
-                                Interrupter *interrupter) {
+SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& params,
+                                const std::function<SphereSet()>& gather,
+                                Interrupter* interrupter) {
     std::shared_ptr<const SurfaceField> field;
     {
         std::lock_guard lock(m_mutex);
         auto it = lookup(key);
         if (it != m_entries.end()) {
-            for (const auto &[iso, mesh] : it->meshes)
+            for (const auto& [iso, mesh] : it->meshes)
                 if (iso == params.iso) {
                     ++m_counters.hits;
                     return {it->field, mesh, iso};

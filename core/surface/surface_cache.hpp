@@ -17,7 +17,7 @@ struct SurfaceKey {
     std::int64_t frame = 0;
     std::uint64_t members = 0; // hashMemberIds
     std::uint64_t params = 0;  // fieldParamsHash (everything but iso)
-    bool operator==(const SurfaceKey &) const = default;
+    bool operator==(const SurfaceKey&) const = default;
 };
 
 class SurfaceCache {
@@ -27,11 +27,11 @@ class SurfaceCache {
     // The surface for key + params.iso: cached, or re-meshed from a cached field when only the
     // iso-value changed (within the field's range), or built from gather()'s spheres. Thread-safe;
     // the build runs outside the lock. Exceptions from buildSurface pass through, nothing cached.
-    SurfaceResult get(const SurfaceKey &key, const SurfaceParams &params,
-                      const std::function<SphereSet()> &gather, Interrupter *interrupter = nullptr);
+    SurfaceResult get(const SurfaceKey& key, const SurfaceParams& params,
+                      const std::function<SphereSet()>& gather, Interrupter* interrupter = nullptr);
 
     // Cached result without any work, or an empty result (field == nullptr).
-    SurfaceResult find(const SurfaceKey &key, float iso) const;
+    SurfaceResult find(const SurfaceKey& key, float iso) const;
 
     struct Counters {
         std::size_t hits = 0, remeshes = 0, builds = 0, evictions = 0;
@@ -47,9 +47,9 @@ class SurfaceCache {
         std::vector<std::pair<float, SurfaceMesh>> meshes; // most recent first, a few isos
         std::size_t bytes = 0;
     };
-    std::list<Entry>::iterator lookup(const SurfaceKey &key); // moves it to the front
+    std::list<Entry>::iterator lookup(const SurfaceKey& key); // moves it to the front
     void insertLocked(Entry entry);
-    static std::size_t meshBytes(const SurfaceMesh &mesh);
+    static std::size_t meshBytes(const SurfaceMesh& mesh);
 
     mutable std::mutex m_mutex;
     std::list<Entry> m_entries; // most recently used first

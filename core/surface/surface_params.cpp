@@ -16,21 +16,21 @@ std::string_view kernelName(MetaballKernel kernel) { return nameIn(kKernels, ker
 
 std::optional<MetaballKernel> parseKernel(std::string_view name) { return valueIn(kKernels, name); }
 
-float resolvedVoxelSize(const SurfaceParams &params, double meanRadius) {
+float resolvedVoxelSize(const SurfaceParams& params, double meanRadius) {
     if (params.voxelSize > 0.0f)
         return params.voxelSize;
     return static_cast<float>(meanRadius / 3.0);
 }
 
 namespace {
-void mix(std::uint64_t &h, std::uint64_t v) {
+void mix(std::uint64_t& h, std::uint64_t v) {
     h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
     h *= 0xff51afd7ed558ccdull;
 }
-void mixFloat(std::uint64_t &h, float f) { mix(h, std::bit_cast<std::uint32_t>(f)); }
+void mixFloat(std::uint64_t& h, float f) { mix(h, std::bit_cast<std::uint32_t>(f)); }
 } // namespace
 
-std::uint64_t fieldParamsHash(const SurfaceParams &p) {
+std::uint64_t fieldParamsHash(const SurfaceParams& p) {
     std::uint64_t h = 0x5eed;
     mix(h, static_cast<std::uint64_t>(p.kernel));
     mixFloat(h, p.voxelSize);

@@ -36,13 +36,13 @@ struct SurfaceParams {
     // Refuse builds whose grids and mesh would need more than this.
     std::size_t memoryBudgetBytes = std::size_t{2} << 30;
 
-    bool operator==(const SurfaceParams &) const = default;
+    bool operator==(const SurfaceParams&) const = default;
 };
 
 // The voxel size a build will use (resolves the 0 default against the spheres' mean radius).
-float resolvedVoxelSize(const SurfaceParams &params, double meanRadius);
+float resolvedVoxelSize(const SurfaceParams& params, double meanRadius);
 
 // Hash of every parameter that changes the field and colour grids (everything except iso).
-std::uint64_t fieldParamsHash(const SurfaceParams &params);
+std::uint64_t fieldParamsHash(const SurfaceParams& params);
 
 } // namespace faultline::core

@@ -25,8 +25,8 @@ inline constexpr std::size_t kBytesPerBlock = 16 * 1024;
 
 // Throws SurfaceRequestError when the surface would need more than `budgetBytes`, saying how much
 // it would need, or when the region does not fit OpenVDB's index range.
-SurfacePlan planSurface(const MetaballField &field, float isoMin, float isoMax,
-                        std::size_t budgetBytes, Interrupter *interrupter);
+SurfacePlan planSurface(const MetaballField& field, float isoMin, float isoMax,
+                        std::size_t budgetBytes, Interrupter* interrupter);
 
 // Human-readable byte count ("1.5 GiB").
 std::string formatBytes(double bytes);

@@ -7,18 +7,18 @@
 
 namespace faultline::core {
 
-void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> surfaces) {
+void exportVdb(const std::filesystem::path& path, std::span<const VdbSurface> surfaces) {
     ensureOpenVdbInitialized();
     openvdb::GridPtrVec grids;
-    for (const auto &s : surfaces) {
+    for (const auto& s : surfaces) {
         if (!s.field)
             throw std::invalid_argument("exportVdb: surface '" + s.name + "' has no field");
-        const auto &impl = s.field->impl();
+        const auto& impl = s.field->impl();
         auto density = impl.density->copyGrid(); // shares the tree; own name and metadata
         auto color = impl.color->copyGrid();
         density->setName(s.name + ".density");
         color->setName(s.name + ".color");
-        for (auto &grid : {density, color}) {
+        for (auto& grid : {density, color}) {
             grid->insertMeta("faultline.fault", openvdb::StringMetadata(s.name));
             grid->insertMeta("iso", openvdb::FloatMetadata(s.iso));
             grid->insertMeta("kernel",
@@ -43,7 +43,7 @@ void exportVdb(const std::filesystem::path &path, std::span<const VdbSurface> su
         openvdb::io::File file(path.string());
         file.write(grids, fileMeta);
         file.close();
-    } catch (const openvdb::Exception &e) {
+    } catch (const openvdb::Exception& e) {
         throw std::runtime_error(path.string() + ": cannot write VDB file: " + e.what());
     }
 }

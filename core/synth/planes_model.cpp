@@ -126,7 +126,8 @@ class FaultSurface {
         for (int k = 1; k <= half; ++k) {
             const auto& pd = down.back();
             const double dd = dipAt(pd[2] + step / 2) * kDeg;
-            down.push_back({pd[0] + std::cos(dd) * step, pd[1] - std::sin(dd) * step, pd[2] + step});
+            down.push_back(
+                {pd[0] + std::cos(dd) * step, pd[1] - std::sin(dd) * step, pd[2] + step});
             const auto& pu = up.back();
             const double du = dipAt(pu[2] - step / 2) * kDeg;
             up.push_back({pu[0] - std::cos(du) * step, pu[1] + std::sin(du) * step, pu[2] - step});
@@ -154,7 +155,8 @@ class FaultSurface {
             const auto& p0 = m_trace[k];
             const auto& p1 = m_trace[k + 1];
             const double eu = p1[0] - p0[0], ez = p1[1] - p0[1];
-            const double t = std::clamp(((u - p0[0]) * eu + (z - p0[1]) * ez) / (eu * eu + ez * ez), 0.0, 1.0);
+            const double t =
+                std::clamp(((u - p0[0]) * eu + (z - p0[1]) * ez) / (eu * eu + ez * ez), 0.0, 1.0);
             const double qu = u - (p0[0] + t * eu), qz = z - (p0[1] + t * ez);
             const double dist2 = qu * qu + qz * qz;
             if (dist2 < best) {
@@ -207,8 +209,10 @@ void check(const PlanesModelOptions& o) {
         need(f.dip > 0 && f.dip <= 90, "a fault's dip must be in (0, 90]");
         need(f.radius > 0 && f.throwLength >= 0, "a fault needs radius > 0 and throw >= 0");
         need(f.appearsAt >= 0 && f.appearsAt < 1, "a fault's start must be in [0, 1)");
-        need(f.endsAgainst < static_cast<int>(o.faults.size()), "a fault ends against a fault that is not there");
-        need(!f.listricDip || (*f.listricDip > 0 && *f.listricDip <= 90), "a listric dip must be in (0, 90]");
+        need(f.endsAgainst < static_cast<int>(o.faults.size()),
+             "a fault ends against a fault that is not there");
+        need(!f.listricDip || (*f.listricDip > 0 && *f.listricDip <= 90),
+             "a listric dip must be in (0, 90]");
     }
     need(o.noiseFraction >= 0 && o.noiseFraction < 0.5, "the noise fraction must be in [0, 0.5)");
 }
@@ -331,7 +335,8 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
     for (std::size_t k = 0; k < model.faults.size(); ++k) {
         const PlaneFaultSpec& s = model.faults[k].spec;
         placed[k].allowed.assign(n, 1);
-        const double side = s.endsAgainst >= 0 ? surfaces[std::size_t(s.endsAgainst)].at(s.centre).h : 0;
+        const double side =
+            s.endsAgainst >= 0 ? surfaces[std::size_t(s.endsAgainst)].at(s.centre).h : 0;
         for (std::size_t i = 0; i < n; ++i) {
             const Vec& p = lat.positions[i];
             for (int a = 0; a < 3; ++a)
@@ -348,7 +353,8 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
             const bool draw = rng.uniform() < options.noiseFraction;
             bool member = false;
             for (std::size_t k = 0; k < model.faults.size() && !member; ++k)
-                member = placed[k].allowed[i] && placed[k].at[i].rho <= model.faults[k].spec.radius &&
+                member = placed[k].allowed[i] &&
+                         placed[k].at[i].rho <= model.faults[k].spec.radius &&
                          std::fabs(placed[k].at[i].h) <= options.halfThickness;
             if (draw && !member) {
                 isNoise[i] = 1;
@@ -392,7 +398,8 @@ PlanesModel generatePlanesModel(const PlanesModelOptions& options) {
                     // nears another zone), fading out before the gap to any other zone.
                     if (h > 0 && h < fadeDistance) {
                         const double fade = 1.0 - h / fadeDistance;
-                        pos[i] = addScaled(pos[i], slip * taper * fade, surfaces[k].downDipAt(c.dip));
+                        pos[i] =
+                            addScaled(pos[i], slip * taper * fade, surfaces[k].downDipAt(c.dip));
                     }
                 }
             }
@@ -470,7 +477,8 @@ PlanesModelOptions planesNetworkOptions() {
     o.frames = 4;
     o.noiseFraction = 0.003;
     const double hi = 1e300;
-    auto fault = [&](double dip, double dipDirection, std::array<double, 3> centre, double yLo, double yHi) {
+    auto fault = [&](double dip, double dipDirection, std::array<double, 3> centre, double yLo,
+                     double yHi) {
         PlaneFaultSpec f;
         f.dip = dip;
         f.dipDirection = dipDirection;
@@ -485,8 +493,8 @@ PlanesModelOptions planesNetworkOptions() {
     o.faults.push_back(fault(60, 270, {34, 28, 36}, -hi, 56)); // F2
     o.faults.push_back(fault(60, 90, {84, 28, 40}, -hi, 56));  // F3: F4 ends against it
     o.faults.push_back(fault(65, 270, {104, 28, 52}, -hi, 56));
-    o.faults.back().endsAgainst = 2;                            // F4: a V with F3 at depth
-    o.faults.push_back(fault(70, 90, {50, 80, 36}, 62, hi));    // F5: listric, 70 to 30
+    o.faults.back().endsAgainst = 2;                         // F4: a V with F3 at depth
+    o.faults.push_back(fault(70, 90, {50, 80, 36}, 62, hi)); // F5: listric, 70 to 30
     o.faults.back().listricDip = 30;
     o.faults.back().radius = 45;
     return o;

@@ -58,7 +58,8 @@ double structuralSimilarity(const ImageView& a, const ImageView& b) {
                 }
             const double n = double(ww * wh);
             const double ma = sa / n, mb = sb / n;
-            const double va = std::max(0.0, saa / n - ma * ma), vb = std::max(0.0, sbb / n - mb * mb);
+            const double va = std::max(0.0, saa / n - ma * ma),
+                         vb = std::max(0.0, sbb / n - mb * mb);
             const double cov = sab / n - ma * mb;
             total += ((2 * ma * mb + kC1) * (2 * cov + kC2)) /
                      ((ma * ma + mb * mb + kC1) * (va + vb + kC2));
@@ -69,7 +70,8 @@ double structuralSimilarity(const ImageView& a, const ImageView& b) {
 
 ImageComparison compareImages(const ImageView& a, const ImageView& b, int threshold) {
     ImageComparison c;
-    const std::size_t pixels = std::size_t(std::max(0, a.width)) * std::size_t(std::max(0, a.height));
+    const std::size_t pixels =
+        std::size_t(std::max(0, a.width)) * std::size_t(std::max(0, a.height));
     if (a.width != b.width || a.height != b.height) {
         c.meanAbsDiff = std::numeric_limits<double>::infinity();
         c.differing = pixels;

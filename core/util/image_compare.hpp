@@ -20,9 +20,9 @@ struct ImageView {
 
 struct ImageComparison {
     bool sameSize = false;
-    double meanAbsDiff = 0;      // 0..255 over every channel of every pixel
-    std::size_t differing = 0;   // pixels whose largest channel difference exceeds the threshold
-    double ssim = 1;             // mean SSIM over 8x8 windows of the luma (stride 4), -1..1
+    double meanAbsDiff = 0;    // 0..255 over every channel of every pixel
+    std::size_t differing = 0; // pixels whose largest channel difference exceeds the threshold
+    double ssim = 1;           // mean SSIM over 8x8 windows of the luma (stride 4), -1..1
 };
 
 // Differences of `a` against `b`. Different sizes: sameSize false, meanAbsDiff infinity,

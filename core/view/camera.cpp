@@ -1,7 +1,6 @@
 #include "core/view/camera.hpp"
 #include "core/util/enum_names.hpp"
 
-
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -35,8 +34,8 @@ constexpr EnumName<Projection> kProjections[] = {{Projection::Perspective, "pers
                                                  {Projection::Orthographic, "orthographic"},
                                                  {Projection::Orthographic, "ortho"}};
 constexpr EnumName<ViewPreset> kViewPresets[] = {
-    {ViewPreset::Front, "front"}, {ViewPreset::Back, "back"},     {ViewPreset::Left, "left"},
-    {ViewPreset::Side, "side"},   {ViewPreset::Top, "top"},       {ViewPreset::Bottom, "bottom"},
+    {ViewPreset::Front, "front"}, {ViewPreset::Back, "back"}, {ViewPreset::Left, "left"},
+    {ViewPreset::Side, "side"},   {ViewPreset::Top, "top"},   {ViewPreset::Bottom, "bottom"},
     {ViewPreset::Iso, "iso"},     {ViewPreset::Side, "right"}};
 } // namespace
 

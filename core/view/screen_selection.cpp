@@ -92,8 +92,7 @@ std::vector<std::uint32_t> frontmostRows(const ScreenMapping& mapping, std::span
     if (candidates.empty())
         return {};
     // The depth buffer at most 1024 pixels on its long side.
-    const double scale =
-        std::min(1.0, 1024.0 / std::max({mapping.size.x, mapping.size.y, 1.0}));
+    const double scale = std::min(1.0, 1024.0 / std::max({mapping.size.x, mapping.size.y, 1.0}));
     const int w = std::max(1, static_cast<int>(std::ceil(mapping.size.x * scale)));
     const int h = std::max(1, static_cast<int>(std::ceil(mapping.size.y * scale)));
     std::vector<float> depth(std::size_t(w) * h, std::numeric_limits<float>::infinity());

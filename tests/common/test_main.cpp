@@ -17,8 +17,7 @@ int main(int argc, char** argv) {
     const int threads = n ? std::atoi(n) : 0;
     if (threads <= 0)
         return RUN_ALL_TESTS();
-    tbb::global_control control(tbb::global_control::max_allowed_parallelism,
-                                std::size_t(threads));
+    tbb::global_control control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     if (threads <= tbb::info::default_concurrency())
         return RUN_ALL_TESTS();
     tbb::task_arena arena(threads);

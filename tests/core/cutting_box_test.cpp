@@ -45,15 +45,17 @@ TEST(CuttingBox, JsonRoundTripAndValidation) {
 TEST(CuttingBox, OpsChangeBoxesAndUndoPutsThemBack) {
     faultline::test::TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {dir.write("lattice.dump", faultline::test::latticeDump())}}});
+    s.apply({{"op", "data.open"},
+             {"paths", {dir.write("lattice.dump", faultline::test::latticeDump())}}});
     s.apply({{"op", "box.add"}, {"name", "west"}, {"min", {0, 0, 0}}, {"max", {1, 3, 3}}});
     EXPECT_EQ(s.visibility().visibleCount, 32u);
     s.apply({{"op", "box.set"}, {"name", "west"}, {"mode", "cut"}});
     EXPECT_EQ(s.visibility().visibleCount, 32u); // the other half
     s.apply({{"op", "box.set"}, {"name", "west"}, {"enabled", false}});
     EXPECT_EQ(s.visibility().visibleCount, 64u);
-    EXPECT_THROW(s.apply({{"op", "box.add"}, {"name", "west"}, {"min", {0, 0, 0}}, {"max", {1, 1, 1}}}),
-                 CommandError); // the name is taken
+    EXPECT_THROW(
+        s.apply({{"op", "box.add"}, {"name", "west"}, {"min", {0, 0, 0}}, {"max", {1, 1, 1}}}),
+        CommandError); // the name is taken
     EXPECT_THROW(s.apply({{"op", "box.set"}, {"name", "east"}, {"enabled", true}}), CommandError);
     s.apply({{"op", "box.remove"}, {"name", "west"}});
     EXPECT_TRUE(s.state().boxes.empty());

@@ -1,8 +1,8 @@
 // Enum name tables (core/util/enum_names.hpp, issue 39): one table per enum gives both
 // directions; aliases parse but never print; case folding only where asked.
+#include "core/selection/cutting_box.hpp"
 #include "core/util/enum_names.hpp"
 #include "core/view/camera.hpp"
-#include "core/selection/cutting_box.hpp"
 
 #include <gtest/gtest.h>
 

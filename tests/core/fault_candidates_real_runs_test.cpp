@@ -99,9 +99,11 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
             std::size_t near = 0, total = 0;
             for (std::int64_t id : faults[c].ids)
                 if (auto row = after.rowOf(id)) {
-                    const Vec3d q{after.x[*row] - f.plane.centroid[0], after.y[*row] - f.plane.centroid[1],
+                    const Vec3d q{after.x[*row] - f.plane.centroid[0],
+                                  after.y[*row] - f.plane.centroid[1],
                                   after.z[*row] - f.plane.centroid[2]};
-                    const double s = q[0] * f.plane.normal[0] + q[2] * f.plane.normal[2] + q[1] * f.plane.normal[1];
+                    const double s = q[0] * f.plane.normal[0] + q[2] * f.plane.normal[2] +
+                                     q[1] * f.plane.normal[1];
                     near += std::fabs(s) < 4 * truth.meanDiameter;
                     ++total;
                 }
@@ -110,7 +112,8 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
             const Vec3d q{m.centroid[0] - f.plane.centroid[0], m.centroid[1] - f.plane.centroid[1],
                           m.centroid[2] - f.plane.centroid[2]};
             const double dist = std::fabs(q[0] * f.plane.normal[0] + q[1] * f.plane.normal[1] +
-                                          q[2] * f.plane.normal[2]) / truth.meanDiameter;
+                                          q[2] * f.plane.normal[2]) /
+                                truth.meanDiameter;
             const double score = dist + angleBetween(m.dip, f.plane.orientation.dip) / 5.0;
             if (score < best.distance + best.dipError / 5.0 || std::isinf(best.distance))
                 best = {c, std::fabs(m.dip - f.plane.orientation.dip),
@@ -123,16 +126,18 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
             best.dipError = 90;
         } else {
             const FaultFrameMetrics& m = metrics[best.candidate];
-            if (const PlaneFit local = localTruth(truth, f, after, faults[best.candidate]); local.valid) {
+            if (const PlaneFit local = localTruth(truth, f, after, faults[best.candidate]);
+                local.valid) {
                 best.localDip = local.orientation.dip;
                 best.localDipError = std::fabs(m.dip - local.orientation.dip);
                 best.localDirError = angleBetween(m.dipDirection, local.orientation.dipDirection);
             }
-            std::printf("  truth dip %.1f/%03.0f: C%zu (%zu spheres) dip %.1f/%03.0f, errors %.1f / %.1f "
-                        "degrees, %.2f d from the plane; over its span the truth dips %.1f (error %.1f)\n",
-                        f.plane.orientation.dip, f.plane.orientation.dipDirection, best.candidate + 1,
-                        best.size, m.dip, m.dipDirection, best.dipError, best.dirError, best.distance,
-                        best.localDip, best.localDipError);
+            std::printf(
+                "  truth dip %.1f/%03.0f: C%zu (%zu spheres) dip %.1f/%03.0f, errors %.1f / %.1f "
+                "degrees, %.2f d from the plane; over its span the truth dips %.1f (error %.1f)\n",
+                f.plane.orientation.dip, f.plane.orientation.dipDirection, best.candidate + 1,
+                best.size, m.dip, m.dipDirection, best.dipError, best.dirError, best.distance,
+                best.localDip, best.localDipError);
         }
         out.push_back(best);
     }
@@ -189,7 +194,8 @@ TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To89AndHowFarAbove) {
 TEST(CandidatesOnRealRuns, TheYadeShearBandIsOneCandidateAtThe85th) {
     auto ds = Dataset::open({run("yade/shear-spheres-*.vtk")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
-    const auto at85 = check("Yade shear box 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", 85, 15);
+    const auto at85 =
+        check("Yade shear box 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", 85, 15);
     ASSERT_EQ(at85.size(), 1u);
     EXPECT_LE(at85[0].distance, 2.0);
     EXPECT_LE(at85[0].dirError, 15.0);

@@ -21,7 +21,9 @@ std::vector<std::vector<std::int64_t>> idsOf(const CandidateSet& set) {
         out.push_back(c.ids);
     return out;
 }
-std::vector<std::uint8_t> allVisible(const Frame& f) { return std::vector<std::uint8_t>(f.size(), 1); }
+std::vector<std::uint8_t> allVisible(const Frame& f) {
+    return std::vector<std::uint8_t>(f.size(), 1);
+}
 // These tests are about the connected method: linking by distance alone.
 CandidateOptions connected(double link = kDefaultCandidateLink, std::size_t minSize = 1) {
     CandidateOptions o;
@@ -33,7 +35,7 @@ CandidateOptions connected(double link = kDefaultCandidateLink, std::size_t minS
 
 // O(n^2) reference: the same neighbour rule, components as sorted id lists in a set.
 std::set<std::vector<std::int64_t>> bruteForce(const Frame& f, const std::vector<std::uint8_t>& vis,
-                                                double k) {
+                                               double k) {
     const std::size_t n = f.size();
     std::vector<std::size_t> parent(n);
     std::iota(parent.begin(), parent.end(), 0);
@@ -66,8 +68,11 @@ std::set<std::vector<std::int64_t>> bruteForce(const Frame& f, const std::vector
 } // namespace
 
 TEST(FaultCandidates, TwoSeparatedClustersGiveTwoCandidatesLargestFirst) {
-    const Frame f = frameOf({{10, 0, 0, 0}, {11, 1, 0, 0}, {12, 2, 0, 0}, // a line of 3
-                             {20, 10, 0, 0}, {21, 10, 1, 0}});             // a pair, far away
+    const Frame f = frameOf({{10, 0, 0, 0},
+                             {11, 1, 0, 0},
+                             {12, 2, 0, 0}, // a line of 3
+                             {20, 10, 0, 0},
+                             {21, 10, 1, 0}}); // a pair, far away
     const CandidateSet set = findCandidates(f, allVisible(f), connected());
     ASSERT_EQ(set.candidates.size(), 2u);
     EXPECT_EQ(set.candidates[0].ids, (std::vector<std::int64_t>{10, 11, 12}));
@@ -78,12 +83,15 @@ TEST(FaultCandidates, TwoSeparatedClustersGiveTwoCandidatesLargestFirst) {
 TEST(FaultCandidates, LinkDistanceIsStrict) {
     // radius 0.5 each: neighbours when distance < link x 1.0
     const Frame touching = frameOf({{1, 0, 0, 0}, {2, 1, 0, 0}});
-    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.0, 1)).candidates.size(), 2u);
-    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.001, 1)).candidates.size(), 1u);
+    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.0, 1)).candidates.size(),
+              2u);
+    EXPECT_EQ(findCandidates(touching, allVisible(touching), connected(1.001, 1)).candidates.size(),
+              1u);
 
     const Frame inside = frameOf({{1, 0, 0, 0}, {2, 0, 1.0999, 0}});
     const Frame outside = frameOf({{1, 0, 0, 0}, {2, 0, 0, 1.1001}});
-    EXPECT_EQ(findCandidates(inside, allVisible(inside), connected()).candidates.size(), 1u); // default 1.1
+    EXPECT_EQ(findCandidates(inside, allVisible(inside), connected()).candidates.size(),
+              1u); // default 1.1
     EXPECT_EQ(findCandidates(outside, allVisible(outside), connected()).candidates.size(), 2u);
 }
 
@@ -101,8 +109,8 @@ TEST(FaultCandidates, MinSizeDropsSmallComponentsAndHiddenSpheresAreUnlabelled) 
         s.push_back({100 + i, double(i), 0, 0}); // 5 in a line
     for (int i = 0; i < 3; ++i)
         s.push_back({200 + i, double(i), 10, 0}); // 3 in a line
-    s.push_back({300, 0, 20, 0});                  // alone
-    s.push_back({400, 0, 30, 0});                  // hidden
+    s.push_back({300, 0, 20, 0});                 // alone
+    s.push_back({400, 0, 30, 0});                 // hidden
     const Frame f = frameOf(s);
     std::vector<std::uint8_t> vis(f.size(), 1);
     vis.back() = 0;
@@ -124,8 +132,8 @@ TEST(FaultCandidates, HiddenSphereBreaksAChain) {
 }
 
 TEST(FaultCandidates, EqualSizesAreOrderedBySmallestIdWhateverTheRowOrder) {
-    const std::vector<Sphere> a{{50, 0, 0, 0}, {7, 1, 0, 0}, {90, 5, 0, 0}, {3, 6, 0, 0},
-                                {60, 20, 0, 0}, {61, 21, 0, 0}};
+    const std::vector<Sphere> a{{50, 0, 0, 0}, {7, 1, 0, 0},   {90, 5, 0, 0},
+                                {3, 6, 0, 0},  {60, 20, 0, 0}, {61, 21, 0, 0}};
     std::vector<Sphere> b(a.rbegin(), a.rend());
     const Frame fa = frameOf(a), fb = frameOf(b);
     const auto expected = std::vector<std::vector<std::int64_t>>{{3, 90}, {7, 50}, {60, 61}};

@@ -116,8 +116,8 @@ TEST(PlaneFit, FitsPointsOnATiltedPlaneExactly) {
     std::vector<Vec3d> pts;
     for (int i = -3; i <= 3; ++i)
         for (int j = -2; j <= 4; ++j)
-            pts.push_back({100 + i * s[0] + j * d[0], -50 + i * s[1] + j * d[1],
-                           7 + i * s[2] + j * d[2]});
+            pts.push_back(
+                {100 + i * s[0] + j * d[0], -50 + i * s[1] + j * d[1], 7 + i * s[2] + j * d[2]});
     const PlaneFit fit = fitPlane(pts);
     ASSERT_TRUE(fit.valid);
     EXPECT_EQ(fit.count, pts.size());
@@ -142,11 +142,12 @@ TEST(PlaneFit, InASectionModelTheFaultPlaneContainsTheThinAxis) {
     // A band dipping 45 degrees to the east in x-z, 6 units thick, in a slab 4 units thick in y
     // (the slab is thinner than the band: an unconstrained fit finds the slab's plane).
     std::vector<Vec3d> points;
-    for (int u = 0; u < 60; ++u)          // down dip
-        for (int w = -3; w <= 3; ++w)     // across the band
+    for (int u = 0; u < 60; ++u)           // down dip
+        for (int w = -3; w <= 3; ++w)      // across the band
             for (int y = 0; y <= 4; ++y) { // through the slab
                 const double s = u * 1.0, t = w * 1.0;
-                points.push_back({s / std::sqrt(2.0) + t / std::sqrt(2.0), double(y), -s / std::sqrt(2.0) + t / std::sqrt(2.0)});
+                points.push_back({s / std::sqrt(2.0) + t / std::sqrt(2.0), double(y),
+                                  -s / std::sqrt(2.0) + t / std::sqrt(2.0)});
             }
     const PlaneFit free = fitPlane(points);
     EXPECT_NEAR(free.orientation.dip, 90.0, 1e-6); // the slab

@@ -60,13 +60,15 @@ TEST_P(PlantedFaults, AreFoundWithTheirOrientationAndMembers) {
         Fault fault;
         fault.name = planted.name;
         fault.ids = found;
-        const auto metrics = computeFrameMetrics(last, model.frames.size() - 1, std::vector<Fault>{fault});
+        const auto metrics =
+            computeFrameMetrics(last, model.frames.size() - 1, std::vector<Fault>{fault});
         ASSERT_EQ(metrics.size(), 1u);
         EXPECT_LT(std::fabs(metrics[0].dip - planted.spec.dip), 2.0)
             << planted.name << " dip " << planted.spec.dip << " dir " << planted.spec.dipDirection
             << " members " << truth.size();
         if (planted.spec.dip < 88) { // a vertical plane's dip direction is either side
-            EXPECT_LT(angleGap(metrics[0].dipDirection, planted.spec.dipDirection), 2.0) << planted.name;
+            EXPECT_LT(angleGap(metrics[0].dipDirection, planted.spec.dipDirection), 2.0)
+                << planted.name;
         }
     }
 }

@@ -37,7 +37,8 @@ void expectOrientation(const FaultFrameMetrics& m, double dip, double dipDirecti
     EXPECT_LT(angleDiff(m.dipDirection, dipDirection, period), 2.0)
         << "measured " << m.dipDirection << " planted " << dipDirection;
     const Vec3d n = normalFromOrientation(dip, dipDirection);
-    const double angle = std::acos(std::min(1.0, std::fabs(dot3(n, m.normal)))) * 180 / std::numbers::pi;
+    const double angle =
+        std::acos(std::min(1.0, std::fabs(dot3(n, m.normal)))) * 180 / std::numbers::pi;
     EXPECT_LT(angle, 2.0);
 }
 

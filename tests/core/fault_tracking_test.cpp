@@ -141,8 +141,8 @@ TEST(FaultTracking, AOneOrTwoFrameFlickerIsNoEvent) {
     const std::vector<FaultEvent> expected = {
         {0, FaultEventKind::Appeared, {0}},
         {0, FaultEventKind::Appeared, {1}},
-        {5, FaultEventKind::Linked, {0, 1}},  // frame 2 alone was a flicker
-        {11, FaultEventKind::Split, {0, 1}},  // and frame 8 too, and frames 14-15
+        {5, FaultEventKind::Linked, {0, 1}}, // frame 2 alone was a flicker
+        {11, FaultEventKind::Split, {0, 1}}, // and frame 8 too, and frames 14-15
         // (frame 19's link, the last frame, is not settled)
     };
     EXPECT_EQ(events, expected);

@@ -1,7 +1,7 @@
-#include "core/io/frame_source.hpp"
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_cache_format.hpp"
+#include "core/io/frame_source.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -441,6 +441,7 @@ TEST(Dataset, OpeningASeriesReportsEachFileAndCanBeCancelled) {
     EXPECT_EQ(ds->frameCount(), 4u);
     EXPECT_EQ(heard, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
     int calls = 0;
-    EXPECT_THROW(Dataset::open({dir.file("s.dump.*")}, [&](double) { return ++calls < 2; }), OpenCancelled);
+    EXPECT_THROW(Dataset::open({dir.file("s.dump.*")}, [&](double) { return ++calls < 2; }),
+                 OpenCancelled);
     EXPECT_EQ(calls, 2);
 }

@@ -1,5 +1,5 @@
-#include "core/io/input_error.hpp"
 #include "core/data/frame_prefetcher.hpp"
+#include "core/io/input_error.hpp"
 
 #include <gtest/gtest.h>
 

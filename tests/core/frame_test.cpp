@@ -72,15 +72,16 @@ TEST(Frame, MemoryOf525kSpheresWith6ColumnsIsUnder30MB) {
     f.z.assign(n, 0);
     f.radius.assign(n, 1);
     for (int c = 0; c < 6; ++c)
-        f.attributes.push_back(makeAttribute("c" + std::to_string(c), std::vector<float>(n, 0.5f), false));
+        f.attributes.push_back(
+            makeAttribute("c" + std::to_string(c), std::vector<float>(n, 0.5f), false));
     f.finalize();
     EXPECT_LT(f.memoryBytes(), 30u * 1000 * 1000);
 }
 
 TEST(Frame, TextColumnsNeedEvidenceToBeIntegers) {
-    EXPECT_FALSE(looksLikeIntegerColumn("strain", {0, 0, 0}));   // "%g" zeros of a float column
+    EXPECT_FALSE(looksLikeIntegerColumn("strain", {0, 0, 0})); // "%g" zeros of a float column
     EXPECT_TRUE(looksLikeIntegerColumn("strain", {0, 1, 0}));
-    EXPECT_TRUE(looksLikeIntegerColumn("type", {1, 1}));          // LIGGGHTS: one type
+    EXPECT_TRUE(looksLikeIntegerColumn("type", {1, 1})); // LIGGGHTS: one type
     EXPECT_TRUE(looksLikeIntegerColumn("c_broken_bonds", {0, 0}));
-    EXPECT_FALSE(looksLikeIntegerColumn("q", {0, 0}));            // a charge of zero
+    EXPECT_FALSE(looksLikeIntegerColumn("q", {0, 0})); // a charge of zero
 }

@@ -9,8 +9,13 @@ using namespace faultline::core;
 
 TEST(IdCodec, RoundTripsEdgeCases) {
     const std::vector<std::vector<std::int64_t>> cases = {
-        {}, {0}, {-5}, {1, 2, 3}, {-9000000000000000000LL, -1, 0, 7, 9000000000000000000LL},
-        {INT64_MIN, INT64_MAX}, {INT64_MAX}};
+        {},
+        {0},
+        {-5},
+        {1, 2, 3},
+        {-9000000000000000000LL, -1, 0, 7, 9000000000000000000LL},
+        {INT64_MIN, INT64_MAX},
+        {INT64_MAX}};
     for (const auto& ids : cases) {
         std::string error;
         auto back = unpackSortedIds(packSortedIds(ids), error);

@@ -14,7 +14,8 @@ namespace {
 struct Image {
     int w, h;
     std::vector<std::uint8_t> px;
-    Image(int w_, int h_, std::uint8_t grey = 0) : w(w_), h(h_), px(std::size_t(w_) * h_ * 4, grey) {
+    Image(int w_, int h_, std::uint8_t grey = 0)
+        : w(w_), h(h_), px(std::size_t(w_) * h_ * 4, grey) {
         for (std::size_t i = 3; i < px.size(); i += 4)
             px[i] = 255;
     }
@@ -90,5 +91,6 @@ TEST(ImageCompare, DifferentSizesAreNoMatch) {
     EXPECT_TRUE(std::isinf(c.meanAbsDiff));
     EXPECT_EQ(c.differing, 64u);
     EXPECT_EQ(c.ssim, 0.0);
-    EXPECT_EQ(*imageMismatch(a.view(), b.view(), 2, std::nullopt, 0.95), "expected size 9x8, actual 8x8");
+    EXPECT_EQ(*imageMismatch(a.view(), b.view(), 2, std::nullopt, 0.95),
+              "expected size 9x8, actual 8x8");
 }

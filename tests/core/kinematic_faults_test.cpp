@@ -22,12 +22,13 @@ void print(const char* what, const KinematicResult& k) {
         std::printf("%s%zu", b ? ", " : "", k.blockSizes[b]);
     std::printf(")\n");
     for (const KinematicFault& f : k.faults)
-        std::printf("  %zu|%zu: dip %.1f toward %.0f at (%.3g, %.3g, %.3g), %zu midpoints, rms %.2f d, "
-                    "slip %.2f d, width %.1f d%s\n",
-                    f.blockA, f.blockB, f.plane.orientation.dip, f.plane.orientation.dipDirection,
-                    f.plane.centroid[0], f.plane.centroid[1], f.plane.centroid[2], f.midpoints,
-                    f.rms / k.meanDiameter, f.slip / k.meanDiameter, f.width / k.meanDiameter,
-                    f.identifiable ? "" : " (not identifiable)");
+        std::printf(
+            "  %zu|%zu: dip %.1f toward %.0f at (%.3g, %.3g, %.3g), %zu midpoints, rms %.2f d, "
+            "slip %.2f d, width %.1f d%s\n",
+            f.blockA, f.blockB, f.plane.orientation.dip, f.plane.orientation.dipDirection,
+            f.plane.centroid[0], f.plane.centroid[1], f.plane.centroid[2], f.midpoints,
+            f.rms / k.meanDiameter, f.slip / k.meanDiameter, f.width / k.meanDiameter,
+            f.identifiable ? "" : " (not identifiable)");
 }
 
 std::vector<KinematicFault> identifiable(const KinematicResult& k) {
@@ -51,7 +52,8 @@ TEST(KinematicFaults, TheLammpsGrabenIsThreeBlocksAndTwoNormalFaults) {
         ASSERT_EQ(k.blocks.size(), 3u);
         const auto faults = identifiable(k);
         ASSERT_EQ(faults.size(), 2u);
-        const KinematicFault& east = faults[0].plane.orientation.dipDirection < 180 ? faults[0] : faults[1];
+        const KinematicFault& east =
+            faults[0].plane.orientation.dipDirection < 180 ? faults[0] : faults[1];
         const KinematicFault& west = &east == &faults[0] ? faults[1] : faults[0];
         EXPECT_NEAR(east.plane.orientation.dipDirection, 90, 3);
         EXPECT_NEAR(west.plane.orientation.dipDirection, 270, 3);

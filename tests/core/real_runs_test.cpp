@@ -97,9 +97,9 @@ TEST(RealRuns, YadeBrokenBondsAreWhereStrainFromMotionIsHigh) {
     }
     std::sort(byStrain.begin(), byStrain.end(), [](auto a, auto b) { return a.first > b.first; });
     const std::size_t top = byStrain.size() / 10;
-    const double all = double(std::count_if(byStrain.begin(), byStrain.end(),
-                                            [](auto p) { return p.second; })) /
-                       double(byStrain.size());
+    const double all =
+        double(std::count_if(byStrain.begin(), byStrain.end(), [](auto p) { return p.second; })) /
+        double(byStrain.size());
     const double inTop = double(std::count_if(byStrain.begin(), byStrain.begin() + long(top),
                                               [](auto p) { return p.second; })) /
                          double(top);
@@ -186,7 +186,8 @@ TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
     s.apply({{"op", "frame.set"}, {"frame", 4}});
     s.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
     s.apply({{"op", "strain.add"}, {"since_frame", 0}});
-    s.apply({{"op", "threshold.add"}, {"variable", "inc_shear_strain"}, {"low", 0.15}, {"high", 1e30}});
+    s.apply(
+        {{"op", "threshold.add"}, {"variable", "inc_shear_strain"}, {"low", 0.15}, {"high", 1e30}});
     s.apply({{"op", "fault.candidates"}, {"min_size", 50}, {"prefix", "F"}});
     ASSERT_EQ(s.state().faults.size(), 2u);
     // Reference positions are variables: where each grain was in frame 0 (y across the periodic
@@ -219,7 +220,8 @@ TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
     }
     for (const auto& [fault, t] : throws) {
         ASSERT_EQ(t.size(), 4u) << fault;
-        std::printf("%s throw by frame: %.2f %.2f %.2f %.2f\n", fault.c_str(), t[0], t[1], t[2], t[3]);
+        std::printf("%s throw by frame: %.2f %.2f %.2f %.2f\n", fault.c_str(), t[0], t[1], t[2],
+                    t[3]);
         for (std::size_t k = 1; k < t.size(); ++k)
             EXPECT_LT(t[k], t[k - 1] - 0.5) << fault << " frame " << k + 1;
         EXPECT_LT(t.back(), -3.5); // the plate moved 8 grain diameters in all

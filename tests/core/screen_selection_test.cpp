@@ -159,10 +159,10 @@ TEST(ScreenSelection, FrontmostRowsAreTheOnesInView) {
     EXPECT_EQ(under.size(), 25u);
     EXPECT_NE(std::find(under.begin(), under.end(), 25u), under.end()); // id 201, row 25
     // A perspective camera above the sheets.
-    const ScreenMapping eye{glm::perspective(glm::radians(60.0), 1.0, 0.5, 50.0) *
-                                glm::lookAt(glm::dvec3(2.5, 2.5, 8.0), glm::dvec3(2.5, 2.5, 0.0),
-                                            glm::dvec3(0, 1, 0)),
-                            {200.0, 200.0}};
+    const ScreenMapping eye{
+        glm::perspective(glm::radians(60.0), 1.0, 0.5, 50.0) *
+            glm::lookAt(glm::dvec3(2.5, 2.5, 8.0), glm::dvec3(2.5, 2.5, 0.0), glm::dvec3(0, 1, 0)),
+        {200.0, 200.0}};
     const auto inEye = rowsInRectangle(eye, f.x, f.y, f.z, {}, {0, 0}, {200, 200});
     const auto front = frontmostRows(eye, f.x, f.y, f.z, f.radius, {}, inEye);
     std::size_t topSheet = 0;

@@ -47,7 +47,10 @@ class OpGenerator {
                 for (int a = 0; a < 3; ++a)
                     if (lo[a] > hi[a])
                         std::swap(lo[a], hi[a]);
-            return {{"op", "box.add"}, {"name", name("box", 3)}, {"min", lo}, {"max", hi},
+            return {{"op", "box.add"},
+                    {"name", name("box", 3)},
+                    {"min", lo},
+                    {"max", hi},
                     {"mode", pick(3) ? "keep" : "cut"}};
         }
         case 1: {
@@ -61,7 +64,9 @@ class OpGenerator {
         case 2:
             return {{"op", "box.remove"}, {"name", name("box", 3)}};
         case 3:
-            return {{"op", "threshold.add"}, {"variable", variable()}, {"low", number()},
+            return {{"op", "threshold.add"},
+                    {"variable", variable()},
+                    {"low", number()},
                     {"high", pick(3) ? number() + 2 : 1e30}};
         case 4: {
             Json cmd = {{"op", "threshold.set"}, {"variable", variable()}};
@@ -87,18 +92,25 @@ class OpGenerator {
         case 9:
             if (pick(2))
                 return {{"op", "fault.delete"}, {"name", name("F", 4)}};
-            return {{"op", "fault.set"}, {"name", name("F", 4)}, {"notes", "n" + std::to_string(pick(9))}};
+            return {{"op", "fault.set"},
+                    {"name", name("F", 4)},
+                    {"notes", "n" + std::to_string(pick(9))}};
         case 10:
-            return {{"op", "fault.candidates"}, {"min_size", 3 + pick(10)},
-                    {"prefix", name("C", 2)}, {"method", pick(2) ? "connected" : "network"}};
+            return {{"op", "fault.candidates"},
+                    {"min_size", 3 + pick(10)},
+                    {"prefix", name("C", 2)},
+                    {"method", pick(2) ? "connected" : "network"}};
         case 11:
-            return {{"op", "fault.merge"}, {"names", {name("F", 4), name("F", 4)}}, {"into", name("F", 4)}};
+            return {{"op", "fault.merge"},
+                    {"names", {name("F", 4), name("F", 4)}},
+                    {"into", name("F", 4)}};
         case 12:
             if (pick(2))
                 return {{"op", "view.add"}, {"name", name("view", 2)}, {"frame", pick(4)}};
             return {{"op", "view.remove"}, {"name", name("view", 2)}};
         case 13: {
-            Json cmd = {{"op", "color.set"}, {"view", pick(3) ? "main" : name("view", 2)},
+            Json cmd = {{"op", "color.set"},
+                        {"view", pick(3) ? "main" : name("view", 2)},
                         {"variable", variable()}};
             if (pick(3) == 0)
                 cmd["range"] = {0, pick(5)};
@@ -107,12 +119,17 @@ class OpGenerator {
         case 14:
             if (pick(3) == 0)
                 return {{"op", "surface.remove"}, {"fault", name("F", 4)}};
-            return {{"op", "surface.set"}, {"fault", name("F", 4)}, {"kernel", pick(2) ? "compact" : "inverse-square"},
-                    {"iso", 0.3 + 0.1 * pick(5)}, {"visible", pick(2) == 0}};
+            return {{"op", "surface.set"},
+                    {"fault", name("F", 4)},
+                    {"kernel", pick(2) ? "compact" : "inverse-square"},
+                    {"iso", 0.3 + 0.1 * pick(5)},
+                    {"visible", pick(2) == 0}};
         case 15:
             return {{"op", "frame.set"}, {"frame", pick(4)}}; // 3 is out of range
         case 16:
-            return {{"op", "fault.split"}, {"name", name("F", 4)}, {"min_size", 1 + pick(2)},
+            return {{"op", "fault.split"},
+                    {"name", name("F", 4)},
+                    {"min_size", 1 + pick(2)},
                     {"method", "connected"}};
         case 17: {
             static const char* modes[] = {"all", "labelled", "only", "unlabelled"}; // and a bad one
@@ -126,7 +143,8 @@ class OpGenerator {
                 return {{"op", "strain.remove"}, {"prefix", name("s", 2) + "_"}};
             return {{"op", "strain.add"}, {"since_frame", pick(3)}, {"prefix", name("s", 2) + "_"}};
         case 19:
-            return {{"op", "view.set"}, {"name", pick(2) ? "main" : name("view", 2)},
+            return {{"op", "view.set"},
+                    {"name", pick(2) ? "main" : name("view", 2)},
                     {"linked_camera", pick(2) == 0}};
         case 20:
             return {{"op", "fault.set"}, {"name", name("F", 4)}, {"rename", name("F", 4)}};
@@ -186,7 +204,8 @@ std::optional<std::string> firstFailure(const std::vector<Json>& ops, const std:
                 return std::string("replaying the journal refused ") + cmd.dump() + ": " + e.what();
             }
         if (stateOf(r) != final)
-            return "replaying the journal gave another state:\n  " + stateOf(r) + "\nnot\n  " + final;
+            return "replaying the journal gave another state:\n  " + stateOf(r) + "\nnot\n  " +
+                   final;
     }
     // Save and open.
     {
@@ -195,7 +214,8 @@ std::optional<std::string> firstFailure(const std::vector<Json>& ops, const std:
         Session o;
         o.apply({{"op", "session.open"}, {"path", path}});
         if (stateOf(o) != final)
-            return "the saved session opened as another state:\n  " + stateOf(o) + "\nnot\n  " + final;
+            return "the saved session opened as another state:\n  " + stateOf(o) + "\nnot\n  " +
+                   final;
     }
     // Undo everything, then redo everything.
     std::size_t undone = 0;
@@ -245,17 +265,20 @@ TEST(SessionModel, RandomOpSequencesReplaySaveAndUndoToTheSameState) {
                 journal << cmd.dump() << "\n";
             ADD_FAILURE() << "seed " << seed << ": " << *why << "\nminimal sequence ("
                           << minimal.size() << " ops, after data.open of the lattice):\n"
-                          << journal.str() << "which fails with: "
-                          << firstFailure(minimal, data, dir).value_or("?");
+                          << journal.str()
+                          << "which fails with: " << firstFailure(minimal, data, dir).value_or("?");
             return;
         }
     }
-    for (const char* op : {"box.add", "box.set", "box.remove", "threshold.add", "threshold.set",
-                           "threshold.remove", "fault.create", "fault.add", "fault.remove",
-                           "fault.delete", "fault.set", "fault.candidates", "fault.merge",
-                           "fault.split", "fault.filter", "view.add", "view.remove", "view.set",
-                           "color.set", "surface.set", "surface.remove", "strain.add",
-                           "strain.remove", "frame.set", "undo", "redo"})
+    for (const char* op : {"box.add",       "box.set",       "box.remove",
+                           "threshold.add", "threshold.set", "threshold.remove",
+                           "fault.create",  "fault.add",     "fault.remove",
+                           "fault.delete",  "fault.set",     "fault.candidates",
+                           "fault.merge",   "fault.split",   "fault.filter",
+                           "view.add",      "view.remove",   "view.set",
+                           "color.set",     "surface.set",   "surface.remove",
+                           "strain.add",    "strain.remove", "frame.set",
+                           "undo",          "redo"})
         EXPECT_GE(accepted[op], 3) << op << " was accepted too rarely to be tested";
 }
 
@@ -264,7 +287,8 @@ TEST(SessionModel, RandomOpSequencesReplaySaveAndUndoToTheSameState) {
 TEST(SessionModel, MergingAFaultWithItselfIsRefusedAndUndoKeepsSurfaceOrder) {
     TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {dir.write("lattice.dump", faultline::test::latticeDump())}}});
+    s.apply({{"op", "data.open"},
+             {"paths", {dir.write("lattice.dump", faultline::test::latticeDump())}}});
     for (const char* f : {"F1", "F4"}) {
         s.apply({{"op", "fault.create"}, {"name", f}, {"ids", {f[1] == '1' ? 22 : 52}}});
         s.apply({{"op", "surface.set"}, {"fault", f}, {"kernel", "compact"}, {"iso", 0.4}});

@@ -21,8 +21,9 @@ std::string writeCube(const TempDir& dir, const std::string& name) {
         for (int z = 0; z < 2; ++z)
             for (int y = 0; y < 2; ++y)
                 for (int x = 0; x < 2; ++x)
-                    text += std::to_string(id++) + " " + std::to_string(x) + " " + std::to_string(y) +
-                            " " + std::to_string(z) + " " + std::to_string(x + t) + "\n";
+                    text += std::to_string(id++) + " " + std::to_string(x) + " " +
+                            std::to_string(y) + " " + std::to_string(z) + " " +
+                            std::to_string(x + t) + "\n";
     }
     return dir.write(name, text);
 }
@@ -84,24 +85,26 @@ TEST(SessionOpen, OpeningDataStartsANewHistory) {
     EXPECT_EQ(s.undoLabel(), "");
 }
 
-
-
 TEST(SessionOpen, AMissingFileOrBadStateChangesNothing) {
     TempDir dir;
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeCube(dir, "a.dump")}}});
     const SessionState before = s.state();
-    EXPECT_THROW(s.apply({{"op", "session.open"}, {"path", dir.file("none.faultline.json")}}), CommandError);
+    EXPECT_THROW(s.apply({{"op", "session.open"}, {"path", dir.file("none.faultline.json")}}),
+                 CommandError);
     EXPECT_THROW(s.apply(cmd(R"({"op":"session.open"})")), CommandError);
-    EXPECT_THROW(s.apply(cmd(R"({"op":"session.restore","state":{"schema":1,"frame":"x"}})")), CommandError);
+    EXPECT_THROW(s.apply(cmd(R"({"op":"session.restore","state":{"schema":1,"frame":"x"}})")),
+                 CommandError);
     // A session whose data is gone.
     SessionState gone = before;
     gone.dataPaths = {dir.file("gone.dump")};
-    EXPECT_THROW(s.apply({{"op", "session.restore"}, {"state", sessionToJson(gone, "")}}), CommandError);
+    EXPECT_THROW(s.apply({{"op", "session.restore"}, {"state", sessionToJson(gone, "")}}),
+                 CommandError);
     // A frame the data does not have.
     SessionState far = before;
     far.frame = 5;
-    EXPECT_THROW(s.apply({{"op", "session.restore"}, {"state", sessionToJson(far, "")}}), CommandError);
+    EXPECT_THROW(s.apply({{"op", "session.restore"}, {"state", sessionToJson(far, "")}}),
+                 CommandError);
     EXPECT_EQ(s.state(), before);
     EXPECT_EQ(s.undoDepth(), 0u); // the data.open started the history
 }

@@ -1,8 +1,8 @@
 #include "core/faults/candidates.hpp"
 #include "core/io/input_error.hpp"
+#include "core/session/command_label.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/journal.hpp"
-#include "core/session/command_label.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface.hpp"
@@ -210,7 +210,8 @@ TEST(Session, CameraMovesAreNoUndoSteps) {
     TempDir dir;
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
-    s.apply(cmd(R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.2,"first":{"tabs":["data","faults"],"active":"data"},"second":{"tabs":["viewports"]}}}})"));
+    s.apply(cmd(
+        R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.2,"first":{"tabs":["data","faults"],"active":"data"},"second":{"tabs":["viewports"]}}}})"));
     s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2]})"));
     s.markSaved();
     s.apply(cmd(R"({"op":"camera.set","view":"main","azimuth":30,"distance":12})"));
@@ -220,7 +221,8 @@ TEST(Session, CameraMovesAreNoUndoSteps) {
     EXPECT_EQ(s.state().fault("F1"), nullptr);
     EXPECT_EQ(s.state().view("main")->camera.azimuth, 30); // the camera stays where it went
     // Nor does a click on a tab or a splitter drag: redo keeps what it would bring back.
-    s.apply(cmd(R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.3,"first":{"tabs":["data","faults"],"active":"faults"},"second":{"tabs":["viewports"]}}}})"));
+    s.apply(cmd(
+        R"({"op":"layout.set","layout":{"root":{"split":"h","ratio":0.3,"first":{"tabs":["data","faults"],"active":"faults"},"second":{"tabs":["viewports"]}}}})"));
     EXPECT_TRUE(s.canRedo());
     EXPECT_EQ(s.redoLabel(), "make fault F1 (2 spheres)");
     EXPECT_EQ(describeFailure(cmd(R"({"op":"threshold.set","variable":"strain","low":2,"high":1})"),
@@ -341,10 +343,9 @@ TEST(Session, RejectedCommandsChangeNothing) {
             "fault.merge: no fault named \"x\"");
     rejects(R"({"op":"view.remove","name":"main"})",
             "view.remove: the main view cannot be removed");
-    rejects(
-        R"({"op":"color.set","map":"rainbow"})",
-        "color.set: \"map\" names no colour map (blue-red, viridis, diverging, pastel, bands, "
-        "gray), found \"rainbow\"");
+    rejects(R"({"op":"color.set","map":"rainbow"})",
+            "color.set: \"map\" names no colour map (blue-red, viridis, diverging, pastel, bands, "
+            "gray), found \"rainbow\"");
     // color.set reads and checks through the view codec: its rules are a session file's.
     rejects(R"({"op":"color.set","range":[2,1]})", "color.set: color.range must have low < high");
     rejects(R"({"op":"color.set","range_mode":"al"})",
@@ -762,7 +763,8 @@ TEST(Session, CandidatesAndSplitUndoExactly) {
     s.apply(cmd(R"({"op":"fault.candidates","min_size":100})"));
     EXPECT_EQ(dump(s.state()), dump(none));
     EXPECT_NE(s.lastNote().find("no faults made: no group of at least 100 visible spheres"),
-              std::string::npos) << s.lastNote();
+              std::string::npos)
+        << s.lastNote();
     s.apply(cmd(R"({"op":"undo"})"));
     EXPECT_EQ(dump(s.state()), dump(none));
     s.apply(cmd(R"({"op":"fault.create","name":"K1","ids":[1]})"));
@@ -901,7 +903,6 @@ TEST(Session, ASphereBelongsToOneFault) {
             EXPECT_TRUE(seen.insert(id).second) << id << " in two faults";
 }
 
-
 // Issue 41, item 11: a fault's surface is built from what of it has formed in the frame shown
 // (its members passing the thresholds), so it is not drawn before any of its spheres passed.
 TEST(Session, AFaultsSurfaceIsWhatOfItHasFormedInTheFrame) {
@@ -946,7 +947,9 @@ TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
     ASSERT_EQ(s.state().faults.size(), 1u);
     EXPECT_NE(s.state().faults[0].notes.find("diffuse"), std::string::npos)
         << s.state().faults[0].notes;
-    const CandidateShape sheet = candidateShape(*s.currentFrame(), std::vector<std::int64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16});
+    const CandidateShape sheet =
+        candidateShape(*s.currentFrame(), std::vector<std::int64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+                                                                    11, 12, 13, 14, 15, 16});
     EXPECT_TRUE(sheet.valid);
     EXPECT_FALSE(sheet.diffuse); // the z = 0 layer
     EXPECT_NEAR(sheet.dip, 0.0, 1e-6);

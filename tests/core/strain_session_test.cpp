@@ -23,7 +23,8 @@ namespace {
 std::string writeSlidingBlock(const TempDir& dir) {
     std::ostringstream text;
     for (int t = 0; t < 3; ++t) {
-        text << "ITEM: TIMESTEP\n" << t * 100 << "\nITEM: NUMBER OF ATOMS\n216\n"
+        text << "ITEM: TIMESTEP\n"
+             << t * 100 << "\nITEM: NUMBER OF ATOMS\n216\n"
              << "ITEM: BOX BOUNDS ff ff ff\n-0.5 7\n-0.5 5.5\n-0.5 5.5\n"
              << "ITEM: ATOMS id x y z radius\n";
         int id = 1;
@@ -164,9 +165,9 @@ TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
 TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {
     TempDir dir;
     auto load = [&](const std::string& strains) {
-        const std::string path = dir.write(
-            "bad.faultline.json",
-            R"({"format":"faultline-session","schema":1,"strains":)" + strains + "}");
+        const std::string path =
+            dir.write("bad.faultline.json",
+                      R"({"format":"faultline-session","schema":1,"strains":)" + strains + "}");
         try {
             loadSessionFile(path);
         } catch (const InputError& e) {

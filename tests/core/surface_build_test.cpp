@@ -20,7 +20,7 @@ Spheres single(float radius, std::array<float, 3> colour) {
     return {{0.1f}, {-0.2f}, {0.3f}, {radius}, {colour[0], colour[1], colour[2]}};
 }
 
-double distanceFromCentre(const std::array<float, 3> &p) {
+double distanceFromCentre(const std::array<float, 3>& p) {
     return std::sqrt((p[0] - 0.1) * (p[0] - 0.1) + (p[1] + 0.2) * (p[1] + 0.2) +
                      (p[2] - 0.3) * (p[2] - 0.3));
 }
@@ -40,25 +40,25 @@ TEST(FaultSurface, SingleSphereInverseSquareIsASphereOfRadiusSqrtROverIso) {
     params.voxelSize = 0.05f;
     params.colorReach = 0.5f; // the surface at 0.707 lies within radius + reach = 1.0
     const auto result = fc::buildSurface(s.set(), params);
-    const auto &mesh = result.mesh;
+    const auto& mesh = result.mesh;
     ASSERT_GT(mesh.triangleCount(), 100u);
     ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
     ASSERT_EQ(mesh.colors.size(), mesh.positions.size());
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        const auto &p = mesh.positions[i];
+        const auto& p = mesh.positions[i];
         EXPECT_NEAR(distanceFromCentre(p), std::sqrt(0.5), 2e-3);
         const double d = distanceFromCentre(p);
         const std::array<double, 3> radial{(p[0] - 0.1) / d, (p[1] + 0.2) / d, (p[2] - 0.3) / d};
-        const auto &n = mesh.normals[i];
+        const auto& n = mesh.normals[i];
         EXPECT_GT(n[0] * radial[0] + n[1] * radial[1] + n[2] * radial[2], 0.999);
         EXPECT_NEAR(mesh.colors[i][0], 0.2f, 1e-5f);
         EXPECT_NEAR(mesh.colors[i][2], 0.6f, 1e-5f);
     }
     // Counter-clockwise seen from outside.
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-        const auto &a = mesh.positions[mesh.indices[t]];
-        const auto &b = mesh.positions[mesh.indices[t + 1]];
-        const auto &c = mesh.positions[mesh.indices[t + 2]];
+        const auto& a = mesh.positions[mesh.indices[t]];
+        const auto& b = mesh.positions[mesh.indices[t + 1]];
+        const auto& c = mesh.positions[mesh.indices[t + 2]];
         const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         const std::array<double, 3> v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         const std::array<double, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
@@ -95,15 +95,15 @@ TEST(FaultSurface, RemeshWithinTheRangeNeedsNoNewField) {
     const auto mesh = fc::remesh(*result.field, 1.25f);
     ASSERT_FALSE(mesh.positions.empty());
     // Marching cubes interpolates linearly along edges: 1/d bends by ~h^2 f'' / 8 f' there.
-    for (const auto &p : mesh.positions)
+    for (const auto& p : mesh.positions)
         EXPECT_NEAR(distanceFromCentre(p), 0.4, 3e-3);
     EXPECT_THROW(fc::remesh(*result.field, 3.0f), fc::SurfaceRequestError);
     // Grid normals (central differences of the stored field) agree with the analytic ones.
     const auto fast = fc::remesh(*result.field, 1.25f, nullptr, fc::NormalSource::Grid);
     ASSERT_EQ(fast.normals.size(), mesh.normals.size());
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
-        const auto &a = mesh.normals[i];
-        const auto &b = fast.normals[i];
+        const auto& a = mesh.normals[i];
+        const auto& b = fast.normals[i];
         EXPECT_GT(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 0.999);
     }
 }
@@ -137,7 +137,7 @@ TEST(FaultSurface, MeshesAreClosedAcrossLeavesAndWoundOutwards) {
                 for (int e = 0; e < 3; ++e)
                     ++directed[{mesh.indices[t + e], mesh.indices[t + (e + 1) % 3]}];
             std::size_t open = 0;
-            for (const auto &[edge, count] : directed) {
+            for (const auto& [edge, count] : directed) {
                 const auto back = directed.find({edge.second, edge.first});
                 open += back == directed.end() || back->second != count;
             }
@@ -145,14 +145,14 @@ TEST(FaultSurface, MeshesAreClosedAcrossLeavesAndWoundOutwards) {
             // Counter-clockwise from outside: the face normal agrees with the vertex normals.
             std::size_t agree = 0;
             for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-                const auto &a = mesh.positions[mesh.indices[t]];
-                const auto &b = mesh.positions[mesh.indices[t + 1]];
-                const auto &c = mesh.positions[mesh.indices[t + 2]];
+                const auto& a = mesh.positions[mesh.indices[t]];
+                const auto& b = mesh.positions[mesh.indices[t + 1]];
+                const auto& c = mesh.positions[mesh.indices[t + 2]];
                 const float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
                 const float v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
                 const float face[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                                        u[0] * v[1] - u[1] * v[0]};
-                const auto &n = mesh.normals[mesh.indices[t]];
+                const auto& n = mesh.normals[mesh.indices[t]];
                 agree += face[0] * n[0] + face[1] * n[1] + face[2] * n[2] > 0.0f;
             }
             EXPECT_GT(double(agree), 0.99 * double(mesh.triangleCount()));
@@ -172,7 +172,7 @@ TEST(FaultSurface, RefusesBadRequestsBeforeWork) {
     try {
         fc::buildSurface(s.set(), params);
         FAIL() << "expected a refusal";
-    } catch (const fc::SurfaceRequestError &e) {
+    } catch (const fc::SurfaceRequestError& e) {
         EXPECT_NE(std::string(e.what()).find("budget is 256.0 MiB"), std::string::npos) << e.what();
     }
 }

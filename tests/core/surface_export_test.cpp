@@ -154,15 +154,15 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
     // Each sphere's vertices lie on it, in its colour: the second is green.
     const auto& colours = model.accessors[glyphs.attributes.at("COLOR_0")];
     const auto& view = model.bufferViews[colours.bufferView];
-    const float* rgb = reinterpret_cast<const float*>(
-        model.buffers[view.buffer].data.data() + view.byteOffset + colours.byteOffset);
+    const float* rgb = reinterpret_cast<const float*>(model.buffers[view.buffer].data.data() +
+                                                      view.byteOffset + colours.byteOffset);
     for (std::size_t k = 42; k < 84; ++k) {
         EXPECT_EQ(rgb[3 * k], 0.0f);
         EXPECT_EQ(rgb[3 * k + 1], 1.0f);
     }
     const auto& pview = model.bufferViews[positions.bufferView];
-    const float* xyz = reinterpret_cast<const float*>(
-        model.buffers[pview.buffer].data.data() + pview.byteOffset + positions.byteOffset);
+    const float* xyz = reinterpret_cast<const float*>(model.buffers[pview.buffer].data.data() +
+                                                      pview.byteOffset + positions.byteOffset);
     for (std::size_t k = 84; k < 126; ++k) // the third sphere: centre (1.6, 0.2, 0), radius 0.4
         EXPECT_NEAR(std::hypot(xyz[3 * k] - 1.6f, xyz[3 * k + 1] - 0.2f, xyz[3 * k + 2]), 0.4f,
                     1e-5f);

@@ -52,10 +52,10 @@ struct Check {
 };
 
 // Evaluates every planned block and compares every voxel with Algorithm 1.
-Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, float voxel,
-                           float isoMin, float isoMax, const fc::MultilevelTuning &tuning,
-                           int *levels = nullptr, int *chargeLevels = nullptr,
-                           double *estimate = nullptr, std::array<int, 2> *cutoffs = nullptr) {
+Check compareWithReference(const Spheres& s, const fc::SurfaceParams& params, float voxel,
+                           float isoMin, float isoMax, const fc::MultilevelTuning& tuning,
+                           int* levels = nullptr, int* chargeLevels = nullptr,
+                           double* estimate = nullptr, std::array<int, 2>* cutoffs = nullptr) {
     const auto set = s.set();
     fc::MetaballField field(set, params, voxel, tuning);
     const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
@@ -72,7 +72,7 @@ Check compareWithReference(const Spheres &s, const fc::SurfaceParams &params, fl
     const double clamp = 4.0 * isoMax;
     std::vector<float> density(fc::kBlockVoxels);
     std::vector<fc::Vec3f> color(fc::kBlockVoxels);
-    for (const auto &o : plan.blocks) {
+    for (const auto& o : plan.blocks) {
         field.evaluateBlock(o, density.data(), color.data());
         for (int i = 0; i < 8; ++i)
             for (int j = 0; j < 8; ++j)
@@ -140,51 +140,52 @@ Spheres spreadZones(std::array<double, 3> size, unsigned seed, int every = 4) {
 // are planned by folds too, and keep the same guarantee.
 TEST(MetaballField, FoldedPlanningKeepsEveryBlockTheSpreadOutSurfaceCrosses) {
     for (const int every : {4, 1})
-    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
-        const Spheres s = spreadZones({80, 50, 40}, 11, every);
-        ASSERT_GT(s.x.size(), 500u);
-        const auto set = s.set();
-        SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
-        fc::SurfaceParams params;
-        params.kernel = kernel;
-        params.iso = static_cast<float>(fc::wrappingIso(set, params));
-        const float voxel = 0.5f;
-        fc::MetaballField field(set, params, voxel);
-        EXPECT_EQ(field.sparse(), every != 1);
-        const float isoMin = params.iso / params.isoRangeFactor;
-        const float isoMax = params.iso * params.isoRangeFactor;
-        const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
-        ASSERT_FALSE(plan.blocks.empty());
-        std::vector<fc::Coord3> blocks = plan.blocks;
-        std::sort(blocks.begin(), blocks.end());
-        // Voxels near random spheres (where the surface is) and anywhere in the box.
-        std::mt19937 rng(5);
-        std::uniform_int_distribution<std::size_t> pick(0, s.x.size() - 1);
-        std::uniform_real_distribution<double> offset(-4.0, 4.0), anywhere(-5.0, 85.0);
-        int inRange = 0;
-        for (int n = 0; n < 12000; ++n) {
-            std::array<double, 3> p;
-            if (n % 2 == 0) {
-                const std::size_t i = pick(rng);
-                p = {s.x[i] + offset(rng), s.y[i] + offset(rng), s.z[i] + offset(rng)};
-            } else {
-                p = {anywhere(rng), anywhere(rng) * 50 / 80, anywhere(rng) * 40 / 80};
+        for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
+            const Spheres s = spreadZones({80, 50, 40}, 11, every);
+            ASSERT_GT(s.x.size(), 500u);
+            const auto set = s.set();
+            SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
+            fc::SurfaceParams params;
+            params.kernel = kernel;
+            params.iso = static_cast<float>(fc::wrappingIso(set, params));
+            const float voxel = 0.5f;
+            fc::MetaballField field(set, params, voxel);
+            EXPECT_EQ(field.sparse(), every != 1);
+            const float isoMin = params.iso / params.isoRangeFactor;
+            const float isoMax = params.iso * params.isoRangeFactor;
+            const auto plan = fc::planSurface(field, isoMin, isoMax, std::size_t{1} << 30, nullptr);
+            ASSERT_FALSE(plan.blocks.empty());
+            std::vector<fc::Coord3> blocks = plan.blocks;
+            std::sort(blocks.begin(), blocks.end());
+            // Voxels near random spheres (where the surface is) and anywhere in the box.
+            std::mt19937 rng(5);
+            std::uniform_int_distribution<std::size_t> pick(0, s.x.size() - 1);
+            std::uniform_real_distribution<double> offset(-4.0, 4.0), anywhere(-5.0, 85.0);
+            int inRange = 0;
+            for (int n = 0; n < 12000; ++n) {
+                std::array<double, 3> p;
+                if (n % 2 == 0) {
+                    const std::size_t i = pick(rng);
+                    p = {s.x[i] + offset(rng), s.y[i] + offset(rng), s.z[i] + offset(rng)};
+                } else {
+                    p = {anywhere(rng), anywhere(rng) * 50 / 80, anywhere(rng) * 40 / 80};
+                }
+                const std::array<int, 3> v{int(std::floor(p[0] / voxel)),
+                                           int(std::floor(p[1] / voxel)),
+                                           int(std::floor(p[2] / voxel))};
+                const auto ref = fc::referenceSample(
+                    set, params, {v[0] * voxel, v[1] * double(voxel), v[2] * voxel});
+                if (ref.value < isoMin || ref.value > isoMax)
+                    continue;
+                ++inRange;
+                const fc::Coord3 o{fc::detail::floorDiv(v[0], 8) * 8,
+                                   fc::detail::floorDiv(v[1], 8) * 8,
+                                   fc::detail::floorDiv(v[2], 8) * 8};
+                EXPECT_TRUE(std::binary_search(blocks.begin(), blocks.end(), o))
+                    << "voxel " << v[0] << "," << v[1] << "," << v[2] << " value " << ref.value;
             }
-            const std::array<int, 3> v{int(std::floor(p[0] / voxel)), int(std::floor(p[1] / voxel)),
-                                       int(std::floor(p[2] / voxel))};
-            const auto ref =
-                fc::referenceSample(set, params, {v[0] * voxel, v[1] * double(voxel), v[2] * voxel});
-            if (ref.value < isoMin || ref.value > isoMax)
-                continue;
-            ++inRange;
-            const fc::Coord3 o{fc::detail::floorDiv(v[0], 8) * 8,
-                               fc::detail::floorDiv(v[1], 8) * 8,
-                               fc::detail::floorDiv(v[2], 8) * 8};
-            EXPECT_TRUE(std::binary_search(blocks.begin(), blocks.end(), o))
-                << "voxel " << v[0] << "," << v[1] << "," << v[2] << " value " << ref.value;
+            EXPECT_GT(inRange, 50); // the samples did reach the surface
         }
-        EXPECT_GT(inRange, 50); // the samples did reach the surface
-    }
 }
 
 // Issue 40: planning a dense set by folds instead of the tree's bounds changes no mesh: the same
@@ -206,7 +207,7 @@ TEST(MetaballField, FoldedAndTreePlanningGiveTheSameMeshOnADenseSet) {
         ASSERT_GT(byFolds.mesh.triangleCount(), 1000u);
         ASSERT_EQ(byFolds.mesh.triangleCount(), byTree.mesh.triangleCount());
         // As sorted vertex lists (blocks may be meshed in another order).
-        auto sorted = [](const fc::SurfaceMesh &m) {
+        auto sorted = [](const fc::SurfaceMesh& m) {
             auto p = m.positions;
             std::sort(p.begin(), p.end());
             return p;
@@ -228,42 +229,42 @@ TEST(MetaballField, FoldBoundsHoldEverywhereInNestedBoxes) {
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (const int every : {4, 1}) // sparse and dense zones (issue 40)
-    for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
-        const Spheres s = spreadZones({80, 50, 40}, 17, every);
-        const auto set = s.set();
-        SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
-        fc::SurfaceParams params;
-        params.kernel = kernel;
-        const int power = kernel == fc::MetaballKernel::Inverse ? 1 : 2;
-        const float minD2 = 1e-6f; // as the field clamps: far below any distance sampled here
-        int folded = 0;
-        for (int chain = 0; chain < 12; ++chain) {
-            fc::detail::Fold fold;
-            fold.x = s.x, fold.y = s.y, fold.z = s.z, fold.r = s.r;
-            fc::detail::Box box{{-8, -8, -8}, {88, 88, 88}};
-            for (int depth = 0; depth < 6; ++depth) {
-                const auto b = fc::detail::foldBounds(fold, box, power, minD2);
-                for (int n = 0; n < 64; ++n) {
-                    std::array<double, 3> p;
-                    for (int k = 0; k < 3; ++k) {
-                        const double t = n < 8 ? double((n >> k) & 1) : unit(rng);
-                        p[k] = box.lo[k] + t * (box.hi[k] - box.lo[k]);
+        for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
+            const Spheres s = spreadZones({80, 50, 40}, 17, every);
+            const auto set = s.set();
+            SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
+            fc::SurfaceParams params;
+            params.kernel = kernel;
+            const int power = kernel == fc::MetaballKernel::Inverse ? 1 : 2;
+            const float minD2 = 1e-6f; // as the field clamps: far below any distance sampled here
+            int folded = 0;
+            for (int chain = 0; chain < 12; ++chain) {
+                fc::detail::Fold fold;
+                fold.x = s.x, fold.y = s.y, fold.z = s.z, fold.r = s.r;
+                fc::detail::Box box{{-8, -8, -8}, {88, 88, 88}};
+                for (int depth = 0; depth < 6; ++depth) {
+                    const auto b = fc::detail::foldBounds(fold, box, power, minD2);
+                    for (int n = 0; n < 64; ++n) {
+                        std::array<double, 3> p;
+                        for (int k = 0; k < 3; ++k) {
+                            const double t = n < 8 ? double((n >> k) & 1) : unit(rng);
+                            p[k] = box.lo[k] + t * (box.hi[k] - box.lo[k]);
+                        }
+                        const double v = fc::referenceSample(set, params, p).value;
+                        ASSERT_GE(v, b.low) << "depth " << depth;
+                        ASSERT_LE(v, b.high) << "depth " << depth;
                     }
-                    const double v = fc::referenceSample(set, params, p).value;
-                    ASSERT_GE(v, b.low) << "depth " << depth;
-                    ASSERT_LE(v, b.high) << "depth " << depth;
-                }
-                fold = fc::detail::foldFor(fold, box, power, minD2);
-                folded += fold.x.size() < s.x.size();
-                // A random octant: a child planning cell.
-                for (int k = 0; k < 3; ++k) {
-                    const float mid = 0.5f * (box.lo[k] + box.hi[k]);
-                    (unit(rng) < 0.5 ? box.hi[k] : box.lo[k]) = mid;
+                    fold = fc::detail::foldFor(fold, box, power, minD2);
+                    folded += fold.x.size() < s.x.size();
+                    // A random octant: a child planning cell.
+                    for (int k = 0; k < 3; ++k) {
+                        const float mid = 0.5f * (box.lo[k] + box.hi[k]);
+                        (unit(rng) < 0.5 ? box.hi[k] : box.lo[k]) = mid;
+                    }
                 }
             }
+            EXPECT_GT(folded, 12); // the chains did fold spheres
         }
-        EXPECT_GT(folded, 12); // the chains did fold spheres
-    }
 }
 
 // The grid's near and colour lists hold exactly the spheres the tree gathers (as sets: the
@@ -330,8 +331,8 @@ TEST(MetaballField, SparseSetWiderNearCutoffStillMatchesAlgorithm1) {
             EXPECT_GT(wider.nearCutoff(), plain.nearCutoff());
         }
         const float isoMin = params.iso / params.isoRangeFactor;
-        const auto check = compareWithReference(s, params, voxel, isoMin,
-                                                params.iso * params.isoRangeFactor, {});
+        const auto check =
+            compareWithReference(s, params, voxel, isoMin, params.iso * params.isoRangeFactor, {});
         EXPECT_GT(check.voxels, 0u);
         EXPECT_LE(check.maxError, params.tolerance * isoMin);
     }
@@ -395,8 +396,8 @@ TEST(MetaballField, ATopLevelChosenByCostStillMatchesAlgorithm1) {
     int levelsByCost = 0, levelsByCount = 0;
     const Check c = compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
                                          iso * params.isoRangeFactor, byCost, &levelsByCost);
-    compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor,
-                         iso * params.isoRangeFactor, byCount, &levelsByCount);
+    compareWithReference(s, params, 0.25f, iso / params.isoRangeFactor, iso * params.isoRangeFactor,
+                         byCount, &levelsByCount);
     EXPECT_LT(levelsByCost, levelsByCount);
     EXPECT_GT(c.voxels, 10000u);
     EXPECT_LE(c.maxError, params.tolerance * iso / params.isoRangeFactor);
@@ -479,7 +480,7 @@ TEST(ChargeGrid, ChargesKeepTheSpheresMoments) {
         const std::size_t nodes = std::size_t(g->dims[0]) * g->dims[1] * g->dims[2];
         EXPECT_EQ(nodes > (std::size_t{1} << 18), spacing < 1.0f) << nodes;
         double want[5] = {}, got[5] = {};
-        auto moments = [](double w, double x, double y, double z, double *m) {
+        auto moments = [](double w, double x, double y, double z, double* m) {
             m[0] += w, m[1] += w * x, m[2] += w * y * z, m[3] += w * x * x, m[4] += w * z * z * z;
         };
         for (std::size_t i = 0; i < s.size(); ++i)
@@ -490,8 +491,8 @@ TEST(ChargeGrid, ChargesKeepTheSpheresMoments) {
                     moments(g->at(a, b, c), (g->lo[0] + a) * spacing, (g->lo[1] + b) * spacing,
                             (g->lo[2] + c) * spacing, got);
         for (int m = 0; m < 5; ++m)
-            EXPECT_NEAR(got[m], want[m], 2e-4 * std::max(1.0, std::abs(want[m]))
-                                             * (m == 4 ? 20.0 : 1.0))
+            EXPECT_NEAR(got[m], want[m],
+                        2e-4 * std::max(1.0, std::abs(want[m])) * (m == 4 ? 20.0 : 1.0))
                 << "spacing " << spacing << " moment " << m;
         // Spread twice, the same charges (no race between the threads' slabs).
         EXPECT_EQ(fc::detail::anterpolate(s, box, spacing)->q, g->q);
@@ -562,7 +563,7 @@ TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
     std::mt19937 rng(5);
     std::vector<fc::Vec3f> points;
     for (int n = 0; n < 200; ++n) {
-        const auto &o = plan.blocks[rng() % plan.blocks.size()];
+        const auto& o = plan.blocks[rng() % plan.blocks.size()];
         std::uniform_real_distribution<float> u(0.0f, 7.0f);
         points.push_back(
             {(o[0] + u(rng)) * 0.25f, (o[1] + u(rng)) * 0.25f, (o[2] + u(rng)) * 0.25f});
@@ -603,7 +604,8 @@ TEST(MetaballField, DenseAlgorithm1WithGradientMatchesTheReference) {
             for (int j = 0; j < dims[1]; ++j)
                 for (int i = 0; i < dims[0]; ++i, ++at) {
                     const auto ref = fc::referenceSample(
-                        set, params, {(origin[0] + i) * h, (origin[1] + j) * h, (origin[2] + k) * h});
+                        set, params,
+                        {(origin[0] + i) * h, (origin[1] + j) * h, (origin[2] + k) * h});
                     EXPECT_NEAR(withGradient[at], ref.value, 1e-5 * ref.value + 1e-6);
                     EXPECT_EQ(withGradient[at], valueOnly[at]);
                     const double norm =
@@ -644,7 +646,7 @@ TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
     try {
         fc::planSurface(field, 4.0f, 8.0f, std::size_t{64} << 20, nullptr);
         FAIL() << "expected a refusal";
-    } catch (const fc::SurfaceRequestError &e) {
+    } catch (const fc::SurfaceRequestError& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("budget is 64.0 MiB"), std::string::npos) << what;
         EXPECT_NE(what.find("needs"), std::string::npos) << what;
@@ -664,10 +666,10 @@ TEST(MetaballField, AnIsoFarBelowTheFieldIsRefusedAtOnceWithTheWrappingIso) {
     fc::MetaballField field(s.set(), params, 0.5f);
     const double wrap = fc::wrappingIso(s.set(), params);
     try {
-        fc::planSurface(field, params.iso / params.isoRangeFactor, params.iso * params.isoRangeFactor,
-                        std::size_t{64} << 20, nullptr);
+        fc::planSurface(field, params.iso / params.isoRangeFactor,
+                        params.iso * params.isoRangeFactor, std::size_t{64} << 20, nullptr);
         FAIL() << "expected a refusal";
-    } catch (const fc::SurfaceRequestError &e) {
+    } catch (const fc::SurfaceRequestError& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("needs at least"), std::string::npos) << what;
         EXPECT_NE(what.find("\"iso\":\"wrap\""), std::string::npos) << what;
@@ -724,7 +726,7 @@ TEST(MetaballField, OneSidedBlocksSkipOnlyWhatTheirValuesConfirm) {
         field.prepare(plan.blocks, nullptr);
         std::vector<float> exact(fc::kBlockVoxels), maybe(fc::kBlockVoxels);
         int skipped = 0;
-        for (const auto &o : plan.blocks) {
+        for (const auto& o : plan.blocks) {
             field.evaluateBlock(o, exact.data(), nullptr);
             const auto [lo, hi] = std::minmax_element(exact.begin(), exact.end());
             fc::FieldBounds bounds;

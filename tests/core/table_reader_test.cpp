@@ -1,6 +1,6 @@
+#include "core/data/dataset.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/table_reader.hpp"
-#include "core/data/dataset.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>

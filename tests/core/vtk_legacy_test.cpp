@@ -1,7 +1,7 @@
-#include "core/io/input_error.hpp"
-#include "core/io/frame_source.hpp"
-#include "core/io/vtk_legacy.hpp"
 #include "core/data/dataset.hpp"
+#include "core/io/frame_source.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/vtk_legacy.hpp"
 
 #include <gtest/gtest.h>
 

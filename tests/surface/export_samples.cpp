@@ -9,7 +9,7 @@
 
 namespace fc = faultline::core;
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: surface_export_samples OUTPUT_DIR\n");
         return 2;

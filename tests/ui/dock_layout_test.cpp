@@ -18,14 +18,16 @@ std::string shape(const DockNode& n) {
             s += (s.empty() ? "" : ",") + t;
         return s;
     }
-    return std::string(n.split == SplitAxis::Horizontal ? "h(" : "v(") + shape(*n.first) + "|" + shape(*n.second) + ")";
+    return std::string(n.split == SplitAxis::Horizontal ? "h(" : "v(") + shape(*n.first) + "|" +
+           shape(*n.second) + ")";
 }
 
 } // namespace
 
 TEST(DockLayout, DefaultPutsTheViewportsInTheCentre) {
     DockLayout l = DockLayout::defaultLayout();
-    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports|timeline)|v(histograms|faults,surfaces)))");
+    EXPECT_EQ(shape(l.root()),
+              "h(data,boxes,thresholds|h(v(viewports|timeline)|v(histograms|faults,surfaces)))");
     for (const auto& p : known())
         EXPECT_TRUE(l.contains(p)) << p;
 }
@@ -48,11 +50,13 @@ TEST(DockLayout, MovingATabJoinsOrSplitsAndEmptyAreasCollapse) {
     ASSERT_TRUE(l.closePanel("surfaces")); // faults alone in its area
     // Onto the centre of the viewports' area: a second tab there.
     ASSERT_TRUE(l.movePanel("faults", l.areaOf("viewports")->id, DropSide::Centre));
-    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|h(v(viewports,faults|timeline)|histograms))");
+    EXPECT_EQ(shape(l.root()),
+              "h(data,boxes,thresholds|h(v(viewports,faults|timeline)|histograms))");
     EXPECT_EQ(l.areaOf("viewports")->active, "faults");
     // Onto the left edge of the timeline: the timeline's area splits side by side.
     ASSERT_TRUE(l.movePanel("histograms", l.areaOf("timeline")->id, DropSide::Left, 0.25f));
-    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|v(viewports,faults|h(histograms|timeline)))");
+    EXPECT_EQ(shape(l.root()),
+              "h(data,boxes,thresholds|v(viewports,faults|h(histograms|timeline)))");
     const DockNode* split = &l.root();
     split = split->second.get(); // v(...)
     EXPECT_FLOAT_EQ(split->second->ratio, 0.25f);
@@ -60,7 +64,8 @@ TEST(DockLayout, MovingATabJoinsOrSplitsAndEmptyAreasCollapse) {
     EXPECT_FALSE(l.movePanel("timeline", l.areaOf("timeline")->id, DropSide::Bottom));
     // A tab moved off a two-tab area onto that area's top edge.
     ASSERT_TRUE(l.movePanel("faults", l.areaOf("faults")->id, DropSide::Top));
-    EXPECT_EQ(shape(l.root()), "h(data,boxes,thresholds|v(v(faults|viewports)|h(histograms|timeline)))");
+    EXPECT_EQ(shape(l.root()),
+              "h(data,boxes,thresholds|v(v(faults|viewports)|h(histograms|timeline)))");
 }
 
 TEST(DockLayout, CloseAndOpenPanels) {
@@ -86,15 +91,18 @@ TEST(DockLayout, CloseAndOpenPanels) {
 TEST(DockLayout, FromJsonRepairsOrRefuses) {
     std::string why;
     EXPECT_FALSE(DockLayout::fromJson(json::array(), known(), &why));
-    EXPECT_FALSE(DockLayout::fromJson({{"root", {{"split", "x"}, {"a", json::object()}, {"b", json::object()}}}}, known(), &why));
+    EXPECT_FALSE(DockLayout::fromJson(
+        {{"root", {{"split", "x"}, {"a", json::object()}, {"b", json::object()}}}}, known(), &why));
     EXPECT_EQ(why, "\"split\" must be \"h\" or \"v\"");
-    EXPECT_FALSE(DockLayout::fromJson({{"version", 99}, {"root", {{"tabs", {"data"}}}}}, known(), &why));
+    EXPECT_FALSE(
+        DockLayout::fromJson({{"version", 99}, {"root", {{"tabs", {"data"}}}}}, known(), &why));
     // Unknown and repeated panels are dropped, the emptied area collapses, ratios clamp.
-    const json doc = {{"root",
-                       {{"split", "h"},
-                        {"ratio", 7},
-                        {"a", {{"tabs", {"data", "surfaces-of-the-future", "data"}}, {"active", "nope"}}},
-                        {"b", {{"split", "v"}, {"a", {{"tabs", {"data"}}}}, {"b", {{"tabs", {"faults"}}}}}}}}};
+    const json doc = {
+        {"root",
+         {{"split", "h"},
+          {"ratio", 7},
+          {"a", {{"tabs", {"data", "surfaces-of-the-future", "data"}}, {"active", "nope"}}},
+          {"b", {{"split", "v"}, {"a", {{"tabs", {"data"}}}}, {"b", {{"tabs", {"faults"}}}}}}}}};
     auto l = DockLayout::fromJson(doc, known(), &why);
     ASSERT_TRUE(l);
     EXPECT_EQ(shape(l->root()), "h(data|faults)");

@@ -80,7 +80,7 @@ TEST_F(PanelTest, CandidateRowsSayWhichSpheresAcceptingWouldMove) {
     EXPECT_TRUE(headless.has(wb(), "candidates.overlap.2"));
     headless.click(wb(), "candidates.accept.1");
     headless.frames(wb(), 2);
-    EXPECT_EQ(session.state().fault("W")->ids.size(), 1u); // one moved into C1
+    EXPECT_EQ(session.state().fault("W")->ids.size(), 1u);    // one moved into C1
     EXPECT_FALSE(headless.has(wb(), "candidates.overlap.1")); // accepted
     EXPECT_TRUE(headless.has(wb(), "candidates.overlap.2"));
     // Accepting the other takes W's last sphere: W goes too, in the same undo step (a
@@ -136,8 +136,9 @@ TEST_F(PanelTest, SplitCutsTheSelectedFaultIntoItsConnectedPieces) {
     EXPECT_EQ(session.state().fault("W.1")->ids.size(), 16u);
     EXPECT_EQ(wb().selection().faults, (std::set<std::string>{"W.1"}));
     // The status line says what happened, and what became of small pieces.
-    EXPECT_NE(wb().lastMessage().find("Split W into 2 faults; pieces under 10 spheres stay with W.1"),
-              std::string::npos)
+    EXPECT_NE(
+        wb().lastMessage().find("Split W into 2 faults; pieces under 10 spheres stay with W.1"),
+        std::string::npos)
         << wb().lastMessage();
 }
 

@@ -4,8 +4,8 @@
 #include "panel_fixture.hpp"
 
 #include "core/faults/metric_fields.hpp"
-#include "ui/dock/panel_ids.hpp"
 #include "ui/context/fault_metrics_cache.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -260,8 +260,7 @@ TEST_F(FaultMetricsPanel, PlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
     // followed again, saying so (issue 41: results changed or vanished without a word).
     session.apply({{"op", "box.set"}, {"name", "wall"}, {"enabled", false}});
     headless.frames(wb(), 2);
-    EXPECT_NE(wb().lastMessage().find("following the faults through time again"),
-              std::string::npos)
+    EXPECT_NE(wb().lastMessage().find("following the faults through time again"), std::string::npos)
         << wb().lastMessage();
     headless.settle(wb());
     headless.frames(wb(), 2);

@@ -153,7 +153,7 @@ std::unique_ptr<ui::GuiApp> windowOnThePacking(core::Session& session, std::stri
 
 // In a test body (it skips or fails the test without a window): `app` and its Driver `driver`,
 // the packing loaded into `session`.
-#define FAULTLINE_WINDOW_ON_THE_PACKING(app, driver, session)                                          \
+#define FAULTLINE_WINDOW_ON_THE_PACKING(app, driver, session)                                      \
     std::string app##Why;                                                                          \
     std::unique_ptr<ui::GuiApp> app = windowOnThePacking(session, app##Why);                       \
     if (!app)                                                                                      \

@@ -101,7 +101,9 @@ class HeadlessUi {
         }
         return *r;
     }
-    bool has(ui::Workbench& wb, const std::string& name) const { return wb.items().find(name).has_value(); }
+    bool has(ui::Workbench& wb, const std::string& name) const {
+        return wb.items().find(name).has_value();
+    }
 
     void moveTo(ui::Workbench& wb, float x, float y, int frameCount = 1) {
         ImGui::GetIO().MousePos = ImVec2(x, y);
@@ -121,8 +123,8 @@ class HeadlessUi {
         this->button(wb, button, false);
     }
     // Presses at `from`, moves to `to` in steps (a frame each), releases.
-    void drag(ui::Workbench& wb, float x0, float y0, float x1, float y1, int steps = 6, int button = 0,
-              const std::function<void()>& whileHeld = {}) {
+    void drag(ui::Workbench& wb, float x0, float y0, float x1, float y1, int steps = 6,
+              int button = 0, const std::function<void()>& whileHeld = {}) {
         moveTo(wb, x0, y0);
         this->button(wb, button, true);
         for (int k = 1; k <= steps; ++k)

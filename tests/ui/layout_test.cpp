@@ -93,7 +93,8 @@ void checkEveryPanel(float width, float height, const char* layout = nullptr,
                     p.what.find("(trimmed to its box)") != std::string::npos &&
                     p.window.find("content.faults") != std::string::npos)
                     continue;
-                if (!only.empty() && std::none_of(only.begin(), only.end(), [&](const std::string& w) {
+                if (!only.empty() &&
+                    std::none_of(only.begin(), only.end(), [&](const std::string& w) {
                         return p.window.find(w) != std::string::npos;
                     }))
                     continue;
@@ -209,28 +210,29 @@ namespace faultline::test {
 TEST(Layout, ASmallWindowReachesEveryPanelThroughTheTabList) {
     core::Session session;
     {
-    HeadlessUi headless(640, 420);
-    ui::WorkbenchOptions options;
-    auto wb = std::make_unique<ui::Workbench>(session, options);
-    headless.frames(*wb, 3);
-    ui::DockNode* column = wb->layout().areaOf(ui::panel_ids::kFaults);
-    ASSERT_NE(column, nullptr);
-    EXPECT_EQ(column, wb->layout().areaOf(ui::panel_ids::kData)); // one column
-    EXPECT_FALSE(headless.has(*wb, "tab." + std::string(ui::panel_ids::kFaults)));
-    const std::string more = "tabs.more." + std::to_string(column->id);
-    ASSERT_TRUE(headless.has(*wb, more));
-    headless.click(*wb, more);
-    headless.frames(*wb, 2);
-    headless.click(*wb, "tabs.list." + std::string(ui::panel_ids::kFaults));
-    headless.frames(*wb, 2);
-    EXPECT_EQ(wb->layout().areaOf(ui::panel_ids::kFaults)->active, ui::panel_ids::kFaults);
-    EXPECT_TRUE(headless.has(*wb, "tab." + std::string(ui::panel_ids::kFaults))); // now shown
+        HeadlessUi headless(640, 420);
+        ui::WorkbenchOptions options;
+        auto wb = std::make_unique<ui::Workbench>(session, options);
+        headless.frames(*wb, 3);
+        ui::DockNode* column = wb->layout().areaOf(ui::panel_ids::kFaults);
+        ASSERT_NE(column, nullptr);
+        EXPECT_EQ(column, wb->layout().areaOf(ui::panel_ids::kData)); // one column
+        EXPECT_FALSE(headless.has(*wb, "tab." + std::string(ui::panel_ids::kFaults)));
+        const std::string more = "tabs.more." + std::to_string(column->id);
+        ASSERT_TRUE(headless.has(*wb, more));
+        headless.click(*wb, more);
+        headless.frames(*wb, 2);
+        headless.click(*wb, "tabs.list." + std::string(ui::panel_ids::kFaults));
+        headless.frames(*wb, 2);
+        EXPECT_EQ(wb->layout().areaOf(ui::panel_ids::kFaults)->active, ui::panel_ids::kFaults);
+        EXPECT_TRUE(headless.has(*wb, "tab." + std::string(ui::panel_ids::kFaults))); // now shown
     }
     // A wide window keeps the two columns.
     ui::WorkbenchOptions options;
     HeadlessUi wide(1600, 1000);
     auto wb2 = std::make_unique<ui::Workbench>(session, options);
     wide.frames(*wb2, 3);
-    EXPECT_NE(wb2->layout().areaOf(ui::panel_ids::kFaults), wb2->layout().areaOf(ui::panel_ids::kData));
+    EXPECT_NE(wb2->layout().areaOf(ui::panel_ids::kFaults),
+              wb2->layout().areaOf(ui::panel_ids::kData));
 }
 } // namespace faultline::test

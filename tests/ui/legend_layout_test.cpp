@@ -23,7 +23,7 @@ bool fontAvailable() { return std::ifstream(defaultFontPath()).good(); }
             if (const char* required = std::getenv("FAULTLINE_REQUIRE_GL");                        \
                 required && *required == '1')                                                      \
                 FAIL() << "no font at " << defaultFontPath() << " (the test command needs it)";    \
-            GTEST_SKIP() << "no font at " << defaultFontPath();                                   \
+            GTEST_SKIP() << "no font at " << defaultFontPath();                                    \
         }                                                                                          \
     } while (0)
 
@@ -92,8 +92,8 @@ TEST(LegendLayout, CategoriesNameEachColourAndSumUpWhatDoesNotFit) {
     const FontAtlas* labels = sharedFontAtlas(legendLabelPixels(scale));
     const FontAtlas* title = sharedFontAtlas(legendTitlePixels(scale));
     ASSERT_TRUE(labels && title);
-    std::vector<LegendEntry> few{{"Graben W", {1, 0, 0}}, {"Graben E", {0, 0, 1}},
-                                 {"no fault", {0.78f, 0.78f, 0.76f}}};
+    std::vector<LegendEntry> few{
+        {"Graben W", {1, 0, 0}}, {"Graben E", {0, 0, 1}}, {"no fault", {0.78f, 0.78f, 0.76f}}};
     const LegendLayout l = layoutCategoryLegend(few, "faults", labels, title, 1280, 720, scale);
     ASSERT_EQ(l.swatches.size(), 3u);
     EXPECT_EQ(l.swatchColors[1], glm::vec3(0, 0, 1));
@@ -103,24 +103,28 @@ TEST(LegendLayout, CategoriesNameEachColourAndSumUpWhatDoesNotFit) {
     EXPECT_GE(l.panel.x0, 0.0f);
     EXPECT_LE(l.panel.x1, 1280.0f);
     for (const LegendRect& r : l.swatches)
-        EXPECT_TRUE(r.x0 > l.panel.x0 && r.x1 < l.panel.x1 && r.y0 > l.panel.y0 && r.y1 < l.panel.y1);
+        EXPECT_TRUE(r.x0 > l.panel.x0 && r.x1 < l.panel.x1 && r.y0 > l.panel.y0 &&
+                    r.y1 < l.panel.y1);
     // The camera fit leaves the legend's strip and a margin's gap.
-    EXPECT_FLOAT_EQ(legendStripPixels("faults", {0, 1}, false, few, 1280, 720), 1280 - l.panel.x0 + 16);
+    EXPECT_FLOAT_EQ(legendStripPixels("faults", {0, 1}, false, few, 1280, 720),
+                    1280 - l.panel.x0 + 16);
 
     // Two hundred faults in a 400-pixel-high image: the rows that fit, then "+ n more".
     std::vector<LegendEntry> many;
     for (int k = 0; k < 200; ++k)
         many.push_back({"C" + std::to_string(k + 1), {0.5f, 0.5f, 0.5f}});
     const float small = legendScale(640, 400, 1.0f);
-    const LegendLayout m = layoutCategoryLegend(many, "faults", sharedFontAtlas(legendLabelPixels(small)),
-                                                sharedFontAtlas(legendTitlePixels(small)), 640, 400, small);
+    const LegendLayout m =
+        layoutCategoryLegend(many, "faults", sharedFontAtlas(legendLabelPixels(small)),
+                             sharedFontAtlas(legendTitlePixels(small)), 640, 400, small);
     EXPECT_LT(m.swatches.size(), 30u);
     EXPECT_GT(m.swatches.size(), 5u);
     EXPECT_GE(m.panel.y0, 0.0f);
     EXPECT_LE(m.panel.y1, 400.0f);
     // A very long name is shortened: the legend stays a strip at the edge.
     std::vector<LegendEntry> longName{{std::string(200, 'W'), {1, 0, 0}}};
-    const LegendLayout n = layoutCategoryLegend(longName, "faults", labels, title, 1280, 720, scale);
+    const LegendLayout n =
+        layoutCategoryLegend(longName, "faults", labels, title, 1280, 720, scale);
     EXPECT_LT(n.panel.x1 - n.panel.x0, 0.3f * 1280 + 60);
 }
 
@@ -128,7 +132,8 @@ TEST(LegendLayout, CategoriesNameEachColourAndSumUpWhatDoesNotFit) {
 TEST(LegendLayout, StripWidthFollowsTheTitleAndLabels) {
     FAULTLINE_NEED_FONT();
     const float shortTitle = legendStripPixels("z", {0, 1}, false, {}, 960, 800);
-    const float longTitle = legendStripPixels("inc_volumetric_strain", {-0.125, 0.125}, false, {}, 960, 800);
+    const float longTitle =
+        legendStripPixels("inc_volumetric_strain", {-0.125, 0.125}, false, {}, 960, 800);
     EXPECT_GT(shortTitle, 40.0f);
     EXPECT_GT(longTitle, shortTitle + 40.0f);
 }

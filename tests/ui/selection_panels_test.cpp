@@ -29,14 +29,19 @@ TEST_F(PanelTest, AMissingFileIsReportedNotFatal) {
     headless.settle(wb());
     EXPECT_TRUE(headless.emitted().empty());
     EXPECT_TRUE(wb().lastMessageIsError());
-    EXPECT_NE(wb().lastMessage().find("nothing-here.dump"), std::string::npos) << wb().lastMessage();
+    EXPECT_NE(wb().lastMessage().find("nothing-here.dump"), std::string::npos)
+        << wb().lastMessage();
 }
 
 TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
     openLattice();
     headless.showPanel(wb(), ui::panel_ids::kBoxes);
     headless.click(wb(), "boxes.add");
-    const Json expected = {{"op", "box.add"}, {"name", "box 1"}, {"min", {-0.5, -0.5, -0.5}}, {"max", {3.5, 3.5, 3.5}}, {"mode", "keep"}};
+    const Json expected = {{"op", "box.add"},
+                           {"name", "box 1"},
+                           {"min", {-0.5, -0.5, -0.5}},
+                           {"max", {3.5, 3.5, 3.5}},
+                           {"mode", "keep"}};
     ASSERT_EQ(headless.emitted(), std::vector<Json>{expected});
     EXPECT_EQ(wb().selection().box, "box 1");
     EXPECT_EQ(visible(), 64u);
@@ -49,11 +54,12 @@ TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
     const float grab = std::max(6.0f, (r.y1 - r.y0) * 0.35f);
     std::size_t visibleWhileHeld = 0;
     double maxWhileHeld = 0;
-    headless.drag(wb(), r.x1 - grab, r.cy(), r.x0 + grab + (r.x1 - r.x0 - 2 * grab) * 0.5f, r.cy(), 6, 0, [&] {
-        visibleWhileHeld = visible();
-        maxWhileHeld = wb().displayBoxes().at(0).max[0];
-        EXPECT_TRUE(headless.emitted().empty()) << "no command before the release";
-    });
+    headless.drag(wb(), r.x1 - grab, r.cy(), r.x0 + grab + (r.x1 - r.x0 - 2 * grab) * 0.5f, r.cy(),
+                  6, 0, [&] {
+                      visibleWhileHeld = visible();
+                      maxWhileHeld = wb().displayBoxes().at(0).max[0];
+                      EXPECT_TRUE(headless.emitted().empty()) << "no command before the release";
+                  });
     EXPECT_NEAR(maxWhileHeld, 1.5, 0.05); // half of [-0.5, 3.5]
     EXPECT_EQ(visibleWhileHeld, 32u);     // x in {0, 1}
     ASSERT_EQ(headless.emitted("box.set").size(), 1u);
@@ -63,14 +69,16 @@ TEST_F(PanelTest, BoxesPanelAddsEditsDuplicatesAndDeletes) {
 
     headless.clearEmitted();
     headless.click(wb(), "boxes.enabled.box 1");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "box.set"}, {"name", "box 1"}, {"enabled", false}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "box.set"}, {"name", "box 1"}, {"enabled", false}}}));
     EXPECT_EQ(visible(), 64u);
     headless.click(wb(), "boxes.duplicate");
     ASSERT_EQ(headless.emitted("box.add").size(), 1u);
     EXPECT_EQ(headless.emitted("box.add")[0]["name"], "box 1 1");
     EXPECT_EQ(wb().selection().box, "box 1 1");
     headless.click(wb(), "boxes.delete");
-    EXPECT_EQ(headless.emitted("box.remove").back(), (Json{{"op", "box.remove"}, {"name", "box 1 1"}}));
+    EXPECT_EQ(headless.emitted("box.remove").back(),
+              (Json{{"op", "box.remove"}, {"name", "box 1 1"}}));
     EXPECT_EQ(session.state().boxes.size(), 1u);
 
     // Ctrl+Z undoes the delete.
@@ -89,7 +97,8 @@ TEST_F(PanelTest, ThresholdsPanelAddsSlidesInWholeValuesDisablesAndRemoves) {
     headless.frames(wb(), 2);
     headless.click(wb(), "thresholds.add.layer");
     ASSERT_EQ(headless.emitted().size(), 1u);
-    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 0.0}, {"high", 3.0}}));
+    EXPECT_EQ(headless.emitted()[0],
+              (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 0.0}, {"high", 3.0}}));
     headless.frames(wb(), 2);
     headless.clearEmitted();
 
@@ -98,26 +107,34 @@ TEST_F(PanelTest, ThresholdsPanelAddsSlidesInWholeValuesDisablesAndRemoves) {
     const float grab = std::max(6.0f, (r.y1 - r.y0) * 0.35f);
     const float x0 = r.x0 + grab, x1 = r.x1 - grab;
     std::size_t visibleWhileHeld = 0;
-    headless.drag(wb(), x0, r.cy(), x0 + (x1 - x0) * 0.4f, r.cy(), 5, 0, [&] { visibleWhileHeld = visible(); });
+    headless.drag(wb(), x0, r.cy(), x0 + (x1 - x0) * 0.4f, r.cy(), 5, 0,
+                  [&] { visibleWhileHeld = visible(); });
     EXPECT_EQ(visibleWhileHeld, 48u); // layers 1..3
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{
+                  {{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}}));
     EXPECT_EQ(session.state().threshold("layer")->low, 1.0);
 
     // Typed bounds: a number, and an empty field for an open end.
     headless.clearEmitted();
     headless.retype(wb(), "thresholds.low.layer", "2.5", GLFW_KEY_ENTER);
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 3.0}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 3.0}}}));
     headless.clearEmitted();
     headless.click(wb(), "thresholds.high.layer");
     headless.key(wb(), GLFW_KEY_A, true);
     headless.key(wb(), GLFW_KEY_BACKSPACE);
     headless.key(wb(), GLFW_KEY_ENTER);
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"high", 1e30}}}));
+    EXPECT_EQ(
+        headless.emitted(),
+        (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"high", 1e30}}}));
     EXPECT_EQ(visible(), 16u); // layer 3 only
 
     headless.clearEmitted();
     headless.click(wb(), "thresholds.enabled.layer");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"enabled", false}}}));
+    EXPECT_EQ(
+        headless.emitted(),
+        (std::vector<Json>{{{"op", "threshold.set"}, {"variable", "layer"}, {"enabled", false}}}));
     EXPECT_EQ(visible(), 64u);
     headless.click(wb(), "thresholds.remove.layer");
     EXPECT_EQ(headless.emitted().back(), (Json{{"op", "threshold.remove"}, {"variable", "layer"}}));
@@ -137,14 +154,16 @@ TEST_F(PanelTest, DraggingOnAHistogramSetsTheThresholdAndItsEdgesAdjustIt) {
     });
     EXPECT_EQ(visibleWhileHeld, 32u); // layers 1 and 2
     ASSERT_EQ(headless.emitted().size(), 1u);
-    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 1.0}, {"high", 2.0}}));
+    EXPECT_EQ(headless.emitted()[0],
+              (Json{{"op", "threshold.add"}, {"variable", "layer"}, {"low", 1.0}, {"high", 2.0}}));
     EXPECT_EQ(visible(), 32u);
 
     // The high edge (at 3, the right side of bar 2) dragged to the end: high 3.
     headless.clearEmitted();
     headless.drag(wb(), xAt(3.0), r.cy(), r.x1 - 1, r.cy());
     ASSERT_EQ(headless.emitted().size(), 1u);
-    EXPECT_EQ(headless.emitted()[0], (Json{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}));
+    EXPECT_EQ(headless.emitted()[0],
+              (Json{{"op", "threshold.set"}, {"variable", "layer"}, {"low", 1.0}, {"high", 3.0}}));
     EXPECT_EQ(visible(), 48u);
 
     // Log scale (on by default) is a panel setting kept with the layout.
@@ -152,7 +171,8 @@ TEST_F(PanelTest, DraggingOnAHistogramSetsTheThresholdAndItsEdgesAdjustIt) {
     headless.click(wb(), "histograms.log");
     ASSERT_EQ(headless.emitted("layout.set").size(), 1u);
     EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["log"], false);
-    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["variables"], (Json{"strain", "layer"}));
+    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["variables"],
+              (Json{"strain", "layer"}));
 
     // A float variable: the drag covers about the middle of strain's range [0, 1].
     headless.clearEmitted();

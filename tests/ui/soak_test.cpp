@@ -75,16 +75,20 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
     std::unique_ptr<ui::GlViewRenderer> gl;
     if (ui::sharedOffscreenContext(noGl))
         gl = std::make_unique<ui::GlViewRenderer>(ui::RendererBackend::OpenGL);
-    else if (const char* required = std::getenv("FAULTLINE_REQUIRE_GL"); required && *required == '1')
+    else if (const char* required = std::getenv("FAULTLINE_REQUIRE_GL");
+             required && *required == '1')
         FAIL() << "no OpenGL context: " << noGl << " (FAULTLINE_REQUIRE_GL=1)";
     const long long glEvery = std::max(1LL, envNumber("FAULTLINE_SOAK_GL_EVERY", 4));
     long long checks = 0, drawn = 0;
 
     std::mt19937 rng(seed);
-    auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
-    const int keys[] = {GLFW_KEY_Z, GLFW_KEY_Y, GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_HOME,
-                        GLFW_KEY_END, GLFW_KEY_ESCAPE, GLFW_KEY_ENTER, GLFW_KEY_TAB, GLFW_KEY_DELETE,
-                        GLFW_KEY_F, GLFW_KEY_1, GLFW_KEY_2};
+    auto pick = [&](std::size_t n) {
+        return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+    };
+    const int keys[] = {GLFW_KEY_Z,    GLFW_KEY_Y,      GLFW_KEY_LEFT,   GLFW_KEY_RIGHT,
+                        GLFW_KEY_HOME, GLFW_KEY_END,    GLFW_KEY_ESCAPE, GLFW_KEY_ENTER,
+                        GLFW_KEY_TAB,  GLFW_KEY_DELETE, GLFW_KEY_F,      GLFW_KEY_1,
+                        GLFW_KEY_2};
     std::ostringstream log; // the last actions, for a failure's message
     std::size_t counts[6] = {};
     const auto start = std::chrono::steady_clock::now();
@@ -125,10 +129,9 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
             }
             wb().setRenderer(nullptr);
             const GLenum error = glGetError();
-            EXPECT_EQ(error, GLenum(GL_NO_ERROR))
-                << "seed " << seed << ", after action " << at << ": GL error 0x" << std::hex
-                << error << "\n"
-                << log.str();
+            EXPECT_EQ(error, GLenum(GL_NO_ERROR)) << "seed " << seed << ", after action " << at
+                                                  << ": GL error 0x" << std::hex << error << "\n"
+                                                  << log.str();
             ++drawn;
         }
         const std::string recovery = dir.file("state/recovery.faultline.json");
@@ -160,8 +163,8 @@ TEST_F(Soak, RandomUseKeepsTheSessionSound) {
                 const float y0 = v->y0 + float(pick(100)) / 100 * (v->y1 - v->y0);
                 const int button = int(pick(3));
                 log << a << ": drag button " << button << "\n";
-                headless.drag(wb(), x0, y0, x0 + float(pick(200)) - 100, y0 + float(pick(200)) - 100,
-                              4, button);
+                headless.drag(wb(), x0, y0, x0 + float(pick(200)) - 100,
+                              y0 + float(pick(200)) - 100, 4, button);
             }
             ++counts[1];
         } else if (kind < 9) { // a key, maybe with Ctrl / Shift

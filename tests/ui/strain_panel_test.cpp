@@ -63,10 +63,12 @@ namespace {
 TEST_F(PanelTest, AThresholdOnAMissingVariableSaysSo) {
     openLattice();
     headless.showPanel(wb(), ui::panel_ids::kThresholds);
-    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"strian","low":0,"high":1})"));
+    session.apply(
+        core::Json::parse(R"({"op":"threshold.add","variable":"strian","low":0,"high":1})"));
     headless.frames(wb(), 2);
     EXPECT_TRUE(headless.has(wb(), "thresholds.missing.strian"));
-    session.apply(core::Json::parse(R"({"op":"threshold.add","variable":"strain","low":0,"high":1})"));
+    session.apply(
+        core::Json::parse(R"({"op":"threshold.add","variable":"strain","low":0,"high":1})"));
     headless.frames(wb(), 2);
     EXPECT_FALSE(headless.has(wb(), "thresholds.missing.strain"));
 }

@@ -181,11 +181,10 @@ TEST_F(PanelTest, ASurfaceTakesAColourOfItsOwnFromThePanel) {
     headless.settle(wb());
     pickFromCombo("surfaces.color_by", "surfaces.color_by.own");
     ASSERT_EQ(headless.emitted("surface.set").size(), 1u);
-    EXPECT_EQ(headless.emitted("surface.set")[0],
-              (Json{{"op", "surface.set"},
-                    {"fault", "F1"},
-                    {"color_by", ""},
-                    {"color", {0.0, 0.5, 1.0}}}));
+    EXPECT_EQ(
+        headless.emitted("surface.set")[0],
+        (Json{
+            {"op", "surface.set"}, {"fault", "F1"}, {"color_by", ""}, {"color", {0.0, 0.5, 1.0}}}));
     headless.settle(wb());
     EXPECT_TRUE(headless.has(wb(), "surfaces.colour"));
     ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
@@ -259,8 +258,8 @@ TEST_F(PanelTest, TheLiveRangeOverAllFramesIsTheFiguresRange) {
     EXPECT_EQ(wb().mainDisplay()->colorRange[0], figure->low);
     EXPECT_EQ(wb().mainDisplay()->colorRange[1], figure->high);
     // A plain variable under "all frames": the same, before the other frames were shown.
-    session.apply(Json::parse(
-        R"({"op":"color.set","view":"main","difference":"none","range_mode":"all"})"));
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","difference":"none","range_mode":"all"})"));
     headless.settle(wb());
     const auto plain = core::colorRangeOverFrames(*session.dataset(), session.state().views[0]);
     ASSERT_TRUE(plain.has_value());

@@ -166,7 +166,8 @@ TEST_F(UnsavedWork, ReopeningTheSessionsOwnFileOffersNoSaveOverIt) {
     headless.frames(wb(), 2);
     addBox("unsaved");
     headless.frames(wb(), 1);
-    wb().guardUnsaved("Open own.faultline.json", [] {}, file);
+    wb().guardUnsaved(
+        "Open own.faultline.json", [] {}, file);
     headless.frames(wb(), 2);
     ASSERT_TRUE(wb().unsavedPromptOpen());
     EXPECT_FALSE(wb().unsavedPromptOffersSave());
@@ -177,7 +178,8 @@ TEST_F(UnsavedWork, ReopeningTheSessionsOwnFileOffersNoSaveOverIt) {
     // Another file: Save is offered.
     headless.key(wb(), GLFW_KEY_ESCAPE);
     headless.frames(wb(), 2);
-    wb().guardUnsaved("Open other", [] {}, dir.file("other.faultline.json"));
+    wb().guardUnsaved(
+        "Open other", [] {}, dir.file("other.faultline.json"));
     headless.frames(wb(), 2);
     EXPECT_TRUE(wb().unsavedPromptOffersSave());
 }
@@ -220,7 +222,8 @@ TEST_F(UnsavedWork, SaveAsFromTheQuestionQuitsOnlyWhenWritten) {
 }
 
 // Issue 27: a save dialog's suggested name is selected when the field takes focus (also by a
-// click): what the user types replaces it (a typed path was appended to it: "faults.glb/tmp/.../F1.gltf").
+// click): what the user types replaces it (a typed path was appended to it:
+// "faults.glb/tmp/.../F1.gltf").
 TEST_F(UnsavedWork, TypingInASaveDialogReplacesTheSuggestedName) {
     openLattice();
     addBox("b");

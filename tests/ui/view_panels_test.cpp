@@ -3,9 +3,9 @@
 #include "panel_fixture.hpp"
 
 #include "core/session/journal.hpp"
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/viewport/orbit_camera.hpp"
-#include "ui/context/frame_columns.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -21,7 +21,8 @@ TEST_F(PanelTest, FaultsPanelCreatesHidesFiltersAndDeletes) {
     EXPECT_EQ(visible(), 32u);
     headless.showPanel(wb(), ui::panel_ids::kFaults);
     headless.click(wb(), "faults.create");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "fault.create"}, {"name", "F1"}, {"from", "visible"}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "fault.create"}, {"name", "F1"}, {"from", "visible"}}}));
     ASSERT_NE(session.state().fault("F1"), nullptr);
     EXPECT_EQ(session.state().fault("F1")->ids.size(), 32u);
     EXPECT_EQ(wb().selection().faults, std::set<std::string>{"F1"});
@@ -30,14 +31,16 @@ TEST_F(PanelTest, FaultsPanelCreatesHidesFiltersAndDeletes) {
     session.apply(Json::parse(R"({"op":"threshold.remove","variable":"strain"})"));
     headless.frames(wb(), 2);
     headless.click(wb(), "faults.visible.F1");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "fault.set"}, {"name", "F1"}, {"visible", false}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "fault.set"}, {"name", "F1"}, {"visible", false}}}));
     EXPECT_EQ(visible(), 32u); // the hidden fault's members are hidden
 
     headless.clearEmitted();
     headless.click(wb(), "faults.filter");
     headless.frames(wb(), 2);
     headless.click(wb(), "faults.filter.only.F1");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "fault.filter"}, {"mode", "only"}, {"fault", "F1"}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "fault.filter"}, {"mode", "only"}, {"fault", "F1"}}}));
     EXPECT_EQ(visible(), 32u);
 
     headless.clearEmitted();
@@ -97,7 +100,8 @@ TEST_F(PanelTest, TimelineStepsScrubsAndPlaysWithOneCommandPerChange) {
 TEST_F(PanelTest, ViewportsAddAViewAndCameraDragsCommitOnRelease) {
     openLattice();
     headless.click(wb(), "viewports.add");
-    EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "view.add"}, {"name", "view 2"}, {"offset", -2}}}));
+    EXPECT_EQ(headless.emitted(),
+              (std::vector<Json>{{{"op", "view.add"}, {"name", "view 2"}, {"offset", -2}}}));
     session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
     headless.settle(wb());
     ASSERT_EQ(wb().views().size(), 2u);
@@ -149,8 +153,8 @@ TEST_F(PanelTest, DraggingABoxFaceInTheViewEmitsOneBoxSet) {
     ASSERT_TRUE(p && q);
     headless.clearEmitted();
     std::size_t visibleWhileHeld = 0;
-    headless.drag(wb(), img.x0 + float(p->x), img.y0 + float(p->y), img.x0 + float(q->x), img.y0 + float(q->y), 5, 0,
-                  [&] { visibleWhileHeld = visible(); });
+    headless.drag(wb(), img.x0 + float(p->x), img.y0 + float(p->y), img.x0 + float(q->x),
+                  img.y0 + float(q->y), 5, 0, [&] { visibleWhileHeld = visible(); });
     EXPECT_EQ(visibleWhileHeld, 48u); // x in {0, 1, 2}
     ASSERT_EQ(headless.emitted().size(), 1u);
     EXPECT_EQ(headless.emitted()[0]["op"], "box.set");
@@ -222,12 +226,14 @@ TEST_F(JournalTest, EveryCommandIsJournalledAndTheJournalReplays) {
     EXPECT_TRUE(report.ok());
     EXPECT_EQ(replayed.state().boxes, session.state().boxes);
     // The autosave sits next to the journal.
-    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(journal).parent_path() / "recovery.faultline.json"));
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(journal).parent_path() /
+                                        "recovery.faultline.json"));
 }
 
 TEST_F(PanelTest, SessionsOpenInTheBackgroundAsANewHistory) {
     openLattice();
-    session.apply(Json::parse(R"({"op":"box.add","name":"saved box","min":[0,0,0],"max":[1,1,1]})"));
+    session.apply(
+        Json::parse(R"({"op":"box.add","name":"saved box","min":[0,0,0],"max":[1,1,1]})"));
     session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
     const std::string file = dir.file("a.faultline.json");
     wb().saveSessionAs(file);
@@ -243,7 +249,7 @@ TEST_F(PanelTest, SessionsOpenInTheBackgroundAsANewHistory) {
     ASSERT_NE(session.dataset(), nullptr);
     EXPECT_EQ(session.state().frame, 2u);
     EXPECT_EQ(wb().mainDisplay()->shownFrame, 2u);
-    EXPECT_EQ(visible(), 8u); // the saved keep box [0,1]^3
+    EXPECT_EQ(visible(), 8u);             // the saved keep box [0,1]^3
     headless.key(wb(), GLFW_KEY_Z, true); // issue 41: opening is no undo step
     EXPECT_NE(session.dataset(), nullptr);
     EXPECT_EQ(visible(), 8u);
@@ -255,7 +261,8 @@ TEST_F(PanelTest, SessionsOpenInTheBackgroundAsANewHistory) {
 TEST_F(PanelTest, PresetViewsFitTheVisibleSpheres) {
     openLattice();
     headless.settle(wb());
-    session.apply(Json::parse(R"({"op":"camera.set","view":"main","distance":0.5,"target":[9,9,9]})"));
+    session.apply(
+        Json::parse(R"({"op":"camera.set","view":"main","distance":0.5,"target":[9,9,9]})"));
     headless.settle(wb());
     for (const char* preset : {"top", "front", "side"}) {
         SCOPED_TRACE(preset);

@@ -45,7 +45,8 @@ TEST_F(PanelTest, ViewsUploadOnlyWhatChangedAndSkipUnchangedDraws) {
     EXPECT_EQ(mock->visibleRows().size(), 32u);
 
     // Colouring by a variable sends its values once; another frame sends positions again.
-    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"strain","range":[0,1]})"));
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","variable":"strain","range":[0,1]})"));
     headless.frames(wb(), 2);
     EXPECT_EQ(countCalls(*mock, "upload.values", true), 1u);
     EXPECT_EQ(mock->colorRange(), (core::ValueRange{0, 1}));

@@ -3,8 +3,8 @@
 // change costs nothing and an edit of the members computes that fault again.
 #pragma once
 
-#include "core/faults/metrics.hpp"
 #include "core/data/dataset.hpp"
+#include "core/faults/metrics.hpp"
 #include "ui/context/jobs.hpp"
 
 #include <cstdint>

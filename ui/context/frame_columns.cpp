@@ -38,7 +38,8 @@ const ColumnCatalog::Entries& ColumnCatalog::of(const std::shared_ptr<const core
     return m_recent.back().second;
 }
 
-std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core::Frame>& frame, const std::string& name) {
+std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core::Frame>& frame,
+                                                const std::string& name) {
     for (const auto& [n, info] : of(frame))
         if (n == name)
             return info;

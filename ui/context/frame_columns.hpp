@@ -27,7 +27,8 @@ class ColumnCatalog {
   public:
     using Entries = std::vector<std::pair<std::string, VariableInfo>>;
     const Entries& of(const std::shared_ptr<const core::Frame>& frame);
-    std::optional<VariableInfo> info(const std::shared_ptr<const core::Frame>& frame, const std::string& name);
+    std::optional<VariableInfo> info(const std::shared_ptr<const core::Frame>& frame,
+                                     const std::string& name);
 
   private:
     std::vector<std::pair<std::shared_ptr<const core::Frame>, Entries>> m_recent; // newest last

@@ -40,8 +40,8 @@ class Job {
     double m_startTime = 0;
     JobControl m_control;
     std::atomic<bool> m_finished{false};
-    std::string m_error;                 // set by the worker when work threw
-    std::function<void()> m_finish;      // runs on the UI thread (not when cancelled)
+    std::string m_error;            // set by the worker when work threw
+    std::function<void()> m_finish; // runs on the UI thread (not when cancelled)
     std::function<void(const std::string&)> m_fail;
     std::thread m_thread;
 };

@@ -2,8 +2,8 @@
 
 #include "core/session/fault_surface_request.hpp"
 #include "core/surface/fault_surface.hpp"
-#include "ui/render/surface_mesh.hpp"
 #include "ui/context/job_interrupter.hpp"
+#include "ui/render/surface_mesh.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -42,8 +42,8 @@ SurfaceStore::sourceOf(const core::SessionState& state, const std::string& name,
                 return &f.formed;
         if (m_formedSources.size() >= 16)
             m_formedSources.erase(m_formedSources.begin());
-        m_formedSources.push_back(
-            {frame, state.thresholds, *fault, core::faultAsFormed(*frame, *fault, state.thresholds)});
+        m_formedSources.push_back({frame, state.thresholds, *fault,
+                                   core::faultAsFormed(*frame, *fault, state.thresholds)});
         return &m_formedSources.back().formed;
     }
     if (!frame || !visibility)

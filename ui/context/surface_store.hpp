@@ -8,9 +8,9 @@
 #include "core/selection/visibility.hpp"
 #include "core/session/session_state.hpp"
 #include "core/surface/surface_cache.hpp"
+#include "ui/context/jobs.hpp"
 #include "ui/render/renderer.hpp"
 #include "ui/viewport/view_renderer.hpp"
-#include "ui/context/jobs.hpp"
 
 #include <map>
 #include <memory>
@@ -47,25 +47,24 @@ class SurfaceStore {
     // The ready surfaces for a view showing `frame` (dataset index frameIndex), one per visible
     // surface setting whose fault exists; starts (one at a time) the builds still missing.
     // `visibility` (the view's) gives the visible spheres' surface (core::kVisibleSpheres).
-    std::vector<ViewSurface> surfacesFor(
-        const core::SessionState& state, std::size_t frameIndex,
-        const std::shared_ptr<const core::Frame>& frame, double now,
-        const std::shared_ptr<const core::VisibilityResult>& visibility = nullptr);
+    std::vector<ViewSurface>
+    surfacesFor(const core::SessionState& state, std::size_t frameIndex,
+                const std::shared_ptr<const core::Frame>& frame, double now,
+                const std::shared_ptr<const core::VisibilityResult>& visibility = nullptr);
     // The state of a fault's surface in a frame, as last asked for by surfacesFor (with the
     // view's frame and visibility for the visible spheres' surface).
-    SurfaceStatus status(const core::SessionState& state, const std::string& fault,
-                         std::size_t frameIndex,
-                         const std::shared_ptr<const core::Frame>& frame = nullptr,
-                         const std::shared_ptr<const core::VisibilityResult>& visibility =
-                             nullptr) const;
+    SurfaceStatus
+    status(const core::SessionState& state, const std::string& fault, std::size_t frameIndex,
+           const std::shared_ptr<const core::Frame>& frame = nullptr,
+           const std::shared_ptr<const core::VisibilityResult>& visibility = nullptr) const;
     // What a surface setting is built from in a view showing `frame`: the fault as formed there
     // (core::faultAsFormed: its members passing the thresholds; none before it formed), or the
-    // visible spheres (kept while the frame and visibility stay the same). Null when there is none; valid
-    // until the next call (copy it to keep it).
-    const core::Fault* sourceOf(
-        const core::SessionState& state, const std::string& name,
-        const std::shared_ptr<const core::Frame>& frame,
-        const std::shared_ptr<const core::VisibilityResult>& visibility) const;
+    // visible spheres (kept while the frame and visibility stay the same). Null when there is none;
+    // valid until the next call (copy it to keep it).
+    const core::Fault*
+    sourceOf(const core::SessionState& state, const std::string& name,
+             const std::shared_ptr<const core::Frame>& frame,
+             const std::shared_ptr<const core::VisibilityResult>& visibility) const;
     // Once per UI frame, after every view asked: cancels builds nobody asked for this frame.
     void endFrame();
     // Forgets every mesh (new data).

@@ -144,8 +144,8 @@ DockLayout DockLayout::defaultLayout(float windowWidth) {
     return l;
 }
 
-std::optional<DockLayout> DockLayout::fromJson(const json& doc, const std::vector<std::string>& known,
-                                               std::string* why) {
+std::optional<DockLayout>
+DockLayout::fromJson(const json& doc, const std::vector<std::string>& known, std::string* why) {
     auto fail = [&](const std::string& reason) -> std::optional<DockLayout> {
         if (why)
             *why = reason;
@@ -153,7 +153,8 @@ std::optional<DockLayout> DockLayout::fromJson(const json& doc, const std::vecto
     };
     if (!doc.is_object() || !doc.contains("root"))
         return fail("not a dock layout (no \"root\")");
-    if (doc.contains("version") && (!doc["version"].is_number_integer() || doc["version"].get<int>() > kLayoutVersion))
+    if (doc.contains("version") &&
+        (!doc["version"].is_number_integer() || doc["version"].get<int>() > kLayoutVersion))
         return fail("a newer dock layout version");
     DockLayout l;
     try {
@@ -274,7 +275,7 @@ bool DockLayout::movePanel(const std::string& panel, int areaId, DropSide side, 
         share = std::clamp(share, kMinRatio, kMaxRatio);
         const bool before = side == DropSide::Left || side == DropSide::Top;
         target->split = (side == DropSide::Left || side == DropSide::Right) ? SplitAxis::Horizontal
-                                                                             : SplitAxis::Vertical;
+                                                                            : SplitAxis::Vertical;
         target->ratio = before ? share : 1.0f - share;
         target->first = before ? std::move(fresh) : std::move(old);
         target->second = before ? std::move(old) : std::move(fresh);

@@ -52,10 +52,18 @@ std::optional<DockSpace::Drop> DockSpace::dropAt(ImVec2 mouse, float tabBarHeigh
             return d;
         const float sw = w * 0.3f, sh = h * 0.3f;
         switch (nearest) {
-        case 0: d.side = DropSide::Left, d.max.x = a.min.x + sw; break;
-        case 1: d.side = DropSide::Right, d.min.x = a.max.x - sw; break;
-        case 2: d.side = DropSide::Top, d.max.y = a.min.y + sh; break;
-        default: d.side = DropSide::Bottom, d.min.y = a.max.y - sh; break;
+        case 0:
+            d.side = DropSide::Left, d.max.x = a.min.x + sw;
+            break;
+        case 1:
+            d.side = DropSide::Right, d.min.x = a.max.x - sw;
+            break;
+        case 2:
+            d.side = DropSide::Top, d.max.y = a.min.y + sh;
+            break;
+        default:
+            d.side = DropSide::Bottom, d.min.y = a.max.y - sh;
+            break;
         }
         return d;
     }
@@ -90,7 +98,8 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
         }
         if (overflow && std::find(shown.begin(), shown.end(), area.active) == shown.end() &&
             !area.active.empty()) {
-            const float activeW = ImGui::CalcTextSize(cb.titleOf(area.active)).x + 2 * padX + 2 * scale;
+            const float activeW =
+                ImGui::CalcTextSize(cb.titleOf(area.active)).x + 2 * padX + 2 * scale;
             while (!shown.empty() && used + activeW > width - listW) {
                 used -= ImGui::CalcTextSize(cb.titleOf(shown.back())).x + 2 * padX + 2 * scale;
                 shown.pop_back();
@@ -104,7 +113,8 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
     for (const std::string& panel : shown) {
         const char* title = cb.titleOf(panel);
         const float textW = ImGui::CalcTextSize(title).x;
-        float tabW = std::min(textW + 2 * padX, std::max(40 * scale, min.x + width - listW - x - 2 * scale));
+        float tabW =
+            std::min(textW + 2 * padX, std::max(40 * scale, min.x + width - listW - x - 2 * scale));
         if (tabW < 24 * scale)
             break;
         ImGui::SetCursorScreenPos(ImVec2(x, min.y + 2 * scale));
@@ -130,7 +140,9 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
         }
         const bool active = area.active == panel;
         const ImVec2 a(x, min.y + 3 * scale), b(x + tabW, min.y + height);
-        ImU32 bg = active ? color(ImGuiCol_WindowBg) : hovered ? color(ImGuiCol_TabHovered) : color(ImGuiCol_Tab);
+        ImU32 bg = active    ? color(ImGuiCol_WindowBg)
+                   : hovered ? color(ImGuiCol_TabHovered)
+                             : color(ImGuiCol_Tab);
         dl->AddRectFilled(a, b, bg, 4 * scale, ImDrawFlags_RoundCornersTop);
         if (active)
             dl->AddRectFilled(a, ImVec2(b.x, a.y + 2 * scale), color(ImGuiCol_TabActive), 4 * scale,
@@ -139,8 +151,8 @@ bool DockSpace::drawTabs(DockLayout& layout, DockNode& area, ImVec2 min, float w
         const ImU32 textColor = active ? color(ImGuiCol_Text) : color(ImGuiCol_Text, 0.72f);
         // A tab narrower than its title shows it shortened (all of it on hover).
         const std::string shownTitle = elided(title, tabW - 2 * padX);
-        dl->AddText(ImVec2(x + padX, a.y + (b.y - a.y - ImGui::GetTextLineHeight()) * 0.5f), textColor,
-                    shownTitle.c_str());
+        dl->AddText(ImVec2(x + padX, a.y + (b.y - a.y - ImGui::GetTextLineHeight()) * 0.5f),
+                    textColor, shownTitle.c_str());
         if (hovered && shownTitle != title)
             ImGui::SetTooltip("%s", title);
         ImGui::PopClipRect();
@@ -197,23 +209,30 @@ bool DockSpace::draw(DockLayout& layout, ImVec2 pos, ImVec2 size, float scale, c
         if (items)
             items->markLastItem("splitter." + std::to_string(s.node->id));
         if (ImGui::IsItemActive()) {
-            const float total = (h ? s.parentMax.x - s.parentMin.x : s.parentMax.y - s.parentMin.y) - bar;
-            const float at = (h ? ImGui::GetIO().MousePos.x - s.parentMin.x : ImGui::GetIO().MousePos.y - s.parentMin.y) - bar * 0.5f;
+            const float total =
+                (h ? s.parentMax.x - s.parentMin.x : s.parentMax.y - s.parentMin.y) - bar;
+            const float at = (h ? ImGui::GetIO().MousePos.x - s.parentMin.x
+                                : ImGui::GetIO().MousePos.y - s.parentMin.y) -
+                             bar * 0.5f;
             if (total > 0)
                 s.node->ratio = std::clamp(at / total, 0.05f, 0.95f);
         }
         if (ImGui::IsItemDeactivated())
             changed = true;
         const bool lit = ImGui::IsItemHovered() || ImGui::IsItemActive();
-        ImGui::GetWindowDrawList()->AddRectFilled(s.min, s.max, color(lit ? ImGuiCol_SeparatorHovered : ImGuiCol_Separator, lit ? 1.0f : 0.35f));
+        ImGui::GetWindowDrawList()->AddRectFilled(
+            s.min, s.max,
+            color(lit ? ImGuiCol_SeparatorHovered : ImGuiCol_Separator, lit ? 1.0f : 0.35f));
         ImGui::PopID();
     }
 
     if (m_areas.size() == 1 && m_areas.front().node->tabs.empty()) {
-        const char* hint = "No panels are open: choose them in View > Panels, or View > Reset layout.";
+        const char* hint =
+            "No panels are open: choose them in View > Panels, or View > Reset layout.";
         const ImVec2 t = ImGui::CalcTextSize(hint);
-        ImGui::GetWindowDrawList()->AddText(ImVec2(pos.x + (size.x - t.x) / 2, pos.y + (size.y - t.y) / 2),
-                                            color(ImGuiCol_TextDisabled), hint);
+        ImGui::GetWindowDrawList()->AddText(
+            ImVec2(pos.x + (size.x - t.x) / 2, pos.y + (size.y - t.y) / 2),
+            color(ImGuiCol_TextDisabled), hint);
     }
 
     for (const auto& a : m_areas) {
@@ -225,7 +244,8 @@ bool DockSpace::draw(DockLayout& layout, ImVec2 pos, ImVec2 size, float scale, c
         ImGui::PushID(area.id);
         ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
         ImGui::PushStyleColor(ImGuiCol_ChildBg, ImGui::GetStyleColorVec4(ImGuiCol_WindowBg));
-        ImGui::BeginChild("##area", ImVec2(w, h), false, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+        ImGui::BeginChild("##area", ImVec2(w, h), false,
+                          ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
         ImGui::PopStyleColor();
         ImGui::PopStyleVar();
         if (drawTabs(layout, area, a.min, w, scale, cb, items)) {
@@ -239,9 +259,10 @@ bool DockSpace::draw(DockLayout& layout, ImVec2 pos, ImVec2 size, float scale, c
         ImGui::SetCursorScreenPos(ImVec2(a.min.x, a.min.y + tabBarHeight));
         if (!padded)
             ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-        ImGui::BeginChild(("##content." + panel).c_str(), ImVec2(w, h - tabBarHeight), false,
-                          ImGuiWindowFlags_AlwaysUseWindowPadding |
-                              (padded ? 0 : ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse));
+        ImGui::BeginChild(
+            ("##content." + panel).c_str(), ImVec2(w, h - tabBarHeight), false,
+            ImGuiWindowFlags_AlwaysUseWindowPadding |
+                (padded ? 0 : ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse));
         if (!padded)
             ImGui::PopStyleVar();
         cb.drawPanel(panel);
@@ -257,13 +278,16 @@ bool DockSpace::draw(DockLayout& layout, ImVec2 pos, ImVec2 size, float scale, c
         auto drop = dropAt(mouse, tabBarHeight);
         if (drop) {
             fg->AddRectFilled(drop->min, drop->max, color(ImGuiCol_DragDropTarget, 0.18f));
-            fg->AddRect(drop->min, drop->max, color(ImGuiCol_DragDropTarget, 0.9f), 0, 0, 2 * scale);
+            fg->AddRect(drop->min, drop->max, color(ImGuiCol_DragDropTarget, 0.9f), 0, 0,
+                        2 * scale);
         }
         const char* title = cb.titleOf(m_dragPanel);
         const ImVec2 t = ImGui::CalcTextSize(title);
         const ImVec2 a(mouse.x + 12 * scale, mouse.y + 8 * scale);
-        fg->AddRectFilled(a, ImVec2(a.x + t.x + 16 * scale, a.y + t.y + 8 * scale), color(ImGuiCol_PopupBg), 4 * scale);
-        fg->AddRect(a, ImVec2(a.x + t.x + 16 * scale, a.y + t.y + 8 * scale), color(ImGuiCol_Border), 4 * scale);
+        fg->AddRectFilled(a, ImVec2(a.x + t.x + 16 * scale, a.y + t.y + 8 * scale),
+                          color(ImGuiCol_PopupBg), 4 * scale);
+        fg->AddRect(a, ImVec2(a.x + t.x + 16 * scale, a.y + t.y + 8 * scale),
+                    color(ImGuiCol_Border), 4 * scale);
         fg->AddText(ImVec2(a.x + 8 * scale, a.y + 4 * scale), color(ImGuiCol_Text), title);
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
         if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {

@@ -42,7 +42,7 @@ class DockSpace {
     };
     struct SplitterRect {
         DockNode* node;
-        ImVec2 min, max;      // the bar
+        ImVec2 min, max; // the bar
         ImVec2 parentMin, parentMax;
     };
     void place(DockNode& node, ImVec2 min, ImVec2 max, float bar, float minSize);

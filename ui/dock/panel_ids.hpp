@@ -16,7 +16,7 @@ inline constexpr const char* kTimeline = "timeline";
 inline constexpr const char* kViewports = "viewports";
 
 inline const std::vector<std::string>& all() {
-    static const std::vector<std::string> ids{kViewports, kData,   kBoxes,     kThresholds,
+    static const std::vector<std::string> ids{kViewports,  kData,   kBoxes,    kThresholds,
                                               kHistograms, kFaults, kSurfaces, kTimeline};
     return ids;
 }

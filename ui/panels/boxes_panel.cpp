@@ -1,13 +1,13 @@
 // Cutting boxes panel: the list (enable, name, keep/cut), add/duplicate/delete, and an editor
 // for the selected box: name, mode, min/max per axis as numbers and as fractions of the model.
 #include "core/session/items/box_codec.hpp"
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/number_field.hpp"
 #include "ui/widgets/range_slider.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/context/frame_columns.hpp"
-#include "ui/widgets/number_field.hpp"
 
 #include "core/session/session_json.hpp"
 
@@ -42,7 +42,11 @@ class BoxesPanel final : public Panel {
         ImGui::BeginDisabled(!frame);
         if (ImGui::Button("Add")) {
             const std::string name = uniqueName(s, "box");
-            wb.emit({{"op", "box.add"}, {"name", name}, {"min", model.lo}, {"max", model.hi}, {"mode", "keep"}},
+            wb.emit({{"op", "box.add"},
+                     {"name", name},
+                     {"min", model.lo},
+                     {"max", model.hi},
+                     {"mode", "keep"}},
                     [&wb, name] { wb.selection().box = name; });
         }
         wb.mark("boxes.add");
@@ -66,21 +70,25 @@ class BoxesPanel final : public Panel {
         flowSameLine(checkboxWidth("Edit in view"));
         ImGui::Checkbox("Edit in view", &wb.selection().editBoxInView);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Show the selected box's face handles in the viewports; drag them to move a face.");
+            ImGui::SetTooltip(
+                "Show the selected box's face handles in the viewports; drag them to move a face.");
 
         if (s.boxes.empty()) {
             ImGui::Spacing();
-            hint("No boxes. A keep box shows only what lies inside it; a cut box hides what lies inside it.");
+            hint("No boxes. A keep box shows only what lies inside it; a cut box hides what lies "
+                 "inside it.");
             return;
         }
         // The list.
         const float rowH = ImGui::GetFrameHeightWithSpacing();
-        const float listH = std::min<float>(static_cast<float>(s.boxes.size()) * rowH + rowH, 7.5f * rowH);
+        const float listH =
+            std::min<float>(static_cast<float>(s.boxes.size()) * rowH + rowH, 7.5f * rowH);
         if (beginScrollingTable("##boxes", 3,
                                 ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
                                     ImGuiTableFlags_ScrollY,
                                 listH)) {
-            ImGui::TableSetupColumn("on", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
+            ImGui::TableSetupColumn("on", ImGuiTableColumnFlags_WidthFixed,
+                                    ImGui::GetFrameHeight());
             ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
             ImGui::TableSetupColumn("mode", ImGuiTableColumnFlags_WidthFixed, 70 * wb.scale());
             for (const core::CuttingBox& b : s.boxes) {
@@ -94,14 +102,16 @@ class BoxesPanel final : public Panel {
                 ImGui::TableNextColumn();
                 ImGui::AlignTextToFramePadding();
                 const std::string shown = elided(b.name, ImGui::GetContentRegionAvail().x);
-                if (ImGui::Selectable((shown + "##row").c_str(), b.name == wb.selection().box, ImGuiSelectableFlags_SpanAllColumns |
-                                                                                    ImGuiSelectableFlags_AllowItemOverlap))
+                if (ImGui::Selectable((shown + "##row").c_str(), b.name == wb.selection().box,
+                                      ImGuiSelectableFlags_SpanAllColumns |
+                                          ImGuiSelectableFlags_AllowItemOverlap))
                     wb.selection().box = b.name;
                 if (shown != b.name && ImGui::IsItemHovered())
                     ImGui::SetTooltip("%s", b.name.c_str());
                 wb.mark("boxes.row." + b.name);
                 ImGui::TableNextColumn();
-                ImGui::TextColored(b.mode == core::BoxMode::Keep ? ImVec4(0.15f, 0.5f, 0.25f, 1) : ImVec4(0.75f, 0.25f, 0.15f, 1),
+                ImGui::TextColored(b.mode == core::BoxMode::Keep ? ImVec4(0.15f, 0.5f, 0.25f, 1)
+                                                                 : ImVec4(0.75f, 0.25f, 0.15f, 1),
                                    "%s", b.mode == core::BoxMode::Keep ? "keep" : "cut");
                 ImGui::PopID();
             }
@@ -130,7 +140,8 @@ class BoxesPanel final : public Panel {
         ImGui::InputText("##name", &m_name);
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != b.name) {
             const std::string next = m_name;
-            wb.emit({{"op", "box.set"}, {"name", b.name}, {"rename", next}}, [&wb, next] { wb.selection().box = next; });
+            wb.emit({{"op", "box.set"}, {"name", b.name}, {"rename", next}},
+                    [&wb, next] { wb.selection().box = next; });
         }
         ImGui::AlignTextToFramePadding();
         ImGui::TextUnformatted("Mode");
@@ -150,7 +161,8 @@ class BoxesPanel final : public Panel {
             ImGui::PushID(a);
             ImGui::Spacing();
             ImGui::TextDisabled("%s", axes[a]);
-            const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
+            const float half =
+                (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
             double lo = b.min[a], hi = b.max[a];
             const bool minTyped = numberField("##min", &lo, "%.6g", half);
             wb.mark("boxes.min." + std::to_string(a));
@@ -173,7 +185,8 @@ class BoxesPanel final : public Panel {
                 m_frac[a][0] = (b.min[a] - model.lo[a]) / extent;
                 m_frac[a][1] = (b.max[a] - model.lo[a]) / extent;
             }
-            const RangeEdit e = rangeSlider("##frac", &m_frac[a][0], &m_frac[a][1], 0.0, 1.0, false, -1, "%.2f");
+            const RangeEdit e =
+                rangeSlider("##frac", &m_frac[a][0], &m_frac[a][1], 0.0, 1.0, false, -1, "%.2f");
             wb.mark("boxes.fraction." + std::to_string(a));
             if (e.changed)
                 m_drag = Drag{a};

@@ -1,11 +1,11 @@
 // Data panel: the files open, their frames, the current frame's columns with ranges, memory.
 #include "core/io/frame_source.hpp"
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/panels/strain_section.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/context/frame_columns.hpp"
 
 #include <imgui.h>
 
@@ -23,8 +23,8 @@ class DataPanel final : public Panel {
     void draw(PanelContext& wb) override {
         auto ds = wb.dataset();
         if (ImGui::Button("Open data..."))
-            wb.fileDialog().open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open, "open-data", {},
-                                 "");
+            wb.fileDialog().open("Open data (a file, or a pattern such as dump.*.gz)",
+                                 FileDialog::Mode::Open, "open-data", {}, "");
         wb.mark("data.open");
         flowSameLine(buttonWidth("Close"));
         ImGui::BeginDisabled(!ds);
@@ -34,9 +34,10 @@ class DataPanel final : public Panel {
         ImGui::EndDisabled();
         if (!ds) {
             ImGui::Spacing();
-            ImGui::TextWrapped("No data is open. Open a LAMMPS or LIGGGHTS dump (also .gz, a numbered series "
-                               "as a pattern, or per-processor files with %%), a VTK file or a CSV table, or "
-                               "drop a file onto the window.");
+            ImGui::TextWrapped(
+                "No data is open. Open a LAMMPS or LIGGGHTS dump (also .gz, a numbered series "
+                "as a pattern, or per-processor files with %%), a VTK file or a CSV table, or "
+                "drop a file onto the window.");
             return;
         }
         ImGui::Spacing();
@@ -60,17 +61,20 @@ class DataPanel final : public Panel {
         if (collapsingHeader("Frames", ImGuiTreeNodeFlags_DefaultOpen)) {
             const std::size_t f = wb.displayFrame();
             keyValue("frames", std::to_string(ds->frameCount()));
-            keyValue("current", std::to_string(f) + "  (timestep " + std::to_string(ds->location(f).timestep) + ")");
+            keyValue("current", std::to_string(f) + "  (timestep " +
+                                    std::to_string(ds->location(f).timestep) + ")");
             if (main && main->frame) {
                 const core::Frame& fr = *main->frame;
                 keyValue("spheres", std::to_string(fr.size()));
                 if (main->visibility)
                     keyValue("visible", std::to_string(main->visibility->visibleCount));
                 const ModelBounds& b = main->bounds;
-                keyValue("extent", numberText(b.hi[0] - b.lo[0]) + " x " + numberText(b.hi[1] - b.lo[1]) + " x " +
+                keyValue("extent", numberText(b.hi[0] - b.lo[0]) + " x " +
+                                       numberText(b.hi[1] - b.lo[1]) + " x " +
                                        numberText(b.hi[2] - b.lo[2]));
                 if (fr.radiusIsDefault)
-                    ImGui::TextDisabled("no radius column: radius %.2g assumed", core::kDefaultRadius);
+                    ImGui::TextDisabled("no radius column: radius %.2g assumed",
+                                        core::kDefaultRadius);
                 if (fr.idsAreRowNumbers)
                     ImGui::TextDisabled("no id column: row numbers are the ids");
             }
@@ -78,8 +82,9 @@ class DataPanel final : public Panel {
         if (main && main->frame && collapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
             // A narrow panel keeps the names and gives the type and range on hover.
             const bool wide = ImGui::GetContentRegionAvail().x >= ImGui::GetFontSize() * 16;
-            if (ImGui::BeginTable("##columns", wide ? 4 : 1, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
-                                                     ImGuiTableFlags_SizingStretchProp)) {
+            if (ImGui::BeginTable("##columns", wide ? 4 : 1,
+                                  ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                                      ImGuiTableFlags_SizingStretchProp)) {
                 ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch, 1.4f);
                 if (wide) {
                     ImGui::TableSetupColumn("type", ImGuiTableColumnFlags_WidthStretch, 0.6f);
@@ -92,8 +97,9 @@ class DataPanel final : public Panel {
                     ImGui::TableNextRow();
                     ImGui::TableNextColumn();
                     if (!textElided(name) && !wide && ImGui::IsItemHovered())
-                        ImGui::SetTooltip("%s  %s  %s .. %s", name.c_str(), info->integer ? "int" : "float",
-                                          numberText(info->min).c_str(), numberText(info->max).c_str());
+                        ImGui::SetTooltip(
+                            "%s  %s  %s .. %s", name.c_str(), info->integer ? "int" : "float",
+                            numberText(info->min).c_str(), numberText(info->max).c_str());
                     if (!wide)
                         continue;
                     ImGui::TableNextColumn();
@@ -111,7 +117,8 @@ class DataPanel final : public Panel {
         if (collapsingHeader("Memory", ImGuiTreeNodeFlags_DefaultOpen)) {
             if (main && main->frame)
                 keyValue("this frame", bytesText(main->frame->memoryBytes()));
-            keyValue("frames cached", bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));
+            keyValue("frames cached",
+                     bytesText(ds->cachedBytes()) + " of " + bytesText(ds->cacheBudget()));
             // The budget of frames kept in memory (older ones are dropped, prefetch stays inside).
             const bool beside = ImGui::GetContentRegionAvail().x >= ImGui::GetFontSize() * 15;
             ImGui::TextDisabled("budget");
@@ -120,16 +127,18 @@ class DataPanel final : public Panel {
             if (!ImGui::IsItemActive() && !m_editingBudget)
                 m_budgetMb = static_cast<int>(wb.frameMemoryBudget() >> 20);
             ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x -
-                                                 ImGui::CalcTextSize("MB").x -
-                                                 ImGui::GetStyle().ItemInnerSpacing.x,
-                                             ImGui::GetFontSize() * 3, ImGui::GetFontSize() * 7));
+                                                   ImGui::CalcTextSize("MB").x -
+                                                   ImGui::GetStyle().ItemInnerSpacing.x,
+                                               ImGui::GetFontSize() * 3, ImGui::GetFontSize() * 7));
             ImGui::InputInt("MB##budget", &m_budgetMb, 256, 1024);
             m_editingBudget = ImGui::IsItemActive();
             wb.mark("data.budget");
-            if (ImGui::IsItemDeactivatedAfterEdit() || (ImGui::IsItemEdited() && !ImGui::IsItemActive()))
+            if (ImGui::IsItemDeactivatedAfterEdit() ||
+                (ImGui::IsItemEdited() && !ImGui::IsItemActive()))
                 wb.setFrameMemoryBudget(static_cast<std::size_t>(std::max(64, m_budgetMb)) << 20);
             if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("Memory for frames kept while scrubbing (default: a quarter of RAM)");
+                ImGui::SetTooltip(
+                    "Memory for frames kept while scrubbing (default: a quarter of RAM)");
             flowSameLine(buttonWidth("default"));
             if (ImGui::SmallButton("default"))
                 wb.setFrameMemoryBudget(0);

@@ -3,9 +3,9 @@
 // a named fault (fault.create), or all at once (the journal's fault.candidates).
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
+#include "ui/widgets/number_field.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/widgets/number_field.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -35,8 +35,9 @@ class FaultCandidatesSection {
         m_minSize = std::max(1, m_minSize);
         ImGui::Checkbox("Apart at junctions", &m_network);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Follow each fault by its orientation: faults that cross or end against\n"
-                              "each other come out apart (off: linked spheres by distance alone)");
+            ImGui::SetTooltip(
+                "Follow each fault by its orientation: faults that cross or end against\n"
+                "each other come out apart (off: linked spheres by distance alone)");
         if (m_network) {
             flowSameLine(labelledWidth(ImGui::GetFontSize() * 4, "angle"));
             numberField("angle", &m_angle, "%.0f", ImGui::GetFontSize() * 4);
@@ -74,8 +75,7 @@ class FaultCandidatesSection {
                            (main->visibility != preview->visibility &&
                             main->visibility->mask != preview->visibility->mask);
         hint("%zu candidates (%.0f ms)%s", cands.size(), m_millis,
-                            stale ? ": the visible spheres changed, find again"
-                                  : ", shown in the main view");
+             stale ? ": the visible spheres changed, find again" : ", shown in the main view");
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
         ImGui::InputText("prefix", &m_prefix);
         flowSameLine(buttonWidth("Accept all"));
@@ -99,8 +99,8 @@ class FaultCandidatesSection {
         updateOverlaps(wb, *preview);
         const float rowH = ImGui::GetFrameHeightWithSpacing();
         const float h = std::min(rowH * (static_cast<float>(cands.size()) + 0.5f), rowH * 8.0f);
-        if (!beginScrollingTable("##candidates", 3,
-                                 ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, h))
+        if (!beginScrollingTable("##candidates", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
+                                 h))
             return;
         ImGui::TableSetupColumn("c", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
         ImGui::TableSetupColumn("size", ImGuiTableColumnFlags_WidthStretch);
@@ -120,17 +120,20 @@ class FaultCandidatesSection {
                 ImGui::TableNextColumn();
                 // What follows the size wraps in its cell rather than run under Accept (a
                 // walkthrough: "shares N" was hidden at the default width).
-                const float cellRight = ImGui::GetCursorScreenPos().x + ImGui::GetContentRegionAvail().x;
+                const float cellRight =
+                    ImGui::GetCursorScreenPos().x + ImGui::GetContentRegionAvail().x;
                 const auto besideOrBelow = [cellRight](const char* text) {
                     if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x +
-                            ImGui::CalcTextSize(text).x <= cellRight)
+                            ImGui::CalcTextSize(text).x <=
+                        cellRight)
                         ImGui::SameLine();
                 };
                 ImGui::Text("#%d  %zu", k + 1, cands[static_cast<std::size_t>(k)].size());
                 if (ImGui::IsItemHovered())
                     ImGui::SetTooltip("%zu spheres", cands[static_cast<std::size_t>(k)].size());
                 if (static_cast<std::size_t>(k) < preview->shapes.size()) {
-                    const core::CandidateShape& shape = preview->shapes[static_cast<std::size_t>(k)];
+                    const core::CandidateShape& shape =
+                        preview->shapes[static_cast<std::size_t>(k)];
                     if (shape.valid) {
                         char orientation[32];
                         std::snprintf(orientation, sizeof orientation, "%.0f%s/%03.0f", shape.dip,
@@ -159,7 +162,8 @@ class FaultCandidatesSection {
                     std::string where;
                     for (const auto& [fault, n] : m_overlaps[kk]) {
                         shared += n;
-                        where += (where.empty() ? "" : ", ") + fault + " (" + std::to_string(n) + ")";
+                        where +=
+                            (where.empty() ? "" : ", ") + fault + " (" + std::to_string(n) + ")";
                     }
                     char sharesText[32];
                     std::snprintf(sharesText, sizeof sharesText, "shares %zu", shared);
@@ -167,9 +171,10 @@ class FaultCandidatesSection {
                     ImGui::TextColored(ImVec4(0.85f, 0.45f, 0.05f, 1), "%s", sharesText);
                     wb.mark("candidates.overlap." + std::to_string(k + 1));
                     if (ImGui::IsItemHovered())
-                        ImGui::SetTooltip("%zu of its spheres are in %s.\nAccepting moves them into "
-                                          "the new fault (undo gives them back).",
-                                          shared, where.c_str());
+                        ImGui::SetTooltip(
+                            "%zu of its spheres are in %s.\nAccepting moves them into "
+                            "the new fault (undo gives them back).",
+                            shared, where.c_str());
                 }
                 ImGui::TableNextColumn();
                 const bool done = m_accepted.count(k) > 0;
@@ -201,7 +206,8 @@ class FaultCandidatesSection {
         core::CandidateOptions options;
         options.link = m_link;
         options.minSize = static_cast<std::size_t>(m_minSize);
-        options.method = m_network ? core::CandidateMethod::Network : core::CandidateMethod::Connected;
+        options.method =
+            m_network ? core::CandidateMethod::Network : core::CandidateMethod::Connected;
         options.angle = m_angle;
         if (m_finding && !m_finding->finished())
             m_finding->cancel();
@@ -296,19 +302,20 @@ class FaultCandidatesSection {
         if (m_prefix.empty() || wb.state().fault(name))
             name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
-        core::Json cmd = {{"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}};
+        core::Json cmd = {
+            {"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}};
         const auto& shapes = wb.selection().candidates->shapes;
         if (static_cast<std::size_t>(k) < shapes.size())
-            if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]); !note.empty())
+            if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]);
+                !note.empty())
                 cmd["notes"] = note;
         updateOverlaps(wb, *wb.selection().candidates);
         const std::vector<std::vector<std::pair<std::string, std::size_t>>> mine = {
             m_overlaps.at(static_cast<std::size_t>(k))};
-        wb.emit(withEmptiedRemoved(wb, cmd, mine),
-                [this, &wb, k, name] {
-                    m_accepted.insert(k);
-                    wb.selection().faults = {name};
-                });
+        wb.emit(withEmptiedRemoved(wb, cmd, mine), [this, &wb, k, name] {
+            m_accepted.insert(k);
+            wb.selection().faults = {name};
+        });
     }
 };
 

@@ -5,10 +5,10 @@
 #include "core/faults/tracking.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/session.hpp"
-#include "ui/panels/panels.hpp"
-#include "ui/widgets/series_plot.hpp"
 #include "ui/context/fault_metrics_cache.hpp"
+#include "ui/panels/panels.hpp"
 #include "ui/widgets/section.hpp"
+#include "ui/widgets/series_plot.hpp"
 #include "ui/widgets/text_fit.hpp"
 
 #include <imgui.h>
@@ -17,8 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <mutex>
 #include <map>
+#include <mutex>
 #include <optional>
 
 namespace faultline::ui {
@@ -56,9 +56,9 @@ std::string eventsKey(const core::SessionState& s, std::span<const core::Fault* 
 // faults only when the fault filter or a hidden fault takes spheres out.
 std::string visibleKey(const core::SessionState& s, const void* dataset) {
     std::string key = eventsKey(s, {}, dataset);
-    const bool rowsMasked =
-        s.faultFilter.mode != core::FaultFilter::Mode::All ||
-        std::any_of(s.faults.begin(), s.faults.end(), [](const core::Fault& f) { return !f.visible; });
+    const bool rowsMasked = s.faultFilter.mode != core::FaultFilter::Mode::All ||
+                            std::any_of(s.faults.begin(), s.faults.end(),
+                                        [](const core::Fault& f) { return !f.visible; });
     if (rowsMasked)
         for (const auto& f : s.faults)
             key += "|m" + std::to_string(core::hashMemberIds(f.ids)) + (f.visible ? "v" : "h");
@@ -303,7 +303,7 @@ class FaultMetricsSection {
         std::string conditions;          // the thresholds and boxes they ran with
     };
     bool m_growth = false;
-    bool m_allEvents = false; // every event listed, not only the first few
+    bool m_allEvents = false;   // every event listed, not only the first few
     bool m_followAgain = false; // the user followed once: follow again when the selection changes
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
@@ -427,11 +427,12 @@ class FaultMetricsSection {
                 std::snprintf(numbers, sizeof numbers, "min %.5g   max %.5g   frame %zu: %.5g", lo,
                               hi, now, m_values[k][now]);
             else
-                std::snprintf(numbers, sizeof numbers,
-                              "min %.5g   max %.5g   frame %zu: undefined", lo, hi, now);
+                std::snprintf(numbers, sizeof numbers, "min %.5g   max %.5g   frame %zu: undefined",
+                              lo, hi, now);
             const float avail = ImGui::GetContentRegionAvail().x;
-            textElided(shown[k]->name, std::max(avail * 0.4f, avail - ImGui::CalcTextSize(numbers).x -
-                                                                   ImGui::GetStyle().ItemSpacing.x));
+            textElided(shown[k]->name,
+                       std::max(avail * 0.4f, avail - ImGui::CalcTextSize(numbers).x -
+                                                  ImGui::GetStyle().ItemSpacing.x));
             flowSameLine(ImGui::CalcTextSize(numbers).x);
             hint("%s", numbers);
         }

@@ -1,10 +1,10 @@
 // Histograms panel: one plot per chosen variable with all spheres and the visible ones overlaid
 // (log scale optional). Dragging across a plot sets that variable's threshold; its edges are
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/context/frame_columns.hpp"
 
 #include "core/selection/histogram.hpp"
 
@@ -22,7 +22,8 @@ const ImU32 kAllColor = IM_COL32(168, 172, 180, 255);
 const ImU32 kVisibleColor = IM_COL32(52, 110, 190, 255);
 
 struct Cached {
-    std::shared_ptr<const core::Frame> frame; // held: a pointer alone could be reused by another frame
+    std::shared_ptr<const core::Frame>
+        frame; // held: a pointer alone could be reused by another frame
     std::uint64_t visKey = 0;
     int autoBins = 0; // the float binning chosen on the first frame, reused for later frames
     core::Histogram hist;
@@ -55,12 +56,13 @@ class HistogramsPanel final : public Panel {
         ImGui::SetNextItemWidth(std::min(ImGui::GetContentRegionAvail().x,
                                          ImGui::CalcTextSize("Add a histogram...").x +
                                              ImGui::GetFrameHeight() + 2 * style.FramePadding.x));
-        const std::string addLabel = elided("Add a histogram...", ImGui::CalcItemWidth() -
-                                                                      ImGui::GetFrameHeight() -
-                                                                      2 * style.FramePadding.x);
+        const std::string addLabel =
+            elided("Add a histogram...",
+                   ImGui::CalcItemWidth() - ImGui::GetFrameHeight() - 2 * style.FramePadding.x);
         if (ImGui::BeginCombo("##addhist", addLabel.c_str())) {
             for (const auto& [v, info] : wb.columns().of(main->frame))
-                if (std::find(vars.begin(), vars.end(), v) == vars.end() && ImGui::Selectable(v.c_str())) {
+                if (std::find(vars.begin(), vars.end(), v) == vars.end() &&
+                    ImGui::Selectable(v.c_str())) {
                     vars.push_back(v);
                     saveSettings(wb, vars, logScale);
                 }
@@ -71,7 +73,8 @@ class HistogramsPanel final : public Panel {
         if (ImGui::Checkbox("Log scale", &logScale))
             saveSettings(wb, vars, logScale);
         wb.mark("histograms.log");
-        const float legendW = ImGui::CalcTextSize("allvisible").x + ImGui::GetTextLineHeight() * 2 + 30 * wb.scale();
+        const float legendW =
+            ImGui::CalcTextSize("allvisible").x + ImGui::GetTextLineHeight() * 2 + 30 * wb.scale();
         const float usedX = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;
         if (ImGui::GetContentRegionMax().x - usedX > legendW + 10 * wb.scale())
             ImGui::SameLine(ImGui::GetContentRegionMax().x - legendW);
@@ -98,7 +101,8 @@ class HistogramsPanel final : public Panel {
         const float h = ImGui::GetTextLineHeight();
         const ImVec2 p = ImGui::GetCursorScreenPos();
         const float y = p.y + ImGui::GetStyle().FramePadding.y;
-        ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, y + h * 0.2f), ImVec2(p.x + h * 0.8f, y + h), color, 2);
+        ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, y + h * 0.2f),
+                                                  ImVec2(p.x + h * 0.8f, y + h), color, 2);
         ImGui::Dummy(ImVec2(h * 0.8f, ImGui::GetFrameHeight()));
         ImGui::SameLine(0, 4);
         ImGui::AlignTextToFramePadding();
@@ -118,9 +122,8 @@ class HistogramsPanel final : public Panel {
         // colouring and however the session was reached (issue 41: the order changed after
         // reopening a session, which took the colour variable first).
         if (wb.dataset().get() == m_defaultFor && !m_default.empty() &&
-            std::all_of(m_default.begin(), m_default.end(), [&](const std::string& v) {
-                return v == "radius" || frame.attribute(v);
-            }))
+            std::all_of(m_default.begin(), m_default.end(),
+                        [&](const std::string& v) { return v == "radius" || frame.attribute(v); }))
             return m_default;
         for (const std::string& n : frame.attributeNames()) {
             if (out.size() >= 3)
@@ -150,7 +153,8 @@ class HistogramsPanel final : public Panel {
         wb.commitLayout();
     }
 
-    const core::Histogram* histogramFor(const core::Frame& frame, const ViewDisplay& main, const std::string& var) {
+    const core::Histogram* histogramFor(const core::Frame& frame, const ViewDisplay& main,
+                                        const std::string& var) {
         Cached& c = m_cache[var];
         const std::uint64_t visKey = main.visibilityKey;
         if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty())
@@ -162,8 +166,9 @@ class HistogramsPanel final : public Panel {
             core::HistogramSpec spec;
             if (c.autoBins > 0 && !column->isInteger())
                 spec.bins = c.autoBins;
-            core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty()) ? c.hist.binning
-                                                                                           : core::chooseBinning(*column, spec);
+            core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty())
+                                                 ? c.hist.binning
+                                                 : core::chooseBinning(*column, spec);
             if (!column->isInteger() && c.autoBins == 0)
                 c.autoBins = binning.bins;
             const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
@@ -177,7 +182,8 @@ class HistogramsPanel final : public Panel {
     }
 
     // Draws one histogram; false when its close button was pressed.
-    bool drawOne(PanelContext& wb, const core::Frame& frame, const ViewDisplay& main, const std::string& var, bool logScale) {
+    bool drawOne(PanelContext& wb, const core::Frame& frame, const ViewDisplay& main,
+                 const std::string& var, bool logScale) {
         const float scale = wb.scale();
         const core::Histogram* h = histogramFor(frame, main, var);
         const auto info = wb.columns().info(main.frame, var);
@@ -186,17 +192,19 @@ class HistogramsPanel final : public Panel {
         // Title line: name, threshold, close.
         // The name and threshold shortened to leave the close button its place.
         const float closeW = ImGui::GetFrameHeight();
-        const float room = ImGui::GetContentRegionAvail().x - closeW - ImGui::GetStyle().ItemSpacing.x;
+        const float room =
+            ImGui::GetContentRegionAvail().x - closeW - ImGui::GetStyle().ItemSpacing.x;
         ImGui::AlignTextToFramePadding();
         textElided(var, room);
         if (t) {
             ImGui::SameLine();
-            const std::string text = std::string(t->enabled ? "threshold" : "threshold (off)") + "  " +
-                                     numberText(t->low) + " .. " + numberText(t->high);
+            const std::string text = std::string(t->enabled ? "threshold" : "threshold (off)") +
+                                     "  " + numberText(t->low) + " .. " + numberText(t->high);
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            textElided(text, std::max(0.0f, ImGui::GetWindowContentRegionMax().x + ImGui::GetWindowPos().x -
-                                                 ImGui::GetCursorScreenPos().x - closeW -
-                                                 ImGui::GetStyle().ItemSpacing.x));
+            textElided(text,
+                       std::max(0.0f, ImGui::GetWindowContentRegionMax().x +
+                                          ImGui::GetWindowPos().x - ImGui::GetCursorScreenPos().x -
+                                          closeW - ImGui::GetStyle().ItemSpacing.x));
             ImGui::PopStyleColor();
         }
         ImGui::SameLine(ImGui::GetContentRegionMax().x - closeW);
@@ -220,7 +228,9 @@ class HistogramsPanel final : public Panel {
 
         const double lo = h->binning.lo, hi = h->edges.back();
         const bool integer = h->binning.isInteger();
-        auto toX = [&](double v) { return p0.x + static_cast<float>((std::clamp(v, lo, hi) - lo) / (hi - lo)) * width; };
+        auto toX = [&](double v) {
+            return p0.x + static_cast<float>((std::clamp(v, lo, hi) - lo) / (hi - lo)) * width;
+        };
         // Within a few pixels of either end means the end itself (the range's min or max).
         auto toValue = [&](float x) {
             if (x <= p0.x + 3 * scale)
@@ -233,7 +243,8 @@ class HistogramsPanel final : public Panel {
         // Bars: all, then visible over them.
         const std::uint64_t maxAll = std::max<std::uint64_t>(1, h->all.maxBin());
         auto barH = [&](std::uint64_t c) {
-            const double f = logScale ? std::log10(1.0 + c) / std::log10(1.0 + maxAll) : double(c) / maxAll;
+            const double f =
+                logScale ? std::log10(1.0 + c) / std::log10(1.0 + maxAll) : double(c) / maxAll;
             return static_cast<float>(f) * (height - 4 * scale);
         };
         const std::size_t bins = h->all.bins.size();
@@ -243,9 +254,11 @@ class HistogramsPanel final : public Panel {
                 x1 -= 1; // a hairline gap between wide bars
             const std::uint64_t a = h->all.bins[k];
             if (a)
-                dl->AddRectFilled(ImVec2(x0, p1.y - barH(a)), ImVec2(std::max(x1, x0 + 1), p1.y), kAllColor);
+                dl->AddRectFilled(ImVec2(x0, p1.y - barH(a)), ImVec2(std::max(x1, x0 + 1), p1.y),
+                                  kAllColor);
             if (h->hasVisible && h->visible.bins[k])
-                dl->AddRectFilled(ImVec2(x0, p1.y - barH(h->visible.bins[k])), ImVec2(std::max(x1, x0 + 1), p1.y), kVisibleColor);
+                dl->AddRectFilled(ImVec2(x0, p1.y - barH(h->visible.bins[k])),
+                                  ImVec2(std::max(x1, x0 + 1), p1.y), kVisibleColor);
         }
 
         // Threshold band and handles (the drag's values while dragging).
@@ -266,14 +279,16 @@ class HistogramsPanel final : public Panel {
             const ImU32 edge = off ? IM_COL32(120, 120, 120, 160) : IM_COL32(200, 90, 20, 255);
             for (float x : {bx0, bx1}) {
                 dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), edge, 2 * scale);
-                dl->AddRectFilled(ImVec2(x - 4 * scale, p0.y), ImVec2(x + 4 * scale, p0.y + 10 * scale), edge, 2 * scale);
+                dl->AddRectFilled(ImVec2(x - 4 * scale, p0.y),
+                                  ImVec2(x + 4 * scale, p0.y + 10 * scale), edge, 2 * scale);
             }
         }
 
         // Interaction.
         const ImGuiIO& io = ImGui::GetIO();
         const float grab = 6 * scale;
-        if (hovered && band && (std::fabs(io.MousePos.x - bx0) < grab || std::fabs(io.MousePos.x - bx1) < grab))
+        if (hovered && band &&
+            (std::fabs(io.MousePos.x - bx0) < grab || std::fabs(io.MousePos.x - bx1) < grab))
             ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
         if (ImGui::IsItemActivated()) {
             const float mx = io.MousePos.x;
@@ -339,9 +354,12 @@ class HistogramsPanel final : public Panel {
                 if (integer && h->binning.integerWidth == 1)
                     ImGui::Text("%s = %s", var.c_str(), numberText(h->edges[k]).c_str());
                 else
-                    ImGui::Text("%s in [%s, %s)", var.c_str(), numberText(h->edges[k]).c_str(), numberText(h->edges[k + 1]).c_str());
-                ImGui::Text("%llu spheres, %llu visible", static_cast<unsigned long long>(h->all.bins[k]),
-                            static_cast<unsigned long long>(h->hasVisible ? h->visible.bins[k] : h->all.bins[k]));
+                    ImGui::Text("%s in [%s, %s)", var.c_str(), numberText(h->edges[k]).c_str(),
+                                numberText(h->edges[k + 1]).c_str());
+                ImGui::Text("%llu spheres, %llu visible",
+                            static_cast<unsigned long long>(h->all.bins[k]),
+                            static_cast<unsigned long long>(h->hasVisible ? h->visible.bins[k]
+                                                                          : h->all.bins[k]));
                 ImGui::TextDisabled("drag to set the threshold; right-click for more");
                 ImGui::EndTooltip();
             }
@@ -349,7 +367,8 @@ class HistogramsPanel final : public Panel {
         // Axis: range ends under the plot.
         const std::string left = numberText(lo), right = numberText(integer ? hi - 1 : hi);
         ImGui::TextDisabled("%s", left.c_str());
-        ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetContentRegionMax().x - ImGui::CalcTextSize(right.c_str()).x));
+        ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetContentRegionMax().x -
+                                                             ImGui::CalcTextSize(right.c_str()).x));
         ImGui::TextDisabled("%s", right.c_str());
         // NaN (no reference for strain from motion, a sphere gone since it): never passes a
         // threshold, so say how many there are.
@@ -369,8 +388,12 @@ class HistogramsPanel final : public Panel {
         bool moved = false;
     };
 
-    static core::Json command(const core::VariableThreshold* t, const std::string& var, const Drag& d) {
-        core::Json cmd = {{"op", t ? "threshold.set" : "threshold.add"}, {"variable", var}, {"low", d.low}, {"high", d.high}};
+    static core::Json command(const core::VariableThreshold* t, const std::string& var,
+                              const Drag& d) {
+        core::Json cmd = {{"op", t ? "threshold.set" : "threshold.add"},
+                          {"variable", var},
+                          {"low", d.low},
+                          {"high", d.high}};
         if (t && !t->enabled)
             cmd["enabled"] = true; // dragging a threshold means using it
         return cmd;

@@ -21,6 +21,6 @@ std::unique_ptr<Panel> makeViewportsPanel();
 
 // Sections plugged into panels through PanelExtensions.
 void addFaultCandidatesSection(PanelExtensions& extensions); // Faults: candidates to accept
-void addFaultMetricsSection(PanelExtensions& extensions); // Faults: metrics over time
+void addFaultMetricsSection(PanelExtensions& extensions);    // Faults: metrics over time
 
 } // namespace faultline::ui

@@ -16,8 +16,8 @@ namespace faultline::ui {
 namespace {
 
 std::string describe(const core::StrainSpec& s) {
-    std::string text = s.relative ? "against " + std::to_string(-s.reference) +
-                                        " frame" + (s.reference == -1 ? "" : "s") + " before"
+    std::string text = s.relative ? "against " + std::to_string(-s.reference) + " frame" +
+                                        (s.reference == -1 ? "" : "s") + " before"
                                   : "since frame " + std::to_string(s.reference);
     if (s.relative && s.reference > 0)
         text = "against " + std::to_string(s.reference) + " frames after";

@@ -17,7 +17,7 @@ class StrainSection {
   private:
     bool m_incremental = true;
     int m_sinceFrame = 0;
-    int m_offset = 4; // frames before each frame
+    int m_offset = 4;    // frames before each frame
     double m_cutoff = 0; // 0: automatic
     std::string m_prefix = "inc_";
     bool m_prefixEdited = false;

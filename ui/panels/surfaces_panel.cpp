@@ -9,11 +9,11 @@
 // [SECTION] The table of surfaces
 // [SECTION] A surface's settings and exports
 // [SECTION] A surface's colour
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
-#include "ui/context/frame_columns.hpp"
 
 #include "core/color/colormap.hpp"
 #include "core/session/fault_surface_request.hpp"
@@ -166,8 +166,7 @@ class SurfacesPanel final : public Panel {
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingStretchProp;
         const float rows = static_cast<float>(std::min<std::size_t>(s.faults.size() + 1, 6) + 1);
-        if (!beginScrollingTable("##surfaces", 3, flags,
-                                 rows * ImGui::GetFrameHeightWithSpacing()))
+        if (!beginScrollingTable("##surfaces", 3, flags, rows * ImGui::GetFrameHeightWithSpacing()))
             return;
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableSetupColumn("shown", ImGuiTableColumnFlags_WidthFixed);
@@ -207,8 +206,8 @@ class SurfacesPanel final : public Panel {
         ImGui::TableNextColumn();
         ImVec4 colour(color[0], color[1], color[2], 1.0f);
         if (st && st->colorBy.empty() && st->color) // its own colour
-            colour = ImVec4(float((*st->color)[0]), float((*st->color)[1]),
-                            float((*st->color)[2]), 1.0f);
+            colour = ImVec4(float((*st->color)[0]), float((*st->color)[1]), float((*st->color)[2]),
+                            1.0f);
         ImGui::ColorButton("##c", colour,
                            ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
                            ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
@@ -273,7 +272,10 @@ class SurfacesPanel final : public Panel {
         };
         textElided("Surface of " + sourceLabel(fault));
         // Fields 170 px wide where the panel allows, leaving room for their labels.
-        const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
+        const float w = std::max(
+            60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x -
+                                                            ImGui::CalcTextSize("opacity").x -
+                                                            ImGui::GetStyle().ItemInnerSpacing.x));
         ImGui::SetNextItemWidth(w);
         const std::string current(core::kernelName(st.kernel));
         if (ImGui::BeginCombo("kernel", current.c_str())) {
@@ -315,9 +317,10 @@ class SurfacesPanel final : public Panel {
             high = std::max(status.isoHigh, anchor);
         }
         const float valueW = 64 * wb.scale();
-        ImGui::SetNextItemWidth(std::max(w - valueW - ImGui::GetStyle().ItemSpacing.x, 30 * wb.scale()));
-        ImGui::SliderFloat("##iso", &m_iso, low, high, "", ImGuiSliderFlags_Logarithmic |
-                                                               ImGuiSliderFlags_NoInput);
+        ImGui::SetNextItemWidth(
+            std::max(w - valueW - ImGui::GetStyle().ItemSpacing.x, 30 * wb.scale()));
+        ImGui::SliderFloat("##iso", &m_iso, low, high, "",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoInput);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
             set({{"iso", m_iso}});
         wb.mark("surfaces.iso");
@@ -368,8 +371,7 @@ class SurfacesPanel final : public Panel {
                               status.iso);
             ImGui::TextWrapped("%s", why);
             if (ImGui::Button("Wrap the spheres"))
-                emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}},
-                                    true);
+                emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
             wb.mark("surfaces.empty_wrap");
         } else if (status.state == SurfaceStatus::State::Ready) {
             const core::Fault* whole = s.fault(fault);
@@ -396,8 +398,7 @@ class SurfacesPanel final : public Panel {
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
                                  FileDialog::Mode::Save,
                                  m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf",
-                                 {".glb", ".gltf"},
-                                 exportFolder(wb), "faults.glb");
+                                 {".glb", ".gltf"}, exportFolder(wb), "faults.glb");
         ImGui::EndDisabled();
         flowSameLine(buttonWidth("Remove"));
         ImGui::BeginDisabled(!exists);
@@ -422,7 +423,10 @@ class SurfacesPanel final : public Panel {
                     const Set& set) {
         const ViewDisplay* main = wb.mainDisplay();
         // Fields 170 px wide where the panel allows, leaving room for their labels.
-        const float w = std::max(60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("opacity").x - ImGui::GetStyle().ItemInnerSpacing.x));
+        const float w = std::max(
+            60 * wb.scale(), std::min(170 * wb.scale(), ImGui::GetContentRegionAvail().x -
+                                                            ImGui::CalcTextSize("opacity").x -
+                                                            ImGui::GetStyle().ItemInnerSpacing.x));
         const std::string plain = core::isVisibleSpheres(st.fault) ? "one colour" : "fault colour";
         // Issue 41: a surface in its fault's colour is hard to see among the fault's spheres; a
         // colour of its own sets it apart.

@@ -1,10 +1,10 @@
 // Thresholds panel: one row per variable threshold: enabled, low/high as numbers and on a range
 // slider over the variable's values in the current frame; add on any variable, remove.
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/bound_input.hpp"
 #include "ui/widgets/range_slider.hpp"
-#include "ui/context/frame_columns.hpp"
 #include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 
@@ -33,8 +33,9 @@ class ThresholdsPanel final : public Panel {
         ImGui::BeginDisabled(!frame);
         const float comboW = std::min(ImGui::GetContentRegionAvail().x, 220 * scale);
         ImGui::SetNextItemWidth(comboW);
-        const std::string addLabel = elided("Add a threshold on...", comboW - ImGui::GetFrameHeight() -
-                                                                          2 * ImGui::GetStyle().FramePadding.x);
+        const std::string addLabel =
+            elided("Add a threshold on...",
+                   comboW - ImGui::GetFrameHeight() - 2 * ImGui::GetStyle().FramePadding.x);
         if (ImGui::BeginCombo("##addthreshold", addLabel.c_str())) {
             if (frame)
                 for (const auto& [v, vinfo] : wb.columns().of(main->frame)) {
@@ -72,13 +73,14 @@ class ThresholdsPanel final : public Panel {
             if (frame)
                 if (auto i = wb.columns().info(main->frame, t.variable))
                     info = *i, haveInfo = true;
-            const float removeW = ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
+            const float removeW =
+                ImGui::CalcTextSize("Remove").x + ImGui::GetStyle().FramePadding.x * 2;
             // A long name in a narrow panel ends in "..." before Remove (all of it on hover);
             // in a very narrow one Remove goes on the next row, so the name keeps its room.
             const float room = ImGui::GetContentRegionMax().x - removeW - ImGui::GetCursorPosX() -
                                ImGui::GetStyle().ItemSpacing.x;
-            const bool removeBeside =
-                room >= std::min(ImGui::CalcTextSize(t.variable.c_str()).x, ImGui::GetFontSize() * 6);
+            const bool removeBeside = room >= std::min(ImGui::CalcTextSize(t.variable.c_str()).x,
+                                                       ImGui::GetFontSize() * 6);
             textElided(t.variable, removeBeside ? std::max(1.0f, room) : 0.0f);
             if (removeBeside)
                 ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
@@ -87,8 +89,8 @@ class ThresholdsPanel final : public Panel {
             wb.mark("thresholds.remove." + t.variable);
             // Issue 41: a typo ("strian") or data without the column must not pass silently.
             if (frame && !haveInfo) {
-                const std::string note = core::missingVariableNote(*frame, t.variable) +
-                                         ": this threshold is ignored";
+                const std::string note =
+                    core::missingVariableNote(*frame, t.variable) + ": this threshold is ignored";
                 ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.1f, 1));
                 ImGui::TextWrapped("%s", note.c_str());
                 ImGui::PopStyleColor();
@@ -98,7 +100,8 @@ class ThresholdsPanel final : public Panel {
             const bool integer = haveInfo && info.integer;
             // Numbers: committed when the field is left or Enter pressed; empty is open-ended.
             double low = t.low, high = t.high;
-            const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
+            const float half =
+                (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
             if (boundInput("low", &low, false, integer, half))
                 wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"low", low}});
             wb.mark("thresholds.low." + t.variable);
@@ -112,11 +115,15 @@ class ThresholdsPanel final : public Panel {
                 auto& drag = m_drag[t.variable];
                 if (!drag.active)
                     drag.lo = t.low, drag.hi = t.high;
-                const RangeEdit e = rangeSlider("##slider", &drag.lo, &drag.hi, info.min, info.max, integer, -1);
+                const RangeEdit e =
+                    rangeSlider("##slider", &drag.lo, &drag.hi, info.min, info.max, integer, -1);
                 wb.mark("thresholds.slider." + t.variable);
                 if (e.changed)
                     drag.active = true;
-                core::Json cmd = {{"op", "threshold.set"}, {"variable", t.variable}, {"low", drag.lo}, {"high", drag.hi}};
+                core::Json cmd = {{"op", "threshold.set"},
+                                  {"variable", t.variable},
+                                  {"low", drag.lo},
+                                  {"high", drag.hi}};
                 if (drag.active && !e.released)
                     wb.preview("threshold." + t.variable, cmd);
                 if (e.released && drag.active) {

@@ -35,7 +35,8 @@ class TimelinePanel final : public Panel {
             wb.stepFrames(-1);
         wb.mark("timeline.prev");
         ImGui::SameLine(0, 2);
-        if (iconButton("##play", pb.playing ? Icon::Pause : Icon::Play, pb.playing ? "Pause (Space)" : "Play (Space)"))
+        if (iconButton("##play", pb.playing ? Icon::Pause : Icon::Play,
+                       pb.playing ? "Pause (Space)" : "Play (Space)"))
             pb.playing ? wb.pause() : wb.play();
         wb.mark("timeline.play");
         ImGui::SameLine(0, 2);
@@ -54,7 +55,9 @@ class TimelinePanel final : public Panel {
             ImGui::AlignTextToFramePadding();
             ImGui::Text("frame %zu of %zu", shown, count);
             ImGui::SameLine();
-            ImGui::TextDisabled("timestep %lld", static_cast<long long>(ds->location(std::min(shown, count - 1)).timestep));
+            ImGui::TextDisabled(
+                "timestep %lld",
+                static_cast<long long>(ds->location(std::min(shown, count - 1)).timestep));
             const ViewDisplay* main = wb.mainDisplay();
             if (main && main->loading()) {
                 ImGui::SameLine();
@@ -67,10 +70,12 @@ class TimelinePanel final : public Panel {
         // Rate, loop and jump at the right end of the row; below the text when the panel is too
         // narrow for both (issue 41: at 640x420 they were drawn over "frame 39 of 40").
         const ImGuiStyle& style = ImGui::GetStyle();
-        const float right = 80 * wb.scale() + checkboxWidth("Loop") + 60 * wb.scale() + 2 * style.ItemSpacing.x;
+        const float right =
+            80 * wb.scale() + checkboxWidth("Loop") + 60 * wb.scale() + 2 * style.ItemSpacing.x;
         const float textEnd = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;
         if (textEnd + 12 * wb.scale() + right <= ImGui::GetContentRegionMax().x)
-            ImGui::SameLine(std::max(textEnd + 12 * wb.scale(), ImGui::GetContentRegionMax().x - right));
+            ImGui::SameLine(
+                std::max(textEnd + 12 * wb.scale(), ImGui::GetContentRegionMax().x - right));
         ImGui::SetNextItemWidth(80 * wb.scale());
         char rate[32];
         std::snprintf(rate, sizeof rate, "%g fps", pb.fps);
@@ -107,9 +112,15 @@ class TimelinePanel final : public Panel {
         ImDrawList* dl = ImGui::GetWindowDrawList();
         const float pad = h * 0.5f;
         const float x0 = p0.x + pad, x1 = p0.x + w - pad;
-        auto toX = [&](std::size_t f) { return count < 2 ? x0 : x0 + (x1 - x0) * static_cast<float>(f) / static_cast<float>(count - 1); };
-        dl->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), ImGui::GetColorU32(hovered || active ? ImGuiCol_FrameBgHovered : ImGuiCol_FrameBg),
-                          ImGui::GetStyle().FrameRounding);
+        auto toX = [&](std::size_t f) {
+            return count < 2
+                       ? x0
+                       : x0 + (x1 - x0) * static_cast<float>(f) / static_cast<float>(count - 1);
+        };
+        dl->AddRectFilled(
+            p0, ImVec2(p0.x + w, p0.y + h),
+            ImGui::GetColorU32(hovered || active ? ImGuiCol_FrameBgHovered : ImGuiCol_FrameBg),
+            ImGui::GetStyle().FrameRounding);
         const float cy = p0.y + h * 0.5f;
         dl->AddLine(ImVec2(x0, cy), ImVec2(x1, cy), ImGui::GetColorU32(ImGuiCol_Border), 2);
         // Loaded frames as marks under the track.
@@ -117,11 +128,13 @@ class TimelinePanel final : public Panel {
             for (std::size_t f = 0; f < count; ++f)
                 if (wb.frames().isLoaded(f)) {
                     const float x = toX(f);
-                    dl->AddLine(ImVec2(x, cy + 3), ImVec2(x, p0.y + h - 3), ImGui::GetColorU32(ImGuiCol_PlotHistogram, 0.55f), 2);
+                    dl->AddLine(ImVec2(x, cy + 3), ImVec2(x, p0.y + h - 3),
+                                ImGui::GetColorU32(ImGuiCol_PlotHistogram, 0.55f), 2);
                 }
         if (count >= 2 && active) {
             const float mx = std::clamp(ImGui::GetIO().MousePos.x, x0, x1);
-            const auto f = static_cast<std::size_t>(std::lround((mx - x0) / (x1 - x0) * static_cast<float>(count - 1)));
+            const auto f = static_cast<std::size_t>(
+                std::lround((mx - x0) / (x1 - x0) * static_cast<float>(count - 1)));
             m_scrub = f;
             if (wb.playback().playing)
                 wb.playback().frame = f;
@@ -136,13 +149,16 @@ class TimelinePanel final : public Panel {
         if (count >= 1) {
             const std::size_t at = m_scrub.value_or(shown);
             const float x = toX(std::min(at, count - 1));
-            dl->AddRectFilled(ImVec2(x - 5, p0.y + 2), ImVec2(x + 5, p0.y + h - 2),
-                              ImGui::GetColorU32(active ? ImGuiCol_SliderGrabActive : ImGuiCol_SliderGrab), 3);
+            dl->AddRectFilled(
+                ImVec2(x - 5, p0.y + 2), ImVec2(x + 5, p0.y + h - 2),
+                ImGui::GetColorU32(active ? ImGuiCol_SliderGrabActive : ImGuiCol_SliderGrab), 3);
         }
         if (hovered && count >= 2 && !active) {
             const float mx = std::clamp(ImGui::GetIO().MousePos.x, x0, x1);
-            const auto f = static_cast<std::size_t>(std::lround((mx - x0) / (x1 - x0) * static_cast<float>(count - 1)));
-            ImGui::SetTooltip("frame %zu, timestep %lld", f, static_cast<long long>(wb.dataset()->location(f).timestep));
+            const auto f = static_cast<std::size_t>(
+                std::lround((mx - x0) / (x1 - x0) * static_cast<float>(count - 1)));
+            ImGui::SetTooltip("frame %zu, timestep %lld", f,
+                              static_cast<long long>(wb.dataset()->location(f).timestep));
         }
     }
 

@@ -9,12 +9,12 @@
 
 #include "core/session/items/camera_codec.hpp"
 #include "core/view/box_handles.hpp"
+#include "ui/context/frame_columns.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/gl_view_renderer.hpp"
 #include "ui/viewport/orbit_camera.hpp"
-#include "ui/widgets/text_fit.hpp"
-#include "ui/context/frame_columns.hpp"
 #include "ui/widgets/number_field.hpp"
+#include "ui/widgets/text_fit.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -34,7 +34,8 @@ std::string bindingText(const core::FrameBinding& b) {
         return "frame " + std::to_string(b.value);
     if (b.value == 0)
         return "current frame";
-    return std::string("current ") + (b.value < 0 ? "- " : "+ ") + std::to_string(std::llabs(b.value));
+    return std::string("current ") + (b.value < 0 ? "- " : "+ ") +
+           std::to_string(std::llabs(b.value));
 }
 
 glm::dvec3 faceCentre(const std::array<double, 3>& mn, const std::array<double, 3>& mx, int face) {
@@ -86,7 +87,8 @@ void ViewportCells::fitAll(PanelContext& wb) {
     emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
 }
 
-void ViewportCells::fitVisibleInto(PanelContext& wb, core::Json& cmd, const core::CameraState* orientation) {
+void ViewportCells::fitVisibleInto(PanelContext& wb, core::Json& cmd,
+                                   const core::CameraState* orientation) {
     const std::string name = cmd["view"].get<std::string>();
     const ViewDisplay* d = wb.view(name);
     const core::ViewState* v = wb.state().view(name);
@@ -131,23 +133,28 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
     const ImVec2 imgSize(size.x, std::max(1.0f, size.y - headerH));
     ImGui::SetCursorScreenPos(imgPos);
     ImGui::InvisibleButton("##image", imgSize,
-                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
     wb.mark("view.image." + view.name);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 imgMax(imgPos.x + imgSize.x, imgPos.y + imgSize.y);
     const unsigned int tex = wb.renderer() ? wb.renderer()->texture(view.name) : 0;
     std::array<std::string, 2> placeholder; // the text shown where there is no image (yet)
     if (tex) {
-        dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)), imgPos, imgMax, ImVec2(0, 1), ImVec2(1, 0));
+        dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)), imgPos,
+                     imgMax, ImVec2(0, 1), ImVec2(1, 0));
     } else {
         // No renderer in this build or run: a clear placeholder, with outlines drawn below.
-        dl->AddRectFilledMultiColor(imgPos, imgMax, IM_COL32(250, 251, 253, 255), IM_COL32(250, 251, 253, 255),
-                                    IM_COL32(226, 230, 238, 255), IM_COL32(226, 230, 238, 255));
-        const char* line1 = wb.renderer() ? "rendering..." : "3-D spheres are not drawn in this build";
+        dl->AddRectFilledMultiColor(imgPos, imgMax, IM_COL32(250, 251, 253, 255),
+                                    IM_COL32(250, 251, 253, 255), IM_COL32(226, 230, 238, 255),
+                                    IM_COL32(226, 230, 238, 255));
+        const char* line1 =
+            wb.renderer() ? "rendering..." : "3-D spheres are not drawn in this build";
         // Drawn last (below), over the box outlines and member marks, so they never hide it.
-        std::string line2 = d.frame ? std::to_string(d.frame->size()) + " spheres, " +
-                                          std::to_string(d.visibility ? d.visibility->visibleCount : 0) + " visible"
-                                    : std::string("no data: File > Open data, or drop a file here");
+        std::string line2 =
+            d.frame ? std::to_string(d.frame->size()) + " spheres, " +
+                          std::to_string(d.visibility ? d.visibility->visibleCount : 0) + " visible"
+                    : std::string("no data: File > Open data, or drop a file here");
         placeholder = {line1, line2};
     }
     if (!d.frame) {
@@ -168,9 +175,11 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
             placeholder = {"No data: File > Open data, or drop a file here", ""};
     }
     interact(wb, view, d, imgPos, imgSize);
-    const core::CameraState cam = m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace && m_drag.view == view.name
-                                      ? m_drag.current
-                                      : (m_wheel && m_wheel->view == view.name ? m_wheel->camera : d.camera);
+    const core::CameraState cam =
+        m_drag.mode != DragMode::None && m_drag.mode != DragMode::BoxFace &&
+                m_drag.view == view.name
+            ? m_drag.current
+            : (m_wheel && m_wheel->view == view.name ? m_wheel->camera : d.camera);
     dl->PushClipRect(imgPos, imgMax, true);
     drawOverlays(wb, view, d, cam, imgPos, imgSize);
     m_selection.drawMembers(wb, d, cam, imgPos, imgSize);
@@ -186,8 +195,8 @@ void ViewportCells::draw(PanelContext& wb, const core::ViewState& view, ImVec2 p
         if (!placeholder[k].empty()) {
             placeholder[k] = elided(placeholder[k], imgSize.x - 8 * wb.scale()); // narrow views
             const ImVec2 t = ImGui::CalcTextSize(placeholder[k].c_str());
-            dl->AddText(ImVec2(cx - t.x * 0.5f, k == 0 ? cy - t.y : cy + 4), IM_COL32(110, 116, 128, 255),
-                        placeholder[k].c_str());
+            dl->AddText(ImVec2(cx - t.x * 0.5f, k == 0 ? cy - t.y : cy + 4),
+                        IM_COL32(110, 116, 128, 255), placeholder[k].c_str());
         }
     dl->PopClipRect();
     ImGui::PopID();
@@ -200,12 +209,14 @@ float ViewportCells::headerHeight(PanelContext& wb, float width) {
     return width < kTwoRowHeader * wb.scale() ? row + ImGui::GetFrameHeightWithSpacing() : row;
 }
 
-void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width) {
+void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d,
+                               ImVec2 pos, float width) {
     const float scale = wb.scale();
     const float h = headerHeight(wb, width);
     const bool twoRows = width < kTwoRowHeader * scale;
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->AddRectFilled(pos, ImVec2(pos.x + width, pos.y + h), ImGui::GetColorU32(ImGuiCol_MenuBarBg));
+    dl->AddRectFilled(pos, ImVec2(pos.x + width, pos.y + h),
+                      ImGui::GetColorU32(ImGuiCol_MenuBarBg));
     ImGui::SetCursorScreenPos(ImVec2(pos.x + 6 * scale, pos.y + 3 * scale));
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted(view.name.c_str());
@@ -219,7 +230,8 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     if (view.name != "main" && !twoRows)
         bindingRoom -= ImGui::GetFrameHeight() + ImGui::GetStyle().ItemSpacing.x;
     const std::string binding =
-        twoRows ? elided(fullBinding, std::max(bindingRoom, ImGui::CalcTextSize("...").x)) : fullBinding;
+        twoRows ? elided(fullBinding, std::max(bindingRoom, ImGui::CalcTextSize("...").x))
+                : fullBinding;
     if (ImGui::Button((binding + "##binding").c_str())) {
         m_frameRelative = view.frame.relative;
         m_frameEdit = static_cast<int>(view.frame.value);
@@ -227,8 +239,9 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     }
     wb.mark("view.binding." + view.name);
     if (ImGui::IsItemHovered() && wb.dataset())
-        ImGui::SetTooltip("Shows frame %zu (timestep %lld). Click to bind this view to another frame.", d.wantedFrame,
-                          static_cast<long long>(wb.dataset()->location(d.wantedFrame).timestep));
+        ImGui::SetTooltip(
+            "Shows frame %zu (timestep %lld). Click to bind this view to another frame.",
+            d.wantedFrame, static_cast<long long>(wb.dataset()->location(d.wantedFrame).timestep));
     drawFramePopup(wb, view);
     if (twoRows)
         ImGui::SetCursorScreenPos(
@@ -239,16 +252,18 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     // button, its label shortened to fit (the whole of it in the tooltip). Categories (faults,
     // candidates) have no colour map to name.
     const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
-    const std::string colour = title.empty()        ? std::string("plain colour")
-                               : !d.palette.empty() ? title
-                                                    : title + " (" + core::colorMapName(view.colorMap) + ")";
+    const std::string colour = title.empty() ? std::string("plain colour")
+                               : !d.palette.empty()
+                                   ? title
+                                   : title + " (" + core::colorMapName(view.colorMap) + ")";
     const ImGuiStyle& style = ImGui::GetStyle();
     float reserve = 0.0f;
     // In a narrow view the linked box goes without its label (the tooltip says it).
     const bool narrow = width < 340 * scale;
     const char* linkedLabel = narrow ? "##linked" : "linked";
     if (wb.state().views.size() > 1)
-        reserve += (narrow ? ImGui::GetFrameHeight() : checkboxWidth("linked")) + style.ItemSpacing.x;
+        reserve +=
+            (narrow ? ImGui::GetFrameHeight() : checkboxWidth("linked")) + style.ItemSpacing.x;
     if (view.name != "main")
         reserve += ImGui::GetFrameHeight() + style.ItemSpacing.x;
     const float room = pos.x + width - 6 * scale - ImGui::GetCursorScreenPos().x - reserve -
@@ -271,12 +286,14 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
         if (ImGui::Checkbox(linkedLabel, &linked))
             wb.emit({{"op", "view.set"}, {"name", view.name}, {"linked_camera", linked}});
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Linked cameras move together; unlink to look at this view on its own.");
+            ImGui::SetTooltip(
+                "Linked cameras move together; unlink to look at this view on its own.");
     }
     if (view.name != "main") {
         const float bw = ImGui::GetFrameHeight();
         ImGui::SameLine();
-        const float rowY = pos.y + 3 * scale + (twoRows ? ImGui::GetFrameHeightWithSpacing() : 0.0f);
+        const float rowY =
+            pos.y + 3 * scale + (twoRows ? ImGui::GetFrameHeightWithSpacing() : 0.0f);
         ImGui::SetCursorScreenPos(ImVec2(pos.x + width - bw - 6 * scale, rowY));
         if (ImGui::Button("x", ImVec2(bw, 0)))
             wb.emit({{"op", "view.remove"}, {"name", view.name}});
@@ -349,24 +366,35 @@ void ViewportCells::drawFramePopup(PanelContext& wb, const core::ViewState& view
     if (!m_frameRelative)
         m_frameEdit = std::max(0, m_frameEdit);
     if (ImGui::Button("Apply") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter))) {
-        wb.emit({{"op", "view.set"}, {"name", view.name}, {m_frameRelative ? "offset" : "frame", m_frameEdit}});
+        wb.emit({{"op", "view.set"},
+                 {"name", view.name},
+                 {m_frameRelative ? "offset" : "frame", m_frameEdit}});
         ImGui::CloseCurrentPopup();
     }
     ImGui::EndPopup();
 }
 
-void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d) {
+void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& view,
+                                    const ViewDisplay& d) {
     if (!ImGui::BeginPopup("##colourpopup"))
         return;
     ImGui::TextDisabled("Colour by");
     if (ImGui::Selectable("plain colour", view.colorVariable.empty()))
         wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", ""}});
     if (ImGui::Selectable("faults (each in its colour)", view.colorVariable == kFaultsVariable))
-        wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", kFaultsVariable}, {"difference", "none"}});
+        wb.emit({{"op", "color.set"},
+                 {"view", view.name},
+                 {"variable", kFaultsVariable},
+                 {"difference", "none"}});
     if (d.frame)
         for (const auto& [v, info] : wb.columns().of(d.frame))
             if (ImGui::Selectable(v.c_str(), v == view.colorVariable))
-                wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", v}, {"range_mode", view.rangeMode == core::RangeMode::Fixed ? std::string("frame") : std::string(core::rangeModeName(view.rangeMode))}});
+                wb.emit({{"op", "color.set"},
+                         {"view", view.name},
+                         {"variable", v},
+                         {"range_mode", view.rangeMode == core::RangeMode::Fixed
+                                            ? std::string("frame")
+                                            : std::string(core::rangeModeName(view.rangeMode))}});
     ImGui::Separator();
     ImGui::TextDisabled("Colour map");
     for (const std::string& m : core::colorMapNames())
@@ -377,9 +405,12 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     const struct {
         const char* mode;
         const char* label;
-    } modes[] = {{"frame", "this frame's min to max (spheres shown)"}, {"all", "all frames (steady in playback)"}, {"fixed", "fixed"}};
+    } modes[] = {{"frame", "this frame's min to max (spheres shown)"},
+                 {"all", "all frames (steady in playback)"},
+                 {"fixed", "fixed"}};
     for (const auto& m : modes)
-        if (const bool on = core::rangeModeName(view.rangeMode) == m.mode; ImGui::RadioButton(m.label, on) && !on) {
+        if (const bool on = core::rangeModeName(view.rangeMode) == m.mode;
+            ImGui::RadioButton(m.label, on) && !on) {
             core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};
             if (std::string(m.mode) == "fixed")
                 cmd["range"] = {d.colorRange[0], d.colorRange[1]};
@@ -389,7 +420,9 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     ImGui::SameLine();
     const bool hiDone = numberField("##hi", &m_rangeEdit[1], "%.5g", 110 * wb.scale());
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
-        wb.emit({{"op", "color.set"}, {"view", view.name}, {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
+        wb.emit({{"op", "color.set"},
+                 {"view", view.name},
+                 {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
     drawDifference(wb, view);
     ImGui::EndPopup();
 }
@@ -413,8 +446,11 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
         const bool needsVariable = m.mode == Mode::Change && view.colorVariable.empty();
         if (needsVariable)
             ImGui::BeginDisabled();
-        if (ImGui::RadioButton(m.label, view.difference.mode == m.mode) && view.difference.mode != m.mode)
-            since({{"op", "color.set"}, {"view", view.name}, {"difference", core::differenceModeName(m.mode)}});
+        if (ImGui::RadioButton(m.label, view.difference.mode == m.mode) &&
+            view.difference.mode != m.mode)
+            since({{"op", "color.set"},
+                   {"view", view.name},
+                   {"difference", core::differenceModeName(m.mode)}});
         if (needsVariable)
             ImGui::EndDisabled();
     }
@@ -445,7 +481,8 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
 // [SECTION] Mouse and keys: camera, selection, box handles
 //-----------------------------------------------------------------------------
 
-void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size) {
+void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d,
+                             ImVec2 pos, ImVec2 size) {
     const ImGuiIO& io = ImGui::GetIO();
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
@@ -453,16 +490,19 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
 
     // Which face handle of the selected box the mouse is over: a ray from the eye through the
     // cursor against the handle spheres the renderer draws (core/view/box_handles).
-    const core::CuttingBox* box = wb.selection().editBoxInView ? wb.state().box(wb.selection().box) : nullptr;
+    const core::CuttingBox* box =
+        wb.selection().editBoxInView ? wb.state().box(wb.selection().box) : nullptr;
     auto rayAt = [&](ImVec2 mouse, const core::CameraState& cam) {
-        const glm::dvec2 ndc((mouse.x - pos.x) / size.x * 2.0 - 1.0, 1.0 - (mouse.y - pos.y) / size.y * 2.0);
+        const glm::dvec2 ndc((mouse.x - pos.x) / size.x * 2.0 - 1.0,
+                             1.0 - (mouse.y - pos.y) / size.y * 2.0);
         return core::cameraRay(toRenderCamera(cam), ndc, aspect);
     };
     if (hovered && m_drag.mode == DragMode::None) {
         m_hoverFace = -1;
         m_hoverView = view.name;
         if (box && d.frame) {
-            const glm::dvec3 lo(box->min[0], box->min[1], box->min[2]), hi(box->max[0], box->max[1], box->max[2]);
+            const glm::dvec3 lo(box->min[0], box->min[1], box->min[2]),
+                hi(box->max[0], box->max[1], box->max[2]);
             const core::Ray ray = rayAt(io.MousePos, d.camera);
             const double r = core::screenHandleRadius(lo, hi, d.camera.distance, d.camera.fovY);
             double best = 1e300;
@@ -499,15 +539,19 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
             m_drag.mode = DragMode::Orbit;
         }
     } else if (active && m_drag.view == view.name && m_drag.mode != DragMode::None) {
-        const double dx = io.MousePos.x - m_drag.startMouse.x, dy = io.MousePos.y - m_drag.startMouse.y;
+        const double dx = io.MousePos.x - m_drag.startMouse.x,
+                     dy = io.MousePos.y - m_drag.startMouse.y;
         if (m_drag.mode == DragMode::BoxFace && box) {
             // The face follows the cursor along its axis (exact under perspective).
             const glm::dvec3 lo(m_drag.boxMin[0], m_drag.boxMin[1], m_drag.boxMin[2]);
             const glm::dvec3 hi(m_drag.boxMax[0], m_drag.boxMax[1], m_drag.boxMax[2]);
-            const core::BoxBounds moved = core::dragBoxFace(lo, hi, static_cast<core::BoxFace>(m_drag.face),
-                                                            rayAt(m_drag.startMouse, d.camera), rayAt(io.MousePos, d.camera));
-            const std::array<double, 3> mn{moved.lo.x, moved.lo.y, moved.lo.z}, mx{moved.hi.x, moved.hi.y, moved.hi.z};
-            const core::Json cmd = {{"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
+            const core::BoxBounds moved =
+                core::dragBoxFace(lo, hi, static_cast<core::BoxFace>(m_drag.face),
+                                  rayAt(m_drag.startMouse, d.camera), rayAt(io.MousePos, d.camera));
+            const std::array<double, 3> mn{moved.lo.x, moved.lo.y, moved.lo.z},
+                mx{moved.hi.x, moved.hi.y, moved.hi.z};
+            const core::Json cmd = {
+                {"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
             wb.preview("viewport.box", cmd);
             m_pendingBox = cmd;
         } else if (dx != 0 || dy != 0) {
@@ -567,8 +611,9 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
     }
 }
 
-void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
-                                 ImVec2 pos, ImVec2 size) {
+void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view,
+                                 const ViewDisplay& d, const core::CameraState& cam, ImVec2 pos,
+                                 ImVec2 size) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float scale = wb.scale();
     const double aspect = size.x / std::max(1.0f, size.y);
@@ -579,10 +624,12 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
             return std::nullopt;
         return ImVec2(pos.x + static_cast<float>(q->x), pos.y + static_cast<float>(q->y));
     };
-    auto boxEdges = [&](const std::array<double, 3>& mn, const std::array<double, 3>& mx, ImU32 color, float thickness) {
+    auto boxEdges = [&](const std::array<double, 3>& mn, const std::array<double, 3>& mx,
+                        ImU32 color, float thickness) {
         glm::dvec3 corner[8];
         for (int k = 0; k < 8; ++k)
-            corner[k] = glm::dvec3(k & 1 ? mx[0] : mn[0], k & 2 ? mx[1] : mn[1], k & 4 ? mx[2] : mn[2]);
+            corner[k] =
+                glm::dvec3(k & 1 ? mx[0] : mn[0], k & 2 ? mx[1] : mn[1], k & 4 ? mx[2] : mn[2]);
         for (int a = 0; a < 8; ++a)
             for (int bit = 1; bit < 8; bit <<= 1)
                 if (!(a & bit)) {
@@ -604,13 +651,17 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
         if (!b.enabled && b.name != wb.selection().box)
             continue;
         const bool sel = b.name == wb.selection().box;
-        const ImU32 col = b.mode == core::BoxMode::Keep ? IM_COL32(40, 140, 70, sel ? 255 : 170) : IM_COL32(200, 70, 40, sel ? 255 : 170);
+        const ImU32 col = b.mode == core::BoxMode::Keep ? IM_COL32(40, 140, 70, sel ? 255 : 170)
+                                                        : IM_COL32(200, 70, 40, sel ? 255 : 170);
         boxEdges(b.min, b.max, col, (sel ? 2.0f : 1.2f) * scale);
         if (sel && wb.selection().editBoxInView)
             for (int f = 0; f < 6; ++f)
                 if (auto p = px(faceCentre(b.min, b.max, f))) {
-                    const bool lit = (m_hoverFace == f && m_hoverView == view.name) || (m_drag.mode == DragMode::BoxFace && m_drag.face == f);
-                    dl->AddCircleFilled(*p, (lit ? 7.0f : 5.5f) * scale, lit ? IM_COL32(255, 170, 40, 255) : IM_COL32(255, 255, 255, 255));
+                    const bool lit = (m_hoverFace == f && m_hoverView == view.name) ||
+                                     (m_drag.mode == DragMode::BoxFace && m_drag.face == f);
+                    dl->AddCircleFilled(*p, (lit ? 7.0f : 5.5f) * scale,
+                                        lit ? IM_COL32(255, 170, 40, 255)
+                                            : IM_COL32(255, 255, 255, 255));
                     dl->AddCircle(*p, (lit ? 7.0f : 5.5f) * scale, col, 16, 1.5f * scale);
                 }
     }
@@ -623,8 +674,10 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
         glm::dvec3 dir;
         const char* label;
         ImU32 color;
-    } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)}, {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)}, {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
-    float pointingAt = 0; // labels of axes seen end-on, stacked beside the origin
+    } axes[] = {{{1, 0, 0}, "E", IM_COL32(200, 60, 50, 255)},
+                {{0, 1, 0}, "N", IM_COL32(50, 150, 60, 255)},
+                {{0, 0, 1}, "Up", IM_COL32(50, 90, 200, 255)}};
+    float pointingAt = 0;       // labels of axes seen end-on, stacked beside the origin
     std::vector<ImVec4> placed; // the labels drawn so far (x0, y0, x1, y1)
     // A view under 150 pixels tall has no room for the axes beside the model and its labels.
     const bool roomForAxes = size.y >= 150 * scale;
@@ -667,13 +720,15 @@ void ViewportCells::drawOverlays(PanelContext& wb, const core::ViewState& view, 
             dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale), ink, text);
             std::snprintf(text, sizeof text, "timestep %lld", timestep);
             const std::string step = elided(text, size.x - 16 * scale);
-            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeight()), ink,
-                        step.c_str());
+            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + ImGui::GetTextLineHeight()),
+                        ink, step.c_str());
             line = 2;
         }
         if (d.loading()) {
             std::snprintf(text, sizeof text, "loading frame %zu...", d.wantedFrame);
-            dl->AddText(ImVec2(pos.x + 8 * scale, pos.y + 6 * scale + line * ImGui::GetTextLineHeightWithSpacing()), IM_COL32(190, 110, 20, 255), text);
+            dl->AddText(ImVec2(pos.x + 8 * scale,
+                               pos.y + 6 * scale + line * ImGui::GetTextLineHeightWithSpacing()),
+                        IM_COL32(190, 110, 20, 255), text);
         }
     }
 }

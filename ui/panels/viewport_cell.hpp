@@ -4,8 +4,8 @@
 // outlines, handles, axes, frame label, the selection outline and the selected fault's members).
 #pragma once
 
-#include "ui/panels/viewport_selection.hpp"
 #include "ui/context/panel_context.hpp"
+#include "ui/panels/viewport_selection.hpp"
 
 #include <imgui.h>
 
@@ -29,16 +29,18 @@ class ViewportCells {
     void setOrthographic(PanelContext& wb, bool ortho);
 
   private:
-    void drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, float width);
+    void drawHeader(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos,
+                    float width);
     static constexpr float kTwoRowHeader = 300.0f; // logical pixels
     static float headerHeight(PanelContext& wb, float width);
     void drawColourPopup(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d);
     void drawDifference(PanelContext& wb, const core::ViewState& view);
     void drawFramePopup(PanelContext& wb, const core::ViewState& view);
 
-    void interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos, ImVec2 size);
-    void drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, const core::CameraState& cam,
-                      ImVec2 pos, ImVec2 size);
+    void interact(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d, ImVec2 pos,
+                  ImVec2 size);
+    void drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d,
+                      const core::CameraState& cam, ImVec2 pos, ImVec2 size);
     void emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill);
 
     enum class DragMode { None, Orbit, Pan, BoxFace, Select };

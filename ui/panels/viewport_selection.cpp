@@ -63,9 +63,8 @@ void ViewportSelection::release(PanelContext& wb, const ViewDisplay& d, ImVec2 m
     if (!d.frame || !d.visibility)
         return;
     const bool click = isClick();
-    std::vector<std::int64_t> ids =
-        click ? idUnder(d, m_points.front(), pos, size)
-              : idsInShape(d, pos, size, wb.selection().throughDepth);
+    std::vector<std::int64_t> ids = click ? idUnder(d, m_points.front(), pos, size)
+                                          : idsInShape(d, pos, size, wb.selection().throughDepth);
     const FaultEdit edit = faultEdit(wb.state(), wb.selection().faults, std::move(ids),
                                      click ? FaultEditOp::Toggle : m_op);
     if (!edit.command.is_null()) {

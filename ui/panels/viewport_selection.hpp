@@ -6,8 +6,8 @@
 #pragma once
 
 #include "core/view/sphere_picker.hpp"
-#include "ui/viewport/fault_edit.hpp"
 #include "ui/context/panel_context.hpp"
+#include "ui/viewport/fault_edit.hpp"
 
 #include <imgui.h>
 
@@ -40,13 +40,13 @@ class ViewportSelection {
     // The rectangle or lasso being drawn.
     void drawOutline(ImDrawList* dl, float scale) const;
     // The selected fault's visible members as dots (while a tool is on or Ctrl is held).
-    void drawMembers(PanelContext& wb, const ViewDisplay& d, const core::CameraState& cam, ImVec2 pos,
-                     ImVec2 size) const;
+    void drawMembers(PanelContext& wb, const ViewDisplay& d, const core::CameraState& cam,
+                     ImVec2 pos, ImVec2 size) const;
 
   private:
     bool isClick() const; // the mouse barely moved: pick one sphere
     std::vector<std::int64_t> idsInShape(const ViewDisplay& d, ImVec2 pos, ImVec2 size,
-                                           bool throughDepth) const;
+                                         bool throughDepth) const;
     std::vector<std::int64_t> idUnder(const ViewDisplay& d, ImVec2 mouse, ImVec2 pos, ImVec2 size);
 
     // The selected fault's visible member rows, kept while the session, frame and visibility

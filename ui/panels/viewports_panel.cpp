@@ -37,7 +37,8 @@ class ViewportsPanel final : public Panel {
         ImGui::BeginDisabled(s.views.size() >= 4);
         if (ImGui::Button("Add view")) {
             core::Json cmd = {{"op", "view.add"}, {"name", uniqueViewName(s)}};
-            const long long count = wb.dataset() ? static_cast<long long>(wb.dataset()->frameCount()) : 1;
+            const long long count =
+                wb.dataset() ? static_cast<long long>(wb.dataset()->frameCount()) : 1;
             cmd["offset"] = -std::min<long long>(10, count - 1); // compare with an earlier moment
             wb.emit(cmd);
         }
@@ -54,10 +55,12 @@ class ViewportsPanel final : public Panel {
                 m_cells.presetAll(wb, preset);
             wb.mark(std::string("viewports.preset.") + preset);
             if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%s", std::string(preset) == "top"     ? "Map view: from above, north up (fitted to the visible spheres)"
-                                        : std::string(preset) == "front" ? "From the south, looking north"
-                                        : std::string(preset) == "side"  ? "From the east, looking west"
-                                                                         : "Oblique, from the south-south-west");
+                ImGui::SetTooltip(
+                    "%s", std::string(preset) == "top"
+                              ? "Map view: from above, north up (fitted to the visible spheres)"
+                          : std::string(preset) == "front" ? "From the south, looking north"
+                          : std::string(preset) == "side"  ? "From the east, looking west"
+                                                           : "Oblique, from the south-south-west");
         }
         flowSameLine(buttonWidth("Fit"));
         if (ImGui::Button("Fit"))
@@ -69,15 +72,18 @@ class ViewportsPanel final : public Panel {
             m_cells.fitVisible(wb);
         wb.mark("viewports.fit_visible");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Fit the visible spheres in the views (boxes, thresholds and faults applied)");
+            ImGui::SetTooltip(
+                "Fit the visible spheres in the views (boxes, thresholds and faults applied)");
         const core::ViewState* main = s.view("main");
         bool context = main && main->contextPoints;
         flowSameLine(checkboxWidth("Hidden as points"));
         if (ImGui::Checkbox("Hidden as points", &context)) {
             core::Json batch = core::Json::array();
             for (const auto& v : s.views)
-                batch.push_back({{"op", "view.set"}, {"name", v.name}, {"context_points", context}});
-            wb.emit(batch.size() == 1 ? batch[0] : core::Json{{"op", "batch"}, {"commands", batch}});
+                batch.push_back(
+                    {{"op", "view.set"}, {"name", v.name}, {"context_points", context}});
+            wb.emit(batch.size() == 1 ? batch[0]
+                                      : core::Json{{"op", "batch"}, {"commands", batch}});
         }
         wb.mark("viewports.context");
         if (ImGui::IsItemHovered())
@@ -100,7 +106,8 @@ class ViewportsPanel final : public Panel {
         const float ch = (avail.y - gap * static_cast<float>(rows - 1)) / static_cast<float>(rows);
         for (std::size_t k = 0; k < s.views.size(); ++k) {
             const int c = static_cast<int>(k) % cols, r = static_cast<int>(k) / cols;
-            const ImVec2 a(origin.x + static_cast<float>(c) * (cw + gap), origin.y + static_cast<float>(r) * (ch + gap));
+            const ImVec2 a(origin.x + static_cast<float>(c) * (cw + gap),
+                           origin.y + static_cast<float>(r) * (ch + gap));
             m_cells.draw(wb, s.views[k], a, ImVec2(cw, ch));
         }
     }

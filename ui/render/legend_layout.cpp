@@ -50,9 +50,10 @@ LegendLayout layoutLegend(const std::vector<core::LegendTick>& ticks, std::strin
     const float barBlockW = barW + tickLen + gap + std::max(labelW, 3.0f * barW);
     if (titleFont && !title.empty() && titleFont->measure(title) > 1.6f * barBlockW) {
         std::size_t best = std::string_view::npos;
-        for (std::size_t k = title.find(' '); k != std::string_view::npos; k = title.find(' ', k + 1))
-            if (best == std::string_view::npos ||
-                std::abs(double(k) - title.size() / 2.0) < std::abs(double(best) - title.size() / 2.0))
+        for (std::size_t k = title.find(' '); k != std::string_view::npos;
+             k = title.find(' ', k + 1))
+            if (best == std::string_view::npos || std::abs(double(k) - title.size() / 2.0) <
+                                                      std::abs(double(best) - title.size() / 2.0))
                 best = k;
         if (best != std::string_view::npos)
             titleLines = {title.substr(0, best), title.substr(best + 1)};
@@ -122,7 +123,8 @@ LegendLayout layoutCategoryLegend(std::span<const LegendEntry> entries, std::str
     const float labelH = labelFont ? labelFont->ascent() + labelFont->descent() : 14 * s;
     const float rowH = std::round(labelH + 4 * s);
     const float swatch = std::round(0.8f * labelH);
-    const float titleH = titleFont && !title.empty() ? titleFont->ascent() + titleFont->descent() : 0;
+    const float titleH =
+        titleFont && !title.empty() ? titleFont->ascent() + titleFont->descent() : 0;
 
     // Rows that fit in 80% of the height; when some do not, the last row counts the rest.
     const float room = 0.8f * float(height) - 2 * pad - titleH - (titleH > 0 ? gap : 0);
@@ -137,7 +139,8 @@ LegendLayout layoutCategoryLegend(std::span<const LegendEntry> entries, std::str
     float nameW = 0;
     const float maxName = std::max(40.0f * s, 0.25f * float(width));
     for (std::size_t i = 0; i < shown; ++i) {
-        names.push_back(labelFont ? fitText(*labelFont, entries[i].name, maxName) : entries[i].name);
+        names.push_back(labelFont ? fitText(*labelFont, entries[i].name, maxName)
+                                  : entries[i].name);
         if (labelFont)
             nameW = std::max(nameW, labelFont->measure(names.back()));
     }
@@ -145,8 +148,8 @@ LegendLayout layoutCategoryLegend(std::span<const LegendEntry> entries, std::str
         nameW = std::max(nameW, labelFont->measure(more) - swatch - gap);
     const float titleW = titleFont && !title.empty() ? titleFont->measure(title) : 0;
     const float content = std::max(swatch + gap + nameW, titleW);
-    const float blockH = titleH + (titleH > 0 ? gap : 0) +
-                         rowH * float(shown + (more.empty() ? 0 : 1));
+    const float blockH =
+        titleH + (titleH > 0 ? gap : 0) + rowH * float(shown + (more.empty() ? 0 : 1));
     out.panel.x1 = float(width) - margin;
     out.panel.x0 = out.panel.x1 - content - 2 * pad;
     out.panel.y0 = std::round(0.5f * (float(height) - blockH)) - pad;
@@ -192,8 +195,8 @@ float legendStripPixels(std::string_view title, core::ValueRange range, bool int
     const FontAtlas* titles = sharedFontAtlas(legendTitlePixels(scale));
     const LegendLayout layout =
         entries.empty()
-            ? layoutLegend(core::legendTicks(range, 6, integerValues), title, labels, titles,
-                           width, height, scale)
+            ? layoutLegend(core::legendTicks(range, 6, integerValues), title, labels, titles, width,
+                           height, scale)
             : layoutCategoryLegend(entries, title, labels, titles, width, height, scale);
     // A gap as wide as the legend's margin keeps the model from touching its panel.
     return std::max(0.0f, float(width) - layout.panel.x0 + std::round(16 * scale));

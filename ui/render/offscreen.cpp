@@ -253,13 +253,13 @@ double legendPixels(const SceneDescription& scene, int width, int height) {
     if (scene.colorRange)
         range = *scene.colorRange;
     else if (scene.frame)
-        if (const core::AttributeColumn* c = scene.colorColumn ? scene.colorColumn
-                                                : scene.frame->attribute(scene.colorVariable))
+        if (const core::AttributeColumn* c =
+                scene.colorColumn ? scene.colorColumn : scene.frame->attribute(scene.colorVariable))
             range = {c->min, c->max};
     const std::string& title =
         scene.style.legendTitle.empty() ? scene.colorVariable : scene.style.legendTitle;
-    return legendStripPixels(title, range, scene.style.integerValues, scene.style.categories,
-                             width, height, scene.style.legendScale);
+    return legendStripPixels(title, range, scene.style.integerValues, scene.style.categories, width,
+                             height, scene.style.legendScale);
 }
 
 core::Camera fittedCamera(const SceneDescription& scene, int width, int height,

@@ -75,7 +75,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         std::span<const float> values;
         if (scene.frame && !scene.colorVariable.empty()) {
             const core::Frame& f = *scene.frame;
-            const core::AttributeColumn* c = scene.colorColumn ? scene.colorColumn.get() : f.attribute(scene.colorVariable);
+            const core::AttributeColumn* c =
+                scene.colorColumn ? scene.colorColumn.get() : f.attribute(scene.colorVariable);
             if (c && c->size() != f.size()) {
                 c = nullptr; // a column of another frame: one colour until the right one comes
             } else if (c) {
@@ -124,12 +125,12 @@ void GlViewRenderer::render(const ViewScene& scene) {
     // The rest is cheap to set; compare it as text to know whether to draw again.
     std::ostringstream sig;
     sig.precision(17);
-    sig << core::colorMapName(scene.colorMap) << '|' << scene.colorRange[0] << '|' << scene.colorRange[1] << '|'
-        << scene.width << 'x' << scene.height << '|' << scene.camera.target[0] << ','
-        << scene.camera.target[1] << ',' << scene.camera.target[2] << '|' << scene.camera.distance
-        << '|' << scene.camera.azimuth << '|' << scene.camera.elevation << '|' << scene.camera.fovY
-        << '|' << scene.camera.orthographic << '|'
-        << (scene.selectedBox ? int(*scene.selectedBox) : -1) << '|'
+    sig << core::colorMapName(scene.colorMap) << '|' << scene.colorRange[0] << '|'
+        << scene.colorRange[1] << '|' << scene.width << 'x' << scene.height << '|'
+        << scene.camera.target[0] << ',' << scene.camera.target[1] << ',' << scene.camera.target[2]
+        << '|' << scene.camera.distance << '|' << scene.camera.azimuth << '|'
+        << scene.camera.elevation << '|' << scene.camera.fovY << '|' << scene.camera.orthographic
+        << '|' << (scene.selectedBox ? int(*scene.selectedBox) : -1) << '|'
         << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
     for (const auto& c : scene.palette)
         sig << '|' << c.r << ',' << c.g << ',' << c.b;
@@ -159,9 +160,9 @@ void GlViewRenderer::render(const ViewScene& scene) {
             BoxHandlesOverlay h;
             h.box = *scene.selectedBox;
             const auto& b = scene.boxes[*scene.selectedBox];
-            h.handleRadius = core::screenHandleRadius(
-                glm::dvec3(b.min[0], b.min[1], b.min[2]), glm::dvec3(b.max[0], b.max[1], b.max[2]),
-                scene.camera.distance, scene.camera.fovY);
+            h.handleRadius = core::screenHandleRadius(glm::dvec3(b.min[0], b.min[1], b.min[2]),
+                                                      glm::dvec3(b.max[0], b.max[1], b.max[2]),
+                                                      scene.camera.distance, scene.camera.fovY);
             if (scene.activeFace)
                 h.activeFace = static_cast<core::BoxFace>(*scene.activeFace);
             handles = h;
@@ -169,7 +170,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         r.setBoxes(boxes, handles);
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
-        style.showLegend = roomForLegend(scene.width, scene.height) && !scene.colorVariable.empty() &&
+        style.showLegend = roomForLegend(scene.width, scene.height) &&
+                           !scene.colorVariable.empty() &&
                            (scene.palette.empty() || !scene.legend.empty());
         if (!scene.palette.empty())
             style.categories = scene.legend;

@@ -41,7 +41,7 @@ class GlViewRenderer final : public ViewRenderer {
         std::shared_ptr<const core::AttributeColumn> column;
         std::vector<std::pair<std::shared_ptr<const MeshData>, float>> surfaceKey;
         std::uint64_t visibleKey = ~0ull;
-        std::string signature; // everything else that changes the picture
+        std::string signature;     // everything else that changes the picture
         std::vector<float> values; // integer columns converted once per frame
     };
     RendererBackend m_backend;

@@ -13,7 +13,7 @@ namespace faultline::ui {
 
 namespace {
 glm::dvec3 target(const core::CameraState& c) { return {c.target[0], c.target[1], c.target[2]}; }
-}
+} // namespace
 
 CameraBasis cameraBasis(const core::CameraState& c) {
     const double az = glm::radians(c.azimuth), el = glm::radians(c.elevation);
@@ -49,7 +49,8 @@ void orbit(core::CameraState& c, double dx, double dy) {
 
 void pan(core::CameraState& c, double dx, double dy, double viewHeight) {
     const CameraBasis b = cameraBasis(c);
-    const double worldPerPixel = 2.0 * c.distance * std::tan(glm::radians(c.fovY) / 2.0) / std::max(viewHeight, 1.0);
+    const double worldPerPixel =
+        2.0 * c.distance * std::tan(glm::radians(c.fovY) / 2.0) / std::max(viewHeight, 1.0);
     const glm::dvec3 t = target(c) - b.right * (dx * worldPerPixel) + b.up * (dy * worldPerPixel);
     c.target = {t.x, t.y, t.z};
 }
@@ -59,7 +60,8 @@ void zoom(core::CameraState& c, double factor) {
         c.distance = std::max(c.distance / factor, 1e-6);
 }
 
-void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi, double aspect) {
+void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+         double aspect) {
     const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
     const glm::dvec3 centre = 0.5 * (a + b);
     c.target = {centre.x, centre.y, centre.z};
@@ -71,7 +73,8 @@ void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array
     // orthographic view shows a height of 2 d tanY whatever the depth.
     double d = 1e-6;
     for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 p = glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
+        const glm::dvec3 p =
+            glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
         const double x = std::fabs(glm::dot(p, basis.right)), y = std::fabs(glm::dot(p, basis.up));
         const double z = glm::dot(p, basis.forward);
         if (c.orthographic)
@@ -82,8 +85,9 @@ void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array
     c.distance = d * 1.06;
 }
 
-void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
-                     double width, double height, double legendPixels) {
+void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
+                     const std::array<double, 3>& hi, double width, double height,
+                     double legendPixels) {
     height = std::max(height, 1.0);
     fit(c, lo, hi, std::max(width - legendPixels, 1.0) / height);
     const CameraBasis basis = cameraBasis(c);
@@ -103,7 +107,8 @@ void applyPreset(core::CameraState& c, const char* preset) {
         c.azimuth = 30, c.elevation = 25;
 }
 
-std::optional<glm::dvec2> projectToPixels(const glm::dmat4& viewProj, const glm::dvec3& p, glm::dvec2 size) {
+std::optional<glm::dvec2> projectToPixels(const glm::dmat4& viewProj, const glm::dvec3& p,
+                                          glm::dvec2 size) {
     const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
     if (clip.w <= 1e-12)
         return std::nullopt;

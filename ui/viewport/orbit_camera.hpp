@@ -31,16 +31,18 @@ void pan(core::CameraState& camera, double dxPixels, double dyPixels, double vie
 void zoom(core::CameraState& camera, double factor);
 // Centres the box [lo, hi] and sets the distance so all of it shows in a view of `aspect`
 // (width / height) with a small margin; keeps the direction.
-void fit(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
-         double aspect);
+void fit(core::CameraState& camera, const std::array<double, 3>& lo,
+         const std::array<double, 3>& hi, double aspect);
 // fit() into a width x height view whose right `legendPixels` belong to a colour legend: the
 // box is centred in the rest.
-void fitBesideLegend(core::CameraState& camera, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
-                     double width, double height, double legendPixels);
+void fitBesideLegend(core::CameraState& camera, const std::array<double, 3>& lo,
+                     const std::array<double, 3>& hi, double width, double height,
+                     double legendPixels);
 // Standard directions: "top" "front" (from the south) "side" (from the east) "iso".
 void applyPreset(core::CameraState& camera, const char* preset);
 
 // A world point in pixels of a viewport of `size` (origin top left); nullopt behind the eye.
-std::optional<glm::dvec2> projectToPixels(const glm::dmat4& viewProj, const glm::dvec3& p, glm::dvec2 size);
+std::optional<glm::dvec2> projectToPixels(const glm::dmat4& viewProj, const glm::dvec3& p,
+                                          glm::dvec2 size);
 
 } // namespace faultline::ui

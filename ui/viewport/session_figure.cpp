@@ -2,8 +2,8 @@
 
 #include "core/color/colormap.hpp"
 #include "core/model/frame_difference.hpp"
-#include "core/session/color_range.hpp"
 #include "core/selection/visibility.hpp"
+#include "core/session/color_range.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
@@ -136,7 +136,8 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         const auto& lo = frame->centreMin();
         const auto& hi = frame->centreMax();
         const double w = request.width, h = request.height;
-        const double legend = showsLegend(scene) ? std::min(0.45 * w, legendPixels(scene, w, h)) : 0.0;
+        const double legend =
+            showsLegend(scene) ? std::min(0.45 * w, legendPixels(scene, w, h)) : 0.0;
         fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, legend);
     }
     scene.camera = toRenderCamera(camera);

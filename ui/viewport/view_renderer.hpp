@@ -25,26 +25,26 @@ struct ViewSurface {
 };
 
 struct ViewScene {
-    std::string view;                          // the view's name
-    std::shared_ptr<const core::Frame> frame;  // null: no data
+    std::string view;                                   // the view's name
+    std::shared_ptr<const core::Frame> frame;           // null: no data
     const std::vector<std::uint8_t>* visible = nullptr; // a byte per row; null: all
-    std::uint64_t visibleKey = 0;              // changes when the mask changes
-    std::string colorVariable;                 // empty: one colour; else the legend's title
+    std::uint64_t visibleKey = 0;                       // changes when the mask changes
+    std::string colorVariable; // empty: one colour; else the legend's title
     // Values to colour by instead of the frame's colorVariable column (difference colouring).
     std::shared_ptr<const core::AttributeColumn> colorColumn;
-    core::ColorMapSpec colorMap;               // the view's; categories use palette below
-    std::array<double, 2> colorRange{0, 1};    // resolved
-    core::CameraState camera;                  // resolved (fitted, previewed)
-    std::vector<core::CuttingBox> boxes;       // enabled boxes to outline
-    std::optional<std::size_t> selectedBox;    // index into boxes: draw face handles
-    std::optional<int> activeFace;             // 0..5 (-x +x -y +y -z +z), highlighted
-    std::vector<ViewSurface> surfaces;         // fault surfaces, drawn with the spheres
-    bool contextPoints = false;                // hidden spheres as faint small points
+    core::ColorMapSpec colorMap;            // the view's; categories use palette below
+    std::array<double, 2> colorRange{0, 1}; // resolved
+    core::CameraState camera;               // resolved (fitted, previewed)
+    std::vector<core::CuttingBox> boxes;    // enabled boxes to outline
+    std::optional<std::size_t> selectedBox; // index into boxes: draw face handles
+    std::optional<int> activeFace;          // 0..5 (-x +x -y +y -z +z), highlighted
+    std::vector<ViewSurface> surfaces;      // fault surfaces, drawn with the spheres
+    bool contextPoints = false;             // hidden spheres as faint small points
     // Categories: colour value k + 0.5 takes palette[k] (colorRange is [0, size]); their legend
     // names each colour (faults; empty: no legend).
     std::vector<glm::vec3> palette;
     std::vector<LegendEntry> legend;
-    int width = 0, height = 0;                 // pixels
+    int width = 0, height = 0; // pixels
 };
 
 class ViewRenderer {

@@ -30,7 +30,8 @@ bool boundInput(const char* id, double* value, bool isHigh, bool integer, float 
     const bool editing = storage->GetBool(editingKey, false);
     char* text = editing ? buffer : shown;
     ImGui::SetNextItemWidth(width);
-    ImGui::InputTextWithHint("##bound", isHigh ? "max" : "min", text, 64, ImGuiInputTextFlags_CharsScientific);
+    ImGui::InputTextWithHint("##bound", isHigh ? "max" : "min", text, 64,
+                             ImGuiInputTextFlags_CharsScientific);
     if (ImGui::IsItemActivated()) {
         std::memcpy(buffer, shown, sizeof buffer);
         storage->SetBool(editingKey, true);

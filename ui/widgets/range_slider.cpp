@@ -24,7 +24,9 @@ RangeEdit rangeSlider(const char* id, double* lo, double* hi, double min, double
     const float grab = std::max(6.0f, height * 0.35f);
     const float x0 = p0.x + grab, x1 = p0.x + width - grab;
     const double span = max > min ? max - min : 1.0;
-    auto toX = [&](double v) { return x0 + static_cast<float>((std::clamp(v, min, max) - min) / span) * (x1 - x0); };
+    auto toX = [&](double v) {
+        return x0 + static_cast<float>((std::clamp(v, min, max) - min) / span) * (x1 - x0);
+    };
     auto toValue = [&](float x) {
         double v = min + (std::clamp(x, x0, x1) - x0) / std::max(1.0f, x1 - x0) * span;
         return integer ? std::round(v) : v;
@@ -54,13 +56,19 @@ RangeEdit rangeSlider(const char* id, double* lo, double* hi, double min, double
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float cy = p0.y + height * 0.5f;
     const float rounding = ImGui::GetStyle().FrameRounding;
-    dl->AddRectFilled(ImVec2(p0.x, p0.y), ImVec2(p0.x + width, p0.y + height),
-                      ImGui::GetColorU32(hovered || active ? ImGuiCol_FrameBgHovered : ImGuiCol_FrameBg), rounding);
+    dl->AddRectFilled(
+        ImVec2(p0.x, p0.y), ImVec2(p0.x + width, p0.y + height),
+        ImGui::GetColorU32(hovered || active ? ImGuiCol_FrameBgHovered : ImGuiCol_FrameBg),
+        rounding);
     const float a = toX(*lo), b = toX(*hi);
-    dl->AddRectFilled(ImVec2(a, cy - height * 0.18f), ImVec2(b, cy + height * 0.18f), ImGui::GetColorU32(ImGuiCol_SliderGrab, 0.55f), 2.0f);
-    const ImU32 grabColor = ImGui::GetColorU32(active ? ImGuiCol_SliderGrabActive : ImGuiCol_SliderGrab);
-    dl->AddRectFilled(ImVec2(a - grab * 0.5f, p0.y + 2), ImVec2(a + grab * 0.5f, p0.y + height - 2), grabColor, 2.0f);
-    dl->AddRectFilled(ImVec2(b - grab * 0.5f, p0.y + 2), ImVec2(b + grab * 0.5f, p0.y + height - 2), grabColor, 2.0f);
+    dl->AddRectFilled(ImVec2(a, cy - height * 0.18f), ImVec2(b, cy + height * 0.18f),
+                      ImGui::GetColorU32(ImGuiCol_SliderGrab, 0.55f), 2.0f);
+    const ImU32 grabColor =
+        ImGui::GetColorU32(active ? ImGuiCol_SliderGrabActive : ImGuiCol_SliderGrab);
+    dl->AddRectFilled(ImVec2(a - grab * 0.5f, p0.y + 2), ImVec2(a + grab * 0.5f, p0.y + height - 2),
+                      grabColor, 2.0f);
+    dl->AddRectFilled(ImVec2(b - grab * 0.5f, p0.y + 2), ImVec2(b + grab * 0.5f, p0.y + height - 2),
+                      grabColor, 2.0f);
     char text[96];
     char l[40], h[40];
     std::snprintf(l, sizeof l, format, *lo);
@@ -71,7 +79,8 @@ RangeEdit rangeSlider(const char* id, double* lo, double* hi, double min, double
         std::snprintf(h, sizeof h, "max");
     std::snprintf(text, sizeof text, "%s  -  %s", l, h);
     const ImVec2 ts = ImGui::CalcTextSize(text);
-    dl->AddText(ImVec2(p0.x + (width - ts.x) * 0.5f, p0.y + (height - ts.y) * 0.5f), ImGui::GetColorU32(ImGuiCol_Text), text);
+    dl->AddText(ImVec2(p0.x + (width - ts.x) * 0.5f, p0.y + (height - ts.y) * 0.5f),
+                ImGui::GetColorU32(ImGuiCol_Text), text);
     ImGui::PopID();
     return edit;
 }

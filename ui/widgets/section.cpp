@@ -16,7 +16,8 @@ void sectionHeader(const std::string& title) {
     const float x0 = a.x + ImGui::GetStyle().ItemSpacing.x;
     const float x1 = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     if (x1 > x0)
-        ImGui::GetWindowDrawList()->AddLine(ImVec2(x0, y), ImVec2(x1, y), ImGui::GetColorU32(ImGuiCol_Separator));
+        ImGui::GetWindowDrawList()->AddLine(ImVec2(x0, y), ImVec2(x1, y),
+                                            ImGui::GetColorU32(ImGuiCol_Separator));
 }
 
 void hint(const char* format, ...) {

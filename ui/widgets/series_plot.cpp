@@ -165,9 +165,10 @@ PlotInput seriesPlot(const char* id, std::span<const PlotLine> lines, std::size_
                 const char label[2] = {m.letter, 0};
                 const ImVec2 p(at, y0 + 1 * scale + float(row) * rowH);
                 // On a patch of the plot's background, so a line through it does not hide it.
-                dl->AddRectFilled(ImVec2(p.x - 1 * scale, p.y),
-                                  ImVec2(p.x + ImGui::CalcTextSize(label).x + 1 * scale, p.y + rowH),
-                                  ImGui::GetColorU32(ImGuiCol_FrameBg));
+                dl->AddRectFilled(
+                    ImVec2(p.x - 1 * scale, p.y),
+                    ImVec2(p.x + ImGui::CalcTextSize(label).x + 1 * scale, p.y + rowH),
+                    ImGui::GetColorU32(ImGuiCol_FrameBg));
                 dl->AddText(p, m.color, label);
                 rowEnd[std::size_t(row)] = at + letterW;
                 break;

@@ -92,8 +92,7 @@ bool collapsingHeader(const std::string& label, int flags) {
     const ImGuiStyle& style = ImGui::GetStyle();
     // The arrow and the frame's padding on both sides come before and after the label.
     const float room = ImGui::GetContentRegionAvail().x - ImGui::GetFontSize() -
-                       style.FramePadding.x * 5 - style.ItemInnerSpacing.x -
-                       style.WindowPadding.x;
+                       style.FramePadding.x * 5 - style.ItemInnerSpacing.x - style.WindowPadding.x;
     const std::string shown = elided(label, room);
     const bool open = ImGui::CollapsingHeader((shown + "###" + label).c_str(), flags);
     if (shown != label && ImGui::IsItemHovered())

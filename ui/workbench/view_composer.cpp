@@ -31,8 +31,8 @@ std::array<double, 2> widen(std::array<double, 2> r) {
 
 ViewComposer::ViewComposer(core::Session& session, FrameStore& frames, ColumnCatalog& columns,
                            SurfaceStore& surfaces, JobRunner& jobs)
-    : m_session(session), m_frames(frames), m_columns(columns), m_surfaces(surfaces),
-      m_jobs(jobs) {}
+    : m_session(session), m_frames(frames), m_columns(columns), m_surfaces(surfaces), m_jobs(jobs) {
+}
 
 const ViewDisplay* ViewComposer::view(const std::string& name) const {
     for (const auto& v : m_views)
@@ -52,8 +52,7 @@ void ViewComposer::reset() {
     m_differences.clear();
 }
 
-std::optional<std::array<double, 2>>
-ViewComposer::exactAllFramesRange(const core::ViewState& v) {
+std::optional<std::array<double, 2>> ViewComposer::exactAllFramesRange(const core::ViewState& v) {
     const auto ds = m_session.dataset();
     if (!ds || ds->frameCount() == 0)
         return std::nullopt;
@@ -268,9 +267,9 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         if (hit == m_visibleRanges.end()) {
             if (m_visibleRanges.size() >= 8)
                 m_visibleRanges.erase(m_visibleRanges.begin());
-            m_visibleRanges.push_back({d.visibility, v.colorVariable,
-                                       core::maskedRange(*d.frame, v.colorVariable,
-                                                         d.visibility->mask)});
+            m_visibleRanges.push_back(
+                {d.visibility, v.colorVariable,
+                 core::maskedRange(*d.frame, v.colorVariable, d.visibility->mask)});
             hit = m_visibleRanges.end() - 1;
         }
         if (hit->range)

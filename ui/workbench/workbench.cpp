@@ -4,10 +4,10 @@
 
 #include "core/io/input_error.hpp"
 #include "core/selection/visibility.hpp"
+#include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/orbit_camera.hpp"
-#include "ui/context/frame_columns.hpp"
 
 #include <imgui.h>
 

@@ -10,12 +10,12 @@
 #include "ui/context/panel_context.hpp"
 #include "ui/dock/dock_layout.hpp"
 #include "ui/dock/dock_space.hpp"
-#include "ui/workbench/view_composer.hpp"
 #include "ui/viewport/category_colors.hpp"
 #include "ui/viewport/session_figure.hpp"
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/widgets/file_dialog.hpp"
 #include "ui/widgets/item_registry.hpp"
+#include "ui/workbench/view_composer.hpp"
 
 #include <fstream>
 #include <functional>
@@ -166,7 +166,7 @@ class Workbench final : public PanelContext {
     // File > Export > Figure: the main view rendered offscreen (the journal's render op) at the
     // figure options' size (as on screen by default), so no dialog or panel is in it.
     void screenshotMainView(const std::string& path);
-    std::pair<int, int> figureSize() const; // in pixels, from the figure options
+    std::pair<int, int> figureSize() const;     // in pixels, from the figure options
     std::pair<int, int> mainViewPixels() const; // the main view's size on screen
     std::optional<std::string> takeScreenshotRequest();
     bool hasScreenshotRequest() const { return m_screenshotPath.has_value(); }
@@ -260,7 +260,7 @@ class Workbench final : public PanelContext {
     DockLayout m_layout;
     bool m_layoutFollowsWindow = true; // the default layout, not arranged by the user yet
     float m_layoutWidth = 0;           // the window width a compact default was made for
-    core::Json m_adoptedLayout; // the session's layout as last adopted
+    core::Json m_adoptedLayout;        // the session's layout as last adopted
     DockSpace m_dock;
     FileDialog m_dialog;
     std::vector<std::unique_ptr<Panel>> m_panels;
@@ -274,7 +274,6 @@ class Workbench final : public PanelContext {
     std::vector<core::Json> m_emittedLog;
     std::map<std::string, core::Json> m_previews;
     Playback m_playback;
-
 
     std::vector<std::pair<std::vector<std::string>, std::shared_ptr<core::Dataset>>> m_datasets;
 

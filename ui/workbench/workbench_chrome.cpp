@@ -9,8 +9,8 @@
 // [SECTION] Prompts and file dialogs
 #include "ui/workbench/workbench.hpp"
 
-#include "ui/dock/panel_ids.hpp"
 #include "ui/context/frame_columns.hpp"
+#include "ui/dock/panel_ids.hpp"
 
 #include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)
 #include <imgui.h>
@@ -65,11 +65,17 @@ const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
         {"save-as", "Ctrl+Shift+S", "Save the session as", GLFW_KEY_S, true, 1, false,
          [](W& w) { w.saveSessionAsDialog(); }},
         {"undo", "Ctrl+Z", "Undo", GLFW_KEY_Z, true, 0, false,
-         [](W& w) { w.emit({{"op", "undo"}}); }},
+         [](W& w) {
+             w.emit({{"op", "undo"}});
+         }},
         {"redo", "Ctrl+Shift+Z", "Redo", GLFW_KEY_Z, true, 1, false,
-         [](W& w) { w.emit({{"op", "redo"}}); }},
+         [](W& w) {
+             w.emit({{"op", "redo"}});
+         }},
         {"redo-y", "Ctrl+Y", "Redo", GLFW_KEY_Y, true, -1, false,
-         [](W& w) { w.emit({{"op", "redo"}}); }},
+         [](W& w) {
+             w.emit({{"op", "redo"}});
+         }},
         {"quit", "Ctrl+Q", "Quit", GLFW_KEY_Q, true, -1, false, [](W& w) { w.requestQuit(); }},
         {"play", "Space", "Play / pause", GLFW_KEY_SPACE, false, -1, false,
          [](W& w) { w.m_playback.playing ? w.pause() : w.play(); }},
@@ -85,16 +91,15 @@ const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
          [](W& w) { w.jumpToFrame(0); }},
         {"last", "End", "Last frame", GLFW_KEY_END, false, -1, false,
          [](W& w) {
-             w.jumpToFrame(w.dataset() ? static_cast<long long>(w.dataset()->frameCount()) - 1
-                                       : 0);
+             w.jumpToFrame(w.dataset() ? static_cast<long long>(w.dataset()->frameCount()) - 1 : 0);
          }},
         {"fit", "F", "Fit the model in the viewports", GLFW_KEY_F, false, -1, false,
          [](W& w) {
              if (w.dataset()) // distance 0: fit the model
                  w.emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}});
          }},
-        {"screenshot", "F12", "Screenshot of the window (PNG in the working folder)",
-         GLFW_KEY_F12, false, -1, false,
+        {"screenshot", "F12", "Screenshot of the window (PNG in the working folder)", GLFW_KEY_F12,
+         false, -1, false,
          [](W& w) {
              w.requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
          }},
@@ -172,7 +177,8 @@ void Workbench::screenshotMainView(const std::string& path) {
     // The main view rendered offscreen at its size on screen, as a journal's render: the
     // window's own pixels still held the closing file dialog (issue 41).
     const auto [width, height] = figureSize();
-    core::Json cmd = {{"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}};
+    core::Json cmd = {
+        {"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}};
     if (figureOptions.transparent)
         cmd["transparent"] = true;
     emit(cmd, [this, path] { info("Saved the main view to " + path); });
@@ -185,7 +191,8 @@ std::pair<int, int> Workbench::figureSize() const {
     case 2:
         return {3840, 2160};
     case 3:
-        return {std::clamp(figureOptions.width, 16, 7680), std::clamp(figureOptions.height, 16, 4320)};
+        return {std::clamp(figureOptions.width, 16, 7680),
+                std::clamp(figureOptions.height, 16, 4320)};
     default:
         return mainViewPixels();
     }
@@ -281,8 +288,8 @@ void Workbench::drawMenus() {
         if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {
             for (const auto& r : m_recent)
                 if (ImGui::MenuItem(r.c_str()))
-                    guardUnsaved("Open " + fs::path(r).filename().string(),
-                                 [this, r] { openPath(r); }, r);
+                    guardUnsaved(
+                        "Open " + fs::path(r).filename().string(), [this, r] { openPath(r); }, r);
             ImGui::EndMenu();
         }
         ImGui::Separator();
@@ -303,7 +310,8 @@ void Workbench::drawMenus() {
                               FileDialog::Mode::Save, "export-tracks", {".csv"}, dataFolder,
                               "fault_tracks.csv");
             // Surfaces, as the Surfaces panel exports them.
-            if (ImGui::BeginMenu("Surface grids (OpenVDB)", dataset() && !state().surfaces.empty())) {
+            if (ImGui::BeginMenu("Surface grids (OpenVDB)",
+                                 dataset() && !state().surfaces.empty())) {
                 for (const auto& st : state().surfaces) {
                     const bool visible = core::isVisibleSpheres(st.fault);
                     const std::string label = visible ? "visible spheres" : st.fault;
@@ -317,12 +325,13 @@ void Workbench::drawMenus() {
             }
             m_items.markLastItem("menu.export.vdb");
             const bool shown =
-                dataset() && std::any_of(state().surfaces.begin(), state().surfaces.end(),
-                                         [](const core::SurfaceSettings& st) { return st.visible; });
+                dataset() &&
+                std::any_of(state().surfaces.begin(), state().surfaces.end(),
+                            [](const core::SurfaceSettings& st) { return st.visible; });
             if (ImGui::MenuItem("Shown surfaces (glTF)...", nullptr, false, shown))
                 m_dialog.open("Export the shown surfaces as glTF (one node per fault)",
-                              FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"},
-                              dataFolder, "faults.glb");
+                              FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"}, dataFolder,
+                              "faults.glb");
             m_items.markLastItem("menu.export.gltf");
             if (ImGui::MenuItem("Shown surfaces and their spheres (glTF)...", nullptr, false,
                                 shown))
@@ -353,8 +362,10 @@ void Workbench::drawMenus() {
     if (ImGui::BeginMenu("Edit")) {
         // "Undo: add 279 spheres to F1" (the ### keeps one ImGui id whatever the label says).
         const std::string undoLabel = m_session.undoLabel(), redoLabel = m_session.redoLabel();
-        const std::string undoItem = (undoLabel.empty() ? "Undo" : "Undo: " + undoLabel) + "###undo";
-        const std::string redoItem = (redoLabel.empty() ? "Redo" : "Redo: " + redoLabel) + "###redo";
+        const std::string undoItem =
+            (undoLabel.empty() ? "Undo" : "Undo: " + undoLabel) + "###undo";
+        const std::string redoItem =
+            (redoLabel.empty() ? "Redo" : "Redo: " + redoLabel) + "###redo";
         if (ImGui::MenuItem(undoItem.c_str(), keysOf("undo"), false, m_session.canUndo()))
             runCommand("undo");
         m_items.markLastItem("edit.undo");
@@ -639,8 +650,9 @@ void Workbench::handleDialog() {
         guardUnsaved("Open " + fs::path(path).filename().string(),
                      [this, path] { openData({path}); });
     else if (purpose == "open-session")
-        guardUnsaved("Open " + fs::path(path).filename().string(),
-                     [this, path] { openSession(path); }, path);
+        guardUnsaved(
+            "Open " + fs::path(path).filename().string(), [this, path] { openSession(path); },
+            path);
     else if (purpose == "save-session")
         saveSessionAs(path, std::exchange(m_afterSaveAs, {}));
     else if (purpose == "relocate-data")

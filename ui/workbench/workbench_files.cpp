@@ -287,7 +287,8 @@ void Workbench::exportCsv(core::Json cmd) {
         [this, snapshot = state(), data = m_session.dataset(), cmd, path,
          at = place->place](JobControl& control) -> std::function<void()> {
             // Cancel in the status bar stops it between frames; no file is written.
-            core::writeFileAtomically(path, core::exportCsvText(snapshot, data, cmd, {}, [&control] {
+            core::writeFileAtomically(path,
+                                      core::exportCsvText(snapshot, data, cmd, {}, [&control] {
                                           if (control.cancelled())
                                               throw std::runtime_error("cancelled");
                                       }));

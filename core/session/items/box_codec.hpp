@@ -9,7 +9,8 @@ namespace faultline::core::items {
 Json toJson(const CuttingBox& box);
 // Reads the fields present (name, min, max, mode, enabled).
 void patch(CuttingBox& box, const ItemReader& fields);
-// The fields, in the table they are declared in once (what box.add and box.set accept besides "index" and "rename").
+// The fields, in the table they are declared in once (what box.add and box.set accept besides
+// "index" and "rename").
 std::vector<std::string> boxFieldNames();
 // A name; min <= max on every axis.
 void validate(const CuttingBox& box);

@@ -6,9 +6,9 @@ namespace {
 // Each field once: its JSON and how it is read.
 using C = CameraState;
 const Field<C> kFields[] = {
-    member<C, &C::target>("target"),       member<C, &C::distance>("distance"),
-    member<C, &C::azimuth>("azimuth"),     member<C, &C::elevation>("elevation"),
-    member<C, &C::fovY>("fov_y"),          member<C, &C::orthographic>("orthographic"),
+    member<C, &C::target>("target"),   member<C, &C::distance>("distance"),
+    member<C, &C::azimuth>("azimuth"), member<C, &C::elevation>("elevation"),
+    member<C, &C::fovY>("fov_y"),      member<C, &C::orthographic>("orthographic"),
 };
 } // namespace
 

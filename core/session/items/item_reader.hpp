@@ -75,7 +75,7 @@ class ItemReader {
 // read, from which come the item's toJson, its patch and the fields a command accepts.
 template <typename T> struct Field {
     const char* name;
-    Json (*get)(const T&);                                // the field's value
+    Json (*get)(const T&);                                 // the field's value
     void (*read)(T&, const ItemReader&, const char* name); // reads it, when present
 };
 // A field that is one member, written as JSON and read with ItemReader::read as it is.

@@ -10,7 +10,8 @@ namespace faultline::core::items {
 Json toJson(const VariableThreshold& threshold);
 // Reads the fields present (variable, low, high, enabled).
 void patch(VariableThreshold& threshold, const ItemReader& fields);
-// The fields, in the table they are declared in once (what threshold.add and threshold.set accept besides "index").
+// The fields, in the table they are declared in once (what threshold.add and threshold.set accept
+// besides "index").
 std::vector<std::string> thresholdFieldNames();
 // A variable; low <= high.
 void validate(const VariableThreshold& threshold);

@@ -8,7 +8,7 @@
 
 namespace faultline::core::detail {
 
-void ChargeGrid::gather(const Int3 &first, int size, float cutoff, WindowList &out) const {
+void ChargeGrid::gather(const Int3& first, int size, float cutoff, WindowList& out) const {
     out.clear();
     int from[3], to[3];
     for (int k = 0; k < 3; ++k) {
@@ -54,7 +54,7 @@ constexpr std::size_t kPrivateChargeNodes = std::size_t{1} << 18;
 
 } // namespace
 
-std::optional<ChargeGrid> anterpolate(const PackedSpheres &s, const Box &centres, float spacing) {
+std::optional<ChargeGrid> anterpolate(const PackedSpheres& s, const Box& centres, float spacing) {
     ChargeGrid g;
     std::size_t total = 1;
     for (int k = 0; k < 3; ++k) {
@@ -73,7 +73,7 @@ std::optional<ChargeGrid> anterpolate(const PackedSpheres &s, const Box &centres
         return std::clamp(static_cast<int>(std::floor(c / spacing)) - kTapsBelow - g.lo[k], 0,
                           g.dims[k] - kTaps);
     };
-    auto spread = [&](std::size_t i, std::vector<float> &q) {
+    auto spread = [&](std::size_t i, std::vector<float>& q) {
         float w[3][kTaps];
         int b[3];
         const float c[3] = {s.x[i], s.y[i], s.z[i]};
@@ -85,7 +85,7 @@ std::optional<ChargeGrid> anterpolate(const PackedSpheres &s, const Box &centres
         for (int a = 0; a < kTaps; ++a)
             for (int e = 0; e < kTaps; ++e) {
                 const float wae = s.r[i] * w[0][a] * w[1][e];
-                float *row =
+                float* row =
                     &q[(static_cast<std::size_t>(b[0] + a) * g.dims[1] + b[1] + e) * g.dims[2] +
                        b[2]];
                 for (int f = 0; f < kTaps; ++f)
@@ -102,7 +102,7 @@ std::optional<ChargeGrid> anterpolate(const PackedSpheres &s, const Box &centres
                 spread(i, local[c]);
         });
         g.q.assign(total, 0.0f);
-        for (const auto &q : local)
+        for (const auto& q : local)
             for (std::size_t n = 0; n < total; ++n)
                 g.q[n] += q[n];
     } else {

@@ -40,7 +40,7 @@ struct ChargeGrid {
     }
     // The nonzero charges within `cutoff` of the nodes [first, first + size) (all of them for
     // a cutoff of infinity), padded.
-    void gather(const Int3 &first, int size, float cutoff, WindowList &out) const;
+    void gather(const Int3& first, int size, float cutoff, WindowList& out) const;
 };
 
 // Largest grid anterpolate() makes (a level that fine for the spheres' box holds few spheres
@@ -49,6 +49,6 @@ inline constexpr std::size_t kMaxChargeNodes = std::size_t{1} << 22;
 
 // The charges of a level of this spacing, or none when the grid over the centres' box would
 // have more than kMaxChargeNodes nodes.
-std::optional<ChargeGrid> anterpolate(const PackedSpheres &s, const Box &centres, float spacing);
+std::optional<ChargeGrid> anterpolate(const PackedSpheres& s, const Box& centres, float spacing);
 
 } // namespace faultline::core::detail

@@ -7,7 +7,7 @@
 
 namespace faultline::core::detail {
 
-void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
+void FieldLevel::mark(const Int3& lo, const Int3& hi) {
     Int3 blo, bhi;
     for (int k = 0; k < 3; ++k) {
         blo[k] = floorDiv(lo[k], 8);
@@ -23,7 +23,7 @@ void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
                     bricks.emplace_back();
                     bricks.back().origin = {bx * 8, by * 8, bz * 8};
                 }
-                Brick &brick = bricks[it->second];
+                Brick& brick = bricks[it->second];
                 Int3 l, h;
                 for (int k = 0; k < 3; ++k) {
                     l[k] = std::max(lo[k] - brick.origin[k], 0);
@@ -41,7 +41,7 @@ void FieldLevel::mark(const Int3 &lo, const Int3 &hi) {
             }
 }
 
-const Brick *FieldLevel::find(const Int3 &node) const {
+const Brick* FieldLevel::find(const Int3& node) const {
     const Int3 b{floorDiv(node[0], 8), floorDiv(node[1], 8), floorDiv(node[2], 8)};
     auto it = index.find(packKey(b));
     return it == index.end() ? nullptr : &bricks[it->second];
@@ -49,7 +49,7 @@ const Brick *FieldLevel::find(const Int3 &node) const {
 
 std::size_t FieldLevel::neededCount() const {
     std::size_t count = 0;
-    for (const auto &b : bricks)
+    for (const auto& b : bricks)
         for (auto m : b.mask)
             count += static_cast<std::size_t>(__builtin_popcountll(m));
     return count;
@@ -107,8 +107,8 @@ void lagrangeDerivatives(float t, float w[kTaps]) {
     }
 }
 
-void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
-                 std::vector<float> &out, int strideZ) {
+void gatherPatch(const FieldLevel& level, const Int3& lo, const Int3& dims, std::vector<float>& out,
+                 int strideZ) {
     const std::size_t stride = strideZ > 0 ? strideZ : dims[2];
     assert(stride >= static_cast<std::size_t>(dims[2]));
     out.assign(static_cast<std::size_t>(dims[0]) * dims[1] * stride, 0.0f);
@@ -116,11 +116,11 @@ void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
     for (int bx = floorDiv(lo[0], 8); bx <= floorDiv(hi[0], 8); ++bx)
         for (int by = floorDiv(lo[1], 8); by <= floorDiv(hi[1], 8); ++by)
             for (int bz = floorDiv(lo[2], 8); bz <= floorDiv(hi[2], 8); ++bz) {
-                const Brick *brick = level.find({bx * 8, by * 8, bz * 8});
+                const Brick* brick = level.find({bx * 8, by * 8, bz * 8});
                 assert(brick && "a coarse node the interpolation needs was never marked");
                 if (!brick)
                     continue;
-                const Int3 &o = brick->origin;
+                const Int3& o = brick->origin;
                 Int3 l, h;
                 for (int k = 0; k < 3; ++k) {
                     l[k] = std::max(lo[k], o[k]);
@@ -132,14 +132,13 @@ void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
                 for (int i = l[0]; i <= h[0]; ++i)
                     for (int j = l[1]; j <= h[1]; ++j) {
                         const int n = Brick::offset(i - o[0], j - o[1], l[2] - o[2]);
-                        assert(((brick->mask[i - o[0]] >> (8 * (j - o[1]))) & runBits) ==
-                                   runBits &&
+                        assert(((brick->mask[i - o[0]] >> (8 * (j - o[1]))) & runBits) == runBits &&
                                "a coarse node the interpolation needs was never marked");
-                        std::copy_n(&brick->values[n], run,
-                                    &out[(static_cast<std::size_t>(i - lo[0]) * dims[1] +
-                                          (j - lo[1])) *
-                                             stride +
-                                         (l[2] - lo[2])]);
+                        std::copy_n(
+                            &brick->values[n], run,
+                            &out[(static_cast<std::size_t>(i - lo[0]) * dims[1] + (j - lo[1])) *
+                                     stride +
+                                 (l[2] - lo[2])]);
                     }
             }
 }
@@ -147,7 +146,7 @@ void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
 namespace {
 // Interpolation weights of the `ratio` finer indices between two nodes (phase g mod ratio),
 // computed once per ratio and thread.
-const std::array<float, kTaps> *phaseWeights(int ratio) {
+const std::array<float, kTaps>* phaseWeights(int ratio) {
     thread_local int cached = 0;
     thread_local std::vector<std::array<float, kTaps>> table;
     if (cached != ratio) {
@@ -162,20 +161,19 @@ const std::array<float, kTaps> *phaseWeights(int ratio) {
 // The three separable passes over a patch whose rows along z are a whole number of 8-lane
 // vectors (zeros past their end): x, then y on whole rows, then z as an 8 x stride matrix of
 // weights applied to each row. Up to 8 targets along z.
-FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int stride, const Int3 &n,
-                                     const int *const base[3],
-                                     const float *const *const weights[3], const float *zMatrix,
-                                     float *pass1, float *pass2, float *out) {
+FAULTLINE_HOT void interpolatePasses(const float* src, const Int3& sd, int stride, const Int3& n,
+                                     const int* const base[3], const float* const* const weights[3],
+                                     const float* zMatrix, float* pass1, float* pass2, float* out) {
     using simd8::v8f;
     const int vectors = stride / 8;
     // x pass: [n0][sd1][stride], each vector of a plane summed in a register.
     const std::size_t plane = static_cast<std::size_t>(sd[1]) * stride;
     for (int i = 0; i < n[0]; ++i) {
-        float *d = pass1 + i * plane;
+        float* d = pass1 + i * plane;
         v8f w[kTaps];
         for (int q = 0; q < kTaps; ++q)
             w[q] = simd8::splat(weights[0][i][q]);
-        const float *s = src + base[0][i] * plane;
+        const float* s = src + base[0][i] * plane;
         for (std::size_t e = 0; e < plane; e += 8) {
             v8f acc{};
             for (int q = 0; q < kTaps; ++q)
@@ -198,11 +196,11 @@ FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int strid
     // z pass: each row times the weights matrix (column e: what source e gives each target).
     for (int i = 0; i < n[0]; ++i)
         for (int j = 0; j < n[1]; ++j) {
-            const float *s = pass2 + (static_cast<std::size_t>(i) * n[1] + j) * stride;
+            const float* s = pass2 + (static_cast<std::size_t>(i) * n[1] + j) * stride;
             v8f acc{};
             for (int e = 0; e < sd[2]; ++e)
                 acc += simd8::splat(s[e]) * simd8::load(zMatrix + 8 * e);
-            float *d = out + (static_cast<std::size_t>(i) * n[1] + j) * n[2];
+            float* d = out + (static_cast<std::size_t>(i) * n[1] + j) * n[2];
             if (n[2] == 8) {
                 simd8::store(d, simd8::load(d) + acc);
             } else {
@@ -213,8 +211,8 @@ FAULTLINE_HOT void interpolatePasses(const float *src, const Int3 &sd, int strid
 }
 } // namespace
 
-void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n,
-                     float *out) {
+void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const Int3& n,
+                     float* out) {
     Int3 s0, sd;
     for (int k = 0; k < 3; ++k) {
         s0[k] = floorDiv(t0[k], ratio) - kTapsBelow;
@@ -224,10 +222,10 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
     const int stride = (sd[2] + 7) / 8 * 8;
     thread_local std::vector<float> src, pass1, pass2, zMatrix;
     thread_local std::vector<int> base[3];
-    thread_local std::vector<const float *> weights[3];
+    thread_local std::vector<const float*> weights[3];
     gatherPatch(level, s0, sd, src, stride);
     // Per target index along each axis: first source node and weights.
-    const std::array<float, kTaps> *phases = phaseWeights(ratio);
+    const std::array<float, kTaps>* phases = phaseWeights(ratio);
     for (int k = 0; k < 3; ++k) {
         base[k].resize(n[k]);
         weights[k].resize(n[k]);
@@ -244,8 +242,8 @@ void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const I
             zMatrix[(base[2][z] + q) * 8 + z] = weights[2][z][q];
     pass1.resize(static_cast<std::size_t>(n[0]) * sd[1] * stride);
     pass2.resize(static_cast<std::size_t>(n[0]) * n[1] * stride);
-    const int *const bases[3] = {base[0].data(), base[1].data(), base[2].data()};
-    const float *const *const ws[3] = {weights[0].data(), weights[1].data(), weights[2].data()};
+    const int* const bases[3] = {base[0].data(), base[1].data(), base[2].data()};
+    const float* const* const ws[3] = {weights[0].data(), weights[1].data(), weights[2].data()};
     interpolatePasses(src.data(), sd, stride, n, bases, ws, zMatrix.data(), pass1.data(),
                       pass2.data(), out);
 }

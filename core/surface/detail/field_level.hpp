@@ -17,7 +17,7 @@ using Int3 = std::array<int, 3>;
 inline int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 // Packs a coordinate with each component in [-2^20, 2^20) into a key.
-inline std::uint64_t packKey(const Int3 &c) {
+inline std::uint64_t packKey(const Int3& c) {
     constexpr int kBias = 1 << 20;
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c[0] + kBias)) << 42) |
            (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c[1] + kBias)) << 21) |
@@ -45,8 +45,8 @@ struct FieldLevel {
     std::vector<Brick> bricks;
 
     // Marks nodes [lo, hi] (inclusive) as needed.
-    void mark(const Int3 &lo, const Int3 &hi);
-    const Brick *find(const Int3 &node) const;
+    void mark(const Int3& lo, const Int3& hi);
+    const Brick* find(const Int3& node) const;
     std::size_t neededCount() const;
 };
 
@@ -61,11 +61,11 @@ void lagrangeDerivatives(float t, float w[kTaps]);
 
 // Copies the nodes [lo, lo + dims) of a level into `out` (x slowest, z fastest), rows along z
 // strideZ apart (0: dims[2]), zeros past their end.
-void gatherPatch(const FieldLevel &level, const Int3 &lo, const Int3 &dims,
-                 std::vector<float> &out, int strideZ = 0);
+void gatherPatch(const FieldLevel& level, const Int3& lo, const Int3& dims, std::vector<float>& out,
+                 int strideZ = 0);
 
 // Adds to `out` (dims n, z fastest) the degree-5 (kTaps) interpolation of `level` at the finer
 // indices [t0, t0 + n), where a finer index t sits at level index t / ratio.
-void addInterpolated(const FieldLevel &level, int ratio, const Int3 &t0, const Int3 &n, float *out);
+void addInterpolated(const FieldLevel& level, int ratio, const Int3& t0, const Int3& n, float* out);
 
 } // namespace faultline::core::detail

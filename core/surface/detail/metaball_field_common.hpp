@@ -6,8 +6,8 @@
 
 #include "core/surface/detail/charge_grid.hpp"
 #include "core/surface/detail/field_level.hpp"
-#include "core/util/simd8.hpp"
 #include "core/surface/metaball_field.hpp"
+#include "core/util/simd8.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,7 +15,6 @@
 #include <cstddef>
 
 namespace faultline::core::field_internal {
-
 
 using detail::Box;
 using detail::Brick;
@@ -26,7 +25,6 @@ using detail::NearList;
 using detail::packKey;
 using detail::WindowList;
 namespace simd8 = detail::simd8;
-
 
 //-----------------------------------------------------------------------------
 // [SECTION] Error model: constants, weights, budget
@@ -72,11 +70,11 @@ inline std::array<double, 2> errorWeights(int kappa, int coarseKappa, int power)
 }
 
 // The largest error the field may make: the tolerance at the lowest supported iso.
-inline double errorBudget(const SurfaceParams &params) {
+inline double errorBudget(const SurfaceParams& params) {
     return params.tolerance * params.iso / params.isoRangeFactor;
 }
 
-inline Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
+inline Box voxelBox(const Coord3& lo, const Coord3& hi, float h) {
     Box b;
     for (int k = 0; k < 3; ++k) {
         b.lo[k] = lo[k] * h;
@@ -86,7 +84,7 @@ inline Box voxelBox(const Coord3 &lo, const Coord3 &hi, float h) {
 }
 
 // The voxel centres of the block at origin o.
-inline Box blockBox(const Coord3 &o, float h) {
+inline Box blockBox(const Coord3& o, float h) {
     return voxelBox(o, {o[0] + kBlockDim - 1, o[1] + kBlockDim - 1, o[2] + kBlockDim - 1}, h);
 }
 
@@ -119,7 +117,7 @@ template <int P> inline float inversePower(float d2, float minD2) {
 }
 
 // Softened kernel's polynomial part with a multiplication instead of a division.
-inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
+inline float softInner(const SoftenedKernel& k, float invA2, float d2) {
     const float t = d2 * invA2 - 1.0f;
     return k.scale *
            (k.coef[0] + t * (k.coef[1] + t * (k.coef[2] + t * (k.coef[3] + t * k.coef[4]))));
@@ -129,7 +127,7 @@ inline float softInner(const SoftenedKernel &k, float invA2, float d2) {
 // window), or of w gamma_below over all of them (top level).
 // A softened kernel's polynomial as coefficients of powers of d^2 (no t = d^2 / a^2 - 1 to form
 // per pair): C_k = scale / a^2k * sum_j coef_j binomial(j, k) (-1)^(j-k).
-inline void powerCoefficients(const SoftenedKernel &kernel, simd8::v8f out[5]) {
+inline void powerCoefficients(const SoftenedKernel& kernel, simd8::v8f out[5]) {
     for (int k = 0; k < 5; ++k) {
         double c = 0.0, binomial = 1.0; // binomial(j, k) for j = k first
         for (int j = k; j < 5; ++j) {
@@ -145,7 +143,7 @@ inline void powerCoefficients(const SoftenedKernel &kernel, simd8::v8f out[5]) {
 struct WindowKernels {
     simd8::v8f belowA2, ownA2, minD2, one;
     simd8::v8f below[5], own[5]; // coefficients of d^2^k
-    WindowKernels(const SoftenedKernel &b, const SoftenedKernel &o, float minD2In) {
+    WindowKernels(const SoftenedKernel& b, const SoftenedKernel& o, float minD2In) {
         using simd8::splat;
         belowA2 = splat(b.a2), ownA2 = splat(o.a2);
         minD2 = splat(minD2In), one = splat(1.0f);

@@ -11,11 +11,11 @@ constexpr std::uint32_t kLeafSize = 8;
 }
 
 void NearList::clear() {
-    for (auto *v : {&x, &y, &z, &r, &red, &green, &blue})
+    for (auto* v : {&x, &y, &z, &r, &red, &green, &blue})
         v->clear();
 }
 
-SphereTree::SphereTree(const SphereSet &s) {
+SphereTree::SphereTree(const SphereSet& s) {
     const std::size_t n = s.size();
     assert(n > 0 && s.consistent());
     m_centres.resize(n);
@@ -28,8 +28,8 @@ SphereTree::SphereTree(const SphereSet &s) {
     m_nodes.reserve(2 * n / kLeafSize + 2);
     build(order, 0, static_cast<std::uint32_t>(n));
 
-    auto &p = m_spheres;
-    for (auto *v : {&p.x, &p.y, &p.z, &p.r, &p.red, &p.green, &p.blue})
+    auto& p = m_spheres;
+    for (auto* v : {&p.x, &p.y, &p.z, &p.r, &p.red, &p.green, &p.blue})
         v->resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t src = order[i];
@@ -48,7 +48,7 @@ SphereTree::SphereTree(const SphereSet &s) {
     m_radii.shrink_to_fit();
 }
 
-std::int32_t SphereTree::build(std::vector<std::uint32_t> &order, std::uint32_t begin,
+std::int32_t SphereTree::build(std::vector<std::uint32_t>& order, std::uint32_t begin,
                                std::uint32_t end) {
     const auto index = static_cast<std::int32_t>(m_nodes.size());
     m_nodes.emplace_back();
@@ -61,7 +61,7 @@ std::int32_t SphereTree::build(std::vector<std::uint32_t> &order, std::uint32_t 
     node.rmin = inf;
     double weight = 0.0;
     for (std::uint32_t i = begin; i < end; ++i) {
-        const auto &c = m_centres[order[i]];
+        const auto& c = m_centres[order[i]];
         for (int k = 0; k < 3; ++k) {
             node.box.lo[k] = std::min(node.box.lo[k], c[k]);
             node.box.hi[k] = std::max(node.box.hi[k], c[k]);
@@ -89,14 +89,14 @@ std::int32_t SphereTree::build(std::vector<std::uint32_t> &order, std::uint32_t 
     return index;
 }
 
-void SphereTree::gather(const Box &box, float reach, NearList &out, bool withColor) const {
+void SphereTree::gather(const Box& box, float reach, NearList& out, bool withColor) const {
     const float reach2 = reach * reach;
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
-    const auto &p = m_spheres;
+    const auto& p = m_spheres;
     while (top > 0) {
-        const TreeNode &node = m_nodes[stack[--top]];
+        const TreeNode& node = m_nodes[stack[--top]];
         if (minDistance2(node.box, box) > reach2)
             continue;
         // Largest distance from a point of the node's box to the query box (per axis bound).
@@ -131,14 +131,14 @@ void SphereTree::gather(const Box &box, float reach, NearList &out, bool withCol
     }
 }
 
-void SphereTree::gatherRanges(const Box &box, float reach,
-                              std::vector<std::pair<std::uint32_t, std::uint32_t>> &out) const {
+void SphereTree::gatherRanges(const Box& box, float reach,
+                              std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const {
     const float reach2 = reach * reach;
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const TreeNode &node = m_nodes[stack[--top]];
+        const TreeNode& node = m_nodes[stack[--top]];
         if (minDistance2(node.box, box) > reach2)
             continue;
         float far2 = 0.0f;

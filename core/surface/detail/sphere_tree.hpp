@@ -19,7 +19,7 @@ struct Box {
 
 // Squared smallest and largest distances between points of two boxes (inline: surface planning
 // calls them millions of times).
-inline float minDistance2(const Box &a, const Box &b) {
+inline float minDistance2(const Box& a, const Box& b) {
     float d2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         const float below = a.lo[k] - b.hi[k], above = b.lo[k] - a.hi[k];
@@ -29,7 +29,7 @@ inline float minDistance2(const Box &a, const Box &b) {
     return d2;
 }
 
-inline float maxDistance2(const Box &a, const Box &b) {
+inline float maxDistance2(const Box& a, const Box& b) {
     float d2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         const float span = std::max(a.hi[k] - b.lo[k], b.hi[k] - a.lo[k]);
@@ -85,21 +85,21 @@ inline void appendIfWithin(const PackedSpheres& p, std::uint32_t i, const Box& b
 
 class SphereTree {
   public:
-    explicit SphereTree(const SphereSet &spheres);
+    explicit SphereTree(const SphereSet& spheres);
 
-    const PackedSpheres &spheres() const { return m_spheres; }
-    const std::vector<TreeNode> &nodes() const { return m_nodes; }
-    const TreeNode &root() const { return m_nodes.front(); }
+    const PackedSpheres& spheres() const { return m_spheres; }
+    const std::vector<TreeNode>& nodes() const { return m_nodes; }
+    const TreeNode& root() const { return m_nodes.front(); }
 
     // Appends every sphere whose centre lies within `reach` of `box`.
-    void gather(const Box &box, float reach, NearList &out, bool withColor) const;
+    void gather(const Box& box, float reach, NearList& out, bool withColor) const;
     // Ranges [first, second) of tree order that hold every sphere within `reach` of `box` (and
     // some a little farther, from leaves only partly in reach): no copies.
-    void gatherRanges(const Box &box, float reach,
-                      std::vector<std::pair<std::uint32_t, std::uint32_t>> &out) const;
+    void gatherRanges(const Box& box, float reach,
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const;
 
   private:
-    std::int32_t build(std::vector<std::uint32_t> &order, std::uint32_t begin, std::uint32_t end);
+    std::int32_t build(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end);
     PackedSpheres m_spheres;
     std::vector<TreeNode> m_nodes;
     std::vector<std::array<float, 3>> m_centres; // scratch during build

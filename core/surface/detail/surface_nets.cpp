@@ -90,8 +90,8 @@ struct LeafWork {
 
 } // namespace
 
-void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color,
-                 bool normals, float iso, float h, SurfaceMesh& mesh) {
+void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color, bool normals,
+                 float iso, float h, SurfaceMesh& mesh) {
     std::vector<const FloatLeaf*> leaves;
     for (auto it = density.tree().cbeginLeaf(); it; ++it)
         leaves.push_back(&*it);

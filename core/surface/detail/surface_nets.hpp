@@ -22,13 +22,13 @@ namespace faultline::core::detail {
 // on one side of every iso asked for (the surface plan's margin guarantees it).
 // The outward unit normal where the density has gradient g (the density falls outwards), or +z
 // where g vanishes.
-inline std::array<float, 3> normalFromGradient(const std::array<float, 3> &g) {
+inline std::array<float, 3> normalFromGradient(const std::array<float, 3>& g) {
     const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     return len > 0.0f ? std::array<float, 3>{-g[0] / len, -g[1] / len, -g[2] / len}
                       : std::array<float, 3>{0.0f, 0.0f, 1.0f};
 }
 
-void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color,
-                 bool normals, float iso, float h, SurfaceMesh& mesh);
+void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& color, bool normals,
+                 float iso, float h, SurfaceMesh& mesh);
 
 } // namespace faultline::core::detail
