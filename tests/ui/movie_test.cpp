@@ -1,6 +1,7 @@
 // Movies and PNG sequences: the journal's render with "frames", H.264 read back with libavformat,
 // the frame selection of a sharded replay, and the refusals.
 #include "../core/test_files.hpp"
+#include "core/session/color_range.hpp"
 #include "core/session/session.hpp"
 #include "gl_required.hpp"
 #include "headless_ui.hpp"
@@ -230,4 +231,23 @@ TEST_F(PanelTest, TheFigureTakesASizeAndATransparentBackground) {
     // The presets.
     wb().figureOptions.size = 2;
     EXPECT_EQ(wb().figureSize(), (std::pair<int, int>{3840, 2160}));
+}
+
+// Walkthrough of issue 41: a movie of some frames coloured by a change took its range over
+// those frames only (frames 0-30: +-1.8, where the view, a figure and the whole run's movie
+// show +-3.77). It now takes the range over every frame, as they do (the lattice's strain rises
+// by one a frame: over frame 1 alone the change since frame 0 spans +-1, over all frames +-2).
+TEST_F(MovieTest, AMovieOfSomeFramesTakesTheRangeOfEveryFrame) {
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","difference":"change","since_frame":0})"));
+    ui::SequenceRequest request;
+    request.figure.path = dir.file("seq/m%d.png");
+    request.first = request.last = 1;
+    const ui::FrameSequence movie(session, request);
+    const auto all = core::colorRangeOverFrames(*session.dataset(), session.state().views[0]);
+    ASSERT_TRUE(movie.colorRange().has_value());
+    ASSERT_TRUE(all.has_value());
+    EXPECT_EQ(*movie.colorRange(), *all);
+    EXPECT_EQ(all->low, -2.0);
+    EXPECT_EQ(all->high, 2.0);
 }

@@ -222,6 +222,37 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderAfterReopeningASession) {
     EXPECT_FLOAT_EQ(headless.rect(reopened, "histogram.layer").y0, layerY);
 }
 
+// Walkthrough of issue 41: a float variable's histogram had about 20 bins before saving and
+// hundreds after reopening (its automatic bin count was chosen on the frame shown first: frame 0
+// before, the saved frame after). The count chosen rides along in the session.
+TEST_F(PanelTest, AHistogramKeepsItsBinsAfterReopeningAtAnotherFrame) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    const core::Json* settings =
+        std::as_const(wb().layout()).panelSettings(ui::panel_ids::kHistograms);
+    ASSERT_NE(settings, nullptr);
+    ASSERT_TRUE(settings->contains("bins")) << settings->dump();
+    const core::Json bins = (*settings)["bins"];
+    ASSERT_TRUE(bins.contains("strain"));
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    const std::string file = dir.file("bins.faultline.json");
+    wb().saveSessionAs(file);
+    headless.settle(wb());
+    core::Session other;
+    ui::WorkbenchOptions options;
+    ui::Workbench reopened(other, options);
+    headless.frames(reopened, 2);
+    reopened.openSession(file);
+    headless.settle(reopened);
+    headless.showPanel(reopened, ui::panel_ids::kHistograms);
+    headless.settle(reopened);
+    const core::Json* again =
+        std::as_const(reopened.layout()).panelSettings(ui::panel_ids::kHistograms);
+    ASSERT_NE(again, nullptr);
+    EXPECT_EQ((*again)["bins"], bins) << "chosen again on frame 2";
+}
+
 // Issue 27: a box extent takes typing after one click; Enter commits one box.set, Escape puts
 // the value back and commits nothing.
 TEST_F(PanelTest, BoxExtentsTakeTypingAfterOneClickAndEscapeCancels) {

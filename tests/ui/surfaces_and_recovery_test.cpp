@@ -294,6 +294,40 @@ TEST_F(PanelTest, EnterInTheSinceFieldAppliesAndClosesThePopup) {
     EXPECT_EQ(headless.emitted("color.set").size(), 1u);
 }
 
+// Walkthrough of issue 41: with a change shown, picking "this frame's min to max" changed
+// nothing (a change is coloured over all frames, so colours mean the same at every frame).
+// The choice is now off there, and "all frames" reads as chosen; a plain variable keeps all
+// three.
+TEST_F(PanelTest, AChangeColouringOffersNoPerFrameRange) {
+    openLattice();
+    session.apply(Json::parse(
+        R"({"op":"color.set","view":"main","variable":"strain","difference":"change","since_frame":0})"));
+    ASSERT_EQ(session.state().views[0].rangeMode, core::RangeMode::CurrentFrame);
+    headless.settle(wb());
+    headless.click(wb(), "view.colour.main");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(headless.has(wb(), "view.range.frame.main"));
+    headless.clearEmitted();
+    headless.click(wb(), "view.range.frame.main");
+    headless.frames(wb(), 2);
+    headless.click(wb(), "view.range.all.main"); // already what is shown
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.emitted("color.set").empty());
+    // The value itself: "this frame's" is there again.
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","difference":"none","range_mode":"all"})"));
+    headless.settle(wb());
+    if (!headless.has(wb(), "view.range.frame.main")) {
+        headless.click(wb(), "view.colour.main");
+        headless.frames(wb(), 2);
+    }
+    headless.clearEmitted();
+    headless.click(wb(), "view.range.frame.main");
+    headless.frames(wb(), 2);
+    ASSERT_EQ(headless.emitted("color.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "frame");
+}
+
 namespace {
 class RecoveryTest : public PanelTest {
   protected:

@@ -3,6 +3,7 @@
 // clicking or dragging on the plot goes to that frame like the timeline does.
 #include "core/faults/metric_fields.hpp"
 #include "core/faults/tracking.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/session.hpp"
 #include "ui/context/fault_metrics_cache.hpp"
@@ -104,6 +105,18 @@ std::string conditionsText(const core::SessionState& s) {
                      (b.mode == core::BoxMode::Keep ? " (keep)" : " (cut)");
     return "thresholds: " + (thresholds.empty() ? std::string("none") : thresholds) +
            "; boxes: " + (boxes.empty() ? std::string("none") : boxes);
+}
+
+// Thresholds on variables the data lacks select nothing (issue 41, item 13): said beside the
+// conditions the faults were followed with, so they do not read as applied.
+std::string ignoredThresholds(const core::SessionState& s, const core::Frame* frame) {
+    std::string out;
+    if (!frame)
+        return out;
+    for (const auto& t : s.thresholds)
+        if (t.enabled && !core::missingVariableNote(*frame, t.variable).empty())
+            out += (out.empty() ? "" : ", ") + t.variable;
+    return out.empty() ? out : " (ignored, not in this data: " + out + ")";
 }
 
 class FaultMetricsSection {
@@ -212,14 +225,18 @@ class FaultMetricsSection {
         // Followed before with other thresholds or boxes: followed again, and said so.
         if (m_events && m_events->key != key && m_followAgain &&
             !(m_eventsJob && !m_eventsJob->finished())) {
-            wb.info(m_events->conditions != conditionsText(s)
-                        ? "Thresholds or boxes changed: following the faults through time again"
-                        : "The faults shown changed: following them through time again");
+            // Said here, not in the status bar: there it would hide what changed the faults
+            // ("Moved 285 from Graben W to C1", walkthrough of issue 41).
+            m_followReason = m_events->conditions != conditionsText(s)
+                                 ? "Thresholds or boxes changed: following the faults again..."
+                                 : "The faults changed: following them again...";
             findEvents(wb, ds, shown, key);
         }
         const bool followed = m_events && m_events->key == key;
-        if (m_events && !followed)
-            hint("Following again with the new thresholds and boxes...");
+        if (m_events && !followed) {
+            hint(m_followReason.empty() ? "Following again..." : m_followReason.c_str());
+            wb.mark("faults.metrics.following_again");
+        }
         if (followed) {
             flowSameLine(checkboxWidth("Growth"));
             ImGui::Checkbox("Growth", &m_growth);
@@ -228,7 +245,10 @@ class FaultMetricsSection {
             ImGui::TextDisabled("%zu event%s", m_events->count, m_events->count == 1 ? "" : "s");
             wb.mark("faults.metrics.events.shown");
             marks = m_events->marks;
-            hint("%s", ("with " + m_events->conditions).c_str());
+            const ViewDisplay* main = wb.mainDisplay();
+            hint("%s", ("with " + m_events->conditions +
+                        ignoredThresholds(s, main ? main->frame.get() : nullptr))
+                           .c_str());
             // Every event, named (a mark on the plot may stand for several).
             // The first few events in words, the rest behind a toggle (a walkthrough: 46 lines
             // pushed the plot a screen down); the plot's tooltip names each frame's events.
@@ -305,6 +325,7 @@ class FaultMetricsSection {
     bool m_growth = false;
     bool m_allEvents = false;   // every event listed, not only the first few
     bool m_followAgain = false; // the user followed once: follow again when the selection changes
+    std::string m_followReason; // why the faults are being followed again (shown in the panel)
     std::optional<Events> m_events;
     std::shared_ptr<Job> m_eventsJob;
     std::shared_ptr<CandidateMemo> m_memo;

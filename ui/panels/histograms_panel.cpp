@@ -153,9 +153,27 @@ class HistogramsPanel final : public Panel {
         wb.commitLayout();
     }
 
-    const core::Histogram* histogramFor(const core::Frame& frame, const ViewDisplay& main,
-                                        const std::string& var) {
+    // A float variable's automatic bin count is chosen on the first frame it is shown at and
+    // kept while scrubbing; it rides along in the panel's settings (saved with the session,
+    // without marking it changed), so a reopened session shows the same bins rather than
+    // those of the frame it reopens at.
+    static int savedBins(PanelContext& wb, const std::string& var) {
+        const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
+        if (!s || !s->contains("bins") || !(*s)["bins"].is_object())
+            return 0;
+        const core::Json& bins = (*s)["bins"];
+        const auto it = bins.find(var);
+        return it != bins.end() && it->is_number_integer() && it->get<int>() > 0 &&
+                       it->get<int>() <= core::kMaxAutoHistogramBins
+                   ? it->get<int>()
+                   : 0;
+    }
+
+    const core::Histogram* histogramFor(PanelContext& wb, const core::Frame& frame,
+                                        const ViewDisplay& main, const std::string& var) {
         Cached& c = m_cache[var];
+        if (c.autoBins == 0)
+            c.autoBins = savedBins(wb, var);
         const std::uint64_t visKey = main.visibilityKey;
         if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty())
             return &c.hist;
@@ -169,8 +187,10 @@ class HistogramsPanel final : public Panel {
             core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty())
                                                  ? c.hist.binning
                                                  : core::chooseBinning(*column, spec);
-            if (!column->isInteger() && c.autoBins == 0)
+            if (!column->isInteger() && c.autoBins == 0) {
                 c.autoBins = binning.bins;
+                wb.layout().panelSettings(panel_ids::kHistograms)["bins"][var] = binning.bins;
+            }
             const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
             c.hist = core::computeHistogram(*column, binning, mask);
             c.frame = main.frame;
@@ -185,7 +205,7 @@ class HistogramsPanel final : public Panel {
     bool drawOne(PanelContext& wb, const core::Frame& frame, const ViewDisplay& main,
                  const std::string& var, bool logScale) {
         const float scale = wb.scale();
-        const core::Histogram* h = histogramFor(frame, main, var);
+        const core::Histogram* h = histogramFor(wb, frame, main, var);
         const auto info = wb.columns().info(main.frame, var);
         const core::VariableThreshold* t = wb.state().threshold(var);
 

@@ -308,8 +308,9 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
 
 // What the selection tools do, for their tooltips.
 constexpr const char* kSelectHelp =
-    "\nThe visible spheres whose centres fall inside (front and back) go\n"
-    "into the selected fault, or make a new fault when none is selected.\n"
+    "\nThe spheres you can see inside it (every visible one front to back\n"
+    "with \"through the depth\") go into the selected fault, or make a\n"
+    "new fault when none is selected.\n"
     "Ctrl+drag: take them out of it. Shift+drag: a new fault.\n"
     "A click toggles one sphere; right drag pans.";
 
@@ -343,7 +344,7 @@ void ViewportCells::drawToolButtons(PanelContext& wb) {
     }
     // While a shape tool is on: the spheres in view (default) or all through the depth.
     if (wb.selection().tool != ViewportTool::Orbit) {
-        ImGui::SameLine();
+        flowSameLine(checkboxWidth("through the depth")); // on the next row when it would not fit
         ImGui::Checkbox("through the depth", &wb.selection().throughDepth);
         wb.mark("viewports.through_depth");
         if (ImGui::IsItemHovered())
@@ -408,14 +409,29 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     } modes[] = {{"frame", "this frame's min to max (spheres shown)"},
                  {"all", "all frames (steady in playback)"},
                  {"fixed", "fixed"}};
-    for (const auto& m : modes)
-        if (const bool on = core::rangeModeName(view.rangeMode) == m.mode;
-            ImGui::RadioButton(m.label, on) && !on) {
+    // A change or displacement is coloured over all frames (or a fixed range) whatever the
+    // mode says, so a colour means the same at every frame (issue 41): there "this frame's"
+    // is off and says why, and "all frames" reads as chosen.
+    const bool difference = view.difference.mode != core::ColorDifference::Mode::None;
+    for (const auto& m : modes) {
+        const std::string_view mode = m.mode;
+        bool on = core::rangeModeName(view.rangeMode) == mode;
+        if (difference && mode != "fixed")
+            on = mode == "all" && view.rangeMode != core::RangeMode::Fixed;
+        const bool off = difference && mode == "frame";
+        ImGui::BeginDisabled(off);
+        if (ImGui::RadioButton(m.label, on) && !on) {
             core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};
-            if (std::string(m.mode) == "fixed")
+            if (mode == "fixed")
                 cmd["range"] = {d.colorRange[0], d.colorRange[1]};
             wb.emit(cmd);
         }
+        wb.mark("view.range." + std::string(mode) + "." + view.name);
+        ImGui::EndDisabled();
+        if (off && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("A change or a displacement is coloured over all frames (or a "
+                              "fixed range),\nso that a colour means the same at every frame.");
+    }
     const bool loDone = numberField("##lo", &m_rangeEdit[0], "%.5g", 110 * wb.scale());
     ImGui::SameLine();
     const bool hiDone = numberField("##hi", &m_rangeEdit[1], "%.5g", 110 * wb.scale());

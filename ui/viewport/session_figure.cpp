@@ -242,15 +242,10 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
             m_frames.push_back(f);
     // One colour range for every frame: the view's fixed one, else the range over all frames
     // (what rangeMode "all" gives a single figure), so colours mean the same in every frame.
-    if (!fig.colorRange && view->rangeMode != core::RangeMode::Fixed) {
-        // A difference over the movie's frames (all of them, not a shard's: shards must colour
-        // as the whole run does); a variable over every frame of the data.
-        std::vector<std::size_t> frames;
-        if (view->difference.mode != core::ColorDifference::Mode::None)
-            for (std::size_t f = m_request.first; f <= m_request.last; f += m_request.step)
-                frames.push_back(f);
-        fig.colorRange = core::colorRangeOverFrames(*dataset, *view, frames);
-    }
+    // Every frame of the data, not only the movie's: a movie of frames 0-30 then colours as the
+    // view, a figure and a movie of the whole run do (issue 41), and shards as the whole run.
+    if (!fig.colorRange && view->rangeMode != core::RangeMode::Fixed)
+        fig.colorRange = core::colorRangeOverFrames(*dataset, *view);
     // One camera: the view's, or fitted to the first and last frames of the range together.
     if (!fig.camera && view->camera.distance <= 0) {
         core::CameraState camera = view->camera;

@@ -66,6 +66,10 @@ class FrameSequence {
     const std::string& path() const { return m_request.figure.path; }
     // The data frames it renders, in order.
     const std::vector<std::size_t>& frames() const { return m_frames; }
+    // The colour range every frame is drawn with (none: the view's own per frame).
+    const std::optional<core::ValueRange>& colorRange() const {
+        return m_request.figure.colorRange;
+    }
 
   private:
     core::Session& m_session;
