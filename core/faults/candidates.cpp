@@ -257,7 +257,8 @@ CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> 
     across /= double(points.size());
     const double within = thin >= 0 ? fit.eigenvalues[2] : fit.eigenvalues[1];
     out.thicknessRatio = within > 0 ? std::sqrt(across / within) : 1.0;
-    out.diffuse = out.thicknessRatio > kDiffuseThicknessRatio;
+    out.diffuse =
+        out.thicknessRatio > (thin >= 0 ? kDiffuseSectionThicknessRatio : kDiffuseThicknessRatio);
     return out;
 }
 
