@@ -191,6 +191,31 @@ TEST_F(GlRender, OcclusionCullingDoesNotChangeTheImage) {
     EXPECT_EQ(meanAbsDiff(plain, culled), 0.0);
 }
 
+// A view whose cell changes size keeps its texture's name: the workbench's draw list, built
+// before the views render, still names it (a new texture per size left the draw list naming a
+// deleted one: GL_INVALID_OPERATION and a blank view for a frame whenever a toolbar wrapped or a
+// splitter moved).
+TEST_F(GlRender, AResizedViewKeepsItsTexture) {
+    core::Frame f;
+    f.ids = {1, 2};
+    f.x = {0, 1.5f};
+    f.y = {0, 0};
+    f.z = {0, 0};
+    f.radius = {1, 1};
+    f.finalize();
+    SceneDescription scene;
+    scene.frame = &f;
+    auto renderer = std::make_unique<GlRenderer>();
+    loadScene(*renderer, scene);
+    renderer->render(fittedCamera(scene, 160, 120), {160, 120, 2, false});
+    const unsigned int texture = renderer->colorTexture();
+    ASSERT_NE(texture, 0u);
+    renderer->render(fittedCamera(scene, 200, 90), {200, 90, 2, false});
+    EXPECT_EQ(renderer->colorTexture(), texture);
+    EXPECT_EQ(renderer->readImage().width, 200);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(GlRender, TransparentBackgroundKeepsAlpha) {
     core::Frame f;
     f.ids = {1};

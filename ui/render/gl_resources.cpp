@@ -139,6 +139,29 @@ void RenderTexture::ensureSharingDepth(int width, int height, GLuint depthTextur
 void RenderTexture::ensure(int width, int height, bool withDepth) {
     if (m_fbo && width == m_width && height == m_height && withDepth == m_withDepth)
         return;
+    if (m_fbo && withDepth == m_withDepth) {
+        // A new size for the same textures: their names stay valid. The workbench's draw lists
+        // are built before the views render, so a view whose cell changed size this frame
+        // (a splitter dragged, a toolbar wrapped) would otherwise be drawn from a texture
+        // deleted a moment before: GL_INVALID_OPERATION and a blank view for a frame.
+        m_width = width;
+        m_height = height;
+        glBindTexture(GL_TEXTURE_2D, m_color.id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                     nullptr);
+        if (withDepth) {
+            glBindTexture(GL_TEXTURE_2D, m_depth.id());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0,
+                         GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+        }
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_fbo.id());
+        const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (status == GL_FRAMEBUFFER_COMPLETE)
+            return;
+        // Not complete (a borrowed depth of another size): made anew below.
+    }
     m_sharedDepth = 0;
     m_fbo = makeFramebuffer();
     m_color = makeTexture();
