@@ -100,8 +100,14 @@ TEST_F(PanelTest, TimelineStepsScrubsAndPlaysWithOneCommandPerChange) {
 TEST_F(PanelTest, ViewportsAddAViewAndCameraDragsCommitOnRelease) {
     openLattice();
     headless.click(wb(), "viewports.add");
+    // The view, then every view fitted again to its narrower cell (walkthrough of issue 41:
+    // the legend covered the block's east end until Fit was pressed).
     EXPECT_EQ(headless.emitted(),
-              (std::vector<Json>{{{"op", "view.add"}, {"name", "view 2"}, {"offset", -2}}}));
+              (std::vector<Json>{{{"op", "view.add"}, {"name", "view 2"}, {"offset", -2}},
+                                 {{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}},
+                                 {{"op", "camera.set"}, {"view", "view 2"}, {"distance", 0.0}}}));
+    EXPECT_EQ(session.undoLabel().find("camera"), std::string::npos)
+        << "undo takes the view away, not a camera move: " << session.undoLabel();
     session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
     headless.settle(wb());
     ASSERT_EQ(wb().views().size(), 2u);

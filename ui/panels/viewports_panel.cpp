@@ -40,7 +40,14 @@ class ViewportsPanel final : public Panel {
             const long long count =
                 wb.dataset() ? static_cast<long long>(wb.dataset()->frameCount()) : 1;
             cmd["offset"] = -std::min<long long>(10, count - 1); // compare with an earlier moment
+            const std::string added = cmd["name"];
             wb.emit(cmd);
+            // The cells narrow: every view is fitted again, the new one too (walkthrough of
+            // issue 41: with two views each legend covered the block's east end until Fit).
+            // Camera moves are no undo steps, so undo still takes the view away.
+            for (const auto& v : s.views)
+                wb.emit({{"op", "camera.set"}, {"view", v.name}, {"distance", 0.0}});
+            wb.emit({{"op", "camera.set"}, {"view", added}, {"distance", 0.0}});
         }
         wb.mark("viewports.add");
         ImGui::EndDisabled();
