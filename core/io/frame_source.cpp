@@ -46,6 +46,13 @@ FileFormat detectFormat(const std::string& path) {
         return FileFormat::Xyz;
     if (looksLikeMercuryData(head))
         return FileFormat::MercuryData;
+    // A file named as a LAMMPS trajectory that does not read as one gets the dump reader's
+    // error ("expected ITEM: TIMESTEP ..."), not a table's (walkthrough of issue 41).
+    std::string name = std::filesystem::path(path).filename().string();
+    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0)
+        name.resize(name.size() - 3);
+    if (name.size() > 10 && name.compare(name.size() - 10, 10, ".lammpstrj") == 0)
+        return FileFormat::LammpsDump;
     // A table needs a text header naming x, y and z: parseTable checks that precisely.
     for (unsigned char c : head)
         if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t'))

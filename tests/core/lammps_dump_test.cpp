@@ -165,6 +165,26 @@ TEST(LammpsDump, BinaryGarbageIsAClearError) {
     EXPECT_THROW(Dataset::open({p}), InputError);
 }
 
+// Walkthrough of issue 41: a damaged .lammpstrj that did not start with ITEM: was read as a CSV
+// table and refused for its header ("must name columns x, y and z"); its name says what it
+// should be, so the dump reader says what is wrong.
+TEST(LammpsDump, ANamedTrajectoryThatIsNoDumpGetsTheDumpReadersError) {
+    TempDir dir;
+    const std::string p = dir.write("broken.lammpstrj", "this, is, not, a, dump\n1,2,3,4,5\n");
+    EXPECT_EQ(detectFormat(p), FileFormat::LammpsDump);
+    try {
+        Dataset::open({p});
+        FAIL() << "opened";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("broken.lammpstrj:1: expected an 'ITEM:' line"),
+                  std::string::npos)
+            << e.what();
+    }
+    // The same text named as a table is a table's problem.
+    EXPECT_EQ(detectFormat(dir.write("broken.csv", "this, is, not, a, dump\n1,2,3,4,5\n")),
+              FileFormat::Table);
+}
+
 TEST(LammpsDump, MultiFrameIndexAndLazyLoad) {
     TempDir dir;
     std::string text;
