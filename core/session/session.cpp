@@ -194,8 +194,17 @@ void Session::apply(const Json& cmd) {
             clearHistory();
         } else if (changesState && !viewState) {
             const bool sized = op == "fault.add" || op == "fault.remove" || op == "fault.create";
-            m_undoLabels.push_back(
-                describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1));
+            std::string label =
+                describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1);
+            // Spheres taken from other faults: the label says so ("add 285 spheres to "C1"
+            // (moved 285 from Graben W)"), not a plain add (walkthrough of issue 41).
+            if (sized && m_note.rfind("moved ", 0) == 0) {
+                std::string moved = m_note.substr(0, m_note.find(';'));
+                if (const auto to = moved.rfind(" to " + name); to != std::string::npos)
+                    moved.resize(to);
+                label += " (" + moved + ")";
+            }
+            m_undoLabels.push_back(std::move(label));
             m_undo.push_back(std::move(inverse));
             m_undoSerials.push_back(m_nextSerial++);
             m_redo.clear();

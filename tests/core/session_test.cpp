@@ -888,8 +888,10 @@ TEST(Session, ASphereBelongsToOneFault) {
     EXPECT_EQ(s.lastNote(), "moved 2 from C2 to F1");
     EXPECT_TRUE(s.state().fault("C2")->ids.empty());
     EXPECT_EQ(s.state().fault("F1")->ids, (std::vector<std::int64_t>{1, 2, 3, 4, 5, 9}));
-    EXPECT_EQ(s.undoLabel(), "add 3 spheres to F1");
+    // Undo and redo say that spheres moved (walkthrough: "Redo: add 1 sphere to C1" for a move).
+    EXPECT_EQ(s.undoLabel(), "add 3 spheres to F1 (moved 2 from C2)");
     s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(s.redoLabel(), "add 3 spheres to F1 (moved 2 from C2)");
     EXPECT_EQ(s.state().fault("C2")->ids, (std::vector<std::int64_t>{4, 5}));
     s.apply(cmd(R"({"op":"undo"})"));
     EXPECT_EQ(s.state(), before);

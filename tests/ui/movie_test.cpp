@@ -3,6 +3,7 @@
 #include "../core/test_files.hpp"
 #include "core/session/color_range.hpp"
 #include "core/session/session.hpp"
+#include "core/synth/demo_model.hpp"
 #include "gl_required.hpp"
 #include "headless_ui.hpp"
 #include "panel_fixture.hpp"
@@ -250,4 +251,39 @@ TEST_F(MovieTest, AMovieOfSomeFramesTakesTheRangeOfEveryFrame) {
     EXPECT_EQ(*movie.colorRange(), *all);
     EXPECT_EQ(all->low, -2.0);
     EXPECT_EQ(all->high, 2.0);
+}
+
+// Walkthrough of issue 41, item 8: the movie's dialog opened in the folder the workbench was
+// started in whatever the last export, and an unsaved session on the built-in demo offered the
+// demo's folder among the application's data. Exports now open where the last one went, else
+// beside the session, else beside the data; for the demo, in the launch folder.
+TEST_F(PanelTest, ExportDialogsOpenWhereTheLastExportWent) {
+    openLattice();
+    EXPECT_EQ(wb().exportFolder(),
+              std::filesystem::path(dir.file("lattice.dump")).parent_path().string());
+    wb().showMovieOptions();
+    headless.frames(wb(), 2);
+    headless.click(wb(), "movie.save");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().fileDialog().isOpen());
+    EXPECT_EQ(std::filesystem::weakly_canonical(wb().fileDialog().directory()),
+              std::filesystem::weakly_canonical(wb().exportFolder()));
+    headless.key(wb(), GLFW_KEY_ESCAPE);
+    headless.frames(wb(), 2);
+
+    // Data in the demo's folder: the launch folder instead.
+    const std::string home = dir.file("data-home");
+    const char* old = std::getenv("XDG_DATA_HOME");
+    const std::string saved = old ? old : "";
+    setenv("XDG_DATA_HOME", home.c_str(), 1);
+    std::filesystem::create_directories(core::demoModelFolder());
+    const std::string demo = core::demoModelFolder() + "/block.dump";
+    std::filesystem::copy_file(dir.file("lattice.dump"), demo);
+    wb().openData({demo});
+    headless.settle(wb());
+    EXPECT_EQ(wb().exportFolder(), std::filesystem::current_path().string());
+    if (old)
+        setenv("XDG_DATA_HOME", saved.c_str(), 1);
+    else
+        unsetenv("XDG_DATA_HOME");
 }

@@ -173,6 +173,9 @@ class PanelContext {
     virtual DockLayout& layout() = 0;
     virtual void commitLayout() = 0; // emits layout.set when the layout differs from the session's
     virtual FileDialog& fileDialog() = 0;
+    // Where export dialogs open: the last export's folder, else the session's, else the data's
+    // (the launch folder for the built-in demo).
+    virtual std::string exportFolder() const = 0;
     virtual ItemRegistry& items() = 0;
     void mark(const std::string& name) { items().markLastItem(name); }
     virtual PanelExtensions& extensions() = 0;

@@ -391,14 +391,14 @@ class SurfacesPanel final : public Panel {
                 "Export the density and colour grids of the " +
                     (core::isVisibleSpheres(fault) ? "visible spheres" : fault + " surface") +
                     " (OpenVDB)",
-                FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"}, exportFolder(wb),
+                FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"}, wb.exportFolder(),
                 (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
         flowSameLine(buttonWidth("Export glTF..."));
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
                                  FileDialog::Mode::Save,
                                  m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf",
-                                 {".glb", ".gltf"}, exportFolder(wb), "faults.glb");
+                                 {".glb", ".gltf"}, wb.exportFolder(), "faults.glb");
         ImGui::EndDisabled();
         flowSameLine(buttonWidth("Remove"));
         ImGui::BeginDisabled(!exists);
@@ -517,12 +517,6 @@ class SurfacesPanel final : public Panel {
                                   "centre, else white. auto (or a negative value): twice the "
                                   "mean radius");
         }
-    }
-
-    static std::string exportFolder(PanelContext& wb) {
-        const auto& paths = wb.state().dataPaths;
-        return paths.empty() ? std::string()
-                             : std::filesystem::path(paths.front()).parent_path().string();
     }
 };
 

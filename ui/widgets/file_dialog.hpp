@@ -23,6 +23,7 @@ class FileDialog {
     bool draw(float scale, ItemRegistry* items);
     bool isOpen() const { return m_open; }
     const std::string& purpose() const { return m_purpose; }
+    const std::string& directory() const { return m_directory; } // the folder listed
     const std::string& path() const { return m_result; }
 
   private:

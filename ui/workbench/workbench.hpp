@@ -157,7 +157,7 @@ class Workbench final : public PanelContext {
     void saveSessionAs(const std::string& path, std::function<void()> then = {});
     const std::string& sessionPath() const { return m_sessionPath; }
     // Where export dialogs open: the last export's folder, else the session's, else the data's.
-    std::string exportFolder() const;
+    std::string exportFolder() const override;
     const std::vector<std::string>& recentFiles() const { return m_recent; }
     // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
     std::size_t frameMemoryBudget() const override;

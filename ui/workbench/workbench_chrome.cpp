@@ -9,6 +9,8 @@
 // [SECTION] Prompts and file dialogs
 #include "ui/workbench/workbench.hpp"
 
+#include "core/synth/demo_model.hpp"
+
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 
@@ -64,17 +66,18 @@ const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
          [](W& w) { w.m_sessionPath.empty() ? w.saveSessionAsDialog() : w.saveSession(); }},
         {"save-as", "Ctrl+Shift+S", "Save the session as", GLFW_KEY_S, true, 1, false,
          [](W& w) { w.saveSessionAsDialog(); }},
+        // Nothing to undo or redo is said plainly, not as a failure in red (walkthrough).
         {"undo", "Ctrl+Z", "Undo", GLFW_KEY_Z, true, 0, false,
          [](W& w) {
-             w.emit({{"op", "undo"}});
+             w.m_session.canUndo() ? w.emit({{"op", "undo"}}) : w.info("Nothing to undo");
          }},
         {"redo", "Ctrl+Shift+Z", "Redo", GLFW_KEY_Z, true, 1, false,
          [](W& w) {
-             w.emit({{"op", "redo"}});
+             w.m_session.canRedo() ? w.emit({{"op", "redo"}}) : w.info("Nothing to redo");
          }},
         {"redo-y", "Ctrl+Y", "Redo", GLFW_KEY_Y, true, -1, false,
          [](W& w) {
-             w.emit({{"op", "redo"}});
+             w.m_session.canRedo() ? w.emit({{"op", "redo"}}) : w.info("Nothing to redo");
          }},
         {"quit", "Ctrl+Q", "Quit", GLFW_KEY_Q, true, -1, false, [](W& w) { w.requestQuit(); }},
         {"play", "Space", "Play / pause", GLFW_KEY_SPACE, false, -1, false,
@@ -265,7 +268,15 @@ std::string Workbench::exportFolder() const {
         return m_lastExportFolder;
     if (!m_sessionPath.empty())
         return folderOf(m_sessionPath);
-    return folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+    const std::string data =
+        folderOf(state().dataPaths.empty() ? std::string() : state().dataPaths.front());
+    // Not the demo's folder among the application's own data (walkthrough of issue 41): the
+    // folder the workbench was started in, as for an unsaved session without data.
+    std::error_code ec;
+    const fs::path demo = fs::weakly_canonical(core::demoModelFolder(), ec);
+    if (data.empty() || (!ec && fs::weakly_canonical(data, ec) == demo))
+        return fs::current_path(ec).string();
+    return data;
 }
 
 //-----------------------------------------------------------------------------

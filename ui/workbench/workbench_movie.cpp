@@ -185,9 +185,7 @@ void Workbench::drawMovie() {
         ImGui::TextDisabled("%zu frames at %d x %d", count, o.width, o.height);
         if (ImGui::Button("Save as...")) {
             m_showMovieOptions = false;
-            const std::string folder = m_sessionPath.empty()
-                                           ? std::string()
-                                           : fs::path(m_sessionPath).parent_path().string();
+            const std::string folder = exportFolder(); // where the last export went
             if (o.pngFrames)
                 m_dialog.open("Save a PNG per frame (name_0000.png, ...)", FileDialog::Mode::Save,
                               "export-movie", {".png"}, folder, "frame.png");
