@@ -33,6 +33,19 @@ class PanelTest : public ::testing::Test {
         ASSERT_NE(wb().mainDisplay()->frame, nullptr);
         headless.clearEmitted();
     }
+    // A second workbench on a session of its own that opens `file`, as after a restart.
+    struct Reopened {
+        core::Session session;
+        ui::Workbench wb;
+        Reopened() : wb(session, ui::WorkbenchOptions{}) {}
+    };
+    std::unique_ptr<Reopened> reopen(const std::string& file) {
+        auto r = std::make_unique<Reopened>();
+        headless.frames(r->wb, 2);
+        r->wb.openSession(file);
+        headless.settle(r->wb);
+        return r;
+    }
     // Opens a combo (marked `combo`) and picks its item (marked `item`), with nothing emitted
     // before; then lets the background work settle.
     void pickFromCombo(const std::string& combo, const std::string& item) {

@@ -210,12 +210,8 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderAfterReopeningASession) {
     session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"layer"})"));
     const std::string file = dir.file("h.faultline.json");
     session.apply({{"op", "session.save"}, {"path", file}});
-    core::Session other;
-    ui::WorkbenchOptions options;
-    ui::Workbench reopened(other, options);
-    headless.frames(reopened, 2);
-    reopened.openSession(file);
-    headless.settle(reopened);
+    const auto again = reopen(file);
+    ui::Workbench& reopened = again->wb;
     headless.showPanel(reopened, ui::panel_ids::kHistograms);
     headless.settle(reopened);
     EXPECT_FLOAT_EQ(headless.rect(reopened, "histogram.strain").y0, strainY);
@@ -239,18 +235,14 @@ TEST_F(PanelTest, AHistogramKeepsItsBinsAfterReopeningAtAnotherFrame) {
     const std::string file = dir.file("bins.faultline.json");
     wb().saveSessionAs(file);
     headless.settle(wb());
-    core::Session other;
-    ui::WorkbenchOptions options;
-    ui::Workbench reopened(other, options);
-    headless.frames(reopened, 2);
-    reopened.openSession(file);
-    headless.settle(reopened);
+    const auto again = reopen(file);
+    ui::Workbench& reopened = again->wb;
     headless.showPanel(reopened, ui::panel_ids::kHistograms);
     headless.settle(reopened);
-    const core::Json* again =
+    const core::Json* restored =
         std::as_const(reopened.layout()).panelSettings(ui::panel_ids::kHistograms);
-    ASSERT_NE(again, nullptr);
-    EXPECT_EQ((*again)["bins"], bins) << "chosen again on frame 2";
+    ASSERT_NE(restored, nullptr);
+    EXPECT_EQ((*restored)["bins"], bins) << "chosen again on frame 2";
 }
 
 // Issue 27: a box extent takes typing after one click; Enter commits one box.set, Escape puts

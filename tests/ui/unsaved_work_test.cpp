@@ -115,12 +115,9 @@ TEST_F(UnsavedWork, UndoAfterOpeningASessionCannotEmptyItsFile) {
     const auto sizeBefore = std::filesystem::file_size(file);
 
     // A fresh workbench opens the file, as after a restart.
-    core::Session other;
-    ui::WorkbenchOptions options;
-    ui::Workbench reopened(other, options);
-    headless.frames(reopened, 2);
-    reopened.openSession(file);
-    headless.settle(reopened);
+    const auto again = reopen(file);
+    ui::Workbench& reopened = again->wb;
+    const core::Session& other = again->session;
     ASSERT_NE(other.state().fault("F1"), nullptr) << reopened.lastMessage();
     headless.key(reopened, GLFW_KEY_Z, true); // Ctrl+Z: nothing to undo, the open stays
     headless.frames(reopened, 2);
