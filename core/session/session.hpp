@@ -81,6 +81,11 @@ class Session {
     std::string undoLabel() const {
         return m_undoLabels.empty() ? std::string() : m_undoLabels.back();
     }
+    // Names the last undo step in words its command cannot give (the demo's starting view).
+    void relabelLastUndo(std::string label) {
+        if (!m_undoLabels.empty())
+            m_undoLabels.back() = std::move(label);
+    }
     std::string redoLabel() const {
         return m_redoLabels.empty() ? std::string() : m_redoLabels.back();
     }

@@ -873,6 +873,23 @@ TEST(Session, PreviewRunsTheOpsOnACopyAndChangesNothing) {
     EXPECT_FALSE(s.state().fault("F"));
 }
 
+// The demo's starting view is one batch of five commands; its undo step says what it is
+// ("Undone: the demo's starting view"), not "5 changes", through undo and redo.
+TEST(Session, AStepCanBeNamedInWordsItsCommandCannotGive) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"batch","commands":[{"op":"frame.set","frame":2},
+        {"op":"threshold.add","variable":"strain","low":1,"high":1e30}]})"));
+    EXPECT_EQ(s.undoLabel(), "2 changes");
+    s.relabelLastUndo("the demo's starting view");
+    EXPECT_EQ(s.undoLabel(), "the demo's starting view");
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(s.redoLabel(), "the demo's starting view");
+    ASSERT_TRUE(s.redo());
+    EXPECT_EQ(s.undoLabel(), "the demo's starting view");
+}
+
 // Issue 41, item 3: a sphere belongs to at most one fault. Putting it into another moves it,
 // says so, and undoes exactly.
 TEST(Session, ASphereBelongsToOneFault) {

@@ -380,7 +380,10 @@ class HistogramsPanel final : public Panel {
                             static_cast<unsigned long long>(h->all.bins[k]),
                             static_cast<unsigned long long>(h->hasVisible ? h->visible.bins[k]
                                                                           : h->all.bins[k]));
-                ImGui::TextDisabled("drag to set the threshold; right-click for more");
+                // Right-click has something to offer only once there is a threshold.
+                ImGui::TextDisabled(t ? "drag to set the threshold; right-click to disable or "
+                                        "remove it"
+                                      : "drag across the plot to set a threshold");
                 ImGui::EndTooltip();
             }
         }

@@ -393,13 +393,23 @@ class SurfacesPanel final : public Panel {
                     " (OpenVDB)",
                 FileDialog::Mode::Save, "export-vdb:" + fault, {".vdb"}, wb.exportFolder(),
                 (core::isVisibleSpheres(fault) ? "visible" : fault) + ".vdb");
+        ImGui::EndDisabled();
+        // As File > Export: off until a surface is shown, rather than failing after the dialog
+        // (walkthrough of issue 41).
+        bool anyShown = false;
+        for (const auto& st : s.surfaces)
+            anyShown = anyShown || (st.visible && s.hasSurfaceSource(st.fault));
         flowSameLine(buttonWidth("Export glTF..."));
+        ImGui::BeginDisabled(!wb.dataset() || !anyShown);
         if (ImGui::Button("Export glTF..."))
             wb.fileDialog().open("Export the shown surfaces as glTF (one node per fault)",
                                  FileDialog::Mode::Save,
                                  m_gltfGlyphs ? "export-gltf+glyphs" : "export-gltf",
                                  {".glb", ".gltf"}, wb.exportFolder(), "faults.glb");
+        wb.mark("surfaces.export_gltf");
         ImGui::EndDisabled();
+        if (!anyShown && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("No surface is shown: tick one to export the shown surfaces");
         flowSameLine(buttonWidth("Remove"));
         ImGui::BeginDisabled(!exists);
         if (ImGui::Button("Remove"))

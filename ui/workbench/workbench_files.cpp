@@ -208,6 +208,9 @@ void Workbench::openDemo() {
         // The demo's view is where a session starts, not the user's work.
         const bool pristine = !m_session.modified();
         emit({{"op", "batch"}, {"commands", batch}}, [this, pristine] {
+            // "Undone: the demo's starting view", not "Undone: 5 changes" (walkthrough).
+            m_session.relabelLastUndo("the demo's starting view (its last frame, broken_bonds "
+                                      ">= 3)");
             if (pristine)
                 m_session.markSaved();
         });
