@@ -20,7 +20,6 @@ namespace faultline::core {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr std::size_t kGrain = 4096;
 
 bool sameIdOrder(const Frame& a, const Frame& b) {
     return a.ids.size() == b.ids.size() &&
