@@ -333,6 +333,28 @@ TEST_F(PanelTest, AChangeColouringOffersNoPerFrameRange) {
     EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "frame");
 }
 
+// Second walkthrough of issue 41: after choosing a change colouring in the colour popup, its
+// range fields still showed the value's range (0.0004 / 5.2278 against +-3.77) until applied,
+// so typing one end sent the other stale. They follow the range shown.
+TEST_F(PanelTest, TheRangeFieldsFollowTheRangeShown) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"strain"})"));
+    headless.settle(wb());
+    headless.click(wb(), "view.colour.main");
+    headless.frames(wb(), 2);
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","difference":"change","since_frame":0})"));
+    headless.settle(wb());
+    ASSERT_TRUE(headless.has(wb(), "view.range.high.main")) << "the popup stays open";
+    const double low = wb().mainDisplay()->colorRange[0];
+    EXPECT_EQ(low, -2.0); // the lattice's strain rises by one a frame, over three frames
+    headless.clearEmitted();
+    headless.retype(wb(), "view.range.high.main", "3");
+    headless.frames(wb(), 2);
+    ASSERT_EQ(headless.emitted("color.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("color.set")[0]["range"], Json::array({low, 3.0}));
+}
+
 namespace {
 class RecoveryTest : public PanelTest {
   protected:

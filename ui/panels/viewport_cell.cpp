@@ -270,8 +270,8 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
                        2 * style.FramePadding.x;
     const std::string shown = elided(colour, std::max(room, ImGui::CalcTextSize("...").x));
     if (ImGui::Button((shown + "##colour").c_str())) {
-        m_rangeEdit[0] = d.colorRange[0];
-        m_rangeEdit[1] = d.colorRange[1];
+        m_rangeEdit[0] = m_rangeShown[0] = d.colorRange[0];
+        m_rangeEdit[1] = m_rangeShown[1] = d.colorRange[1];
         m_sinceRelative = view.difference.reference.relative;
         m_sinceEdit = static_cast<int>(view.difference.reference.value);
         ImGui::OpenPopup("##colourpopup");
@@ -432,9 +432,18 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
             ImGui::SetTooltip("A change or a displacement is coloured over all frames (or a "
                               "fixed range),\nso that a colour means the same at every frame.");
     }
+    // The fields follow the range shown while the popup is open (a change colouring chosen in
+    // it brings another range), unless the user is typing in them.
+    if ((d.colorRange[0] != m_rangeShown[0] || d.colorRange[1] != m_rangeShown[1]) &&
+        !ImGui::IsAnyItemActive()) {
+        m_rangeEdit[0] = m_rangeShown[0] = d.colorRange[0];
+        m_rangeEdit[1] = m_rangeShown[1] = d.colorRange[1];
+    }
     const bool loDone = numberField("##lo", &m_rangeEdit[0], "%.5g", 110 * wb.scale());
+    wb.mark("view.range.low." + view.name);
     ImGui::SameLine();
     const bool hiDone = numberField("##hi", &m_rangeEdit[1], "%.5g", 110 * wb.scale());
+    wb.mark("view.range.high." + view.name);
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
         wb.emit({{"op", "color.set"},
                  {"view", view.name},

@@ -67,6 +67,7 @@ class ViewportCells {
     int m_frameEdit = 0;
     bool m_frameRelative = true;
     double m_rangeEdit[2] = {0, 1};
+    double m_rangeShown[2] = {0, 1}; // the view's range the fields last took
     bool m_sinceRelative = false;
     int m_sinceEdit = 0;
 };
