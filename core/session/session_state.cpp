@@ -21,6 +21,12 @@ std::string_view differenceModeName(ColorDifference::Mode mode) {
     return nameIn(kDifferenceModes, mode, "none");
 }
 
+RangeMode effectiveRangeMode(const ViewState& view) {
+    if (view.rangeMode == RangeMode::Fixed || view.difference.mode == ColorDifference::Mode::None)
+        return view.rangeMode;
+    return RangeMode::AllFrames;
+}
+
 std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count) {
     const FrameBinding& ref = view.difference.reference;
     const long long f = ref.relative ? static_cast<long long>(shown) + ref.value : ref.value;

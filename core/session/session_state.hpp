@@ -70,6 +70,10 @@ struct ViewState {
 
 // The reference frame of a view's difference colouring when it shows `shown` of `count` frames.
 std::size_t referenceFrame(const ViewState& view, std::size_t shown, std::size_t count);
+// The range a view's colours take: its mode, except that a change or a displacement spans all
+// frames unless fixed (issue 41: a colour then means the same at every frame), whatever the
+// mode says. The live view, figures and the colour popup all read it from here.
+RangeMode effectiveRangeMode(const ViewState& view);
 // What a view's colours mean, for its legend: "strain", "strain change since frame 10",
 // "displacement since frame 0" (empty: one colour).
 std::string colorTitle(const ViewState& view, std::size_t referenceFrame);

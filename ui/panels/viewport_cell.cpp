@@ -409,15 +409,12 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     } modes[] = {{"frame", "this frame's min to max (spheres shown)"},
                  {"all", "all frames (steady in playback)"},
                  {"fixed", "fixed"}};
-    // A change or displacement is coloured over all frames (or a fixed range) whatever the
-    // mode says, so a colour means the same at every frame (issue 41): there "this frame's"
-    // is off and says why, and "all frames" reads as chosen.
+    // The range the colours take (core::effectiveRangeMode): a change or displacement spans
+    // all frames unless fixed, so there "this frame's" is off and says why (issue 41).
     const bool difference = view.difference.mode != core::ColorDifference::Mode::None;
     for (const auto& m : modes) {
         const std::string_view mode = m.mode;
-        bool on = core::rangeModeName(view.rangeMode) == mode;
-        if (difference && mode != "fixed")
-            on = mode == "all" && view.rangeMode != core::RangeMode::Fixed;
+        const bool on = core::rangeModeName(core::effectiveRangeMode(view)) == mode;
         const bool off = difference && mode == "frame";
         ImGui::BeginDisabled(off);
         if (ImGui::RadioButton(m.label, on) && !on) {

@@ -241,12 +241,10 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         // Once the range over every frame is worked out (in the background), the view takes it,
         // as figures and movies do.
         const bool change = v.difference.mode == core::ColorDifference::Mode::Change;
-        if (v.rangeMode == core::RangeMode::AllFrames ||
-            v.difference.mode != core::ColorDifference::Mode::None) {
+        if (core::effectiveRangeMode(v) == core::RangeMode::AllFrames) {
             range = all;
-            if (v.rangeMode != core::RangeMode::Fixed)
-                if (const auto exact = exactAllFramesRange(v))
-                    range = *exact;
+            if (const auto exact = exactAllFramesRange(v))
+                range = *exact;
         }
         if (change) {
             const core::ValueRange r = core::symmetricAboutZero({range[0], range[1]});
@@ -257,8 +255,7 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
     }
     // Issue 41: "this frame's min to max" spans the spheres the view shows, not those that
     // thresholds, boxes or the faults shown hide.
-    if (v.rangeMode == core::RangeMode::CurrentFrame &&
-        v.difference.mode == core::ColorDifference::Mode::None && !v.colorVariable.empty() &&
+    if (core::effectiveRangeMode(v) == core::RangeMode::CurrentFrame && !v.colorVariable.empty() &&
         d.visibility && d.visibility->visibleCount > 0 &&
         d.visibility->visibleCount < d.frame->size()) {
         auto hit = std::find_if(m_visibleRanges.begin(), m_visibleRanges.end(), [&](const auto& e) {

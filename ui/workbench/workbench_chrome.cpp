@@ -288,7 +288,6 @@ void Workbench::drawMenus() {
         return;
     // Exports open where the last export went, else beside the session file, else the data
     // (issue 41: they opened in the demo's data folder).
-    const std::string dataFolder = exportFolder();
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open data...", keysOf("open-data")))
             runCommand("open-data");
@@ -312,13 +311,13 @@ void Workbench::drawMenus() {
             const bool faults = !state().faults.empty();
             if (ImGui::MenuItem("Fault members (CSV)...", nullptr, false, faults))
                 m_dialog.open("Export fault members as CSV (id,fault)", FileDialog::Mode::Save,
-                              "export-faults", {".csv"}, dataFolder, "faults.csv");
+                              "export-faults", {".csv"}, exportFolder(), "faults.csv");
             if (ImGui::MenuItem("Fault metrics (CSV)...", nullptr, false, faults))
                 m_dialog.open("Export fault metrics as CSV", FileDialog::Mode::Save,
-                              "export-metrics", {".csv"}, dataFolder, "fault_metrics.csv");
+                              "export-metrics", {".csv"}, exportFolder(), "fault_metrics.csv");
             if (ImGui::MenuItem("Fault tracks through time (CSV)...", nullptr, false, faults))
                 m_dialog.open("Export each fault's best-matching candidate per frame as CSV",
-                              FileDialog::Mode::Save, "export-tracks", {".csv"}, dataFolder,
+                              FileDialog::Mode::Save, "export-tracks", {".csv"}, exportFolder(),
                               "fault_tracks.csv");
             // Surfaces, as the Surfaces panel exports them.
             if (ImGui::BeginMenu("Surface grids (OpenVDB)",
@@ -330,7 +329,7 @@ void Workbench::drawMenus() {
                         m_dialog.open("Export the density and colour grids of the " +
                                           (visible ? label : st.fault + " surface") + " (OpenVDB)",
                                       FileDialog::Mode::Save, "export-vdb:" + st.fault, {".vdb"},
-                                      dataFolder, (visible ? "visible" : st.fault) + ".vdb");
+                                      exportFolder(), (visible ? "visible" : st.fault) + ".vdb");
                 }
                 ImGui::EndMenu();
             }
@@ -341,19 +340,19 @@ void Workbench::drawMenus() {
                             [](const core::SurfaceSettings& st) { return st.visible; });
             if (ImGui::MenuItem("Shown surfaces (glTF)...", nullptr, false, shown))
                 m_dialog.open("Export the shown surfaces as glTF (one node per fault)",
-                              FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"}, dataFolder,
-                              "faults.glb");
+                              FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"},
+                              exportFolder(), "faults.glb");
             m_items.markLastItem("menu.export.gltf");
             if (ImGui::MenuItem("Shown surfaces and their spheres (glTF)...", nullptr, false,
                                 shown))
                 m_dialog.open("Export the shown surfaces and their spheres as glTF",
                               FileDialog::Mode::Save, "export-gltf+glyphs", {".glb", ".gltf"},
-                              dataFolder, "faults.glb");
+                              exportFolder(), "faults.glb");
             ImGui::Separator();
             if (ImGui::MenuItem("Journal of this session...", nullptr, false,
                                 !m_session.journal().empty()))
                 m_dialog.open("Export the journal (replay with faultline replay)",
-                              FileDialog::Mode::Save, "export-journal", {".jsonl"}, dataFolder,
+                              FileDialog::Mode::Save, "export-journal", {".jsonl"}, exportFolder(),
                               "analysis.jsonl");
             if (ImGui::MenuItem("Movie (MP4) or frames (PNG)...", nullptr, false,
                                 dataset() != nullptr))
