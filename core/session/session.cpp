@@ -154,6 +154,7 @@ Json Session::execute(const Json& cmd) {
 
 void Session::apply(const Json& cmd) {
     m_note.clear();
+    m_moved.clear();
     const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
                                ? cmd["op"].get<std::string>()
                                : std::string();
@@ -198,12 +199,8 @@ void Session::apply(const Json& cmd) {
                 describeCommand(cmd, sized ? std::llabs(faultSize() - sizeBefore) : -1);
             // Spheres taken from other faults: the label says so ("add 285 spheres to "C1"
             // (moved 285 from Graben W)"), not a plain add (walkthrough of issue 41).
-            if (sized && m_note.rfind("moved ", 0) == 0) {
-                std::string moved = m_note.substr(0, m_note.find(';'));
-                if (const auto to = moved.rfind(" to " + name); to != std::string::npos)
-                    moved.resize(to);
-                label += " (" + moved + ")";
-            }
+            if (sized && !m_moved.empty())
+                label += " (moved " + m_moved + ")";
             m_undoLabels.push_back(std::move(label));
             m_undo.push_back(std::move(inverse));
             m_undoSerials.push_back(m_nextSerial++);

@@ -107,6 +107,12 @@ class Session {
     // spheres from C2 to F1"); empty when nothing. Ops add to it while they run.
     const std::string& lastNote() const { return m_note; }
     void addNote(const std::string& note) { m_note += (m_note.empty() ? "" : "; ") + note; }
+    // Spheres the last command took from other faults ("2 from C2, 1 from F3") into `into`:
+    // said in the note and in its undo step's label.
+    void noteMoved(const std::string& moved, const std::string& into) {
+        m_moved = moved;
+        addNote("moved " + moved + " to " + into);
+    }
 
     // Ops known to this session: the built-in ones and any registered by outer layers.
     bool knowsOp(const std::string& op) const;
@@ -183,6 +189,7 @@ class Session {
 
     SessionState m_state;
     std::string m_note;
+    std::string m_moved; // noteMoved's spheres, for the undo label
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
     std::vector<Json> m_undo;         // inverses, most recent last

@@ -104,7 +104,7 @@ void registerFaultOps(OpTable& ops) {
                 (moved.empty() ? "" : ", ") + std::to_string(taken.size()) + " from " + other.name;
         }
         if (!moved.empty())
-            s.addNote("moved " + moved + " to " + keep);
+            s.noteMoved(moved, keep);
         return giveBack;
     };
     // The inverse of an op that put spheres in a fault, with what it took from others after it.
