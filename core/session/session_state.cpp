@@ -77,6 +77,13 @@ const VariableThreshold* SessionState::threshold(std::string_view variable) cons
 const SurfaceSettings* SessionState::surface(std::string_view fault) const {
     return findIn(surfaces, &SurfaceSettings::fault, fault);
 }
+std::vector<std::string> SessionState::shownSurfaces() const {
+    std::vector<std::string> out;
+    for (const auto& st : surfaces)
+        if (st.visible && hasSurfaceSource(st.fault))
+            out.push_back(st.fault);
+    return out;
+}
 VariableThreshold* SessionState::threshold(std::string_view variable) {
     return findIn(thresholds, &VariableThreshold::variable, variable);
 }

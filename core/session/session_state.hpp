@@ -150,6 +150,9 @@ struct SessionState {
     }
     SurfaceSettings* surface(std::string_view fault);
     const SurfaceSettings* surface(std::string_view fault) const;
+    // The surfaces ticked to show whose fault (or the visible spheres) exists, in table order:
+    // what "export the shown surfaces" writes.
+    std::vector<std::string> shownSurfaces() const;
     bool operator==(const SessionState&) const = default;
 };
 

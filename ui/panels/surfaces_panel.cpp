@@ -396,9 +396,7 @@ class SurfacesPanel final : public Panel {
         ImGui::EndDisabled();
         // As File > Export: off until a surface is shown, rather than failing after the dialog
         // (walkthrough of issue 41).
-        bool anyShown = false;
-        for (const auto& st : s.surfaces)
-            anyShown = anyShown || (st.visible && s.hasSurfaceSource(st.fault));
+        const bool anyShown = !s.shownSurfaces().empty();
         flowSameLine(buttonWidth("Export glTF..."));
         ImGui::BeginDisabled(!wb.dataset() || !anyShown);
         if (ImGui::Button("Export glTF..."))

@@ -334,10 +334,7 @@ void Workbench::drawMenus() {
                 ImGui::EndMenu();
             }
             m_items.markLastItem("menu.export.vdb");
-            const bool shown =
-                dataset() &&
-                std::any_of(state().surfaces.begin(), state().surfaces.end(),
-                            [](const core::SurfaceSettings& st) { return st.visible; });
+            const bool shown = dataset() && !state().shownSurfaces().empty();
             if (ImGui::MenuItem("Shown surfaces (glTF)...", nullptr, false, shown))
                 m_dialog.open("Export the shown surfaces as glTF (one node per fault)",
                               FileDialog::Mode::Save, "export-gltf", {".glb", ".gltf"},
@@ -676,10 +673,7 @@ void Workbench::handleDialog() {
     else if (purpose.rfind("export-vdb:", 0) == 0)
         exportSurfaces({purpose.substr(11)}, path, true);
     else if (purpose == "export-gltf" || purpose == "export-gltf+glyphs") {
-        std::vector<std::string> faults;
-        for (const auto& st : state().surfaces)
-            if (st.visible && state().hasSurfaceSource(st.fault))
-                faults.push_back(st.fault);
+        const std::vector<std::string> faults = state().shownSurfaces();
         if (faults.empty())
             error("No surface is shown: tick one in the Surfaces panel first");
         else
