@@ -28,6 +28,15 @@ constexpr EnumName<FileFormat> kFormats[] = {{FileFormat::LammpsDump, "LAMMPS du
 
 std::string_view formatName(FileFormat format) { return nameIn(kFormats, format); }
 
+namespace {
+// The file's name without a compressor's extension: "dump.lammpstrj" for "run/dump.lammpstrj.gz".
+std::filesystem::path uncompressedName(const std::string& path) {
+    std::filesystem::path file = std::filesystem::path(path).filename();
+    const std::string ext = file.extension().string();
+    return ext == ".gz" || ext == ".bz2" || ext == ".xz" ? file.stem() : file;
+}
+} // namespace
+
 FileFormat detectFormat(const std::string& path) {
     ByteSource probe(path); // throws a clear error for a missing or unreadable file
     std::string head(4096, '\0');
@@ -48,10 +57,7 @@ FileFormat detectFormat(const std::string& path) {
         return FileFormat::MercuryData;
     // A file named as a LAMMPS trajectory that does not read as one gets the dump reader's
     // error ("expected ITEM: TIMESTEP ..."), not a table's (walkthrough of issue 41).
-    std::string name = std::filesystem::path(path).filename().string();
-    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0)
-        name.resize(name.size() - 3);
-    if (name.size() > 10 && name.compare(name.size() - 10, 10, ".lammpstrj") == 0)
+    if (uncompressedName(path).extension() == ".lammpstrj")
         return FileFormat::LammpsDump;
     // A table needs a text header naming x, y and z: parseTable checks that precisely.
     for (unsigned char c : head)
@@ -80,12 +86,8 @@ FrameLocation pieceOfFile(const std::string& path, FileFormat format, std::int64
 } // namespace
 
 std::optional<std::int64_t> numberInFileName(const std::string& path) {
-    std::filesystem::path file = std::filesystem::path(path).filename();
     // Without its extension (and a compressor's): "run_100.vtk", "data.0012.vtu", "t_5.csv.gz".
-    const std::string ext = file.extension().string();
-    if (ext == ".gz" || ext == ".bz2" || ext == ".xz")
-        file = file.stem();
-    std::string name = file.stem().string();
+    std::string name = uncompressedName(path).stem().string();
     std::size_t end = name.size();
     while (end > 0 && !std::isdigit(static_cast<unsigned char>(name[end - 1])))
         --end;
