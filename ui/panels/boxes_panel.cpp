@@ -1,5 +1,6 @@
 // Cutting boxes panel: the list (enable, name, keep/cut), add/duplicate/delete, and an editor
 // for the selected box: name, mode, min/max per axis as numbers and as fractions of the model.
+#include "core/session/commands.hpp"
 #include "core/session/items/box_codec.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
@@ -42,11 +43,7 @@ class BoxesPanel final : public Panel {
         ImGui::BeginDisabled(!frame);
         if (ImGui::Button("Add")) {
             const std::string name = uniqueName(s, "box");
-            wb.emit({{"op", "box.add"},
-                     {"name", name},
-                     {"min", model.lo},
-                     {"max", model.hi},
-                     {"mode", "keep"}},
+            wb.emit(core::cmd::boxAdd(name, model.lo, model.hi, core::BoxMode::Keep),
                     [&wb, name] { wb.selection().box = name; });
         }
         wb.mark("boxes.add");
@@ -55,16 +52,15 @@ class BoxesPanel final : public Panel {
         flowSameLine(buttonWidth("Duplicate"));
         ImGui::BeginDisabled(!sel);
         if (ImGui::Button("Duplicate") && sel) {
-            core::Json cmd = core::items::toJson(*sel);
             const std::string name = uniqueName(s, sel->name);
-            cmd["op"] = "box.add";
-            cmd["name"] = name;
-            wb.emit(cmd, [&wb, name] { wb.selection().box = name; });
+            core::CuttingBox copy = *sel;
+            copy.name = name;
+            wb.emit(core::cmd::boxAdd(copy), [&wb, name] { wb.selection().box = name; });
         }
         wb.mark("boxes.duplicate");
         flowSameLine(buttonWidth("Delete"));
         if (ImGui::Button("Delete") && sel)
-            wb.emit({{"op", "box.remove"}, {"name", sel->name}});
+            wb.emit(core::cmd::boxRemove(sel->name));
         wb.mark("boxes.delete");
         ImGui::EndDisabled();
         flowSameLine(checkboxWidth("Edit in view"));
@@ -97,7 +93,7 @@ class BoxesPanel final : public Panel {
                 ImGui::TableNextColumn();
                 bool enabled = b.enabled;
                 if (ImGui::Checkbox("##on", &enabled))
-                    wb.emit({{"op", "box.set"}, {"name", b.name}, {"enabled", enabled}});
+                    wb.emit(core::cmd::BoxSet(b.name).enabled(enabled));
                 wb.mark("boxes.enabled." + b.name);
                 ImGui::TableNextColumn();
                 ImGui::AlignTextToFramePadding();
@@ -140,7 +136,7 @@ class BoxesPanel final : public Panel {
         ImGui::InputText("##name", &m_name);
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != b.name) {
             const std::string next = m_name;
-            wb.emit({{"op", "box.set"}, {"name", b.name}, {"rename", next}},
+            wb.emit(core::cmd::BoxSet(b.name).rename(next),
                     [&wb, next] { wb.selection().box = next; });
         }
         ImGui::AlignTextToFramePadding();
@@ -148,10 +144,10 @@ class BoxesPanel final : public Panel {
         ImGui::SameLine(ImGui::GetFontSize() * 4);
         int mode = b.mode == core::BoxMode::Keep ? 0 : 1;
         if (ImGui::RadioButton("keep inside", &mode, 0) && b.mode != core::BoxMode::Keep)
-            wb.emit({{"op", "box.set"}, {"name", b.name}, {"mode", "keep"}});
+            wb.emit(core::cmd::BoxSet(b.name).mode(core::BoxMode::Keep));
         ImGui::SameLine();
         if (ImGui::RadioButton("cut inside", &mode, 1) && b.mode != core::BoxMode::Cut)
-            wb.emit({{"op", "box.set"}, {"name", b.name}, {"mode", "cut"}});
+            wb.emit(core::cmd::BoxSet(b.name).mode(core::BoxMode::Cut));
         wb.mark("boxes.mode.cut");
 
         const char* axes[3] = {"x (east)", "y (north)", "z (up)"};
@@ -169,7 +165,7 @@ class BoxesPanel final : public Panel {
             if (minTyped && lo != b.min[a]) {
                 auto mn = b.min;
                 mn[a] = std::min(lo, b.max[a]);
-                wb.emit({{"op", "box.set"}, {"name", b.name}, {"min", mn}});
+                wb.emit(core::cmd::BoxSet(b.name).min(mn));
             }
             ImGui::SameLine();
             const bool maxTyped = numberField("##max", &hi, "%.6g", half);
@@ -177,7 +173,7 @@ class BoxesPanel final : public Panel {
             if (maxTyped && hi != b.max[a]) {
                 auto mx = b.max;
                 mx[a] = std::max(hi, b.min[a]);
-                wb.emit({{"op", "box.set"}, {"name", b.name}, {"max", mx}});
+                wb.emit(core::cmd::BoxSet(b.name).max(mx));
             }
             // Fractions of the model's extent on this axis.
             const double extent = std::max(model.hi[a] - model.lo[a], 1e-12);
@@ -194,7 +190,7 @@ class BoxesPanel final : public Panel {
                 auto mn = b.min, mx = b.max;
                 mn[a] = model.lo[a] + m_frac[a][0] * extent;
                 mx[a] = model.lo[a] + m_frac[a][1] * extent;
-                core::Json cmd = {{"op", "box.set"}, {"name", b.name}, {"min", mn}, {"max", mx}};
+                const core::Json cmd = core::cmd::BoxSet(b.name).min(mn).max(mx);
                 if (e.released) {
                     wb.emit(cmd);
                     m_drag.reset();

@@ -1,5 +1,6 @@
 // Data panel: the files open, their frames, the current frame's columns with ranges, memory.
 #include "core/io/frame_source.hpp"
+#include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
@@ -29,7 +30,7 @@ class DataPanel final : public Panel {
         flowSameLine(buttonWidth("Close"));
         ImGui::BeginDisabled(!ds);
         if (ImGui::Button("Close"))
-            wb.emit({{"op", "data.close"}});
+            wb.emit(core::cmd::dataClose());
         wb.mark("data.close");
         ImGui::EndDisabled();
         if (!ds) {

@@ -1,6 +1,7 @@
 // Faults panel, "Candidates": linked groups of the visible spheres (k x (r_i + r_j)), found on
 // request and shown in distinct colours in the main view, largest first; the user accepts one as
 // a named fault (fault.create), or all at once (the journal's fault.candidates).
+#include "core/session/commands.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
 #include "ui/widgets/number_field.hpp"
@@ -81,14 +82,14 @@ class FaultCandidatesSection {
         flowSameLine(buttonWidth("Accept all"));
         ImGui::BeginDisabled(stale || m_prefix.empty());
         if (ImGui::Button("Accept all")) {
-            core::Json cmd = {{"op", "fault.candidates"},
-                              {"link", preview->options.link},
-                              {"min_size", preview->options.minSize},
-                              {"prefix", m_prefix}};
+            core::cmd::FaultCandidates cmd;
+            cmd.link(preview->options.link)
+                .minSize(static_cast<long long>(preview->options.minSize))
+                .prefix(m_prefix);
             if (preview->options.method == core::CandidateMethod::Connected)
-                cmd["method"] = "connected";
+                cmd.method(core::CandidateMethod::Connected);
             else if (preview->options.angle != core::kDefaultCandidateAngle)
-                cmd["angle"] = preview->options.angle;
+                cmd.angle(preview->options.angle);
             updateOverlaps(wb, *preview);
             wb.emit(withEmptiedRemoved(wb, cmd, m_overlaps),
                     [&wb] { wb.selection().candidates.reset(); });
@@ -281,13 +282,11 @@ class FaultCandidatesSection {
         for (const auto& row : overlaps)
             for (const auto& [fault, n] : row)
                 taken[fault] += n;
-        core::Json batch = core::Json::array({cmd});
+        std::vector<core::Json> batch{std::move(cmd)};
         for (const auto& [fault, n] : taken)
             if (const core::Fault* f = wb.state().fault(fault); f && n >= f->ids.size())
-                batch.push_back({{"op", "fault.delete"}, {"name", fault}});
-        if (batch.size() == 1)
-            return cmd;
-        return {{"op", "batch"}, {"commands", batch}};
+                batch.push_back(core::cmd::faultDelete(fault));
+        return core::cmd::batch(std::move(batch));
     }
 
     void clear(PanelContext& wb) {
@@ -302,13 +301,13 @@ class FaultCandidatesSection {
         if (m_prefix.empty() || wb.state().fault(name))
             name = nextFaultName(wb.state());
         const auto color = core::candidateColor(static_cast<std::size_t>(k));
-        core::Json cmd = {
-            {"op", "fault.create"}, {"name", name}, {"ids", cand.ids}, {"color", color}};
+        core::cmd::FaultCreate cmd(name, cand.ids);
+        cmd.color(color);
         const auto& shapes = wb.selection().candidates->shapes;
         if (static_cast<std::size_t>(k) < shapes.size())
             if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]);
                 !note.empty())
-                cmd["notes"] = note;
+                cmd.notes(note);
         updateOverlaps(wb, *wb.selection().candidates);
         const std::vector<std::vector<std::pair<std::string, std::size_t>>> mine = {
             m_overlaps.at(static_cast<std::size_t>(k))};

@@ -5,6 +5,7 @@
 #include "core/faults/tracking.hpp"
 #include "core/selection/column_view.hpp"
 #include "core/selection/visibility.hpp"
+#include "core/session/commands.hpp"
 #include "core/session/session.hpp"
 #include "ui/context/fault_metrics_cache.hpp"
 #include "ui/panels/panels.hpp"
@@ -296,7 +297,7 @@ class FaultMetricsSection {
             if (wb.playback().playing)
                 wb.playback().frame = *in.frame;
             else
-                wb.preview("faults.metrics.scrub", {{"op", "frame.set"}, {"frame", *in.frame}});
+                wb.preview("faults.metrics.scrub", core::cmd::frameSet(*in.frame));
         }
         if (in.released) {
             if (in.frame && !wb.playback().playing)

@@ -1,6 +1,7 @@
 // Faults panel: the table of named faults (visibility, colour, name, size, notes), creating one
 // from the visible spheres, adding/removing the visible ones, merge, delete, and which spheres
 // faults let through (fault.filter). Later analysis plugs in through PanelExtensions.
+#include "core/session/commands.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
@@ -21,8 +22,6 @@ constexpr float kPalette[][3] = {
     {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
     {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
 
-core::Json colorJson(const float c[3]) { return core::Json::array({c[0], c[1], c[2]}); }
-
 class FaultsPanel final : public Panel {
   public:
     const char* id() const override { return panel_ids::kFaults; }
@@ -38,7 +37,7 @@ class FaultsPanel final : public Panel {
         ImGui::BeginDisabled(!haveVisible);
         if (ImGui::Button("New from visible")) {
             const std::string name = nextFaultName(s);
-            wb.emit({{"op", "fault.create"}, {"name", name}, {"from", "visible"}},
+            wb.emit(core::cmd::faultCreateVisible(name),
                     [&wb, name] { wb.selection().faults = {name}; });
         }
         wb.mark("faults.create");
@@ -54,7 +53,7 @@ class FaultsPanel final : public Panel {
                 if (selected.count(f.name))
                     names.push_back(f.name);
             const std::string into = names.front();
-            wb.emit({{"op", "fault.merge"}, {"names", names}, {"into", into}},
+            wb.emit(core::cmd::faultMerge(names, into),
                     [&wb, into] { wb.selection().faults = {into}; });
         }
         ImGui::EndDisabled();
@@ -63,7 +62,7 @@ class FaultsPanel final : public Panel {
         if (ImGui::Button("Split")) {
             const std::string name = *selected.begin();
             const bool hadSurface = wb.state().surface(name) != nullptr;
-            wb.emit({{"op", "fault.split"}, {"name", name}}, [&wb, name, hadSurface] {
+            wb.emit(core::cmd::faultSplit(name), [&wb, name, hadSurface] {
                 wb.selection().faults = {name + ".1"};
                 int pieces = 0;
                 while (wb.state().fault(name + "." + std::to_string(pieces + 1)))
@@ -85,11 +84,10 @@ class FaultsPanel final : public Panel {
         flowSameLine(buttonWidth("Delete"));
         ImGui::BeginDisabled(selected.empty());
         if (ImGui::Button("Delete")) {
-            core::Json batch = core::Json::array();
+            std::vector<core::Json> batch;
             for (const auto& n : selected)
-                batch.push_back({{"op", "fault.delete"}, {"name", n}});
-            wb.emit(batch.size() == 1 ? batch[0]
-                                      : core::Json{{"op", "batch"}, {"commands", batch}});
+                batch.push_back(core::cmd::faultDelete(n));
+            wb.emit(core::cmd::batch(std::move(batch)));
         }
         wb.mark("faults.delete");
         ImGui::EndDisabled();
@@ -106,17 +104,17 @@ class FaultsPanel final : public Panel {
         ImGui::SetNextItemWidth(-1);
         if (ImGui::BeginCombo("##filter", current.c_str())) {
             if (ImGui::Selectable("all spheres", filter.mode == core::FaultFilter::Mode::All))
-                wb.emit({{"op", "fault.filter"}, {"mode", "all"}});
+                wb.emit(core::cmd::faultFilter("all"));
             wb.mark("faults.filter.all");
             if (ImGui::Selectable("spheres in visible faults",
                                   filter.mode == core::FaultFilter::Mode::Labelled))
-                wb.emit({{"op", "fault.filter"}, {"mode", "labelled"}});
+                wb.emit(core::cmd::faultFilter("labelled"));
             wb.mark("faults.filter.labelled");
             for (const auto& f : s.faults) {
                 if (ImGui::Selectable(("only " + f.name).c_str(),
                                       filter.mode == core::FaultFilter::Mode::Only &&
                                           filter.fault == f.name))
-                    wb.emit({{"op", "fault.filter"}, {"mode", "only"}, {"fault", f.name}});
+                    wb.emit(core::cmd::faultFilter("only", f.name));
                 wb.mark("faults.filter.only." + f.name);
             }
             ImGui::EndCombo();
@@ -175,7 +173,7 @@ class FaultsPanel final : public Panel {
             ImGui::TableNextColumn();
             bool visible = f.visible;
             if (ImGui::Checkbox("##visible", &visible))
-                wb.emit({{"op", "fault.set"}, {"name", f.name}, {"visible", visible}});
+                wb.emit(core::cmd::FaultSet(f.name).visible(visible));
             wb.mark("faults.visible." + f.name);
             ImGui::SameLine(0, 4);
             drawSwatch(wb, f);
@@ -241,7 +239,7 @@ class FaultsPanel final : public Panel {
         wb.mark("faults.rename." + f.name);
         if (enter && !m_renameText.empty() && m_renameText != f.name) {
             const std::string next = m_renameText;
-            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
+            wb.emit(core::cmd::FaultSet(f.name).rename(next),
                     [&wb, next] { wb.selection().faults = {next}; });
         }
         if (enter || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) ||
@@ -276,7 +274,7 @@ class FaultsPanel final : public Panel {
             ImGui::EndPopup();
         } else if (m_colorFault == f.name) {
             if (m_color[0] != f.color[0] || m_color[1] != f.color[1] || m_color[2] != f.color[2])
-                wb.emit({{"op", "fault.set"}, {"name", f.name}, {"color", colorJson(m_color)}});
+                wb.emit(core::cmd::FaultSet(f.name).color({m_color[0], m_color[1], m_color[2]}));
             m_colorFault.clear();
         }
     }
@@ -296,7 +294,7 @@ class FaultsPanel final : public Panel {
         ImGui::InputText("##name", &m_name);
         if (ImGui::IsItemDeactivatedAfterEdit() && !m_name.empty() && m_name != f.name) {
             const std::string next = m_name;
-            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"rename", next}},
+            wb.emit(core::cmd::FaultSet(f.name).rename(next),
                     [&wb, next] { wb.selection().faults = {next}; });
         }
         wb.mark("faults.name");
@@ -306,14 +304,14 @@ class FaultsPanel final : public Panel {
         ImGui::InputTextMultiline("##notes", &m_notes,
                                   ImVec2(-1, ImGui::GetTextLineHeight() * 3.2f));
         if (ImGui::IsItemDeactivatedAfterEdit() && m_notes != f.notes)
-            wb.emit({{"op", "fault.set"}, {"name", f.name}, {"notes", m_notes}});
+            wb.emit(core::cmd::FaultSet(f.name).notes(m_notes));
         wb.mark("faults.notes");
         ImGui::BeginDisabled(!haveVisible);
         // A narrow panel shortens the labels (the whole on hover) rather than cut them.
         const bool shortLabels =
             ImGui::GetContentRegionAvail().x < buttonWidth("Remove the visible spheres");
         if (ImGui::Button(shortLabels ? "Add visible###add" : "Add the visible spheres###add"))
-            wb.emit({{"op", "fault.add"}, {"name", f.name}, {"from", "visible"}});
+            wb.emit(core::cmd::faultAddVisible(f.name));
         if (shortLabels && ImGui::IsItemHovered())
             ImGui::SetTooltip("Add the visible spheres to %s", f.name.c_str());
         flowSameLine(buttonWidth(shortLabels ? "Remove visible" : "Remove the visible spheres"));
@@ -326,7 +324,7 @@ class FaultsPanel final : public Panel {
                     std::binary_search(f.ids.begin(), f.ids.end(), main->frame->ids[row]))
                     ids.push_back(main->frame->ids[row]);
             if (!ids.empty())
-                wb.emit({{"op", "fault.remove"}, {"name", f.name}, {"ids", ids}});
+                wb.emit(core::cmd::faultRemove(f.name, ids));
         }
         if (shortLabels && ImGui::IsItemHovered())
             ImGui::SetTooltip("Remove the visible spheres from %s", f.name.c_str());

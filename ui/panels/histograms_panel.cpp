@@ -1,6 +1,7 @@
 // Histograms panel: one plot per chosen variable with all spheres and the visible ones overlaid
 // (log scale optional). Dragging across a plot sets that variable's threshold; its edges are
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
+#include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
@@ -360,9 +361,9 @@ class HistogramsPanel final : public Panel {
         }
         if (ImGui::BeginPopupContextItem("##histmenu")) {
             if (t && ImGui::MenuItem(t->enabled ? "Disable the threshold" : "Enable the threshold"))
-                wb.emit({{"op", "threshold.set"}, {"variable", var}, {"enabled", !t->enabled}});
+                wb.emit(core::cmd::ThresholdSet(var).enabled(!t->enabled));
             if (t && ImGui::MenuItem("Remove the threshold"))
-                wb.emit({{"op", "threshold.remove"}, {"variable", var}});
+                wb.emit(core::cmd::thresholdRemove(var));
             if (!t)
                 ImGui::TextDisabled("Drag across the plot to set a threshold.");
             ImGui::EndPopup();
@@ -413,12 +414,12 @@ class HistogramsPanel final : public Panel {
 
     static core::Json command(const core::VariableThreshold* t, const std::string& var,
                               const Drag& d) {
-        core::Json cmd = {{"op", t ? "threshold.set" : "threshold.add"},
-                          {"variable", var},
-                          {"low", d.low},
-                          {"high", d.high}};
-        if (t && !t->enabled)
-            cmd["enabled"] = true; // dragging a threshold means using it
+        if (!t)
+            return core::cmd::ThresholdAdd(var).low(d.low).high(d.high);
+        core::cmd::ThresholdSet cmd(var);
+        cmd.low(d.low).high(d.high);
+        if (!t->enabled)
+            cmd.enabled(true); // dragging a threshold means using it
         return cmd;
     }
 

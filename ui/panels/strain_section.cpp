@@ -1,6 +1,7 @@
 #include "ui/panels/strain_section.hpp"
 
 #include "core/motion/strain_from_motion.hpp"
+#include "core/session/commands.hpp"
 #include "core/session/items/strain_codec.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/widgets/number_field.hpp"
@@ -47,7 +48,7 @@ void StrainSection::draw(PanelContext& wb) {
                               s.prefix.c_str());
         ImGui::SameLine(ImGui::GetContentRegionMax().x - removeW);
         if (ImGui::SmallButton("Remove"))
-            wb.emit({{"op", "strain.remove"}, {"prefix", s.prefix}});
+            wb.emit(core::cmd::strainRemove(s.prefix));
         wb.mark("strain.remove." + s.prefix);
         ImGui::PopID();
     }
@@ -115,15 +116,15 @@ void StrainSection::draw(PanelContext& wb) {
     flowSameLine(buttonWidth("Add"));
     ImGui::BeginDisabled(!ds);
     if (ImGui::Button("Add")) {
-        core::Json cmd = {{"op", "strain.add"}};
+        core::cmd::StrainAdd cmd;
         if (m_incremental)
-            cmd["since_offset"] = -m_offset;
+            cmd.sinceOffset(-m_offset);
         else
-            cmd["since_frame"] = m_sinceFrame;
+            cmd.sinceFrame(m_sinceFrame);
         if (m_cutoff > 0)
-            cmd["cutoff"] = m_cutoff;
+            cmd.cutoff(m_cutoff);
         if (!m_prefix.empty())
-            cmd["prefix"] = m_prefix;
+            cmd.prefix(m_prefix);
         wb.emit(cmd);
     }
     wb.mark("strain.add");

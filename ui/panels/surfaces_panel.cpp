@@ -9,6 +9,7 @@
 // [SECTION] The table of surfaces
 // [SECTION] A surface's settings and exports
 // [SECTION] A surface's colour
+#include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
@@ -114,7 +115,7 @@ class SurfacesPanel final : public Panel {
     // frame, found in the background (about 600 field sums over all of them). Without one (no
     // member in the frame) `cmd` goes as it is, unless it asks for nothing else.
     void emitWithWrappingIso(PanelContext& wb, const std::string& source,
-                             const core::SurfaceSettings& settings, core::Json cmd,
+                             const core::SurfaceSettings& settings, core::cmd::SurfaceSet cmd,
                              bool onlyIso = false) {
         const ViewDisplay* main = wb.mainDisplay();
         const core::Fault* found =
@@ -133,7 +134,7 @@ class SurfacesPanel final : public Panel {
             [&wb, frame = main->frame, fault, settings, cmd,
              onlyIso](JobControl&) mutable -> std::function<void()> {
                 if (const auto iso = core::faultWrappingIso(*frame, fault, settings))
-                    cmd["iso"] = *iso;
+                    cmd.iso(*iso);
                 else if (onlyIso)
                     return {};
                 return [&wb, cmd] { wb.emit(cmd); };
@@ -190,7 +191,8 @@ class SurfacesPanel final : public Panel {
         if (ImGui::Checkbox("##shown", &shown)) {
             if (shown)
                 m_fault = name; // the settings below are the surface just ticked
-            const core::Json cmd{{"op", "surface.set"}, {"fault", name}, {"visible", shown}};
+            core::cmd::SurfaceSet cmd(name);
+            cmd.visible(shown);
             // A new surface starts at the iso that wraps its spheres.
             if (!st && shown)
                 emitWithWrappingIso(wb, name, core::SurfaceSettings{}, cmd);
@@ -265,11 +267,6 @@ class SurfacesPanel final : public Panel {
             m_voxel = st.voxel;
             m_editing = fault;
         }
-        auto set = [&](core::Json fields) {
-            fields["op"] = "surface.set";
-            fields["fault"] = fault;
-            wb.emit(fields);
-        };
         textElided("Surface of " + sourceLabel(fault));
         // Fields 170 px wide where the panel allows, leaving room for their labels.
         const float w = std::max(
@@ -288,7 +285,7 @@ class SurfacesPanel final : public Panel {
                     core::SurfaceSettings next = st;
                     next.kernel = *core::parseKernel(k);
                     emitWithWrappingIso(wb, fault, next,
-                                        {{"op", "surface.set"}, {"fault", fault}, {"kernel", k}});
+                                        core::cmd::SurfaceSet(fault).kernel(next.kernel));
                 }
             }
             ImGui::EndCombo();
@@ -300,7 +297,7 @@ class SurfacesPanel final : public Panel {
                               "A new kernel takes the iso-value that wraps the spheres with it.");
         if (numberField("voxel", &m_voxel, "%.4g", w, "auto", 0.0) && m_voxel >= 0 &&
             m_voxel != st.voxel)
-            set({{"voxel", m_voxel}});
+            wb.emit(core::cmd::SurfaceSet(fault).voxel(m_voxel));
         wb.mark("surfaces.voxel");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
@@ -322,7 +319,7 @@ class SurfacesPanel final : public Panel {
         ImGui::SliderFloat("##iso", &m_iso, low, high, "",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoInput);
         if (ImGui::IsItemDeactivatedAfterEdit() && m_iso > 0)
-            set({{"iso", m_iso}});
+            wb.emit(core::cmd::SurfaceSet(fault).iso(m_iso));
         wb.mark("surfaces.iso");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The field value the surface passes through (%.3g .. %.3g here: "
@@ -333,12 +330,12 @@ class SurfacesPanel final : public Panel {
         double isoValue = m_iso;
         if (numberField("iso", &isoValue, "%.4g", valueW) && isoValue > 0) {
             m_iso = static_cast<float>(isoValue);
-            set({{"iso", isoValue}});
+            wb.emit(core::cmd::SurfaceSet(fault).iso(isoValue));
         }
         wb.mark("surfaces.iso_value");
         flowSameLine(buttonWidth("Wrap"));
         if (ImGui::Button("Wrap"))
-            emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
+            emitWithWrappingIso(wb, fault, st, core::cmd::SurfaceSet(fault), true);
         wb.mark("surfaces.wrap");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The iso-value whose surface wraps these spheres about half a "
@@ -346,10 +343,10 @@ class SurfacesPanel final : public Panel {
         ImGui::SetNextItemWidth(w);
         ImGui::SliderFloat("opacity", &m_opacity, 0.0f, 1.0f, "%.2f");
         if (ImGui::IsItemDeactivatedAfterEdit())
-            set({{"opacity", m_opacity}});
+            wb.emit(core::cmd::SurfaceSet(fault).opacity(m_opacity));
         wb.mark("surfaces.opacity");
 
-        drawColour(wb, s, st, set);
+        drawColour(wb, s, st);
 
         if (status.state == SurfaceStatus::State::Failed)
             ImGui::TextWrapped("Cannot build: %s", status.error.c_str());
@@ -371,7 +368,7 @@ class SurfacesPanel final : public Panel {
                               status.iso);
             ImGui::TextWrapped("%s", why);
             if (ImGui::Button("Wrap the spheres"))
-                emitWithWrappingIso(wb, fault, st, {{"op", "surface.set"}, {"fault", fault}}, true);
+                emitWithWrappingIso(wb, fault, st, core::cmd::SurfaceSet(fault), true);
             wb.mark("surfaces.empty_wrap");
         } else if (status.state == SurfaceStatus::State::Ready) {
             const core::Fault* whole = s.fault(fault);
@@ -411,7 +408,7 @@ class SurfacesPanel final : public Panel {
         flowSameLine(buttonWidth("Remove"));
         ImGui::BeginDisabled(!exists);
         if (ImGui::Button("Remove"))
-            wb.emit({{"op", "surface.remove"}, {"fault", fault}});
+            wb.emit(core::cmd::surfaceRemove(fault));
         ImGui::EndDisabled();
         ImGui::Checkbox("glTF with the spheres", &m_gltfGlyphs);
         wb.mark("surfaces.gltf_glyphs");
@@ -420,15 +417,14 @@ class SurfacesPanel final : public Panel {
                               "glyphs, in the surface's colours");
     }
 
-    // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and
-    // the reach w within which a voxel takes a sphere's colour.
-    template <typename Set>
     //-----------------------------------------------------------------------------
     // [SECTION] A surface's colour
     //-----------------------------------------------------------------------------
 
-    void drawColour(PanelContext& wb, const core::SessionState& s, const core::SurfaceSettings& st,
-                    const Set& set) {
+    // Figure 4 colour: the spheres' colours (the fault's, or a variable through a colour map) and
+    // the reach w within which a voxel takes a sphere's colour.
+    void drawColour(PanelContext& wb, const core::SessionState& s,
+                    const core::SurfaceSettings& st) {
         const ViewDisplay* main = wb.mainDisplay();
         // Fields 170 px wide where the panel allows, leaving room for their labels.
         const float w = std::max(
@@ -446,7 +442,7 @@ class SurfacesPanel final : public Panel {
                                                              : st.colorBy.c_str())) {
             if (ImGui::Selectable(plain.c_str(), st.colorBy.empty() && !own) &&
                 (!st.colorBy.empty() || own))
-                set({{"color_by", ""}, {"color", nullptr}});
+                wb.emit(core::cmd::SurfaceSet(st.fault).colorBy("").color(std::nullopt));
             wb.mark("surfaces.color_by.plain");
             if (ImGui::Selectable(custom, own) && !own) {
                 // Starts from the fault's colour turned to its complement: apart at once.
@@ -454,7 +450,7 @@ class SurfacesPanel final : public Panel {
                 if (const core::Fault* f = s.fault(st.fault))
                     for (int k = 0; k < 3; ++k)
                         c[k] = 1.0 - f->color[k];
-                set({{"color_by", ""}, {"color", c}});
+                wb.emit(core::cmd::SurfaceSet(st.fault).colorBy("").color(c));
             }
             wb.mark("surfaces.color_by.own");
             if (main && main->frame)
@@ -462,7 +458,7 @@ class SurfacesPanel final : public Panel {
                     const bool picked = ImGui::Selectable(v.c_str(), v == st.colorBy);
                     wb.mark("surfaces.color_by." + v);
                     if (picked && v != st.colorBy)
-                        set({{"color_by", v}, {"range", nullptr}});
+                        wb.emit(core::cmd::SurfaceSet(st.fault).colorBy(v).clearRange());
                 }
             ImGui::EndCombo();
         }
@@ -478,9 +474,10 @@ class SurfacesPanel final : public Panel {
                                  view->difference.mode == core::ColorDifference::Mode::None;
         ImGui::BeginDisabled(!viewColours);
         if (ImGui::Button("Like the view"))
-            set({{"color_by", view->colorVariable},
-                 {"map", core::colorMapName(view->colorMap)},
-                 {"range", {main->colorRange[0], main->colorRange[1]}}});
+            wb.emit(core::cmd::SurfaceSet(st.fault)
+                        .colorBy(view->colorVariable)
+                        .map(core::colorMapName(view->colorMap))
+                        .range(main->colorRange[0], main->colorRange[1]));
         ImGui::EndDisabled();
         wb.mark("surfaces.like_view");
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
@@ -494,7 +491,8 @@ class SurfacesPanel final : public Panel {
             ImGui::SetNextItemWidth(w);
             ImGui::ColorEdit3("surface colour", m_colour.data(), ImGuiColorEditFlags_NoInputs);
             if (ImGui::IsItemDeactivatedAfterEdit())
-                set({{"color", {m_colour[0], m_colour[1], m_colour[2]}}});
+                wb.emit(core::cmd::SurfaceSet(st.fault).color(
+                    std::array<double, 3>{m_colour[0], m_colour[1], m_colour[2]}));
             wb.mark("surfaces.colour");
         }
         if (!st.colorBy.empty()) {
@@ -503,7 +501,7 @@ class SurfacesPanel final : public Panel {
             if (ImGui::BeginCombo("map", currentMap.c_str())) {
                 for (const std::string& m : core::colorMapNames())
                     if (ImGui::Selectable(m.c_str(), m == currentMap) && m != currentMap)
-                        set({{"map", m}});
+                        wb.emit(core::cmd::SurfaceSet(st.fault).map(m));
                 ImGui::EndCombo();
             }
             if (st.colorRange)
@@ -518,7 +516,8 @@ class SurfacesPanel final : public Panel {
             if (m_reach < 0)
                 m_reach = -1.0; // auto
             if (reachTyped && m_reach != st.colorReach.value_or(-1.0))
-                set({{"color_reach", m_reach >= 0 ? core::Json(m_reach) : core::Json(nullptr)}});
+                wb.emit(core::cmd::SurfaceSet(st.fault).colorReach(
+                    m_reach >= 0 ? std::optional(m_reach) : std::nullopt));
             wb.mark("surfaces.reach");
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("w: a voxel takes a sphere's colour within radius + w of its "

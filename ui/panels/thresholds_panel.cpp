@@ -1,5 +1,6 @@
 // Thresholds panel: one row per variable threshold: enabled, low/high as numbers and on a range
 // slider over the variable's values in the current frame; add on any variable, remove.
+#include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
@@ -44,9 +45,9 @@ class ThresholdsPanel final : public Panel {
                     const bool chosen = ImGui::Selectable(v.c_str());
                     wb.mark("thresholds.add." + v);
                     if (chosen) {
-                        core::Json cmd = {{"op", "threshold.add"}, {"variable", v}};
+                        core::cmd::ThresholdAdd cmd(v);
                         if (vinfo.min <= vinfo.max)
-                            cmd["low"] = vinfo.min, cmd["high"] = vinfo.max;
+                            cmd.low(vinfo.min).high(vinfo.max);
                         wb.emit(cmd);
                     }
                 }
@@ -65,7 +66,7 @@ class ThresholdsPanel final : public Panel {
             ImGui::Separator();
             bool enabled = t.enabled;
             if (ImGui::Checkbox("##enabled", &enabled))
-                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"enabled", enabled}});
+                wb.emit(core::cmd::ThresholdSet(t.variable).enabled(enabled));
             wb.mark("thresholds.enabled." + t.variable);
             ImGui::SameLine();
             VariableInfo info{};
@@ -103,11 +104,11 @@ class ThresholdsPanel final : public Panel {
             const float half =
                 (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
             if (boundInput("low", &low, false, integer, half))
-                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"low", low}});
+                wb.emit(core::cmd::ThresholdSet(t.variable).low(low));
             wb.mark("thresholds.low." + t.variable);
             ImGui::SameLine();
             if (boundInput("high", &high, true, integer, half))
-                wb.emit({{"op", "threshold.set"}, {"variable", t.variable}, {"high", high}});
+                wb.emit(core::cmd::ThresholdSet(t.variable).high(high));
             wb.mark("thresholds.high." + t.variable);
 
             // Slider over the variable's range in this frame.
@@ -120,10 +121,8 @@ class ThresholdsPanel final : public Panel {
                 wb.mark("thresholds.slider." + t.variable);
                 if (e.changed)
                     drag.active = true;
-                core::Json cmd = {{"op", "threshold.set"},
-                                  {"variable", t.variable},
-                                  {"low", drag.lo},
-                                  {"high", drag.hi}};
+                const core::Json cmd =
+                    core::cmd::ThresholdSet(t.variable).low(drag.lo).high(drag.hi);
                 if (drag.active && !e.released)
                     wb.preview("threshold." + t.variable, cmd);
                 if (e.released && drag.active) {
@@ -134,7 +133,7 @@ class ThresholdsPanel final : public Panel {
             ImGui::PopID();
         }
         if (!toRemove.empty())
-            wb.emit({{"op", "threshold.remove"}, {"variable", toRemove}});
+            wb.emit(core::cmd::thresholdRemove(toRemove));
     }
 
   private:

@@ -1,6 +1,7 @@
 // Timeline panel: scrub the frames (the slider marks the frames already loaded), play/pause at a
 // chosen rate, step, loop, jump. Scrubbing and playing show frames at once; the session's frame
 // changes by one frame.set when the slider is released or playback pauses.
+#include "core/session/commands.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/icon_button.hpp"
@@ -139,7 +140,7 @@ class TimelinePanel final : public Panel {
             if (wb.playback().playing)
                 wb.playback().frame = f;
             else
-                wb.preview("timeline.scrub", {{"op", "frame.set"}, {"frame", f}});
+                wb.preview("timeline.scrub", core::cmd::frameSet(f));
         }
         if (ImGui::IsItemDeactivated() && m_scrub) {
             if (!wb.playback().playing)

@@ -7,6 +7,7 @@
 
 #include "ui/panels/viewport_cell.hpp"
 
+#include "core/session/commands.hpp"
 #include "core/session/items/camera_codec.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/context/frame_columns.hpp"
@@ -53,22 +54,21 @@ double sceneRadius(const ViewDisplay& d) { return d.frame ? d.sceneRadius : 1.0;
 // [SECTION] Commands for every view: presets, fit, projection
 //-----------------------------------------------------------------------------
 
-void ViewportCells::emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill) {
-    core::Json batch = core::Json::array();
+void ViewportCells::emitForViews(
+    PanelContext& wb, const std::function<void(const std::string&, core::cmd::CameraSet&)>& fill) {
+    std::vector<core::Json> batch;
     bool mainDone = false;
     for (const auto& v : wb.state().views) {
         if (v.linkedCamera && mainDone)
             continue; // follows the main view
-        core::Json cmd = {{"op", "camera.set"}, {"view", v.name}};
-        fill(cmd);
-        batch.push_back(cmd);
+        core::cmd::CameraSet cmd(v.name);
+        fill(v.name, cmd);
+        batch.push_back(std::move(cmd));
         if (v.linkedCamera)
             mainDone = true;
     }
-    if (batch.size() == 1)
-        wb.emit(batch[0]);
-    else if (!batch.empty())
-        wb.emit({{"op", "batch"}, {"commands", batch}});
+    if (!batch.empty())
+        wb.emit(core::cmd::batch(std::move(batch)));
 }
 
 void ViewportCells::presetAll(PanelContext& wb, const char* preset) {
@@ -76,24 +76,23 @@ void ViewportCells::presetAll(PanelContext& wb, const char* preset) {
     // spheres (as Fit visible does), so the model is never cropped by the old zoom.
     core::CameraState p;
     applyPreset(p, preset);
-    emitForViews(wb, [&](core::Json& cmd) {
-        cmd["azimuth"] = p.azimuth;
-        cmd["elevation"] = p.elevation;
-        fitVisibleInto(wb, cmd, &p);
+    emitForViews(wb, [&](const std::string& view, core::cmd::CameraSet& cmd) {
+        cmd.azimuth(p.azimuth).elevation(p.elevation);
+        fitVisibleInto(wb, view, cmd, &p);
     });
 }
 
 void ViewportCells::fitAll(PanelContext& wb) {
-    emitForViews(wb, [](core::Json& cmd) { cmd["distance"] = 0.0; });
+    emitForViews(wb, [](const std::string&, core::cmd::CameraSet& cmd) { cmd.distance(0.0); });
 }
 
-void ViewportCells::fitVisibleInto(PanelContext& wb, core::Json& cmd,
+void ViewportCells::fitVisibleInto(PanelContext& wb, const std::string& name,
+                                   core::cmd::CameraSet& cmd,
                                    const core::CameraState* orientation) {
-    const std::string name = cmd["view"].get<std::string>();
     const ViewDisplay* d = wb.view(name);
     const core::ViewState* v = wb.state().view(name);
     if (!d || !v || !d->frame || !d->visibility || d->visibility->visibleCount == 0) {
-        cmd["distance"] = 0.0; // nothing visible: the whole model
+        cmd.distance(0.0); // nothing visible: the whole model
         return;
     }
     core::CameraState camera = d->camera;
@@ -101,20 +100,21 @@ void ViewportCells::fitVisibleInto(PanelContext& wb, core::Json& cmd,
         camera.azimuth = orientation->azimuth, camera.elevation = orientation->elevation;
     const auto bounds = visibleBounds(*d->frame, d->visibility->mask);
     const core::CameraState c = wb.fitCamera(*v, camera, bounds.lo, bounds.hi);
-    cmd["target"] = c.target;
-    cmd["distance"] = c.distance;
+    cmd.target(c.target).distance(c.distance);
 }
 
 void ViewportCells::fitVisible(PanelContext& wb) {
-    emitForViews(wb, [&wb, this](core::Json& cmd) { fitVisibleInto(wb, cmd, nullptr); });
+    emitForViews(wb, [&wb, this](const std::string& view, core::cmd::CameraSet& cmd) {
+        fitVisibleInto(wb, view, cmd, nullptr);
+    });
 }
 
 void ViewportCells::setOrthographic(PanelContext& wb, bool ortho) {
-    emitForViews(wb, [&](core::Json& cmd) {
-        cmd["orthographic"] = ortho;
+    emitForViews(wb, [&](const std::string& view, core::cmd::CameraSet& cmd) {
+        cmd.orthographic(ortho);
         // Keep the display's fitted distance instead of "unset".
-        if (const ViewDisplay* d = wb.view(cmd["view"].get<std::string>()))
-            cmd["distance"] = d->camera.distance, cmd["target"] = d->camera.target;
+        if (const ViewDisplay* d = wb.view(view))
+            cmd.distance(d->camera.distance).target(d->camera.target);
     });
 }
 
@@ -284,7 +284,7 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     if (wb.state().views.size() > 1) {
         bool linked = view.linkedCamera;
         if (ImGui::Checkbox(linkedLabel, &linked))
-            wb.emit({{"op", "view.set"}, {"name", view.name}, {"linked_camera", linked}});
+            wb.emit(core::cmd::ViewSet(view.name).linkedCamera(linked));
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
                 "Linked cameras move together; unlink to look at this view on its own.");
@@ -296,7 +296,7 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
             pos.y + 3 * scale + (twoRows ? ImGui::GetFrameHeightWithSpacing() : 0.0f);
         ImGui::SetCursorScreenPos(ImVec2(pos.x + width - bw - 6 * scale, rowY));
         if (ImGui::Button("x", ImVec2(bw, 0)))
-            wb.emit({{"op", "view.remove"}, {"name", view.name}});
+            wb.emit(core::cmd::viewRemove(view.name));
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Close this view");
     }
@@ -367,9 +367,8 @@ void ViewportCells::drawFramePopup(PanelContext& wb, const core::ViewState& view
     if (!m_frameRelative)
         m_frameEdit = std::max(0, m_frameEdit);
     if (ImGui::Button("Apply") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter))) {
-        wb.emit({{"op", "view.set"},
-                 {"name", view.name},
-                 {m_frameRelative ? "offset" : "frame", m_frameEdit}});
+        wb.emit(m_frameRelative ? core::cmd::ViewSet(view.name).offset(m_frameEdit)
+                                : core::cmd::ViewSet(view.name).frame(m_frameEdit));
         ImGui::CloseCurrentPopup();
     }
     ImGui::EndPopup();
@@ -381,46 +380,43 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
         return;
     ImGui::TextDisabled("Colour by");
     if (ImGui::Selectable("plain colour", view.colorVariable.empty()))
-        wb.emit({{"op", "color.set"}, {"view", view.name}, {"variable", ""}});
+        wb.emit(core::cmd::ColorSet(view.name).variable(""));
     if (ImGui::Selectable("faults (each in its colour)", view.colorVariable == kFaultsVariable))
-        wb.emit({{"op", "color.set"},
-                 {"view", view.name},
-                 {"variable", kFaultsVariable},
-                 {"difference", "none"}});
+        wb.emit(core::cmd::ColorSet(view.name)
+                    .variable(kFaultsVariable)
+                    .difference(core::ColorDifference::Mode::None));
     if (d.frame)
         for (const auto& [v, info] : wb.columns().of(d.frame))
             if (ImGui::Selectable(v.c_str(), v == view.colorVariable))
-                wb.emit({{"op", "color.set"},
-                         {"view", view.name},
-                         {"variable", v},
-                         {"range_mode", view.rangeMode == core::RangeMode::Fixed
-                                            ? std::string("frame")
-                                            : std::string(core::rangeModeName(view.rangeMode))}});
+                wb.emit(core::cmd::ColorSet(view.name).variable(v).rangeMode(
+                    view.rangeMode == core::RangeMode::Fixed ? core::RangeMode::CurrentFrame
+                                                             : view.rangeMode));
     ImGui::Separator();
     ImGui::TextDisabled("Colour map");
     for (const std::string& m : core::colorMapNames())
         if (ImGui::Selectable(m.c_str(), core::colorMapName(view.colorMap) == m))
-            wb.emit({{"op", "color.set"}, {"view", view.name}, {"map", m}});
+            wb.emit(core::cmd::ColorSet(view.name).map(m));
     ImGui::Separator();
     ImGui::TextDisabled("Range");
     const struct {
-        const char* mode;
+        core::RangeMode mode;
         const char* label;
-    } modes[] = {{"frame", "this frame's min to max (spheres shown)"},
-                 {"all", "all frames (steady in playback)"},
-                 {"fixed", "fixed"}};
+    } modes[] = {{core::RangeMode::CurrentFrame, "this frame's min to max (spheres shown)"},
+                 {core::RangeMode::AllFrames, "all frames (steady in playback)"},
+                 {core::RangeMode::Fixed, "fixed"}};
     // The range the colours take (core::effectiveRangeMode): a change or displacement spans
     // all frames unless fixed, so there "this frame's" is off and says why (issue 41).
     const bool difference = view.difference.mode != core::ColorDifference::Mode::None;
     for (const auto& m : modes) {
-        const std::string_view mode = m.mode;
-        const bool on = core::rangeModeName(core::effectiveRangeMode(view)) == mode;
-        const bool off = difference && mode == "frame";
+        const std::string_view mode = core::rangeModeName(m.mode);
+        const bool on = core::effectiveRangeMode(view) == m.mode;
+        const bool off = difference && m.mode == core::RangeMode::CurrentFrame;
         ImGui::BeginDisabled(off);
         if (ImGui::RadioButton(m.label, on) && !on) {
-            core::Json cmd = {{"op", "color.set"}, {"view", view.name}, {"range_mode", m.mode}};
-            if (mode == "fixed")
-                cmd["range"] = {d.colorRange[0], d.colorRange[1]};
+            core::cmd::ColorSet cmd(view.name);
+            cmd.rangeMode(m.mode);
+            if (m.mode == core::RangeMode::Fixed)
+                cmd.range(d.colorRange[0], d.colorRange[1]);
             wb.emit(cmd);
         }
         wb.mark("view.range." + std::string(mode) + "." + view.name);
@@ -442,9 +438,7 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     const bool hiDone = numberField("##hi", &m_rangeEdit[1], "%.5g", 110 * wb.scale());
     wb.mark("view.range.high." + view.name);
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
-        wb.emit({{"op", "color.set"},
-                 {"view", view.name},
-                 {"range", {m_rangeEdit[0], m_rangeEdit[1]}}});
+        wb.emit(core::cmd::ColorSet(view.name).range(m_rangeEdit[0], m_rangeEdit[1]));
     drawDifference(wb, view);
     ImGui::EndPopup();
 }
@@ -460,8 +454,11 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
     } modes[] = {{Mode::None, "the value itself"},
                  {Mode::Change, "its change since a frame"},
                  {Mode::Displacement, "displacement since a frame"}};
-    auto since = [&](core::Json cmd) {
-        cmd[m_sinceRelative ? "since_offset" : "since_frame"] = m_sinceEdit;
+    auto since = [&](core::cmd::ColorSet cmd) {
+        if (m_sinceRelative)
+            cmd.sinceOffset(m_sinceEdit);
+        else
+            cmd.sinceFrame(m_sinceEdit);
         wb.emit(cmd);
     };
     for (const auto& m : modes) {
@@ -470,9 +467,7 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
             ImGui::BeginDisabled();
         if (ImGui::RadioButton(m.label, view.difference.mode == m.mode) &&
             view.difference.mode != m.mode)
-            since({{"op", "color.set"},
-                   {"view", view.name},
-                   {"difference", core::differenceModeName(m.mode)}});
+            since(core::cmd::ColorSet(view.name).difference(m.mode));
         if (needsVariable)
             ImGui::EndDisabled();
     }
@@ -494,7 +489,7 @@ void ViewportCells::drawDifference(PanelContext& wb, const core::ViewState& view
     const bool apply = ImGui::Button("Apply##since");
     wb.mark("view.since_apply." + view.name);
     if (apply || edited || enter) {
-        since({{"op", "color.set"}, {"view", view.name}});
+        since(core::cmd::ColorSet(view.name));
         ImGui::CloseCurrentPopup(); // applied: the popup has done its job
     }
 }
@@ -572,8 +567,7 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
                                   rayAt(m_drag.startMouse, d.camera), rayAt(io.MousePos, d.camera));
             const std::array<double, 3> mn{moved.lo.x, moved.lo.y, moved.lo.z},
                 mx{moved.hi.x, moved.hi.y, moved.hi.z};
-            const core::Json cmd = {
-                {"op", "box.set"}, {"name", box->name}, {"min", mn}, {"max", mx}};
+            const core::Json cmd = core::cmd::BoxSet(box->name).min(mn).max(mx);
             wb.preview("viewport.box", cmd);
             m_pendingBox = cmd;
         } else if (dx != 0 || dy != 0) {
@@ -583,9 +577,7 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
             else
                 pan(c, dx, dy, size.y);
             m_drag.current = c;
-            core::Json cmd = core::items::toJson(c);
-            cmd["op"] = "camera.set";
-            cmd["view"] = view.name;
+            const core::Json cmd = core::cmd::CameraSet(view.name).all(c);
             wb.preview("viewport.camera", cmd);
         }
         if (m_drag.mode != DragMode::BoxFace)
@@ -598,9 +590,7 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
             if (!m_pendingBox.is_null())
                 wb.emit(m_pendingBox);
         } else if (m_drag.mode != DragMode::None && !(m_drag.current == m_drag.start)) {
-            core::Json cmd = core::items::toJson(m_drag.current);
-            cmd["op"] = "camera.set";
-            cmd["view"] = view.name;
+            const core::Json cmd = core::cmd::CameraSet(view.name).all(m_drag.current);
             wb.emit(cmd);
         }
         m_pendingBox = nullptr;
@@ -621,9 +611,7 @@ void ViewportCells::interact(PanelContext& wb, const core::ViewState& view, cons
         m_wheel->lastTime = wb.now();
     }
     if (m_wheel && m_wheel->view == view.name) {
-        core::Json cmd = core::items::toJson(m_wheel->camera);
-        cmd["op"] = "camera.set";
-        cmd["view"] = view.name;
+        const core::Json cmd = core::cmd::CameraSet(view.name).all(m_wheel->camera);
         if (wb.now() - m_wheel->lastTime > 0.4) {
             wb.emit(cmd);
             m_wheel.reset();

@@ -4,6 +4,7 @@
 // outlines, handles, axes, frame label, the selection outline and the selected fault's members).
 #pragma once
 
+#include "core/session/commands.hpp"
 #include "ui/context/panel_context.hpp"
 #include "ui/panels/viewport_selection.hpp"
 
@@ -23,7 +24,8 @@ class ViewportCells {
     void fitVisible(PanelContext& wb); // to the visible spheres (boxes, thresholds, faults applied)
     // Sets a camera.set's target and distance to fit the view's visible spheres, seen with
     // `orientation`'s azimuth and elevation (the view's own when null).
-    void fitVisibleInto(PanelContext& wb, core::Json& cmd, const core::CameraState* orientation);
+    void fitVisibleInto(PanelContext& wb, const std::string& view, core::cmd::CameraSet& cmd,
+                        const core::CameraState* orientation);
     // Orbit / Rectangle / Lasso: what a left drag does in every view (the tool is the workbench's).
     void drawToolButtons(PanelContext& wb);
     void setOrthographic(PanelContext& wb, bool ortho);
@@ -41,7 +43,8 @@ class ViewportCells {
                   ImVec2 size);
     void drawOverlays(PanelContext& wb, const core::ViewState& view, const ViewDisplay& d,
                       const core::CameraState& cam, ImVec2 pos, ImVec2 size);
-    void emitForViews(PanelContext& wb, const std::function<void(core::Json&)>& fill);
+    void emitForViews(PanelContext& wb,
+                      const std::function<void(const std::string&, core::cmd::CameraSet&)>& fill);
 
     enum class DragMode { None, Orbit, Pan, BoxFace, Select };
     struct Drag {

@@ -2,6 +2,7 @@
 // binding (the current frame plus an offset, or a fixed frame) and colour variable, cameras
 // linked or independent. Camera drags and box-handle drags preview live and emit one command
 // when released; the 3-D image comes from the ViewRenderer (viewport_interaction.cpp).
+#include "core/session/commands.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/panels/viewport_cell.hpp"
@@ -36,18 +37,17 @@ class ViewportsPanel final : public Panel {
         ImGui::SetCursorPos(ImVec2(6 * scale, 4 * scale));
         ImGui::BeginDisabled(s.views.size() >= 4);
         if (ImGui::Button("Add view")) {
-            core::Json cmd = {{"op", "view.add"}, {"name", uniqueViewName(s)}};
+            const std::string added = uniqueViewName(s);
             const long long count =
                 wb.dataset() ? static_cast<long long>(wb.dataset()->frameCount()) : 1;
-            cmd["offset"] = -std::min<long long>(10, count - 1); // compare with an earlier moment
-            const std::string added = cmd["name"];
-            wb.emit(cmd);
+            // Compared with an earlier moment.
+            wb.emit(core::cmd::ViewAdd(added).offset(-std::min<long long>(10, count - 1)));
             // The cells narrow: every view is fitted again, the new one too (walkthrough of
             // issue 41: with two views each legend covered the block's east end until Fit).
             // Camera moves are no undo steps, so undo still takes the view away.
             for (const auto& v : s.views)
-                wb.emit({{"op", "camera.set"}, {"view", v.name}, {"distance", 0.0}});
-            wb.emit({{"op", "camera.set"}, {"view", added}, {"distance", 0.0}});
+                wb.emit(core::cmd::CameraSet(v.name).distance(0.0));
+            wb.emit(core::cmd::CameraSet(added).distance(0.0));
         }
         wb.mark("viewports.add");
         ImGui::EndDisabled();
@@ -85,12 +85,10 @@ class ViewportsPanel final : public Panel {
         bool context = main && main->contextPoints;
         flowSameLine(checkboxWidth("Hidden as points"));
         if (ImGui::Checkbox("Hidden as points", &context)) {
-            core::Json batch = core::Json::array();
+            std::vector<core::Json> batch;
             for (const auto& v : s.views)
-                batch.push_back(
-                    {{"op", "view.set"}, {"name", v.name}, {"context_points", context}});
-            wb.emit(batch.size() == 1 ? batch[0]
-                                      : core::Json{{"op", "batch"}, {"commands", batch}});
+                batch.push_back(core::cmd::ViewSet(v.name).contextPoints(context));
+            wb.emit(core::cmd::batch(std::move(batch)));
         }
         wb.mark("viewports.context");
         if (ImGui::IsItemHovered())

@@ -1,5 +1,7 @@
 #include "ui/viewport/fault_edit.hpp"
 
+#include "core/session/commands.hpp"
+
 #include <algorithm>
 
 namespace faultline::ui {
@@ -31,7 +33,7 @@ FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>
     }
     if (op == FaultEditOp::NewFault || (op == FaultEditOp::Add && !target)) {
         const std::string name = nextFaultName(state);
-        edit.command = {{"op", "fault.create"}, {"name", name}, {"ids", ids}};
+        edit.command = core::cmd::FaultCreate(name, ids);
         edit.selectNext = name;
         edit.message = "New fault " + name + " with " + plural(ids.size());
         return edit;
@@ -50,8 +52,8 @@ FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>
         return edit;
     }
     const bool add = op == FaultEditOp::Add;
-    edit.command = {
-        {"op", add ? "fault.add" : "fault.remove"}, {"name", target->name}, {"ids", change}};
+    edit.command = add ? core::cmd::faultAdd(target->name, change)
+                       : core::cmd::faultRemove(target->name, change);
     edit.message = (add ? "Added " : "Removed ") + plural(change.size()) +
                    (add ? " to " : " from ") + target->name;
     return edit;

@@ -1,6 +1,7 @@
 #include "ui/workbench/workbench.hpp"
 
 #include "core/session/command_label.hpp"
+#include "core/session/commands.hpp"
 
 #include "core/io/input_error.hpp"
 #include "core/selection/visibility.hpp"
@@ -135,7 +136,7 @@ std::size_t Workbench::displayFrame() const {
 void Workbench::commitLayout() {
     Json doc = m_layout.toJson();
     if (doc != state().dockLayout)
-        emit({{"op", "layout.set"}, {"layout", doc}});
+        emit(core::cmd::layoutSet(doc));
 }
 
 void Workbench::frame(double now) {
@@ -308,7 +309,7 @@ void Workbench::play() {
 void Workbench::pause() {
     m_playback.playing = false;
     if (m_playback.frame && *m_playback.frame != state().frame)
-        emit({{"op", "frame.set"}, {"frame", *m_playback.frame}});
+        emit(core::cmd::frameSet(*m_playback.frame));
     m_playback.frame.reset();
 }
 
@@ -328,7 +329,7 @@ void Workbench::stepFrames(long long delta) {
     }
     m_playback.frame.reset();
     if (static_cast<std::size_t>(f) != state().frame)
-        emit({{"op", "frame.set"}, {"frame", f}});
+        emit(core::cmd::frameSet(static_cast<std::size_t>(f)));
 }
 
 void Workbench::jumpToFrame(long long frame) {
@@ -341,7 +342,7 @@ void Workbench::jumpToFrame(long long frame) {
         return;
     }
     if (static_cast<std::size_t>(f) != state().frame)
-        emit({{"op", "frame.set"}, {"frame", f}});
+        emit(core::cmd::frameSet(static_cast<std::size_t>(f)));
 }
 
 void Workbench::updatePlayback() {

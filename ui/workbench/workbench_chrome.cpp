@@ -9,6 +9,7 @@
 // [SECTION] Prompts and file dialogs
 #include "ui/workbench/workbench.hpp"
 
+#include "core/session/commands.hpp"
 #include "core/synth/demo_model.hpp"
 
 #include "ui/context/frame_columns.hpp"
@@ -69,15 +70,15 @@ const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
         // Nothing to undo or redo is said plainly, not as a failure in red (walkthrough).
         {"undo", "Ctrl+Z", "Undo", GLFW_KEY_Z, true, 0, false,
          [](W& w) {
-             w.m_session.canUndo() ? w.emit({{"op", "undo"}}) : w.info("Nothing to undo");
+             w.m_session.canUndo() ? w.emit(core::cmd::undo()) : w.info("Nothing to undo");
          }},
         {"redo", "Ctrl+Shift+Z", "Redo", GLFW_KEY_Z, true, 1, false,
          [](W& w) {
-             w.m_session.canRedo() ? w.emit({{"op", "redo"}}) : w.info("Nothing to redo");
+             w.m_session.canRedo() ? w.emit(core::cmd::redo()) : w.info("Nothing to redo");
          }},
         {"redo-y", "Ctrl+Y", "Redo", GLFW_KEY_Y, true, -1, false,
          [](W& w) {
-             w.m_session.canRedo() ? w.emit({{"op", "redo"}}) : w.info("Nothing to redo");
+             w.m_session.canRedo() ? w.emit(core::cmd::redo()) : w.info("Nothing to redo");
          }},
         {"quit", "Ctrl+Q", "Quit", GLFW_KEY_Q, true, -1, false, [](W& w) { w.requestQuit(); }},
         {"play", "Space", "Play / pause", GLFW_KEY_SPACE, false, -1, false,
@@ -99,7 +100,7 @@ const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
         {"fit", "F", "Fit the model in the viewports", GLFW_KEY_F, false, -1, false,
          [](W& w) {
              if (w.dataset()) // distance 0: fit the model
-                 w.emit({{"op", "camera.set"}, {"view", "main"}, {"distance", 0.0}});
+                 w.emit(core::cmd::CameraSet("main").distance(0.0));
          }},
         {"screenshot", "F12", "Screenshot of the window (PNG in the working folder)", GLFW_KEY_F12,
          false, -1, false,
@@ -180,10 +181,9 @@ void Workbench::screenshotMainView(const std::string& path) {
     // The main view rendered offscreen at its size on screen, as a journal's render: the
     // window's own pixels still held the closing file dialog (issue 41).
     const auto [width, height] = figureSize();
-    core::Json cmd = {
-        {"op", "render"}, {"view", "main"}, {"path", path}, {"size", {width, height}}};
+    core::cmd::Render cmd("main", path, width, height);
     if (figureOptions.transparent)
-        cmd["transparent"] = true;
+        cmd.transparent(true);
     emit(cmd, [this, path] { info("Saved the main view to " + path); });
 }
 
@@ -360,7 +360,7 @@ void Workbench::drawMenus() {
         }
         ImGui::Separator();
         if (ImGui::MenuItem("Close data", nullptr, false, dataset() != nullptr))
-            guardUnsaved("Close the data", [this] { emit({{"op", "data.close"}}); });
+            guardUnsaved("Close the data", [this] { emit(core::cmd::dataClose()); });
         if (ImGui::MenuItem("Quit", keysOf("quit")))
             runCommand("quit");
         ImGui::EndMenu();
@@ -669,7 +669,7 @@ void Workbench::handleDialog() {
     else if (purpose == "export-movie")
         exportMovie(path);
     else if (purpose == "export-faults")
-        emit({{"op", "export.csv"}, {"what", "faults"}, {"path", path}});
+        emit(core::cmd::exportCsv("faults", path));
     else if (purpose.rfind("export-vdb:", 0) == 0)
         exportSurfaces({purpose.substr(11)}, path, true);
     else if (purpose == "export-gltf" || purpose == "export-gltf+glyphs") {
@@ -679,9 +679,9 @@ void Workbench::handleDialog() {
         else
             exportSurfaces(faults, path, false, purpose == "export-gltf+glyphs");
     } else if (purpose == "export-metrics") {
-        exportCsv({{"op", "export.csv"}, {"what", "fault_metrics"}, {"path", path}});
+        exportCsv(core::cmd::exportCsv("fault_metrics", path));
     } else if (purpose == "export-tracks") {
-        exportCsv({{"op", "export.csv"}, {"what", "fault_tracks"}, {"path", path}});
+        exportCsv(core::cmd::exportCsv("fault_tracks", path));
     } else if (purpose == "export-journal") {
         std::ofstream out(path);
         for (const auto& cmd : m_session.journal())

@@ -4,6 +4,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/session/atomic_file.hpp"
+#include "core/session/commands.hpp"
 #include "core/session/csv_exports.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/save_loss.hpp"
@@ -83,7 +84,7 @@ void Workbench::openData(std::vector<std::string> paths, std::function<void()> t
             return [this, paths, ds, then] {
                 rememberDataset(paths, ds);
                 const bool pristine = !m_session.modified();
-                emit({{"op", "data.open"}, {"paths", paths}}, [this, paths, then, pristine] {
+                emit(core::cmd::dataOpen(paths), [this, paths, then, pristine] {
                     if (pristine) // data opened into an untouched session: nothing to save yet
                         m_session.markSaved();
                     addRecent(paths.size() == 1 ? paths.front() : std::string());
@@ -123,9 +124,7 @@ void Workbench::openSession(const std::string& pathIn, std::vector<std::string> 
             return [this, path, s, ds, data] {
                 if (ds)
                     rememberDataset(s.dataPaths, ds);
-                Json cmd = {{"op", "session.open"}, {"path", path}};
-                if (!data.empty())
-                    cmd["data"] = data;
+                const Json cmd = core::cmd::sessionOpen(path, data);
                 const bool recovering = m_recovering;
                 emit(cmd, [this, path, recovering] {
                     if (recovering) { // saving asks for a real place, not the recovery file
@@ -187,27 +186,20 @@ void Workbench::openDemo() {
     auto showFaults = [this] {
         if (!m_session.dataset())
             return;
-        Json batch = Json::array();
-        batch.push_back({{"op", "frame.set"}, {"frame", m_session.dataset()->frameCount() - 1}});
+        std::vector<Json> batch;
+        batch.push_back(core::cmd::frameSet(m_session.dataset()->frameCount() - 1));
         if (state().view("main") && state().view("main")->colorVariable.empty())
-            batch.push_back({{"op", "color.set"},
-                             {"view", "main"},
-                             {"variable", "broken_bonds"},
-                             {"map", "blue-red"}});
+            batch.push_back(core::cmd::ColorSet("main").variable("broken_bonds").map("blue-red"));
         if (!state().threshold("broken_bonds"))
-            batch.push_back({{"op", "threshold.add"},
-                             {"variable", "broken_bonds"},
-                             {"low", 3},
-                             {"high", 1e30}});
+            batch.push_back(core::cmd::ThresholdAdd("broken_bonds").low(3).high(1e30));
         if (state().view("main")) {
-            batch.push_back({{"op", "view.set"}, {"name", "main"}, {"context_points", true}});
+            batch.push_back(core::cmd::ViewSet("main").contextPoints(true));
             // From above the south-west corner, so the faults' dip and their run show.
-            batch.push_back(
-                {{"op", "camera.set"}, {"view", "main"}, {"azimuth", -30}, {"elevation", 35}});
+            batch.push_back(core::cmd::CameraSet("main").azimuth(-30).elevation(35));
         }
         // The demo's view is where a session starts, not the user's work.
         const bool pristine = !m_session.modified();
-        emit({{"op", "batch"}, {"commands", batch}}, [this, pristine] {
+        emit(core::cmd::batch(std::move(batch)), [this, pristine] {
             // "Undone: the demo's starting view", not "Undone: 5 changes" (walkthrough).
             m_session.relabelLastUndo("the demo's starting view (its last frame, broken_bonds "
                                       ">= 3)");
@@ -256,10 +248,8 @@ void Workbench::exportSurfaces(std::vector<std::string> faults, const std::strin
             st = *saved;
         requests.push_back({*f, st});
     }
-    Json cmd = vdb ? Json{{"op", "export.vdb"}, {"fault", faults.front()}, {"path", path}}
-                   : Json{{"op", "export.gltf"}, {"faults", faults}, {"path", path}};
-    if (!vdb && glyphs)
-        cmd["glyphs"] = true;
+    const Json cmd = vdb ? core::cmd::exportVdb(faults.front(), path)
+                         : core::cmd::exportGltf(faults, path, glyphs);
     auto place = std::make_shared<JournalPlace>(m_session);
     m_jobs.start(
         "Exporting " + fs::path(path).filename().string(),
@@ -334,7 +324,7 @@ void Workbench::saveSessionAs(const std::string& pathIn, std::function<void()> t
 }
 
 void Workbench::writeSession(const std::string& path, std::function<void()> then) {
-    emit({{"op", "session.save"}, {"path", path}}, [this, path, then] {
+    emit(core::cmd::sessionSave(path), [this, path, then] {
         m_sessionPath = path;
         addRecent(path);
         info("Saved " + path);

@@ -4,6 +4,7 @@
 // Cancel. Journalled, like the background exports, once the movie is written.
 #include "ui/workbench/workbench.hpp"
 
+#include "core/session/commands.hpp"
 #include <imgui.h>
 
 #include <filesystem>
@@ -59,15 +60,12 @@ void Workbench::exportMovie(const std::string& pathIn) {
         path = framePattern(path);
     else if (fs::path(path).extension() != ".mp4")
         path += ".mp4";
-    Json cmd = {{"op", "render"},
-                {"view", "main"},
-                {"path", path},
-                {"size", {o.width, o.height}},
-                {"frames", {o.first, o.last}}};
+    core::cmd::Render cmd("main", path, o.width, o.height);
+    cmd.frames(o.first, o.last);
     if (o.step > 1)
-        cmd["step"] = o.step;
+        cmd.step(o.step);
     if (!o.pngFrames && o.fps != 10)
-        cmd["fps"] = o.fps;
+        cmd.fps(o.fps);
     SequenceRequest request;
     request.figure.view = "main";
     request.figure.path = path;
