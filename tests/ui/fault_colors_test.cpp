@@ -6,6 +6,8 @@
 #include "ui/dock/panel_ids.hpp"
 #include "ui/viewport/category_colors.hpp"
 
+#include <algorithm>
+
 using namespace faultline;
 using namespace faultline::test;
 using core::Json;
@@ -57,6 +59,37 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     EXPECT_EQ(session.state().faults.size(), 2u);
     EXPECT_NE(session.state().fault("C1"), nullptr); // the journal's default prefix, not F's
     EXPECT_FALSE(wb().selection().candidates.has_value());
+}
+
+// Issue 39: the preview is found in the frame the main view shows, the op in the session's
+// current frame. With the main view a frame behind, Accept all still makes the faults shown.
+TEST_F(PanelTest, AcceptAllMakesTheCandidatesShownWhenTheMainViewShowsAnotherFrame) {
+    openLattice();
+    // strain = x / 3 + frame: in [1.9, 2.1] the x = 3 wall in frame 1, the x = 0 wall in frame 2.
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    session.apply(
+        Json::parse(R"({"op":"threshold.add","variable":"strain","low":1.9,"high":2.1})"));
+    session.apply(Json::parse(R"({"op":"view.set","name":"main","offset":-1})"));
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->shownFrame, 1u);
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    ASSERT_TRUE(wb().selection().candidates.has_value());
+    ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 1u);
+    std::vector<std::int64_t> shown = wb().selection().candidates->set.candidates[0].ids;
+    std::sort(shown.begin(), shown.end());
+    EXPECT_EQ(shown.front(), 4); // the x = 3 wall: ids 4, 8, ..., 64
+    headless.frames(wb(), 2);
+    headless.click(wb(), "candidates.accept_all");
+    ASSERT_EQ(session.state().faults.size(), 1u);
+    std::vector<std::int64_t> made = session.state().faults[0].ids;
+    std::sort(made.begin(), made.end());
+    EXPECT_EQ(made, shown);
+    EXPECT_EQ(session.state().frame, 2u); // the current frame as it was
+    session.undo();                       // one step
+    EXPECT_TRUE(session.state().faults.empty());
+    EXPECT_EQ(session.state().frame, 2u);
 }
 
 // Issue 41: accepting a candidate took spheres out of existing faults with only a status line

@@ -91,8 +91,15 @@ class FaultCandidatesSection {
             else if (preview->options.angle != core::kDefaultCandidateAngle)
                 cmd.angle(preview->options.angle);
             updateOverlaps(wb, *preview);
-            wb.emit(withEmptiedRemoved(wb, cmd, m_overlaps),
-                    [&wb] { wb.selection().candidates.reset(); });
+            core::Json accept = withEmptiedRemoved(wb, cmd, m_overlaps);
+            // The op finds candidates in the session's current frame, the preview was found in
+            // the frame the main view shows (a view offset, a fixed frame, playback). Where they
+            // differ, the op runs at the previewed frame and the current frame comes back after
+            // it, in one undo step: the faults made are those shown (issue 39).
+            if (const std::size_t current = wb.state().frame; main->shownFrame != current)
+                accept = core::cmd::batch(
+                    {core::cmd::frameSet(main->shownFrame), accept, core::cmd::frameSet(current)});
+            wb.emit(accept, [&wb] { wb.selection().candidates.reset(); });
         }
         wb.mark("candidates.accept_all");
         ImGui::EndDisabled();
