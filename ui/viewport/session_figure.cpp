@@ -5,6 +5,7 @@
 #include "core/selection/visibility.hpp"
 #include "core/session/color_range.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/view_colors.hpp"
 #include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/render/surface_mesh.hpp"
@@ -52,51 +53,50 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
     scene.colorVariable = view->colorVariable;
     scene.style.contextPoints = view->contextPoints;
     scene.colorMap = view->colorMap;
-    // Difference colouring: the change since the view's reference frame, matched by id.
-    std::optional<core::AttributeColumn> difference;
     CategoryColoring categories; // "faults": each member in its fault's colour
+    core::ViewColoring coloring;
     if (view->colorVariable == kFaultsVariable && !frame->attribute(kFaultsVariable)) {
         categories = faultColoring(*frame, session.state().faults);
         scene.colorColumn = categories.values.get();
         scene.colorMap = core::ColorMapSpec{core::ColorMapKind::Palette, 10, categories.palette};
         scene.colorRange = core::ValueRange{0.0, double(categories.palette.size())};
         scene.style.categories = legendEntries(categories); // the faults' names
-
-    } else if (view->difference.mode != core::ColorDifference::Mode::None) {
-        const std::size_t ref = core::referenceFrame(*view, frameIndex, dataset->frameCount());
-        const auto refFrame = dataset->frame(ref);
-        try {
-            difference = view->difference.mode == core::ColorDifference::Mode::Change
-                             ? core::variableChange(*frame, *refFrame, view->colorVariable)
-                             : core::displacementSince(*frame, *refFrame);
-        } catch (const std::invalid_argument& e) {
-            throw CommandError(std::string("render: ") + e.what());
-        }
-        scene.colorVariable = core::colorTitle(*view, ref);
-        scene.colorColumn = &*difference;
-        if (request.colorRange)
-            scene.colorRange = *request.colorRange; // a movie's range, shared by its frames
-        else if (view->rangeMode == core::RangeMode::Fixed)
-            scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
-        else if (auto all = core::colorRangeOverFrames(*dataset, *view))
-            // Issue 41: one range over every frame, a change symmetric about zero, so figures
-            // of different frames share a legend and zero is always the middle colour.
-            scene.colorRange = *all;
-    } else if (!view->colorVariable.empty()) {
-        if (request.colorRange) {
-            scene.colorRange = *request.colorRange;
-        } else if (view->rangeMode == core::RangeMode::Fixed) {
-            scene.colorRange = core::ValueRange{view->range[0], view->range[1]};
-        } else if (view->rangeMode == core::RangeMode::AllFrames) {
-            // The range over every frame, so a series of figures shares one legend.
-            scene.colorRange = core::colorRangeOverFrames(*dataset, *view);
-        } else if (visibility.visibleCount > 0 && visibility.visibleCount < frame->size()) {
-            // "this frame's min to max": over the spheres shown, as the workbench does.
-            if (auto r = core::maskedRange(*frame, view->colorVariable, visibility.mask))
-                scene.colorRange = r->first < r->second
-                                       ? core::ValueRange{r->first, r->second}
-                                       : core::ValueRange{r->first - 0.5, r->first + 0.5};
-        }
+    } else if (!view->colorVariable.empty() ||
+               view->difference.mode != core::ColorDifference::Mode::None) {
+        // The view's rule (core::colorView, as the workbench shows it), everything computed
+        // here: the reference frame read, the range over every frame worked out.
+        core::ViewColorSources sources;
+        sources.frame = [&](std::size_t ref) { return dataset->frame(ref); };
+        sources.difference = [](const std::shared_ptr<const core::Frame>& now,
+                                const std::shared_ptr<const core::Frame>& ref,
+                                core::ColorDifference::Mode mode, const std::string& variable) {
+            try {
+                return std::make_shared<const core::AttributeColumn>(
+                    mode == core::ColorDifference::Mode::Change
+                        ? core::variableChange(*now, *ref, variable)
+                        : core::displacementSince(*now, *ref));
+            } catch (const std::invalid_argument& e) { // a figure says why, not one colour
+                throw CommandError(std::string("render: ") + e.what());
+            }
+        };
+        // A movie's frames share its range (request.colorRange), worked out once for them all.
+        sources.allFrames = [&](const core::ViewState& v, const std::string&,
+                                core::ValueRange inFrame) {
+            if (request.colorRange)
+                return *request.colorRange;
+            return core::colorRangeOverFrames(*dataset, v).value_or(inFrame);
+        };
+        sources.visibleRange = [](const core::Frame& f, const core::VisibilityResult& vis,
+                                  const std::string& variable) -> std::optional<core::ValueRange> {
+            if (const auto r = core::maskedRange(f, variable, vis.mask))
+                return core::ValueRange{r->first, r->second};
+            return std::nullopt;
+        };
+        coloring =
+            core::colorView(*view, frameIndex, dataset->frameCount(), frame, &visibility, sources);
+        scene.colorVariable = coloring.title;
+        scene.colorColumn = coloring.column.get();
+        scene.colorRange = request.colorRange ? *request.colorRange : coloring.range;
     }
     for (const auto& b : session.state().boxes)
         if (b.enabled)

@@ -1,6 +1,7 @@
 #include "ui/workbench/view_composer.hpp"
 
 #include "core/session/color_range.hpp"
+#include "core/session/view_colors.hpp"
 
 #include "core/model/frame_difference.hpp"
 #include "core/selection/visibility.hpp"
@@ -18,14 +19,6 @@ namespace {
 
 // Prefetch channels of difference colouring's reference frames (one per view, after the views').
 constexpr std::size_t kReferenceChannel = 64;
-
-std::array<double, 2> widen(std::array<double, 2> r) {
-    if (!std::isfinite(r[0]) || !std::isfinite(r[1]) || r[0] > r[1])
-        return {0, 1};
-    if (r[0] == r[1])
-        return {r[0] - 0.5, r[1] + 0.5};
-    return r;
-}
 
 } // namespace
 
@@ -210,71 +203,51 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         d.colorRange = {0.0, static_cast<double>(d.palette.size())};
         return;
     }
-    std::array<double, 2> range{0, 1};
-    std::string rangeKey = v.colorVariable; // whose all-frames range accumulates
-    if (v.difference.mode != core::ColorDifference::Mode::None) {
-        const std::size_t ref =
-            core::referenceFrame(v, d.shownFrame, m_session.dataset()->frameCount());
-        d.colorTitle.clear(); // one colour until the reference frame is here
-        if (auto refFrame = m_frames.request(ref, kReferenceChannel + channel)) {
-            try {
-                d.colorColumn = v.difference.mode == core::ColorDifference::Mode::Change
-                                    ? m_differences.change(d.frame, refFrame, v.colorVariable)
-                                    : m_differences.displacement(d.frame, refFrame);
-                d.colorTitle = rangeKey = core::colorTitle(v, ref);
-                if (d.colorColumn->min <= d.colorColumn->max)
-                    range = {d.colorColumn->min, d.colorColumn->max};
-            } catch (const std::invalid_argument&) {
-                // the frame lacks the variable: one colour
-            }
-        }
-    } else if (!v.colorVariable.empty()) {
-        if (auto info = m_columns.info(d.frame, v.colorVariable))
-            range = {info->min, info->max};
-    }
-    if (!d.colorTitle.empty()) {
-        auto& all = m_allFramesRange.try_emplace(rangeKey, range).first->second;
-        all = {std::min(all[0], range[0]), std::max(all[1], range[1])};
-        // Issue 41: a change colouring shares one range over the frames seen so far, symmetric
-        // about zero (zero change keeps the map's middle colour at every frame); displacement
-        // starts at 0.
-        // Once the range over every frame is worked out (in the background), the view takes it,
-        // as figures and movies do.
-        const bool change = v.difference.mode == core::ColorDifference::Mode::Change;
-        if (core::effectiveRangeMode(v) == core::RangeMode::AllFrames) {
-            range = all;
-            if (const auto exact = exactAllFramesRange(v))
-                range = *exact;
-        }
-        if (change) {
-            const core::ValueRange r = core::symmetricAboutZero({range[0], range[1]});
-            range = {r.low, r.high};
-        } else if (v.difference.mode == core::ColorDifference::Mode::Displacement) {
-            range[0] = 0.0;
-        }
-    }
-    // Issue 41: "this frame's min to max" spans the spheres the view shows, not those that
-    // thresholds, boxes or the faults shown hide.
-    if (core::effectiveRangeMode(v) == core::RangeMode::CurrentFrame && !v.colorVariable.empty() &&
-        d.visibility && d.visibility->visibleCount > 0 &&
-        d.visibility->visibleCount < d.frame->size()) {
+    // The rule is core's (core::colorView), shared with figures and movies; what is slow comes
+    // from this composer's caches and background jobs.
+    core::ViewColorSources sources;
+    sources.frame = [&](std::size_t ref) {
+        return m_frames.request(ref, kReferenceChannel + channel);
+    };
+    sources.difference = [&](const std::shared_ptr<const core::Frame>& now,
+                             const std::shared_ptr<const core::Frame>& ref,
+                             core::ColorDifference::Mode mode, const std::string& variable) {
+        return mode == core::ColorDifference::Mode::Change
+                   ? m_differences.change(now, ref, variable)
+                   : m_differences.displacement(now, ref);
+    };
+    // The range over the frames seen so far, until the range over every frame is worked out
+    // (in the background): the view then takes it, as figures and movies do.
+    sources.allFrames = [&](const core::ViewState& view, const std::string& title,
+                            core::ValueRange inFrame) {
+        auto& all = m_allFramesRange.try_emplace(title, std::array{inFrame.low, inFrame.high})
+                        .first->second;
+        all = {std::min(all[0], inFrame.low), std::max(all[1], inFrame.high)};
+        const auto exact = exactAllFramesRange(view);
+        return exact ? core::ValueRange{(*exact)[0], (*exact)[1]}
+                     : core::ValueRange{all[0], all[1]};
+    };
+    sources.visibleRange = [&](const core::Frame& frame, const core::VisibilityResult&,
+                               const std::string& variable) -> std::optional<core::ValueRange> {
         auto hit = std::find_if(m_visibleRanges.begin(), m_visibleRanges.end(), [&](const auto& e) {
-            return e.visibility == d.visibility && e.variable == v.colorVariable;
+            return e.visibility == d.visibility && e.variable == variable;
         });
         if (hit == m_visibleRanges.end()) {
             if (m_visibleRanges.size() >= 8)
                 m_visibleRanges.erase(m_visibleRanges.begin());
             m_visibleRanges.push_back(
-                {d.visibility, v.colorVariable,
-                 core::maskedRange(*d.frame, v.colorVariable, d.visibility->mask)});
+                {d.visibility, variable, core::maskedRange(frame, variable, d.visibility->mask)});
             hit = m_visibleRanges.end() - 1;
         }
-        if (hit->range)
-            range = {hit->range->first, hit->range->second};
-    }
-    if (v.rangeMode == core::RangeMode::Fixed)
-        range = v.range;
-    d.colorRange = widen(range);
+        if (!hit->range)
+            return std::nullopt;
+        return core::ValueRange{hit->range->first, hit->range->second};
+    };
+    const core::ViewColoring c = core::colorView(v, d.shownFrame, m_session.dataset()->frameCount(),
+                                                 d.frame, d.visibility.get(), sources);
+    d.colorColumn = c.column;
+    d.colorTitle = c.title;
+    d.colorRange = {c.range.low, c.range.high};
 }
 
 const CategoryColoring* ViewComposer::categoriesFor(const core::ViewState& v, const ViewDisplay& d,
