@@ -24,9 +24,10 @@ Session::Session() {
     detail::registerSessionOps(ops);
     detail::registerStrainOps(ops);
     for (auto& [name, entry] : ops)
-        m_ops[name] = OpEntry{std::move(entry.first), entry.second};
+        m_ops.add(name, std::move(entry.first), entry.second);
     // A group of commands that undoes as one (e.g. accepting every candidate).
-    m_ops["batch"] = OpEntry{
+    m_ops.add(
+        "batch",
         [](Session& s, const Json& cmd) -> Json {
             args::onlyFields(cmd, {"commands"});
             const Json& list = args::require(cmd, "commands");
@@ -51,7 +52,7 @@ Session::Session() {
             std::reverse(inverses.begin(), inverses.end());
             return Json{{"op", "batch"}, {"commands", inverses}};
         },
-        true};
+        true);
 }
 
 Session::~Session() = default;
@@ -74,18 +75,18 @@ Json layoutShape(Json layout) {
 } // namespace
 
 bool Session::knowsOp(const std::string& op) const {
-    return op == "undo" || op == "redo" || m_ops.count(op) > 0;
+    return op == "undo" || op == "redo" || m_ops.find(op) != nullptr;
 }
 
 std::vector<std::string> Session::knownOps() const {
     std::vector<std::string> out{"undo", "redo"};
-    for (const auto& [name, e] : m_ops)
-        out.push_back(name);
+    for (std::string& name : m_ops.names())
+        out.push_back(std::move(name));
     return out;
 }
 
 void Session::registerOp(const std::string& op, OpHandler handler, bool changesState) {
-    m_ops[op] = OpEntry{std::move(handler), changesState};
+    m_ops.add(op, std::move(handler), changesState);
 }
 
 Json Session::run(const Json& cmd, bool& changesState) {
@@ -95,12 +96,12 @@ Json Session::run(const Json& cmd, bool& changesState) {
     if (opIt == cmd.end() || !opIt->is_string())
         throw CommandError("a command needs an \"op\" string: " + cmd.dump());
     const std::string op = opIt->get<std::string>();
-    auto it = m_ops.find(op);
-    if (it == m_ops.end())
+    const OpRegistry::Entry* entry = m_ops.find(op);
+    if (!entry)
         throw CommandError("unknown op \"" + op + "\"");
-    changesState = it->second.changesState;
+    changesState = entry->changesState;
     m_markSavedAfterOp = false;
-    Json inverse = it->second.handler(*this, cmd);
+    Json inverse = entry->handler(*this, cmd);
     if (changesState) {
         syncDerived();
         ++m_version;
@@ -123,14 +124,14 @@ Session::Preview Session::preview(std::span<const Json> commands) {
         const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
                                    ? cmd["op"].get<std::string>()
                                    : std::string();
-        auto it = m_ops.find(op);
-        if (!kPreviewable.count(op) || it == m_ops.end())
+        const OpRegistry::Entry* entry = m_ops.find(op);
+        if (!kPreviewable.count(op) || !entry)
             continue;
         const auto keepBoxes = m_state.boxes;
         const auto keepThresholds = m_state.thresholds;
         const auto keepViews = m_state.views;
         try {
-            it->second.handler(*this, cmd);
+            entry->handler(*this, cmd);
             ++out.applied;
         } catch (const CommandError&) {
             m_state.boxes = keepBoxes; // ops change nothing when they refuse; to be sure
@@ -209,76 +210,30 @@ void Session::apply(const Json& cmd) {
             m_redoLabels.clear();
         }
     }
-    journalLine(cmd);
+    m_journal.record(cmd);
 }
 
 void Session::checkAction(const Json& cmd) const {
     const std::string op = cmd.is_object() && cmd.contains("op") && cmd["op"].is_string()
                                ? cmd["op"].get<std::string>()
                                : std::string();
-    auto it = m_ops.find(op);
-    if (it == m_ops.end() || it->second.changesState)
+    const OpRegistry::Entry* entry = m_ops.find(op);
+    if (!entry || entry->changesState)
         throw CommandError("settleAction: \"" + op + "\" is not an action");
 }
 
-void Session::journalLine(const Json& cmd) {
-    if (!m_waiting.empty()) {
-        m_waiting.push_back({0, true, cmd});
-        if (m_heldSink)
-            m_heldSink(cmd);
-        return;
-    }
-    m_journal.push_back(cmd);
-    if (m_journalSink)
-        m_journalSink(cmd);
-}
-
-void Session::flushJournal() {
-    while (!m_waiting.empty() && m_waiting.front().settled) {
-        std::optional<Json> cmd = std::move(m_waiting.front().cmd);
-        m_waiting.pop_front();
-        if (cmd) {
-            m_journal.push_back(*cmd);
-            if (m_journalSink)
-                m_journalSink(*cmd);
-        }
-    }
-}
-
-std::uint64_t Session::reserveAction() {
-    m_waiting.push_back({m_nextPlace, false, std::nullopt});
-    return m_nextPlace++;
-}
+std::uint64_t Session::reserveAction() { return m_journal.reserve(); }
 
 void Session::settleAction(std::uint64_t place, const Json& cmd) {
     checkAction(cmd);
-    for (auto& line : m_waiting)
-        if (line.place == place && !line.settled) {
-            line.settled = true;
-            line.cmd = cmd;
-            break;
-        }
-    flushJournal();
+    m_journal.settle(place, cmd);
 }
 
-void Session::dropAction(std::uint64_t place) {
-    for (auto& line : m_waiting)
-        if (line.place == place)
-            line.settled = true;
-    flushJournal();
-}
+void Session::dropAction(std::uint64_t place) { m_journal.drop(place); }
 
-void Session::dropPendingActions() {
-    for (auto& line : m_waiting)
-        line.settled = true;
-    flushJournal();
-}
+void Session::dropPendingActions() { m_journal.dropPending(); }
 
-std::size_t Session::pendingActions() const {
-    return static_cast<std::size_t>(
-        std::count_if(m_waiting.begin(), m_waiting.end(),
-                      [](const JournalLine& l) { return l.place != 0 && !l.settled; }));
-}
+std::size_t Session::pendingActions() const { return m_journal.pending(); }
 
 void Session::clearHistory() {
     // A new history starts at a new position; an unmodified session stays unmodified.

@@ -7,14 +7,14 @@
 #include "core/faults/frame_loader.hpp"
 #include "core/selection/visibility.hpp"
 #include "core/session/command_args.hpp"
+#include "core/session/journal_recorder.hpp"
+#include "core/session/op_registry.hpp"
 #include "core/session/session_state.hpp"
 
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,7 +25,7 @@ class Session {
   public:
     // A state op returns the command that undoes it; an action (export, render, save) returns
     // null and is not undoable. Either throws CommandError, having changed nothing.
-    using OpHandler = std::function<Json(Session&, const Json& cmd)>;
+    using OpHandler = OpRegistry::Handler;
 
     Session();
     ~Session();
@@ -122,14 +122,13 @@ class Session {
 
     // Every command applied, in order, as given (the journal). `sink`, when set, receives each
     // line as it is applied (the GUI appends it to the session's journal file).
-    const std::vector<Json>& journal() const { return m_journal; }
+    const std::vector<Json>& journal() const { return m_journal.lines(); }
     // `held`, when set, also receives each line the moment it is recorded behind an unsettled
     // background action (reserveAction), before `sink` gets it in its place: the GUI writes it as
     // a comment, so a crash during a long export loses none of the user's commands.
     void setJournalSink(std::function<void(const Json&)> sink,
                         std::function<void(const Json&)> held = nullptr) {
-        m_journalSink = std::move(sink);
-        m_heldSink = std::move(held);
+        m_journal.setSinks(std::move(sink), std::move(held));
     }
 
     // Paths in commands are relative to baseDir (the journal's folder); outputs (exports,
@@ -205,25 +204,10 @@ class Session {
     std::function<bool()> m_interruptCheck;
     std::vector<Json> m_redo;                            // commands that redo, most recent last
     std::vector<std::string> m_undoLabels, m_redoLabels; // describeCommand of each entry
-    void journalLine(const Json& cmd);                   // after any reserved places
-    void flushJournal();                                 // the lines no open place holds back
     void checkAction(const Json& cmd) const;
 
-    std::vector<Json> m_journal;
-    std::function<void(const Json&)> m_journalSink;
-    std::function<void(const Json&)> m_heldSink;
-    struct JournalLine {
-        std::uint64_t place = 0; // a reserved action's place; 0: a line recorded behind one
-        bool settled = false;
-        std::optional<Json> cmd;
-    };
-    std::deque<JournalLine> m_waiting; // from the oldest open place on
-    std::uint64_t m_nextPlace = 1;
-    struct OpEntry {
-        OpHandler handler;
-        bool changesState;
-    };
-    std::map<std::string, OpEntry, std::less<>> m_ops;
+    JournalRecorder m_journal;
+    OpRegistry m_ops;
     std::string m_baseDir, m_outputDir;
     FrameSelection m_frameSelection;
     std::vector<std::string> m_dataOverride;
