@@ -69,18 +69,14 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
         } else {
             m_journalPath.clear();
         }
-        m_autosaver.emplace(m_options.stateDir);
-        m_recovery = m_autosaver->pending(); // a crashed run's session, offered at start
     }
-    loadSettings();
 }
 
 Workbench::~Workbench() {
     m_surfaces.clear(); // cancels surface builds
     m_extensions = {};  // their jobs are asked to stop (fault metrics) instead of awaited
     m_jobs.waitAll();
-    if (m_autosaver && !m_recovery && !m_recovering)
-        m_autosaver->saveNow(m_session, true); // a clean exit: nothing to offer next time
+    m_recovery.exitCleanly(m_session); // nothing to offer next time
     m_session.dropPendingActions(); // exports not handed over: what waited behind them is written
     m_session.setJournalSink(nullptr);
     m_session.setDatasetOpener(nullptr);
@@ -166,7 +162,8 @@ void Workbench::frame(double now) {
     applyPending();
     syncWithSession();
     updateDisplay();
-    autosave(false);
+    if (auto failed = m_recovery.autosave(m_session, m_now, m_options.autosaveSeconds, false))
+        error(*failed);
     m_items.endFrame();
 }
 

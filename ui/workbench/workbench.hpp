@@ -15,6 +15,9 @@
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/widgets/file_dialog.hpp"
 #include "ui/widgets/item_registry.hpp"
+#include "ui/workbench/movie_export.hpp"
+#include "ui/workbench/recovery.hpp"
+#include "ui/workbench/user_settings.hpp"
 #include "ui/workbench/view_composer.hpp"
 
 #include <fstream>
@@ -149,8 +152,8 @@ class Workbench final : public PanelContext {
     // "frames"), one frame per UI frame (frames load ahead in the background); progress and
     // Cancel in a small window; journalled once written.
     void exportMovie(const std::string& path);
-    bool movieRunning() const { return m_movie != nullptr; }
-    std::pair<std::size_t, std::size_t> movieProgress() const; // done, total
+    bool movieRunning() const { return m_movie.running(); }
+    std::pair<std::size_t, std::size_t> movieProgress() const { return m_movie.progress(); }
     void cancelMovie();
     void saveSession(); // to the session's file, else asks for one
     // `then` runs once the session is written.
@@ -158,7 +161,7 @@ class Workbench final : public PanelContext {
     const std::string& sessionPath() const { return m_sessionPath; }
     // Where export dialogs open: the last export's folder, else the session's, else the data's.
     std::string exportFolder() const override;
-    const std::vector<std::string>& recentFiles() const { return m_recent; }
+    const std::vector<std::string>& recentFiles() const { return m_settings.recent(); }
     // The memory frames may take (0: a quarter of RAM), remembered with the recent files.
     std::size_t frameMemoryBudget() const override;
     void setFrameMemoryBudget(std::size_t bytes) override;
@@ -198,7 +201,9 @@ class Workbench final : public PanelContext {
     void showHelp() { m_showHelp = true; }
     // Crash recovery: the session autosaved by a run that did not exit cleanly, offered once at
     // start (recover or discard); until decided, autosave keeps that file.
-    const std::optional<core::PendingRecovery>& pendingRecovery() const { return m_recovery; }
+    const std::optional<core::PendingRecovery>& pendingRecovery() const {
+        return m_recovery.pending();
+    }
     void recover();
     void discardRecovery();
     // A session whose data moved: which session and the paths it named (asks where they went).
@@ -241,10 +246,6 @@ class Workbench final : public PanelContext {
     void drawUnsavedPrompt();
     void handleShortcuts();
     void handleDialog();
-    void autosave(bool force);
-    void addRecent(const std::string& path);
-    void loadSettings();
-    void saveSettings() const;
     std::shared_ptr<core::Dataset> openDatasetCached(const std::vector<std::string>& paths);
     void rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds);
 
@@ -282,18 +283,13 @@ class Workbench final : public PanelContext {
     double m_messageTime = 0.0;
 
     std::string m_sessionPath;
-    std::string m_lastExportFolder; // where the last export or screenshot went
-    std::vector<std::string> m_recent;
-    std::size_t m_frameBudget = 0; // 0: core::defaultFrameMemoryBudget()
+    std::string m_lastExportFolder;               // where the last export or screenshot went
+    UserSettings m_settings{m_options.configDir}; // recent files, frame memory
     std::optional<std::string> m_screenshotPath;
     std::string m_journalPath;
     std::ofstream m_journal;
-    std::optional<core::Autosave> m_autosaver;
-    std::optional<core::PendingRecovery> m_recovery;
-    bool m_recovering = false; // the recovered session is loading: keep its file until it opened
+    Recovery m_recovery{m_options.stateDir}; // autosave, and a crashed run's session
     std::optional<MissingData> m_missingData;
-    double m_lastAutosave = 0.0;
-    std::uint64_t m_autosavedVersion = 0;
     bool m_quit = false;
     bool m_showHelp = false;
     bool m_showAbout = false;
@@ -314,9 +310,7 @@ class Workbench final : public PanelContext {
     void drawOverwritePrompt();
     void writeSession(const std::string& path, std::function<void()> then);
     std::function<void()> m_afterSaveAs; // the prompt's Save, waiting for a Save as
-    std::unique_ptr<FrameSequence> m_movie;
-    core::Json m_movieCommand;
-    std::shared_ptr<void> m_moviePlace; // its journal place (JournalPlace)
+    MovieExport m_movie{m_session};      // File > Export > Movie while it is written
 };
 
 } // namespace faultline::ui

@@ -295,8 +295,8 @@ void Workbench::drawMenus() {
             guardUnsaved("Open the demo model", [this] { openDemo(); });
         if (ImGui::MenuItem("Open session...", keysOf("open-session")))
             runCommand("open-session");
-        if (ImGui::BeginMenu("Open recent", !m_recent.empty())) {
-            for (const auto& r : m_recent)
+        if (ImGui::BeginMenu("Open recent", !m_settings.recent().empty())) {
+            for (const auto& r : m_settings.recent())
                 if (ImGui::MenuItem(r.c_str()))
                     guardUnsaved(
                         "Open " + fs::path(r).filename().string(), [this, r] { openPath(r); }, r);
@@ -578,16 +578,16 @@ void Workbench::drawPrompts() {
     const ImGuiIO& io = ImGui::GetIO();
     const ImGuiWindowFlags flags =
         ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings;
-    if (m_recovery && !m_dialog.isOpen()) {
+    if (const auto& pending = m_recovery.pending(); pending && !m_dialog.isOpen()) {
         if (!ImGui::IsPopupOpen("Recover unsaved work?"))
             ImGui::OpenPopup("Recover unsaved work?");
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                                 ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, flags)) {
             ImGui::TextUnformatted("Faultline did not close normally last time.");
-            ImGui::Text("Its session was autosaved%s%s.", m_recovery->savedAt.empty() ? "" : " at ",
-                        m_recovery->savedAt.c_str());
-            ImGui::TextDisabled("%s", m_recovery->sessionPath.c_str());
+            ImGui::Text("Its session was autosaved%s%s.", pending->savedAt.empty() ? "" : " at ",
+                        pending->savedAt.c_str());
+            ImGui::TextDisabled("%s", pending->sessionPath.c_str());
             if (ImGui::Button("Recover it")) {
                 ImGui::CloseCurrentPopup();
                 recover();
@@ -602,7 +602,7 @@ void Workbench::drawPrompts() {
             ImGui::EndPopup();
         }
     }
-    if (m_missingData && !m_dialog.isOpen() && !m_recovery) {
+    if (m_missingData && !m_dialog.isOpen() && !m_recovery.pending()) {
         if (!ImGui::IsPopupOpen("Where is the data?"))
             ImGui::OpenPopup("Where is the data?");
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
@@ -632,7 +632,7 @@ void Workbench::drawPrompts() {
             if (ImGui::Button("Cancel")) {
                 ImGui::CloseCurrentPopup();
                 m_missingData.reset();
-                m_recovering = false; // a recovered session left closed: autosave goes on
+                m_recovery.abandoned(); // a recovered session left closed: autosave goes on
             }
             ImGui::EndPopup();
         }
@@ -644,7 +644,7 @@ void Workbench::handleDialog() {
     const bool accepted = m_dialog.draw(m_scale, &m_items);
     if (!accepted) {
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
-            m_missingData.reset(), m_recovering = false; // cancelled: the session stays closed
+            m_missingData.reset(), m_recovery.abandoned(); // cancelled: the session stays closed
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "save-session")
             m_afterSaveAs = {}; // the prompt's Save as was cancelled: nothing proceeds
         return;

@@ -87,7 +87,7 @@ void Workbench::openData(std::vector<std::string> paths, std::function<void()> t
                 emit(core::cmd::dataOpen(paths), [this, paths, then, pristine] {
                     if (pristine) // data opened into an untouched session: nothing to save yet
                         m_session.markSaved();
-                    addRecent(paths.size() == 1 ? paths.front() : std::string());
+                    m_settings.addRecent(paths.size() == 1 ? paths.front() : std::string());
                     if (then)
                         then();
                 });
@@ -125,41 +125,31 @@ void Workbench::openSession(const std::string& pathIn, std::vector<std::string> 
                 if (ds)
                     rememberDataset(s.dataPaths, ds);
                 const Json cmd = core::cmd::sessionOpen(path, data);
-                const bool recovering = m_recovering;
+                const bool recovering = m_recovery.recovering();
                 emit(cmd, [this, path, recovering] {
                     if (recovering) { // saving asks for a real place, not the recovery file
-                        m_recovering = false;
+                        m_recovery.opened();
                         info("Recovered the autosaved session: File > Save as to keep it");
                         return;
                     }
                     m_sessionPath = path;
-                    addRecent(path);
+                    m_settings.addRecent(path);
                 });
             };
         },
         [this, name](const std::string& why) {
-            m_recovering = false;
+            m_recovery.abandoned();
             error("Cannot open " + name + ": " + why);
         },
         m_now);
 }
 
 void Workbench::recover() {
-    if (!m_recovery)
-        return;
-    const std::string path = m_recovery->sessionPath;
-    m_recovery.reset();
-    m_recovering = true;
-    m_autosaver->discard();
-    openSession(path);
+    if (const auto path = m_recovery.recover())
+        openSession(*path);
 }
 
-void Workbench::discardRecovery() {
-    if (!m_recovery)
-        return;
-    m_recovery.reset();
-    m_autosaver->discard();
-}
+void Workbench::discardRecovery() { m_recovery.discard(); }
 
 void Workbench::relocateData(const std::string& pickedFile) {
     if (!m_missingData)
@@ -326,7 +316,7 @@ void Workbench::saveSessionAs(const std::string& pathIn, std::function<void()> t
 void Workbench::writeSession(const std::string& path, std::function<void()> then) {
     emit(core::cmd::sessionSave(path), [this, path, then] {
         m_sessionPath = path;
-        addRecent(path);
+        m_settings.addRecent(path);
         info("Saved " + path);
         if (then)
             then();
@@ -339,77 +329,14 @@ std::optional<std::string> Workbench::takeScreenshotRequest() {
     return r;
 }
 
-void Workbench::autosave(bool force) {
-    // Until the user decided about a recovery, its file stays as it is.
-    if (!m_autosaver || m_recovery || m_recovering)
-        return;
-    if (!force && m_now - m_lastAutosave < m_options.autosaveSeconds)
-        return;
-    m_lastAutosave = m_now;
-    if (m_session.version() == m_autosavedVersion)
-        return;
-    if (m_autosaver->saveNow(m_session, false)) { // not a clean exit until the destructor says so
-        m_autosavedVersion = m_session.version();
-    } else {
-        error("Autosave failed: " + m_autosaver->lastError());
-        m_lastAutosave = m_now + 300; // do not repeat the message every frame
-    }
-}
-
-void Workbench::addRecent(const std::string& path) {
-    if (path.empty())
-        return;
-    std::erase(m_recent, path);
-    m_recent.insert(m_recent.begin(), path);
-    if (m_recent.size() > 10)
-        m_recent.resize(10);
-    saveSettings();
-}
-
 std::size_t Workbench::frameMemoryBudget() const {
-    return m_frameBudget ? m_frameBudget : core::defaultFrameMemoryBudget();
+    return m_settings.frameBudget() ? m_settings.frameBudget() : core::defaultFrameMemoryBudget();
 }
 
 void Workbench::setFrameMemoryBudget(std::size_t bytes) {
-    m_frameBudget = bytes;
+    m_settings.setFrameBudget(bytes);
     if (auto ds = dataset())
         ds->setCacheBudget(frameMemoryBudget());
-    saveSettings();
-}
-
-void Workbench::loadSettings() {
-    if (m_options.configDir.empty())
-        return;
-    std::ifstream in(fs::path(m_options.configDir) / "settings.json");
-    if (!in)
-        return;
-    std::stringstream text;
-    text << in.rdbuf();
-    try {
-        const Json doc = Json::parse(text.str());
-        if (doc.contains("recent") && doc["recent"].is_array())
-            for (const Json& r : doc["recent"])
-                if (r.is_string() && m_recent.size() < 10)
-                    m_recent.push_back(r.get<std::string>());
-        if (doc.contains("frame_memory_mb") && doc["frame_memory_mb"].is_number_unsigned())
-            m_frameBudget = doc["frame_memory_mb"].get<std::size_t>() << 20;
-    } catch (const std::exception&) {
-        // A damaged settings file only loses the recent list.
-    }
-}
-
-void Workbench::saveSettings() const {
-    if (m_options.configDir.empty())
-        return;
-    try {
-        std::error_code ec;
-        fs::create_directories(m_options.configDir, ec);
-        core::writeFileAtomically(
-            (fs::path(m_options.configDir) / "settings.json").string(),
-            Json{{"recent", m_recent}, {"frame_memory_mb", m_frameBudget >> 20}}.dump(2));
-    } catch (const std::exception&) {
-        // Not worth interrupting the user for.
-    }
 }
 
 } // namespace faultline::ui

@@ -16,15 +16,6 @@ using core::Json;
 
 namespace {
 
-struct MoviePlace {
-    explicit MoviePlace(core::Session& s) : session(s), place(s.reserveAction()) {}
-    ~MoviePlace() { session.dropAction(place); }
-    MoviePlace(const MoviePlace&) = delete;
-    MoviePlace& operator=(const MoviePlace&) = delete;
-    core::Session& session;
-    std::uint64_t place;
-};
-
 // A PNG path becomes a pattern (name_%04d.png) unless it is one already.
 std::string framePattern(const std::string& path) {
     if (isFrameSequencePattern(path))
@@ -50,7 +41,7 @@ void Workbench::showMovieOptions() {
 }
 
 void Workbench::exportMovie(const std::string& pathIn) {
-    if (m_movie) {
+    if (m_movie.running()) {
         error("A movie is being written already");
         return;
     }
@@ -76,62 +67,40 @@ void Workbench::exportMovie(const std::string& pathIn) {
     request.step = static_cast<std::size_t>(std::max(1, o.step));
     request.framesPerSecond = o.fps;
     try {
-        m_movie = std::make_unique<FrameSequence>(m_session, request);
+        m_movie.start(request, cmd);
     } catch (const std::exception& e) {
         error(std::string("Movie: ") + e.what());
         return;
     }
-    m_movieCommand = cmd;
-    m_moviePlace = std::make_shared<MoviePlace>(m_session);
-    info("Writing " + fs::path(path).filename().string() + ": " + std::to_string(m_movie->total()) +
-         " frames");
-}
-
-std::pair<std::size_t, std::size_t> Workbench::movieProgress() const {
-    return m_movie ? std::pair{m_movie->done(), m_movie->total()}
-                   : std::pair<std::size_t, std::size_t>{0, 0};
+    info("Writing " + fs::path(path).filename().string() + ": " +
+         std::to_string(m_movie.progress().second) + " frames");
 }
 
 void Workbench::cancelMovie() {
-    if (!m_movie)
-        return;
-    const std::size_t done = m_movie->done();
-    const std::string name = fs::path(m_movie->path()).filename().string();
-    m_movie.reset(); // an MP4 is closed as far as it got
-    m_moviePlace.reset();
-    info("Movie cancelled after " + std::to_string(done) + " frames (" + name + " holds those)");
+    if (const std::string said = m_movie.cancel(); !said.empty())
+        info(said);
 }
 
 void Workbench::drawMovie() {
     const ImGuiIO& io = ImGui::GetIO();
-    if (m_movie) {
-        try {
-            m_movie->step(false); // renders the next frame if it is loaded
-        } catch (const std::exception& e) {
-            m_movie.reset();
-            m_moviePlace.reset();
-            error(std::string("Movie: ") + e.what());
-        }
-        if (m_movie && m_movie->finished()) {
-            const auto* place = static_cast<MoviePlace*>(m_moviePlace.get());
-            try {
-                m_session.settleAction(place->place, m_movieCommand);
-            } catch (const std::exception& e) {
-                error(std::string("Movie: ") + e.what());
-            }
-            info("Wrote " + m_movie->path() + " (" + std::to_string(m_movie->total()) + " frames)");
-            m_movie.reset();
-            m_moviePlace.reset();
-        }
+    switch (const MovieExport::Step step = m_movie.step(); step.state) {
+    case MovieExport::State::Written:
+        info(step.message);
+        break;
+    case MovieExport::State::Failed:
+        error("Movie: " + step.message);
+        break;
+    default:
+        break;
     }
-    if (m_movie) {
+    if (m_movie.running()) {
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                                 ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::Begin("Writing the movie", nullptr,
                          ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                              ImGuiWindowFlags_NoCollapse)) {
             const auto [done, total] = movieProgress();
-            ImGui::TextUnformatted(fs::path(m_movie->path()).filename().string().c_str());
+            ImGui::TextUnformatted(fs::path(m_movie.path()).filename().string().c_str());
             char label[64];
             std::snprintf(label, sizeof label, "frame %zu of %zu", done, total);
             ImGui::ProgressBar(total ? float(done) / float(total) : 0.0f, ImVec2(320 * m_scale, 0),
