@@ -302,8 +302,7 @@ void Session::syncDerived() {
 void Session::setDataset(std::shared_ptr<Dataset> dataset) {
     m_dataset = std::move(dataset);
     syncDerived();
-    m_visibility = VisibilityResult{};
-    m_visibilityFrame.reset();
+    m_visibilities.clear();
     ++m_version;
 }
 
@@ -377,20 +376,80 @@ std::unique_ptr<std::vector<std::uint8_t>> Session::faultRowMask(const SessionSt
     return mask;
 }
 
-const VisibilityResult& Session::visibility() {
-    auto frame = currentFrame();
-    if (!frame) {
-        m_visibility = VisibilityResult{};
-        m_visibilityFrame.reset();
-        return m_visibility;
+namespace {
+
+// Hash combining (boost's), over the fields visibility depends on.
+void mix(std::uint64_t& h, std::uint64_t v) {
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+}
+void mix(std::uint64_t& h, double v) { mix(h, std::hash<double>{}(v)); }
+void mix(std::uint64_t& h, const std::string& v) { mix(h, std::hash<std::string>{}(v)); }
+
+} // namespace
+
+std::uint64_t Session::faultFilterKey() {
+    if (m_filterKeyVersion == m_version && m_filterKeyVersion != 0)
+        return m_filterKey;
+    // What faultRowMask reads: the filter, and each fault's visibility and members.
+    std::uint64_t h = 0x51f1;
+    mix(h, std::uint64_t(m_state.faultFilter.mode));
+    mix(h, m_state.faultFilter.fault);
+    for (const Fault& f : m_state.faults) {
+        mix(h, f.name);
+        mix(h, std::uint64_t(f.visible));
+        mix(h, std::uint64_t(f.ids.size()));
+        for (std::int64_t id : f.ids)
+            mix(h, std::uint64_t(id));
     }
-    if (m_visibilityVersion == m_version && m_visibilityFrame == frame)
-        return m_visibility;
+    m_filterKey = h;
+    m_filterKeyVersion = m_version;
+    return h;
+}
+
+Session::Visible Session::visibilityOf(const std::shared_ptr<const Frame>& frame,
+                                       const std::vector<CuttingBox>& boxes,
+                                       const std::vector<VariableThreshold>& thresholds) {
+    if (!frame)
+        return {std::make_shared<const VisibilityResult>(), 0};
+    std::uint64_t key = faultFilterKey();
+    mix(key, std::uint64_t(reinterpret_cast<std::uintptr_t>(frame.get())));
+    for (const CuttingBox& b : boxes) {
+        mix(key, std::uint64_t(b.enabled) | std::uint64_t(b.mode) << 1);
+        for (int a = 0; a < 3; ++a)
+            mix(key, b.min[a]), mix(key, b.max[a]);
+    }
+    mix(key, std::uint64_t(0xb0c5)); // boxes end
+    for (const VariableThreshold& t : thresholds) {
+        mix(key, t.variable);
+        mix(key, t.low);
+        mix(key, t.high);
+        mix(key, std::uint64_t(t.enabled));
+    }
+    std::erase_if(m_visibilities, [](const VisibilityEntry& e) { return e.frame.expired(); });
+    for (auto it = m_visibilities.begin(); it != m_visibilities.end(); ++it)
+        if (it->key == key && it->frame.lock() == frame) {
+            std::rotate(it, it + 1, m_visibilities.end()); // the most recently used last
+            return {m_visibilities.back().result, key};
+        }
     auto rowMask = faultRowMask(*frame);
-    m_visibility = computeVisibility(*frame, m_state.boxes, m_state.thresholds, rowMask.get());
-    m_visibilityVersion = m_version;
-    m_visibilityFrame = frame;
-    return m_visibility;
+    auto result = std::make_shared<const VisibilityResult>(
+        computeVisibility(*frame, boxes, thresholds, rowMask.get()));
+    // A few views, the session's own and a drag's preview at most are asked at once.
+    constexpr std::size_t kKept = 8;
+    if (m_visibilities.size() >= kKept)
+        m_visibilities.erase(m_visibilities.begin());
+    m_visibilities.push_back({frame, key, result});
+    return {result, key};
+}
+
+const VisibilityResult& Session::visibility() {
+    static const VisibilityResult kNone;
+    auto frame = currentFrame();
+    if (!frame)
+        return kNone;
+    // Held here until the next call, as the reference handed out promises.
+    m_visibility = visibilityOf(frame, m_state.boxes, m_state.thresholds).result;
+    return *m_visibility;
 }
 
 void Session::throwIfInterrupted(std::string_view op) const {

@@ -164,8 +164,20 @@ class Session {
     // The reference frame of a view's difference colouring, clamped to the dataset.
     std::size_t referenceFrameOfView(const ViewState& view) const;
 
-    // Visible spheres of the current frame (boxes, thresholds, fault filter), cached by version.
+    // Visible spheres of the current frame (boxes, thresholds, fault filter).
     const VisibilityResult& visibility();
+    // The spheres `boxes`, `thresholds` and the fault filter leave visible in `frame`, from one
+    // cache keyed by what they depend on (the frame, the boxes, the thresholds, the filter and
+    // the members of the faults it names): the session's own visibility, the workbench's views
+    // (with a drag's preview) and its panels ask here, so nothing is worked out twice and no two
+    // disagree (issue 39). `key` changes whenever the result may.
+    struct Visible {
+        std::shared_ptr<const VisibilityResult> result;
+        std::uint64_t key = 0;
+    };
+    Visible visibilityOf(const std::shared_ptr<const Frame>& frame,
+                         const std::vector<CuttingBox>& boxes,
+                         const std::vector<VariableThreshold>& thresholds);
     // Fault filter as a row mask of `frame` (null when the filter lets everything through).
     std::unique_ptr<std::vector<std::uint8_t>> faultRowMask(const Frame& frame) const;
     // The same for a copy of a state (worker threads).
@@ -213,9 +225,17 @@ class Session {
     std::vector<std::string> m_dataOverride;
     DatasetOpener m_datasetOpener;
 
-    VisibilityResult m_visibility;
-    std::uint64_t m_visibilityVersion = 0;
-    std::shared_ptr<const Frame> m_visibilityFrame;
+    struct VisibilityEntry {
+        // Not held (a cache must not keep frames of millions of spheres past the frame cache's
+        // budget): an expired frame's entry matches nothing.
+        std::weak_ptr<const Frame> frame;
+        std::uint64_t key = 0;
+        std::shared_ptr<const VisibilityResult> result;
+    };
+    std::vector<VisibilityEntry> m_visibilities;           // most recently used last
+    std::shared_ptr<const VisibilityResult> m_visibility;  // what visibility() last returned
+    std::uint64_t m_filterKey = 0, m_filterKeyVersion = 0; // the fault filter's, per version
+    std::uint64_t faultFilterKey();
 };
 
 // Built-in ops, grouped by what they change (session_ops_*.cpp).

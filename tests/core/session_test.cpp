@@ -973,3 +973,34 @@ TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
     EXPECT_FALSE(sheet.diffuse); // the z = 0 layer
     EXPECT_NEAR(sheet.dip, 0.0, 1e-6);
 }
+
+// Issue 39: one cache of visible spheres keyed by what they depend on. The same selection in the
+// same frame is one result; a camera move or a rename of nothing visible keeps it; a box, a
+// threshold, the fault filter or a fault's members make another.
+TEST(Session, VisibilityIsOneResultPerFrameAndSelection) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    const auto frame = s.currentFrame();
+    const auto first = s.visibilityOf(frame, s.state().boxes, s.state().thresholds);
+    EXPECT_EQ(&s.visibility(), first.result.get()); // the session's own is the same result
+    s.apply(cmd(R"({"op":"camera.set","view":"main","azimuth":40})"));
+    EXPECT_EQ(&s.visibility(), first.result.get()) << "a camera move computed it again";
+    s.apply(cmd(R"({"op":"box.add","name":"low","min":[0,0,0],"max":[3,3,1]})"));
+    EXPECT_EQ(s.visibility().visibleCount, 32u);
+    const auto boxed = s.visibilityOf(frame, s.state().boxes, s.state().thresholds);
+    EXPECT_NE(boxed.key, first.key);
+    s.undo(); // back to no box: the first result again, not worked out anew
+    EXPECT_EQ(&s.visibility(), first.result.get());
+    s.apply(cmd(R"({"op":"fault.create","name":"F","ids":[1,2,3]})"));
+    s.apply(cmd(R"({"op":"fault.filter","mode":"only","fault":"F"})"));
+    EXPECT_EQ(s.visibility().visibleCount, 3u);
+    s.apply(cmd(R"({"op":"fault.add","name":"F","ids":[4]})")); // members change: another
+    EXPECT_EQ(s.visibility().visibleCount, 4u);
+    // A preview's selection (a box being dragged) is another key, the session's stays.
+    std::vector<CuttingBox> dragged = s.state().boxes;
+    dragged.push_back({"drag", {0, 0, 0}, {0, 0, 0}, BoxMode::Keep, true});
+    const auto preview = s.visibilityOf(frame, dragged, s.state().thresholds);
+    EXPECT_EQ(preview.result->visibleCount, 1u); // sphere 1 at the origin
+    EXPECT_EQ(s.visibility().visibleCount, 4u);
+}

@@ -63,6 +63,17 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
 
 // Issue 39: the preview is found in the frame the main view shows, the op in the session's
 // current frame. With the main view a frame behind, Accept all still makes the faults shown.
+// Issue 39: the main view's visible spheres and the session's (what ops such as
+// fault.candidates read) are one result from one cache, not two computations that may differ.
+TEST_F(PanelTest, TheMainViewAndTheOpsShareOneVisibility) {
+    openLattice();
+    twoWalls(session);
+    headless.frames(wb(), 2);
+    ASSERT_NE(wb().mainDisplay()->visibility, nullptr);
+    EXPECT_EQ(wb().mainDisplay()->visibility.get(), &session.visibility());
+    EXPECT_EQ(session.visibility().visibleCount, 32u);
+}
+
 TEST_F(PanelTest, AcceptAllMakesTheCandidatesShownWhenTheMainViewShowsAnotherFrame) {
     openLattice();
     // strain = x / 3 + frame: in [1.9, 2.1] the x = 3 wall in frame 1, the x = 0 wall in frame 2.

@@ -36,7 +36,6 @@ const ViewDisplay* ViewComposer::view(const std::string& name) const {
 
 void ViewComposer::reset() {
     m_views.clear();
-    m_visibilityCache.clear();
     m_allFramesRange.clear();
     for (auto& [key, exact] : m_exactRanges)
         if (exact->job)
@@ -101,25 +100,19 @@ void ViewComposer::update(const Inputs& in) {
     const core::SessionState& s = m_session.state();
     auto ds = m_session.dataset();
 
-    // The selection as shown: the session's plus any live edit, and a key for caching.
+    // The selection as shown: the session's plus any live edit.
     // Live edits run through the session's own ops on a copy (Session::preview), so a preview
     // shows exactly what the command would do, and one the op refuses shows nothing.
     std::vector<Json> edits;
-    std::string previewText;
     for (const auto& [key, cmd] : in.previews)
-        if (cmd.value("op", "") != "frame.set") {
+        if (cmd.value("op", "") != "frame.set")
             edits.push_back(cmd);
-            if (cmd.value("op", "") != "camera.set")
-                previewText += cmd.dump();
-        }
     core::Session::Preview shown = m_session.preview(edits);
     std::vector<core::CuttingBox> boxes = std::move(shown.boxes);
     std::vector<core::VariableThreshold> thresholds = std::move(shown.thresholds);
     std::map<std::string, core::CameraState> cameras;
     for (const auto& v : shown.views)
         cameras[v.name] = v.camera;
-    const std::uint64_t key =
-        std::hash<std::string>{}(std::to_string(m_session.version()) + previewText) | 1;
     m_displayBoxes = boxes;
     m_displayThresholds = thresholds;
 
@@ -152,18 +145,12 @@ void ViewComposer::update(const Inputs& in) {
         }
         d.visibility.reset();
         if (d.frame) {
-            auto hit = std::find_if(
-                m_visibilityCache.begin(), m_visibilityCache.end(),
-                [&](const VisibilityEntry& e) { return e.frame == d.frame && e.key == key; });
-            if (hit == m_visibilityCache.end()) {
-                auto rowMask = m_session.faultRowMask(*d.frame);
-                auto result = std::make_shared<core::VisibilityResult>(
-                    core::computeVisibility(*d.frame, boxes, thresholds, rowMask.get()));
-                m_visibilityCache.push_back({d.frame, key, result});
-                hit = m_visibilityCache.end() - 1;
-            }
-            d.visibility = hit->result;
-            d.visibilityKey = key ^ reinterpret_cast<std::uintptr_t>(d.frame.get());
+            // From the session's cache, keyed by what visibility depends on: the session's own
+            // ops and every view showing the same frame and selection share one result.
+            const core::Session::Visible visible =
+                m_session.visibilityOf(d.frame, boxes, thresholds);
+            d.visibility = visible.result;
+            d.visibilityKey = visible.key;
         }
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         resolveColors(v, d, channel, in.selection);
@@ -176,11 +163,6 @@ void ViewComposer::update(const Inputs& in) {
     }
     m_views = std::move(next);
     m_surfaces.endFrame();
-    std::erase_if(m_visibilityCache, [&](const VisibilityEntry& e) {
-        return std::none_of(m_views.begin(), m_views.end(), [&](const ViewDisplay& d) {
-            return d.frame == e.frame && d.visibility == e.result;
-        });
-    });
 }
 
 // What a view's spheres are coloured by and over which range: categories (the candidates

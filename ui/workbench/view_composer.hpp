@@ -62,12 +62,6 @@ class ViewComposer {
     std::vector<ViewDisplay> m_views;
     std::vector<core::CuttingBox> m_displayBoxes;
     std::vector<core::VariableThreshold> m_displayThresholds;
-    struct VisibilityEntry {
-        std::shared_ptr<const core::Frame> frame;
-        std::uint64_t key = 0;
-        std::shared_ptr<const core::VisibilityResult> result;
-    };
-    std::vector<VisibilityEntry> m_visibilityCache;
     JobRunner& m_jobs;
     std::map<std::string, std::array<double, 2>> m_allFramesRange; // by variable: frames seen
     // Issue 41: the live view's "all frames" range was the frames seen so far while figures
