@@ -12,6 +12,11 @@ Json op(const char* name, const char* key, Json value) {
     j[key] = std::move(value);
     return j;
 }
+Json op(const char* name, const char* key, Json value, const char* key2, Json value2) {
+    Json j = op(name, key, std::move(value));
+    j[key2] = std::move(value2);
+    return j;
+}
 } // namespace
 
 Json undo() { return op("undo"); }
@@ -81,30 +86,20 @@ ColorSet& ColorSet::difference(ColorDifference::Mode mode) {
 Json strainRemove(const std::string& prefix) { return op("strain.remove", "prefix", prefix); }
 
 Json faultCreateVisible(const std::string& name) {
-    Json j = op("fault.create", "name", name);
-    j["from"] = "visible";
-    return j;
+    return op("fault.create", "name", name, "from", "visible");
 }
 Json faultAdd(const std::string& name, std::vector<std::int64_t> ids) {
-    Json j = op("fault.add", "name", name);
-    j["ids"] = std::move(ids);
-    return j;
+    return op("fault.add", "name", name, "ids", std::move(ids));
 }
 Json faultAddVisible(const std::string& name) {
-    Json j = op("fault.add", "name", name);
-    j["from"] = "visible";
-    return j;
+    return op("fault.add", "name", name, "from", "visible");
 }
 Json faultRemove(const std::string& name, std::vector<std::int64_t> ids) {
-    Json j = op("fault.remove", "name", name);
-    j["ids"] = std::move(ids);
-    return j;
+    return op("fault.remove", "name", name, "ids", std::move(ids));
 }
 Json faultDelete(const std::string& name) { return op("fault.delete", "name", name); }
 Json faultMerge(const std::vector<std::string>& names, const std::string& into) {
-    Json j = op("fault.merge", "names", names);
-    j["into"] = into;
-    return j;
+    return op("fault.merge", "names", names, "into", into);
 }
 Json faultSplit(const std::string& name) { return op("fault.split", "name", name); }
 Json faultFilter(const std::string& mode, const std::string& fault) {
@@ -152,14 +147,10 @@ Render& Render::frames(long long first, long long last) {
 }
 
 Json exportCsv(const std::string& what, const std::string& path) {
-    Json j = op("export.csv", "what", what);
-    j["path"] = path;
-    return j;
+    return op("export.csv", "what", what, "path", path);
 }
 Json exportVdb(const std::string& fault, const std::string& path) {
-    Json j = op("export.vdb", "fault", fault);
-    j["path"] = path;
-    return j;
+    return op("export.vdb", "fault", fault, "path", path);
 }
 Json exportGltf(const std::vector<std::string>& faults, const std::string& path, bool glyphs) {
     Json j = op("export.gltf", "faults", faults);
