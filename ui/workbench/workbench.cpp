@@ -156,8 +156,7 @@ void Workbench::frame(double now) {
     drawPrompts();
     drawMovie();
     drawFigureOptions();
-    drawUnsavedPrompt();
-    drawOverwritePrompt();
+    m_unsaved.draw();
 
     applyPending();
     syncWithSession();

@@ -17,6 +17,7 @@
 #include "ui/widgets/item_registry.hpp"
 #include "ui/workbench/movie_export.hpp"
 #include "ui/workbench/recovery.hpp"
+#include "ui/workbench/unsaved_guard.hpp"
 #include "ui/workbench/user_settings.hpp"
 #include "ui/workbench/view_composer.hpp"
 
@@ -39,7 +40,7 @@ struct WorkbenchOptions {
 
 // The Workbench composes the panels, the dock, the menus and the status bar; panels see it
 // through PanelContext (ui/context/panel_context.hpp).
-class Workbench final : public PanelContext {
+class Workbench final : public PanelContext, private UnsavedGuard::Host {
   public:
     explicit Workbench(core::Session& session, WorkbenchOptions options = {});
     ~Workbench();
@@ -106,7 +107,7 @@ class Workbench final : public PanelContext {
 
     PanelExtensions& extensions() override { return m_extensions; }
 
-    void info(std::string text) override;
+    void info(std::string text) override; // PanelContext and UnsavedGuard::Host
     void error(std::string text) override;
     const std::string& lastMessage() const { return m_message; }
     bool lastMessageIsError() const { return m_messageIsError; }
@@ -157,8 +158,8 @@ class Workbench final : public PanelContext {
     void cancelMovie();
     void saveSession(); // to the session's file, else asks for one
     // `then` runs once the session is written.
-    void saveSessionAs(const std::string& path, std::function<void()> then = {});
-    const std::string& sessionPath() const { return m_sessionPath; }
+    void saveSessionAs(const std::string& path, std::function<void()> then = {}) override;
+    const std::string& sessionPath() const override { return m_sessionPath; }
     // Where export dialogs open: the last export's folder, else the session's, else the data's.
     std::string exportFolder() const override;
     const std::vector<std::string>& recentFiles() const { return m_settings.recent(); }
@@ -180,7 +181,7 @@ class Workbench final : public PanelContext {
     // the session has unsaved changes; quitRequested() turns true once the user chose.
     void requestQuit();
     // ---- unsaved work (workbench_unsaved.cpp) ----
-    bool hasUnsavedChanges() const { return m_session.modified(); }
+    bool hasUnsavedChanges() const override { return m_session.modified(); }
     // Runs `proceed` at once when nothing is unsaved; else asks first ("<action>: save the
     // changes?" Save / Discard / Cancel): Save writes the session (asking where when it has no
     // file yet) and proceeds once it is written; Discard proceeds; Cancel forgets it.
@@ -188,14 +189,16 @@ class Workbench final : public PanelContext {
     // file the question offers "Save as..." instead of Save: saving there would write over the
     // very file being (re)opened.
     void guardUnsaved(std::string action, std::function<void()> proceed,
-                      const std::string& target = {});
-    bool unsavedPromptOpen() const { return m_unsavedPrompt.has_value(); }
-    bool unsavedPromptOffersSave() const { return m_unsavedPrompt && !m_unsavedPrompt->reopening; }
+                      const std::string& target = {}) {
+        m_unsaved.guard(std::move(action), std::move(proceed), target);
+    }
+    bool unsavedPromptOpen() const { return m_unsaved.unsavedOpen(); }
+    bool unsavedPromptOffersSave() const { return m_unsaved.unsavedOffersSave(); }
     // Saving over an existing file that is not the session's own, or over the session's file
     // when it holds something the session to save does not (core::saveLoss): asks Replace /
     // Cancel first, naming what would be lost.
-    bool overwritePromptOpen() const { return m_overwritePrompt.has_value(); }
-    const std::vector<std::string>& overwriteLoss() const;
+    bool overwritePromptOpen() const { return m_unsaved.overwriteOpen(); }
+    const std::vector<std::string>& overwriteLoss() const { return m_unsaved.overwriteLoss(); }
     // "Faultline - name" with a "*" while there are unsaved changes.
     std::string windowTitle() const;
     void showHelp() { m_showHelp = true; }
@@ -243,7 +246,6 @@ class Workbench final : public PanelContext {
     void drawPrompts();
     void drawMovie(); // the options window and the running export's progress
     void drawFigureOptions();
-    void drawUnsavedPrompt();
     void handleShortcuts();
     void handleDialog();
     std::shared_ptr<core::Dataset> openDatasetCached(const std::vector<std::string>& paths);
@@ -295,22 +297,10 @@ class Workbench final : public PanelContext {
     bool m_showAbout = false;
     bool m_showMovieOptions = false;
     bool m_showFigureOptions = false;
-    struct UnsavedPrompt {
-        std::string action;
-        std::function<void()> proceed;
-        bool reopening = false; // the action opens the session's own file
-    };
-    std::optional<UnsavedPrompt> m_unsavedPrompt;
-    struct OverwritePrompt {
-        std::string path;
-        std::vector<std::string> lost; // core::saveLossOverFile
-        std::function<void()> then;
-    };
-    std::optional<OverwritePrompt> m_overwritePrompt;
-    void drawOverwritePrompt();
-    void writeSession(const std::string& path, std::function<void()> then);
-    std::function<void()> m_afterSaveAs; // the prompt's Save, waiting for a Save as
-    MovieExport m_movie{m_session};      // File > Export > Movie while it is written
+    UnsavedGuard m_unsaved{*this}; // Save / Discard / Cancel, Replace / Save as / Cancel
+    void writeSession(const std::string& path, std::function<void()> then) override;
+    void askWhereToSave() override; // the Save as dialog
+    MovieExport m_movie{m_session}; // File > Export > Movie while it is written
 };
 
 } // namespace faultline::ui

@@ -646,7 +646,7 @@ void Workbench::handleDialog() {
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
             m_missingData.reset(), m_recovery.abandoned(); // cancelled: the session stays closed
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "save-session")
-            m_afterSaveAs = {}; // the prompt's Save as was cancelled: nothing proceeds
+            m_unsaved.saveAsCancelled(); // nothing the question held back proceeds
         return;
     }
     const std::string& purpose = m_dialog.purpose();
@@ -661,7 +661,7 @@ void Workbench::handleDialog() {
             "Open " + fs::path(path).filename().string(), [this, path] { openSession(path); },
             path);
     else if (purpose == "save-session")
-        saveSessionAs(path, std::exchange(m_afterSaveAs, {}));
+        m_unsaved.savedAsPicked(path);
     else if (purpose == "relocate-data")
         relocateData(path);
     else if (purpose == "screenshot")

@@ -291,10 +291,11 @@ void Workbench::rememberDataset(const std::vector<std::string>& paths,
         m_datasets.pop_back();
 }
 
+void Workbench::askWhereToSave() { saveSessionAsDialog(); }
+
 void Workbench::saveSession() {
     if (m_sessionPath.empty()) {
-        m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
-                      {".faultline.json"}, "", "analysis.faultline.json");
+        askWhereToSave();
         return;
     }
     saveSessionAs(m_sessionPath);
@@ -307,7 +308,7 @@ void Workbench::saveSessionAs(const std::string& pathIn, std::function<void()> t
     const bool otherFile = path != m_sessionPath && fs::exists(path, ec);
     std::vector<std::string> lost = core::saveLossOverFile(path, state());
     if (otherFile || !lost.empty()) {
-        m_overwritePrompt = OverwritePrompt{path, std::move(lost), std::move(then)};
+        m_unsaved.askOverwrite(path, std::move(lost), std::move(then));
         return;
     }
     writeSession(path, std::move(then));
