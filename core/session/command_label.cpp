@@ -39,6 +39,26 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
             ++ops[text(cmd["commands"][i], "op")];
         if (ops.size() == 1 && ops.begin()->first == "fault.delete")
             return "delete " + std::to_string(n) + " faults";
+        // What the workbench groups around one change: the faults it left empty deleted after
+        // it, the frame it ran at set before it and back after it.
+        const Json* change = nullptr;
+        std::string emptied;
+        bool other = false;
+        for (std::size_t i = 0; i < n && !other; ++i) {
+            const Json& c = cmd["commands"][i];
+            const std::string cop = text(c, "op");
+            if (cop == "frame.set")
+                continue;
+            if (cop == "fault.delete" && change)
+                emptied += (emptied.empty() ? "" : ", ") + quoted(text(c, "name"));
+            else if (!change)
+                change = &c;
+            else
+                other = true;
+        }
+        if (change && !other)
+            return describeCommand(*change, spheresChanged) +
+                   (emptied.empty() ? "" : " (deleting " + emptied + ", left empty)");
         return std::to_string(n) + " changes";
     }
     const std::size_t moved =

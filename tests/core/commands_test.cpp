@@ -1,6 +1,7 @@
 // Typed command builders (core/session/commands.hpp, issue 39): each builder's command is what
 // its op accepts. The commands run in sequence on a session with the lattice open, so a field
 // the op does not know, a wrong type or a wrong enum name fails here.
+#include "core/session/command_label.hpp"
 #include "core/session/commands.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
@@ -134,4 +135,19 @@ TEST(Commands, BuildersWriteTheJournalsNames) {
     EXPECT_EQ(Json(cmd::Render("main", "m.mp4", 640, 480).frames(0, 9).step(2)),
               Json::parse(R"({"op":"render","view":"main","path":"m.mp4","size":[640,480],
                               "frames":[0,9],"step":2})"));
+}
+
+// What undo says of the batches the workbench makes around one change (issue 39: Accept all at
+// another frame, and faults left empty deleted in the same step).
+TEST(Commands, UndoLabelsOfGroupedChangesNameTheChange) {
+    EXPECT_EQ(
+        describeCommand(cmd::batch({cmd::FaultCreate("F1", {1, 2, 3}), cmd::faultDelete("A")})),
+        "make fault F1 (3 spheres) (deleting A, left empty)");
+    EXPECT_EQ(describeCommand(cmd::batch(
+                  {cmd::frameSet(3), cmd::FaultCandidates().prefix("C"), cmd::frameSet(5)})),
+              "accept the fault candidates");
+    EXPECT_EQ(describeCommand(cmd::batch({cmd::faultDelete("A"), cmd::faultDelete("B")})),
+              "delete 2 faults");
+    EXPECT_EQ(describeCommand(cmd::batch({cmd::ThresholdAdd("strain"), cmd::boxRemove("b")})),
+              "2 changes");
 }

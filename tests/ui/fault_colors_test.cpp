@@ -63,6 +63,27 @@ TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
 
 // Issue 39: the preview is found in the frame the main view shows, the op in the session's
 // current frame. With the main view a frame behind, Accept all still makes the faults shown.
+// "New from visible" takes every visible sphere: a fault all of whose spheres are visible is
+// left empty, and is deleted in the same step (one undo brings it back).
+TEST_F(PanelTest, NewFromVisibleDeletesTheFaultItEmpties) {
+    openLattice();
+    std::vector<std::int64_t> west; // the x = 0 wall
+    for (std::int64_t id = 1; id <= 64; id += 4)
+        west.push_back(id);
+    session.apply({{"op", "fault.create"}, {"name", "W"}, {"ids", west}});
+    twoWalls(session);
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.frames(wb(), 2);
+    headless.click(wb(), "faults.create");
+    ASSERT_NE(session.state().fault("F1"), nullptr);
+    EXPECT_EQ(session.state().fault("F1")->ids.size(), 32u);
+    EXPECT_EQ(session.state().fault("W"), nullptr) << "an empty W was left in the list";
+    session.undo();
+    ASSERT_NE(session.state().fault("W"), nullptr);
+    EXPECT_EQ(session.state().fault("W")->ids.size(), 16u);
+    EXPECT_EQ(session.state().fault("F1"), nullptr);
+}
+
 // Issue 39: the main view's visible spheres and the session's (what ops such as
 // fault.candidates read) are one result from one cache, not two computations that may differ.
 TEST_F(PanelTest, TheMainViewAndTheOpsShareOneVisibility) {

@@ -111,6 +111,27 @@ class SelectionTest : public PanelTest {
 } // namespace
 
 // Issue 41: by default a rectangle takes the spheres in view; from above, the top layer.
+// A pick that takes every sphere of another fault deletes that fault in the same step, and
+// says so (an empty fault left in the list, the legend and the metrics confused users).
+TEST(FaultEdit, AFaultLeftEmptyIsDeletedInTheSameStep) {
+    core::SessionState s;
+    core::Fault a, b;
+    a.name = "A", a.ids = {1, 2};
+    b.name = "B", b.ids = {3, 4, 5};
+    s.faults = {a, b};
+    auto e = ui::faultEdit(s, {}, {1, 2, 3}, ui::FaultEditOp::NewFault); // all of A, part of B
+    EXPECT_EQ(e.command, (Json{{"op", "batch"},
+                               {"commands",
+                                {{{"op", "fault.create"}, {"name", "F1"}, {"ids", {1, 2, 3}}},
+                                 {{"op", "fault.delete"}, {"name", "A"}}}}}));
+    EXPECT_NE(e.message.find("A was left empty and deleted"), std::string::npos) << e.message;
+    e = ui::faultEdit(s, {"B"}, {1, 2}, ui::FaultEditOp::Add); // A's spheres into B
+    ASSERT_EQ(e.command["op"], "batch");
+    EXPECT_EQ(e.command["commands"][1], (Json{{"op", "fault.delete"}, {"name", "A"}}));
+    e = ui::faultEdit(s, {"B"}, {1}, ui::FaultEditOp::Add); // half of A: nothing deleted
+    EXPECT_EQ(e.command["op"], "fault.add");
+}
+
 TEST_F(SelectionTest, ARectangleTakesTheSpheresInViewUnlessThroughTheDepth) {
     headless.click(wb(), "viewports.tool.rectangle");
     EXPECT_FALSE(wb().selection().throughDepth);

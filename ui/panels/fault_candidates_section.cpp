@@ -90,8 +90,10 @@ class FaultCandidatesSection {
                 cmd.method(core::CandidateMethod::Connected);
             else if (preview->options.angle != core::kDefaultCandidateAngle)
                 cmd.angle(preview->options.angle);
-            updateOverlaps(wb, *preview);
-            core::Json accept = withEmptiedRemoved(wb, cmd, m_overlaps);
+            std::vector<std::int64_t> all; // every candidate's spheres, into new faults
+            for (const auto& c : preview->set.candidates)
+                all.insert(all.end(), c.ids.begin(), c.ids.end());
+            core::Json accept = withEmptiedRemoved(wb.state(), cmd, std::move(all), {});
             // The op finds candidates in the session's current frame, the preview was found in
             // the frame the main view shows (a view offset, a fixed frame, playback). Where they
             // differ, the op runs at the previewed frame and the current frame comes back after
@@ -279,23 +281,6 @@ class FaultCandidatesSection {
         }
     }
 
-    // The command, and deleting the faults it would leave with no sphere (a walkthrough: Accept
-    // all left an empty C1 in the list, the legend and the metrics), as one undo step. The op
-    // itself keeps emptied faults (journals count on it).
-    static core::Json withEmptiedRemoved(
-        PanelContext& wb, core::Json cmd,
-        const std::vector<std::vector<std::pair<std::string, std::size_t>>>& overlaps) {
-        std::map<std::string, std::size_t> taken;
-        for (const auto& row : overlaps)
-            for (const auto& [fault, n] : row)
-                taken[fault] += n;
-        std::vector<core::Json> batch{std::move(cmd)};
-        for (const auto& [fault, n] : taken)
-            if (const core::Fault* f = wb.state().fault(fault); f && n >= f->ids.size())
-                batch.push_back(core::cmd::faultDelete(fault));
-        return core::cmd::batch(std::move(batch));
-    }
-
     void clear(PanelContext& wb) {
         wb.selection().candidates.reset();
         m_accepted.clear();
@@ -315,10 +300,7 @@ class FaultCandidatesSection {
             if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]);
                 !note.empty())
                 cmd.notes(note);
-        updateOverlaps(wb, *wb.selection().candidates);
-        const std::vector<std::vector<std::pair<std::string, std::size_t>>> mine = {
-            m_overlaps.at(static_cast<std::size_t>(k))};
-        wb.emit(withEmptiedRemoved(wb, cmd, mine), [this, &wb, k, name] {
+        wb.emit(withEmptiedRemoved(wb.state(), cmd, cand.ids, name), [this, &wb, k, name] {
             m_accepted.insert(k);
             wb.selection().faults = {name};
         });

@@ -22,6 +22,21 @@ constexpr float kPalette[][3] = {
     {0.65f, 0.35f, 0.80f}, {0.10f, 0.75f, 0.75f}, {0.95f, 0.45f, 0.65f}, {0.60f, 0.45f, 0.25f},
     {0.55f, 0.85f, 0.10f}, {0.35f, 0.35f, 0.95f}, {0.20f, 0.20f, 0.20f}, {0.85f, 0.85f, 0.85f}};
 
+// A "from": "visible" command, and deleting the faults whose every sphere is visible (it takes
+// them all), in one step. The op reads the current frame's visible spheres: the main view's are
+// those when it shows that frame; otherwise the command goes alone.
+core::Json withEmptiedByVisible(PanelContext& wb, core::Json cmd, const std::string& into) {
+    const ViewDisplay* main = wb.mainDisplay();
+    if (!main || !main->frame || !main->visibility || main->shownFrame != wb.state().frame)
+        return cmd;
+    std::vector<std::int64_t> ids;
+    const auto& mask = main->visibility->mask;
+    for (std::size_t row = 0; row < mask.size() && row < main->frame->size(); ++row)
+        if (mask[row])
+            ids.push_back(main->frame->ids[row]);
+    return withEmptiedRemoved(wb.state(), std::move(cmd), std::move(ids), into);
+}
+
 class FaultsPanel final : public Panel {
   public:
     const char* id() const override { return panel_ids::kFaults; }
@@ -37,7 +52,7 @@ class FaultsPanel final : public Panel {
         ImGui::BeginDisabled(!haveVisible);
         if (ImGui::Button("New from visible")) {
             const std::string name = nextFaultName(s);
-            wb.emit(core::cmd::faultCreateVisible(name),
+            wb.emit(withEmptiedByVisible(wb, core::cmd::faultCreateVisible(name), name),
                     [&wb, name] { wb.selection().faults = {name}; });
         }
         wb.mark("faults.create");
@@ -311,7 +326,7 @@ class FaultsPanel final : public Panel {
         const bool shortLabels =
             ImGui::GetContentRegionAvail().x < buttonWidth("Remove the visible spheres");
         if (ImGui::Button(shortLabels ? "Add visible###add" : "Add the visible spheres###add"))
-            wb.emit(core::cmd::faultAddVisible(f.name));
+            wb.emit(withEmptiedByVisible(wb, core::cmd::faultAddVisible(f.name), f.name));
         if (shortLabels && ImGui::IsItemHovered())
             ImGui::SetTooltip("Add the visible spheres to %s", f.name.c_str());
         flowSameLine(buttonWidth(shortLabels ? "Remove visible" : "Remove the visible spheres"));

@@ -14,6 +14,38 @@ std::string nextFaultName(const core::SessionState& state) {
     }
 }
 
+core::Json withEmptiedRemoved(const core::SessionState& state, core::Json command,
+                              std::vector<std::int64_t> ids, const std::string& into,
+                              std::vector<std::string>* emptied) {
+    core::normalizeIds(ids);
+    std::vector<core::Json> batch{std::move(command)};
+    for (const core::Fault& f : state.faults) {
+        if (f.name == into || f.ids.empty())
+            continue;
+        const bool all = std::all_of(f.ids.begin(), f.ids.end(), [&](std::int64_t id) {
+            return std::binary_search(ids.begin(), ids.end(), id);
+        });
+        if (!all)
+            continue;
+        batch.push_back(core::cmd::faultDelete(f.name));
+        if (emptied)
+            emptied->push_back(f.name);
+    }
+    return core::cmd::batch(std::move(batch));
+}
+
+namespace {
+// "; C2 emptied and deleted" for the status line, or nothing.
+std::string emptiedNote(const std::vector<std::string>& emptied) {
+    if (emptied.empty())
+        return {};
+    std::string names;
+    for (const auto& n : emptied)
+        names += (names.empty() ? "" : ", ") + n;
+    return "; " + names + (emptied.size() == 1 ? " was" : " were") + " left empty and deleted";
+}
+} // namespace
+
 FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>& selectedFaults,
                     std::vector<std::int64_t> ids, FaultEditOp op) {
     FaultEdit edit;
@@ -33,9 +65,11 @@ FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>
     }
     if (op == FaultEditOp::NewFault || (op == FaultEditOp::Add && !target)) {
         const std::string name = nextFaultName(state);
-        edit.command = core::cmd::FaultCreate(name, ids);
+        std::vector<std::string> emptied;
+        edit.command =
+            withEmptiedRemoved(state, core::cmd::FaultCreate(name, ids), ids, name, &emptied);
         edit.selectNext = name;
-        edit.message = "New fault " + name + " with " + plural(ids.size());
+        edit.message = "New fault " + name + " with " + plural(ids.size()) + emptiedNote(emptied);
         return edit;
     }
     if (!target) {
@@ -52,10 +86,12 @@ FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>
         return edit;
     }
     const bool add = op == FaultEditOp::Add;
-    edit.command = add ? core::cmd::faultAdd(target->name, change)
+    std::vector<std::string> emptied;
+    edit.command = add ? withEmptiedRemoved(state, core::cmd::faultAdd(target->name, change),
+                                            change, target->name, &emptied)
                        : core::cmd::faultRemove(target->name, change);
     edit.message = (add ? "Added " : "Removed ") + plural(change.size()) +
-                   (add ? " to " : " from ") + target->name;
+                   (add ? " to " : " from ") + target->name + emptiedNote(emptied);
     return edit;
 }
 

@@ -30,8 +30,18 @@ struct FaultEdit {
 // The first free name F1, F2, ...
 std::string nextFaultName(const core::SessionState& state);
 
+// `command` (one that puts `ids` into a fault: fault.create, fault.add, fault.candidates),
+// followed by deleting the other faults it leaves with no sphere, as one undo step. The ops
+// themselves keep an emptied fault (journals count on it), and an empty fault left in the list,
+// the legend and the metrics confused users (walkthrough of issue 41). `into`: the fault the
+// spheres go to (not deleted); `emptied`, when given, receives the deleted faults' names.
+core::Json withEmptiedRemoved(const core::SessionState& state, core::Json command,
+                              std::vector<std::int64_t> ids, const std::string& into,
+                              std::vector<std::string>* emptied = nullptr);
+
 // `ids` are the picked spheres (any order). Adding sends only the ids not yet members and
-// removing only members, so the journal holds what changed.
+// removing only members, so the journal holds what changed; a fault the spheres leave empty is
+// deleted in the same step (withEmptiedRemoved).
 FaultEdit faultEdit(const core::SessionState& state, const std::set<std::string>& selectedFaults,
                     std::vector<std::int64_t> ids, FaultEditOp op);
 
