@@ -2,6 +2,7 @@
 // from the visible spheres, adding/removing the visible ones, merge, delete, and which spheres
 // faults let through (fault.filter). Later analysis plugs in through PanelExtensions.
 #include "core/session/commands.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
@@ -29,12 +30,8 @@ core::Json withEmptiedByVisible(PanelContext& wb, core::Json cmd, const std::str
     const ViewDisplay* main = wb.mainDisplay();
     if (!main || !main->frame || !main->visibility || main->shownFrame != wb.state().frame)
         return cmd;
-    std::vector<std::int64_t> ids;
-    const auto& mask = main->visibility->mask;
-    for (std::size_t row = 0; row < mask.size() && row < main->frame->size(); ++row)
-        if (mask[row])
-            ids.push_back(main->frame->ids[row]);
-    return withEmptiedRemoved(wb.state(), std::move(cmd), std::move(ids), into);
+    return withEmptiedRemoved(wb.state(), std::move(cmd),
+                              core::visibleSpheresFault(*main->frame, *main->visibility).ids, into);
 }
 
 class FaultsPanel final : public Panel {

@@ -50,9 +50,9 @@ MovieExport::Step MovieExport::step() {
         m_session.settleAction(m_place, m_command);
     } catch (const std::exception& e) {
         done.message += "; not in the journal: " + std::string(e.what());
+        m_session.dropAction(m_place); // the place records nothing
     }
-    m_sequence.reset(); // its place is settled (or the settle failed and dropped nothing else)
-    m_session.dropAction(m_place);
+    m_sequence.reset();
     return done;
 }
 

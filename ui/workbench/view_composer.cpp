@@ -22,10 +22,9 @@ constexpr std::size_t kReferenceChannel = 64;
 
 } // namespace
 
-ViewComposer::ViewComposer(core::Session& session, FrameStore& frames, ColumnCatalog& columns,
-                           SurfaceStore& surfaces, JobRunner& jobs)
-    : m_session(session), m_frames(frames), m_columns(columns), m_surfaces(surfaces), m_jobs(jobs) {
-}
+ViewComposer::ViewComposer(core::Session& session, FrameStore& frames, SurfaceStore& surfaces,
+                           JobRunner& jobs)
+    : m_session(session), m_frames(frames), m_surfaces(surfaces), m_jobs(jobs) {}
 
 const ViewDisplay* ViewComposer::view(const std::string& name) const {
     for (const auto& v : m_views)

@@ -20,8 +20,8 @@ namespace faultline::ui {
 
 class ViewComposer {
   public:
-    ViewComposer(core::Session& session, FrameStore& frames, ColumnCatalog& columns,
-                 SurfaceStore& surfaces, JobRunner& jobs);
+    ViewComposer(core::Session& session, FrameStore& frames, SurfaceStore& surfaces,
+                 JobRunner& jobs);
 
     // What the views show after this frame's previews, with frame `base` as the current one.
     struct Inputs {
@@ -56,7 +56,6 @@ class ViewComposer {
 
     core::Session& m_session;
     FrameStore& m_frames;
-    ColumnCatalog& m_columns;
     SurfaceStore& m_surfaces;
     core::DifferenceColumnCache m_differences;
     std::vector<ViewDisplay> m_views;

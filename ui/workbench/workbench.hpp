@@ -258,7 +258,7 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     JobRunner m_jobs;
     SurfaceStore m_surfaces{m_jobs};
     // What the views show.
-    ViewComposer m_composer{m_session, m_frames, m_columns, m_surfaces, m_jobs};
+    ViewComposer m_composer{m_session, m_frames, m_surfaces, m_jobs};
     ItemRegistry m_items;
     DockLayout m_layout;
     bool m_layoutFollowsWindow = true; // the default layout, not arranged by the user yet
