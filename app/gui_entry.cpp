@@ -80,9 +80,9 @@ int runGui(const Args& argsIn) {
         ui::GuiApp gui(session, std::move(options));
         const std::string path = args.empty() ? std::string() : args.front();
         if (path.empty())
-            gui.workbench().openDemo(); // made once (about a minute), then reused
+            gui.workbench().opener().openDemo(); // made once (about a minute), then reused
         else
-            gui.workbench().openPath(path);
+            gui.workbench().opener().openPath(path);
         if (screenshot.empty())
             return gui.run();
         // Settle: the data opened, its frame shown, a few frames drawn.

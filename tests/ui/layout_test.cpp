@@ -71,7 +71,7 @@ void checkEveryPanel(float width, float height, const char* layout = nullptr,
         std::fwrite(text.data(), 1, text.size(), f);
         std::fclose(f);
     }
-    wb->openData({dir.file("demo_like.dump")});
+    wb->opener().openData({dir.file("demo_like.dump")});
     headless.settle(*wb);
     ASSERT_NE(session.dataset(), nullptr);
     if (layout) {

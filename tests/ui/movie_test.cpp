@@ -279,7 +279,7 @@ TEST_F(PanelTest, ExportDialogsOpenWhereTheLastExportWent) {
     std::filesystem::create_directories(core::demoModelFolder());
     const std::string demo = core::demoModelFolder() + "/block.dump";
     std::filesystem::copy_file(dir.file("lattice.dump"), demo);
-    wb().openData({demo});
+    wb().opener().openData({demo});
     headless.settle(wb());
     EXPECT_EQ(wb().exportFolder(), std::filesystem::current_path().string());
     if (old)

@@ -26,7 +26,7 @@ class PanelTest : public ::testing::Test {
     ui::Workbench& wb() { return *m_wb; }
     // Opens the lattice (3 frames of 64 spheres) the way a user does, in the background.
     void openLattice() {
-        wb().openData({writeLattice(dir.file("lattice.dump"))});
+        wb().opener().openData({writeLattice(dir.file("lattice.dump"))});
         headless.settle(wb());
         ASSERT_NE(session.dataset(), nullptr);
         ASSERT_NE(wb().mainDisplay(), nullptr);
@@ -42,7 +42,7 @@ class PanelTest : public ::testing::Test {
     std::unique_ptr<Reopened> reopen(const std::string& file) {
         auto r = std::make_unique<Reopened>();
         headless.frames(r->wb, 2);
-        r->wb.openSession(file);
+        r->wb.opener().openSession(file);
         headless.settle(r->wb);
         return r;
     }

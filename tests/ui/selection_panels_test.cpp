@@ -10,7 +10,7 @@ using core::Json;
 
 TEST_F(PanelTest, DataPanelOpensInTheBackgroundThenCloses) {
     const std::string path = writeLattice(dir.file("lattice.dump"));
-    wb().openData({path});
+    wb().opener().openData({path});
     EXPECT_EQ(session.dataset(), nullptr); // nothing changes until the job is done
     headless.settle(wb());
     ASSERT_EQ(headless.emitted("data.open").size(), 1u);
@@ -25,7 +25,7 @@ TEST_F(PanelTest, DataPanelOpensInTheBackgroundThenCloses) {
 }
 
 TEST_F(PanelTest, AMissingFileIsReportedNotFatal) {
-    wb().openData({dir.file("nothing-here.dump")});
+    wb().opener().openData({dir.file("nothing-here.dump")});
     headless.settle(wb());
     EXPECT_TRUE(headless.emitted().empty());
     EXPECT_TRUE(wb().lastMessageIsError());

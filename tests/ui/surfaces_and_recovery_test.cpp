@@ -125,7 +125,7 @@ TEST_F(PanelTest, TheVisibleSpheresSurfaceFollowsTheThresholds) {
     EXPECT_NE(wb().mainDisplay()->surfaces[0].mesh, all);
     EXPECT_EQ(status().spheres, 32u);
     // Its VDB export writes what the op writes, and the journal records it.
-    wb().exportSurfaces({"*visible"}, dir.file("out/visible.vdb"), true);
+    wb().exports().surfaces({"*visible"}, dir.file("out/visible.vdb"), true, false);
     headless.settle(wb());
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/visible.vdb"))) << wb().lastMessage();
     EXPECT_EQ(session.journal().back().value("fault", ""), "*visible");
@@ -410,15 +410,15 @@ TEST_F(PanelTest, ASessionWhoseDataMovedAsksWhereItWent) {
     std::filesystem::create_directories(dir.file("moved"));
     std::filesystem::rename(dir.file("lattice.dump"), dir.file("moved/lattice.dump"));
     headless.frames(wb(), 2);
-    wb().openSession(file);
+    wb().opener().openSession(file);
     headless.settle(wb());
-    ASSERT_TRUE(wb().missingData().has_value());
-    EXPECT_EQ(wb().missingData()->paths.front(), dir.file("lattice.dump"));
+    ASSERT_TRUE(wb().opener().missingData().has_value());
+    EXPECT_EQ(wb().opener().missingData()->paths.front(), dir.file("lattice.dump"));
     EXPECT_EQ(session.dataset(), nullptr);
     headless.clearEmitted();
-    wb().relocateData(dir.file("moved/lattice.dump"));
+    wb().opener().relocate(dir.file("moved/lattice.dump"));
     headless.settle(wb());
-    EXPECT_FALSE(wb().missingData().has_value());
+    EXPECT_FALSE(wb().opener().missingData().has_value());
     ASSERT_NE(session.dataset(), nullptr);
     EXPECT_EQ(session.state().dataPaths.front(), dir.file("moved/lattice.dump"));
     ASSERT_NE(session.state().box("b"), nullptr);
@@ -451,7 +451,7 @@ TEST_F(PanelTest, TheFrameMemoryBudgetIsASettingAppliedToTheData) {
     EXPECT_EQ(session.dataset()->cacheBudget(), std::size_t{256} << 20);
     // Data opened later gets it too.
     session.apply(Json::parse(R"({"op":"data.close"})"));
-    wb().openData({dir.file("lattice.dump")});
+    wb().opener().openData({dir.file("lattice.dump")});
     headless.settle(wb());
     ASSERT_NE(session.dataset(), nullptr);
     EXPECT_EQ(session.dataset()->cacheBudget(), std::size_t{256} << 20);
@@ -485,13 +485,13 @@ TEST_F(PanelTest, SurfacesExportInTheBackgroundAndTheJournalRecordsIt) {
     openLattice();
     session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
     session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact"})"));
-    wb().exportSurfaces({"F1"}, dir.file("out/F1.vdb"), true);
-    wb().exportSurfaces({"F1"}, dir.file("out/faults.glb"), false);
+    wb().exports().surfaces({"F1"}, dir.file("out/F1.vdb"), true, false);
+    wb().exports().surfaces({"F1"}, dir.file("out/faults.glb"), false, false);
     headless.settle(wb());
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/F1.vdb"))) << wb().lastMessage();
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/faults.glb"))) << wb().lastMessage();
     // With the spheres as glyphs: a larger file, and the journal says so.
-    wb().exportSurfaces({"F1"}, dir.file("out/glyphs.glb"), false, true);
+    wb().exports().surfaces({"F1"}, dir.file("out/glyphs.glb"), false, true);
     headless.settle(wb());
     EXPECT_GT(std::filesystem::file_size(dir.file("out/glyphs.glb")),
               std::filesystem::file_size(dir.file("out/faults.glb")));
@@ -504,7 +504,7 @@ TEST_F(PanelTest, SurfacesExportInTheBackgroundAndTheJournalRecordsIt) {
     // A fault that cannot be built says why, and records nothing.
     session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","voxel":1e-6})"));
     const std::size_t before = session.journal().size();
-    wb().exportSurfaces({"F1"}, dir.file("out/bad.vdb"), true);
+    wb().exports().surfaces({"F1"}, dir.file("out/bad.vdb"), true, false);
     headless.settle(wb());
     EXPECT_TRUE(wb().lastMessageIsError());
     EXPECT_NE(wb().lastMessage().find("F1"), std::string::npos) << wb().lastMessage();
@@ -519,7 +519,7 @@ TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
     for (const char* what : {"fault_tracks", "fault_metrics"}) {
         const std::string mine = dir.file(std::string("out/") + what + ".csv");
         const std::string ops = dir.file(std::string("out/") + what + "-op.csv");
-        wb().exportCsv({{"op", "export.csv"}, {"what", what}, {"path", mine}});
+        wb().exports().csv({{"op", "export.csv"}, {"what", what}, {"path", mine}});
         EXPECT_TRUE(wb().jobs().busy() || std::filesystem::exists(mine));
         headless.settle(wb());
         ASSERT_TRUE(std::filesystem::exists(mine)) << wb().lastMessage();
@@ -534,7 +534,7 @@ TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
     }
     // The frame changes while an export runs: the journal has the export first (it read the
     // frame before), so a replay writes the same file.
-    wb().exportSurfaces({"F1"}, dir.file("out/late.vdb"), true);
+    wb().exports().surfaces({"F1"}, dir.file("out/late.vdb"), true, false);
     session.apply(Json{{"op", "frame.set"}, {"frame", 1}});
     headless.settle(wb());
     ASSERT_TRUE(std::filesystem::exists(dir.file("out/late.vdb"))) << wb().lastMessage();
@@ -543,7 +543,8 @@ TEST_F(PanelTest, CsvExportsOfEveryFrameRunInTheBackgroundAndMatchTheOp) {
     EXPECT_EQ(session.journal().back().value("op", ""), "frame.set");
     // A bad request says why and records nothing.
     const std::size_t before = session.journal().size();
-    wb().exportCsv({{"op", "export.csv"}, {"what", "nonsense"}, {"path", dir.file("out/x.csv")}});
+    wb().exports().csv(
+        {{"op", "export.csv"}, {"what", "nonsense"}, {"path", dir.file("out/x.csv")}});
     headless.settle(wb());
     EXPECT_TRUE(wb().lastMessageIsError());
     EXPECT_NE(wb().lastMessage().find("what"), std::string::npos) << wb().lastMessage();

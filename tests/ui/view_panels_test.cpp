@@ -249,7 +249,7 @@ TEST_F(PanelTest, SessionsOpenInTheBackgroundAsANewHistory) {
     session.apply(Json::parse(R"({"op":"data.close"})"));
     headless.frames(wb(), 2);
     headless.clearEmitted();
-    wb().openSession(file);
+    wb().opener().openSession(file);
     headless.settle(wb());
     EXPECT_EQ(headless.emitted(), (std::vector<Json>{{{"op", "session.open"}, {"path", file}}}));
     ASSERT_NE(session.dataset(), nullptr);

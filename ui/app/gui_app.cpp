@@ -164,9 +164,9 @@ void GuiApp::dropFiles(const std::vector<std::string>& paths) {
         return;
     // Several files dropped together are one run's frames; one file may also be a session.
     if (paths.size() == 1)
-        m_workbench->openPath(paths.front());
+        m_workbench->opener().openPath(paths.front());
     else
-        m_workbench->openData(paths);
+        m_workbench->opener().openData(paths);
 }
 
 bool GuiApp::animating() const {

@@ -1,5 +1,7 @@
 #include "ui/workbench/workbench.hpp"
 
+#include "ui/workbench/path_text.hpp"
+
 #include "core/session/command_label.hpp"
 #include "core/session/commands.hpp"
 
@@ -25,17 +27,6 @@ namespace faultline::ui {
 namespace fs = std::filesystem;
 using core::Json;
 
-namespace {
-
-std::string timestampForFile() {
-    const std::time_t t = std::time(nullptr);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
-    return buf;
-}
-
-} // namespace
-
 Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     : m_session(session), m_options(std::move(options)) {
     m_layout = DockLayout::defaultLayout();
@@ -43,7 +34,7 @@ Workbench::Workbench(core::Session& session, WorkbenchOptions options)
     addFaultMetricsSection(m_extensions);
     addFaultCandidatesSection(m_extensions);
     m_session.setDatasetOpener(
-        [this](const std::vector<std::string>& paths) { return openDatasetCached(paths); });
+        [this](const std::vector<std::string>& paths) { return m_opener.dataset(paths); });
     m_frames.setDataset(m_session.dataset());
     if (!m_options.stateDir.empty()) {
         std::error_code ec;
@@ -91,33 +82,11 @@ void Workbench::preview(const std::string& key, Json command) {
     m_previews[key] = std::move(command);
 }
 
-void Workbench::info(std::string text) {
-    m_message = std::move(text);
-    m_messageIsError = false;
-    m_messageTime = m_now;
-}
+void Workbench::info(std::string text) { m_status.info(std::move(text), m_now); }
 
-void Workbench::error(std::string text) {
-    m_message = std::move(text);
-    m_messageIsError = true;
-    m_messageTime = m_now;
-}
+void Workbench::error(std::string text) { m_status.error(std::move(text), m_now); }
 
 const ViewDisplay* Workbench::view(const std::string& name) const { return m_composer.view(name); }
-
-std::shared_ptr<core::Dataset> Workbench::openDatasetCached(const std::vector<std::string>& paths) {
-    for (auto it = m_datasets.begin(); it != m_datasets.end(); ++it)
-        if (it->first == paths) {
-            auto ds = it->second;
-            std::rotate(m_datasets.begin(), it, it + 1); // most recent first
-            return ds;
-        }
-    auto ds = core::Dataset::open(paths); // not prepared in the background: e.g. a replayed undo
-    m_datasets.insert(m_datasets.begin(), {paths, ds});
-    if (m_datasets.size() > 3)
-        m_datasets.pop_back();
-    return ds;
-}
 
 std::size_t Workbench::displayFrame() const {
     for (const auto& [key, cmd] : m_previews)
@@ -150,9 +119,9 @@ void Workbench::frame(double now) {
     const float menuHeight = ImGui::GetFrameHeight();
     const float statusHeight = std::round(ImGui::GetFrameHeight() + 8 * m_scale);
     drawDock(menuHeight, io.DisplaySize.y - statusHeight);
-    drawStatusBar(statusHeight);
+    m_status.draw(*this, statusHeight);
     handleDialog();
-    drawHelp();
+    m_help.draw(keyCommands(), m_scale, m_journalPath, m_renderer);
     drawPrompts();
     drawMovie();
     drawFigureOptions();

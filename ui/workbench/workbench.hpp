@@ -15,8 +15,13 @@
 #include "ui/viewport/view_renderer.hpp"
 #include "ui/widgets/file_dialog.hpp"
 #include "ui/widgets/item_registry.hpp"
+#include "ui/workbench/background_exports.hpp"
+#include "ui/workbench/data_opener.hpp"
+#include "ui/workbench/help_windows.hpp"
+#include "ui/workbench/key_commands.hpp"
 #include "ui/workbench/movie_export.hpp"
 #include "ui/workbench/recovery.hpp"
+#include "ui/workbench/status_bar.hpp"
 #include "ui/workbench/unsaved_guard.hpp"
 #include "ui/workbench/user_settings.hpp"
 #include "ui/workbench/view_composer.hpp"
@@ -109,27 +114,15 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
 
     void info(std::string text) override; // PanelContext and UnsavedGuard::Host
     void error(std::string text) override;
-    const std::string& lastMessage() const { return m_message; }
-    bool lastMessageIsError() const { return m_messageIsError; }
+    const std::string& lastMessage() const { return m_status.message(); }
+    bool lastMessageIsError() const { return m_status.messageIsError(); }
 
-    // ---- files (workbench_files.cpp) ----
-    void openPath(const std::string& path); // data or *.faultline.json, in the background
-    // `then` runs once the data is open (after its data.open was applied).
-    void openData(std::vector<std::string> paths, std::function<void()> then = {});
-    // `data`: where the session's data is now, when it moved (else the paths it names). When
-    // its data is missing the workbench asks where it went.
-    void openSession(const std::string& path, std::vector<std::string> data = {});
-    // The generator's demo model: made once in the per-user data folder (a background job with
-    // progress and cancel), then opened.
-    void openDemo();
-    // export.csv (tracks and metrics read every frame) on a worker thread with a copy of the state;
-    // journalled when written.
-    void exportCsv(core::Json cmd);
-    // Fault surfaces to a .vdb (one fault) or a .glb (several; with `glyphs`, their spheres as
-    // instanced glyphs too), built and written in a background job; the journal records the
-    // export.vdb / export.gltf where it was asked for, once it is done.
-    void exportSurfaces(std::vector<std::string> faults, const std::string& path, bool vdb,
-                        bool glyphs = false);
+    // ---- files ----
+    // Opening data, sessions and the demo in the background (a session whose data moved asks
+    // where it went: the "Where is the data?" prompt).
+    DataOpener& opener() { return m_opener; }
+    // CSV and surface exports on a worker thread, journalled where they were asked for.
+    BackgroundExports& exports() { return m_exports; }
     // ---- movies (workbench_movie.cpp) ----
     // File > Export > Movie: the options (frames, step, size, rate, MP4 or PNG per frame).
     struct MovieOptions {
@@ -201,7 +194,7 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     const std::vector<std::string>& overwriteLoss() const { return m_unsaved.overwriteLoss(); }
     // "Faultline - name" with a "*" while there are unsaved changes.
     std::string windowTitle() const;
-    void showHelp() { m_showHelp = true; }
+    void showHelp() { m_help.showKeys = true; }
     // Crash recovery: the session autosaved by a run that did not exit cleanly, offered once at
     // start (recover or discard); until decided, autosave keeps that file.
     const std::optional<core::PendingRecovery>& pendingRecovery() const {
@@ -209,27 +202,9 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     }
     void recover();
     void discardRecovery();
-    // A session whose data moved: which session and the paths it named (asks where they went).
-    struct MissingData {
-        std::string session;
-        std::vector<std::string> paths;
-    };
-    const std::optional<MissingData>& missingData() const { return m_missingData; }
-    void relocateData(const std::string& pickedFile); // the picked file stands for the data
 
   private:
-    // A keyboard command (workbench_chrome.cpp): shown in the help window and the menus, run
-    // by its keys. Entries without a key are mouse gestures, listed in the help only.
-    struct KeyCommand {
-        const char* id;   // how menus name it ("" for gestures)
-        const char* keys; // as shown: "Ctrl+Shift+O"
-        const char* what;
-        int key = 0;         // GLFW key code (the ImGui back end's key indices); 0: a gesture
-        bool ctrl = false;   // held, or not
-        int shift = -1;      // 1 held, 0 not, -1 either
-        bool repeat = false; // fires again while held
-        void (*run)(Workbench&) = nullptr;
-    };
+    // The keyboard commands (workbench_keys.cpp).
     static const std::vector<KeyCommand>& keyCommands();
     static const char* keysOf(const char* id);
     void runCommand(const char* id);
@@ -240,16 +215,12 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     void updatePlayback();
     void updateDisplay();
     void drawMenus();
-    void drawStatusBar(float height);
     void drawDock(float top, float bottom);
-    void drawHelp();
     void drawPrompts();
     void drawMovie(); // the options window and the running export's progress
     void drawFigureOptions();
     void handleShortcuts();
     void handleDialog();
-    std::shared_ptr<core::Dataset> openDatasetCached(const std::vector<std::string>& paths);
-    void rememberDataset(const std::vector<std::string>& paths, std::shared_ptr<core::Dataset> ds);
 
     core::Session& m_session;
     WorkbenchOptions m_options;
@@ -278,11 +249,8 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     std::map<std::string, core::Json> m_previews;
     Playback m_playback;
 
-    std::vector<std::pair<std::vector<std::string>, std::shared_ptr<core::Dataset>>> m_datasets;
-
-    std::string m_message;
-    bool m_messageIsError = false;
-    double m_messageTime = 0.0;
+    StatusBar m_status; // and the last message
+    HelpWindows m_help;
 
     std::string m_sessionPath;
     std::string m_lastExportFolder;               // where the last export or screenshot went
@@ -291,16 +259,16 @@ class Workbench final : public PanelContext, private UnsavedGuard::Host {
     std::string m_journalPath;
     std::ofstream m_journal;
     Recovery m_recovery{m_options.stateDir}; // autosave, and a crashed run's session
-    std::optional<MissingData> m_missingData;
     bool m_quit = false;
-    bool m_showHelp = false;
-    bool m_showAbout = false;
     bool m_showMovieOptions = false;
     bool m_showFigureOptions = false;
     UnsavedGuard m_unsaved{*this}; // Save / Discard / Cancel, Replace / Save as / Cancel
     void writeSession(const std::string& path, std::function<void()> then) override;
     void askWhereToSave() override; // the Save as dialog
     MovieExport m_movie{m_session}; // File > Export > Movie while it is written
+    DataOpener m_opener{m_session, *this, m_settings, m_recovery,
+                        [this](const std::string& path) { m_sessionPath = path; }};
+    BackgroundExports m_exports{m_session, *this};
 };
 
 } // namespace faultline::ui

@@ -1,13 +1,13 @@
-// The workbench's frame around the panels: main menu, keyboard shortcuts, status bar, help.
+// The workbench's frame around the panels: the main menu, figures, the prompts and the file
+// dialog's answers (the keys: workbench_keys.cpp; StatusBar, HelpWindows their own).
 //
 // Index of this file:
-// [SECTION] Keyboard commands and shortcuts
 // [SECTION] Screenshots and figure sizes
 // [SECTION] Main menu
-// [SECTION] Status bar
-// [SECTION] Help window
 // [SECTION] Prompts and file dialogs
 #include "ui/workbench/workbench.hpp"
+
+#include "ui/workbench/path_text.hpp"
 
 #include "core/session/commands.hpp"
 #include "core/synth/demo_model.hpp"
@@ -28,126 +28,6 @@ namespace faultline::ui {
 namespace fs = std::filesystem;
 using core::Json;
 
-namespace {
-
-std::string stamp() {
-    const std::time_t t = std::time(nullptr);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
-    return buf;
-}
-
-std::string folderOf(const std::string& path) {
-    if (path.empty())
-        return {};
-    return fs::path(path).parent_path().string();
-}
-
-} // namespace
-
-//-----------------------------------------------------------------------------
-// [SECTION] Keyboard commands and shortcuts
-//-----------------------------------------------------------------------------
-
-// Every keyboard command: the keys as the help window and the menus show them, what it does,
-// and what it runs. Mouse gestures (no key) are in the help window only. The handler, the help
-// and the menus all read this one table, so a shortcut cannot be documented one way and work
-// another.
-const std::vector<Workbench::KeyCommand>& Workbench::keyCommands() {
-    using W = Workbench;
-    static const std::vector<KeyCommand> commands = {
-        {"open-data", "Ctrl+O", "Open data", GLFW_KEY_O, true, 0, false,
-         [](W& w) { w.openDataDialog(); }},
-        {"open-session", "Ctrl+Shift+O", "Open a session", GLFW_KEY_O, true, 1, false,
-         [](W& w) {
-             w.m_dialog.open("Open a session", FileDialog::Mode::Open, "open-session",
-                             {".faultline.json"}, folderOf(w.m_sessionPath));
-         }},
-        {"save", "Ctrl+S", "Save the session", GLFW_KEY_S, true, 0, false,
-         [](W& w) { w.m_sessionPath.empty() ? w.saveSessionAsDialog() : w.saveSession(); }},
-        {"save-as", "Ctrl+Shift+S", "Save the session as", GLFW_KEY_S, true, 1, false,
-         [](W& w) { w.saveSessionAsDialog(); }},
-        // Nothing to undo or redo is said plainly, not as a failure in red (walkthrough).
-        {"undo", "Ctrl+Z", "Undo", GLFW_KEY_Z, true, 0, false,
-         [](W& w) {
-             w.m_session.canUndo() ? w.emit(core::cmd::undo()) : w.info("Nothing to undo");
-         }},
-        {"redo", "Ctrl+Shift+Z", "Redo", GLFW_KEY_Z, true, 1, false,
-         [](W& w) {
-             w.m_session.canRedo() ? w.emit(core::cmd::redo()) : w.info("Nothing to redo");
-         }},
-        {"redo-y", "Ctrl+Y", "Redo", GLFW_KEY_Y, true, -1, false,
-         [](W& w) {
-             w.m_session.canRedo() ? w.emit(core::cmd::redo()) : w.info("Nothing to redo");
-         }},
-        {"quit", "Ctrl+Q", "Quit", GLFW_KEY_Q, true, -1, false, [](W& w) { w.requestQuit(); }},
-        {"play", "Space", "Play / pause", GLFW_KEY_SPACE, false, -1, false,
-         [](W& w) { w.m_playback.playing ? w.pause() : w.play(); }},
-        {"previous", "Left", "Previous frame", GLFW_KEY_LEFT, false, 0, true,
-         [](W& w) { w.stepFrames(-1); }},
-        {"next", "Right", "Next frame", GLFW_KEY_RIGHT, false, 0, true,
-         [](W& w) { w.stepFrames(1); }},
-        {"back-10", "Shift+Left", "10 frames back", GLFW_KEY_LEFT, false, 1, true,
-         [](W& w) { w.stepFrames(-10); }},
-        {"forward-10", "Shift+Right", "10 frames on", GLFW_KEY_RIGHT, false, 1, true,
-         [](W& w) { w.stepFrames(10); }},
-        {"first", "Home", "First frame", GLFW_KEY_HOME, false, -1, false,
-         [](W& w) { w.jumpToFrame(0); }},
-        {"last", "End", "Last frame", GLFW_KEY_END, false, -1, false,
-         [](W& w) {
-             w.jumpToFrame(w.dataset() ? static_cast<long long>(w.dataset()->frameCount()) - 1 : 0);
-         }},
-        {"fit", "F", "Fit the model in the viewports", GLFW_KEY_F, false, -1, false,
-         [](W& w) {
-             if (w.dataset()) // distance 0: fit the model
-                 w.emit(core::cmd::CameraSet("main").distance(0.0));
-         }},
-        {"screenshot", "F12", "Screenshot of the window (PNG in the working folder)", GLFW_KEY_F12,
-         false, -1, false,
-         [](W& w) {
-             w.requestScreenshot((fs::current_path() / ("faultline-" + stamp() + ".png")).string());
-         }},
-        {"help", "F1", "This list", GLFW_KEY_F1, false, -1, false,
-         [](W& w) { w.m_showHelp = true; }},
-        {"tool-rectangle", "R", "Rectangle selection tool", GLFW_KEY_R, false, -1, false,
-         [](W& w) { w.m_selection.tool = ViewportTool::Rectangle; }},
-        {"tool-lasso", "L", "Lasso selection tool", GLFW_KEY_L, false, -1, false,
-         [](W& w) { w.m_selection.tool = ViewportTool::Lasso; }},
-        {"tool-orbit", "Esc", "Back to orbiting", GLFW_KEY_ESCAPE, false, -1, false,
-         [](W& w) { w.m_selection.tool = ViewportTool::Orbit; }},
-        // Mouse gestures: the help window lists them.
-        {"", "Left drag in a view", "Orbit"},
-        {"", "Right or middle drag, Shift+drag", "Pan"},
-        {"", "Wheel", "Zoom"},
-        {"", "Ctrl+click a sphere",
-         "Add it to the selected fault, or take it out (a new fault when none is selected)"},
-        {"", "Drag with a selection tool",
-         "Add the visible spheres inside to the selected fault (a new one if none)"},
-        {"", "Ctrl+drag / Shift+drag (tool)",
-         "Remove them from the selected fault / make a new fault of them"},
-        {"", "Click or drag on a metric plot",
-         "Go to that frame (Faults panel, metrics over time)"},
-        {"", "Drag on a histogram", "Set that variable's threshold (drag the edges to adjust)"},
-        {"", "Drag a tab", "Move a panel; drop on an edge to split the area"},
-    };
-    return commands;
-}
-
-const char* Workbench::keysOf(const char* id) {
-    for (const KeyCommand& c : keyCommands())
-        if (std::string_view(c.id) == id)
-            return c.keys;
-    return nullptr;
-}
-
-void Workbench::runCommand(const char* id) {
-    for (const KeyCommand& c : keyCommands())
-        if (std::string_view(c.id) == id && c.run) {
-            c.run(*this);
-            return;
-        }
-}
-
 void Workbench::openDataDialog() {
     m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open,
                   "open-data", {},
@@ -157,20 +37,6 @@ void Workbench::openDataDialog() {
 void Workbench::saveSessionAsDialog() {
     m_dialog.open("Save the session as", FileDialog::Mode::Save, "save-session",
                   {".faultline.json"}, folderOf(m_sessionPath), "analysis.faultline.json");
-}
-
-void Workbench::handleShortcuts() {
-    const ImGuiIO& io = ImGui::GetIO();
-    if (io.WantTextInput || ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId))
-        return;
-    for (const KeyCommand& c : keyCommands()) {
-        if (!c.key || c.ctrl != io.KeyCtrl || (c.shift >= 0 && (c.shift == 1) != io.KeyShift))
-            continue;
-        if (ImGui::IsKeyPressed(c.key, c.repeat)) {
-            c.run(*this);
-            return;
-        }
-    }
 }
 
 //-----------------------------------------------------------------------------
@@ -252,7 +118,7 @@ void Workbench::drawFigureOptions() {
         if (ImGui::Button("Save as...")) {
             m_showFigureOptions = false;
             m_dialog.open("Save the main view as a PNG", FileDialog::Mode::Save, "screenshot",
-                          {".png"}, exportFolder(), "faultline-" + stamp() + ".png");
+                          {".png"}, exportFolder(), "faultline-" + timestampForFile() + ".png");
         }
         m_items.markLastItem("figure.save");
         ImGui::SameLine();
@@ -292,14 +158,15 @@ void Workbench::drawMenus() {
         if (ImGui::MenuItem("Open data...", keysOf("open-data")))
             runCommand("open-data");
         if (ImGui::MenuItem("Open the demo model"))
-            guardUnsaved("Open the demo model", [this] { openDemo(); });
+            guardUnsaved("Open the demo model", [this] { m_opener.openDemo(); });
         if (ImGui::MenuItem("Open session...", keysOf("open-session")))
             runCommand("open-session");
         if (ImGui::BeginMenu("Open recent", !m_settings.recent().empty())) {
             for (const auto& r : m_settings.recent())
                 if (ImGui::MenuItem(r.c_str()))
                     guardUnsaved(
-                        "Open " + fs::path(r).filename().string(), [this, r] { openPath(r); }, r);
+                        "Open " + fs::path(r).filename().string(),
+                        [this, r] { m_opener.openPath(r); }, r);
             ImGui::EndMenu();
         }
         ImGui::Separator();
@@ -405,7 +272,7 @@ void Workbench::drawMenus() {
         if (ImGui::MenuItem("Keyboard and mouse", keysOf("help")))
             runCommand("help");
         if (ImGui::MenuItem("About Faultline"))
-            m_showAbout = true;
+            m_help.showAbout = true;
         ImGui::EndMenu();
     }
     // The session's name on the right of the menu bar, "*" while changes are unsaved.
@@ -418,155 +285,6 @@ void Workbench::drawMenus() {
                              ImGui::GetWindowWidth() - w - 16 * m_scale));
     ImGui::TextDisabled("%s", title.c_str());
     ImGui::EndMainMenuBar();
-}
-
-//-----------------------------------------------------------------------------
-// [SECTION] Status bar
-//-----------------------------------------------------------------------------
-
-void Workbench::drawStatusBar(float height) {
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(0, io.DisplaySize.y - height));
-    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x, height));
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8 * m_scale, 4 * m_scale));
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0);
-    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImGui::GetColorU32(ImGuiCol_MenuBarBg));
-    ImGui::Begin("##status", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
-                     ImGuiWindowFlags_NoNavFocus);
-    ImGui::PopStyleColor();
-    ImGui::PopStyleVar(2);
-    ImGui::AlignTextToFramePadding();
-
-    // Right: where we are.
-    std::string where;
-    if (auto ds = dataset()) {
-        const ViewDisplay* main = mainDisplay();
-        const std::size_t f = displayFrame();
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "frame %zu / %zu   timestep %lld", f, ds->frameCount(),
-                      static_cast<long long>(ds->location(f).timestep));
-        where = buf;
-        if (main && main->frame && main->visibility) {
-            std::snprintf(buf, sizeof buf, "   %zu of %zu spheres visible",
-                          main->visibility->visibleCount, main->frame->size());
-            where += buf;
-        }
-    } else {
-        where = "no data open";
-    }
-    const float whereW = ImGui::CalcTextSize(where.c_str()).x;
-
-    // Left: background work, then the last message.
-    auto jobs = m_jobs.running();
-    for (auto& job : jobs) {
-        ImGui::PushID(job.get());
-        ImGui::TextUnformatted(job->title().c_str());
-        ImGui::SameLine();
-        const float p = job->progress();
-        ImGui::SetNextItemWidth(160 * m_scale);
-        if (p >= 0)
-            ImGui::ProgressBar(p, ImVec2(160 * m_scale, 0));
-        else
-            ImGui::ProgressBar(static_cast<float>(std::fmod(m_now - job->startTime(), 1.0)),
-                               ImVec2(160 * m_scale, 0), "working...");
-        ImGui::SameLine();
-        if (ImGui::SmallButton(job->cancelRequested() ? "cancelling" : "Cancel"))
-            job->cancel();
-        m_items.markLastItem("status.cancel");
-        ImGui::SameLine();
-        ImGui::PopID();
-    }
-    if (auto loading = m_frames.loading()) {
-        ImGui::TextDisabled("loading frame %zu...", *loading);
-        ImGui::SameLine();
-    }
-    const std::string frameError = m_frames.lastError();
-    const bool showMessage =
-        !m_message.empty() && (m_messageIsError || m_now - m_messageTime < 10.0);
-    const std::string& message = frameError.empty() ? m_message : frameError;
-    if (showMessage || !frameError.empty()) {
-        const bool isError = !frameError.empty() || m_messageIsError;
-        const float avail = ImGui::GetContentRegionAvail().x - whereW - 24 * m_scale;
-        ImGui::PushClipRect(ImGui::GetCursorScreenPos(),
-                            ImVec2(ImGui::GetCursorScreenPos().x + std::max(0.0f, avail),
-                                   ImGui::GetCursorScreenPos().y + height),
-                            true);
-        if (isError)
-            ImGui::TextColored(ImVec4(0.80f, 0.16f, 0.12f, 1.0f), "%s", message.c_str());
-        else
-            ImGui::TextUnformatted(message.c_str());
-        ImGui::PopClipRect();
-        if (ImGui::IsItemHovered()) { // the whole message, wrapped
-            ImGui::BeginTooltip();
-            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
-            ImGui::TextUnformatted(message.c_str());
-            ImGui::PopTextWrapPos();
-            ImGui::EndTooltip();
-        }
-        m_items.markLastItem("status.message");
-        ImGui::SameLine();
-    }
-    ImGui::SameLine(
-        std::max(ImGui::GetCursorPosX(), ImGui::GetWindowWidth() - whereW - 10 * m_scale));
-    ImGui::TextUnformatted(where.c_str());
-    ImGui::End();
-}
-
-//-----------------------------------------------------------------------------
-// [SECTION] Help window
-//-----------------------------------------------------------------------------
-
-void Workbench::drawHelp() {
-    const ImGuiIO& io = ImGui::GetIO();
-    if (m_showHelp) {
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-        ImGui::SetNextWindowSize(ImVec2(620 * m_scale, 0), ImGuiCond_Appearing);
-        if (ImGui::Begin("Keyboard and mouse", &m_showHelp,
-                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
-            if (ImGui::BeginTable("##keys", 2,
-                                  ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-                // The keys column as wide as its longest entry; the descriptions wrap.
-                float keys = 0.0f;
-                for (const auto& s : keyCommands())
-                    keys = std::max(keys, ImGui::CalcTextSize(s.keys).x);
-                ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, keys);
-                ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
-                for (const auto& s : keyCommands()) {
-                    ImGui::TableNextRow();
-                    ImGui::TableNextColumn();
-                    ImGui::TextUnformatted(s.keys);
-                    ImGui::TableNextColumn();
-                    ImGui::TextWrapped("%s", s.what);
-                }
-                ImGui::EndTable();
-            }
-            ImGui::Spacing();
-            ImGui::TextWrapped("Every change is a command: Edit > Undo reverts it, and the whole "
-                               "run is recorded in %s.",
-                               m_journalPath.empty() ? "the session's journal"
-                                                     : m_journalPath.c_str());
-        }
-        ImGui::End();
-    }
-    if (m_showAbout) {
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-        if (ImGui::Begin("About Faultline", &m_showAbout,
-                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize |
-                             ImGuiWindowFlags_NoCollapse)) {
-            ImGui::TextUnformatted(
-                "Faultline: find, name and follow faults in discrete element models.");
-            ImGui::TextDisabled("Dear ImGui %s", IMGUI_VERSION);
-            if (m_renderer)
-                ImGui::TextDisabled("%s", m_renderer->description().c_str());
-            if (!m_journalPath.empty())
-                ImGui::TextDisabled("Journal: %s", m_journalPath.c_str());
-        }
-        ImGui::End();
-    }
 }
 
 //-----------------------------------------------------------------------------
@@ -602,13 +320,13 @@ void Workbench::drawPrompts() {
             ImGui::EndPopup();
         }
     }
-    if (m_missingData && !m_dialog.isOpen() && !m_recovery.pending()) {
+    if (m_opener.missingData() && !m_dialog.isOpen() && !m_recovery.pending()) {
         if (!ImGui::IsPopupOpen("Where is the data?"))
             ImGui::OpenPopup("Where is the data?");
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                                 ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         if (ImGui::BeginPopupModal("Where is the data?", nullptr, flags)) {
-            const auto& md = *m_missingData;
+            const auto& md = *m_opener.missingData();
             ImGui::Text("The data of %s is not where it was saved:",
                         fs::path(md.session).filename().string().c_str());
             for (std::size_t k = 0; k < md.paths.size() && k < 4; ++k)
@@ -631,8 +349,7 @@ void Workbench::drawPrompts() {
             ImGui::SameLine();
             if (ImGui::Button("Cancel")) {
                 ImGui::CloseCurrentPopup();
-                m_missingData.reset();
-                m_recovery.abandoned(); // a recovered session left closed: autosave goes on
+                m_opener.forgetMissing();
             }
             ImGui::EndPopup();
         }
@@ -644,7 +361,7 @@ void Workbench::handleDialog() {
     const bool accepted = m_dialog.draw(m_scale, &m_items);
     if (!accepted) {
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "relocate-data")
-            m_missingData.reset(), m_recovery.abandoned(); // cancelled: the session stays closed
+            m_opener.forgetMissing(); // cancelled: the session stays closed
         if (wasOpen && !m_dialog.isOpen() && m_dialog.purpose() == "save-session")
             m_unsaved.saveAsCancelled(); // nothing the question held back proceeds
         return;
@@ -655,15 +372,15 @@ void Workbench::handleDialog() {
         m_lastExportFolder = fs::path(path).parent_path().string();
     if (purpose == "open-data")
         guardUnsaved("Open " + fs::path(path).filename().string(),
-                     [this, path] { openData({path}); });
+                     [this, path] { m_opener.openData({path}); });
     else if (purpose == "open-session")
         guardUnsaved(
-            "Open " + fs::path(path).filename().string(), [this, path] { openSession(path); },
-            path);
+            "Open " + fs::path(path).filename().string(),
+            [this, path] { m_opener.openSession(path); }, path);
     else if (purpose == "save-session")
         m_unsaved.savedAsPicked(path);
     else if (purpose == "relocate-data")
-        relocateData(path);
+        m_opener.relocate(path);
     else if (purpose == "screenshot")
         screenshotMainView(path);
     else if (purpose == "export-movie")
@@ -671,17 +388,17 @@ void Workbench::handleDialog() {
     else if (purpose == "export-faults")
         emit(core::cmd::exportCsv("faults", path));
     else if (purpose.rfind("export-vdb:", 0) == 0)
-        exportSurfaces({purpose.substr(11)}, path, true);
+        m_exports.surfaces({purpose.substr(11)}, path, true, false);
     else if (purpose == "export-gltf" || purpose == "export-gltf+glyphs") {
         const std::vector<std::string> faults = state().shownSurfaces();
         if (faults.empty())
             error("No surface is shown: tick one in the Surfaces panel first");
         else
-            exportSurfaces(faults, path, false, purpose == "export-gltf+glyphs");
+            m_exports.surfaces(faults, path, false, purpose == "export-gltf+glyphs");
     } else if (purpose == "export-metrics") {
-        exportCsv(core::cmd::exportCsv("fault_metrics", path));
+        m_exports.csv(core::cmd::exportCsv("fault_metrics", path));
     } else if (purpose == "export-tracks") {
-        exportCsv(core::cmd::exportCsv("fault_tracks", path));
+        m_exports.csv(core::cmd::exportCsv("fault_tracks", path));
     } else if (purpose == "export-journal") {
         std::ofstream out(path);
         for (const auto& cmd : m_session.journal())
