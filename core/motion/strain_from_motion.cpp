@@ -1,3 +1,13 @@
+// Strain from motion: per sphere, the deformation gradient that best maps its neighbours'
+// reference offsets onto their offsets now (least squares), its shear and volumetric strain,
+// and the residual d2min (Falk & Langer), as OVITO's Atomic Strain computes them.
+//
+// Index of this file:
+// [SECTION] Neighbour cells
+// [SECTION] Sums over a sphere's neighbours
+// [SECTION] Solving for the strain
+// [SECTION] The columns
+
 #include "core/motion/strain_from_motion.hpp"
 
 #include "core/model/frame_difference.hpp"
@@ -36,6 +46,10 @@ struct CellPoint {
     std::uint32_t owner; // reference row; the top bit marks an image
 };
 constexpr std::uint32_t kImage = 0x80000000u;
+
+//-----------------------------------------------------------------------------
+// [SECTION] Neighbour cells
+//-----------------------------------------------------------------------------
 
 // The reference centres and, on periodic axes, their images within `cutoff` of the centres'
 // bounds, sorted into cubic cells of at least `cutoff`: neighbours of a sphere lie in its cell
@@ -118,29 +132,34 @@ class NeighbourCells {
         for (std::size_t c = 0; c < cells; ++c)
             m_start[c + 1] += m_start[c];
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
-        m_points.resize(count);
-        // Reference positions also as three float arrays, padded for 8-wide loads past the
-        // end (infinitely far: never near).
+        // Reference and current positions as float arrays in cell order, padded for 8-wide
+        // loads past the end (reference infinitely far: never near).
         const float far = std::numeric_limits<float>::infinity();
-        m_x.assign(count + 8, far);
-        m_y.assign(count + 8, far);
-        m_z.assign(count + 8, far);
+        for (auto* v : {&m_x, &m_y, &m_z})
+            v->assign(count + 8, far);
+        for (auto* v : {&m_nx, &m_ny, &m_nz})
+            v->assign(count + 8, 0.0f);
+        m_owner.resize(count);
         for (std::size_t k = 0; k < count; ++k) {
             const std::uint32_t at = fill[cellOf[k]]++;
-            m_points[at] = points[k];
-            m_x[at] = points[k].x;
-            m_y[at] = points[k].y;
-            m_z[at] = points[k].z;
+            const CellPoint& p = points[k];
+            m_x[at] = p.x, m_y[at] = p.y, m_z[at] = p.z;
+            m_nx[at] = p.nx, m_ny[at] = p.ny, m_nz[at] = p.nz;
+            m_owner[at] = p.owner;
         }
     }
 
     std::size_t cellCount() const { return m_start.size() - 1; }
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
-    const CellPoint& point(std::size_t k) const { return m_points[k]; }
+    std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
+    // Reference (x, y, z) and current (nx, ny, nz; NaN: gone) positions in cell order.
     const float* xs() const { return m_x.data(); }
     const float* ys() const { return m_y.data(); }
     const float* zs() const { return m_z.data(); }
+    const float* nxs() const { return m_nx.data(); }
+    const float* nys() const { return m_ny.data(); }
+    const float* nzs() const { return m_nz.data(); }
 
     // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
     // three cells that lie next to each other in memory).
@@ -182,28 +201,9 @@ class NeighbourCells {
     double m_size = 1;
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
-    std::vector<CellPoint> m_points;
-    std::vector<float> m_x, m_y, m_z;
+    std::vector<std::uint32_t> m_owner;
+    std::vector<float> m_x, m_y, m_z, m_nx, m_ny, m_nz;
 };
-
-// Appends to `hits` the k in [first, last) whose point lies within sqrt(cutoff2) of (cx, cy, cz),
-// eight at a time; returns the new count. `x`, `y`, `z` are readable 8 past `last`.
-FAULTLINE_HOT std::size_t nearPoints(const float* x, const float* y, const float* z,
-                                     std::size_t first, std::size_t last, float cx, float cy,
-                                     float cz, float cutoff2, std::uint32_t* hits,
-                                     std::size_t count) {
-    using namespace detail::simd8;
-    const v8f px = splat(cx), py = splat(cy), pz = splat(cz), c2 = splat(cutoff2);
-    for (std::size_t k = first; k < last; k += 8) {
-        const v8f dx = load(x + k) - px, dy = load(y + k) - py, dz = load(z + k) - pz;
-        const auto near = dx * dx + dy * dy + dz * dz <= c2;
-        const std::size_t lanes = std::min<std::size_t>(8, last - k);
-        for (std::size_t l = 0; l < lanes; ++l)
-            if (near[l])
-                hits[count++] = static_cast<std::uint32_t>(k + l);
-    }
-    return count;
-}
 
 // The axis every centre of `f` shares (2-D data), or -1.
 int flatAxis(const Frame& f) {
@@ -215,38 +215,167 @@ int flatAxis(const Frame& f) {
     return -1;
 }
 
-// Sums over one sphere's neighbours: V = sum X X^T, W = sum Y X^T, and sum Y_i^2 per axis.
+//-----------------------------------------------------------------------------
+// [SECTION] Sums over a sphere's neighbours
+//-----------------------------------------------------------------------------
+
+// One sphere's sums over its neighbours within the cutoff, X being a neighbour's offset in the
+// reference and U = Y - X how much further it moved than the sphere (Y its offset now, the
+// minimum image on periodic axes): V = sum X X^T, A = sum U X^T and sum U_i^2 per axis. Summing
+// U rather than Y keeps the residual's precision where the motion is small: with F = I + G,
+// G = A V^-1, E = (G + G^T + G^T G) / 2 and d2min = sum |U - G X|^2 = sum U^2 - tr(G A^T).
 struct NeighbourSums {
     double V[3][3] = {};
-    double W[3][3] = {};
-    double yy[3] = {};
+    double A[3][3] = {};
+    double uu[3] = {};
     int count = 0;
-    void add(const double X[3], const double Y[3]) {
-        for (int i = 0; i < 3; ++i) {
-            yy[i] += Y[i] * Y[i];
-            for (int j = 0; j < 3; ++j) {
-                V[i][j] += X[i] * X[j];
-                W[i][j] += Y[i] * X[j];
+};
+
+// The points of the 27 cells around one cell, contiguous and padded to whole vectors with
+// points that are never near: reference positions and how far each moved (w = now - reference;
+// an image's reference is shifted by a cell edge; NaN: gone).
+struct Candidates {
+    std::vector<float> x, y, z, wx, wy, wz;
+    std::size_t size = 0;
+    [[gnu::always_inline]] inline void gather(const NeighbourCells& cells, std::size_t cell) {
+        size = 0;
+        cells.around(cell, [&](std::size_t first, std::size_t last) {
+            const std::size_t n = last - first;
+            if (x.size() < size + n + 8)
+                for (auto* v : {&x, &y, &z, &wx, &wy, &wz})
+                    v->resize(2 * (size + n + 8));
+            const float *px = cells.xs(), *py = cells.ys(), *pz = cells.zs();
+            const float *nx = cells.nxs(), *ny = cells.nys(), *nz = cells.nzs();
+            for (std::size_t k = first; k < last; ++k, ++size) {
+                x[size] = px[k], y[size] = py[k], z[size] = pz[k];
+                wx[size] = nx[k] - px[k], wy[size] = ny[k] - py[k], wz[size] = nz[k] - pz[k];
             }
-        }
-        ++count;
+        });
+        const float far = std::numeric_limits<float>::infinity();
+        for (std::size_t k = size; k < ((size + 7) & ~std::size_t(7)); ++k)
+            x[k] = y[k] = z[k] = far, wx[k] = wy[k] = wz[k] = 0.0f;
     }
 };
+
+// The current frame's periodic cell as floats, for the minimum image eight offsets at a time.
+struct CellF {
+    bool periodic[3] = {false, false, false};
+    float l[3] = {1, 1, 1}, inv[3] = {1, 1, 1}, xy = 0, xz = 0, yz = 0;
+    explicit CellF(const PeriodicCell& c) {
+        const double len[3] = {c.lx, c.ly, c.lz};
+        for (int a = 0; a < 3; ++a) {
+            periodic[a] = c.periodic[a];
+            if (periodic[a]) {
+                l[a] = static_cast<float>(len[a]);
+                inv[a] = static_cast<float>(1.0 / len[a]);
+            }
+        }
+        xy = static_cast<float>(c.xy), xz = static_cast<float>(c.xz);
+        yz = static_cast<float>(c.yz);
+    }
+};
+
+// U = w_j - w_i is Y - X (Y the offset now); on periodic axes it is taken to its minimum
+// image, as Y would be (they differ by X, under the cutoff, far less than half a cell).
+template <bool Wrap>
+[[gnu::always_inline]] inline void sumNeighboursBody(const Candidates& c, const float* self,
+                                                     float cutoff2, const CellF& cell,
+                                                     NeighbourSums& out) {
+    using namespace detail::simd8;
+    const v8f px = splat(self[0]), py = splat(self[1]), pz = splat(self[2]);
+    const v8f qx = splat(self[3]), qy = splat(self[4]), qz = splat(self[5]);
+    const v8f c2 = splat(cutoff2), zero{}, one = splat(1.0f);
+    const bool wrapX = cell.periodic[0], wrapY = cell.periodic[1], wrapZ = cell.periodic[2];
+    const v8f lx = splat(cell.l[0]), ly = splat(cell.l[1]), lz = splat(cell.l[2]);
+    const v8f ilx = splat(cell.inv[0]), ily = splat(cell.inv[1]), ilz = splat(cell.inv[2]);
+    const v8f txy = splat(cell.xy), txz = splat(cell.xz), tyz = splat(cell.yz);
+    // Round to nearest for |v| < 2^22 (offsets are a few cells at most).
+    const v8f magic = splat(12582912.0f);
+    v8f vxx{}, vxy{}, vxz{}, vyy{}, vyz{}, vzz{};
+    v8f axx{}, axy{}, axz{}, ayx{}, ayy{}, ayz{}, azx{}, azy{}, azz{};
+    v8f uxx{}, uyy{}, uzz{}, n{};
+    for (std::size_t k = 0; k < c.size; k += 8) {
+        v8f dx = load(c.x.data() + k) - px, dy = load(c.y.data() + k) - py,
+            dz = load(c.z.data() + k) - pz;
+        v8f ux = load(c.wx.data() + k) - qx, uy = load(c.wy.data() + k) - qy,
+            uz = load(c.wz.data() + k) - qz;
+        // Within the cutoff, and still there (a NaN motion is a sphere gone).
+        const auto near = (dx * dx + dy * dy + dz * dz <= c2) & (ux == ux);
+        if constexpr (Wrap) { // z first since c carries x and y tilt, then y, then x
+            if (wrapZ) {
+                const v8f m = (uz * ilz + magic) - magic;
+                uz -= m * lz, uy -= m * tyz, ux -= m * txz;
+            }
+            if (wrapY) {
+                const v8f m = (uy * ily + magic) - magic;
+                uy -= m * ly, ux -= m * txy;
+            }
+            if (wrapX)
+                ux -= ((ux * ilx + magic) - magic) * lx;
+        }
+        dx = near ? dx : zero, dy = near ? dy : zero, dz = near ? dz : zero;
+        ux = near ? ux : zero, uy = near ? uy : zero, uz = near ? uz : zero;
+        n += near ? one : zero;
+        vxx += dx * dx, vxy += dx * dy, vxz += dx * dz;
+        vyy += dy * dy, vyz += dy * dz, vzz += dz * dz;
+        axx += ux * dx, axy += ux * dy, axz += ux * dz;
+        ayx += uy * dx, ayy += uy * dy, ayz += uy * dz;
+        azx += uz * dx, azy += uz * dy, azz += uz * dz;
+        uxx += ux * ux, uyy += uy * uy, uzz += uz * uz;
+    }
+    out.V[0][0] = sum(vxx), out.V[1][1] = sum(vyy), out.V[2][2] = sum(vzz);
+    out.V[0][1] = out.V[1][0] = sum(vxy);
+    out.V[0][2] = out.V[2][0] = sum(vxz);
+    out.V[1][2] = out.V[2][1] = sum(vyz);
+    out.A[0][0] = sum(axx), out.A[0][1] = sum(axy), out.A[0][2] = sum(axz);
+    out.A[1][0] = sum(ayx), out.A[1][1] = sum(ayy), out.A[1][2] = sum(ayz);
+    out.A[2][0] = sum(azx), out.A[2][1] = sum(azy), out.A[2][2] = sum(azz);
+    out.uu[0] = sum(uxx), out.uu[1] = sum(uyy), out.uu[2] = sum(uzz);
+    out.count = static_cast<int>(sum(n)) - 1; // the sphere itself (X = U = 0: no term)
+}
+
+// The sums of the spheres `selves` (rows in cell order) of one cell: the points around the
+// cell gathered once, then each sphere against them. Spheres per call, not one: the loops are
+// short (a dozen vectors), so a call per sphere cost as much as its sums.
+FAULTLINE_HOT void cellSums(const NeighbourCells& cells, std::size_t cell,
+                            const std::uint32_t* selves, std::size_t count, float cutoff2,
+                            const CellF& now, bool wrap, Candidates& candidates,
+                            NeighbourSums* out) {
+    candidates.gather(cells, cell);
+    for (std::size_t s = 0; s < count; ++s) {
+        const std::size_t k = selves[s];
+        const float sphere[6] = {cells.xs()[k],
+                                 cells.ys()[k],
+                                 cells.zs()[k],
+                                 cells.nxs()[k] - cells.xs()[k],
+                                 cells.nys()[k] - cells.ys()[k],
+                                 cells.nzs()[k] - cells.zs()[k]};
+        if (wrap)
+            sumNeighboursBody<true>(candidates, sphere, cutoff2, now, out[s]);
+        else
+            sumNeighboursBody<false>(candidates, sphere, cutoff2, now, out[s]);
+    }
+}
+
+//-----------------------------------------------------------------------------
+// [SECTION] Solving for the strain
+//-----------------------------------------------------------------------------
 
 struct StrainValues {
     float shear = kNaN, volumetric = kNaN, d2min = kNaN;
 };
 
-// F = W V^-1 and the invariants of E = (F^T F - I) / 2 over the axes `axes` (2 or 3 of them).
+// G = A V^-1 and the invariants of E = (F^T F - I) / 2 = (G + G^T + G^T G) / 2 over the axes
+// `axes` (2 or 3 of them).
 StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
     StrainValues out;
     if (s.count < 3)
         return out;
-    double V[3][3] = {}, W[3][3] = {};
+    double V[3][3] = {}, A[3][3] = {};
     for (int i = 0; i < dim; ++i)
         for (int j = 0; j < dim; ++j) {
             V[i][j] = s.V[axes[i]][axes[j]];
-            W[i][j] = s.W[axes[i]][axes[j]];
+            A[i][j] = s.A[axes[i]][axes[j]];
         }
     double inv[3][3] = {};
     const double trace = dim == 3 ? V[0][0] + V[1][1] + V[2][2] : V[0][0] + V[1][1];
@@ -277,27 +406,26 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
         inv[1][0] = -V[1][0] / det;
         inv[1][1] = V[0][0] / det;
     }
-    double F[3][3] = {};
+    double G[3][3] = {};
     for (int i = 0; i < dim; ++i)
         for (int j = 0; j < dim; ++j)
             for (int k = 0; k < dim; ++k)
-                F[i][j] += W[i][k] * inv[k][j];
+                G[i][j] += A[i][k] * inv[k][j];
     double E[3][3] = {};
     for (int i = 0; i < dim; ++i)
         for (int j = 0; j < dim; ++j) {
             double c = 0;
             for (int k = 0; k < dim; ++k)
-                c += F[k][i] * F[k][j];
-            E[i][j] = 0.5 * (c - (i == j ? 1.0 : 0.0));
+                c += G[k][i] * G[k][j];
+            E[i][j] = 0.5 * (G[i][j] + G[j][i] + c);
         }
-    // d2min = sum |Y - F X|^2 = sum |Y|^2 - tr(F W^T), since F V F^T = F W^T.
-    double yy = 0, fw = 0;
+    double uu = 0, ga = 0;
     for (int i = 0; i < dim; ++i) {
-        yy += s.yy[axes[i]];
+        uu += s.uu[axes[i]];
         for (int j = 0; j < dim; ++j)
-            fw += F[i][j] * W[i][j];
+            ga += G[i][j] * A[i][j];
     }
-    out.d2min = static_cast<float>(std::max(0.0, yy - fw));
+    out.d2min = static_cast<float>(std::max(0.0, uu - ga));
     if (dim == 3) {
         const double dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
         out.shear =
@@ -311,6 +439,10 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
     }
     return out;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] The columns
+//-----------------------------------------------------------------------------
 
 std::vector<AttributeColumn> namedColumns(std::size_t rows, const std::string& prefix) {
     std::vector<AttributeColumn> cols(kStrainVariables.size());
@@ -413,46 +545,41 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     float* refX = cols[4].floats.data();
     float* refY = cols[5].floats.data();
     float* refZ = cols[6].floats.data();
-    // Cell by cell, so the neighbours of consecutive spheres share cache lines.
+    const CellF nowCellF(nowCell);
+    // Cell by cell: the points around a cell gathered once for all the spheres in it.
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
-            std::vector<std::uint32_t> hits;
+            Candidates candidates;
+            std::vector<std::uint32_t> selves;
+            std::vector<NeighbourSums> sums;
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
+                selves.clear();
                 for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
-                    const CellPoint& c = cells.point(self);
-                    if ((c.owner & kImage) || std::isnan(c.nx))
+                    const std::uint32_t owner = cells.owner(self);
+                    const double p[6] = {cells.xs()[self],  cells.ys()[self],  cells.zs()[self],
+                                         cells.nxs()[self], cells.nys()[self], cells.nzs()[self]};
+                    if ((owner & kImage) || std::isnan(p[3]))
                         continue; // an image, or a sphere gone from the current frame
-                    const std::size_t i = nowRowOf[c.owner];
-                    double u[3] = {double(c.nx) - c.x, double(c.ny) - c.y, double(c.nz) - c.z};
+                    const std::size_t i = nowRowOf[owner];
+                    double u[3] = {p[3] - p[0], p[4] - p[1], p[5] - p[2]};
                     if (refCell.any)
                         refCell.wrap(u[0], u[1], u[2]);
                     displacement[i] =
                         static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-                    refX[i] = static_cast<float>(double(c.nx) - u[0]);
-                    refY[i] = static_cast<float>(double(c.ny) - u[1]);
-                    refZ[i] = static_cast<float>(double(c.nz) - u[2]);
-                    std::size_t count = 0;
-                    cells.around(cell, [&](std::size_t first, std::size_t last) {
-                        if (hits.size() < count + (last - first))
-                            hits.resize(2 * (count + (last - first)));
-                        count = nearPoints(cells.xs(), cells.ys(), cells.zs(), first, last, c.x,
-                                           c.y, c.z, cutoff2, hits.data(), count);
-                    });
-                    NeighbourSums sums;
-                    for (std::size_t h = 0; h < count; ++h) {
-                        const CellPoint& p = cells.point(hits[h]);
-                        if (hits[h] == self || std::isnan(p.nx))
-                            continue;
-                        const double X[3] = {double(p.x) - c.x, double(p.y) - c.y,
-                                             double(p.z) - c.z};
-                        double Y[3] = {double(p.nx) - c.nx, double(p.ny) - c.ny,
-                                       double(p.nz) - c.nz};
-                        if (nowCell.any)
-                            nowCell.wrap(Y[0], Y[1], Y[2]);
-                        sums.add(X, Y);
-                    }
-                    const StrainValues v = solve(sums, axes, dim);
+                    refX[i] = static_cast<float>(p[3] - u[0]);
+                    refY[i] = static_cast<float>(p[4] - u[1]);
+                    refZ[i] = static_cast<float>(p[5] - u[2]);
+                    selves.push_back(static_cast<std::uint32_t>(self));
+                }
+                if (selves.empty())
+                    continue;
+                sums.assign(selves.size(), NeighbourSums{});
+                cellSums(cells, cell, selves.data(), selves.size(), cutoff2, nowCellF, nowCell.any,
+                         candidates, sums.data());
+                for (std::size_t s = 0; s < selves.size(); ++s) {
+                    const std::size_t i = nowRowOf[cells.owner(selves[s])];
+                    const StrainValues v = solve(sums[s], axes, dim);
                     shear[i] = v.shear;
                     volumetric[i] = v.volumetric;
                     d2min[i] = v.d2min;
