@@ -127,12 +127,46 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
 
 namespace {
 
+// referenceSample's value alone: the same terms summed in the same order (so the same double),
+// without the gradient, the colour and the mean radius each call worked out again. The
+// wrapping iso and the slider's range take some 600 x N of these.
+double referenceValue(const SphereSet& s, const SurfaceParams& params, double minD2,
+                      const std::array<double, 3>& p) {
+    double value = 0.0;
+    const std::size_t n = s.size();
+    auto d2At = [&](std::size_t i) {
+        const double dx = p[0] - s.x[i], dy = p[1] - s.y[i], dz = p[2] - s.z[i];
+        return dx * dx + dy * dy + dz * dz;
+    };
+    switch (params.kernel) {
+    case MetaballKernel::InverseSquare:
+        for (std::size_t i = 0; i < n; ++i)
+            value += double(s.radius[i]) / std::max(d2At(i), minD2);
+        break;
+    case MetaballKernel::Inverse:
+        for (std::size_t i = 0; i < n; ++i)
+            value += double(s.radius[i]) / std::sqrt(std::max(d2At(i), minD2));
+        break;
+    case MetaballKernel::Compact:
+        for (std::size_t i = 0; i < n; ++i) {
+            const double w = s.radius[i];
+            const double big = params.compactReach * w;
+            const double t = 1.0 - d2At(i) / (big * big);
+            if (t > 0)
+                value += w * t * t * t;
+        }
+        break;
+    }
+    return value;
+}
+
 // Over `samples` spheres spread through the set: the lowest field value of the six points
 // `reach` radii from the centre along the axes (the side where the field is lowest).
 std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params,
                                  std::size_t samples, double reach) {
     const std::size_t n = s.size();
     constexpr int kDirections = 6;
+    const double minD = kMinDistanceFactor * meanRadius(s);
     std::vector<double> lowest(samples, 0.0);
     tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
         const std::size_t i = q * n / samples;
@@ -140,7 +174,7 @@ std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params
         for (int d = 0; d < kDirections; ++d) {
             std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
             p[d / 2] += (d % 2 ? -reach : reach) * s.radius[i];
-            low = std::min(low, referenceSample(s, params, p).value);
+            low = std::min(low, referenceValue(s, params, minD * minD, p));
         }
         lowest[q] = low;
     });
