@@ -41,8 +41,9 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
             return "delete " + std::to_string(n) + " faults";
         // What the workbench groups around one change: the faults it left empty deleted after
         // it, the frame it ran at set before it and back after it.
+        // New strain variables and the main view coloured by them (the Data panel's Add).
         const Json* change = nullptr;
-        std::string emptied;
+        std::string emptied, colouredBy;
         bool other = false;
         for (std::size_t i = 0; i < n && !other; ++i) {
             const Json& c = cmd["commands"][i];
@@ -51,6 +52,9 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
                 continue;
             if (cop == "fault.delete" && change)
                 emptied += (emptied.empty() ? "" : ", ") + quoted(text(c, "name"));
+            else if (cop == "color.set" && change && text(*change, "op") == "strain.add" &&
+                     colouredBy.empty())
+                colouredBy = text(c, "variable");
             else if (!change)
                 change = &c;
             else
@@ -58,7 +62,8 @@ std::string describeCommand(const Json& cmd, long long spheresChanged) {
         }
         if (change && !other)
             return describeCommand(*change, spheresChanged) +
-                   (emptied.empty() ? "" : " (deleting " + emptied + ", left empty)");
+                   (emptied.empty() ? "" : " (deleting " + emptied + ", left empty)") +
+                   (colouredBy.empty() ? "" : ", coloured by " + colouredBy);
         return std::to_string(n) + " changes";
     }
     const std::size_t moved =

@@ -150,4 +150,7 @@ TEST(Commands, UndoLabelsOfGroupedChangesNameTheChange) {
               "delete 2 faults");
     EXPECT_EQ(describeCommand(cmd::batch({cmd::ThresholdAdd("strain"), cmd::boxRemove("b")})),
               "2 changes");
+    EXPECT_EQ(describeCommand(cmd::batch({cmd::StrainAdd().sinceOffset(-1).prefix("inc_"),
+                                          cmd::ColorSet("main").variable("inc_shear_strain")})),
+              "add strain from motion (inc_*), coloured by inc_shear_strain");
 }

@@ -1,5 +1,6 @@
 // Issue 36: the Data panel's "Strain from motion" adds strain.add as typed (incremental or
 // cumulative, cutoff, prefix), its variables reach the views' frames, and Remove takes them away.
+// The first Add colours the plain main view by the new shear strain; later ones leave it.
 #include "panel_fixture.hpp"
 
 #include "ui/dock/panel_ids.hpp"
@@ -10,22 +11,34 @@ namespace {
 using core::Json;
 
 TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
-    openLattice(); // 3 frames
+    openLattice(); // 3 frames: one frame before each (four would leave none with a value)
     headless.showPanel(wb(), ui::panel_ids::kData);
-    headless.retype(wb(), "strain.offset", "1");
+    ASSERT_TRUE(session.state().view("main")->colorVariable.empty());
     headless.click(wb(), "strain.add");
     headless.settle(wb());
-    ASSERT_EQ(headless.emitted("strain.add").size(), 1u) << wb().lastMessage();
-    EXPECT_EQ(headless.emitted("strain.add")[0],
-              (Json{{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}}));
+    // The main view was in plain colour: it shows the new shear strain, in the same step.
+    ASSERT_EQ(headless.emitted("batch").size(), 1u) << wb().lastMessage();
+    EXPECT_EQ(
+        headless.emitted("batch")[0],
+        (Json{{"op", "batch"},
+              {"commands",
+               {{{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}},
+                {{"op", "color.set"}, {"view", "main"}, {"variable", "inc_shear_strain"}}}}}));
     ASSERT_EQ(session.state().strains.size(), 1u);
+    EXPECT_EQ(session.state().view("main")->colorVariable, "inc_shear_strain");
+    EXPECT_EQ(session.undoLabel(), "add strain from motion (inc_*), coloured by inc_shear_strain");
+    ASSERT_TRUE(session.undo());
+    EXPECT_TRUE(session.state().strains.empty());
+    EXPECT_TRUE(session.state().view("main")->colorVariable.empty());
+    ASSERT_TRUE(session.redo());
     headless.frames(wb(), 2);
     headless.settle(wb());
     const ui::ViewDisplay* main = wb().mainDisplay();
     ASSERT_NE(main->frame, nullptr);
     EXPECT_NE(main->frame->attribute("inc_shear_strain"), nullptr);
 
-    // Cumulative, a typed cutoff: the prefix follows the kind until the user types one.
+    // Cumulative, a typed cutoff: the prefix follows the kind until the user types one. The
+    // view is coloured already: strain.add alone.
     headless.clearEmitted();
     headless.click(wb(), "strain.cumulative");
     headless.retype(wb(), "strain.cutoff", "1.2");

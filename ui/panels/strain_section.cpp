@@ -86,7 +86,12 @@ void StrainSection::draw(PanelContext& wb) {
     ImGui::TextUnformatted(m_incremental ? "frames before" : "since frame");
     flowSameLine(field); // a narrow panel puts fields under their labels
     if (m_incremental) {
-        numberField("##offset", &m_offset, field);
+        // Four frames before each frame, fewer in a short run: with 5 frames, 4 before would
+        // leave one frame with a value.
+        if (!m_offsetEdited && ds)
+            m_offset = std::clamp(static_cast<int>(ds->frameCount() - 1) / 8, 1, 4);
+        if (numberField("##offset", &m_offset, field))
+            m_offsetEdited = true;
         m_offset = std::max(1, m_offset);
         wb.mark("strain.offset");
     } else {
@@ -125,7 +130,14 @@ void StrainSection::draw(PanelContext& wb) {
             cmd.cutoff(m_cutoff);
         if (!m_prefix.empty())
             cmd.prefix(m_prefix);
-        wb.emit(cmd);
+        // What was asked for, in view at once: a main view in plain colour shows the new
+        // shear strain (one undo step takes both back).
+        const core::ViewState* view = wb.state().view("main");
+        if (view && view->colorVariable.empty())
+            wb.emit(core::cmd::batch(
+                {cmd, core::cmd::ColorSet("main").variable(m_prefix + "shear_strain")}));
+        else
+            wb.emit(cmd);
     }
     wb.mark("strain.add");
     ImGui::EndDisabled();

@@ -1,7 +1,8 @@
 // Data panel, "Strain from motion": the strain variables of the session (strain.add), each with
 // its reference and cutoff and a Remove, and a form that adds more: cumulative (since a frame)
 // or incremental (frames before each frame), the neighbour cutoff (automatic: 1.5 x the median
-// diameter, shown), a prefix. The variables then appear in every variable menu.
+// diameter, shown), a prefix. The variables then appear in every variable menu; a main view
+// in plain colour is coloured by the new shear strain in the same step (one undo).
 #pragma once
 
 #include "ui/context/panel_context.hpp"
@@ -17,7 +18,8 @@ class StrainSection {
   private:
     bool m_incremental = true;
     int m_sinceFrame = 0;
-    int m_offset = 4;    // frames before each frame
+    int m_offset = 4; // frames before each frame; follows the data until edited
+    bool m_offsetEdited = false;
     double m_cutoff = 0; // 0: automatic
     std::string m_prefix = "inc_";
     bool m_prefixEdited = false;
