@@ -537,7 +537,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             if (a != flat)
                 axes[k++] = a;
     }
-    const float cutoff2 = static_cast<float>(cutoff * cutoff);
+    // At most the largest float: the padding lanes (infinitely far) must stay out of reach.
+    const float cutoff2 =
+        static_cast<float>(std::min(cutoff * cutoff, double(std::numeric_limits<float>::max())));
     float* shear = cols[0].floats.data();
     float* volumetric = cols[1].floats.data();
     float* d2min = cols[2].floats.data();

@@ -95,6 +95,16 @@ TEST(StrainFromMotion, UniaxialStretch) {
     expectEverywhere(strainFromMotion(now, ref, 1.5), {exx / std::sqrt(3.0), exx / 3});
 }
 
+// A cutoff whose square overflows a float takes every sphere as a neighbour (the padding of
+// the last vector of neighbours must still not count).
+TEST(StrainFromMotion, AHugeCutoffTakesEverySphere) {
+    const Frame ref = packing(3); // 27 spheres: the last vector has 5 lanes of padding
+    const double e = 0.1;
+    const Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const double exx = ((1 + e) * (1 + e) - 1) / 2;
+    expectEverywhere(strainFromMotion(now, ref, 1e20), {exx / std::sqrt(3.0), exx / 3});
+}
+
 TEST(StrainFromMotion, SimpleShear) {
     const Frame ref = packing(5);
     const double g = 0.2;

@@ -110,9 +110,12 @@ def test_long_calls_release_the_gil():
     t.start()
     time.sleep(0.01)
     start = time.perf_counter()
-    for _ in range(5):  # strain of every frame, candidates: seconds of C++ in all
-        s.run({"op": "strain.add", "since_frame": 0, "prefix": "c%d_" % _})
+    # Strain derived again and again for at least 0.3 s of C++ (a fixed count of calls was
+    # 0.05 s once the strain got faster: too short to see the thread run beside it).
+    while time.perf_counter() - start < 0.3:
+        s.run({"op": "strain.add", "since_frame": 0, "prefix": "c_"})
         s.frame
+        s.run({"op": "strain.remove", "prefix": "c_"})
     end = time.perf_counter()
     stop.set()
     t.join()

@@ -65,6 +65,22 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
     EXPECT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
 }
 
+// A view coloured by displacement has no variable, yet is not plain: Add leaves its colours.
+TEST_F(PanelTest, StrainAddLeavesADisplacementColouringAlone) {
+    openLattice();
+    session.apply({{"op", "color.set"},
+                   {"view", "main"},
+                   {"difference", "displacement"},
+                   {"since_frame", 0}});
+    headless.showPanel(wb(), ui::panel_ids::kData);
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    EXPECT_TRUE(headless.emitted("batch").empty());
+    ASSERT_EQ(headless.emitted("strain.add").size(), 1u) << wb().lastMessage();
+    EXPECT_EQ(session.state().view("main")->difference.mode,
+              core::ColorDifference::Mode::Displacement);
+}
+
 } // namespace
 } // namespace faultline::test
 

@@ -88,6 +88,8 @@ void StrainSection::draw(PanelContext& wb) {
     if (m_incremental) {
         // Four frames before each frame, fewer in a short run: with 5 frames, 4 before would
         // leave one frame with a value.
+        if (ds != m_offsetData.lock()) // other data: the default follows it again
+            m_offsetData = ds, m_offsetEdited = false;
         if (!m_offsetEdited && ds)
             m_offset = std::clamp(static_cast<int>(ds->frameCount() - 1) / 8, 1, 4);
         if (numberField("##offset", &m_offset, field))
@@ -133,7 +135,8 @@ void StrainSection::draw(PanelContext& wb) {
         // What was asked for, in view at once: a main view in plain colour shows the new
         // shear strain (one undo step takes both back).
         const core::ViewState* view = wb.state().view("main");
-        if (view && view->colorVariable.empty())
+        if (view && view->colorVariable.empty() &&
+            view->difference.mode == core::ColorDifference::Mode::None)
             wb.emit(core::cmd::batch(
                 {cmd, core::cmd::ColorSet("main").variable(m_prefix + "shear_strain")}));
         else

@@ -7,6 +7,7 @@
 
 #include "ui/context/panel_context.hpp"
 
+#include <memory>
 #include <string>
 
 namespace faultline::ui {
@@ -20,7 +21,8 @@ class StrainSection {
     int m_sinceFrame = 0;
     int m_offset = 4; // frames before each frame; follows the data until edited
     bool m_offsetEdited = false;
-    double m_cutoff = 0; // 0: automatic
+    std::weak_ptr<core::Dataset> m_offsetData; // the data the offset was chosen for (not held)
+    double m_cutoff = 0;                       // 0: automatic
     std::string m_prefix = "inc_";
     bool m_prefixEdited = false;
 };
