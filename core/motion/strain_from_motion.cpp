@@ -67,12 +67,8 @@ class NeighbourCells {
             lo[a] = double(cmin[a]) - cutoff;
             hi[a] = double(cmax[a]) + cutoff;
         }
-        std::vector<CellPoint> points(n);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t i = range.begin(); i != range.end(); ++i)
-                                  points[i] = pointOf(ref, now, nowRowOf, i);
-                          });
+        // The spheres are points 0..n-1, read from the frames; images (periodic axes) follow.
+        std::vector<CellPoint> images;
         const PeriodicCell cell(ref.box);
         if (cell.any && n > 0) {
             const double edge[3][3] = {
@@ -91,17 +87,17 @@ class NeighbourCells {
                             if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                                 q[2] < lo[2] || q[2] > hi[2])
                                 continue;
-                            CellPoint p = points[i];
+                            CellPoint p = pointOf(ref, now, nowRowOf, i);
                             p.x = static_cast<float>(q[0]);
                             p.y = static_cast<float>(q[1]);
                             p.z = static_cast<float>(q[2]);
                             p.owner |= kImage;
-                            points.push_back(p);
+                            images.push_back(p);
                         }
                     }
         }
         // Cells of at least `cutoff`, no more of them than ~4 per point (sparse or flat sets).
-        const std::size_t count = points.size();
+        const std::size_t count = n + images.size();
         // No axis gets more than 2^20 cells, whatever the cutoff (a tiny one is no neighbourhood).
         double extent = 0;
         for (int a = 0; a < 3; ++a)
@@ -123,7 +119,9 @@ class NeighbourCells {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t k = r.begin(); k != r.end(); ++k)
-                                  cellOf[k] = cellIndex(points[k].x, points[k].y, points[k].z);
+                                  cellOf[k] = k < n ? cellIndex(ref.x[k], ref.y[k], ref.z[k])
+                                                    : cellIndex(images[k - n].x, images[k - n].y,
+                                                                images[k - n].z);
                           });
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
         m_start.assign(cells + 1, 0);
@@ -142,7 +140,7 @@ class NeighbourCells {
         m_owner.resize(count);
         for (std::size_t k = 0; k < count; ++k) {
             const std::uint32_t at = fill[cellOf[k]]++;
-            const CellPoint& p = points[k];
+            const CellPoint p = k < n ? pointOf(ref, now, nowRowOf, k) : images[k - n];
             m_x[at] = p.x, m_y[at] = p.y, m_z[at] = p.z;
             m_nx[at] = p.nx, m_ny[at] = p.ny, m_nz[at] = p.nz;
             m_owner[at] = p.owner;
