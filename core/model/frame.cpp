@@ -70,6 +70,7 @@ void Frame::finalize() {
     double axisRange[3][2] = {};
     double radiusSum = 0;
     std::size_t radiusCount = 0;
+    double radiusLo = std::numeric_limits<double>::infinity(), radiusHi = -radiusLo;
     tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t k) {
         if (k < attributes.size()) {
             auto& c = attributes[k];
@@ -79,9 +80,13 @@ void Frame::finalize() {
                 rangeOf(c.ints, c.min, c.max);
         } else if (k == attributes.size() + 3) {
             for (float r : radius)
-                if (r > 0 && std::isfinite(r)) {
-                    radiusSum += r;
-                    ++radiusCount;
+                if (std::isfinite(r)) {
+                    radiusLo = std::min(radiusLo, double(r));
+                    radiusHi = std::max(radiusHi, double(r));
+                    if (r > 0) {
+                        radiusSum += r;
+                        ++radiusCount;
+                    }
                 }
         } else {
             const std::vector<float>* axes[3] = {&x, &y, &z};
@@ -90,6 +95,7 @@ void Frame::finalize() {
         }
     });
     m_meanRadius = radiusCount ? radiusSum / double(radiusCount) : 0.0;
+    m_radiusRange = {radiusLo, radiusHi};
     for (int a = 0; a < 3; ++a) {
         m_centreMin[a] = static_cast<float>(axisRange[a][0]);
         m_centreMax[a] = static_cast<float>(axisRange[a][1]);

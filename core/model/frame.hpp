@@ -75,6 +75,8 @@ class Frame {
     const std::array<float, 3>& centreMax() const { return m_centreMax; }
     // Mean of the finite positive radii (0 when none). Valid after finalize().
     double meanRadius() const { return m_meanRadius; }
+    // Lowest and highest finite radius (low above high when there is none). After finalize().
+    const std::array<double, 2>& radiusRange() const { return m_radiusRange; }
 
     // Heap bytes held by this frame (columns and the id map).
     std::size_t memoryBytes() const;
@@ -87,6 +89,7 @@ class Frame {
     std::array<float, 3> m_centreMin{0, 0, 0};
     std::array<float, 3> m_centreMax{0, 0, 0};
     double m_meanRadius = 0;
+    std::array<double, 2> m_radiusRange{1, 0};
 };
 
 inline constexpr float kDefaultRadius = 0.5f;

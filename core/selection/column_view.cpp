@@ -48,6 +48,11 @@ std::optional<VariableRange> variableRange(const Frame& frame, std::string_view 
     for (int a = 0; a < 3; ++a)
         if (frame.size() > 0 && variable == std::string_view(a == 0 ? "x" : a == 1 ? "y" : "z"))
             return VariableRange{frame.centreMin()[a], frame.centreMax()[a]};
+    // Kept with the frame: views ask for it every UI frame.
+    if (variable == "radius" && frame.size() > 0) {
+        const auto& r = frame.radiusRange();
+        return r[0] <= r[1] ? std::optional(VariableRange{r[0], r[1]}) : std::nullopt;
+    }
     const auto column = findColumn(frame, variable);
     if (!column)
         return std::nullopt;

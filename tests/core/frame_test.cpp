@@ -1,4 +1,5 @@
 #include "core/model/frame.hpp"
+#include "core/selection/column_view.hpp"
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,22 @@ TEST(Frame, AttributeRangesIgnoreNaN) {
     EXPECT_EQ(f.attribute("strain")->max, 0.5);
     ASSERT_TRUE(f.attribute("broken")->isInteger());
     EXPECT_EQ(f.attribute("broken")->max, 7);
+}
+
+// The radius range is kept with the frame (views ask for it every UI frame) and skips what is
+// not finite, as a scan of the column would.
+TEST(Frame, RadiusRangeIsKeptAndIgnoresNaN) {
+    Frame f = frameWithIds({1, 2, 3, 4});
+    f.radius = {0.5f, NAN, 2.0f, 0.25f};
+    f.finalize();
+    const auto range = variableRange(f, "radius");
+    ASSERT_TRUE(range);
+    EXPECT_EQ(range->low, 0.25);
+    EXPECT_EQ(range->high, 2.0);
+    Frame none = frameWithIds({1});
+    none.radius = {NAN};
+    none.finalize();
+    EXPECT_FALSE(variableRange(none, "radius"));
 }
 
 TEST(Frame, IntegralColumnTooLargeForFloatStaysFloat) {
