@@ -29,7 +29,6 @@ class Command {
   public:
     operator Json() const& { return m_json; }
     operator Json() && { return std::move(m_json); }
-    const Json& json() const { return m_json; }
 
   protected:
     explicit Command(const char* op) : m_json{{"op", op}} {}

@@ -1,7 +1,6 @@
 // Cutting boxes panel: the list (enable, name, keep/cut), add/duplicate/delete, and an editor
 // for the selected box: name, mode, min/max per axis as numbers and as fractions of the model.
 #include "core/session/commands.hpp"
-#include "core/session/items/box_codec.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"

@@ -8,7 +8,6 @@
 #include "ui/panels/viewport_cell.hpp"
 
 #include "core/session/commands.hpp"
-#include "core/session/items/camera_codec.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/viewport/category_colors.hpp"

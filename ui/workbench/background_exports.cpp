@@ -6,6 +6,7 @@
 #include "core/session/commands.hpp"
 #include "core/session/csv_exports.hpp"
 #include "core/session/fault_surface_request.hpp"
+#include "core/session/journal_place.hpp"
 #include "core/session/session.hpp"
 #include "ui/context/job_interrupter.hpp"
 #include "ui/context/panel_context.hpp"
@@ -17,22 +18,6 @@ namespace faultline::ui {
 
 namespace fs = std::filesystem;
 using core::Json;
-
-namespace {
-
-// A background export's place in the journal (Session::reserveAction): given up when the job
-// ends without settling it (failed or cancelled). Held only by closures that live and die on
-// the UI thread.
-struct JournalPlace {
-    explicit JournalPlace(core::Session& s) : session(s), place(s.reserveAction()) {}
-    ~JournalPlace() { session.dropAction(place); }
-    JournalPlace(const JournalPlace&) = delete;
-    JournalPlace& operator=(const JournalPlace&) = delete;
-    core::Session& session;
-    std::uint64_t place;
-};
-
-} // namespace
 
 void BackgroundExports::surfaces(std::vector<std::string> faults, const std::string& pathIn,
                                  bool vdb, bool glyphs) {
@@ -62,12 +47,14 @@ void BackgroundExports::surfaces(std::vector<std::string> faults, const std::str
     }
     const Json cmd = vdb ? core::cmd::exportVdb(faults.front(), path)
                          : core::cmd::exportGltf(faults, path, glyphs);
-    auto place = std::make_shared<JournalPlace>(m_session);
+    // Given up when the job ends without settling it (failed or cancelled); held only by
+    // closures that live and die on the UI thread.
+    auto place = std::make_shared<core::JournalPlace>(m_session);
     m_ctx.jobs().start(
         "Exporting " + fs::path(path).filename().string(),
         [this, frame, requests, path, vdb, cmd, cache = m_ctx.surfaces().cache(),
          frameIndex = state.frame, glyphs,
-         at = place->place](JobControl& control) -> std::function<void()> {
+         at = place->place()](JobControl& control) -> std::function<void()> {
             // Surfaces shown in the views come from their cache, not built again.
             JobInterrupter interrupter(control);
             const core::SurfaceReuse reuse{cache.get(), frameIndex};
@@ -87,11 +74,11 @@ void BackgroundExports::surfaces(std::vector<std::string> faults, const std::str
 void BackgroundExports::csv(core::Json cmd) {
     const std::string path = absolutePath(cmd.value("path", std::string()));
     cmd["path"] = path;
-    auto place = std::make_shared<JournalPlace>(m_session);
+    auto place = std::make_shared<core::JournalPlace>(m_session);
     m_ctx.jobs().start(
         "Exporting " + fs::path(path).filename().string(),
         [this, snapshot = m_session.state(), data = m_session.dataset(), cmd, path,
-         at = place->place](JobControl& control) -> std::function<void()> {
+         at = place->place()](JobControl& control) -> std::function<void()> {
             // Cancel in the status bar stops it between frames; no file is written.
             core::writeFileAtomically(path,
                                       core::exportCsvText(snapshot, data, cmd, {}, [&control] {

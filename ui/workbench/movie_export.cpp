@@ -1,6 +1,6 @@
 #include "ui/workbench/movie_export.hpp"
 
-#include "core/session/session.hpp"
+#include "core/session/journal_place.hpp"
 
 #include <filesystem>
 
@@ -11,8 +11,7 @@ namespace fs = std::filesystem;
 MovieExport::~MovieExport() { stop(); }
 
 void MovieExport::stop() {
-    if (m_sequence)
-        m_session.dropAction(m_place); // nothing written in its place
+    m_place.reset(); // nothing written in its place
     m_sequence.reset();
 }
 
@@ -20,7 +19,7 @@ void MovieExport::start(const SequenceRequest& request, core::Json command) {
     stop();
     m_sequence = std::make_unique<FrameSequence>(m_session, request);
     m_command = std::move(command);
-    m_place = m_session.reserveAction();
+    m_place = std::make_unique<core::JournalPlace>(m_session);
 }
 
 std::pair<std::size_t, std::size_t> MovieExport::progress() const {
@@ -47,11 +46,11 @@ MovieExport::Step MovieExport::step() {
     Step done{State::Written, "Wrote " + m_sequence->path() + " (" +
                                   std::to_string(m_sequence->total()) + " frames)"};
     try {
-        m_session.settleAction(m_place, m_command);
+        m_place->settle(m_command);
     } catch (const std::exception& e) {
         done.message += "; not in the journal: " + std::string(e.what());
-        m_session.dropAction(m_place); // the place records nothing
     }
+    m_place.reset(); // unsettled: the place records nothing
     m_sequence.reset();
     return done;
 }

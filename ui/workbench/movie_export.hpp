@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/session/command_args.hpp"
+#include "core/session/journal_place.hpp"
 #include "ui/viewport/session_figure.hpp"
 
 #include <cstdint>
@@ -50,7 +51,7 @@ class MovieExport {
     core::Session& m_session;
     std::unique_ptr<FrameSequence> m_sequence;
     core::Json m_command;
-    std::uint64_t m_place = 0; // its journal place while running
+    std::unique_ptr<core::JournalPlace> m_place; // its journal place while running
 };
 
 } // namespace faultline::ui

@@ -29,11 +29,11 @@ void Recovery::discard() {
 }
 
 std::optional<std::string> Recovery::autosave(const core::Session& session, double now,
-                                              double interval, bool force) {
+                                              double interval) {
     // Until the user decided about a recovery, its file stays as it is.
     if (!m_autosaver || m_pending || m_recovering)
         return std::nullopt;
-    if (!force && now - m_lastTry < interval)
+    if (now - m_lastTry < interval)
         return std::nullopt;
     m_lastTry = now;
     if (session.version() == m_savedVersion)

@@ -32,11 +32,9 @@ class Recovery {
     void opened() { m_recovering = false; }
     void abandoned() { m_recovering = false; } // it failed to open, or was left closed
 
-    // Saves `session` when `interval` seconds passed since the last try (at once with
-    // `force`) and it changed since; an error message when the save failed (said once in
-    // five minutes).
-    std::optional<std::string> autosave(const core::Session& session, double now, double interval,
-                                        bool force);
+    // Saves `session` when `interval` seconds passed since the last try and it changed since;
+    // an error message when the save failed (said once in five minutes).
+    std::optional<std::string> autosave(const core::Session& session, double now, double interval);
     // The workbench closes normally: nothing to offer next time.
     void exitCleanly(const core::Session& session);
 

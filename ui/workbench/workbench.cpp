@@ -18,7 +18,6 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <functional>
 
@@ -130,7 +129,7 @@ void Workbench::frame(double now) {
     applyPending();
     syncWithSession();
     updateDisplay();
-    if (auto failed = m_recovery.autosave(m_session, m_now, m_options.autosaveSeconds, false))
+    if (auto failed = m_recovery.autosave(m_session, m_now, m_options.autosaveSeconds))
         error(*failed);
     m_items.endFrame();
 }

@@ -15,18 +15,15 @@
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 
-#include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 
 namespace faultline::ui {
 
 namespace fs = std::filesystem;
-using core::Json;
 
 void Workbench::openDataDialog() {
     m_dialog.open("Open data (a file, or a pattern such as dump.*.gz)", FileDialog::Mode::Open,

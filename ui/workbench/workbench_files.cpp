@@ -13,7 +13,6 @@
 namespace faultline::ui {
 
 namespace fs = std::filesystem;
-using core::Json;
 
 void Workbench::recover() {
     if (const auto path = m_recovery.recover())

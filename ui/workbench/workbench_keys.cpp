@@ -9,7 +9,6 @@
 #include <GLFW/glfw3.h> // key codes only (the GLFW back end indexes io.KeysDown by them)
 #include <imgui.h>
 
-#include <ctime>
 #include <filesystem>
 #include <string_view>
 
