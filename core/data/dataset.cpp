@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <regex>
 
@@ -149,6 +150,8 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
     ds->m_frameCache = FrameCache::processDefault();
     // Every pattern expanded first, so progress counts files.
     std::vector<std::vector<std::string>> expanded;
+    // Per pattern: the bounding boxes it matched beside its frames, by folder and number.
+    std::vector<std::map<std::pair<std::string, std::int64_t>, std::string>> boxes(patterns.size());
     std::size_t total = 0, done = 0;
     for (const auto& pattern : patterns) {
         if (pattern.find('%') != std::string::npos) {
@@ -160,9 +163,17 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
         if (expanded.back().empty())
             throw InputError(pattern, "no file matches this pattern");
         // LIGGGHTS' dump custom/vtk writes run_boundingBox_N.vtk beside each run_N.vtk: the
-        // natural pattern run_*.vtk takes both. The boxes are no frames of spheres.
+        // natural pattern run_*.vtk takes both. The boxes are no frames of spheres: each is
+        // its frame's simulation box (the frame file holds none).
         if (expanded.back().size() > 1) {
-            std::erase_if(expanded.back(), isVtkRectilinearGrid);
+            std::erase_if(expanded.back(), [&](const std::string& file) {
+                if (!isVtkRectilinearGrid(file))
+                    return false;
+                if (const auto n = numberInFileName(file))
+                    boxes[expanded.size() - 1]
+                         [{std::filesystem::path(file).parent_path().string(), *n}] = file;
+                return true;
+            });
             if (expanded.back().empty())
                 throw InputError(pattern, "every file this pattern matches is a RECTILINEAR_GRID "
                                           "(a bounding box), none holds spheres");
@@ -183,6 +194,12 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
         }
         for (const auto& file : expanded[k]) {
             auto frames = indexDataFile(file);
+            if (!boxes[k].empty() && frames.size() == 1)
+                if (const auto n = numberInFileName(file))
+                    if (auto box =
+                            boxes[k].find({std::filesystem::path(file).parent_path().string(), *n});
+                        box != boxes[k].end())
+                        frames.front().boxPath = box->second;
             ds->m_frames.insert(ds->m_frames.end(), frames.begin(), frames.end());
             step();
         }

@@ -36,7 +36,11 @@ std::optional<SourceState> sourceState(const FrameLocation& location) {
                              " timestep " + std::to_string(location.timestep) + "\n";
     s.identity = head;
     s.key = head;
-    for (const auto& piece : location.pieces) {
+    // The pieces, then a LIGGGHTS bounding box read with them (a changed box is a changed frame).
+    std::vector<FramePiece> sources = location.pieces;
+    if (!location.boxPath.empty())
+        sources.push_back({location.boxPath, 0, 0, 0});
+    for (const auto& piece : sources) {
         std::error_code ec;
         const fs::path absolute = fs::absolute(piece.path, ec).lexically_normal();
         if (ec)

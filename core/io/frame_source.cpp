@@ -10,7 +10,10 @@
 #include "core/io/vtk_legacy.hpp"
 #include "core/io/vtk_xml.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -108,6 +111,83 @@ bool isVtkRectilinearGrid(const std::string& path) {
            text.find("DATASET RECTILINEAR_GRID") != std::string_view::npos;
 }
 
+SimulationBox readVtkRectilinearBox(const std::string& path) {
+    // A few hundred bytes as LIGGGHTS writes them; a megabyte is not a box.
+    constexpr std::size_t kMostBytes = 1 << 20;
+    const std::string head = peekFileBytes(path, kMostBytes + 1);
+    if (head.size() > kMostBytes)
+        throw InputError(path, "over a megabyte: expected a bounding box of a few hundred bytes");
+    // The words with their line numbers.
+    std::vector<std::pair<std::string_view, std::uint64_t>> words;
+    std::uint64_t line = 1;
+    for (std::size_t i = 0; i < head.size();) {
+        const char c = head[i];
+        if (c == '\n') {
+            ++line, ++i;
+        } else if (std::isspace(static_cast<unsigned char>(c))) {
+            ++i;
+        } else {
+            const std::size_t from = i;
+            while (i < head.size() && !std::isspace(static_cast<unsigned char>(head[i])))
+                ++i;
+            words.push_back({std::string_view(head).substr(from, i - from), line});
+        }
+    }
+    auto fail = [&](std::uint64_t at, const std::string& what) -> void {
+        throw InputError(path, InputError::Where::Line, at, what);
+    };
+    if (head.rfind("# vtk DataFile", 0) != 0)
+        fail(1, "expected '# vtk DataFile Version ...' (a legacy VTK file)");
+    SimulationBox box;
+    bool grid = false, seen[3] = {false, false, false};
+    static constexpr std::string_view kAxes[3] = {"X_COORDINATES", "Y_COORDINATES",
+                                                  "Z_COORDINATES"};
+    for (std::size_t w = 0; w < words.size(); ++w) {
+        const auto [word, at] = words[w];
+        if (at == 1 || at == 2)
+            continue; // the version line and the title
+        if (word == "BINARY")
+            fail(at, "expected ASCII (a binary bounding box is not read)");
+        if (word == "DATASET") {
+            if (w + 1 >= words.size() || words[w + 1].first != "RECTILINEAR_GRID")
+                fail(at, "expected DATASET RECTILINEAR_GRID");
+            grid = true;
+            continue;
+        }
+        const auto axis = std::find(std::begin(kAxes), std::end(kAxes), word) - std::begin(kAxes);
+        if (axis == 3)
+            continue;
+        if (!grid)
+            fail(at, "expected DATASET RECTILINEAR_GRID before " + std::string(word));
+        long long n = 0;
+        const std::string_view count = w + 1 < words.size() ? words[w + 1].first : "";
+        const auto counted = std::from_chars(count.data(), count.data() + count.size(), n);
+        if (w + 2 >= words.size() || counted.ec != std::errc() ||
+            counted.ptr != count.data() + count.size() || n < 1 ||
+            n > static_cast<long long>(words.size() - w - 3))
+            fail(at, "expected " + std::string(word) + " <count> <type> and that many numbers");
+        double lo = INFINITY, hi = -INFINITY;
+        for (long long k = 0; k < n; ++k) {
+            const auto [number, where] = words[w + 3 + std::size_t(k)];
+            double v = 0;
+            const auto r = std::from_chars(number.data(), number.data() + number.size(), v);
+            if (r.ec != std::errc() || r.ptr != number.data() + number.size() || !std::isfinite(v))
+                fail(where,
+                     "expected a coordinate, found '" + std::string(number.substr(0, 40)) + "'");
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        box.lo[std::size_t(axis)] = lo, box.hi[std::size_t(axis)] = hi;
+        seen[axis] = true;
+        w += 2 + std::size_t(n);
+    }
+    for (int a = 0; a < 3; ++a)
+        if (!seen[a])
+            throw InputError(path, grid ? "no " + std::string(kAxes[a]) + ": expected all three"
+                                        : "expected DATASET RECTILINEAR_GRID (a bounding box)");
+    box.known = true;
+    return box;
+}
+
 std::vector<FrameLocation> indexDataFile(const std::string& path) {
     const FileFormat format = detectFormat(path);
     std::vector<FrameLocation> frames;
@@ -193,6 +273,8 @@ Frame loadFrame(const FrameLocation& location) {
         Frame f = loadPiece(location.format, location.pieces.front());
         if (location.format != FileFormat::LammpsDump)
             f.timestep = location.timestep;
+        if (!location.boxPath.empty() && !f.box.known)
+            f.box = readVtkRectilinearBox(location.boxPath);
         return f;
     }
     std::vector<Frame> pieces;

@@ -34,6 +34,9 @@ struct FrameLocation {
     double time = 0.0;               // from a .pvd collection, else the timestep
     std::uint64_t particleCount = 0; // when the index knows it (LAMMPS), else 0
     std::vector<FramePiece> pieces;  // several for LAMMPS per-processor files
+    // LIGGGHTS' dump custom/vtk: the run_boundingBox_N.vtk written beside this frame's file,
+    // read as the frame's simulation box (its files hold none); empty: none.
+    std::string boxPath;
 };
 
 // The last run of digits in a file's name before its extensions ("run_49600.vtk": 49600).
@@ -41,6 +44,9 @@ std::optional<std::int64_t> numberInFileName(const std::string& path);
 // A legacy VTK RECTILINEAR_GRID file: LIGGGHTS' dump custom/vtk writes run_boundingBox_N.vtk
 // beside each frame; a series skips them.
 bool isVtkRectilinearGrid(const std::string& path);
+// The box such a file spans (its coordinates' smallest and largest along each axis; known, no
+// periodic axis). Throws InputError naming the file and line of anything else.
+SimulationBox readVtkRectilinearBox(const std::string& path);
 
 // Every frame one file holds (a .pvd collection expands to the files it lists).
 std::vector<FrameLocation> indexDataFile(const std::string& path);

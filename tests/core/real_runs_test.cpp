@@ -33,6 +33,14 @@ TEST(RealRuns, LiggghtsCustomVtkSeriesSkipsItsBoundingBoxes) {
     EXPECT_FALSE(last->idsAreRowNumbers);
     EXPECT_FALSE(last->radiusIsDefault);
     EXPECT_NE(last->attribute("v_x"), nullptr);
+    // LIGGGHTS wrote run_boundingBox_N.vtk for the first and last frames kept here: their box.
+    for (std::size_t k : {std::size_t(0), std::size_t(3)}) {
+        const SimulationBox& b = ds->frame(k)->box;
+        EXPECT_TRUE(b.known) << "frame " << k;
+        EXPECT_EQ(b.lo, (std::array<double, 3>{-0.002, -0.0005, -0.0005}));
+        EXPECT_EQ(b.hi, (std::array<double, 3>{0.082, 0.0125, 0.0505}));
+    }
+    EXPECT_FALSE(ds->frame(1)->box.known);
     // The same run as a text dump (gzipped after the run: Debian's LIGGGHTS writes no .gz)
     // agrees sphere by sphere, matched by id (custom/vtk reorders them every frame).
     auto dump = Dataset::open({run("liggghts/run.dump.gz")});
