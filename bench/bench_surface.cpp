@@ -531,8 +531,11 @@ void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor)
     auto ms = [](Clock::time_point t0) {
         return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     };
-    const std::pair<const char*, const char*> kernels[] = {{"inverse", "inverse"},
-                                                           {"inverse_square", "inverse-square"}};
+    // FAULTLINE_BENCH_KERNEL=inverse or inverse-square: that kernel alone (for a profile of it).
+    std::vector<std::pair<const char*, const char*>> kernels = {
+        {"inverse", "inverse"}, {"inverse_square", "inverse-square"}};
+    if (const char* only = std::getenv("FAULTLINE_BENCH_KERNEL"))
+        std::erase_if(kernels, [&](const auto& k) { return std::string(k.second) != only; });
     auto buildOp = [&](const char* kernel) {
         s.apply({{"op", "surface.build"}, {"fault", "F1"}, {"kernel", kernel}, {"voxel", voxel}});
     };
@@ -743,6 +746,10 @@ BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_r3, "demo_
     ->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_demo_bb3_inverse_square_r3, "demo_bb3", 3.0f,
                   fc::MetaballKernel::InverseSquare, 199)
+    ->Apply(ratioRuns);
+// The case nearest the 2x line (r/d^2 at r/2 on the zones): its accuracy, measured.
+BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_zones525k_inverse_square_r2, "zones525k", 2.0f,
+                  fc::MetaballKernel::InverseSquare, 23)
     ->Apply(ratioRuns);
 BENCHMARK_CAPTURE(BM_SurfaceOpSampledError, op_error_zones525k_inverse_r3, "zones525k", 3.0f,
                   fc::MetaballKernel::Inverse, 199)
