@@ -102,10 +102,10 @@ Json faultMerge(const std::vector<std::string>& names, const std::string& into) 
     return op("fault.merge", "names", names, "into", into);
 }
 Json faultSplit(const std::string& name) { return op("fault.split", "name", name); }
-Json faultFilter(const std::string& mode, const std::string& fault) {
-    Json j = op("fault.filter", "mode", mode);
-    if (!fault.empty())
-        j["fault"] = fault;
+Json faultFilter(const FaultFilter& filter) {
+    Json j = op("fault.filter", "mode", std::string(faultFilterModeName(filter.mode)));
+    if (filter.mode == FaultFilter::Mode::Only)
+        j["fault"] = filter.fault;
     return j;
 }
 

@@ -167,8 +167,8 @@ Json faultRemove(const std::string& name, std::vector<std::int64_t> ids);
 Json faultDelete(const std::string& name);
 Json faultMerge(const std::vector<std::string>& names, const std::string& into);
 Json faultSplit(const std::string& name);
-// "all" | "labelled", or "only" with `fault`.
-Json faultFilter(const std::string& mode, const std::string& fault = {});
+// The filter's mode, and its fault when the mode is Only.
+Json faultFilter(const FaultFilter& filter);
 class FaultCandidates : public Command {
   public:
     FaultCandidates() : Command("fault.candidates") {}

@@ -48,18 +48,6 @@ T readItem(const Json& j, const std::string& where, const std::string& file,
     return item;
 }
 
-const char* filterModeName(FaultFilter::Mode m) {
-    switch (m) {
-    case FaultFilter::Mode::All:
-        return "all";
-    case FaultFilter::Mode::Labelled:
-        return "labelled";
-    case FaultFilter::Mode::Only:
-        return "only";
-    }
-    return "all";
-}
-
 // Migrations from older schemas, each from N to N+1. Schema 1 is the first: none yet.
 Json migrate(Json doc, int from, const std::string& path) {
     (void)path;
@@ -94,7 +82,7 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
     for (const auto& f : s.faults)
         faults.push_back(items::toJson(f));
     doc["faults"] = faults;
-    doc["fault_filter"] = {{"mode", filterModeName(s.faultFilter.mode)},
+    doc["fault_filter"] = {{"mode", faultFilterModeName(s.faultFilter.mode)},
                            {"fault", s.faultFilter.fault}};
     Json surfaces = Json::array();
     for (const auto& sf : s.surfaces) {
@@ -206,14 +194,10 @@ SessionState sessionFromJson(const Json& input, const std::string& baseDir,
             const items::ItemReader ff(top.get("fault_filter"), "fault_filter.");
             std::string mode = "all";
             ff.read("mode", mode);
-            if (mode == "all")
-                s.faultFilter.mode = FaultFilter::Mode::All;
-            else if (mode == "labelled")
-                s.faultFilter.mode = FaultFilter::Mode::Labelled;
-            else if (mode == "only")
-                s.faultFilter.mode = FaultFilter::Mode::Only;
+            if (const auto m = parseFaultFilterMode(mode))
+                s.faultFilter.mode = *m;
             else
-                ff.fail("mode", "must be all, labelled or only");
+                ff.fail("mode", "must be " + faultFilterModeNames());
             ff.read("fault", s.faultFilter.fault);
             if (s.faultFilter.mode == FaultFilter::Mode::Only && !s.fault(s.faultFilter.fault))
                 ff.fail("fault", "names no fault of this session");

@@ -2,6 +2,7 @@
 #include "core/session/session_ops.hpp"
 
 #include "core/faults/candidates.hpp"
+#include "core/session/commands.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/items/item_codecs.hpp"
 
@@ -45,14 +46,6 @@ std::vector<std::int64_t> visibleIds(Session& s, const char* op) {
         if (vis.mask[row])
             ids.push_back(frame->ids[row]);
     return ids;
-}
-
-Json faultFilterJson(const FaultFilter& f) {
-    static const char* kModes[] = {"all", "labelled", "only"};
-    Json j = {{"op", "fault.filter"}, {"mode", kModes[static_cast<int>(f.mode)]}};
-    if (f.mode == FaultFilter::Mode::Only)
-        j["fault"] = f.fault;
-    return j;
 }
 
 } // namespace
@@ -222,7 +215,7 @@ void registerFaultOps(OpTable& ops) {
         }
         if (state.faultFilter.mode == FaultFilter::Mode::Only && state.faultFilter.fault == name) {
             inverse = {{"op", "batch"},
-                       {"commands", {inverse, faultFilterJson(state.faultFilter)}}};
+                       {"commands", {inverse, core::cmd::faultFilter(state.faultFilter)}}};
             state.faultFilter = FaultFilter{};
         }
         state.faults.erase(it);
@@ -283,20 +276,17 @@ void registerFaultOps(OpTable& ops) {
     });
     addStateOp(ops, "fault.filter", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"mode", "fault"});
-        const std::string mode = args::string(cmd, "mode");
+        const auto mode = parseFaultFilterMode(args::string(cmd, "mode"));
+        if (!mode)
+            throw CommandError("fault.filter: \"mode\" must be " + faultFilterModeNames());
         FaultFilter next;
-        if (mode == "all")
-            next.mode = FaultFilter::Mode::All;
-        else if (mode == "labelled")
-            next.mode = FaultFilter::Mode::Labelled;
-        else if (mode == "only") {
-            next.mode = FaultFilter::Mode::Only;
+        next.mode = *mode;
+        if (next.mode == FaultFilter::Mode::Only) {
             next.fault = args::string(cmd, "fault");
             if (!s.state().fault(next.fault))
                 throw CommandError("fault.filter: no fault named \"" + next.fault + "\"");
-        } else
-            throw CommandError("fault.filter: \"mode\" must be all, labelled or only");
-        Json inverse = faultFilterJson(s.state().faultFilter);
+        }
+        Json inverse = core::cmd::faultFilter(s.state().faultFilter);
         s.mutableState().faultFilter = next;
         return inverse;
     });

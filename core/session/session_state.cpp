@@ -15,7 +15,23 @@ constexpr EnumName<ColorDifference::Mode> kDifferenceModes[] = {
     {ColorDifference::Mode::None, "none"},
     {ColorDifference::Mode::Change, "change"},
     {ColorDifference::Mode::Displacement, "displacement"}};
+constexpr EnumName<FaultFilter::Mode> kFaultFilterModes[] = {
+    {FaultFilter::Mode::All, "all"},
+    {FaultFilter::Mode::Labelled, "labelled"},
+    {FaultFilter::Mode::Only, "only"}};
 } // namespace
+
+std::string_view faultFilterModeName(FaultFilter::Mode mode) {
+    return nameIn(kFaultFilterModes, mode, "all");
+}
+std::optional<FaultFilter::Mode> parseFaultFilterMode(std::string_view name) {
+    return valueIn(kFaultFilterModes, name);
+}
+std::string faultFilterModeNames() {
+    std::string names = namesIn(kFaultFilterModes, ", ");
+    const std::size_t last = names.rfind(", ");
+    return last == std::string::npos ? names : names.replace(last, 2, " or ");
+}
 
 std::string_view differenceModeName(ColorDifference::Mode mode) {
     return nameIn(kDifferenceModes, mode, "none");

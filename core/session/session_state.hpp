@@ -91,6 +91,10 @@ struct FaultFilter {
     std::string fault;     // for Only
     bool operator==(const FaultFilter&) const = default;
 };
+std::string_view faultFilterModeName(FaultFilter::Mode mode); // all | labelled | only
+std::optional<FaultFilter::Mode> parseFaultFilterMode(std::string_view name);
+// "all, labelled or only", for messages.
+std::string faultFilterModeNames();
 
 // The surface source that is not a fault: the spheres visible in the frame (thresholds, boxes,
 // fault filter), as the views show them. Surface settings and journals name it like a fault:

@@ -79,9 +79,9 @@ TEST(Commands, EachBuilderMakesACommandItsOpAccepts) {
     EXPECT_EQ(s.state().fault("V")->ids.size(), s.visibility().visibleCount);
     run(s, cmd::faultDelete("V"));
     run(s, cmd::faultMerge({"F2", "F3"}, "F2"));
-    run(s, cmd::faultFilter("only", "F2"));
-    run(s, cmd::faultFilter("labelled"));
-    run(s, cmd::faultFilter("all"));
+    run(s, cmd::faultFilter({FaultFilter::Mode::Only, "F2"}));
+    run(s, cmd::faultFilter({FaultFilter::Mode::Labelled, {}}));
+    run(s, cmd::faultFilter({FaultFilter::Mode::All, {}}));
     run(s, cmd::FaultCandidates().link(1.5).minSize(4).prefix("K").angle(30));
     run(s, cmd::FaultCandidates().method(CandidateMethod::Connected).prefix("L"));
 

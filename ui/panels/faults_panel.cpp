@@ -116,17 +116,17 @@ class FaultsPanel final : public Panel {
         ImGui::SetNextItemWidth(-1);
         if (ImGui::BeginCombo("##filter", current.c_str())) {
             if (ImGui::Selectable("all spheres", filter.mode == core::FaultFilter::Mode::All))
-                wb.emit(core::cmd::faultFilter("all"));
+                wb.emit(core::cmd::faultFilter({core::FaultFilter::Mode::All, {}}));
             wb.mark("faults.filter.all");
             if (ImGui::Selectable("spheres in visible faults",
                                   filter.mode == core::FaultFilter::Mode::Labelled))
-                wb.emit(core::cmd::faultFilter("labelled"));
+                wb.emit(core::cmd::faultFilter({core::FaultFilter::Mode::Labelled, {}}));
             wb.mark("faults.filter.labelled");
             for (const auto& f : s.faults) {
                 if (ImGui::Selectable(("only " + f.name).c_str(),
                                       filter.mode == core::FaultFilter::Mode::Only &&
                                           filter.fault == f.name))
-                    wb.emit(core::cmd::faultFilter("only", f.name));
+                    wb.emit(core::cmd::faultFilter({core::FaultFilter::Mode::Only, f.name}));
                 wb.mark("faults.filter.only." + f.name);
             }
             ImGui::EndCombo();
