@@ -15,16 +15,13 @@ namespace faultline::core {
 namespace fs = std::filesystem;
 
 Session::Session() {
-    std::map<std::string, std::pair<OpHandler, bool>> ops;
-    detail::registerDataOps(ops);
-    detail::registerSelectionOps(ops);
-    detail::registerFaultOps(ops);
-    detail::registerOutputOps(ops);
-    detail::registerSurfaceOps(ops);
-    detail::registerSessionOps(ops);
-    detail::registerStrainOps(ops);
-    for (auto& [name, entry] : ops)
-        m_ops.add(name, std::move(entry.first), entry.second);
+    detail::registerDataOps(m_ops);
+    detail::registerSelectionOps(m_ops);
+    detail::registerFaultOps(m_ops);
+    detail::registerOutputOps(m_ops);
+    detail::registerSurfaceOps(m_ops);
+    detail::registerSessionOps(m_ops);
+    detail::registerStrainOps(m_ops);
     // A group of commands that undoes as one (e.g. accepting every candidate).
     m_ops.add(
         "batch",

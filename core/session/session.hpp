@@ -240,13 +240,13 @@ class Session {
 
 // Built-in ops, grouped by what they change (session_ops_*.cpp).
 namespace detail {
-void registerDataOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerSelectionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerFaultOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerOutputOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerSurfaceOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerSessionOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
-void registerStrainOps(std::map<std::string, std::pair<Session::OpHandler, bool>>& ops);
+void registerDataOps(OpRegistry& ops);
+void registerSelectionOps(OpRegistry& ops);
+void registerFaultOps(OpRegistry& ops);
+void registerOutputOps(OpRegistry& ops);
+void registerSurfaceOps(OpRegistry& ops);
+void registerSessionOps(OpRegistry& ops);
+void registerStrainOps(OpRegistry& ops);
 } // namespace detail
 
 } // namespace faultline::core

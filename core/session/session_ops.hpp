@@ -7,27 +7,25 @@
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 
-#include <map>
 #include <string>
 #include <utility>
 
 namespace faultline::core::detail {
 
-using OpTable = std::map<std::string, std::pair<Session::OpHandler, bool>>;
-
-inline void addStateOp(OpTable& ops, const char* name, Session::OpHandler h) {
-    ops[name] = {std::move(h), true};
+inline void addStateOp(OpRegistry& ops, const char* name, Session::OpHandler h) {
+    ops.add(name, std::move(h), true);
 }
-inline void addAction(OpTable& ops, const char* name, Session::OpHandler h) {
-    ops[name] = {std::move(h), false};
+inline void addAction(OpRegistry& ops, const char* name, Session::OpHandler h) {
+    ops.add(name, std::move(h), false);
 }
 // An op of the contract whose feature has not landed yet: a clear error, never a silent pass.
-inline void addNotYet(OpTable& ops, const char* name, const char* feature) {
-    ops[name] = {
+inline void addNotYet(OpRegistry& ops, const char* name, const char* feature) {
+    ops.add(
+        name,
         [name = std::string(name), feature = std::string(feature)](Session&, const Json&) -> Json {
             throw CommandError(name + ": not available yet (" + feature + ")");
         },
-        false};
+        false);
 }
 
 // "link" and "min_size" of fault.candidates and export.csv fault_tracks, with the journal's

@@ -26,7 +26,7 @@ ViewState& viewOf(Session& s, const Json& cmd, const char* field = "view") {
 
 } // namespace
 
-void registerDataOps(OpTable& ops) {
+void registerDataOps(OpRegistry& ops) {
     addStateOp(ops, "data.open", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"paths", "frame"});
         std::vector<std::string> paths = args::strings(cmd, "paths");

@@ -78,7 +78,7 @@ CandidateOptions candidateOptionsFrom(const Json& cmd, const char* op) {
     return options;
 }
 
-void registerFaultOps(OpTable& ops) {
+void registerFaultOps(OpRegistry& ops) {
     // A sphere belongs to at most one fault (issue 41): putting spheres into `keep` takes
     // them out of every other fault. Returns the commands that give them back, and says what
     // moved ("moved 37 from C2 to F1") in the session's note.

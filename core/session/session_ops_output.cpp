@@ -128,7 +128,7 @@ std::string exportCsvText(const SessionState& state, const std::shared_ptr<Datas
 
 namespace faultline::core::detail {
 
-void registerOutputOps(OpTable& ops) {
+void registerOutputOps(OpRegistry& ops) {
     addAction(ops, "session.save", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"path"});
         const std::string path = s.outputPath(args::string(cmd, "path"));

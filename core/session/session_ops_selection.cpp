@@ -28,7 +28,7 @@ const std::vector<std::string>& thresholdFields() {
 
 } // namespace
 
-void registerSelectionOps(OpTable& ops) {
+void registerSelectionOps(OpRegistry& ops) {
     addStateOp(ops, "box.add", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"index"}, boxFields());
         const std::string name = args::string(cmd, "name");

@@ -38,7 +38,7 @@ Json replaceWith(Session& s, SessionState next, const std::string& op) {
 
 } // namespace
 
-void registerSessionOps(OpTable& ops) {
+void registerSessionOps(OpRegistry& ops) {
     addStateOp(ops, "session.open", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"path", "data"});
         const std::string path = s.inputPath(args::string(cmd, "path"));

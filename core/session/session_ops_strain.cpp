@@ -11,7 +11,7 @@
 
 namespace faultline::core::detail {
 
-void registerStrainOps(OpTable& ops) {
+void registerStrainOps(OpRegistry& ops) {
     addStateOp(ops, "strain.add", [](Session& s, const Json& cmd) -> Json {
         args::onlyFields(cmd, {"since_frame", "since_offset", "cutoff", "prefix", "index"});
         if (!cmd.contains("since_frame") && !cmd.contains("since_offset"))

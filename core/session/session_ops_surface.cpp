@@ -134,7 +134,7 @@ std::shared_ptr<const Frame> frameOf(Session& s, const char* op) {
 
 } // namespace
 
-void registerSurfaceOps(OpTable& ops) {
+void registerSurfaceOps(OpRegistry& ops) {
     addStateOp(ops, "surface.build", [](Session& s, const Json& cmd) -> Json {
         onlySurfaceFields(cmd);
         const SurfaceSettings st = settingsFrom(s, cmd, "surface.build");
