@@ -168,7 +168,9 @@ SimulationBox readVtkRectilinearBox(const std::string& path) {
             fail(at, "expected " + std::string(word) + " <count> <type> and that many numbers");
         double lo = INFINITY, hi = -INFINITY;
         for (long long k = 0; k < n; ++k) {
-            const auto [number, where] = words[w + 3 + std::size_t(k)];
+            auto [number, where] = words[w + 3 + std::size_t(k)];
+            if (number.size() > 1 && number.front() == '+')
+                number.remove_prefix(1); // from_chars takes no '+'
             double v = 0;
             const auto r = std::from_chars(number.data(), number.data() + number.size(), v);
             if (r.ec != std::errc() || r.ptr != number.data() + number.size() || !std::isfinite(v))
