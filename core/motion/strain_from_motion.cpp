@@ -39,10 +39,13 @@ bool sameIdOrder(const Frame& a, const Frame& b) {
 
 constexpr std::uint32_t kNone = ~std::uint32_t(0);
 
-// A reference centre (or a periodic image of one) with where that sphere is now (NaN: gone).
+// A reference centre (or a periodic image of one) with how far that sphere moved since (NaN:
+// gone): worked out in double and taken to the current cell's minimum image, so a sphere that
+// crossed a periodic face (or an image, whose reference is a cell edge away) keeps the
+// precision of its small motion in float.
 struct CellPoint {
     float x, y, z;       // reference
-    float nx, ny, nz;    // current
+    float wx, wy, wz;    // motion
     std::uint32_t owner; // reference row; the top bit marks an image
 };
 constexpr std::uint32_t kImage = 0x80000000u;
@@ -58,7 +61,8 @@ constexpr std::uint32_t kImage = 0x80000000u;
 class NeighbourCells {
   public:
     NeighbourCells(const Frame& ref, const Frame& now, const std::vector<std::uint32_t>& nowRowOf,
-                   double cutoff) {
+                   double cutoff)
+        : m_nowCell(now.box) {
         const std::size_t n = ref.size();
         const auto& cmin = ref.centreMin();
         const auto& cmax = ref.centreMax();
@@ -87,7 +91,7 @@ class NeighbourCells {
                             if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                                 q[2] < lo[2] || q[2] > hi[2])
                                 continue;
-                            CellPoint p = pointOf(ref, now, nowRowOf, i);
+                            CellPoint p = pointOf(ref, now, nowRowOf, i, s);
                             p.x = static_cast<float>(q[0]);
                             p.y = static_cast<float>(q[1]);
                             p.z = static_cast<float>(q[2]);
@@ -130,19 +134,16 @@ class NeighbourCells {
         for (std::size_t c = 0; c < cells; ++c)
             m_start[c + 1] += m_start[c];
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
-        // Reference and current positions as float arrays in cell order, padded for 8-wide
-        // loads past the end (reference infinitely far: never near).
-        const float far = std::numeric_limits<float>::infinity();
-        for (auto* v : {&m_x, &m_y, &m_z})
-            v->assign(count + 8, far);
-        for (auto* v : {&m_nx, &m_ny, &m_nz})
-            v->assign(count + 8, 0.0f);
+        // Reference positions and motions as float arrays in cell order.
+        for (auto* v : {&m_x, &m_y, &m_z, &m_wx, &m_wy, &m_wz})
+            v->resize(count);
         m_owner.resize(count);
+        const double noShift[3] = {0, 0, 0};
         for (std::size_t k = 0; k < count; ++k) {
             const std::uint32_t at = fill[cellOf[k]]++;
-            const CellPoint p = k < n ? pointOf(ref, now, nowRowOf, k) : images[k - n];
+            const CellPoint p = k < n ? pointOf(ref, now, nowRowOf, k, noShift) : images[k - n];
             m_x[at] = p.x, m_y[at] = p.y, m_z[at] = p.z;
-            m_nx[at] = p.nx, m_ny[at] = p.ny, m_nz[at] = p.nz;
+            m_wx[at] = p.wx, m_wy[at] = p.wy, m_wz[at] = p.wz;
             m_owner[at] = p.owner;
         }
     }
@@ -151,13 +152,13 @@ class NeighbourCells {
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
-    // Reference (x, y, z) and current (nx, ny, nz; NaN: gone) positions in cell order.
+    // Reference positions (x, y, z) and motions (wx, wy, wz; NaN: gone) in cell order.
     const float* xs() const { return m_x.data(); }
     const float* ys() const { return m_y.data(); }
     const float* zs() const { return m_z.data(); }
-    const float* nxs() const { return m_nx.data(); }
-    const float* nys() const { return m_ny.data(); }
-    const float* nzs() const { return m_nz.data(); }
+    const float* wxs() const { return m_wx.data(); }
+    const float* wys() const { return m_wy.data(); }
+    const float* wzs() const { return m_wz.data(); }
 
     // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
     // three cells that lie next to each other in memory).
@@ -175,17 +176,22 @@ class NeighbourCells {
     }
 
   private:
-    static CellPoint pointOf(const Frame& ref, const Frame& now,
-                             const std::vector<std::uint32_t>& nowRowOf, std::size_t i) {
+    // Sphere i (its reference shifted by `shift` for an image) and its motion.
+    CellPoint pointOf(const Frame& ref, const Frame& now,
+                      const std::vector<std::uint32_t>& nowRowOf, std::size_t i,
+                      const double shift[3]) const {
         const std::uint32_t k = nowRowOf[i];
         const float nan = std::numeric_limits<float>::quiet_NaN();
-        return {ref.x[i],
-                ref.y[i],
-                ref.z[i],
-                k == kNone ? nan : now.x[k],
-                k == kNone ? nan : now.y[k],
-                k == kNone ? nan : now.z[k],
-                static_cast<std::uint32_t>(i)};
+        CellPoint p{ref.x[i], ref.y[i], ref.z[i], nan, nan, nan, static_cast<std::uint32_t>(i)};
+        if (k != kNone) {
+            double w[3] = {double(now.x[k]) - ref.x[i] - shift[0],
+                           double(now.y[k]) - ref.y[i] - shift[1],
+                           double(now.z[k]) - ref.z[i] - shift[2]};
+            m_nowCell.wrap(w[0], w[1], w[2]);
+            p.wx = static_cast<float>(w[0]), p.wy = static_cast<float>(w[1]);
+            p.wz = static_cast<float>(w[2]);
+        }
+        return p;
     }
     int coord(double v, int axis) const {
         return std::clamp(static_cast<int>((v - m_lo[axis]) / m_size), 0, m_dims[axis] - 1);
@@ -200,7 +206,8 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::vector<std::uint32_t> m_owner;
-    std::vector<float> m_x, m_y, m_z, m_nx, m_ny, m_nz;
+    std::vector<float> m_x, m_y, m_z, m_wx, m_wy, m_wz;
+    PeriodicCell m_nowCell;
 };
 
 // The axis every centre of `f` shares (2-D data), or -1.
@@ -242,12 +249,14 @@ struct Candidates {
             if (x.size() < size + n + 8)
                 for (auto* v : {&x, &y, &z, &wx, &wy, &wz})
                     v->resize(2 * (size + n + 8));
-            const float *px = cells.xs(), *py = cells.ys(), *pz = cells.zs();
-            const float *nx = cells.nxs(), *ny = cells.nys(), *nz = cells.nzs();
-            for (std::size_t k = first; k < last; ++k, ++size) {
-                x[size] = px[k], y[size] = py[k], z[size] = pz[k];
-                wx[size] = nx[k] - px[k], wy[size] = ny[k] - py[k], wz[size] = nz[k] - pz[k];
-            }
+            for (auto [to, from] : {std::pair{&x, cells.xs()},
+                                    {&y, cells.ys()},
+                                    {&z, cells.zs()},
+                                    {&wx, cells.wxs()},
+                                    {&wy, cells.wys()},
+                                    {&wz, cells.wzs()}})
+                std::copy(from + first, from + last, to->begin() + std::ptrdiff_t(size));
+            size += n;
         });
         const float far = std::numeric_limits<float>::infinity();
         for (std::size_t k = size; k < ((size + 7) & ~std::size_t(7)); ++k)
@@ -274,7 +283,9 @@ struct CellF {
 };
 
 // U = w_j - w_i is Y - X (Y the offset now); on periodic axes it is taken to its minimum
-// image, as Y would be (they differ by X, under the cutoff, far less than half a cell).
+// image, as Y would be (they differ by X, under the cutoff, far less than half a cell). The
+// motions are minimum images already; this catches two neighbours whose motions straddle half a
+// cell (a long cumulative interval in a flowing periodic box).
 template <bool Wrap>
 [[gnu::always_inline]] inline void sumNeighboursBody(const Candidates& c, const float* self,
                                                      float cutoff2, const CellF& cell,
@@ -342,12 +353,8 @@ FAULTLINE_HOT void cellSums(const NeighbourCells& cells, std::size_t cell,
     candidates.gather(cells, cell);
     for (std::size_t s = 0; s < count; ++s) {
         const std::size_t k = selves[s];
-        const float sphere[6] = {cells.xs()[k],
-                                 cells.ys()[k],
-                                 cells.zs()[k],
-                                 cells.nxs()[k] - cells.xs()[k],
-                                 cells.nys()[k] - cells.ys()[k],
-                                 cells.nzs()[k] - cells.zs()[k]};
+        const float sphere[6] = {cells.xs()[k],  cells.ys()[k],  cells.zs()[k],
+                                 cells.wxs()[k], cells.wys()[k], cells.wzs()[k]};
         if (wrap)
             sumNeighboursBody<true>(candidates, sphere, cutoff2, now, out[s]);
         else
@@ -524,7 +531,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                           }
                       });
     const NeighbourCells cells(ref, now, nowRowOf, cutoff);
-    const PeriodicCell refCell(ref.box), nowCell(now.box);
+    const PeriodicCell nowCell(now.box);
     const int flat = flatAxis(ref);
     int axes[3] = {0, 1, 2};
     int dim = 3;
@@ -557,24 +564,20 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                 selves.clear();
                 for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
                     const std::uint32_t owner = cells.owner(self);
-                    const double p[6] = {cells.xs()[self],  cells.ys()[self],  cells.zs()[self],
-                                         cells.nxs()[self], cells.nys()[self], cells.nzs()[self]};
-                    if ((owner & kImage) || std::isnan(p[3]))
+                    const double w[3] = {cells.wxs()[self], cells.wys()[self], cells.wzs()[self]};
+                    if ((owner & kImage) || std::isnan(w[0]))
                         continue; // an image, or a sphere gone from the current frame
                     const std::size_t i = nowRowOf[owner];
-                    double u[3] = {p[3] - p[0], p[4] - p[1], p[5] - p[2]};
-                    if (refCell.any)
-                        refCell.wrap(u[0], u[1], u[2]);
                     displacement[i] =
-                        static_cast<float>(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-                    refX[i] = static_cast<float>(p[3] - u[0]);
-                    refY[i] = static_cast<float>(p[4] - u[1]);
-                    refZ[i] = static_cast<float>(p[5] - u[2]);
+                        static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+                    refX[i] = static_cast<float>(now.x[i] - w[0]);
+                    refY[i] = static_cast<float>(now.y[i] - w[1]);
+                    refZ[i] = static_cast<float>(now.z[i] - w[2]);
                     selves.push_back(static_cast<std::uint32_t>(self));
                 }
                 if (selves.empty())
                     continue;
-                sums.assign(selves.size(), NeighbourSums{});
+                sums.resize(selves.size()); // each one written whole by cellSums
                 cellSums(cells, cell, selves.data(), selves.size(), cutoff2, nowCellF, nowCell.any,
                          candidates, sums.data());
                 for (std::size_t s = 0; s < selves.size(); ++s) {

@@ -239,6 +239,39 @@ TEST(StrainFromMotion, PeriodicBoundariesUseTheMinimumImage) {
     EXPECT_GT(crossed, 20u);
 }
 
+// A sphere that crossed a face of a long periodic box (6000 along x) and came back in at the far
+// end gets the strain it has unwrapped: its motion is worked out in double before it is stored as
+// a float (in float, its position there minus its reference lost up to 2.4e-4).
+TEST(StrainFromMotion, CrossingTheFaceOfALongPeriodicBoxKeepsThePrecision) {
+    Frame ref = packing(6, 3);
+    ref.box.known = true;
+    ref.box.lo = {-0.5, -0.5, -0.5};
+    ref.box.hi = {5999.5, 5.5, 5.5};
+    ref.box.periodic = {true, false, false};
+    ref.finalize();
+    // The same positions twice: wrapped in at the far end, and where they are unwrapped.
+    Frame open = ref, wrapped = ref;
+    std::size_t crossed = 0;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        const double x = ref.x[i] - 0.8 + 0.02 * (ref.z[i] - 2.5);
+        if (x < -0.5) {
+            wrapped.x[i] = static_cast<float>(x + 6000.0);
+            open.x[i] = static_cast<float>(double(wrapped.x[i]) - 6000.0); // exact
+            ++crossed;
+        } else {
+            wrapped.x[i] = open.x[i] = static_cast<float>(x);
+        }
+    }
+    open.finalize();
+    wrapped.finalize();
+    ASSERT_GT(crossed, 20u);
+    const auto a = strainFromMotion(open, ref, 1.5), b = strainFromMotion(wrapped, ref, 1.5);
+    for (std::size_t i = 0; i < ref.size(); ++i)
+        for (int c : {0, 1, 2, 3})
+            ASSERT_NEAR(b[std::size_t(c)].floats[i], a[std::size_t(c)].floats[i], 1e-6)
+                << "column " << c << ", row " << i;
+}
+
 // A triclinic periodic cell (LAMMPS' tilt factors): spheres wrapped into it by the cell vectors.
 TEST(StrainFromMotion, TriclinicCellsWrapAlongTheirEdges) {
     const double L = 6, xy = 1.5, xz = -1.0, yz = 0.75;
