@@ -26,7 +26,8 @@ struct StrainSpec {
 // ref_x, ref_y, ref_z: where each sphere was in the reference frame, as the minimum image next to
 // where it is now (issue 41: reference positions are variables too; fault throw measures the
 // offset of these since the reference frame where the file has no x0, y0, z0).
+inline constexpr std::string_view kShearStrain = "shear_strain"; // what shows faults best
 inline constexpr std::array<std::string_view, 7> kStrainVariables = {
-    "shear_strain", "volumetric_strain", "d2min", "displacement", "ref_x", "ref_y", "ref_z"};
+    kShearStrain, "volumetric_strain", "d2min", "displacement", "ref_x", "ref_y", "ref_z"};
 
 } // namespace faultline::core

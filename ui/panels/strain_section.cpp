@@ -137,8 +137,8 @@ void StrainSection::draw(PanelContext& wb) {
         const core::ViewState* view = wb.state().view("main");
         if (view && view->colorVariable.empty() &&
             view->difference.mode == core::ColorDifference::Mode::None)
-            wb.emit(core::cmd::batch(
-                {cmd, core::cmd::ColorSet("main").variable(m_prefix + "shear_strain")}));
+            wb.emit(core::cmd::batch({cmd, core::cmd::ColorSet("main").variable(
+                                               m_prefix + std::string(core::kShearStrain))}));
         else
             wb.emit(cmd);
     }
