@@ -18,11 +18,15 @@ double meanRadius(const SphereSet& spheres) {
     return sum / static_cast<double>(spheres.size());
 }
 
-FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
-                            const std::array<double, 3>& p) {
+namespace {
+
+// The field at p by the direct sum: the value, and with Full its gradient and colour too. The
+// value is the same double either way (the same terms in the same order): the wrapping iso and
+// the slider's range, some 600 x N of these, take it without the rest.
+template <bool Full>
+FieldSample sampleAt(const SphereSet& s, const SurfaceParams& params, double minD2,
+                     const std::array<double, 3>& p) {
     FieldSample out;
-    const double minD = kMinDistanceFactor * meanRadius(s);
-    const double minD2 = minD * minD;
     double rgb[3] = {0, 0, 0};
     int colored = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -34,35 +38,53 @@ FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
         switch (params.kernel) {
         case MetaballKernel::InverseSquare:
             out.value += w / d2;
-            slope = d2raw < minD2 ? 0.0 : -w / (d2 * d2);
+            if constexpr (Full)
+                slope = d2raw < minD2 ? 0.0 : -w / (d2 * d2);
             break;
         case MetaballKernel::Inverse:
             out.value += w / std::sqrt(d2);
-            slope = d2raw < minD2 ? 0.0 : -0.5 * w / (d2 * std::sqrt(d2));
+            if constexpr (Full)
+                slope = d2raw < minD2 ? 0.0 : -0.5 * w / (d2 * std::sqrt(d2));
             break;
         case MetaballKernel::Compact: {
             const double big = params.compactReach * w;
             const double t = 1.0 - d2raw / (big * big);
             if (t > 0) {
                 out.value += w * t * t * t;
-                slope = -3.0 * w * t * t / (big * big);
+                if constexpr (Full)
+                    slope = -3.0 * w * t * t / (big * big);
             }
             break;
         }
         }
-        out.gradient[0] += 2.0 * slope * dx;
-        out.gradient[1] += 2.0 * slope * dy;
-        out.gradient[2] += 2.0 * slope * dz;
-        const double reach = s.radius[i] + params.colorReach;
-        if (d2raw < reach * reach) {
-            for (int c = 0; c < 3; ++c)
-                rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
-            ++colored;
+        if constexpr (Full) {
+            out.gradient[0] += 2.0 * slope * dx;
+            out.gradient[1] += 2.0 * slope * dy;
+            out.gradient[2] += 2.0 * slope * dz;
+            const double reach = s.radius[i] + params.colorReach;
+            if (d2raw < reach * reach) {
+                for (int c = 0; c < 3; ++c)
+                    rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
+                ++colored;
+            }
         }
     }
-    for (int c = 0; c < 3; ++c)
-        out.color[c] = colored ? static_cast<float>(rgb[c] / colored) : params.initialColor[c];
+    if constexpr (Full)
+        for (int c = 0; c < 3; ++c)
+            out.color[c] = colored ? static_cast<float>(rgb[c] / colored) : params.initialColor[c];
     return out;
+}
+
+double minDistance2(const SphereSet& s) {
+    const double minD = kMinDistanceFactor * meanRadius(s);
+    return minD * minD;
+}
+
+} // namespace
+
+FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
+                            const std::array<double, 3>& p) {
+    return sampleAt<true>(s, params, minDistance2(s), p);
 }
 
 namespace {
@@ -127,37 +149,9 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
 
 namespace {
 
-// referenceSample's value alone: the same terms summed in the same order (so the same double),
-// without the gradient, the colour and the mean radius each call worked out again. The
-// wrapping iso and the slider's range take some 600 x N of these.
 double referenceValue(const SphereSet& s, const SurfaceParams& params, double minD2,
                       const std::array<double, 3>& p) {
-    double value = 0.0;
-    const std::size_t n = s.size();
-    auto d2At = [&](std::size_t i) {
-        const double dx = p[0] - s.x[i], dy = p[1] - s.y[i], dz = p[2] - s.z[i];
-        return dx * dx + dy * dy + dz * dz;
-    };
-    switch (params.kernel) {
-    case MetaballKernel::InverseSquare:
-        for (std::size_t i = 0; i < n; ++i)
-            value += double(s.radius[i]) / std::max(d2At(i), minD2);
-        break;
-    case MetaballKernel::Inverse:
-        for (std::size_t i = 0; i < n; ++i)
-            value += double(s.radius[i]) / std::sqrt(std::max(d2At(i), minD2));
-        break;
-    case MetaballKernel::Compact:
-        for (std::size_t i = 0; i < n; ++i) {
-            const double w = s.radius[i];
-            const double big = params.compactReach * w;
-            const double t = 1.0 - d2At(i) / (big * big);
-            if (t > 0)
-                value += w * t * t * t;
-        }
-        break;
-    }
-    return value;
+    return sampleAt<false>(s, params, minD2, p).value;
 }
 
 // Over `samples` spheres spread through the set: the lowest field value of the six points
