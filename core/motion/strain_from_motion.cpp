@@ -133,25 +133,41 @@ class NeighbourCells {
             ++m_start[c + 1];
         for (std::size_t c = 0; c < cells; ++c)
             m_start[c + 1] += m_start[c];
+        // Each point's slot in cell order (in turn: the order within a cell is the points'),
+        // then the points written to their slots in parallel.
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
+        std::vector<std::uint32_t>& slot = cellOf; // cellOf[k] read once, then k's slot
+        for (std::size_t k = 0; k < count; ++k)
+            slot[k] = fill[slot[k]]++;
         // Reference positions and motions as float arrays in cell order.
         for (auto* v : {&m_x, &m_y, &m_z, &m_wx, &m_wy, &m_wz})
             v->resize(count);
         m_owner.resize(count);
-        const double noShift[3] = {0, 0, 0};
-        for (std::size_t k = 0; k < count; ++k) {
-            const std::uint32_t at = fill[cellOf[k]]++;
-            const CellPoint p = k < n ? pointOf(ref, now, nowRowOf, k, noShift) : images[k - n];
-            m_x[at] = p.x, m_y[at] = p.y, m_z[at] = p.z;
-            m_wx[at] = p.wx, m_wy[at] = p.wy, m_wz[at] = p.wz;
-            m_owner[at] = p.owner;
-        }
+        m_slotOfNow.assign(now.size(), kNone); // ids are unique in a frame: one writer a row
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              const double noShift[3] = {0, 0, 0};
+                              for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                                  const std::uint32_t at = slot[k];
+                                  const CellPoint p = k < n
+                                                          ? pointOf(ref, now, nowRowOf, k, noShift)
+                                                          : images[k - n];
+                                  m_x[at] = p.x, m_y[at] = p.y, m_z[at] = p.z;
+                                  m_wx[at] = p.wx, m_wy[at] = p.wy, m_wz[at] = p.wz;
+                                  m_owner[at] = p.owner;
+                                  if (k < n && nowRowOf[k] != kNone)
+                                      m_slotOfNow[nowRowOf[k]] = at;
+                              }
+                          });
     }
 
     std::size_t cellCount() const { return m_start.size() - 1; }
+    std::size_t pointCount() const { return m_owner.size(); }
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
+    // Where each row of the current frame is in cell order (kNone: not in the reference).
+    const std::vector<std::uint32_t>& slotOfNow() const { return m_slotOfNow; }
     // Reference positions (x, y, z) and motions (wx, wy, wz; NaN: gone) in cell order.
     const float* xs() const { return m_x.data(); }
     const float* ys() const { return m_y.data(); }
@@ -206,6 +222,7 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::vector<std::uint32_t> m_owner;
+    std::vector<std::uint32_t> m_slotOfNow;
     std::vector<float> m_x, m_y, m_z, m_wx, m_wy, m_wz;
     PeriodicCell m_nowCell;
 };
@@ -392,24 +409,26 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
         const double scale = trace / 3;
         if (!(std::fabs(det) > 1e-9 * scale * scale * scale))
             return out;
-        inv[0][0] = c00 / det;
-        inv[1][0] = c01 / det;
-        inv[2][0] = c02 / det;
-        inv[0][1] = (V[0][2] * V[2][1] - V[0][1] * V[2][2]) / det;
-        inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) / det;
-        inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) / det;
-        inv[0][2] = (V[0][1] * V[1][2] - V[0][2] * V[1][1]) / det;
-        inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) / det;
-        inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) / det;
+        const double rdet = 1.0 / det; // one division: nine cost a third of the solve
+        inv[0][0] = c00 * rdet;
+        inv[1][0] = c01 * rdet;
+        inv[2][0] = c02 * rdet;
+        inv[0][1] = (V[0][2] * V[2][1] - V[0][1] * V[2][2]) * rdet;
+        inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) * rdet;
+        inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) * rdet;
+        inv[0][2] = (V[0][1] * V[1][2] - V[0][2] * V[1][1]) * rdet;
+        inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) * rdet;
+        inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) * rdet;
     } else {
         const double det = V[0][0] * V[1][1] - V[0][1] * V[1][0];
         const double scale = trace / 2;
         if (!(std::fabs(det) > 1e-9 * scale * scale))
             return out;
-        inv[0][0] = V[1][1] / det;
-        inv[0][1] = -V[0][1] / det;
-        inv[1][0] = -V[1][0] / det;
-        inv[1][1] = V[0][0] / det;
+        const double rdet = 1.0 / det;
+        inv[0][0] = V[1][1] * rdet;
+        inv[0][1] = -V[0][1] * rdet;
+        inv[1][0] = -V[1][0] * rdet;
+        inv[1][1] = V[0][0] * rdet;
     }
     double G[3][3] = {};
     for (int i = 0; i < dim; ++i)
@@ -553,7 +572,14 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     float* refY = cols[5].floats.data();
     float* refZ = cols[6].floats.data();
     const CellF nowCellF(nowCell);
-    // Cell by cell: the points around a cell gathered once for all the spheres in it.
+    // Cell by cell: the points around a cell gathered once for all the spheres in it. The values
+    // are kept in cell order, as the cells are summed, and taken to the current frame's rows
+    // after: one read per row rather than seven writes scattered over the columns.
+    struct SlotValues {
+        StrainValues v;
+        float wx, wy, wz;
+    };
+    std::vector<SlotValues> values(cells.pointCount());
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -562,33 +588,43 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             std::vector<NeighbourSums> sums;
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
                 selves.clear();
-                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
-                    const std::uint32_t owner = cells.owner(self);
-                    const double w[3] = {cells.wxs()[self], cells.wys()[self], cells.wzs()[self]};
-                    if ((owner & kImage) || std::isnan(w[0]))
-                        continue; // an image, or a sphere gone from the current frame
-                    const std::size_t i = nowRowOf[owner];
-                    displacement[i] =
-                        static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
-                    refX[i] = static_cast<float>(now.x[i] - w[0]);
-                    refY[i] = static_cast<float>(now.y[i] - w[1]);
-                    refZ[i] = static_cast<float>(now.z[i] - w[2]);
-                    selves.push_back(static_cast<std::uint32_t>(self));
-                }
+                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self)
+                    if (!(cells.owner(self) & kImage) && !std::isnan(cells.wxs()[self]))
+                        selves.push_back(static_cast<std::uint32_t>(self));
+                // (else an image, or a sphere gone from the current frame)
                 if (selves.empty())
                     continue;
                 sums.resize(selves.size()); // each one written whole by cellSums
                 cellSums(cells, cell, selves.data(), selves.size(), cutoff2, nowCellF, nowCell.any,
                          candidates, sums.data());
                 for (std::size_t s = 0; s < selves.size(); ++s) {
-                    const std::size_t i = nowRowOf[cells.owner(selves[s])];
-                    const StrainValues v = solve(sums[s], axes, dim);
-                    shear[i] = v.shear;
-                    volumetric[i] = v.volumetric;
-                    d2min[i] = v.d2min;
+                    const std::size_t k = selves[s];
+                    values[k] = {solve(sums[s], axes, dim), cells.wxs()[k], cells.wys()[k],
+                                 cells.wzs()[k]};
                 }
             }
         });
+    // Each current row's values from its slot (prefetched: the slots come in no order).
+    const std::vector<std::uint32_t>& slotOfNow = cells.slotOfNow();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                              if (i + 16 < range.end() && slotOfNow[i + 16] != kNone)
+                                  __builtin_prefetch(&values[slotOfNow[i + 16]]);
+                              if (slotOfNow[i] == kNone)
+                                  continue;
+                              const SlotValues& v = values[slotOfNow[i]];
+                              shear[i] = v.v.shear;
+                              volumetric[i] = v.v.volumetric;
+                              d2min[i] = v.v.d2min;
+                              const double w[3] = {v.wx, v.wy, v.wz};
+                              displacement[i] = static_cast<float>(
+                                  std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+                              refX[i] = static_cast<float>(now.x[i] - w[0]);
+                              refY[i] = static_cast<float>(now.y[i] - w[1]);
+                              refZ[i] = static_cast<float>(now.z[i] - w[2]);
+                          }
+                      });
     for (auto& c : cols)
         cacheColumnRange(c);
     return cols;
