@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 namespace faultline::core {
@@ -140,10 +141,18 @@ class NeighbourCells {
         for (std::size_t k = 0; k < count; ++k)
             slot[k] = fill[slot[k]]++;
         // Reference positions and motions as float arrays in cell order.
+        // Not zeroed first (every slot is written below, in parallel: a serial clearing of
+        // these ~30 bytes a point cost as much as filling them).
         for (auto* v : {&m_x, &m_y, &m_z, &m_wx, &m_wy, &m_wz})
-            v->resize(count);
-        m_owner.resize(count);
-        m_slotOfNow.assign(now.size(), kNone); // ids are unique in a frame: one writer a row
+            v->reset(new float[count]);
+        m_owner.reset(new std::uint32_t[count]);
+        m_count = count;
+        m_slotOfNow.reset(new std::uint32_t[now.size()]);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 65536),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              std::fill(m_slotOfNow.get() + r.begin(), m_slotOfNow.get() + r.end(),
+                                        kNone);
+                          });
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               const double noShift[3] = {0, 0, 0};
@@ -162,19 +171,19 @@ class NeighbourCells {
     }
 
     std::size_t cellCount() const { return m_start.size() - 1; }
-    std::size_t pointCount() const { return m_owner.size(); }
+    std::size_t pointCount() const { return m_count; }
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
     // Where each row of the current frame is in cell order (kNone: not in the reference).
-    const std::vector<std::uint32_t>& slotOfNow() const { return m_slotOfNow; }
+    const std::uint32_t* slotOfNow() const { return m_slotOfNow.get(); }
     // Reference positions (x, y, z) and motions (wx, wy, wz; NaN: gone) in cell order.
-    const float* xs() const { return m_x.data(); }
-    const float* ys() const { return m_y.data(); }
-    const float* zs() const { return m_z.data(); }
-    const float* wxs() const { return m_wx.data(); }
-    const float* wys() const { return m_wy.data(); }
-    const float* wzs() const { return m_wz.data(); }
+    const float* xs() const { return m_x.get(); }
+    const float* ys() const { return m_y.get(); }
+    const float* zs() const { return m_z.get(); }
+    const float* wxs() const { return m_wx.get(); }
+    const float* wys() const { return m_wy.get(); }
+    const float* wzs() const { return m_wz.get(); }
 
     // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
     // three cells that lie next to each other in memory).
@@ -221,9 +230,9 @@ class NeighbourCells {
     double m_size = 1;
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
-    std::vector<std::uint32_t> m_owner;
-    std::vector<std::uint32_t> m_slotOfNow;
-    std::vector<float> m_x, m_y, m_z, m_wx, m_wy, m_wz;
+    std::size_t m_count = 0;
+    std::unique_ptr<std::uint32_t[]> m_owner, m_slotOfNow;
+    std::unique_ptr<float[]> m_x, m_y, m_z, m_wx, m_wy, m_wz;
     PeriodicCell m_nowCell;
 };
 
@@ -575,11 +584,10 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     // Cell by cell: the points around a cell gathered once for all the spheres in it. The values
     // are kept in cell order, as the cells are summed, and taken to the current frame's rows
     // after: one read per row rather than seven writes scattered over the columns.
-    struct SlotValues {
-        StrainValues v;
-        float wx, wy, wz;
+    struct SlotValues { // written for every sphere summed, the only slots read
+        float shear, volumetric, d2min, wx, wy, wz;
     };
-    std::vector<SlotValues> values(cells.pointCount());
+    std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]); // see the cells
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -599,13 +607,14 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                          candidates, sums.data());
                 for (std::size_t s = 0; s < selves.size(); ++s) {
                     const std::size_t k = selves[s];
-                    values[k] = {solve(sums[s], axes, dim), cells.wxs()[k], cells.wys()[k],
-                                 cells.wzs()[k]};
+                    const StrainValues v = solve(sums[s], axes, dim);
+                    values[k] = {v.shear,        v.volumetric,   v.d2min,
+                                 cells.wxs()[k], cells.wys()[k], cells.wzs()[k]};
                 }
             }
         });
     // Each current row's values from its slot (prefetched: the slots come in no order).
-    const std::vector<std::uint32_t>& slotOfNow = cells.slotOfNow();
+    const std::uint32_t* slotOfNow = cells.slotOfNow();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 16384),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -614,9 +623,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                               if (slotOfNow[i] == kNone)
                                   continue;
                               const SlotValues& v = values[slotOfNow[i]];
-                              shear[i] = v.v.shear;
-                              volumetric[i] = v.v.volumetric;
-                              d2min[i] = v.v.d2min;
+                              shear[i] = v.shear;
+                              volumetric[i] = v.volumetric;
+                              d2min[i] = v.d2min;
                               const double w[3] = {v.wx, v.wy, v.wz};
                               displacement[i] = static_cast<float>(
                                   std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
