@@ -584,7 +584,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     // Cell by cell: the points around a cell gathered once for all the spheres in it. The values
     // are kept in cell order, as the cells are summed, and taken to the current frame's rows
     // after: one read per row rather than seven writes scattered over the columns.
-    struct SlotValues { // written for every sphere summed, the only slots read
+    struct SlotValues { // written for every slot of a sphere (not an image)
         float shear, volumetric, d2min, wx, wy, wz;
     };
     std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]); // see the cells
@@ -596,10 +596,14 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             std::vector<NeighbourSums> sums;
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
                 selves.clear();
-                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self)
-                    if (!(cells.owner(self) & kImage) && !std::isnan(cells.wxs()[self]))
+                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
+                    if (cells.owner(self) & kImage)
+                        continue;
+                    if (std::isnan(cells.wxs()[self])) // gone, or a centre that is no number
+                        values[self] = {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
+                    else
                         selves.push_back(static_cast<std::uint32_t>(self));
-                // (else an image, or a sphere gone from the current frame)
+                }
                 if (selves.empty())
                     continue;
                 sums.resize(selves.size()); // each one written whole by cellSums

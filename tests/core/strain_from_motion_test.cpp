@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 
 using namespace faultline::core;
@@ -374,6 +375,27 @@ TEST(StrainFromMotion, SpheresAreMatchedById) {
     const auto none = strainFromMotion(sparse, sparse, 1.5);
     EXPECT_TRUE(std::isnan(none[0].floats[0]));
     EXPECT_EQ(none[3].floats[0], 0.0f); // it did not move
+}
+
+// A centre that is no number now (a corrupt row) is a sphere without a value, as one gone: every
+// column NaN on its row, and its neighbours summed without it.
+TEST(StrainFromMotion, ACentreThatIsNoNumberHasNoValue) {
+    const Frame ref = packing(5);
+    const double e = 0.1;
+    Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const std::size_t bad = 62; // inside the packing
+    now.x[bad] = std::numeric_limits<float>::quiet_NaN();
+    now.finalize();
+    const auto cols = strainFromMotion(now, ref, 1.5);
+    const double exx = ((1 + e) * (1 + e) - 1) / 2;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        if (i == bad)
+            continue;
+        ASSERT_NEAR(cols[0].floats[i], exx / std::sqrt(3.0), 2e-5) << "row " << i;
+        ASSERT_TRUE(std::isfinite(cols[3].floats[i])) << "row " << i;
+    }
+    for (const auto& c : cols)
+        EXPECT_TRUE(std::isnan(c.floats[bad])) << c.name;
 }
 
 TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
