@@ -216,10 +216,11 @@ void part10m() {
     const double s = seconds(t0);
     const long peakAfter = peakKb();
     std::printf("10M: %zu spheres: frames take %.0f MB; strain %.2f s; peak resident growth "
-                "%.0f MB = %.1f bytes per sphere (of which the 4 result columns: 16)\n",
+                "%.0f MB = %.1f bytes per sphere (of which the %zu result columns: %zu)\n",
                 ref.size(), double(frames - before) / 1024, s,
                 double(peakAfter - std::max(peakBefore, frames)) / 1024,
-                double(peakAfter - std::max(peakBefore, frames)) * 1024 / double(ref.size()));
+                double(peakAfter - std::max(peakBefore, frames)) * 1024 / double(ref.size()),
+                cols.size(), cols.size() * sizeof(float));
 }
 
 void partDemo() {
