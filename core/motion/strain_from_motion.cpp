@@ -13,6 +13,7 @@
 #include "core/model/frame_difference.hpp"
 #include "core/model/periodic_cell.hpp"
 #include "core/motion/strain_spec.hpp"
+#include "core/util/mat3.hpp"
 #include "core/util/simd8.hpp"
 
 #include <tbb/blocked_range.h>
@@ -411,23 +412,16 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
     double inv[3][3] = {};
     const double trace = dim == 3 ? V[0][0] + V[1][1] + V[2][2] : V[0][0] + V[1][1];
     if (dim == 3) {
-        const double c00 = V[1][1] * V[2][2] - V[1][2] * V[2][1];
-        const double c01 = V[1][2] * V[2][0] - V[1][0] * V[2][2];
-        const double c02 = V[1][0] * V[2][1] - V[1][1] * V[2][0];
-        const double det = V[0][0] * c00 + V[0][1] * c01 + V[0][2] * c02;
+        Mat3d v, vInv;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                v[i][j] = V[i][j];
         const double scale = trace / 3;
-        if (!(std::fabs(det) > 1e-9 * scale * scale * scale))
+        if (!invert3(v, 1e-9 * scale * scale * scale, vInv))
             return out;
-        const double rdet = 1.0 / det; // one division: nine cost a third of the solve
-        inv[0][0] = c00 * rdet;
-        inv[1][0] = c01 * rdet;
-        inv[2][0] = c02 * rdet;
-        inv[0][1] = (V[0][2] * V[2][1] - V[0][1] * V[2][2]) * rdet;
-        inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) * rdet;
-        inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) * rdet;
-        inv[0][2] = (V[0][1] * V[1][2] - V[0][2] * V[1][1]) * rdet;
-        inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) * rdet;
-        inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) * rdet;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                inv[i][j] = vInv[i][j];
     } else {
         const double det = V[0][0] * V[1][1] - V[0][1] * V[1][0];
         const double scale = trace / 2;

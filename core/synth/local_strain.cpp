@@ -1,5 +1,7 @@
 #include "core/synth/local_strain.hpp"
 
+#include "core/util/mat3.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -11,34 +13,15 @@ namespace faultline::core {
 
 namespace {
 
-using Mat3 = std::array<std::array<double, 3>, 3>;
-
-double det(const Mat3& m) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
+using Mat3 = Mat3d;
 
 // Inverse by cofactors; false when (nearly) singular relative to the matrix scale.
 bool invert(const Mat3& m, Mat3& out) {
-    const double d = det(m);
     double scale = 0;
     for (const auto& row : m)
         for (double v : row)
             scale = std::max(scale, std::fabs(v));
-    if (!(std::fabs(d) > 1e-9 * scale * scale * scale))
-        return false;
-    const double k = 1.0 / d;
-    out[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) * k;
-    out[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * k;
-    out[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * k;
-    out[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) * k;
-    out[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * k;
-    out[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * k;
-    out[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) * k;
-    out[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * k;
-    out[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * k;
-    return true;
+    return invert3(m, 1e-9 * scale * scale * scale, out);
 }
 
 } // namespace
