@@ -104,6 +104,8 @@ class NeighbourCells {
         }
         // Cells of at least `cutoff`, no more of them than ~4 per point (sparse or flat sets).
         const std::size_t count = n + images.size();
+        if (count >= kNone) // slots are 32-bit, kNone the mark of none
+            throw std::length_error("strain from motion: over 2^32 spheres and periodic images");
         // No axis gets more than 2^20 cells, whatever the cutoff (a tiny one is no neighbourhood).
         double extent = 0;
         for (int a = 0; a < 3; ++a)
@@ -213,6 +215,10 @@ class NeighbourCells {
             double w[3] = {double(now.x[k]) - ref.x[i] - shift[0],
                            double(now.y[k]) - ref.y[i] - shift[1],
                            double(now.z[k]) - ref.z[i] - shift[2]};
+            // A centre that is no number (or infinite), then or now: the sphere counts as gone
+            // (motion NaN on every axis, the one mark the sums test).
+            if (!std::isfinite(w[0] + w[1] + w[2]))
+                return p;
             m_nowCell.wrap(w[0], w[1], w[2]);
             p.wx = static_cast<float>(w[0]), p.wy = static_cast<float>(w[1]);
             p.wz = static_cast<float>(w[2]);
@@ -581,7 +587,8 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     struct SlotValues { // written for every slot of a sphere (not an image)
         float shear, volumetric, d2min, wx, wy, wz;
     };
-    std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]); // see the cells
+    // One per point of the cell list (images' slots are neither written nor read).
+    std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {

@@ -9,8 +9,9 @@
 //   displacement = |x - x_ref|.
 // 2-D data (every reference centre shares one coordinate) uses the in-plane 2 x 2 form, as OVITO
 // does: shear = sqrt(Exy^2 + (Exx-Eyy)^2 / 2), volumetric = (Exx + Eyy) / 2.
-// NaN: a sphere whose id is not in the reference; fewer than 3 neighbours (that are also in the
-// current frame); a singular sum X X^T.
+// NaN: a sphere whose id is not in the reference; a centre that is not a finite number in either
+// frame (such a sphere is no one's neighbour either); fewer than 3 neighbours (that are also in
+// the current frame); a singular sum X X^T.
 // Cost: one cell list of the reference (ghost images on periodic axes), then each sphere's 27
 // cells, in parallel (TBB). About 0.3 us a sphere on one core (~130 points tested, ~20 of them
 // neighbours, in a dense packing); see bench_strain.
@@ -27,7 +28,7 @@ namespace faultline::core {
 // random close packing of the same number of spheres in the centres' bounds would have.
 double defaultStrainCutoff(const Frame& reference);
 
-// The four columns (kStrainVariables order, each named prefix + variable) for every row of
+// The seven columns (kStrainVariables order, each named prefix + variable) for every row of
 // `now`. `cutoff` <= 0: defaultStrainCutoff(reference). Results do not depend on thread count.
 std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& reference,
                                               double cutoff, const std::string& prefix = {});

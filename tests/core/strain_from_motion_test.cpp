@@ -377,25 +377,30 @@ TEST(StrainFromMotion, SpheresAreMatchedById) {
     EXPECT_EQ(none[3].floats[0], 0.0f); // it did not move
 }
 
-// A centre that is no number now (a corrupt row) is a sphere without a value, as one gone: every
-// column NaN on its row, and its neighbours summed without it.
+// A centre that is not a finite number now (a corrupt row; any axis) is a sphere without a value,
+// as one gone: every column NaN on its row, and its neighbours summed without it.
 TEST(StrainFromMotion, ACentreThatIsNoNumberHasNoValue) {
     const Frame ref = packing(5);
     const double e = 0.1;
     Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
-    const std::size_t bad = 62; // inside the packing
-    now.x[bad] = std::numeric_limits<float>::quiet_NaN();
+    // Inside the packing: x NaN, z NaN, y infinite.
+    const std::size_t bad[3] = {62, 31, 87};
+    now.x[bad[0]] = std::numeric_limits<float>::quiet_NaN();
+    now.z[bad[1]] = std::numeric_limits<float>::quiet_NaN();
+    now.y[bad[2]] = std::numeric_limits<float>::infinity();
     now.finalize();
     const auto cols = strainFromMotion(now, ref, 1.5);
     const double exx = ((1 + e) * (1 + e) - 1) / 2;
     for (std::size_t i = 0; i < now.size(); ++i) {
-        if (i == bad)
+        if (i == bad[0] || i == bad[1] || i == bad[2])
             continue;
         ASSERT_NEAR(cols[0].floats[i], exx / std::sqrt(3.0), 2e-5) << "row " << i;
+        ASSERT_NEAR(cols[2].floats[i], 0.0, 1e-4) << "row " << i;
         ASSERT_TRUE(std::isfinite(cols[3].floats[i])) << "row " << i;
     }
-    for (const auto& c : cols)
-        EXPECT_TRUE(std::isnan(c.floats[bad])) << c.name;
+    for (std::size_t b : bad)
+        for (const auto& c : cols)
+            EXPECT_TRUE(std::isnan(c.floats[b])) << c.name << " row " << b;
 }
 
 TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
