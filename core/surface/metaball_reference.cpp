@@ -149,18 +149,13 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
 
 namespace {
 
-double referenceValue(const SphereSet& s, const SurfaceParams& params, double minD2,
-                      const std::array<double, 3>& p) {
-    return sampleAt<false>(s, params, minD2, p).value;
-}
-
 // Over `samples` spheres spread through the set: the lowest field value of the six points
 // `reach` radii from the centre along the axes (the side where the field is lowest).
 std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params,
                                  std::size_t samples, double reach) {
     const std::size_t n = s.size();
     constexpr int kDirections = 6;
-    const double minD = kMinDistanceFactor * meanRadius(s);
+    const double minD2 = minDistance2(s);
     std::vector<double> lowest(samples, 0.0);
     tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
         const std::size_t i = q * n / samples;
@@ -168,7 +163,7 @@ std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params
         for (int d = 0; d < kDirections; ++d) {
             std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
             p[d / 2] += (d % 2 ? -reach : reach) * s.radius[i];
-            low = std::min(low, referenceValue(s, params, minD * minD, p));
+            low = std::min(low, sampleAt<false>(s, params, minD2, p).value);
         }
         lowest[q] = low;
     });
