@@ -27,11 +27,7 @@ std::string_view faultFilterModeName(FaultFilter::Mode mode) {
 std::optional<FaultFilter::Mode> parseFaultFilterMode(std::string_view name) {
     return valueIn(kFaultFilterModes, name);
 }
-std::string faultFilterModeNames() {
-    std::string names = namesIn(kFaultFilterModes, ", ");
-    const std::size_t last = names.rfind(", ");
-    return last == std::string::npos ? names : names.replace(last, 2, " or ");
-}
+std::string faultFilterModeNames() { return namesIn(kFaultFilterModes, ", ", " or "); }
 
 std::string_view differenceModeName(ColorDifference::Mode mode) {
     return nameIn(kDifferenceModes, mode, "none");

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace faultline::core {
 
@@ -44,19 +45,24 @@ std::optional<E> valueIn(const EnumName<E> (&table)[N], std::string_view name,
     return std::nullopt;
 }
 
-// The names (no aliases) joined by `separator`, for messages: "keep | cut".
+// The names (no aliases) joined by `separator`, the last two by `lastSeparator` (default: the
+// same), for messages: "keep | cut"; namesIn(t, ", ", " or ") == "all, labelled or only".
 template <typename E, std::size_t N>
-std::string namesIn(const EnumName<E> (&table)[N], std::string_view separator = " | ") {
-    std::string out;
+std::string namesIn(const EnumName<E> (&table)[N], std::string_view separator = " | ",
+                    std::optional<std::string_view> lastSeparator = std::nullopt) {
+    std::vector<std::string_view> names;
     for (std::size_t i = 0; i < N; ++i) {
         bool alias = false;
         for (std::size_t j = 0; j < i && !alias; ++j)
             alias = table[j].value == table[i].value;
-        if (alias)
-            continue;
-        if (!out.empty())
-            out += separator;
-        out += table[i].name;
+        if (!alias)
+            names.push_back(table[i].name);
+    }
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (i > 0)
+            out += i + 1 == names.size() ? lastSeparator.value_or(separator) : separator;
+        out += names[i];
     }
     return out;
 }

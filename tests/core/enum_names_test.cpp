@@ -1,6 +1,7 @@
 // Enum name tables (core/util/enum_names.hpp, issue 39): one table per enum gives both
 // directions; aliases parse but never print; case folding only where asked.
 #include "core/selection/cutting_box.hpp"
+#include "core/session/session_state.hpp"
 #include "core/util/enum_names.hpp"
 #include "core/view/camera.hpp"
 
@@ -25,6 +26,8 @@ TEST(EnumNames, BothDirectionsFromOneTable) {
     EXPECT_EQ(valueIn(kShades, ""), std::nullopt);
     EXPECT_EQ(namesIn(kShades), "light | dark");
     EXPECT_EQ(namesIn(kShades, " or "), "light or dark");
+    EXPECT_EQ(namesIn(kShades, ", ", " or "), "light or dark");
+    EXPECT_EQ(faultFilterModeNames(), "all, labelled or only");
 }
 
 // The tables behind the session's names keep what each parser accepted before.
