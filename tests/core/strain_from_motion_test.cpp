@@ -36,6 +36,16 @@ Frame packing(int n, unsigned seed = 7, bool flatZ = false) {
     return f;
 }
 
+// f in a known box from -0.5 to `hi` on each axis, periodic where asked.
+Frame inBox(Frame f, const std::array<double, 3>& hi, const std::array<bool, 3>& periodic) {
+    f.box.known = true;
+    f.box.lo = {-0.5, -0.5, -0.5};
+    f.box.hi = hi;
+    f.box.periodic = periodic;
+    f.finalize();
+    return f;
+}
+
 Frame mapped(const Frame& ref, const Map& map) {
     Frame f;
     f.ids = ref.ids;
@@ -202,12 +212,7 @@ TEST(StrainFromMotion, NonAffineResidualIsD2min) {
 // A periodic box: a sphere near a face has neighbours across it, and one that crossed the face
 // (wrapped back into the box) gets the strain it would have had unwrapped.
 TEST(StrainFromMotion, PeriodicBoundariesUseTheMinimumImage) {
-    Frame ref = packing(6, 3);
-    ref.box.known = true;
-    ref.box.lo = {-0.5, -0.5, -0.5};
-    ref.box.hi = {5.5, 5.5, 5.5};
-    ref.box.periodic = {true, true, false};
-    ref.finalize();
+    const Frame ref = inBox(packing(6, 3), {5.5, 5.5, 5.5}, {true, true, false});
     // A translation by (0.8, -0.3, 0) and a small shear of z against x: wrapped back into the box.
     auto moveAndWrap = [&](bool wrap) {
         Frame now = ref;
@@ -244,12 +249,7 @@ TEST(StrainFromMotion, PeriodicBoundariesUseTheMinimumImage) {
 // end gets the strain it has unwrapped: its motion is worked out in double before it is stored as
 // a float (in float, its position there minus its reference lost up to 2.4e-4).
 TEST(StrainFromMotion, CrossingTheFaceOfALongPeriodicBoxKeepsThePrecision) {
-    Frame ref = packing(6, 3);
-    ref.box.known = true;
-    ref.box.lo = {-0.5, -0.5, -0.5};
-    ref.box.hi = {5999.5, 5.5, 5.5};
-    ref.box.periodic = {true, false, false};
-    ref.finalize();
+    const Frame ref = inBox(packing(6, 3), {5999.5, 5.5, 5.5}, {true, false, false});
     // The same positions twice: wrapped in at the far end, and where they are unwrapped.
     Frame open = ref, wrapped = ref;
     std::size_t crossed = 0;
