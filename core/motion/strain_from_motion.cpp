@@ -585,7 +585,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     // are kept in cell order, as the cells are summed, and taken to the current frame's rows
     // after: one read per row rather than seven writes scattered over the columns.
     struct SlotValues { // written for every slot of a sphere (not an image)
-        float shear, volumetric, d2min, wx, wy, wz;
+        float shear, volumetric, d2min;
     };
     // One per point of the cell list (images' slots are neither written nor read).
     std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]);
@@ -601,7 +601,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                     if (cells.owner(self) & kImage)
                         continue;
                     if (std::isnan(cells.wxs()[self])) // gone, or a centre that is no number
-                        values[self] = {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
+                        values[self] = {kNaN, kNaN, kNaN};
                     else
                         selves.push_back(static_cast<std::uint32_t>(self));
                 }
@@ -613,25 +613,32 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                 for (std::size_t s = 0; s < selves.size(); ++s) {
                     const std::size_t k = selves[s];
                     const StrainValues v = solve(sums[s], axes, dim);
-                    values[k] = {v.shear,        v.volumetric,   v.d2min,
-                                 cells.wxs()[k], cells.wys()[k], cells.wzs()[k]};
+                    values[k] = {v.shear, v.volumetric, v.d2min};
                 }
             }
         });
-    // Each current row's values from its slot (prefetched: the slots come in no order).
+    // Each current row's values and motion from its slot (prefetched: the slots come in no
+    // order).
     const std::uint32_t* slotOfNow = cells.slotOfNow();
+    const float *wx = cells.wxs(), *wy = cells.wys(), *wz = cells.wzs();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 16384),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                              if (i + 16 < range.end() && slotOfNow[i + 16] != kNone)
-                                  __builtin_prefetch(&values[slotOfNow[i + 16]]);
-                              if (slotOfNow[i] == kNone)
+                              if (i + 16 < range.end() && slotOfNow[i + 16] != kNone) {
+                                  const std::uint32_t ahead = slotOfNow[i + 16];
+                                  __builtin_prefetch(&values[ahead]);
+                                  __builtin_prefetch(wx + ahead);
+                                  __builtin_prefetch(wy + ahead);
+                                  __builtin_prefetch(wz + ahead);
+                              }
+                              const std::uint32_t k = slotOfNow[i];
+                              if (k == kNone)
                                   continue;
-                              const SlotValues& v = values[slotOfNow[i]];
+                              const SlotValues& v = values[k];
                               shear[i] = v.shear;
                               volumetric[i] = v.volumetric;
                               d2min[i] = v.d2min;
-                              const double w[3] = {v.wx, v.wy, v.wz};
+                              const double w[3] = {wx[k], wy[k], wz[k]};
                               displacement[i] = static_cast<float>(
                                   std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
                               refX[i] = static_cast<float>(now.x[i] - w[0]);
