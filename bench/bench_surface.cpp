@@ -516,10 +516,10 @@ OpCase* readyCase(benchmark::State& state, const char* name) {
 // surface.build on F1 as a user runs it (the wrapping iso, the default iso-slider range, the
 // fault's colour), both kernels at voxel = mean radius / divisor, against OpenVDB's
 // ParticlesToLevelSet + volumeToMesh on the same spheres at the same voxel, interleaved rounds
-// (medians). Counters: each one's ms and ratio, the phases of one build (wrapping iso, plan,
-// coarse levels, blocks, colour, mesh), the spheres, whether the planner saw a sparse set, and
-// the process's peak RSS growth over the first build of each kernel (run one case per process
-// for a figure of that case alone).
+// (medians; the ratio's smallest and largest round too). Counters: each one's ms and ratio, the
+// phases of one build (wrapping iso, plan, coarse levels, blocks, colour, mesh), the spheres,
+// whether the planner saw a sparse set, and the process's peak RSS growth over the first build
+// of each kernel (run one case per process for a figure of that case alone).
 void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor) {
     OpCase* found = readyCase(state, name);
     if (!found)
@@ -593,6 +593,10 @@ void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor)
     for (const auto& [key, kernel] : kernels) {
         state.counters[std::string(key) + "_ms"] = median(ours[key]);
         state.counters["ratio_" + std::string(key)] = median(ratio[key]);
+        // The rounds' spread: a case at the edge of its target shows it here.
+        const auto [lo, hi] = std::minmax_element(ratio[key].begin(), ratio[key].end());
+        state.counters["ratio_" + std::string(key) + "_min"] = *lo;
+        state.counters["ratio_" + std::string(key) + "_max"] = *hi;
     }
     state.counters["peak_rss_mb"] = peakRssMiB();
 }
