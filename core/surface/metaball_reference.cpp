@@ -5,7 +5,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace faultline::core {
 
@@ -20,10 +22,23 @@ double meanRadius(const SphereSet& spheres) {
 
 namespace {
 
-// The field at p by the direct sum: the value, and with Full its gradient and colour too. The
-// value is the same double either way (the same terms in the same order): the wrapping iso and
-// the slider's range, some 600 x N of these, take it without the rest.
-template <bool Full>
+// One sphere's term of the field, weight w at squared distance d2raw from the point: the term
+// referenceSample and the wrapping iso's sums add (the same double in both).
+template <MetaballKernel Kernel>
+[[gnu::always_inline]] inline double termAt(double w, double d2raw, double minD2,
+                                            float compactReach) {
+    if constexpr (Kernel == MetaballKernel::InverseSquare) {
+        return w / std::max(d2raw, minD2);
+    } else if constexpr (Kernel == MetaballKernel::Inverse) {
+        return w / std::sqrt(std::max(d2raw, minD2));
+    } else {
+        const double big = compactReach * w;
+        const double t = 1.0 - d2raw / (big * big);
+        return t > 0 ? w * t * t * t : 0.0; // adding +0 leaves a sum of positive terms as it is
+    }
+}
+
+// The field at p by the direct sum: its value, gradient and colour.
 FieldSample sampleAt(const SphereSet& s, const SurfaceParams& params, double minD2,
                      const std::array<double, 3>& p) {
     FieldSample out;
@@ -37,41 +52,34 @@ FieldSample sampleAt(const SphereSet& s, const SurfaceParams& params, double min
         double slope = 0.0; // d f_i / d(d^2)
         switch (params.kernel) {
         case MetaballKernel::InverseSquare:
-            out.value += w / d2;
-            if constexpr (Full)
-                slope = d2raw < minD2 ? 0.0 : -w / (d2 * d2);
+            out.value += termAt<MetaballKernel::InverseSquare>(w, d2raw, minD2, 0.0f);
+            slope = d2raw < minD2 ? 0.0 : -w / (d2 * d2);
             break;
         case MetaballKernel::Inverse:
-            out.value += w / std::sqrt(d2);
-            if constexpr (Full)
-                slope = d2raw < minD2 ? 0.0 : -0.5 * w / (d2 * std::sqrt(d2));
+            out.value += termAt<MetaballKernel::Inverse>(w, d2raw, minD2, 0.0f);
+            slope = d2raw < minD2 ? 0.0 : -0.5 * w / (d2 * std::sqrt(d2));
             break;
         case MetaballKernel::Compact: {
+            out.value += termAt<MetaballKernel::Compact>(w, d2raw, minD2, params.compactReach);
             const double big = params.compactReach * w;
             const double t = 1.0 - d2raw / (big * big);
-            if (t > 0) {
-                out.value += w * t * t * t;
-                if constexpr (Full)
-                    slope = -3.0 * w * t * t / (big * big);
-            }
+            if (t > 0)
+                slope = -3.0 * w * t * t / (big * big);
             break;
         }
         }
-        if constexpr (Full) {
-            out.gradient[0] += 2.0 * slope * dx;
-            out.gradient[1] += 2.0 * slope * dy;
-            out.gradient[2] += 2.0 * slope * dz;
-            const double reach = s.radius[i] + params.colorReach;
-            if (d2raw < reach * reach) {
-                for (int c = 0; c < 3; ++c)
-                    rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
-                ++colored;
-            }
+        out.gradient[0] += 2.0 * slope * dx;
+        out.gradient[1] += 2.0 * slope * dy;
+        out.gradient[2] += 2.0 * slope * dz;
+        const double reach = s.radius[i] + params.colorReach;
+        if (d2raw < reach * reach) {
+            for (int c = 0; c < 3; ++c)
+                rgb[c] += s.rgb.empty() ? 1.0 : s.rgb[3 * i + c];
+            ++colored;
         }
     }
-    if constexpr (Full)
-        for (int c = 0; c < 3; ++c)
-            out.color[c] = colored ? static_cast<float>(rgb[c] / colored) : params.initialColor[c];
+    for (int c = 0; c < 3; ++c)
+        out.color[c] = colored ? static_cast<float>(rgb[c] / colored) : params.initialColor[c];
     return out;
 }
 
@@ -84,7 +92,7 @@ double minDistance2(const SphereSet& s) {
 
 FieldSample referenceSample(const SphereSet& s, const SurfaceParams& params,
                             const std::array<double, 3>& p) {
-    return sampleAt<true>(s, params, minDistance2(s), p);
+    return sampleAt(s, params, minDistance2(s), p);
 }
 
 namespace {
@@ -149,22 +157,54 @@ std::vector<float> algorithm1Dense(const SphereSet& s, const SurfaceParams& para
 
 namespace {
 
+// The field's value at N points in one pass over the spheres, each point's terms added in the
+// spheres' order: the same doubles as N calls of sampleAt, for a sixth of the passes over the
+// spheres (and the points' divisions side by side).
+template <MetaballKernel Kernel, std::size_t N>
+void valuesAt(const SphereSet& s, float compactReach, double minD2,
+              const std::array<std::array<double, 3>, N>& p, std::array<double, N>& out) {
+    out.fill(0.0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double x = s.x[i], y = s.y[i], z = s.z[i], w = s.radius[i];
+        for (std::size_t n = 0; n < N; ++n) {
+            const double dx = p[n][0] - x, dy = p[n][1] - y, dz = p[n][2] - z;
+            out[n] += termAt<Kernel>(w, dx * dx + dy * dy + dz * dz, minD2, compactReach);
+        }
+    }
+}
+
 // Over `samples` spheres spread through the set: the lowest field value of the six points
 // `reach` radii from the centre along the axes (the side where the field is lowest).
 std::vector<double> lowestAround(const SphereSet& s, const SurfaceParams& params,
                                  std::size_t samples, double reach) {
     const std::size_t n = s.size();
-    constexpr int kDirections = 6;
+    constexpr std::size_t kDirections = 6;
     const double minD2 = minDistance2(s);
     std::vector<double> lowest(samples, 0.0);
     tbb::parallel_for(std::size_t{0}, samples, [&](std::size_t q) {
         const std::size_t i = q * n / samples;
-        double low = std::numeric_limits<double>::infinity();
-        for (int d = 0; d < kDirections; ++d) {
-            std::array<double, 3> p{s.x[i], s.y[i], s.z[i]};
-            p[d / 2] += (d % 2 ? -reach : reach) * s.radius[i];
-            low = std::min(low, sampleAt<false>(s, params, minD2, p).value);
+        std::array<std::array<double, 3>, kDirections> points;
+        for (std::size_t d = 0; d < kDirections; ++d) {
+            points[d] = {s.x[i], s.y[i], s.z[i]};
+            points[d][d / 2] += (d % 2 ? -reach : reach) * s.radius[i];
         }
+        std::array<double, kDirections> values;
+        switch (params.kernel) {
+        case MetaballKernel::InverseSquare:
+            valuesAt<MetaballKernel::InverseSquare>(s, params.compactReach, minD2, points, values);
+            break;
+        case MetaballKernel::Inverse:
+            valuesAt<MetaballKernel::Inverse>(s, params.compactReach, minD2, points, values);
+            break;
+        case MetaballKernel::Compact:
+            valuesAt<MetaballKernel::Compact>(s, params.compactReach, minD2, points, values);
+            break;
+        }
+        // As std::min from +inf: a NaN value (a sphere without a finite centre) is passed
+        // over (all six: the sample counts as +inf), and the sort below never sees one.
+        double low = std::numeric_limits<double>::infinity();
+        for (double v : values)
+            low = std::min(low, v);
         lowest[q] = low;
     });
     return lowest;
