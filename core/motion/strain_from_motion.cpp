@@ -409,25 +409,18 @@ StrainValues solve(const NeighbourSums& s, const int* axes, int dim) {
     StrainValues out;
     if (s.count < 3)
         return out;
-    double V[3][3] = {}, A[3][3] = {};
+    Mat3d V{}, A{};
     for (int i = 0; i < dim; ++i)
         for (int j = 0; j < dim; ++j) {
             V[i][j] = s.V[axes[i]][axes[j]];
             A[i][j] = s.A[axes[i]][axes[j]];
         }
-    double inv[3][3] = {};
+    Mat3d inv{};
     const double trace = dim == 3 ? V[0][0] + V[1][1] + V[2][2] : V[0][0] + V[1][1];
     if (dim == 3) {
-        Mat3d v, vInv;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                v[i][j] = V[i][j];
         const double scale = trace / 3;
-        if (!invert3(v, 1e-9 * scale * scale * scale, vInv))
+        if (!invert3(V, 1e-9 * scale * scale * scale, inv))
             return out;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                inv[i][j] = vInv[i][j];
     } else {
         const double det = V[0][0] * V[1][1] - V[0][1] * V[1][0];
         const double scale = trace / 2;

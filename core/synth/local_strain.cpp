@@ -13,10 +13,8 @@ namespace faultline::core {
 
 namespace {
 
-using Mat3 = Mat3d;
-
 // Inverse by cofactors; false when (nearly) singular relative to the matrix scale.
-bool invert(const Mat3& m, Mat3& out) {
+bool invert(const Mat3d& m, Mat3d& out) {
     double scale = 0;
     for (const auto& row : m)
         for (double v : row)
@@ -57,7 +55,7 @@ std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>>
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, initial.size(), 1024), [&](const auto& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                Mat3 xx{}, yx{};
+                Mat3d xx{}, yx{};
                 for (std::uint32_t k = neighbours.offsets[i]; k < neighbours.offsets[i + 1]; ++k) {
                     const std::uint32_t j = neighbours.partners[k];
                     double X[3], Y[3];
@@ -71,15 +69,15 @@ std::vector<double> vonMisesShearStrain(const std::vector<std::array<double, 3>>
                             yx[a][b] += Y[a] * X[b];
                         }
                 }
-                Mat3 xxInv;
+                Mat3d xxInv;
                 if (!invert(xx, xxInv))
                     continue;
-                Mat3 F{};
+                Mat3d F{};
                 for (int a = 0; a < 3; ++a)
                     for (int b = 0; b < 3; ++b)
                         for (int c = 0; c < 3; ++c)
                             F[a][b] += yx[a][c] * xxInv[c][b];
-                Mat3 E{};
+                Mat3d E{};
                 for (int a = 0; a < 3; ++a)
                     for (int b = 0; b < 3; ++b) {
                         double ftf = 0;
