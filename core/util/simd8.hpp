@@ -24,7 +24,12 @@ namespace faultline::core::detail::simd8 {
 
 typedef float v8f __attribute__((vector_size(32)));
 
-[[gnu::always_inline]] inline v8f splat(float x) { return v8f{x, x, x, x, x, x, x, x}; }
+typedef int v8i __attribute__((vector_size(32)));
+
+// x in every lane. Written as a shuffle of lane 0: GCC 12 lowers the eight-element initialiser
+// before inlining, so inside a target_clones function it became four inserts and a 128-bit
+// insert per splat (the near sums splat per sphere) instead of one vbroadcastss.
+[[gnu::always_inline]] inline v8f splat(float x) { return __builtin_shuffle(v8f{x}, v8i{}); }
 
 [[gnu::always_inline]] inline v8f load(const float* p) {
     v8f v;
