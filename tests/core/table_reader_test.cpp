@@ -1,9 +1,13 @@
 #include "core/data/dataset.hpp"
 #include "core/io/input_error.hpp"
+#include "core/io/newline_count.hpp"
 #include "core/io/table_reader.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
 
 using namespace faultline::core;
 
@@ -148,4 +152,23 @@ TEST(TableReader, FixtureWrittenByParaView511SaveData) {
     EXPECT_FLOAT_EQ(f->z[1], 1.875f);
     EXPECT_FLOAT_EQ(f->radius[5], 0.5f);
     EXPECT_EQ(f->attributeNames(), std::vector<std::string>{"strain"});
+}
+
+TEST(TableReader, NewlineCountMatchesAByteCountAtEveryLengthAndOffset) {
+    // Text longer than the SSE2 count's 255 steps of 16 bytes (where its byte lanes are summed),
+    // newlines at every byte position, every start offset and length around those steps.
+    std::string text;
+    for (int i = 0; i < 9000; ++i)
+        text += (i % 7 == 0 || i % 13 == 0 || (i > 4000 && i < 4200)) ? '\n' : 'x';
+    for (std::size_t offset : {0, 1, 5, 15, 16, 17}) {
+        for (std::size_t length : {0, 1, 15, 16, 17, 4079, 4080, 4081, 4096, 8191, 8983}) {
+            const char* p = text.data() + offset;
+            ASSERT_LE(offset + length, text.size());
+            EXPECT_EQ(countNewlines(p, p + length),
+                      static_cast<std::size_t>(std::count(p, p + length, '\n')))
+                << "offset " << offset << ", length " << length;
+        }
+    }
+    const std::string all(5000, '\n');
+    EXPECT_EQ(countNewlines(all.data(), all.data() + all.size()), all.size());
 }
