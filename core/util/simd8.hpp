@@ -29,7 +29,14 @@ typedef int v8i __attribute__((vector_size(32)));
 // x in every lane. Written as a shuffle of lane 0: GCC 12 lowers the eight-element initialiser
 // before inlining, so inside a target_clones function it became four inserts and a 128-bit
 // insert per splat (the near sums splat per sphere) instead of one vbroadcastss.
-[[gnu::always_inline]] inline v8f splat(float x) { return __builtin_shuffle(v8f{x}, v8i{}); }
+// (clang, which builds only the baseline, has no __builtin_shuffle.)
+[[gnu::always_inline]] inline v8f splat(float x) {
+#if defined(__clang__)
+    return v8f{x, x, x, x, x, x, x, x};
+#else
+    return __builtin_shuffle(v8f{x}, v8i{});
+#endif
+}
 
 [[gnu::always_inline]] inline v8f load(const float* p) {
     v8f v;
