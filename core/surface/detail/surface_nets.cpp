@@ -52,6 +52,29 @@ constexpr int kCornerOffset[8] = {0, kPad* kPad,     kPad,     kPad* kPad + kPad
 constexpr int kEdge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
                               {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
 
+// Each edge's axis (its corners differ along it only).
+constexpr auto kEdgeAxis = [] {
+    std::array<int, 12> axis{};
+    for (int e = 0; e < 12; ++e)
+        for (int k = 0; k < 3; ++k)
+            if (kCorner[kEdge[e][0]][k] != kCorner[kEdge[e][1]][k])
+                axis[e] = k;
+    return axis;
+}();
+// Per pattern of inside corners (bit c: corner c), the edges whose ends differ, in kEdge's order.
+struct CrossingEdges {
+    int count = 0;
+    std::array<std::uint8_t, 12> edge{};
+};
+constexpr auto kCrossingEdges = [] {
+    std::array<CrossingEdges, 256> table{};
+    for (int m = 0; m < 256; ++m)
+        for (int e = 0; e < 12; ++e)
+            if (((m >> kEdge[e][0]) ^ (m >> kEdge[e][1])) & 1)
+                table[m].edge[table[m].count++] = std::uint8_t(e);
+    return table;
+}();
+
 struct Foreign {
     std::uint32_t leaf; // the leaf that owns the cell's vertex
     std::int32_t cell;  // the cell's offset in that leaf's cell table
@@ -144,6 +167,9 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 colorData[q] = nc[q] ? nc[q]->buffer().data() : nullptr;
                 full[q] = nd[q] && nd[q]->getValueMask().isOn();
             }
+            // Every voxel of the padded block stored (no tile next to the leaf): the corner
+            // loops below need not ask.
+            const bool allStored = std::all_of(full, full + 27, [](bool f) { return f; });
             // Rows along z: kMargin voxels of the leaf below, 8 of the same leaf, kMargin of
             // the one above, each part copied with its size known here (no memcpy calls).
             auto part = [&]<int Count>(int s, int off, float* out, bool* on) {
@@ -202,16 +228,26 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         any |= head, all &= head;
                         anyTail |= tail, allTail &= tail;
                     }
-                    if ((any | anyTail) == 0 || (all == 0x0101010101010101ull && allTail == 0x0101))
-                        continue;
-                    for (int ck = 0; ck < kCells; ++ck) {
+                    // Flags of the row's ten z positions (one per byte, 0 or 1); cell ck has
+                    // its corners at positions ck and ck + 1: it is mixed when some corner is
+                    // inside and not all are. Only the mixed cells are visited.
+                    const unsigned __int128 anyRow = any | static_cast<unsigned __int128>(anyTail)
+                                                               << 64;
+                    const unsigned __int128 allRow = all | static_cast<unsigned __int128>(allTail)
+                                                               << 64;
+                    const unsigned __int128 nineCells =
+                        (static_cast<unsigned __int128>(0x01) << 64) | 0x0101010101010101ull;
+                    unsigned __int128 mixed =
+                        (anyRow | anyRow >> 8) & ~(allRow & allRow >> 8) & nineCells;
+                    while (mixed != 0) {
+                        const std::uint64_t low = static_cast<std::uint64_t>(mixed);
+                        const int ck = low != 0 ? std::countr_zero(low) / 8 : 8;
+                        mixed &= mixed - 1; // one flag bit per byte: the lowest is this cell's
                         const int base =
                             padOffset(ci + kMargin - 1, cj + kMargin - 1, ck + kMargin - 1);
                         int inside = 0;
                         for (int c = 0; c < 8; ++c)
                             inside |= in[base + kCornerOffset[c]] << c;
-                        if (inside == 0 || inside == 255)
-                            continue;
                         float f[8];
                         for (int c = 0; c < 8; ++c)
                             f[c] = value[base + kCornerOffset[c]];
@@ -242,16 +278,18 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         // The vertex: mean of the edge crossings, in cell units.
                         float sum[3] = {0.0f, 0.0f, 0.0f};
                         int crossings = 0;
-                        for (const auto& e : kEdge) {
-                            const float fa = f[e[0]], fb = f[e[1]];
-                            if ((fa > iso) == (fb > iso))
-                                continue;
+                        // The crossing edges of this corner pattern, in kEdge's order: each one
+                        // adds its first corner off its axis and the crossing's t along it.
+                        const CrossingEdges& crossing = kCrossingEdges[inside];
+                        for (int q = 0; q < crossing.count; ++q) {
+                            const int e = crossing.edge[q];
+                            const int a = kEdgeAxis[e];
+                            const float fa = f[kEdge[e][0]], fb = f[kEdge[e][1]];
                             const float t = (iso - fa) / (fb - fa);
                             for (int k = 0; k < 3; ++k)
-                                sum[k] += float(kCorner[e[0]][k]) +
-                                          t * float(kCorner[e[1]][k] - kCorner[e[0]][k]);
-                            ++crossings;
+                                sum[k] += k == a ? t : float(kCorner[kEdge[e][0]][k]);
                         }
+                        crossings = crossing.count;
                         const float t[3] = {sum[0] / float(crossings), sum[1] / float(crossings),
                                             sum[2] / float(crossings)};
                         // Colour and gradient: trilinear over the cell's stored corners; the
@@ -259,34 +297,42 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         // whose value stands in for the field and is not it).
                         openvdb::Vec3s colorSum(0.0f), gradientSum(0.0f);
                         float weight = 0.0f;
-                        for (int c = 0; c < 8; ++c) {
-                            const int p[3] = {ci + kMargin - 1 + kCorner[c][0],
-                                              cj + kMargin - 1 + kCorner[c][1],
-                                              ck + kMargin - 1 + kCorner[c][2]};
-                            const int at = padOffset(p[0], p[1], p[2]);
-                            if (!stored[at])
-                                continue;
-                            const int s = neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
-                            float wgt = 1.0f;
-                            for (int k = 0; k < 3; ++k)
-                                wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
-                            if (colorData[s])
-                                colorSum += wgt * colorData[s][leafOffset(
-                                                      localOf(p[0]), localOf(p[1]), localOf(p[2]))];
-                            if (normals) {
-                                // In value per voxel: only the direction is kept (normals).
-                                for (int a = 0; a < 3; ++a) {
-                                    const int up = at + kPadStep[a], down = at - kPadStep[a];
-                                    const float g = stored[up] && stored[down]
-                                                        ? 0.5f * (value[up] - value[down])
-                                                    : stored[up]   ? value[up] - value[at]
-                                                    : stored[down] ? value[at] - value[down]
-                                                                   : 0.0f;
-                                    gradientSum[a] += wgt * g;
+                        auto corners = [&]<bool AllStored>() {
+                            for (int c = 0; c < 8; ++c) {
+                                const int p[3] = {ci + kMargin - 1 + kCorner[c][0],
+                                                  cj + kMargin - 1 + kCorner[c][1],
+                                                  ck + kMargin - 1 + kCorner[c][2]};
+                                const int at = padOffset(p[0], p[1], p[2]);
+                                if (!AllStored && !stored[at])
+                                    continue;
+                                const int s =
+                                    neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
+                                float wgt = 1.0f;
+                                for (int k = 0; k < 3; ++k)
+                                    wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
+                                if (colorData[s])
+                                    colorSum +=
+                                        wgt * colorData[s][leafOffset(localOf(p[0]), localOf(p[1]),
+                                                                      localOf(p[2]))];
+                                if (normals) {
+                                    // In value per voxel: only the direction is kept (normals).
+                                    for (int a = 0; a < 3; ++a) {
+                                        const int up = at + kPadStep[a], down = at - kPadStep[a];
+                                        const float g = AllStored || (stored[up] && stored[down])
+                                                            ? 0.5f * (value[up] - value[down])
+                                                        : stored[up]   ? value[up] - value[at]
+                                                        : stored[down] ? value[at] - value[down]
+                                                                       : 0.0f;
+                                        gradientSum[a] += wgt * g;
+                                    }
                                 }
+                                weight += wgt;
                             }
-                            weight += wgt;
-                        }
+                        };
+                        if (allStored)
+                            corners.template operator()<true>();
+                        else
+                            corners.template operator()<false>();
                         const openvdb::Vec3s rgb = weight > 0.0f ? colorSum / weight : background;
                         w.cells[cell] = static_cast<CellEntry>(w.positions.size());
                         w.positions.push_back({(float(origin.x() - 1 + ci) + t[0]) * h,
