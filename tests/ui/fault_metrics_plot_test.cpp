@@ -261,7 +261,9 @@ TEST_F(FaultMetricsPanel, PlotMarksWhenTheFaultsAppearedLinkedAndSplit) {
     // word), not in the status bar, where it hid what changed them.
     const std::string before = wb().lastMessage();
     session.apply({{"op", "box.set"}, {"name", "wall"}, {"enabled", false}});
-    headless.frames(wb(), 2);
+    // One frame: the frame that sees the change starts following again and says so; on this
+    // small lattice the job can be done by the next (under load it was, 11 runs in 30).
+    headless.frames(wb(), 1);
     EXPECT_TRUE(headless.has(wb(), "faults.metrics.following_again"));
     EXPECT_EQ(wb().lastMessage(), before);
     headless.settle(wb());
