@@ -354,27 +354,19 @@ std::size_t grow(const Graph& g, const Orientations& o, double angle, float plan
 // [SECTION] Step 3: coplanar regions facing each other join
 //-----------------------------------------------------------------------------
 
-// How far from the midpoint of two parts' centroids their planes meet (the point of the planes'
-// common line nearest that midpoint), or infinity for planes too close to parallel.
-double bendFromMiddle(const PlaneFit& fa, const PlaneFit& fb) {
-    const Vec3d& na = fa.normal;
-    const Vec3d& nb = fb.normal;
-    const double c = na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
+// How far from the midpoint of two parts' centroids their planes (unit normals na, nb, cosine c
+// between them) meet: the point of the planes' common line nearest that midpoint; d is the second
+// centroid less the first. Infinity for planes too close to parallel.
+double bendFromMiddle(const Vec3d& na, const Vec3d& nb, double c, const Vec3d& d) {
     const double det = 1.0 - c * c;
     if (det < 1e-3)
         return INFINITY;
-    const Vec3d m{0.5 * (fa.centroid[0] + fb.centroid[0]), 0.5 * (fa.centroid[1] + fb.centroid[1]),
-                  0.5 * (fa.centroid[2] + fb.centroid[2])};
-    // The point m + alpha na + beta nb on both planes.
-    auto along = [&](const Vec3d& n, const Vec3d& p) {
-        return n[0] * (p[0] - m[0]) + n[1] * (p[1] - m[1]) + n[2] * (p[2] - m[2]);
-    };
-    const double ra = along(na, fa.centroid), rb = along(nb, fb.centroid);
+    // The point m + alpha na + beta nb on both planes, m the midpoint: each centroid lies half of
+    // d from it.
+    const double ra = -0.5 * (na[0] * d[0] + na[1] * d[1] + na[2] * d[2]);
+    const double rb = 0.5 * (nb[0] * d[0] + nb[1] * d[1] + nb[2] * d[2]);
     const double alpha = (ra - c * rb) / det, beta = (rb - c * ra) / det;
-    double off2 = 0;
-    for (int k = 0; k < 3; ++k)
-        off2 += (alpha * na[k] + beta * nb[k]) * (alpha * na[k] + beta * nb[k]);
-    return std::sqrt(off2);
+    return std::sqrt(std::max(0.0, alpha * alpha + beta * beta + 2.0 * alpha * beta * c));
 }
 
 // Step 3: regions that face each other and are coplanar there become one group.
@@ -481,7 +473,8 @@ void join(const SphereCells& cells, std::span<const std::uint32_t> wideToLink,
         // 18 degrees apart, whose planes meet 3.1 from the midpoint of centroids 10.5 apart.
         // Parallel parts side by side or stepped meet far off, or never.
         const double gap = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (std::max(offA, offB) <= tolerance || bendFromMiddle(fa, fb) <= 0.5 * gap)
+        if (std::max(offA, offB) <= tolerance ||
+            bendFromMiddle(fa.normal, fb.normal, c, d) <= 0.5 * gap)
             joins[p] = 1;
     });
     RegionSets sets(regionCount);

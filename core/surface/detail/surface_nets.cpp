@@ -277,7 +277,6 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         }
                         // The vertex: mean of the edge crossings, in cell units.
                         float sum[3] = {0.0f, 0.0f, 0.0f};
-                        int crossings = 0;
                         // The crossing edges of this corner pattern, in kEdge's order: each one
                         // adds its first corner off its axis and the crossing's t along it.
                         const CrossingEdges& crossing = kCrossingEdges[inside];
@@ -289,7 +288,7 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                             for (int k = 0; k < 3; ++k)
                                 sum[k] += k == a ? t : float(kCorner[kEdge[e][0]][k]);
                         }
-                        crossings = crossing.count;
+                        const int crossings = crossing.count;
                         const float t[3] = {sum[0] / float(crossings), sum[1] / float(crossings),
                                             sum[2] / float(crossings)};
                         // Colour and gradient: trilinear over the cell's stored corners; the
