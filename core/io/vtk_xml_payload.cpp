@@ -8,7 +8,10 @@
 #include <lzma.h>
 #include <zlib.h>
 
+#include <sys/mman.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 
 namespace faultline::core::detail {
@@ -16,6 +19,41 @@ namespace faultline::core::detail {
 namespace {
 
 inline bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// liblzma's allocations. An .xz header names the dictionary size the decoder allocates (8 MB for
+// VTK's default preset, up to the 256 MB memlimit in a forged or corrupted header), while a VTK
+// block writes at most its block size into it: large ones are mapped on demand, so an untouched
+// dictionary costs address space, never memory writes (glibc's malloc maps them too; sanitizer
+// allocators would write shadow memory for all of it, parse after parse).
+constexpr std::size_t kHeader = 64;           // keeps liblzma's alignment; holds the size
+constexpr std::size_t kMapAbove = 1ull << 20; // smaller ones come from malloc
+void* lzmaAlloc(void*, std::size_t count, std::size_t size) {
+    if (size != 0 && count > (SIZE_MAX - kHeader) / size)
+        return nullptr;
+    const std::size_t bytes = count * size + kHeader;
+    void* block = nullptr;
+    if (bytes > kMapAbove) {
+        block = mmap(nullptr, bytes, PROT_READ | PROT_WRITE,
+                     MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+        if (block == MAP_FAILED)
+            return nullptr;
+    } else if (!(block = std::malloc(bytes))) {
+        return nullptr;
+    }
+    *static_cast<std::size_t*>(block) = bytes;
+    return static_cast<char*>(block) + kHeader;
+}
+void lzmaFree(void*, void* ptr) {
+    if (!ptr)
+        return;
+    void* block = static_cast<char*>(ptr) - kHeader;
+    const std::size_t bytes = *static_cast<std::size_t*>(block);
+    if (bytes > kMapAbove)
+        munmap(block, bytes);
+    else
+        std::free(block);
+}
+const lzma_allocator kLzmaAllocator{lzmaAlloc, lzmaFree, nullptr};
 
 std::string describe(const XmlArraySource& s) {
     return "DataArray '" + s.name + "' (line " + std::to_string(s.tagLine) + ")";
@@ -267,8 +305,8 @@ class BinaryDecoder {
         case XmlEncoding::Compressor::LZMA: {
             std::uint64_t memlimit = 256ull << 20; // a preset-9 dictionary needs 65 MB
             std::size_t inPos = 0, outPos = 0;
-            const lzma_ret rc = lzma_stream_buffer_decode(&memlimit, 0, nullptr, in.data(), &inPos,
-                                                          in.size(), to, &outPos, size);
+            const lzma_ret rc = lzma_stream_buffer_decode(&memlimit, 0, &kLzmaAllocator, in.data(),
+                                                          &inPos, in.size(), to, &outPos, size);
             if (rc != LZMA_OK)
                 why = rc == LZMA_BUF_ERROR ? "LZMA: the stream is truncated or larger than declared"
                       : rc == LZMA_FORMAT_ERROR   ? "LZMA: not an .xz stream"
