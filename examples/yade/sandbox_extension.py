@@ -1,4 +1,4 @@
-# Faultline example (work in progress, issue 37): a bonded (cohesive) sandbox stretched over a
+# Faultline example: a bonded (cohesive) sandbox stretched over a
 # basal velocity discontinuity (Yade). About 5,850 spheres (mean radius 0.5 mm +-20 %) fill a
 # 60 x 6 x 20 mm box (pack.randomDensePack, seed 3); neighbours are bonded on the first step
 # (CohFrictMat, E 1 MPa, bond strength COH Pa, default 2000), frictionless facet walls hold the
@@ -6,7 +6,7 @@
 # right half of the base and the right wall then move +x by 4 mm at 1 cm/s: the block above the
 # edge of the fixed half (x = 30 mm) stretches and normal faults grow from it.
 #
-# Run from this folder (batch mode, no GUI; one thread, 6-9 minutes on the project's machine):
+# Run from this folder (batch mode, no GUI; one thread, 10 minutes on the project's machine):
 #     yade -n -x sandbox_extension.py            (COH=1500 yade -n -x ... for weaker bonds)
 # Output: out/sb-spheres-0000000N.vtk, N = 0..4 (VTKExporter: id, radius), frame 0 after 0.05 s
 # of settling under gravity, then one frame per millimetre of pull.
