@@ -311,6 +311,7 @@ class BinaryDecoder {
                 why = rc == LZMA_BUF_ERROR ? "LZMA: the stream is truncated or larger than declared"
                       : rc == LZMA_FORMAT_ERROR   ? "LZMA: not an .xz stream"
                       : rc == LZMA_MEMLIMIT_ERROR ? "LZMA: needs more than 256 MB to decode"
+                      : rc == LZMA_MEM_ERROR      ? "LZMA: out of memory for the block's dictionary"
                                                   : "LZMA: corrupt data";
             return outPos;
         }
