@@ -8,6 +8,8 @@
 #
 # Run from this folder (batch mode, no GUI; one thread, 10 minutes on the project's machine):
 #     yade -n -x sandbox_extension.py            (COH=1500 yade -n -x ... for weaker bonds)
+#     FLOOR=1 yade -n -x sandbox_extension.py    (a frictional floor under the base: the grains
+#                                                 over the opening gap stay in; out/sbfloor-*)
 # Output: out/sb-spheres-0000000N.vtk, N = 0..4 (VTKExporter: id, radius), frame 0 after 0.05 s
 # of settling under gravity, then one frame per millimetre of pull.
 import os, time
@@ -16,6 +18,7 @@ OUT = 'out'; os.makedirs(OUT, exist_ok=True)
 L, W, H = 0.060, 0.006, 0.020
 RMEAN, FUZZ = 0.0005, 0.2
 C = float(os.environ.get('COH', '2000'))       # bond strength, Pa
+FLOOR = os.environ.get('FLOOR', '0') == '1'   # a floor under the base (output prefix sbfloor)
 V = 0.01; PULL = 0.004; NFRAMES = 5
 mat = O.materials.append(CohFrictMat(young=1e6, poisson=0.3, density=2600, frictionAngle=radians(30),
       normalCohesion=C, shearCohesion=C, isCohesive=True, momentRotationLaw=True, etaRoll=0.1,
@@ -27,6 +30,14 @@ sp.toSimulation(material=mat)
 print('packed %d spheres in %.0f s' % (len(O.bodies), time.time() - t0))
 wallMat = O.materials.append(CohFrictMat(young=1e6, poisson=0.3, density=2600, frictionAngle=0,
       isCohesive=False, momentRotationLaw=False))
+if FLOOR:
+    # A frictional floor under the base: where the moving half pulls away from the fixed one,
+    # the grains above the gap settle on it instead of pouring out of the model.
+    floorMat = O.materials.append(CohFrictMat(young=1e6, poisson=0.3, density=2600,
+          frictionAngle=radians(30), isCohesive=False, momentRotationLaw=False))
+    fa, fb, fc, fd = Vector3(-0.01, -0.01, 0), Vector3(L + 0.01, -0.01, 0), Vector3(L + 0.01, W + 0.01, 0), Vector3(-0.01, W + 0.01, 0)
+    O.bodies.append(facet([fa, fb, fc], material=floorMat, fixed=True, wire=False))
+    O.bodies.append(facet([fa, fc, fd], material=floorMat, fixed=True, wire=False))
 for yw in (0.0, W):
     a, b, c, d = Vector3(-0.01, yw, -0.01), Vector3(L + 0.01, yw, -0.01), Vector3(L + 0.01, yw, H + 0.01), Vector3(-0.01, yw, H + 0.01)
     O.bodies.append(facet([a, b, c], material=wallMat, fixed=True, wire=False))
@@ -52,7 +63,7 @@ O.engines = [ForceResetter(),
 O.dt = 0.5 * PWaveTimeStep()
 O.step(); aabb.aabbEnlargeFactor = -1; ig2.interactionDetectionFactor = -1
 O.run(int(0.05 / O.dt), True)   # settle under gravity 0.05 s
-vtk = export.VTKExporter(os.path.join(OUT, 'sb'))
+vtk = export.VTKExporter(os.path.join(OUT, 'sbfloor' if FLOOR else 'sb'))
 def snap(n):
     vtk.exportSpheres(ids=[b.id for b in O.bodies if isinstance(b.shape, Sphere)], what=dict(id='b.id'), numLabel=n)
     bonds = sum(1 for i in O.interactions if i.isReal and not i.phys.cohesionBroken)
