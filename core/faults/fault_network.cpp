@@ -7,10 +7,12 @@
 // [SECTION] Step 3: coplanar regions facing each other join
 // [SECTION] Step 3b: where faults cross
 // [SECTION] Step 4: leftover spheres go to the nearest surface
+// [SECTION] Step 5: planar pieces no group reached
 // [SECTION] faultNetworkGroups: the steps in order
 
 #include "core/faults/fault_network.hpp"
 
+#include "core/faults/candidates.hpp"
 #include "core/faults/plane_fit.hpp"
 #include "core/faults/sphere_cells.hpp"
 #include "core/util/union_find.hpp"
@@ -754,6 +756,51 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
         group[left[q]] = chosen[q];
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Step 5: planar pieces no group reached
+//-----------------------------------------------------------------------------
+
+// Step 5: linked pieces of the spheres still in no group become groups of their own when they
+// hold at least minSize spheres and are planar (not diffuse, as candidateShape judges it): a
+// band one or two grains thick and ragged grows only regions smaller than minSize, which are
+// dissolved, and its spheres lie too far from every group to be leftovers (issue 37: a Yade
+// sandbox's 55-degree fault at the 90th percentile of incremental strain had no candidate).
+// Returns the number of groups; new ones are numbered from `groups`.
+std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const Graph& graph,
+                         std::size_t minSize, std::size_t groups,
+                         std::vector<std::int32_t>& group) {
+    constexpr std::int32_t kSeen = -2, kLeft = -3;
+    std::vector<std::uint32_t> piece;
+    std::vector<std::int64_t> ids;
+    for (std::uint32_t s = 0; s < group.size(); ++s) {
+        if (group[s] != -1)
+            continue;
+        piece.assign(1, s);
+        group[s] = kSeen;
+        for (std::size_t h = 0; h < piece.size(); ++h)
+            for (std::uint32_t e = graph.start[piece[h]]; e < graph.start[piece[h] + 1]; ++e)
+                if (const std::uint32_t j = graph.adj[e]; group[j] == -1) {
+                    group[j] = kSeen;
+                    piece.push_back(j);
+                }
+        bool planar = false;
+        if (piece.size() >= minSize) {
+            ids.clear();
+            for (std::uint32_t j : piece)
+                ids.push_back(frame.ids[linkCells.row[j]]);
+            const CandidateShape shape = candidateShape(frame, ids);
+            planar = shape.valid && !shape.diffuse;
+        }
+        const std::int32_t label = planar ? std::int32_t(groups++) : kLeft;
+        for (std::uint32_t j : piece)
+            group[j] = label;
+    }
+    for (std::int32_t& g : group)
+        if (g == kLeft)
+            g = -1;
+    return groups;
+}
+
 } // namespace
 
 //-----------------------------------------------------------------------------
@@ -836,8 +883,10 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
             g = -1;
     assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
                     onSurface);
+    const std::size_t groupCount =
+        planarPieces(frame, linkCells, graph, minSize, regionCount, region);
 
-    std::vector<std::int32_t> dense(regionCount, -1);
+    std::vector<std::int32_t> dense(groupCount, -1);
     for (std::size_t i = 0; i < linkCells.size(); ++i)
         if (const std::int32_t g = region[i]; g >= 0) {
             if (dense[std::size_t(g)] < 0)

@@ -34,6 +34,7 @@ struct Match {
     // midpoints within the candidate's down-dip range): a curved fault of which only the deep
     // part strains in an increment is matched against that part's dip.
     double localDip = NAN, localDipError = 90, localDirError = 180;
+    double truthDipDirection = 0;
 };
 
 // The truth plane refitted through its midpoints that lie within the down-dip span (10th to
@@ -142,6 +143,7 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
                 best.size, m.dip, m.dipDirection, best.dipError, best.dirError, best.distance,
                 best.localDip, best.localDipError);
         }
+        best.truthDipDirection = f.plane.orientation.dipDirection;
         out.push_back(best);
     }
     return out;
@@ -155,6 +157,18 @@ void expectMatched(const std::vector<Match>& matches, std::size_t faults) {
         EXPECT_LE(matches[i].distance, 2.0);
         for (std::size_t j = 0; j < i; ++j)
             EXPECT_NE(matches[i].candidate, matches[j].candidate) << "two faults in one candidate";
+    }
+}
+
+// Two faults, each its own candidate, within `maxDipError` of dip, 15 degrees of dip direction
+// and 2 diameters.
+void expectTwoApart(const std::vector<Match>& matches, double maxDipError) {
+    ASSERT_EQ(matches.size(), 2u);
+    EXPECT_NE(matches[0].candidate, matches[1].candidate) << "the V came out as one candidate";
+    for (const Match& m : matches) {
+        EXPECT_LE(m.dipError, maxDipError);
+        EXPECT_LE(m.dirError, 15.0);
+        EXPECT_LE(m.distance, 2.0);
     }
 }
 
@@ -178,16 +192,11 @@ TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To89AndHowFarAbove) {
     for (double p : {90.0, 92.5, 95.0}) {
         const auto above = check("LAMMPS extension 3 -> 4", *ds->frame(3), *ds->frame(4),
                                  "inc_shear_strain", p, 50);
-        ASSERT_EQ(above.size(), 2u);
-        EXPECT_NE(above[0].candidate, above[1].candidate) << "the V came out as one candidate";
-        for (const Match& m : above) {
-            EXPECT_LE(m.dipError, 12.0);
-            EXPECT_LE(m.distance, 2.0);
-            EXPECT_LE(m.dirError, 15.0);
+        expectTwoApart(above, 12.0);
+        for (const Match& m : above)
             if (p < 95) {
                 EXPECT_LE(m.localDipError, 5.0) << "against the truth over the candidate's span";
             }
-        }
     }
 }
 
@@ -268,16 +277,38 @@ TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
             check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30),
             2);
     for (double p : {90.0, 91.0, 92.5, 94.0, 95.0}) {
-        const auto v =
-            check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30);
-        ASSERT_EQ(v.size(), 2u);
-        EXPECT_NE(v[0].candidate, v[1].candidate) << "the V came out as one candidate";
-        for (const Match& m : v) {
-            EXPECT_LE(m.dipError, 7.0);
-            EXPECT_LE(m.dirError, 15.0);
-            EXPECT_LE(m.distance, 2.0);
-        }
+        expectTwoApart(
+            check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30),
+            7.0);
     }
     for (double p : {85.0, 87.0, 88.0, 89.0})
         check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30);
+}
+
+// The same sandbox with a floor under its base (FLOOR=1: the grains over the opening gap stay
+// in), frames 2 and 3: a graben, its keystone sinking 0.76 mm between a 55-degree west-dipping
+// fault, a band one or two grains thick, and a 75-degree east-dipping zone three to six grains
+// thick whose foot holds the V's broad base. The west-dipping fault grows only regions smaller
+// than the minimum size and stood too far from the east zone to be its leftover: at the 90th
+// percentile it had no candidate. As a planar piece of its own it is one candidate within 3.9
+// degrees and 0.5 diameters from the 90th to the 94th percentile, apart from the east zone's.
+// The east zone's candidate is 4.9 degrees off at the 92.5th and 12-19 degrees elsewhere (its
+// base pulls it flatter): printed, not asserted.
+TEST(CandidatesOnRealRuns, TheYadeSandboxWithAFloorThinFaultIsACandidate) {
+    auto ds = Dataset::open({run("yade/sbfloor-spheres-*.vtk.gz")});
+    ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
+    for (double p : {90.0, 91.0, 92.0, 92.5, 93.0, 94.0}) {
+        const auto v = check("Yade sandbox with a floor 2 -> 3", *ds->frame(0), *ds->frame(1),
+                             "inc_shear_strain", p, 30);
+        ASSERT_EQ(v.size(), 2u);
+        EXPECT_NE(v[0].candidate, v[1].candidate) << "the V came out as one candidate";
+        const Match& west = v[0].truthDipDirection > 180 ? v[0] : v[1];
+        EXPECT_GT(west.truthDipDirection, 180);
+        EXPECT_LE(west.dipError, 5.0);
+        EXPECT_LE(west.dirError, 15.0);
+        EXPECT_LE(west.distance, 2.0);
+    }
+    for (double p : {85.0, 87.5, 95.0})
+        check("Yade sandbox with a floor 2 -> 3", *ds->frame(0), *ds->frame(1), "inc_shear_strain",
+              p, 30);
 }
