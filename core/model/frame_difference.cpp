@@ -174,4 +174,26 @@ std::optional<std::pair<double, double>> maskedRange(const Frame& frame, std::st
     return r;
 }
 
+std::optional<std::pair<double, double>> maskedQuantiles(const Frame& frame,
+                                                         std::string_view variable,
+                                                         const std::vector<std::uint8_t>& mask,
+                                                         double low, double high) {
+    const ColumnReader column(frame, variable);
+    if (column.missing() || mask.size() != frame.size() || !(low >= 0 && low < high && high <= 1))
+        return std::nullopt;
+    std::vector<double> values;
+    for (std::size_t row = 0; row < frame.size(); ++row)
+        if (mask[row])
+            if (const double v = column(row); std::isfinite(v))
+                values.push_back(v);
+    if (values.empty())
+        return std::nullopt;
+    const double last = double(values.size() - 1);
+    const auto lo = values.begin() + std::ptrdiff_t(std::floor(low * last));
+    const auto hi = values.begin() + std::ptrdiff_t(std::ceil(high * last));
+    std::nth_element(values.begin(), hi, values.end());
+    std::nth_element(values.begin(), lo, hi);
+    return std::pair{*lo, *hi};
+}
+
 } // namespace faultline::core

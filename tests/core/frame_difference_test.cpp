@@ -160,3 +160,33 @@ TEST(FrameDifference, MaskedRangeCountsOnlyTheRowsShown) {
     EXPECT_EQ(maskedRange(f, "missing", shown), std::nullopt);
     EXPECT_EQ(maskedRange(f, "strain", {1, 1}), std::nullopt); // not a byte per row
 }
+
+// The workbench's "1st to 99th percentile" range: strain from motion on a Yade run was 0..92
+// over the frame because of a few grains falling out of the model, and every other sphere was
+// one colour. 200 spheres 0.0, 0.01, .. 1.99 and two outliers at 90 (one hidden); a NaN.
+TEST(FrameDifference, MaskedQuantilesLeaveTheFewExtremesOut) {
+    std::vector<std::int64_t> ids;
+    std::vector<float> zero, strain;
+    std::vector<std::int32_t> bonds;
+    for (int i = 0; i < 203; ++i) {
+        ids.push_back(i + 1);
+        zero.push_back(0);
+        strain.push_back(i < 200 ? 0.01f * float(i) : i == 202 ? NAN : 90.0f);
+        bonds.push_back(i % 5);
+    }
+    const Frame f = makeFrame(ids, zero, zero, zero, strain, bonds);
+    std::vector<std::uint8_t> shown(203, 1);
+    shown[201] = 0;
+    // 201 finite values shown (0 .. 1.99 and one 90), sorted indices 0 .. 200: the 1st
+    // percentile is index floor(0.01 x 200) = 2, the 99th index ceil(0.99 x 200) = 198.
+    EXPECT_EQ(maskedQuantiles(f, "strain", shown, 0.01, 0.99),
+              (std::pair<double, double>{strain[2], strain[198]})); // 0.02, 1.98
+    EXPECT_EQ(maskedQuantiles(f, "strain", shown, 0, 1), (std::pair<double, double>{0, 90}));
+    EXPECT_EQ(maskedQuantiles(f, "broken_bonds", shown, 0.01, 0.99),
+              (std::pair<double, double>{0, 4}));
+    EXPECT_EQ(maskedQuantiles(f, "missing", shown, 0.01, 0.99), std::nullopt);
+    EXPECT_EQ(maskedQuantiles(f, "strain", std::vector<std::uint8_t>(203, 0), 0.01, 0.99),
+              std::nullopt);
+    EXPECT_EQ(maskedQuantiles(f, "strain", shown, 0.5, 0.5), std::nullopt); // not low < high
+    EXPECT_EQ(maskedQuantiles(f, "strain", shown, -0.1, 0.9), std::nullopt);
+}

@@ -3,6 +3,7 @@
 // frame memory budget.
 #include "panel_fixture.hpp"
 
+#include "core/model/frame_difference.hpp"
 #include "core/session/autosave.hpp"
 #include "core/session/color_range.hpp"
 #include "core/session/session_json.hpp"
@@ -353,6 +354,41 @@ TEST_F(PanelTest, TheRangeFieldsFollowTheRangeShown) {
     headless.frames(wb(), 2);
     ASSERT_EQ(headless.emitted("color.set").size(), 1u);
     EXPECT_EQ(headless.emitted("color.set")[0]["range"], Json::array({low, 3.0}));
+}
+
+// "1st to 99th percentile" in the colour popup: a fixed range over the spheres shown without
+// their extremes, through color.set; off for a change colouring.
+TEST_F(PanelTest, ThePercentileRangeLeavesTheExtremesOut) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"x"})"));
+    headless.settle(wb());
+    const auto* d = wb().mainDisplay();
+    ASSERT_TRUE(d && d->frame && d->visibility);
+    const auto expected = core::maskedQuantiles(*d->frame, "x", d->visibility->mask, 0.01, 0.99);
+    ASSERT_TRUE(expected && expected->first < expected->second);
+    headless.click(wb(), "view.colour.main");
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(headless.has(wb(), "view.range.percentile.main"));
+    headless.clearEmitted();
+    headless.click(wb(), "view.range.percentile.main");
+    headless.frames(wb(), 2);
+    ASSERT_EQ(headless.emitted("color.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "fixed");
+    EXPECT_EQ(headless.emitted("color.set")[0]["range"],
+              Json::array({expected->first, expected->second}));
+    EXPECT_EQ(session.state().views[0].rangeMode, core::RangeMode::Fixed);
+    // A change colouring: the button is there but off.
+    session.apply(
+        Json::parse(R"({"op":"color.set","view":"main","difference":"change","since_frame":0})"));
+    headless.settle(wb());
+    if (!headless.has(wb(), "view.range.percentile.main")) {
+        headless.click(wb(), "view.colour.main");
+        headless.frames(wb(), 2);
+    }
+    headless.clearEmitted();
+    headless.click(wb(), "view.range.percentile.main");
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.emitted("color.set").empty());
 }
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include "ui/panels/viewport_cell.hpp"
 
+#include "core/model/frame_difference.hpp"
 #include "core/session/commands.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/context/frame_columns.hpp"
@@ -438,6 +439,24 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     wb.mark("view.range.high." + view.name);
     if ((loDone || hiDone) && m_rangeEdit[0] < m_rangeEdit[1])
         wb.emit(core::cmd::ColorSet(view.name).range(m_rangeEdit[0], m_rangeEdit[1]));
+    // A fixed range over the middle 98 % of the spheres shown, for variables whose few extreme
+    // values (grains thrown out of a model: strain from motion in the hundreds) leave every
+    // other sphere one colour.
+    ImGui::BeginDisabled(difference || !d.frame || !d.visibility);
+    if (ImGui::Button("1st to 99th percentile") && d.frame && d.visibility)
+        if (const auto q =
+                core::maskedQuantiles(*d.frame, view.colorVariable, d.visibility->mask, 0.01, 0.99);
+            q && q->first < q->second)
+            wb.emit(core::cmd::ColorSet(view.name)
+                        .rangeMode(core::RangeMode::Fixed)
+                        .range(q->first, q->second));
+    wb.mark("view.range.percentile." + view.name);
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip(difference ? "Not for a change or a displacement colouring"
+                                     : "A fixed range from the 1st to the 99th percentile of the "
+                                       "spheres shown:\na few extreme values no longer leave "
+                                       "the others one colour.");
     drawDifference(wb, view);
     ImGui::EndPopup();
 }
