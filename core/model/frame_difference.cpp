@@ -1,6 +1,7 @@
 #include "core/model/frame_difference.hpp"
 
 #include "core/model/periodic_cell.hpp"
+#include "core/util/quantile.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -181,19 +182,15 @@ std::optional<std::pair<double, double>> maskedQuantiles(const Frame& frame,
     const ColumnReader column(frame, variable);
     if (column.missing() || mask.size() != frame.size() || !(low >= 0 && low < high && high <= 1))
         return std::nullopt;
-    std::vector<double> values;
+    std::vector<float> values; // the columns' values are floats or ints
     for (std::size_t row = 0; row < frame.size(); ++row)
         if (mask[row])
             if (const double v = column(row); std::isfinite(v))
-                values.push_back(v);
+                values.push_back(static_cast<float>(v));
     if (values.empty())
         return std::nullopt;
-    const double last = double(values.size() - 1);
-    const auto lo = values.begin() + std::ptrdiff_t(std::floor(low * last));
-    const auto hi = values.begin() + std::ptrdiff_t(std::ceil(high * last));
-    std::nth_element(values.begin(), hi, values.end());
-    std::nth_element(values.begin(), lo, hi);
-    return std::pair{*lo, *hi};
+    const double lo = quantile(values, low);
+    return std::pair{lo, quantile(values, high)};
 }
 
 } // namespace faultline::core

@@ -34,10 +34,10 @@ void cacheColumnRange(AttributeColumn& column);
 std::optional<std::pair<double, double>> maskedRange(const Frame& frame, std::string_view variable,
                                                      const std::vector<std::uint8_t>& mask);
 
-// The `low` and `high` quantiles (fractions, 0 <= low < high <= 1) of the finite values of
-// `variable` over the rows whose `mask` byte is non-zero: a colour range that a few extreme
-// values (grains thrown out of a model, a free surface's strain) do not wash out. Nothing under
-// the same conditions as maskedRange.
+// The `low` and `high` quantiles (fractions, 0 <= low < high <= 1; core::quantile, interpolated)
+// of the finite values of `variable` over the rows whose `mask` byte is non-zero: a colour range
+// that a few extreme values (grains thrown out of a model, a free surface's strain) do not wash
+// out. Nothing under the same conditions as maskedRange.
 std::optional<std::pair<double, double>> maskedQuantiles(const Frame& frame,
                                                          std::string_view variable,
                                                          const std::vector<std::uint8_t>& mask,

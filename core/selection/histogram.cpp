@@ -1,6 +1,7 @@
 #include "core/selection/histogram.hpp"
 
 #include "core/selection/row_bits.hpp"
+#include "core/util/quantile.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -48,21 +49,6 @@ std::optional<std::array<double, 2>> finiteRange(const ColumnView& column) {
     if (lo > hi)
         return std::nullopt;
     return std::array<double, 2>{lo, hi};
-}
-
-// Quantile p of sorted-order data by linear interpolation (numpy's default, "type 7"),
-// via selection; `values` is reordered.
-double quantile(std::vector<float>& values, double p) {
-    assert(!values.empty());
-    const double h = static_cast<double>(values.size() - 1) * p;
-    const auto k = static_cast<std::size_t>(std::floor(h));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-    const double below = values[k];
-    if (k + 1 >= values.size())
-        return below;
-    const double above =
-        *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(k) + 1, values.end());
-    return below + (h - static_cast<double>(k)) * (above - below);
 }
 
 int freedmanDiaconisBins(const ColumnView& column, double lo, double hi) {
