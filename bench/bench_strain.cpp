@@ -8,7 +8,9 @@
 //     takes (peak resident set growth, per sphere).
 //  3. With --demo: scrubbing the 3-D demo (frames 8..39, each new) with and without incremental
 //     strain (since_offset -4), each frame's time.
-// Usage: bench_strain [--skip-10m] [--demo]. The dumps (~42 MB plain, and gzipped) are made in a
+// Usage: bench_strain [--skip-10m] [--demo], or bench_strain --strain-only N: strainFromMotion
+// alone on the 525k pair, N times with the AVX2 sums and with the baseline ones (for a profiler
+// and to compare the two). The dumps (~42 MB plain, and gzipped) are made in a
 // temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
@@ -315,6 +317,21 @@ int main(int argc, char** argv) {
         skip10m = skip10m || std::strcmp(argv[k], "--skip-10m") == 0;
         demo = demo || std::strcmp(argv[k], "--demo") == 0;
     }
+    for (int k = 1; k + 1 < argc; ++k)
+        if (std::strcmp(argv[k], "--strain-only") == 0) {
+            // Only strainFromMotion on the 525k pair, N times (for a profiler).
+            const Frame ref = densePacking(525000);
+            const Frame now = faulted(ref);
+            for (int r = std::atoi(argv[k + 1]); r > 0; --r)
+                for (const bool baseline : {false, true}) {
+                    detail::setStrainBaselineOnly(baseline);
+                    const auto t0 = std::chrono::steady_clock::now();
+                    strainFromMotion(now, ref, 0);
+                    std::printf("strain %.1f ms%s\n", seconds(t0) * 1e3,
+                                baseline ? " (baseline sums)" : "");
+                }
+            return 0;
+        }
     if (demo)
         partDemo();
     part525k();

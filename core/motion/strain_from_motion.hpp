@@ -13,8 +13,8 @@
 // frame (such a sphere is no one's neighbour either); fewer than 3 neighbours (that are also in
 // the current frame); a singular sum X X^T.
 // Cost: one cell list of the reference (ghost images on periodic axes), then each sphere's 27
-// cells, in parallel (TBB). About 0.3 us a sphere on one core (~130 points tested, ~20 of them
-// neighbours, in a dense packing); see bench_strain.
+// cells, in parallel (TBB): ~130 points tested, ~20 of them neighbours, in a dense packing.
+// About 0.4 us a sphere on one core (2.8 GHz Ice Lake, AVX2); see bench_strain.
 #pragma once
 
 #include "core/model/frame.hpp"
@@ -35,5 +35,11 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
 
 // The same columns, all NaN (no reference frame for this frame).
 std::vector<AttributeColumn> strainUnavailable(const Frame& now, const std::string& prefix = {});
+
+namespace detail {
+// The neighbour sums have an AVX2 form, used where the CPU has AVX2 and FMA, and a baseline
+// one. true: the baseline everywhere (tests compare the two; benchmarks time them).
+void setStrainBaselineOnly(bool baselineOnly);
+} // namespace detail
 
 } // namespace faultline::core
