@@ -1,6 +1,7 @@
 #include "ui/context/frame_columns.hpp"
 
 #include "core/selection/column_view.hpp"
+#include "core/view/framing.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -46,17 +47,39 @@ std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core
     return std::nullopt;
 }
 
-ModelBounds modelBounds(const core::Frame& frame) {
-    ModelBounds b;
-    if (frame.size() == 0)
-        return b;
+namespace {
+
+double largestRadius(const core::Frame& frame) {
     double r = 0;
     for (float f : frame.radius)
         if (std::isfinite(f))
             r = std::max<double>(r, f);
+    return r;
+}
+
+} // namespace
+
+ModelBounds modelBounds(const core::Frame& frame) {
+    ModelBounds b;
+    if (frame.size() == 0)
+        return b;
+    const double r = largestRadius(frame);
     for (int a = 0; a < 3; ++a) {
         b.lo[a] = frame.centreMin()[a] - r;
         b.hi[a] = frame.centreMax()[a] + r;
+    }
+    return b;
+}
+
+ModelBounds framedBounds(const core::Frame& frame) {
+    ModelBounds b;
+    if (frame.size() == 0)
+        return b;
+    const double r = largestRadius(frame);
+    const core::Framing f = core::framingBounds(frame);
+    for (int a = 0; a < 3; ++a) {
+        b.lo[a] = f.lo[a] - r;
+        b.hi[a] = f.hi[a] + r;
     }
     return b;
 }

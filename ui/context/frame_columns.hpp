@@ -39,6 +39,9 @@ struct ModelBounds {
     std::array<double, 3> lo{0, 0, 0}, hi{1, 1, 1};
 };
 ModelBounds modelBounds(const core::Frame& frame);
+// What fitting a view to the frame frames: core::framingBounds (no far strays), widened by the
+// largest radius as modelBounds is.
+ModelBounds framedBounds(const core::Frame& frame);
 // The same over the rows whose mask byte is non-zero (the visible spheres).
 ModelBounds visibleBounds(const core::Frame& frame, const std::vector<std::uint8_t>& mask);
 

@@ -68,6 +68,7 @@ struct ViewDisplay {
     std::shared_ptr<const core::Frame> frame; // shown; lags wantedFrame while it loads
     std::size_t shownFrame = 0;
     ModelBounds bounds;     // of the shown frame (centres widened by the largest radius)
+    ModelBounds framing;    // what fitting frames: the same without far strays (core/view/framing)
     double sceneRadius = 1; // half the bounds' diagonal
     std::shared_ptr<const core::VisibilityResult> visibility;
     std::uint64_t visibilityKey = 0;

@@ -6,6 +6,7 @@
 #include "core/session/color_range.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/view_colors.hpp"
+#include "core/view/framing.hpp"
 #include "ui/render/legend_layout.hpp"
 #include "ui/render/offscreen.hpp"
 #include "ui/render/surface_mesh.hpp"
@@ -133,12 +134,11 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
     // model, as the viewport does.
     core::CameraState camera = request.camera ? *request.camera : view->camera;
     if (camera.distance <= 0) {
-        const auto& lo = frame->centreMin();
-        const auto& hi = frame->centreMax();
+        const core::Framing framing = core::framingBounds(*frame); // far strays left out
         const double w = request.width, h = request.height;
         const double legend =
             showsLegend(scene) ? std::min(0.45 * w, legendPixels(scene, w, h)) : 0.0;
-        fitBesideLegend(camera, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, w, h, legend);
+        fitBesideLegend(camera, framing.lo, framing.hi, w, h, legend);
     }
     scene.camera = toRenderCamera(camera);
     scene.style.caption = request.caption;
@@ -249,14 +249,12 @@ FrameSequence::FrameSequence(core::Session& session, SequenceRequest request)
     // One camera: the view's, or fitted to the first and last frames of the range together.
     if (!fig.camera && view->camera.distance <= 0) {
         core::CameraState camera = view->camera;
-        const auto a = dataset->frame(m_request.first);
-        const auto b = dataset->frame(m_request.last);
-        const std::array<double, 3> lo{std::min<double>(a->centreMin()[0], b->centreMin()[0]),
-                                       std::min<double>(a->centreMin()[1], b->centreMin()[1]),
-                                       std::min<double>(a->centreMin()[2], b->centreMin()[2])};
-        const std::array<double, 3> hi{std::max<double>(a->centreMax()[0], b->centreMax()[0]),
-                                       std::max<double>(a->centreMax()[1], b->centreMax()[1]),
-                                       std::max<double>(a->centreMax()[2], b->centreMax()[2])};
+        // Far strays left out of each (core/view/framing).
+        const core::Framing a = core::framingBounds(*dataset->frame(m_request.first));
+        const core::Framing b = core::framingBounds(*dataset->frame(m_request.last));
+        std::array<double, 3> lo, hi;
+        for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(a.lo[k], b.lo[k]), hi[k] = std::max(a.hi[k], b.hi[k]);
         const double w = fig.width, h = fig.height;
         const bool legend = !view->colorVariable.empty() && view->colorVariable != kFaultsVariable;
         const double strip =

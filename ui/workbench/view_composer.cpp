@@ -131,6 +131,7 @@ void ViewComposer::update(const Inputs& in) {
             if (auto f = m_frames.request(d.wantedFrame, channel)) {
                 if (f != d.frame) { // bounds once per frame shown, not per UI frame
                     d.bounds = modelBounds(*f);
+                    d.framing = framedBounds(*f);
                     const ModelBounds& b = d.bounds;
                     d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) +
                                                     std::pow(b.hi[1] - b.lo[1], 2) +

@@ -338,7 +338,7 @@ void Workbench::updatePlayback() {
 void Workbench::updateDisplay() {
     m_composer.update({m_previews, displayFrame(), m_now, m_selection,
                        [this](const core::ViewState& v, const ViewDisplay& d, core::CameraState c) {
-                           return fitCameraBeside(v, &d, c, d.bounds.lo, d.bounds.hi);
+                           return fitCameraBeside(v, &d, c, d.framing.lo, d.framing.hi);
                        }});
 }
 

@@ -1,0 +1,105 @@
+#include "core/view/framing.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace faultline::core {
+
+namespace {
+
+// Bounds of the finite centres within [limitLo, limitHi] on every axis, and how many finite
+// centres lay outside.
+struct Box {
+    std::array<double, 3> lo{std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::infinity()};
+    std::array<double, 3> hi{-std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()};
+    std::size_t inside = 0, outside = 0;
+    void join(const Box& o) {
+        for (int a = 0; a < 3; ++a)
+            lo[a] = std::min(lo[a], o.lo[a]), hi[a] = std::max(hi[a], o.hi[a]);
+        inside += o.inside;
+        outside += o.outside;
+    }
+};
+
+Box boxWithin(const Frame& f, const std::array<double, 3>& limitLo,
+              const std::array<double, 3>& limitHi) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, f.size(), 65536), Box{},
+        [&](const tbb::blocked_range<std::size_t>& r, Box b) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const double p[3] = {f.x[i], f.y[i], f.z[i]};
+                if (!std::isfinite(p[0] + p[1] + p[2]))
+                    continue;
+                bool in = true;
+                for (int a = 0; a < 3; ++a)
+                    in = in && p[a] >= limitLo[a] && p[a] <= limitHi[a];
+                if (!in) {
+                    ++b.outside;
+                    continue;
+                }
+                ++b.inside;
+                for (int a = 0; a < 3; ++a)
+                    b.lo[a] = std::min(b.lo[a], p[a]), b.hi[a] = std::max(b.hi[a], p[a]);
+            }
+            return b;
+        },
+        [](Box a, const Box& b) {
+            a.join(b);
+            return a;
+        });
+}
+
+} // namespace
+
+Framing framingBounds(const Frame& frame) {
+    Framing out;
+    const std::size_t n = frame.size();
+    if (n == 0)
+        return out;
+    // The bulk per axis from up to 65,536 evenly spaced centres.
+    const std::size_t step = std::max<std::size_t>(1, n / 65536);
+    std::array<double, 3> limitLo, limitHi;
+    const std::vector<float>* axes[3] = {&frame.x, &frame.y, &frame.z};
+    std::vector<float> sample;
+    sample.reserve(n / step + 1);
+    for (int a = 0; a < 3; ++a) {
+        sample.clear();
+        for (std::size_t i = 0; i < n; i += step)
+            if (std::isfinite((*axes[a])[i]))
+                sample.push_back((*axes[a])[i]);
+        if (sample.empty())
+            return out;
+        const auto at = [&](double q) {
+            const auto k = static_cast<std::ptrdiff_t>(q * double(sample.size() - 1));
+            std::nth_element(sample.begin(), sample.begin() + k, sample.end());
+            return double(sample[std::size_t(k)]);
+        };
+        const double q1 = at(0.01), q99 = at(0.99);
+        const double margin = 0.5 * (q99 - q1);
+        limitLo[a] = q1 - margin;
+        limitHi[a] = q99 + margin;
+    }
+    const Box bulk = boxWithin(frame, limitLo, limitHi);
+    const std::size_t finite = bulk.inside + bulk.outside;
+    // No strays, or more than 2 % beyond (a shape: the percentiles leave out 2 % at most): the
+    // centres' bounds, as the frame keeps them.
+    if (bulk.inside == 0 || bulk.outside == 0 || double(bulk.outside) > 0.02 * double(finite)) {
+        for (int a = 0; a < 3; ++a)
+            out.lo[a] = frame.centreMin()[a], out.hi[a] = frame.centreMax()[a];
+        return out;
+    }
+    out.lo = bulk.lo, out.hi = bulk.hi;
+    out.strays = bulk.outside;
+    return out;
+}
+
+} // namespace faultline::core
