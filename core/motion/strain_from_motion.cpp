@@ -142,7 +142,9 @@ class NeighbourCells {
         for (;;) {
             double cells = 1;
             for (int a = 0; a < 3; ++a) {
-                m_dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / m_size) + 1);
+                // At most ~2^20 by m_size; NaN (a frame without a finite centre): one cell.
+                const double span = (hi[a] - lo[a]) / m_size;
+                m_dims[a] = span >= 1.0 ? static_cast<int>(std::min(span, 4.0e6)) + 1 : 1;
                 cells *= m_dims[a];
             }
             if (cells <= 4.0 * double(count) + 64)
@@ -274,8 +276,13 @@ class NeighbourCells {
         }
         return p;
     }
+    // Clamped before the conversion: a centre that is no number, or far beyond the int range
+    // (a finite extreme a file may hold), is no undefined conversion.
     int coord(double v, int axis) const {
-        return std::clamp(static_cast<int>((v - m_lo[axis]) / m_size), 0, m_dims[axis] - 1);
+        const double c = (v - m_lo[axis]) / m_size;
+        if (!(c > 0))
+            return 0;
+        return c >= double(m_dims[axis] - 1) ? m_dims[axis] - 1 : static_cast<int>(c);
     }
     std::uint32_t cellIndex(double px, double py, double pz) const {
         return static_cast<std::uint32_t>(

@@ -469,3 +469,54 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
     EXPECT_TRUE(std::isnan(fast[0].floats[100]));
     EXPECT_TRUE(std::isnan(fast[0].floats[200]));
 }
+
+// Hostile centres and boxes (a reader's checks let finite extremes through): huge and tiny
+// coordinates, a periodic box far smaller than the spacing, ids in the current frame that the
+// reference lacks. Neither kind of sums reads out of bounds (the sanitizer builds run this) and
+// both give NaN for exactly the same spheres.
+TEST(StrainFromMotion, HostileCentresAndBoxesDoNotBreakEitherSums) {
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int round = 0; round < 12; ++round) {
+        Frame ref = packing(6, 100 + round);
+        ref.box.known = round % 3 != 0;
+        ref.box.lo = {-0.5, -0.5, -0.5};
+        const double l = round % 4 == 1 ? 1e-20 : round % 4 == 2 ? 1e20 : 6.0;
+        ref.box.hi = {ref.box.lo[0] + l, ref.box.lo[1] + l, ref.box.lo[2] + l};
+        ref.box.triclinic = round % 2 == 0;
+        ref.box.xy = 0.3 * l;
+        ref.box.periodic = {round % 2 == 0, true, round % 5 == 0};
+        Frame now = ref;
+        for (std::size_t i = 0; i < now.size(); ++i) {
+            now.x[i] += static_cast<float>(0.05 * u(rng));
+            if (i % 17 == round % 17)
+                now.y[i] = static_cast<float>(1e30 * u(rng));
+            if (i % 23 == round % 23)
+                now.z[i] = 1e-40f;
+            if (i % 29 == 0)
+                now.ids[i] += 100000; // not in the reference
+        }
+        ref.x[std::size_t(round)] = 3e38f;
+        ref.finalize();
+        now.finalize();
+        for (const double cutoff : {1.5, 1e-30, 1e30}) {
+            detail::setStrainBaselineOnly(true);
+            const auto baseline = strainFromMotion(now, ref, cutoff);
+            detail::setStrainBaselineOnly(false);
+            const auto fast = strainFromMotion(now, ref, cutoff);
+            ASSERT_EQ(baseline.size(), fast.size());
+            for (std::size_t i = 0; i < now.size(); ++i)
+                ASSERT_EQ(std::isnan(baseline[0].floats[i]), std::isnan(fast[0].floats[i]))
+                    << "round " << round << " cutoff " << cutoff << " row " << i;
+        }
+    }
+    // No centre of the reference is a number: every value NaN.
+    Frame ref = packing(3);
+    for (std::size_t i = 0; i < ref.size(); ++i)
+        ref.x[i] = std::numeric_limits<float>::quiet_NaN();
+    ref.finalize();
+    const Frame now = packing(3);
+    for (const auto& c : strainFromMotion(now, ref, 0))
+        for (float v : c.floats)
+            ASSERT_TRUE(std::isnan(v)) << c.name;
+}
