@@ -331,7 +331,7 @@ int main(int argc, char** argv) {
             const Frame ref = densePacking(525000);
             const Frame now = faulted(ref);
             std::vector<double> times[2];
-            for (int r = std::atoi(argv[k + 1]); r > 0; --r)
+            for (int r = std::max(1, std::atoi(argv[k + 1])); r > 0; --r)
                 for (const bool baseline : {false, true}) {
                     detail::setStrainBaselineOnly(baseline);
                     const auto t0 = std::chrono::steady_clock::now();
@@ -343,7 +343,10 @@ int main(int argc, char** argv) {
                 auto& t = times[baseline];
                 std::sort(t.begin(), t.end());
                 std::printf("strain, %s sums: fastest %.1f ms, median %.1f ms of %zu\n",
-                            baseline ? "baseline" : "AVX2", t.front(), t[t.size() / 2], t.size());
+                            baseline                   ? "baseline"
+                            : detail::strainUsesAvx2() ? "AVX2"
+                                                       : "baseline (no AVX2 here)",
+                            t.front(), t[t.size() / 2], t.size());
             }
             return 0;
         }

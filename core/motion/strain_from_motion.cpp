@@ -655,7 +655,9 @@ template <int dim> StrainValues solve(const NeighbourSums& s, const int* axes) {
         for (int j = 0; j < dim; ++j)
             ga += G[i][j] * A[i][j];
     }
-    out.d2min = static_cast<float>(std::max(0.0, uu - ga));
+    // Rounding may leave a hair below zero; NaN (sums of absurd motions) stays NaN.
+    const double residual = uu - ga;
+    out.d2min = static_cast<float>(residual < 0 ? 0.0 : residual);
     if constexpr (dim == 3) {
         const double dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
         out.shear =
@@ -856,6 +858,8 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
 }
 
 void detail::setStrainBaselineOnly(bool baselineOnly) { g_baselineOnly = baselineOnly; }
+
+bool detail::strainUsesAvx2() { return useAvx2(); }
 
 std::optional<std::size_t> StrainSpec::referenceFor(std::size_t frame, std::size_t count) const {
     const long long f = relative ? static_cast<long long>(frame) + reference : reference;

@@ -40,6 +40,8 @@ namespace detail {
 // The neighbour sums have an AVX2 form, used where the CPU has AVX2 and FMA, and a baseline
 // one. true: the baseline everywhere (tests compare the two; benchmarks time them).
 void setStrainBaselineOnly(bool baselineOnly);
+// Whether strainFromMotion takes the AVX2 sums now (the CPU has them, not set to the baseline).
+bool strainUsesAvx2();
 } // namespace detail
 
 } // namespace faultline::core

@@ -12,6 +12,14 @@ namespace faultline::core {
 
 namespace {
 
+// The bulk along an axis: from this share of the centres to 1 minus it (strays on one side up to
+// this share, falling grains, stay out of it). Beyond it by more than kMargin times its extent:
+// a stray, if strays are at most kMostStrays of the centres. A uniform block reaches 0.06 of the
+// bulk's extent beyond it, a cone's apex 0.6.
+constexpr double kBulkShare = 0.05;
+constexpr double kMargin = 1.0;
+constexpr double kMostStrays = 0.05;
+
 // Bounds of the finite centres within [limitLo, limitHi] on every axis, and how many finite
 // centres lay outside.
 struct Box {
@@ -83,18 +91,23 @@ Framing framingBounds(const Frame& frame) {
             std::nth_element(sample.begin(), sample.begin() + k, sample.end());
             return double(sample[std::size_t(k)]);
         };
-        const double q1 = at(0.01), q99 = at(0.99);
-        const double margin = 0.5 * (q99 - q1);
-        limitLo[a] = q1 - margin;
-        limitHi[a] = q99 + margin;
+        const double low = at(kBulkShare), high = at(1.0 - kBulkShare);
+        const double margin = kMargin * (high - low);
+        limitLo[a] = low - margin;
+        limitHi[a] = high + margin;
     }
     const Box bulk = boxWithin(frame, limitLo, limitHi);
+    if (bulk.inside == 0)
+        return out;
     const std::size_t finite = bulk.inside + bulk.outside;
-    // No strays, or more than 2 % beyond (a shape: the percentiles leave out 2 % at most): the
-    // centres' bounds, as the frame keeps them.
-    if (bulk.inside == 0 || bulk.outside == 0 || double(bulk.outside) > 0.02 * double(finite)) {
-        for (int a = 0; a < 3; ++a)
-            out.lo[a] = frame.centreMin()[a], out.hi[a] = frame.centreMax()[a];
+    if (bulk.outside == 0) { // no strays: every finite centre
+        out.lo = bulk.lo, out.hi = bulk.hi;
+        return out;
+    }
+    if (double(bulk.outside) > kMostStrays * double(finite)) { // a shape, not strays
+        const double inf = std::numeric_limits<double>::infinity();
+        const Box all = boxWithin(frame, {-inf, -inf, -inf}, {inf, inf, inf});
+        out.lo = all.lo, out.hi = all.hi;
         return out;
     }
     out.lo = bulk.lo, out.hi = bulk.hi;

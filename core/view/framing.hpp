@@ -4,10 +4,10 @@
 // shrink the model to a speck in the middle of the view, and scrubbing while they fly does not
 // zoom out frame after frame.
 //
-// A stray: a centre farther than half the bulk's extent beyond the bulk on some axis, the bulk
-// being the 1st to 99th percentile of the centres along that axis. A model with no such spheres
-// (a packed block, a heap, a cone up to its apex) is framed by all of its centres, exactly as
-// before; so is one whose "strays" would be more than 2 % of it.
+// A stray: a centre farther than the bulk's extent beyond the bulk on some axis, the bulk being
+// the 5th to 95th percentile of the centres along that axis. A model with no such spheres (a
+// packed block, a heap, a cone up to its apex) is framed by all of its finite centres, as before;
+// so is one whose "strays" would be more than 5 % of it.
 #pragma once
 
 #include "core/model/frame.hpp"

@@ -65,7 +65,7 @@ TEST(Framing, AFewFarStraysAreLeftOut) {
 }
 
 // A cone (a heap) up to its apex, and a model a quarter of which slid away: shapes, framed
-// whole.
+// whole (the block's and the slid quarter's centres are all within the bulk and its margin).
 TEST(Framing, ShapesWithTailsAreNotStrays) {
     Frame cone;
     std::mt19937 rng(5);
@@ -90,6 +90,40 @@ TEST(Framing, ShapesWithTailsAreNotStrays) {
     framing = framingBounds(slid);
     EXPECT_EQ(framing.strays, 0u);
     EXPECT_EQ(framing.lo[2], slid.centreMin()[2]);
+}
+
+// Grains falling out on one side, up to 5 % of the model, are left out; more than that is the
+// model's shape, framed whole.
+TEST(Framing, StraysOnOneSideUpToAShare) {
+    for (const double share : {0.03, 0.08}) {
+        Frame f = block(30); // 4,500 spheres
+        const std::size_t fallen = std::size_t(share * double(f.size()));
+        for (std::size_t k = 0; k < fallen; ++k)
+            f.z[k * (f.size() / fallen)] = static_cast<float>(-50.0 - double(k) * 0.1);
+        f.finalize();
+        const Framing framing = framingBounds(f);
+        SCOPED_TRACE(share);
+        if (share < 0.05) {
+            EXPECT_EQ(framing.strays, fallen);
+            EXPECT_GT(framing.lo[2], -1.0);
+        } else {
+            EXPECT_EQ(framing.strays, 0u);
+            EXPECT_EQ(framing.lo[2], f.centreMin()[2]);
+        }
+    }
+}
+
+// An infinite coordinate (a float overflowed on reading) is no centre: the bounds stay finite.
+TEST(Framing, InfiniteCentresAreLeftOut) {
+    Frame f = block(12);
+    f.x[5] = std::numeric_limits<float>::infinity();
+    f.finalize();
+    const Framing framing = framingBounds(f);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_TRUE(std::isfinite(framing.lo[a]));
+        EXPECT_TRUE(std::isfinite(framing.hi[a]));
+    }
+    EXPECT_NEAR(framing.hi[0], 11.0, 0.2);
 }
 
 TEST(Framing, AnEmptyFrameHasNoBounds) {

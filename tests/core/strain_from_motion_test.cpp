@@ -421,31 +421,51 @@ TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
 }
 
 // The AVX2 neighbour sums (used where the CPU has them) and the baseline ones give the same
-// values, up to float rounding, on a non-affine motion in a triclinic box periodic on two axes,
-// with spheres crossing its faces and moving half a cell, a sphere gone and a centre that is no
-// number.
+// values, up to float rounding, on a non-affine motion of about half a cell along every edge of a
+// triclinic cell periodic on all three axes (neighbours' motions straddle half a cell, so both
+// wrap U on every axis with every tilt), with a sphere gone and a centre that is no number.
 TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
-    Frame ref = packing(9, 23);
+    detail::setStrainBaselineOnly(false);
+    if (!detail::strainUsesAvx2())
+        GTEST_SKIP() << "no AVX2 and FMA on this CPU: only the baseline sums run";
+    const double L = 9, xy = 1.5, xz = -1.0, yz = 0.75;
+    Frame ref;
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> jitter(-0.12, 0.12), noise(-0.08, 0.08);
+    for (int k = 0; k < 9; ++k)
+        for (int j = 0; j < 9; ++j)
+            for (int i = 0; i < 9; ++i) {
+                // Fractional (i, j, k) / 9 of a = (L,0,0), b = (xy,L,0), c = (xz,yz,L).
+                const double u = i + jitter(rng), v = j + jitter(rng), w = k + jitter(rng);
+                ref.ids.push_back(static_cast<std::int64_t>(ref.ids.size()) + 1);
+                ref.x.push_back(static_cast<float>(u + v * xy / L + w * xz / L));
+                ref.y.push_back(static_cast<float>(v + w * yz / L));
+                ref.z.push_back(static_cast<float>(w));
+            }
+    ref.radius.assign(ref.ids.size(), 0.5f);
     ref.box.known = true;
     ref.box.triclinic = true;
-    ref.box.lo = {-0.5, -0.5, -0.5};
-    ref.box.hi = {8.5, 8.5, 8.5};
-    ref.box.xy = 0.75;
-    ref.box.periodic = {true, false, true};
+    ref.box.lo = {0, 0, 0};
+    ref.box.hi = {L, L, L};
+    ref.box.xy = xy;
+    ref.box.xz = xz;
+    ref.box.yz = yz;
+    ref.box.periodic = {true, true, true};
     ref.finalize();
-    std::mt19937 rng(41);
-    std::uniform_real_distribution<double> noise(-0.08, 0.08);
-    // Half a cell along x: neighbours' motions straddle it (their difference is wrapped too).
-    Frame now =
-        mapped(ref, affine({{1.05, 0.1, 0}, {0, 0.97, 0}, {0.02, 0, 1.01}}, {4.45, 0, 0.3}));
+    Frame now = ref;
     for (std::size_t i = 0; i < now.size(); ++i) {
-        now.x[i] += static_cast<float>(noise(rng));
-        now.y[i] += static_cast<float>(noise(rng));
-        now.z[i] += static_cast<float>(noise(rng));
-        if (now.x[i] > 8.5f) // back through the opposite face
-            now.x[i] -= 9.0f;
-        if (now.z[i] > 8.5f)
-            now.z[i] -= 9.0f;
+        // A shear and about half a cell along each axis, then back into the cell.
+        double p[3] = {now.x[i] + 4.4 + 0.05 * now.z[i] + noise(rng), now.y[i] + 4.45 + noise(rng),
+                       now.z[i] + 4.5 + noise(rng)};
+        const double nc = std::floor(p[2] / L);
+        p[2] -= nc * L, p[1] -= nc * yz, p[0] -= nc * xz;
+        const double nb = std::floor((p[1] - p[2] * yz / L) / L);
+        p[1] -= nb * L, p[0] -= nb * xy;
+        const double na = std::floor((p[0] - (p[1] - p[2] * yz / L) * xy / L - p[2] * xz / L) / L);
+        p[0] -= na * L;
+        now.x[i] = static_cast<float>(p[0]);
+        now.y[i] = static_cast<float>(p[1]);
+        now.z[i] = static_cast<float>(p[2]);
     }
     now.ids[100] = 100000; // gone from the reference's point of view
     now.y[200] = std::numeric_limits<float>::quiet_NaN();
@@ -468,6 +488,11 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
     EXPECT_GT(finite, 3 * 700);
     EXPECT_TRUE(std::isnan(fast[0].floats[100]));
     EXPECT_TRUE(std::isnan(fast[0].floats[200]));
+    // And both right: a simple shear of 0.05 gives about 0.025 (the noise adds a little); a
+    // neighbour's motion left a cell edge off would give strains of order 1.
+    for (std::size_t i = 0; i < now.size(); ++i)
+        if (i != 100 && i != 200)
+            ASSERT_LT(fast[0].floats[i], 0.2f) << "row " << i;
 }
 
 // Hostile centres and boxes (a reader's checks let finite extremes through): huge and tiny
