@@ -46,6 +46,52 @@ Frame inBox(Frame f, const std::array<double, 3>& hi, const std::array<bool, 3>&
     return f;
 }
 
+// A jittered n^3 packing (spacing 1, ids 1..n^3) in the triclinic cell of edges a = (n,0,0),
+// b = (xy,n,0), c = (xz,yz,n), periodic on every axis.
+Frame triclinicPacking(int n, double xy, double xz, double yz, unsigned seed) {
+    const double L = n;
+    Frame f;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.12, 0.12);
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                // Fractional (i, j, k) / n of the cell's edges.
+                const double u = i + jitter(rng), v = j + jitter(rng), w = k + jitter(rng);
+                f.ids.push_back(static_cast<std::int64_t>(f.ids.size()) + 1);
+                f.x.push_back(static_cast<float>(u + v * xy / L + w * xz / L));
+                f.y.push_back(static_cast<float>(v + w * yz / L));
+                f.z.push_back(static_cast<float>(w));
+            }
+    f.radius.assign(f.ids.size(), 0.5f);
+    f.box.known = true;
+    f.box.triclinic = true;
+    f.box.lo = {0, 0, 0};
+    f.box.hi = {L, L, L};
+    f.box.xy = xy;
+    f.box.xz = xz;
+    f.box.yz = yz;
+    f.box.periodic = {true, true, true};
+    f.finalize();
+    return f;
+}
+
+// Row i of `f` moved by `by`, coming back through the opposite faces of triclinicPacking's cell
+// (shifted by whole cell vectors) when it leaves.
+void moveInCell(Frame& f, std::size_t i, const Vec& by) {
+    const double L = f.box.hi[2] - f.box.lo[2], xy = f.box.xy, xz = f.box.xz, yz = f.box.yz;
+    double p[3] = {f.x[i] + by[0], f.y[i] + by[1], f.z[i] + by[2]};
+    const double nc = std::floor(p[2] / L);
+    p[2] -= nc * L, p[1] -= nc * yz, p[0] -= nc * xz;
+    const double nb = std::floor((p[1] - p[2] * yz / L) / L);
+    p[1] -= nb * L, p[0] -= nb * xy;
+    const double na = std::floor((p[0] - (p[1] - p[2] * yz / L) * xy / L - p[2] * xz / L) / L);
+    p[0] -= na * L;
+    f.x[i] = static_cast<float>(p[0]);
+    f.y[i] = static_cast<float>(p[1]);
+    f.z[i] = static_cast<float>(p[2]);
+}
+
 Frame mapped(const Frame& ref, const Map& map) {
     Frame f;
     f.ids = ref.ids;
@@ -275,46 +321,12 @@ TEST(StrainFromMotion, CrossingTheFaceOfALongPeriodicBoxKeepsThePrecision) {
 
 // A triclinic periodic cell (LAMMPS' tilt factors): spheres wrapped into it by the cell vectors.
 TEST(StrainFromMotion, TriclinicCellsWrapAlongTheirEdges) {
-    const double L = 6, xy = 1.5, xz = -1.0, yz = 0.75;
-    Frame ref;
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> jitter(-0.12, 0.12);
-    std::int64_t id = 1;
-    for (int k = 0; k < 6; ++k)
-        for (int j = 0; j < 6; ++j)
-            for (int i = 0; i < 6; ++i) {
-                // Fractional (i, j, k) / 6 of a = (L,0,0), b = (xy,L,0), c = (xz,yz,L).
-                const double u = i + jitter(rng), v = j + jitter(rng), w = k + jitter(rng);
-                ref.ids.push_back(id++);
-                ref.x.push_back(static_cast<float>(u + v * xy / L + w * xz / L));
-                ref.y.push_back(static_cast<float>(v + w * yz / L));
-                ref.z.push_back(static_cast<float>(w));
-            }
-    ref.radius.assign(ref.ids.size(), 0.5f);
-    ref.box.known = true;
-    ref.box.triclinic = true;
-    ref.box.lo = {0, 0, 0};
-    ref.box.hi = {L, L, L};
-    ref.box.xy = xy;
-    ref.box.xz = xz;
-    ref.box.yz = yz;
-    ref.box.periodic = {true, true, true};
-    ref.finalize();
+    const Frame ref = triclinicPacking(6, 1.5, -1.0, 0.75, 5);
     // Every sphere moves by (0.4, 0.9, -0.7); those leaving the cell come back through the
     // opposite face, shifted by whole cell vectors.
     Frame now = ref;
-    for (std::size_t i = 0; i < now.size(); ++i) {
-        double p[3] = {now.x[i] + 0.4, now.y[i] + 0.9, now.z[i] - 0.7};
-        const double nc = std::floor(p[2] / L);
-        p[2] -= nc * L, p[1] -= nc * yz, p[0] -= nc * xz;
-        const double nb = std::floor((p[1] - p[2] * yz / L) / L);
-        p[1] -= nb * L, p[0] -= nb * xy;
-        const double na = std::floor((p[0] - (p[1] - p[2] * yz / L) * xy / L - p[2] * xz / L) / L);
-        p[0] -= na * L;
-        now.x[i] = static_cast<float>(p[0]);
-        now.y[i] = static_cast<float>(p[1]);
-        now.z[i] = static_cast<float>(p[2]);
-    }
+    for (std::size_t i = 0; i < now.size(); ++i)
+        moveInCell(now, i, {0.4, 0.9, -0.7});
     now.finalize();
     const auto cols = strainFromMotion(now, ref, 1.5);
     const double moved = std::sqrt(0.4 * 0.4 + 0.9 * 0.9 + 0.7 * 0.7);
@@ -428,45 +440,13 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
     detail::setStrainBaselineOnly(false);
     if (!detail::strainUsesAvx2())
         GTEST_SKIP() << "no AVX2 and FMA on this CPU: only the baseline sums run";
-    const double L = 9, xy = 1.5, xz = -1.0, yz = 0.75;
-    Frame ref;
-    std::mt19937 rng(23);
-    std::uniform_real_distribution<double> jitter(-0.12, 0.12), noise(-0.08, 0.08);
-    for (int k = 0; k < 9; ++k)
-        for (int j = 0; j < 9; ++j)
-            for (int i = 0; i < 9; ++i) {
-                // Fractional (i, j, k) / 9 of a = (L,0,0), b = (xy,L,0), c = (xz,yz,L).
-                const double u = i + jitter(rng), v = j + jitter(rng), w = k + jitter(rng);
-                ref.ids.push_back(static_cast<std::int64_t>(ref.ids.size()) + 1);
-                ref.x.push_back(static_cast<float>(u + v * xy / L + w * xz / L));
-                ref.y.push_back(static_cast<float>(v + w * yz / L));
-                ref.z.push_back(static_cast<float>(w));
-            }
-    ref.radius.assign(ref.ids.size(), 0.5f);
-    ref.box.known = true;
-    ref.box.triclinic = true;
-    ref.box.lo = {0, 0, 0};
-    ref.box.hi = {L, L, L};
-    ref.box.xy = xy;
-    ref.box.xz = xz;
-    ref.box.yz = yz;
-    ref.box.periodic = {true, true, true};
-    ref.finalize();
+    const Frame ref = triclinicPacking(9, 1.5, -1.0, 0.75, 23);
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> noise(-0.08, 0.08);
     Frame now = ref;
-    for (std::size_t i = 0; i < now.size(); ++i) {
-        // A shear and about half a cell along each axis, then back into the cell.
-        double p[3] = {now.x[i] + 4.4 + 0.05 * now.z[i] + noise(rng), now.y[i] + 4.45 + noise(rng),
-                       now.z[i] + 4.5 + noise(rng)};
-        const double nc = std::floor(p[2] / L);
-        p[2] -= nc * L, p[1] -= nc * yz, p[0] -= nc * xz;
-        const double nb = std::floor((p[1] - p[2] * yz / L) / L);
-        p[1] -= nb * L, p[0] -= nb * xy;
-        const double na = std::floor((p[0] - (p[1] - p[2] * yz / L) * xy / L - p[2] * xz / L) / L);
-        p[0] -= na * L;
-        now.x[i] = static_cast<float>(p[0]);
-        now.y[i] = static_cast<float>(p[1]);
-        now.z[i] = static_cast<float>(p[2]);
-    }
+    for (std::size_t i = 0; i < now.size(); ++i) // a shear and about half a cell along each axis
+        moveInCell(now, i,
+                   {4.4 + 0.05 * now.z[i] + noise(rng), 4.45 + noise(rng), 4.5 + noise(rng)});
     now.ids[100] = 100000; // gone from the reference's point of view
     now.y[200] = std::numeric_limits<float>::quiet_NaN();
     now.finalize();
@@ -491,8 +471,9 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
     // And both right: a simple shear of 0.05 gives about 0.025 (the noise adds a little); a
     // neighbour's motion left a cell edge off would give strains of order 1.
     for (std::size_t i = 0; i < now.size(); ++i)
-        if (i != 100 && i != 200)
+        if (i != 100 && i != 200) {
             ASSERT_LT(fast[0].floats[i], 0.2f) << "row " << i;
+        }
 }
 
 // Hostile centres and boxes (a reader's checks let finite extremes through): huge and tiny
@@ -514,9 +495,9 @@ TEST(StrainFromMotion, HostileCentresAndBoxesDoNotBreakEitherSums) {
         Frame now = ref;
         for (std::size_t i = 0; i < now.size(); ++i) {
             now.x[i] += static_cast<float>(0.05 * u(rng));
-            if (i % 17 == round % 17)
+            if (i % 17 == std::size_t(round) % 17)
                 now.y[i] = static_cast<float>(1e30 * u(rng));
-            if (i % 23 == round % 23)
+            if (i % 23 == std::size_t(round) % 23)
                 now.z[i] = 1e-40f;
             if (i % 29 == 0)
                 now.ids[i] += 100000; // not in the reference
