@@ -1,5 +1,7 @@
 #include "core/view/framing.hpp"
 
+#include "core/util/quantile.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -86,12 +88,7 @@ Framing framingBounds(const Frame& frame) {
                 sample.push_back((*axes[a])[i]);
         if (sample.empty())
             return out;
-        const auto at = [&](double q) {
-            const auto k = static_cast<std::ptrdiff_t>(q * double(sample.size() - 1));
-            std::nth_element(sample.begin(), sample.begin() + k, sample.end());
-            return double(sample[std::size_t(k)]);
-        };
-        const double low = at(kBulkShare), high = at(1.0 - kBulkShare);
+        const double low = quantile(sample, kBulkShare), high = quantile(sample, 1.0 - kBulkShare);
         const double margin = kMargin * (high - low);
         limitLo[a] = low - margin;
         limitHi[a] = high + margin;

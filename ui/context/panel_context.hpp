@@ -69,6 +69,7 @@ struct ViewDisplay {
     std::size_t shownFrame = 0;
     ModelBounds bounds;     // of the shown frame (centres widened by the largest radius)
     ModelBounds framing;    // what fitting frames: the same without far strays (core/view/framing)
+    bool framed = false;    // `framing` is the shown frame's (worked out when a fit needs it)
     double sceneRadius = 1; // half the bounds' diagonal
     std::shared_ptr<const core::VisibilityResult> visibility;
     std::uint64_t visibilityKey = 0;

@@ -131,7 +131,7 @@ void ViewComposer::update(const Inputs& in) {
             if (auto f = m_frames.request(d.wantedFrame, channel)) {
                 if (f != d.frame) { // bounds once per frame shown, not per UI frame
                     d.bounds = modelBounds(*f);
-                    d.framing = framedBounds(*f);
+                    d.framed = false;
                     const ModelBounds& b = d.bounds;
                     d.sceneRadius = 0.5 * std::sqrt(std::pow(b.hi[0] - b.lo[0], 2) +
                                                     std::pow(b.hi[1] - b.lo[1], 2) +
@@ -155,8 +155,13 @@ void ViewComposer::update(const Inputs& in) {
         // Camera: the session's (with a drag's preview); fitted to the model while unset.
         resolveColors(v, d, channel, in.selection);
         d.camera = cameras[v.name];
-        if (d.camera.distance <= 0 && d.frame)
+        if (d.camera.distance <= 0 && d.frame) {
+            if (!d.framed) { // once per frame, and only for a view being fitted
+                d.framing = framedBounds(*d.frame);
+                d.framed = true;
+            }
             d.camera = in.fit(v, d, d.camera);
+        }
         d.surfaces = m_surfaces.surfacesFor(s, d.shownFrame, d.frame, in.now, d.visibility);
         next.push_back(std::move(d));
         ++channel;
