@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 
 namespace faultline::test {
 
@@ -24,6 +25,17 @@ class PanelTest : public ::testing::Test {
     virtual std::string stateDir() { return {}; } // no journal or autosave unless asked
 
     ui::Workbench& wb() { return *m_wb; }
+    // Clicks `item` of the main view's colour popup, opening the popup first when it is not
+    // open, and runs two frames: what is emitted then is what the click did.
+    void clickInColourPopup(const std::string& item) {
+        if (!headless.has(wb(), item)) {
+            headless.click(wb(), "view.colour.main");
+            headless.frames(wb(), 2);
+        }
+        headless.clearEmitted();
+        headless.click(wb(), item);
+        headless.frames(wb(), 2);
+    }
     // Opens the lattice (3 frames of 64 spheres) the way a user does, in the background.
     void openLattice() {
         wb().opener().openData({writeLattice(dir.file("lattice.dump"))});

@@ -313,9 +313,7 @@ TEST_F(PanelTest, AChangeColouringOffersNoPerFrameRange) {
     headless.click(wb(), "view.colour.main");
     headless.frames(wb(), 2);
     ASSERT_TRUE(headless.has(wb(), "view.range.frame.main"));
-    headless.clearEmitted();
-    headless.click(wb(), "view.range.frame.main");
-    headless.frames(wb(), 2);
+    clickInColourPopup("view.range.frame.main");
     headless.click(wb(), "view.range.all.main"); // already what is shown
     headless.frames(wb(), 2);
     EXPECT_TRUE(headless.emitted("color.set").empty());
@@ -323,13 +321,7 @@ TEST_F(PanelTest, AChangeColouringOffersNoPerFrameRange) {
     session.apply(
         Json::parse(R"({"op":"color.set","view":"main","difference":"none","range_mode":"all"})"));
     headless.settle(wb());
-    if (!headless.has(wb(), "view.range.frame.main")) {
-        headless.click(wb(), "view.colour.main");
-        headless.frames(wb(), 2);
-    }
-    headless.clearEmitted();
-    headless.click(wb(), "view.range.frame.main");
-    headless.frames(wb(), 2);
+    clickInColourPopup("view.range.frame.main");
     ASSERT_EQ(headless.emitted("color.set").size(), 1u);
     EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "frame");
 }
@@ -369,9 +361,7 @@ TEST_F(PanelTest, ThePercentileRangeLeavesTheExtremesOut) {
     headless.click(wb(), "view.colour.main");
     headless.frames(wb(), 2);
     ASSERT_TRUE(headless.has(wb(), "view.range.percentile.main"));
-    headless.clearEmitted();
-    headless.click(wb(), "view.range.percentile.main");
-    headless.frames(wb(), 2);
+    clickInColourPopup("view.range.percentile.main");
     ASSERT_EQ(headless.emitted("color.set").size(), 1u);
     EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "fixed");
     EXPECT_EQ(headless.emitted("color.set")[0]["range"],
@@ -381,13 +371,7 @@ TEST_F(PanelTest, ThePercentileRangeLeavesTheExtremesOut) {
     session.apply(
         Json::parse(R"({"op":"color.set","view":"main","difference":"change","since_frame":0})"));
     headless.settle(wb());
-    if (!headless.has(wb(), "view.range.percentile.main")) {
-        headless.click(wb(), "view.colour.main");
-        headless.frames(wb(), 2);
-    }
-    headless.clearEmitted();
-    headless.click(wb(), "view.range.percentile.main");
-    headless.frames(wb(), 2);
+    clickInColourPopup("view.range.percentile.main");
     EXPECT_TRUE(headless.emitted("color.set").empty());
 }
 
