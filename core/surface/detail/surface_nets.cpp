@@ -49,6 +49,12 @@ constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
                                {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
 constexpr int kCornerOffset[8] = {0, kPad* kPad,     kPad,     kPad* kPad + kPad,
                                   1, kPad* kPad + 1, kPad + 1, kPad* kPad + kPad + 1};
+// Each corner's offset among a leaf's 8^3 voxels from the cell's lowest corner.
+constexpr int kCornerLeafOffset[8] = {0, 64, 8, 72, 1, 65, 9, 73};
+// Which leaves a cell's corners and their central differences (padded voxels [c, c + 3] along
+// an axis, for cell index c) reach: 0, the one below as well; 2, the one above as well; 1, this
+// leaf only.
+inline int aroundCode(int c) { return c < kMargin ? 0 : c + 3 >= kMargin + 8 ? 2 : 1; }
 constexpr int kEdge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
                               {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
 
@@ -167,9 +173,21 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                 colorData[q] = nc[q] ? nc[q]->buffer().data() : nullptr;
                 full[q] = nd[q] && nd[q]->getValueMask().isOn();
             }
-            // Every voxel of the padded block stored (no tile next to the leaf): the corner
-            // loops below need not ask.
-            const bool allStored = std::all_of(full, full + 27, [](bool f) { return f; });
+            // Per cell, whether every voxel its corners and their central differences read (a
+            // 4^3 block of padded voxels from the cell's index) is stored, so that the corner
+            // loops below need not ask: whether the leaves that block touches are full. Indexed
+            // by aroundCode() of the cell's index along each axis.
+            bool storedAround[3][3][3];
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    for (int c = 0; c < 3; ++c) {
+                        bool all = true;
+                        for (int si = std::min(a, 1); si <= std::max(a, 1); ++si)
+                            for (int sj = std::min(b, 1); sj <= std::max(b, 1); ++sj)
+                                for (int sk = std::min(c, 1); sk <= std::max(c, 1); ++sk)
+                                    all = all && full[neighbourIndex(si, sj, sk)];
+                        storedAround[a][b][c] = all;
+                    }
             // Rows along z: kMargin voxels of the leaf below, 8 of the same leaf, kMargin of
             // the one above, each part copied with its size known here (no memcpy calls).
             auto part = [&]<int Count>(int s, int off, float* out, bool* on) {
@@ -296,7 +314,13 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         // whose value stands in for the field and is not it).
                         openvdb::Vec3s colorSum(0.0f), gradientSum(0.0f);
                         float weight = 0.0f;
-                        auto corners = [&]<bool AllStored>() {
+                        // AllStored: every voxel the corners and their differences read is
+                        // stored; InLeaf: the corners lie in this leaf.
+                        auto corners = [&]<bool AllStored, bool InLeaf>() {
+                            const openvdb::Vec3s* own = InLeaf && colorData[neighbourIndex(1, 1, 1)]
+                                                            ? colorData[neighbourIndex(1, 1, 1)] +
+                                                                  leafOffset(ci - 1, cj - 1, ck - 1)
+                                                            : nullptr;
                             for (int c = 0; c < 8; ++c) {
                                 const int p[3] = {ci + kMargin - 1 + kCorner[c][0],
                                                   cj + kMargin - 1 + kCorner[c][1],
@@ -304,15 +328,20 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 const int at = padOffset(p[0], p[1], p[2]);
                                 if (!AllStored && !stored[at])
                                     continue;
-                                const int s =
-                                    neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
                                 float wgt = 1.0f;
                                 for (int k = 0; k < 3; ++k)
                                     wgt *= kCorner[c][k] ? t[k] : 1.0f - t[k];
-                                if (colorData[s])
-                                    colorSum +=
-                                        wgt * colorData[s][leafOffset(localOf(p[0]), localOf(p[1]),
-                                                                      localOf(p[2]))];
+                                if constexpr (InLeaf) {
+                                    if (own)
+                                        colorSum += wgt * own[kCornerLeafOffset[c]];
+                                } else {
+                                    const int s =
+                                        neighbourIndex(sideOf(p[0]), sideOf(p[1]), sideOf(p[2]));
+                                    if (colorData[s])
+                                        colorSum +=
+                                            wgt * colorData[s][leafOffset(
+                                                      localOf(p[0]), localOf(p[1]), localOf(p[2]))];
+                                }
                                 if (normals) {
                                     // In value per voxel: only the direction is kept (normals).
                                     for (int a = 0; a < 3; ++a) {
@@ -328,10 +357,12 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                                 weight += wgt;
                             }
                         };
-                        if (allStored)
-                            corners.template operator()<true>();
+                        if (!storedAround[aroundCode(ci)][aroundCode(cj)][aroundCode(ck)])
+                            corners.template operator()<false, false>();
+                        else if (ci >= 1 && ci <= 7 && cj >= 1 && cj <= 7 && ck >= 1 && ck <= 7)
+                            corners.template operator()<true, true>();
                         else
-                            corners.template operator()<false>();
+                            corners.template operator()<true, false>();
                         const openvdb::Vec3s rgb = weight > 0.0f ? colorSum / weight : background;
                         w.cells[cell] = static_cast<CellEntry>(w.positions.size());
                         w.positions.push_back({(float(origin.x() - 1 + ci) + t[0]) * h,
