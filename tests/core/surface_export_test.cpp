@@ -1,5 +1,6 @@
 // Surface exports read back: .vdb through OpenVDB's own reader, .glb through tinygltf.
 #include "core/session/fault_surface_request.hpp"
+#include "core/surface/detail/vdb_grids.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/surface_export.hpp"
 
@@ -8,9 +9,11 @@
 #include <openvdb/openvdb.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 namespace fc = faultline::core;
 
@@ -187,4 +190,90 @@ TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
     ASSERT_GE(model.nodes.size(), 1u);
     EXPECT_EQ(model.nodes[0].name, "F1");
     std::filesystem::remove(path);
+}
+
+// The mesh against the grids it was built from (the same grids export.vdb writes): each vertex's
+// colour is the trilinear mean of its cell's stored corners' colours, and its normal comes from
+// their central differences (one-sided beside a tile). Spheres scattered so that many leaves sit
+// next to tiles, where the mesher reads the neighbourhood of each cell, voxel by voxel.
+TEST(SurfaceGrids, VertexColoursAndNormalsComeFromTheStoredCorners) {
+    Spheres s;
+    s.x.clear(), s.y.clear(), s.z.clear(), s.r.clear(), s.rgb.clear();
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> at(0.0f, 5.0f), radius(0.3f, 0.6f), unit(0.0f, 1.0f);
+    for (int n = 0; n < 50; ++n) {
+        s.x.push_back(at(random));
+        s.y.push_back(at(random) * 0.4f);
+        s.z.push_back(at(random));
+        s.r.push_back(radius(random));
+        s.rgb.insert(s.rgb.end(), {unit(random), unit(random), unit(random)});
+    }
+    fc::SurfaceParams params;
+    params.iso = 10.0f;
+    params.voxelSize = 0.09f;
+    const auto built = fc::buildSurface(s.set(), params);
+    const auto& grids = built.field->impl();
+    const float h = built.field->voxelSize();
+    auto density = grids.density->getConstAccessor();
+    auto color = grids.color->getConstAccessor();
+    const auto& mesh = built.mesh;
+    ASSERT_GT(mesh.positions.size(), 2000u);
+    std::size_t checked = 0, besideTiles = 0;
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const auto& p = mesh.positions[v];
+        openvdb::Coord cell;
+        float t[3];
+        bool onFace = false;
+        for (int k = 0; k < 3; ++k) {
+            const float u = p[k] / h;
+            cell[k] = int(std::floor(u));
+            t[k] = u - float(cell[k]);
+            onFace = onFace || t[k] < 1e-3f || t[k] > 1.0f - 1e-3f; // which cell: ambiguous
+        }
+        if (onFace)
+            continue;
+        openvdb::Vec3d rgb(0.0), gradient(0.0);
+        double weight = 0.0;
+        bool tileNear = false;
+        for (int c = 0; c < 8; ++c) {
+            const openvdb::Coord corner = cell.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            if (!density.isValueOn(corner)) {
+                tileNear = true;
+                continue;
+            }
+            const double w = ((c & 1) ? t[0] : 1 - t[0]) * (((c >> 1) & 1) ? t[1] : 1 - t[1]) *
+                             (((c >> 2) & 1) ? t[2] : 1 - t[2]);
+            rgb += w * openvdb::Vec3d(color.getValue(corner));
+            for (int a = 0; a < 3; ++a) {
+                openvdb::Coord up = corner, down = corner;
+                up[a] += 1, down[a] -= 1;
+                const bool hasUp = density.isValueOn(up), hasDown = density.isValueOn(down);
+                tileNear = tileNear || !hasUp || !hasDown;
+                const double here = density.getValue(corner);
+                gradient[a] +=
+                    w * (hasUp && hasDown ? 0.5 * (density.getValue(up) - density.getValue(down))
+                         : hasUp          ? density.getValue(up) - here
+                         : hasDown        ? here - density.getValue(down)
+                                          : 0.0);
+            }
+            weight += w;
+        }
+        if (weight <= 1e-3)
+            continue;
+        rgb /= weight;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(mesh.colors[v][k], std::clamp(rgb[k], 0.0, 1.0), 2e-3)
+                << "vertex " << v << " channel " << k;
+        if (gradient.length() > 1e-3 * built.iso) {
+            const openvdb::Vec3d n = -gradient / gradient.length();
+            const auto& m = mesh.normals[v];
+            EXPECT_GT(n[0] * m[0] + n[1] * m[1] + n[2] * m[2], 0.9999) << "vertex " << v;
+        }
+        ++checked;
+        besideTiles += tileNear;
+    }
+    EXPECT_GT(checked, mesh.positions.size() / 2);
+    // Both kinds of cells were looked at: whole neighbourhoods and ones beside tiles.
+    EXPECT_GT(besideTiles, 100u);
+    EXPECT_GT(checked - besideTiles, 1000u);
 }
