@@ -197,8 +197,7 @@ TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
 // their central differences (one-sided beside a tile). Spheres scattered so that many leaves sit
 // next to tiles, where the mesher reads the neighbourhood of each cell, voxel by voxel.
 TEST(SurfaceGrids, VertexColoursAndNormalsComeFromTheStoredCorners) {
-    Spheres s;
-    s.x.clear(), s.y.clear(), s.z.clear(), s.r.clear(), s.rgb.clear();
+    Spheres s{{}, {}, {}, {}, {}};
     std::mt19937 random(11);
     std::uniform_real_distribution<float> at(0.0f, 5.0f), radius(0.3f, 0.6f), unit(0.0f, 1.0f);
     for (int n = 0; n < 50; ++n) {

@@ -317,10 +317,10 @@ void surfaceNets(const openvdb::FloatGrid& density, const openvdb::Vec3SGrid& co
                         // AllStored: every voxel the corners and their differences read is
                         // stored; InLeaf: the corners lie in this leaf.
                         auto corners = [&]<bool AllStored, bool InLeaf>() {
-                            const openvdb::Vec3s* own = InLeaf && colorData[neighbourIndex(1, 1, 1)]
-                                                            ? colorData[neighbourIndex(1, 1, 1)] +
-                                                                  leafOffset(ci - 1, cj - 1, ck - 1)
-                                                            : nullptr;
+                            const openvdb::Vec3s* leaf = colorData[neighbourIndex(1, 1, 1)];
+                            const openvdb::Vec3s* own =
+                                InLeaf && leaf ? leaf + leafOffset(ci - 1, cj - 1, ck - 1)
+                                               : nullptr;
                             for (int c = 0; c < 8; ++c) {
                                 const int p[3] = {ci + kMargin - 1 + kCorner[c][0],
                                                   cj + kMargin - 1 + kCorner[c][1],
