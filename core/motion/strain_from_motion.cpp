@@ -14,6 +14,7 @@
 #include "core/model/periodic_cell.hpp"
 #include "core/motion/strain_spec.hpp"
 #include "core/util/mat3.hpp"
+#include "core/util/scratch_array.hpp"
 #include "core/util/simd8.hpp"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -26,6 +27,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
@@ -153,7 +155,7 @@ class NeighbourCells {
         }
         for (int a = 0; a < 3; ++a)
             m_lo[a] = lo[a];
-        std::vector<std::uint32_t> cellOf(count);
+        auto cellOf = makeScratchArray<std::uint32_t>(count);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t k = r.begin(); k != r.end(); ++k)
@@ -163,14 +165,14 @@ class NeighbourCells {
                           });
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
         m_start.assign(cells + 1, 0);
-        for (std::uint32_t c : cellOf)
-            ++m_start[c + 1];
+        for (std::size_t k = 0; k < count; ++k)
+            ++m_start[cellOf[k] + 1];
         for (std::size_t c = 0; c < cells; ++c)
             m_start[c + 1] += m_start[c];
         // Each point's slot in cell order (in turn: the order within a cell is the points'),
         // then the points written to their slots in parallel.
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
-        std::vector<std::uint32_t>& slot = cellOf; // cellOf[k] read once, then k's slot
+        ScratchArray<std::uint32_t>& slot = cellOf; // cellOf[k] read once, then k's slot
         for (std::size_t k = 0; k < count; ++k)
             slot[k] = fill[slot[k]]++;
         // Reference positions as float arrays and whole points (reference and motion) in cell
@@ -178,22 +180,24 @@ class NeighbourCells {
         // of these ~30 bytes a point cost as much as filling them).
         // Eight more, infinitely far: the AVX2 sums read whole vectors past a run's end.
         for (auto* v : {&m_x, &m_y, &m_z}) {
-            v->reset(new float[count + 8]);
+            *v = makeScratchArray<float>(count + 8);
             std::fill(v->get() + count, v->get() + count + 8, kFar);
         }
-        m_points.reset(new float[8 * count]);
-        m_owner.reset(new std::uint32_t[count]);
+        m_points = makeScratchArray<float>(8 * count);
+        m_owner = makeScratchArray<std::uint32_t>(count);
         m_count = count;
-        m_slotOfNow.reset(new std::uint32_t[now.size()]);
+        m_slotOfNow = makeScratchArray<std::uint32_t>(now.size());
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 65536),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               std::fill(m_slotOfNow.get() + r.begin(), m_slotOfNow.get() + r.end(),
                                         kNone);
                           });
+        std::atomic<std::uint32_t> widest[3] = {0, 0, 0}; // float bits: >= 0 orders as floats
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, count, 16384),
             [&](const tbb::blocked_range<std::size_t>& r) {
                 const double noShift[3] = {0, 0, 0};
+                float wide[3] = {0, 0, 0}; // NaN (gone) leaves it
                 for (std::size_t k = r.begin(); k != r.end(); ++k) {
                     // The current frame's rows and the slots come in no order.
                     if (const std::size_t a = k + 16; a < std::min(r.end(), n)) {
@@ -220,8 +224,22 @@ class NeighbourCells {
                     m_owner[at] = p.owner;
                     if (k < n && nowRowOf[k] != kNone)
                         m_slotOfNow[nowRowOf[k]] = at;
+                    wide[0] = std::max(wide[0], std::fabs(p.wx));
+                    wide[1] = std::max(wide[1], std::fabs(p.wy));
+                    wide[2] = std::max(wide[2], std::fabs(p.wz));
+                }
+                for (int a = 0; a < 3; ++a) {
+                    std::uint32_t bits;
+                    std::memcpy(&bits, &wide[a], sizeof bits);
+                    std::uint32_t seen = widest[a].load();
+                    while (bits > seen && !widest[a].compare_exchange_weak(seen, bits)) {
+                    }
                 }
             });
+        for (int a = 0; a < 3; ++a) {
+            const std::uint32_t bits = widest[a].load();
+            std::memcpy(&m_widestMotion[a], &bits, sizeof bits);
+        }
     }
 
     std::size_t cellCount() const { return m_start.size() - 1; }
@@ -238,6 +256,8 @@ class NeighbourCells {
     // Each point as eight floats: reference x, y, z, motion wx, wy, wz (NaN: gone), 0, 0.
     const float* points() const { return m_points.get(); }
     const float* point(std::size_t k) const { return m_points.get() + 8 * k; }
+    // The largest |motion| on each axis (of the points whose motion is a number).
+    const float* widestMotion() const { return m_widestMotion; }
 
     // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
     // three cells that lie next to each other in memory).
@@ -294,9 +314,10 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::size_t m_count = 0;
-    std::unique_ptr<std::uint32_t[]> m_owner, m_slotOfNow;
-    std::unique_ptr<float[]> m_x, m_y, m_z, m_points;
+    ScratchArray<std::uint32_t> m_owner, m_slotOfNow;
+    ScratchArray<float> m_x, m_y, m_z, m_points;
     PeriodicCell m_nowCell;
+    float m_widestMotion[3] = {0, 0, 0};
 };
 
 // The axis every centre of `f` shares (2-D data), or -1.
@@ -331,7 +352,6 @@ struct NeighbourSums {
 // edge). The AVX2 sums read the cells in place and keep only the indices of the near ones.
 struct Candidates {
     std::vector<float> x, y, z, wx, wy, wz;
-    std::vector<std::uint32_t> near;
     std::size_t size = 0;
     void gather(const NeighbourCells& cells, std::size_t cell) {
         size = 0;
@@ -480,34 +500,95 @@ struct Runs {
     int count = 0;
 };
 
-template <bool Wrap>
-FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, const Runs& runs,
-                                      const float* self, float cutoff2, const CellF& cell,
-                                      std::uint32_t* near, NeighbourSums& out) {
-    const __m256 px = _mm256_set1_ps(self[0]), py = _mm256_set1_ps(self[1]),
-                 pz = _mm256_set1_ps(self[2]), c2 = _mm256_set1_ps(cutoff2);
-    // Locals: the stores to `near` could otherwise alias the arrays' pointers.
-    const float *cx = cells.xs(), *cy = cells.ys(), *cz = cells.zs(), *cp = cells.points();
+// The points of the runs around a cell that lie within the cutoff of the box around the cell's
+// spheres (every neighbour of each of them does), packed in their order: reference x, y, z and
+// the point's slot. A sphere's own pass then tests about half the points, with no runs' ends.
+struct Packed {
+    std::vector<float> x, y, z;
+    std::vector<std::uint32_t> slot, near;
+    std::size_t size = 0;
+    void reserve(std::size_t total) {
+        if (x.size() < total + 8)
+            for (auto* v : {&x, &y, &z})
+                v->resize(2 * total + 8);
+        if (slot.size() < total + 8) {
+            slot.resize(2 * total + 8);
+            near.resize(2 * total + 8);
+        }
+    }
+};
+
+// Box distance per axis as the spheres' own test forms it (a - b, squared by multiply-adds in
+// the same order): every rounding is monotonic, so a point within the cutoff of a sphere is
+// within it of the box around the spheres in float too.
+FAULTLINE_AVX2 void packCandidates(const NeighbourCells& cells, const Runs& runs, const float* lo,
+                                   const float* hi, float cutoff2, Packed& out) {
+    const __m256 lx = _mm256_set1_ps(lo[0]), ly = _mm256_set1_ps(lo[1]), lz = _mm256_set1_ps(lo[2]);
+    const __m256 hx = _mm256_set1_ps(hi[0]), hy = _mm256_set1_ps(hi[1]), hz = _mm256_set1_ps(hi[2]);
+    const __m256 c2 = _mm256_set1_ps(cutoff2), zero = _mm256_setzero_ps();
+    const float *cx = cells.xs(), *cy = cells.ys(), *cz = cells.zs();
+    float *ox = out.x.data(), *oy = out.y.data(), *oz = out.z.data();
+    std::uint32_t* os = out.slot.data();
     std::size_t n = 0;
     for (int r = 0; r < runs.count; ++r) {
         const std::size_t last = runs.last[r];
         for (std::size_t k = runs.first[r]; k < last; k += 8) {
-            const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(cx + k), px);
-            const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(cy + k), py);
-            const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(cz + k), pz);
+            const __m256 x = _mm256_loadu_ps(cx + k), y = _mm256_loadu_ps(cy + k),
+                         z = _mm256_loadu_ps(cz + k);
+            // Distance beyond the box on each axis (0 inside); infinite for a sphere gone.
+            const __m256 dx =
+                _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(lx, x), _mm256_sub_ps(x, hx)), zero);
+            const __m256 dy =
+                _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(ly, y), _mm256_sub_ps(y, hy)), zero);
+            const __m256 dz =
+                _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(lz, z), _mm256_sub_ps(z, hz)), zero);
             const __m256 d2 =
                 _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-            // Lanes past the run's end are the next cells' points: left out.
             const std::size_t left = last - k;
             const unsigned mask =
                 static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, c2, _CMP_LE_OQ))) &
                 (left >= 8 ? 0xffu : (1u << left) - 1u);
             const __m256i lanes =
                 _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneTable.lanes[mask]));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(near + n),
+            _mm256_storeu_ps(ox + n, _mm256_permutevar8x32_ps(x, lanes));
+            _mm256_storeu_ps(oy + n, _mm256_permutevar8x32_ps(y, lanes));
+            _mm256_storeu_ps(oz + n, _mm256_permutevar8x32_ps(z, lanes));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(os + n),
                                 _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
             n += static_cast<std::size_t>(__builtin_popcount(mask));
         }
+    }
+    out.size = n;
+}
+
+template <bool Wrap>
+FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packed,
+                                      const float* self, float cutoff2, const CellF& cell,
+                                      NeighbourSums& out) {
+    const __m256 px = _mm256_set1_ps(self[0]), py = _mm256_set1_ps(self[1]),
+                 pz = _mm256_set1_ps(self[2]), c2 = _mm256_set1_ps(cutoff2);
+    // Locals: the stores to `near` could otherwise alias the arrays' pointers.
+    const float *cx = packed.x.data(), *cy = packed.y.data(), *cz = packed.z.data();
+    const std::uint32_t* slots = packed.slot.data();
+    std::uint32_t* near = packed.near.data();
+    const float* cp = cells.points();
+    const std::size_t last = packed.size;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < last; k += 8) {
+        const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(cx + k), px);
+        const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(cy + k), py);
+        const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(cz + k), pz);
+        const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+        // Lanes past the end hold what an earlier cell packed: left out.
+        const std::size_t left = last - k;
+        const unsigned mask =
+            static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, c2, _CMP_LE_OQ))) &
+            (left >= 8 ? 0xffu : (1u << left) - 1u);
+        const __m256i lanes =
+            _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneTable.lanes[mask]));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(near + n),
+                            _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
+        n += static_cast<std::size_t>(__builtin_popcount(mask));
     }
     const __m256 me = _mm256_loadu_ps(self);
     // The minimum image of U, as the baseline takes it (z first, then y, then x; lanes 3-5).
@@ -523,7 +604,7 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, const Runs& r
     __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx, su = sx;
     for (std::size_t t = 0; t < n; ++t) {
         const std::size_t j = near[t];
-        __m256 d = _mm256_sub_ps(_mm256_loadu_ps(cp + 8 * j), me);
+        __m256 d = _mm256_sub_ps(_mm256_loadu_ps(cp + 8 * std::size_t(slots[j])), me);
         if constexpr (Wrap) {
             if (wrapZ)
                 d = _mm256_fnmadd_ps(
@@ -560,8 +641,7 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, const Runs& r
 
 FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, std::size_t cell,
                                  const std::uint32_t* selves, std::size_t count, float cutoff2,
-                                 const CellF& now, bool wrap, Candidates& candidates,
-                                 NeighbourSums* out) {
+                                 const CellF& now, bool wrap, Packed& packed, NeighbourSums* out) {
     Runs runs;
     std::size_t total = 0;
     cells.around(cell, [&](std::size_t first, std::size_t last) {
@@ -569,16 +649,22 @@ FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, std::size_t cell,
         runs.last[runs.count++] = last;
         total += last - first;
     });
-    if (candidates.near.size() < total + 8)
-        candidates.near.resize(2 * total + 8);
+    packed.reserve(total);
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+        lo[a] = hi[a] = cells.point(selves[0])[a];
+    for (std::size_t s = 1; s < count; ++s) {
+        const float* p = cells.point(selves[s]);
+        for (int a = 0; a < 3; ++a)
+            lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    }
+    packCandidates(cells, runs, lo, hi, cutoff2, packed);
     for (std::size_t s = 0; s < count; ++s) {
         const float* sphere = cells.point(selves[s]);
         if (wrap)
-            sumNeighboursAvx2<true>(cells, runs, sphere, cutoff2, now, candidates.near.data(),
-                                    out[s]);
+            sumNeighboursAvx2<true>(cells, packed, sphere, cutoff2, now, out[s]);
         else
-            sumNeighboursAvx2<false>(cells, runs, sphere, cutoff2, now, candidates.near.data(),
-                                     out[s]);
+            sumNeighboursAvx2<false>(cells, packed, sphere, cutoff2, now, out[s]);
     }
 }
 #endif
@@ -672,17 +758,88 @@ template <int dim> StrainValues solve(const NeighbourSums& s, const int* axes) {
     return out;
 }
 
+#if FAULTLINE_STRAIN_AVX2
+// solve<3> for four spheres at once, one per lane of AVX2 doubles: the same operations in the
+// same order (sums start from zero as its loops do; no multiply-adds are fused in ISO C++
+// mode), so the same values to the last bit, whichever of the two solves a sphere.
+FAULTLINE_AVX2 void solve3x4(const NeighbourSums* s, StrainValues* out) {
+    typedef double v4d __attribute__((vector_size(32)));
+    auto lanes = [&](auto get) { return v4d{get(s[0]), get(s[1]), get(s[2]), get(s[3])}; };
+    v4d V[3][3], A[3][3], uu[3];
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            V[i][j] = lanes([&](const NeighbourSums& n) { return n.V[i][j]; });
+            A[i][j] = lanes([&](const NeighbourSums& n) { return n.A[i][j]; });
+        }
+        uu[i] = lanes([&](const NeighbourSums& n) { return n.uu[i]; });
+    }
+    const v4d count = lanes([](const NeighbourSums& n) { return double(n.count); });
+    const v4d c00 = V[1][1] * V[2][2] - V[1][2] * V[2][1];
+    const v4d c01 = V[0][2] * V[2][1] - V[0][1] * V[2][2];
+    const v4d c02 = V[0][1] * V[1][2] - V[0][2] * V[1][1];
+    // invert3's expansion along the first row (V is symmetric: the same products).
+    const v4d det = V[0][0] * c00 + V[1][0] * c01 + V[2][0] * c02;
+    const v4d scale = (V[0][0] + V[1][1] + V[2][2]) / 3.0;
+    const v4d k = 1.0 / det;
+    v4d inv[3][3];
+    inv[0][0] = c00 * k;
+    inv[0][1] = c01 * k;
+    inv[0][2] = c02 * k;
+    inv[1][0] = (V[1][2] * V[2][0] - V[1][0] * V[2][2]) * k;
+    inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) * k;
+    inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) * k;
+    inv[2][0] = (V[1][0] * V[2][1] - V[1][1] * V[2][0]) * k;
+    inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) * k;
+    inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) * k;
+    v4d G[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            G[i][j] = v4d{} + A[i][0] * inv[0][j] + A[i][1] * inv[1][j] + A[i][2] * inv[2][j];
+    v4d E[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            E[i][j] = 0.5 * (G[i][j] + G[j][i] +
+                             (v4d{} + G[0][i] * G[0][j] + G[1][i] * G[1][j] + G[2][i] * G[2][j]));
+    v4d ga = v4d{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            ga += G[i][j] * A[i][j];
+    const v4d residual = (v4d{} + uu[0] + uu[1] + uu[2]) - ga;
+    const v4d dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
+    const v4d shear2 = E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
+                       (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0;
+    alignas(32) double sh[4], vo[4], d2[4], dt[4], sc[4], ct[4];
+    _mm256_store_pd(sh, _mm256_sqrt_pd(shear2));
+    _mm256_store_pd(vo, (E[0][0] + E[1][1] + E[2][2]) / 3.0);
+    _mm256_store_pd(d2, residual);
+    _mm256_store_pd(dt, det);
+    _mm256_store_pd(sc, scale);
+    _mm256_store_pd(ct, count);
+    for (int l = 0; l < 4; ++l) {
+        // As solve<3>: too few neighbours or a nearly singular sum (or NaN): no value.
+        if (ct[l] < 3 || !(std::fabs(dt[l]) > 1e-9 * sc[l] * sc[l] * sc[l])) {
+            out[l] = StrainValues{};
+            continue;
+        }
+        out[l].shear = static_cast<float>(sh[l]);
+        out[l].volumetric = static_cast<float>(vo[l]);
+        out[l].d2min = static_cast<float>(d2[l] < 0 ? 0.0 : d2[l]);
+    }
+}
+#endif
+
 //-----------------------------------------------------------------------------
 // [SECTION] The columns
 //-----------------------------------------------------------------------------
 
 std::vector<AttributeColumn> namedColumns(std::size_t rows, const std::string& prefix) {
     std::vector<AttributeColumn> cols(kStrainVariables.size());
-    for (std::size_t k = 0; k < cols.size(); ++k) {
+    // In parallel: filling the columns is their first touch (page faults, a millisecond each).
+    tbb::parallel_for(std::size_t{0}, cols.size(), [&](std::size_t k) {
         cols[k].name = prefix + std::string(kStrainVariables[k]);
         cols[k].type = ColumnType::Float32;
         cols[k].floats.assign(rows, kNaN);
-    }
+    });
     return cols;
 }
 
@@ -772,88 +929,142 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     // At most the largest float: the padding lanes (infinitely far) must stay out of reach.
     const float cutoff2 =
         static_cast<float>(std::min(cutoff * cutoff, double(std::numeric_limits<float>::max())));
-    float* shear = cols[0].floats.data();
-    float* volumetric = cols[1].floats.data();
-    float* d2min = cols[2].floats.data();
-    float* displacement = cols[3].floats.data();
-    float* refX = cols[4].floats.data();
-    float* refY = cols[5].floats.data();
-    float* refZ = cols[6].floats.data();
+    static_assert(kStrainVariables.size() == 7);
+    float* const columns[7] = {cols[0].floats.data(), cols[1].floats.data(), cols[2].floats.data(),
+                               cols[3].floats.data(), cols[4].floats.data(), cols[5].floats.data(),
+                               cols[6].floats.data()};
     const CellF nowCellF(nowCell);
+    // U, the difference of two motions, is its own minimum image where no motion reaches an
+    // eighth of the cell on a periodic axis (as in most increments): the sums skip the wrap.
+    bool wrap = false;
+    for (int a = 0; a < 3; ++a)
+        wrap = wrap || (nowCellF.periodic[a] &&
+                        !(double(cells.widestMotion()[a]) * nowCellF.inv[a] <= 0.125));
     // Cell by cell: the points around a cell gathered once for all the spheres in it. The values
     // are kept in cell order, as the cells are summed, and taken to the current frame's rows
     // after: one read per row rather than seven writes scattered over the columns.
-    struct SlotValues { // written for every slot of a sphere (not an image)
+    // Each sphere's values and motion, by slot (images' slots are neither written nor read):
+    // the current rows read one record each.
+    struct alignas(32) SlotValues {
         float shear, volumetric, d2min;
+        float w[3];
     };
-    // One per point of the cell list (images' slots are neither written nor read).
-    std::unique_ptr<SlotValues[]> values(new SlotValues[cells.pointCount()]);
+    auto values = makeScratchArray<SlotValues>(cells.pointCount());
     const bool avx2 = useAvx2();
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
             Candidates candidates;
+#if FAULTLINE_STRAIN_AVX2
+            Packed packed;
+#endif
+            // The spheres summed and not yet solved, solved four at a time across cells.
             std::vector<std::uint32_t> selves;
             std::vector<NeighbourSums> sums;
+            auto store = [&](std::size_t k, const StrainValues& v) {
+                const float* q = cells.point(k);
+                values[k] = {v.shear, v.volumetric, v.d2min, {q[3], q[4], q[5]}};
+            };
+            auto solveSummed = [&](bool all) {
+                std::size_t s = 0;
+#if FAULTLINE_STRAIN_AVX2
+                if (avx2 && dim == 3)
+                    for (; s + 4 <= selves.size(); s += 4) {
+                        StrainValues v[4];
+                        solve3x4(sums.data() + s, v);
+                        for (int l = 0; l < 4; ++l)
+                            store(selves[s + l], v[l]);
+                    }
+#endif
+                if (all)
+                    for (; s < selves.size(); ++s)
+                        store(selves[s],
+                              dim == 3 ? solve<3>(sums[s], axes) : solve<2>(sums[s], axes));
+                selves.erase(selves.begin(), selves.begin() + std::ptrdiff_t(s));
+                sums.erase(sums.begin(), sums.begin() + std::ptrdiff_t(s));
+            };
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
-                selves.clear();
+                const std::size_t first = selves.size();
                 for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
                     if (cells.owner(self) & kImage)
                         continue;
                     if (std::isnan(cells.point(self)[3])) // gone, or a centre that is no number
-                        values[self] = {kNaN, kNaN, kNaN};
+                        store(self, StrainValues{});
                     else
                         selves.push_back(static_cast<std::uint32_t>(self));
                 }
-                if (selves.empty())
+                const std::size_t count = selves.size() - first;
+                if (count == 0)
                     continue;
-                sums.resize(selves.size()); // each one written whole by cellSums
+                sums.resize(selves.size()); // each new one written whole by cellSums
 #if FAULTLINE_STRAIN_AVX2
                 if (avx2)
-                    cellSumsAvx2(cells, cell, selves.data(), selves.size(), cutoff2, nowCellF,
-                                 nowCell.any, candidates, sums.data());
+                    cellSumsAvx2(cells, cell, selves.data() + first, count, cutoff2, nowCellF, wrap,
+                                 packed, sums.data() + first);
                 else
 #endif
-                    cellSumsBaseline(cells, cell, selves.data(), selves.size(), cutoff2, nowCellF,
-                                     nowCell.any, candidates, sums.data());
-                for (std::size_t s = 0; s < selves.size(); ++s) {
-                    const std::size_t k = selves[s];
-                    const StrainValues v =
-                        dim == 3 ? solve<3>(sums[s], axes) : solve<2>(sums[s], axes);
-                    values[k] = {v.shear, v.volumetric, v.d2min};
-                }
+                    cellSumsBaseline(cells, cell, selves.data() + first, count, cutoff2, nowCellF,
+                                     wrap, candidates, sums.data() + first);
+                if (selves.size() >= 64)
+                    solveSummed(false);
             }
+            solveSummed(true);
         });
     // Each current row's values and motion from its slot (prefetched: the slots come in no
-    // order).
+    // order), and each column's range on the way (as cacheColumnRange gives it).
     const std::uint32_t* slotOfNow = cells.slotOfNow();
-    const float* points = cells.points();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 16384),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                              if (i + 16 < range.end() && slotOfNow[i + 16] != kNone) {
-                                  const std::uint32_t ahead = slotOfNow[i + 16];
-                                  __builtin_prefetch(&values[ahead]);
-                                  __builtin_prefetch(points + 8 * std::size_t(ahead));
-                              }
-                              const std::uint32_t k = slotOfNow[i];
-                              if (k == kNone)
-                                  continue;
-                              const SlotValues& v = values[k];
-                              shear[i] = v.shear;
-                              volumetric[i] = v.volumetric;
-                              d2min[i] = v.d2min;
-                              const float* q = points + 8 * std::size_t(k);
-                              const double w[3] = {q[3], q[4], q[5]};
-                              displacement[i] = static_cast<float>(
-                                  std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
-                              refX[i] = static_cast<float>(now.x[i] - w[0]);
-                              refY[i] = static_cast<float>(now.y[i] - w[1]);
-                              refZ[i] = static_cast<float>(now.z[i] - w[2]);
-                          }
-                      });
-    for (auto& c : cols)
-        cacheColumnRange(c);
+    constexpr int kColumns = 7;
+    struct Ranges {
+        float lo[kColumns], hi[kColumns];
+        Ranges() {
+            std::fill(lo, lo + kColumns, std::numeric_limits<float>::infinity());
+            std::fill(hi, hi + kColumns, -std::numeric_limits<float>::infinity());
+        }
+    };
+    const Ranges ranges = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, now.size(), 16384), Ranges{},
+        [&](const tbb::blocked_range<std::size_t>& range, Ranges acc) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (i + 16 < range.end() && slotOfNow[i + 16] != kNone)
+                    __builtin_prefetch(&values[slotOfNow[i + 16]]);
+                const std::uint32_t k = slotOfNow[i];
+                if (k == kNone)
+                    continue; // NaN already
+                const SlotValues& v = values[k];
+                const double w[3] = {v.w[0], v.w[1], v.w[2]};
+                const float row[kColumns] = {
+                    v.shear,
+                    v.volumetric,
+                    v.d2min,
+                    static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])),
+                    static_cast<float>(now.x[i] - w[0]),
+                    static_cast<float>(now.y[i] - w[1]),
+                    static_cast<float>(now.z[i] - w[2])};
+                for (int c = 0; c < kColumns; ++c) {
+                    columns[c][i] = row[c];
+                    if (row[c] < acc.lo[c]) // false for NaN
+                        acc.lo[c] = row[c];
+                    if (row[c] > acc.hi[c])
+                        acc.hi[c] = row[c];
+                }
+            }
+            return acc;
+        },
+        [](Ranges a, const Ranges& b) {
+            for (int c = 0; c < kColumns; ++c) {
+                a.lo[c] = std::min(a.lo[c], b.lo[c]);
+                a.hi[c] = std::max(a.hi[c], b.hi[c]);
+            }
+            return a;
+        });
+    for (int c = 0; c < kColumns; ++c) {
+        if (ranges.lo[c] > ranges.hi[c]) {
+            cols[c].min = cols[c].max = 0.0; // empty or all NaN, as cacheColumnRange gives
+        } else {
+            cols[c].min = ranges.lo[c];
+            cols[c].max = ranges.hi[c];
+        }
+    }
     return cols;
 }
 

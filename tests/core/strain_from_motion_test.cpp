@@ -2,10 +2,14 @@
 // packing, the non-affine residual, periodic and triclinic boxes, 2-D data and missing ids.
 #include "core/motion/strain_from_motion.hpp"
 
+#include "core/model/frame_difference.hpp"
+
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <random>
@@ -466,6 +470,15 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
             ASSERT_NEAR(a, b, 1e-6 + 1e-4 * std::fabs(a)) << baseline[c].name << " row " << i;
         }
     EXPECT_GT(finite, 3 * 700);
+    // Each column's range, kept as the columns are filled, is the one a scan of it gives.
+    for (const auto* cols : {&baseline, &fast})
+        for (const AttributeColumn& c : *cols) {
+            AttributeColumn scanned = c;
+            cacheColumnRange(scanned);
+            EXPECT_EQ(c.min, scanned.min) << c.name;
+            EXPECT_EQ(c.max, scanned.max) << c.name;
+            EXPECT_LT(c.min, c.max) << c.name;
+        }
     EXPECT_TRUE(std::isnan(fast[0].floats[100]));
     EXPECT_TRUE(std::isnan(fast[0].floats[200]));
     // And both right: a simple shear of 0.05 gives about 0.025 (the noise adds a little); a
@@ -525,4 +538,40 @@ TEST(StrainFromMotion, HostileCentresAndBoxesDoNotBreakEitherSums) {
     for (const auto& c : strainFromMotion(now, ref, 0))
         for (float v : c.floats)
             ASSERT_TRUE(std::isnan(v)) << c.name;
+}
+
+// The values do not depend on how many threads compute them (the cells are split among them
+// differently, and the spheres solved four at a time or one by one accordingly): bit for bit,
+// with the AVX2 sums and with the baseline ones, on a sheared packing periodic along y with a
+// sphere gone.
+TEST(StrainFromMotion, ValuesDoNotDependOnTheThreadCount) {
+    const Frame ref = inBox(packing(28, 41), {27.5, 27.5, 27.5}, {false, true, false});
+    std::mt19937 rng(43);
+    std::uniform_real_distribution<double> noise(-0.03, 0.03);
+    Frame now = ref;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        now.x[i] += static_cast<float>(0.04 * now.z[i] + noise(rng));
+        now.y[i] += static_cast<float>(noise(rng));
+    }
+    now.ids[500] = 10000000; // gone
+    now.finalize();
+    for (const bool baseline : {false, true}) {
+        detail::setStrainBaselineOnly(baseline);
+        std::vector<AttributeColumn> one;
+        {
+            tbb::global_control only(tbb::global_control::max_allowed_parallelism, 1);
+            one = strainFromMotion(now, ref, 0);
+        }
+        const auto all = strainFromMotion(now, ref, 0);
+        ASSERT_EQ(one.size(), all.size());
+        for (std::size_t c = 0; c < one.size(); ++c) {
+            ASSERT_EQ(one[c].floats.size(), all[c].floats.size());
+            EXPECT_EQ(std::memcmp(one[c].floats.data(), all[c].floats.data(),
+                                  one[c].floats.size() * sizeof(float)),
+                      0)
+                << one[c].name << (baseline ? " (baseline)" : "");
+        }
+        EXPECT_TRUE(std::isnan(all[0].floats[500]));
+    }
+    detail::setStrainBaselineOnly(false);
 }
