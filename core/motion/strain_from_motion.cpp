@@ -75,8 +75,7 @@ constexpr float kFar = std::numeric_limits<float>::infinity();
 // are read from memory in order (no lookups by id in the inner loop).
 class NeighbourCells {
   public:
-    NeighbourCells(const Frame& ref, const Frame& now, const std::vector<std::uint32_t>& nowRowOf,
-                   double cutoff)
+    NeighbourCells(const Frame& ref, const Frame& now, const std::uint32_t* nowRowOf, double cutoff)
         : m_nowCell(now.box) {
         const std::size_t n = ref.size();
         const auto& cmin = ref.centreMin();
@@ -276,9 +275,8 @@ class NeighbourCells {
 
   private:
     // Sphere i (its reference shifted by `shift` for an image) and its motion.
-    CellPoint pointOf(const Frame& ref, const Frame& now,
-                      const std::vector<std::uint32_t>& nowRowOf, std::size_t i,
-                      const double shift[3]) const {
+    CellPoint pointOf(const Frame& ref, const Frame& now, const std::uint32_t* nowRowOf,
+                      std::size_t i, const double shift[3]) const {
         const std::uint32_t k = nowRowOf[i];
         const float nan = std::numeric_limits<float>::quiet_NaN();
         CellPoint p{ref.x[i], ref.y[i], ref.z[i], nan, nan, nan, static_cast<std::uint32_t>(i)};
@@ -901,7 +899,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     if (ref.size() >= kImage)
         throw std::length_error("strain from motion: more than 2^31 spheres in one frame");
     // Where each reference sphere is in the current frame.
-    std::vector<std::uint32_t> nowRowOf(ref.size());
+    auto nowRowOf = makeScratchArray<std::uint32_t>(ref.size());
     const bool aligned = sameIdOrder(now, ref);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref.size(), 16384),
                       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -914,7 +912,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                               nowRowOf[r] = k ? static_cast<std::uint32_t>(*k) : kNone;
                           }
                       });
-    const NeighbourCells cells(ref, now, nowRowOf, cutoff);
+    const NeighbourCells cells(ref, now, nowRowOf.get(), cutoff);
     const PeriodicCell nowCell(now.box);
     const int flat = flatAxis(ref);
     int axes[3] = {0, 1, 2};

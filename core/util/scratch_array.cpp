@@ -1,5 +1,7 @@
 #include "core/util/scratch_array.hpp"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <deque>
 #include <mutex>
@@ -40,9 +42,11 @@ Pool& pool() {
 
 } // namespace
 
-void* detail::acquireScratch(std::size_t bytes) {
+void* detail::acquireScratch(std::size_t bytes, std::size_t alignment) {
     if (bytes < kHugePage) {
-        void* p = std::malloc(bytes > 0 ? bytes : 1);
+        // aligned_alloc wants a size that is a multiple of the alignment.
+        const std::size_t align = std::max(alignment, alignof(std::max_align_t));
+        void* p = std::aligned_alloc(align, std::max(align, (bytes + align - 1) & ~(align - 1)));
         if (!p)
             throw std::bad_alloc();
         return p;

@@ -17,7 +17,8 @@ namespace faultline::core {
 inline constexpr std::size_t kScratchPoolBytes = std::size_t(256) << 20;
 
 namespace detail {
-void* acquireScratch(std::size_t bytes); // throws std::bad_alloc
+// Aligned to `alignment` (a power of two, at most 2 MB). Throws std::bad_alloc.
+void* acquireScratch(std::size_t bytes, std::size_t alignment);
 void releaseScratch(void* p, std::size_t bytes) noexcept;
 } // namespace detail
 
@@ -28,14 +29,15 @@ struct ScratchDeleter {
 
 template <typename T> using ScratchArray = std::unique_ptr<T[], ScratchDeleter>;
 
-// `count` elements, not initialised. Throws std::bad_alloc.
+// `count` elements, not initialised, aligned as T asks. Throws std::bad_alloc.
 template <typename T> ScratchArray<T> makeScratchArray(std::size_t count) {
     static_assert(std::is_trivially_default_constructible_v<T> &&
                   std::is_trivially_destructible_v<T>);
     if (count > (std::size_t(1) << 60) / sizeof(T))
         throw std::bad_alloc();
     const std::size_t bytes = count * sizeof(T);
-    return ScratchArray<T>(static_cast<T*>(detail::acquireScratch(bytes)), ScratchDeleter{bytes});
+    return ScratchArray<T>(static_cast<T*>(detail::acquireScratch(bytes, alignof(T))),
+                           ScratchDeleter{bytes});
 }
 
 // The bytes the pool keeps now, and giving them back to the system (tests; a caller that

@@ -58,6 +58,19 @@ TEST(ScratchArray, ThePoolKeepsTheMostRecentlyFreedWithinItsCap) {
     EXPECT_EQ(scratchPoolBytes(), 0u);
 }
 
+TEST(ScratchArray, ElementsAreAlignedAsTheirTypeAsks) {
+    struct alignas(64) Wide {
+        float v[16];
+    };
+    for (const std::size_t count :
+         {std::size_t(0), std::size_t(1), std::size_t(3), std::size_t(1000), std::size_t(40000)}) {
+        auto a = makeScratchArray<Wide>(count);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.get()) % 64, 0u) << count;
+        auto b = makeScratchArray<char>(count + 1);
+        EXPECT_NE(b.get(), nullptr);
+    }
+}
+
 TEST(ScratchArray, ImpossibleSizesThrow) {
     EXPECT_THROW(makeScratchArray<double>(std::size_t(1) << 61), std::bad_alloc);
 }
