@@ -65,6 +65,12 @@ struct CellPoint {
 constexpr std::uint32_t kImage = 0x80000000u;
 constexpr float kFar = std::numeric_limits<float>::infinity();
 
+// A row of the current frame: its centre and its sphere's slot in the cell list.
+struct alignas(16) NowPoint {
+    float x, y, z;
+    std::uint32_t slot;
+};
+
 //-----------------------------------------------------------------------------
 // [SECTION] Neighbour cells
 //-----------------------------------------------------------------------------
@@ -78,6 +84,14 @@ class NeighbourCells {
     NeighbourCells(const Frame& ref, const Frame& now, const std::uint32_t* nowRowOf, double cutoff)
         : m_nowCell(now.box) {
         const std::size_t n = ref.size();
+        // The current centres as one record a row (one line read per sphere below, not three),
+        // with the slot the row's sphere gets.
+        m_now = makeScratchArray<NowPoint>(now.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 65536),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i)
+                                  m_now[i] = {now.x[i], now.y[i], now.z[i], kNone};
+                          });
         const auto& cmin = ref.centreMin();
         const auto& cmax = ref.centreMax();
         double lo[3], hi[3];
@@ -116,7 +130,7 @@ class NeighbourCells {
                     if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                         q[2] < lo[2] || q[2] > hi[2])
                         continue;
-                    CellPoint p = pointOf(ref, now, nowRowOf, i, s);
+                    CellPoint p = pointOf(ref, nowRowOf, i, s);
                     p.x = static_cast<float>(q[0]);
                     p.y = static_cast<float>(q[1]);
                     p.z = static_cast<float>(q[2]);
@@ -185,12 +199,6 @@ class NeighbourCells {
         m_points = makeScratchArray<float>(8 * count);
         m_owner = makeScratchArray<std::uint32_t>(count);
         m_count = count;
-        m_slotOfNow = makeScratchArray<std::uint32_t>(now.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, now.size(), 65536),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              std::fill(m_slotOfNow.get() + r.begin(), m_slotOfNow.get() + r.end(),
-                                        kNone);
-                          });
         std::atomic<std::uint32_t> widest[3] = {0, 0, 0}; // float bits: >= 0 orders as floats
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, count, 16384),
@@ -200,17 +208,12 @@ class NeighbourCells {
                 for (std::size_t k = r.begin(); k != r.end(); ++k) {
                     // The current frame's rows and the slots come in no order.
                     if (const std::size_t a = k + 16; a < std::min(r.end(), n)) {
-                        if (const std::uint32_t row = nowRowOf[a]; row != kNone) {
-                            __builtin_prefetch(now.x.data() + row);
-                            __builtin_prefetch(now.y.data() + row);
-                            __builtin_prefetch(now.z.data() + row);
-                            __builtin_prefetch(m_slotOfNow.get() + row, 1);
-                        }
+                        if (const std::uint32_t row = nowRowOf[a]; row != kNone)
+                            __builtin_prefetch(m_now.get() + row, 1);
                         __builtin_prefetch(m_points.get() + 8 * std::size_t(slot[a]), 1);
                     }
                     const std::uint32_t at = slot[k];
-                    const CellPoint p =
-                        k < n ? pointOf(ref, now, nowRowOf, k, noShift) : images[k - n];
+                    const CellPoint p = k < n ? pointOf(ref, nowRowOf, k, noShift) : images[k - n];
                     // A sphere gone is never near: infinitely far.
                     const bool gone = std::isnan(p.wx);
                     m_x[at] = gone ? kFar : p.x;
@@ -222,7 +225,7 @@ class NeighbourCells {
                     q[6] = q[7] = 0.0f;
                     m_owner[at] = p.owner;
                     if (k < n && nowRowOf[k] != kNone)
-                        m_slotOfNow[nowRowOf[k]] = at;
+                        m_now[nowRowOf[k]].slot = at;
                     wide[0] = std::max(wide[0], std::fabs(p.wx));
                     wide[1] = std::max(wide[1], std::fabs(p.wy));
                     wide[2] = std::max(wide[2], std::fabs(p.wz));
@@ -246,8 +249,9 @@ class NeighbourCells {
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
-    // Where each row of the current frame is in cell order (kNone: not in the reference).
-    const std::uint32_t* slotOfNow() const { return m_slotOfNow.get(); }
+    // Each row of the current frame: its centre and where its sphere is in cell order (kNone:
+    // not in the reference).
+    const NowPoint* nowPoints() const { return m_now.get(); }
     // Reference positions in cell order (infinite: the sphere is gone).
     const float* xs() const { return m_x.get(); }
     const float* ys() const { return m_y.get(); }
@@ -275,15 +279,15 @@ class NeighbourCells {
 
   private:
     // Sphere i (its reference shifted by `shift` for an image) and its motion.
-    CellPoint pointOf(const Frame& ref, const Frame& now, const std::uint32_t* nowRowOf,
-                      std::size_t i, const double shift[3]) const {
+    CellPoint pointOf(const Frame& ref, const std::uint32_t* nowRowOf, std::size_t i,
+                      const double shift[3]) const {
         const std::uint32_t k = nowRowOf[i];
         const float nan = std::numeric_limits<float>::quiet_NaN();
         CellPoint p{ref.x[i], ref.y[i], ref.z[i], nan, nan, nan, static_cast<std::uint32_t>(i)};
         if (k != kNone) {
-            double w[3] = {double(now.x[k]) - ref.x[i] - shift[0],
-                           double(now.y[k]) - ref.y[i] - shift[1],
-                           double(now.z[k]) - ref.z[i] - shift[2]};
+            const NowPoint& q = m_now[k];
+            double w[3] = {double(q.x) - ref.x[i] - shift[0], double(q.y) - ref.y[i] - shift[1],
+                           double(q.z) - ref.z[i] - shift[2]};
             // A centre that is no number (or infinite), then or now: the sphere counts as gone
             // (motion NaN on every axis, the one mark the sums test).
             if (!std::isfinite(w[0] + w[1] + w[2]))
@@ -312,7 +316,8 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::size_t m_count = 0;
-    ScratchArray<std::uint32_t> m_owner, m_slotOfNow;
+    ScratchArray<std::uint32_t> m_owner;
+    ScratchArray<NowPoint> m_now;
     ScratchArray<float> m_x, m_y, m_z, m_points;
     PeriodicCell m_nowCell;
     float m_widestMotion[3] = {0, 0, 0};
@@ -1010,7 +1015,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
         });
     // Each current row's values and motion from its slot (prefetched: the slots come in no
     // order), and each column's range on the way (as cacheColumnRange gives it).
-    const std::uint32_t* slotOfNow = cells.slotOfNow();
+    const NowPoint* nowPoints = cells.nowPoints();
     constexpr int kColumns = 7;
     struct Ranges {
         float lo[kColumns], hi[kColumns];
@@ -1023,9 +1028,10 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
         tbb::blocked_range<std::size_t>(0, now.size(), 16384), Ranges{},
         [&](const tbb::blocked_range<std::size_t>& range, Ranges acc) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                if (i + 16 < range.end() && slotOfNow[i + 16] != kNone)
-                    __builtin_prefetch(&values[slotOfNow[i + 16]]);
-                const std::uint32_t k = slotOfNow[i];
+                if (i + 16 < range.end() && nowPoints[i + 16].slot != kNone)
+                    __builtin_prefetch(&values[nowPoints[i + 16].slot]);
+                const NowPoint& p = nowPoints[i];
+                const std::uint32_t k = p.slot;
                 if (k == kNone)
                     continue; // NaN already
                 const SlotValues& v = values[k];
@@ -1035,9 +1041,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                     v.volumetric,
                     v.d2min,
                     static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])),
-                    static_cast<float>(now.x[i] - w[0]),
-                    static_cast<float>(now.y[i] - w[1]),
-                    static_cast<float>(now.z[i] - w[2])};
+                    static_cast<float>(p.x - w[0]),
+                    static_cast<float>(p.y - w[1]),
+                    static_cast<float>(p.z - w[2])};
                 for (int c = 0; c < kColumns; ++c) {
                     columns[c][i] = row[c];
                     if (row[c] < acc.lo[c]) // false for NaN
