@@ -182,6 +182,24 @@ bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& val
     return false;
 }
 
+void Frame::rowsOf(std::span<const std::int64_t> wanted, std::uint32_t* out) const {
+    if (!m_rowById.empty()) {
+        const std::uint32_t* table = m_rowById.data();
+        const auto size = static_cast<unsigned long long>(m_rowById.size());
+        const auto base = static_cast<unsigned long long>(m_idBase);
+        for (std::size_t k = 0; k < wanted.size(); ++k) {
+            // Below the base, the unsigned offset wraps past the table's size.
+            const auto offset = static_cast<unsigned long long>(wanted[k]) - base;
+            out[k] = wanted[k] >= m_idBase && offset < size ? table[offset] : kNoRow;
+        }
+        return;
+    }
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
+        const auto row = rowOf(wanted[k]);
+        out[k] = row ? static_cast<std::uint32_t>(*row) : kNoRow;
+    }
+}
+
 std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {
     if (!m_rowById.empty()) {
         if (id < m_idBase)

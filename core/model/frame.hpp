@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,6 +70,9 @@ class Frame {
     void finalize();
 
     std::optional<std::size_t> rowOf(std::int64_t id) const;
+    // rowOf for many ids at once: out[k] is the row of wanted[k], or ~0u when this frame lacks
+    // it. (A loop over the id map without a call per id: strain from motion maps every sphere.)
+    void rowsOf(std::span<const std::int64_t> wanted, std::uint32_t* out) const;
 
     // Bounds of the sphere centres (not radii). Valid after finalize().
     const std::array<float, 3>& centreMin() const { return m_centreMin; }

@@ -903,19 +903,18 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     }
     if (ref.size() >= kImage)
         throw std::length_error("strain from motion: more than 2^31 spheres in one frame");
-    // Where each reference sphere is in the current frame.
+    // Where each reference sphere is in the current frame (rowsOf's "none" is kNone).
     auto nowRowOf = makeScratchArray<std::uint32_t>(ref.size());
     const bool aligned = sameIdOrder(now, ref);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref.size(), 16384),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t r = range.begin(); r != range.end(); ++r) {
-                              if (aligned) {
-                                  nowRowOf[r] = static_cast<std::uint32_t>(r);
-                                  continue;
-                              }
-                              const auto k = now.rowOf(ref.ids[r]);
-                              nowRowOf[r] = k ? static_cast<std::uint32_t>(*k) : kNone;
+                          if (!aligned) {
+                              now.rowsOf({ref.ids.data() + range.begin(), range.size()},
+                                         nowRowOf.get() + range.begin());
+                              return;
                           }
+                          for (std::size_t r = range.begin(); r != range.end(); ++r)
+                              nowRowOf[r] = static_cast<std::uint32_t>(r);
                       });
     const NeighbourCells cells(ref, now, nowRowOf.get(), cutoff);
     const PeriodicCell nowCell(now.box);

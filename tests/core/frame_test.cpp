@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace faultline::core;
 
@@ -29,6 +30,32 @@ TEST(Frame, DenseIdsMapToRows) {
     EXPECT_FALSE(f.rowOf(13));
     EXPECT_FALSE(f.rowOf(9));
     EXPECT_FALSE(f.rowOf(-5));
+}
+
+// rowsOf answers as rowOf does, id by id, on a dense map (ids below its base, past its end,
+// the extremes of int64) and on a sparse one.
+TEST(Frame, ManyIdsMapToRowsAsOneByOne) {
+    const std::vector<std::int64_t> wanted = {10,
+                                              12,
+                                              11,
+                                              13,
+                                              9,
+                                              -5,
+                                              5,
+                                              1000000000000LL,
+                                              -7,
+                                              std::numeric_limits<std::int64_t>::min(),
+                                              std::numeric_limits<std::int64_t>::max()};
+    for (Frame f : {frameWithIds({10, 12, 11}), frameWithIds({5, 1000000000000LL, -7})}) {
+        f.finalize();
+        std::vector<std::uint32_t> rows(wanted.size(), 77);
+        f.rowsOf(wanted, rows.data());
+        for (std::size_t k = 0; k < wanted.size(); ++k) {
+            const auto one = f.rowOf(wanted[k]);
+            EXPECT_EQ(rows[k], one ? static_cast<std::uint32_t>(*one) : ~std::uint32_t(0))
+                << "id " << wanted[k];
+        }
+    }
 }
 
 TEST(Frame, SparseIdsMapToRows) {
