@@ -767,16 +767,17 @@ template <int dim> StrainValues solve(const NeighbourSums& s, const int* axes) {
 // mode), so the same values to the last bit, whichever of the two solves a sphere.
 FAULTLINE_AVX2 void solve3x4(const NeighbourSums* s, StrainValues* out) {
     typedef double v4d __attribute__((vector_size(32)));
-    auto lanes = [&](auto get) { return v4d{get(s[0]), get(s[1]), get(s[2]), get(s[3])}; };
+    // (No helper returning a vector: outside this function's target it would need AVX.)
     v4d V[3][3], A[3][3], uu[3];
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-            V[i][j] = lanes([&](const NeighbourSums& n) { return n.V[i][j]; });
-            A[i][j] = lanes([&](const NeighbourSums& n) { return n.A[i][j]; });
+            V[i][j] = v4d{s[0].V[i][j], s[1].V[i][j], s[2].V[i][j], s[3].V[i][j]};
+            A[i][j] = v4d{s[0].A[i][j], s[1].A[i][j], s[2].A[i][j], s[3].A[i][j]};
         }
-        uu[i] = lanes([&](const NeighbourSums& n) { return n.uu[i]; });
+        uu[i] = v4d{s[0].uu[i], s[1].uu[i], s[2].uu[i], s[3].uu[i]};
     }
-    const v4d count = lanes([](const NeighbourSums& n) { return double(n.count); });
+    const v4d count =
+        v4d{double(s[0].count), double(s[1].count), double(s[2].count), double(s[3].count)};
     const v4d c00 = V[1][1] * V[2][2] - V[1][2] * V[2][1];
     const v4d c01 = V[0][2] * V[2][1] - V[0][1] * V[2][2];
     const v4d c02 = V[0][1] * V[1][2] - V[0][2] * V[1][1];
