@@ -503,6 +503,16 @@ struct Runs {
     int count = 0;
 };
 
+// The lanes whose squared distance is within c2, among the first `left` (the others lie past
+// the end of what is read), as a mask; and the indices of a mask's lanes, packed to the front.
+FAULTLINE_AVX2 inline unsigned lanesWithin(__m256 d2, __m256 c2, std::size_t left) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, c2, _CMP_LE_OQ))) &
+           (left >= 8 ? 0xffu : (1u << left) - 1u);
+}
+FAULTLINE_AVX2 inline __m256i laneIndices(unsigned mask) {
+    return _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneTable.lanes[mask]));
+}
+
 // The points of the runs around a cell that lie within the cutoff of the box around the cell's
 // spheres (every neighbour of each of them does), packed in their order: reference x, y, z and
 // the point's slot. A sphere's own pass then tests about half the points, with no runs' ends.
@@ -547,12 +557,8 @@ FAULTLINE_AVX2 void packCandidates(const NeighbourCells& cells, const Runs& runs
                 _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(lz, z), _mm256_sub_ps(z, hz)), zero);
             const __m256 d2 =
                 _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-            const std::size_t left = last - k;
-            const unsigned mask =
-                static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, c2, _CMP_LE_OQ))) &
-                (left >= 8 ? 0xffu : (1u << left) - 1u);
-            const __m256i lanes =
-                _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneTable.lanes[mask]));
+            const unsigned mask = lanesWithin(d2, c2, last - k);
+            const __m256i lanes = laneIndices(mask);
             _mm256_storeu_ps(ox + n, _mm256_permutevar8x32_ps(x, lanes));
             _mm256_storeu_ps(oy + n, _mm256_permutevar8x32_ps(y, lanes));
             _mm256_storeu_ps(oz + n, _mm256_permutevar8x32_ps(z, lanes));
@@ -583,12 +589,8 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packe
         const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(cz + k), pz);
         const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
         // Lanes past the end hold what an earlier cell packed: left out.
-        const std::size_t left = last - k;
-        const unsigned mask =
-            static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, c2, _CMP_LE_OQ))) &
-            (left >= 8 ? 0xffu : (1u << left) - 1u);
-        const __m256i lanes =
-            _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneTable.lanes[mask]));
+        const unsigned mask = lanesWithin(d2, c2, last - k);
+        const __m256i lanes = laneIndices(mask);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(near + n),
                             _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
         n += static_cast<std::size_t>(__builtin_popcount(mask));
