@@ -352,7 +352,7 @@ struct NeighbourSums {
 // The points of the 27 cells around one cell, contiguous and padded to whole vectors with
 // points that are never near, for the baseline sums: reference positions (x, y, z; infinite:
 // gone) and how far each moved (w = now - reference; an image's reference is shifted by a cell
-// edge). The AVX2 sums read the cells in place and keep only the indices of the near ones.
+// edge). The AVX2 sums pack, per cell, the points near its spheres' box (Packed).
 struct Candidates {
     std::vector<float> x, y, z, wx, wy, wz;
     std::size_t size = 0;
@@ -475,13 +475,15 @@ FAULTLINE_HOT void cellSumsBaseline(const NeighbourCells& cells, std::size_t cel
 }
 
 #if FAULTLINE_STRAIN_AVX2
-// The same sums with AVX2, in two passes per sphere: the candidates within the cutoff, eight
-// distances at a time, their indices packed into a list (a table of the lanes each 8-bit mask
-// keeps: no branch per neighbour), then each neighbour's terms as one vector of its offset and
-// motion d = (X, U, 0, 0) times X's three components and times itself:
+// The same sums with AVX2. Per cell, the points of the 27 cells within the cutoff of the box
+// around its spheres, packed (about 65 of 130); then per sphere two passes: the packed points
+// within the cutoff, eight distances at a time, their indices packed into a list (a table of
+// the lanes each 8-bit mask keeps: no branch per neighbour), then each neighbour's terms as
+// one vector of its offset and motion d = (X, U, 0, 0) times X's three components and itself:
 //   s_j += d * X_j (j = x, y, z): lanes 0-2 sum X X^T, lanes 3-5 sum U X_j;  s_u += d * d.
-// A sphere has about 20 neighbours among some 130 candidates, so this does a sixth of the
-// products the eight-wide baseline does over every candidate, in 4 accumulators instead of 19.
+// A sphere has about 20 neighbours, so this does a sixth of the products the eight-wide
+// baseline does over every candidate, in 4 accumulators instead of 19; the terms come in the
+// order of the points, so the sums are those of a pass over all 27 cells.
 struct LaneTable {
     alignas(32) std::uint32_t lanes[256][8];
 };
@@ -945,11 +947,10 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     for (int a = 0; a < 3; ++a)
         wrap = wrap || (nowCellF.periodic[a] &&
                         !(double(cells.widestMotion()[a]) * nowCellF.inv[a] <= 0.125));
-    // Cell by cell: the points around a cell gathered once for all the spheres in it. The values
-    // are kept in cell order, as the cells are summed, and taken to the current frame's rows
-    // after: one read per row rather than seven writes scattered over the columns.
-    // Each sphere's values and motion, by slot (images' slots are neither written nor read):
-    // the current rows read one record each.
+    // Cell by cell: the points around a cell gathered once for all the spheres in it. Each
+    // sphere's values and motion are kept by slot, as the cells are summed (images' slots are
+    // neither written nor read), and taken to the current frame's rows after: one record read
+    // per row rather than seven writes scattered over the columns.
     struct alignas(32) SlotValues {
         float shear, volumetric, d2min;
         float w[3];
