@@ -782,23 +782,12 @@ FAULTLINE_AVX2 void solve3x4(const NeighbourSums* s, StrainValues* out) {
     }
     const v4d count =
         v4d{double(s[0].count), double(s[1].count), double(s[2].count), double(s[3].count)};
-    const v4d c00 = V[1][1] * V[2][2] - V[1][2] * V[2][1];
-    const v4d c01 = V[0][2] * V[2][1] - V[0][1] * V[2][2];
-    const v4d c02 = V[0][1] * V[1][2] - V[0][2] * V[1][1];
-    // invert3's expansion along the first row (V is symmetric: the same products).
-    const v4d det = V[0][0] * c00 + V[1][0] * c01 + V[2][0] * c02;
+    // invert3's operations, lane by lane.
+    v4d det;
+    determinant3(V, det);
     const v4d scale = (V[0][0] + V[1][1] + V[2][2]) / 3.0;
-    const v4d k = 1.0 / det;
     v4d inv[3][3];
-    inv[0][0] = c00 * k;
-    inv[0][1] = c01 * k;
-    inv[0][2] = c02 * k;
-    inv[1][0] = (V[1][2] * V[2][0] - V[1][0] * V[2][2]) * k;
-    inv[1][1] = (V[0][0] * V[2][2] - V[0][2] * V[2][0]) * k;
-    inv[1][2] = (V[0][2] * V[1][0] - V[0][0] * V[1][2]) * k;
-    inv[2][0] = (V[1][0] * V[2][1] - V[1][1] * V[2][0]) * k;
-    inv[2][1] = (V[0][1] * V[2][0] - V[0][0] * V[2][1]) * k;
-    inv[2][2] = (V[0][0] * V[1][1] - V[0][1] * V[1][0]) * k;
+    scaledAdjugate3(V, 1.0 / det, inv);
     v4d G[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
