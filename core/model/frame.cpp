@@ -182,16 +182,20 @@ bool looksLikeIntegerColumn(std::string_view name, const std::vector<float>& val
     return false;
 }
 
+namespace {
+// The dense map's row of `id` (kNoRow: absent). Below the base, the unsigned offset wraps past
+// the table's size.
+inline std::uint32_t denseRow(const std::vector<std::uint32_t>& table, std::int64_t base,
+                              std::int64_t id) {
+    const auto offset = static_cast<unsigned long long>(id) - static_cast<unsigned long long>(base);
+    return id >= base && offset < table.size() ? table[offset] : kNoRow;
+}
+} // namespace
+
 void Frame::rowsOf(std::span<const std::int64_t> wanted, std::uint32_t* out) const {
     if (!m_rowById.empty()) {
-        const std::uint32_t* table = m_rowById.data();
-        const auto size = static_cast<unsigned long long>(m_rowById.size());
-        const auto base = static_cast<unsigned long long>(m_idBase);
-        for (std::size_t k = 0; k < wanted.size(); ++k) {
-            // Below the base, the unsigned offset wraps past the table's size.
-            const auto offset = static_cast<unsigned long long>(wanted[k]) - base;
-            out[k] = wanted[k] >= m_idBase && offset < size ? table[offset] : kNoRow;
-        }
+        for (std::size_t k = 0; k < wanted.size(); ++k)
+            out[k] = denseRow(m_rowById, m_idBase, wanted[k]);
         return;
     }
     for (std::size_t k = 0; k < wanted.size(); ++k) {
@@ -202,13 +206,10 @@ void Frame::rowsOf(std::span<const std::int64_t> wanted, std::uint32_t* out) con
 
 std::optional<std::size_t> Frame::rowOf(std::int64_t id) const {
     if (!m_rowById.empty()) {
-        if (id < m_idBase)
+        const std::uint32_t row = denseRow(m_rowById, m_idBase, id);
+        if (row == kNoRow)
             return std::nullopt;
-        const auto offset =
-            static_cast<unsigned long long>(id) - static_cast<unsigned long long>(m_idBase);
-        if (offset >= m_rowById.size() || m_rowById[offset] == kNoRow)
-            return std::nullopt;
-        return m_rowById[offset];
+        return row;
     }
     auto it = std::lower_bound(m_rowsSortedById.begin(), m_rowsSortedById.end(), id,
                                [this](std::uint32_t row, std::int64_t v) { return ids[row] < v; });
