@@ -12,6 +12,7 @@
 #include "core/surface/fault_surface.hpp"
 #include "core/surface/metaball_field.hpp"
 #include "core/surface/metaball_reference.hpp"
+#include "core/surface/surface_cache.hpp"
 #include "core/surface/surface_plan.hpp"
 
 #include <benchmark/benchmark.h>
@@ -537,6 +538,8 @@ void BM_SurfaceOpRatio(benchmark::State& state, const char* name, float divisor)
     if (const char* only = std::getenv("FAULTLINE_BENCH_KERNEL"))
         std::erase_if(kernels, [&](const auto& k) { return std::string(k.second) != only; });
     auto buildOp = [&](const char* kernel) {
+        // A whole build each time: not the surface the session kept from the last round.
+        s.surfaceCache().clear();
         s.apply({{"op", "surface.build"}, {"fault", "F1"}, {"kernel", kernel}, {"voxel", voxel}});
     };
     // Phases of one build per kernel, and the memory it takes.

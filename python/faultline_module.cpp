@@ -285,9 +285,11 @@ class PySession {
         const auto frame = m_session.currentFrame();
         if (!frame)
             throw core::CommandError("surface: no data is open");
+        // The session's surfaces of this frame: one built by surface.build is not built again.
+        const core::SurfaceReuse reuse{&m_session.surfaceCacheFor(frame), m_session.state().frame};
         core::SurfaceResult built = interruptible(m_stop, [&] {
             StopFlag flag(m_stop);
-            return core::buildFaultSurface(*frame, request, &flag);
+            return core::buildFaultSurface(*frame, request, &flag, reuse);
         });
         const core::SurfaceMesh& mesh = built.mesh;
         auto rows = [](const std::vector<std::array<float, 3>>& v) {

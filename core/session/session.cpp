@@ -3,6 +3,7 @@
 #include "core/session/command_label.hpp"
 
 #include "core/io/input_error.hpp"
+#include "core/surface/surface_cache.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -14,7 +15,11 @@ namespace faultline::core {
 
 namespace fs = std::filesystem;
 
-Session::Session() {
+namespace {
+constexpr std::size_t kSessionSurfaceBytes = std::size_t{512} << 20;
+}
+
+Session::Session() : m_surfaceCache(std::make_shared<SurfaceCache>(kSessionSurfaceBytes)) {
     detail::registerDataOps(m_ops);
     detail::registerSelectionOps(m_ops);
     detail::registerFaultOps(m_ops);
@@ -53,6 +58,17 @@ Session::Session() {
 }
 
 Session::~Session() = default;
+
+SurfaceCache& Session::surfaceCacheFor(const std::shared_ptr<const Frame>& frame) {
+    // A live weak pointer to the same object: the same frame (an expired one never matches, so
+    // a new frame at a freed frame's address cannot inherit its surfaces).
+    const auto held = m_surfaceFrame.lock();
+    if (!held || held != frame) {
+        m_surfaceCache->clear();
+        m_surfaceFrame = frame;
+    }
+    return *m_surfaceCache;
+}
 
 namespace {
 // A dock layout without what a click or a splitter drag changes (each area's active tab, the

@@ -21,6 +21,8 @@
 
 namespace faultline::core {
 
+class SurfaceCache;
+
 class Session {
   public:
     // A state op returns the command that undoes it; an action (export, render, save) returns
@@ -159,6 +161,15 @@ class Session {
     // The open dataset and the current frame (loaded on demand); null without data.
     std::shared_ptr<Dataset> dataset() const { return m_dataset; }
     std::shared_ptr<const Frame> currentFrame();
+    // The surfaces that surface.build, the exports and the Python module built in `frame`, so
+    // that an export after a build, a second export or a new iso-value within the built range
+    // does not build again. It holds the surfaces of one frame object at most (512 MiB): asked
+    // for another (a frame change, strains derived again, other data), it empties first, so
+    // nothing stale can come back. Frames are immutable, and the cache's key holds the members,
+    // their colours and every field parameter.
+    SurfaceCache& surfaceCacheFor(const std::shared_ptr<const Frame>& frame);
+    // The same cache without a frame (its counters; benches clear it to time a whole build).
+    SurfaceCache& surfaceCache() { return *m_surfaceCache; }
     // The frame a view shows (its binding applied to the current frame, clamped).
     std::size_t frameOfView(const ViewState& view) const;
     // The reference frame of a view's difference colouring, clamped to the dataset.
@@ -203,8 +214,10 @@ class Session {
     std::string m_moved; // noteMoved's spheres, for the undo label
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
-    std::vector<Json> m_undo;         // inverses, most recent last
-    std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
+    std::shared_ptr<SurfaceCache> m_surfaceCache;
+    std::weak_ptr<const Frame> m_surfaceFrame; // the frame whose surfaces m_surfaceCache holds
+    std::vector<Json> m_undo;                  // inverses, most recent last
+    std::uint64_t m_savedVersion = 1;          // m_version starts at 1: a new session is unmodified
     // Where in its history the state is: the step on top of the undo stack (each step has a
     // serial), or the start of the history when none. Saved at markSaved().
     std::vector<std::uint64_t> m_undoSerials, m_redoSerials;

@@ -92,6 +92,11 @@ Json storeSettings(Session& s, const SurfaceSettings& st) {
     return inverse;
 }
 
+// The session's surfaces of this frame: an export after surface.build takes the built one.
+SurfaceReuse reuseFor(Session& s, const std::shared_ptr<const Frame>& frame) {
+    return {&s.surfaceCacheFor(frame), s.state().frame};
+}
+
 SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
     auto frame = s.currentFrame();
     if (!frame)
@@ -104,7 +109,7 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
                                " spheres passes the thresholds in frame " +
                                std::to_string(s.state().frame) + ": it has not formed there yet");
     try {
-        return buildFaultSurface(*frame, {fault, st});
+        return buildFaultSurface(*frame, {fault, st}, nullptr, reuseFor(s, frame));
     } catch (const std::exception& e) {
         throw CommandError(std::string(op) + ": " + e.what());
     }
@@ -162,7 +167,8 @@ void registerSurfaceOps(OpRegistry& ops) {
         const FaultSurfaceRequest request = requestOf(s, args::string(cmd, "fault"), "export.vdb");
         const std::string path = s.outputPath(args::string(cmd, "path"));
         try {
-            writeFaultVdb(*frameOf(s, "export.vdb"), request, path);
+            const auto frame = frameOf(s, "export.vdb");
+            writeFaultVdb(*frame, request, path, nullptr, reuseFor(s, frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.vdb: ") + e.what());
         }
@@ -178,8 +184,10 @@ void registerSurfaceOps(OpRegistry& ops) {
             requests.push_back(requestOf(s, name, "export.gltf"));
         const std::string path = s.outputPath(args::string(cmd, "path"));
         try {
-            writeFaultsGlb(*frameOf(s, "export.gltf"), requests, path,
-                           args::optionalBool(cmd, "glyphs").value_or(false));
+            const auto frame = frameOf(s, "export.gltf");
+            writeFaultsGlb(*frame, requests, path,
+                           args::optionalBool(cmd, "glyphs").value_or(false), nullptr,
+                           reuseFor(s, frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.gltf: ") + e.what());
         }

@@ -3,6 +3,7 @@
 // options are refused naming the field before anything changes.
 #include "core/data/frame_cache.hpp"
 #include "core/io/input_error.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
 #include "test_files.hpp"
@@ -225,4 +226,52 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
     EXPECT_GT(cache->stats().writes, writes);
     EXPECT_NE(other->attribute("inc_shear_strain")->floats,
               derived->attribute("inc_shear_strain")->floats);
+}
+
+// An export after surface.build (or a second export, or a new iso-value within the built range)
+// takes the surface the session built in this frame, and never one built on other values: a
+// frame change or strains derived again empty the session's surfaces first.
+TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
+    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.1,"prefix":"inc_"})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    s.apply(cmd(R"({"op":"threshold.add","variable":"inc_shear_strain","low":0.05,"high":1e30})"));
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","kernel":"inverse-square","voxel":0.25,)"
+                R"("iso":1.5,"color_by":"inc_shear_strain","map":"gray","range":[0,0.5]})"));
+    const SurfaceCache& cache = s.surfaceCache();
+    EXPECT_EQ(cache.counters().builds, 1u);
+    s.apply({{"op", "export.vdb"}, {"fault", "F1"}, {"path", dir.file("F1.vdb")}});
+    s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1.glb")}});
+    EXPECT_EQ(cache.counters().builds, 1u);
+    EXPECT_EQ(cache.counters().hits, 2u);
+    // The same mesh as a build of its own.
+    const FaultSurfaceRequest request = surfaceRequestFor(s, "F1", "test");
+    const SurfaceResult own = buildFaultSurface(*s.currentFrame(), request);
+    const SurfaceResult kept =
+        cache.find(surfaceKeyOf(2, request.fault, request.settings,
+                                surfaceParamsOf(request.settings, request.fault)),
+                   1.5f);
+    ASSERT_NE(kept.field, nullptr);
+    EXPECT_EQ(kept.mesh.positions, own.mesh.positions);
+    EXPECT_EQ(kept.mesh.colors, own.mesh.colors);
+    EXPECT_EQ(kept.mesh.indices, own.mesh.indices);
+    // Another iso-value inside the built range (iso x or / 1.05): re-meshed from the kept field.
+    s.apply(cmd(R"({"op":"surface.build","fault":"F1","iso":1.55})"));
+    EXPECT_EQ(cache.counters().builds, 1u);
+    EXPECT_EQ(cache.counters().remeshes, 1u);
+
+    // Another frame: built there, and again on coming back (the cache holds one frame).
+    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+    s.apply({{"op", "export.vdb"}, {"fault", "F1"}, {"path", dir.file("F1-1.vdb")}});
+    EXPECT_EQ(cache.counters().builds, 2u);
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    // Strains derived again (a second set of variables) make new frames: the colours' values
+    // may have changed, so the surface is built again, not taken from before.
+    s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.1})"));
+    s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-2.glb")}});
+    EXPECT_EQ(cache.counters().builds, 3u);
+    EXPECT_EQ(cache.counters().hits, 2u);
 }
