@@ -180,7 +180,7 @@ SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r
         if (reuse.cache)
             return reuse.cache->get(
                 surfaceKeyOf(reuse.frameIndex, r.fault, r.settings, params), built,
-                [&] { return spheres.set(); }, interrupter);
+                [&] { return spheres.set(); }, interrupter, reuse.keepOnly);
         return buildSurface(spheres.set(), built, interrupter);
     } catch (const SurfaceCancelled&) {
         throw;

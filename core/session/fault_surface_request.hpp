@@ -86,6 +86,7 @@ FaultSpheres gatherSurfaceSpheres(const Frame& frame, const FaultSurfaceRequest&
 struct SurfaceReuse {
     SurfaceCache* cache = nullptr;
     std::size_t frameIndex = 0;
+    bool keepOnly = false; // with a cache: keep the surface there, return no mesh (no copy)
 };
 
 // The fault's surface in `frame`: built, or taken from (and kept in) reuse.cache. Throws what

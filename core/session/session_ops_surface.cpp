@@ -97,7 +97,9 @@ SurfaceReuse reuseFor(Session& s, const std::shared_ptr<const Frame>& frame) {
     return {&s.surfaceCacheFor(frame), s.state().frame};
 }
 
-SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
+// Builds the surface into the session's cache (the exports take it from there); refuses what
+// cannot be built.
+void build(Session& s, const SurfaceSettings& st, const char* op) {
     auto frame = s.currentFrame();
     if (!frame)
         throw CommandError(std::string(op) + ": no data is open");
@@ -109,7 +111,9 @@ SurfaceResult build(Session& s, const SurfaceSettings& st, const char* op) {
                                " spheres passes the thresholds in frame " +
                                std::to_string(s.state().frame) + ": it has not formed there yet");
     try {
-        return buildFaultSurface(*frame, {fault, st}, nullptr, reuseFor(s, frame));
+        SurfaceReuse reuse = reuseFor(s, frame);
+        reuse.keepOnly = true; // no copy of a mesh nobody reads here
+        buildFaultSurface(*frame, {fault, st}, nullptr, reuse);
     } catch (const std::exception& e) {
         throw CommandError(std::string(op) + ": " + e.what());
     }

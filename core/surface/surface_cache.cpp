@@ -33,8 +33,8 @@ SurfaceResult SurfaceCache::find(const SurfaceKey& key, float iso) const {
 }
 
 SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& params,
-                                const std::function<SphereSet()>& gather,
-                                Interrupter* interrupter) {
+                                const std::function<SphereSet()>& gather, Interrupter* interrupter,
+                                bool keepOnly) {
     std::shared_ptr<const SurfaceField> field;
     {
         std::lock_guard lock(m_mutex);
@@ -43,7 +43,8 @@ SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& para
             for (const auto& [iso, mesh] : it->meshes)
                 if (iso == params.iso) {
                     ++m_counters.hits;
-                    return {it->field, mesh, iso};
+                    return keepOnly ? SurfaceResult{it->field, {}, iso}
+                                    : SurfaceResult{it->field, mesh, iso};
                 }
             if (it->field->supportsIso(params.iso))
                 field = it->field;
@@ -55,15 +56,21 @@ SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& para
         ++m_counters.remeshes;
         auto it = lookup(key);
         if (it != m_entries.end() && it->field == field) {
-            it->meshes.insert(it->meshes.begin(), {params.iso, mesh});
-            m_bytes += meshBytes(mesh);
-            it->bytes += meshBytes(mesh);
+            const std::size_t bytes = meshBytes(mesh);
+            if (keepOnly)
+                it->meshes.insert(it->meshes.begin(), {params.iso, std::move(mesh)});
+            else
+                it->meshes.insert(it->meshes.begin(), {params.iso, mesh});
+            m_bytes += bytes;
+            it->bytes += bytes;
             while (it->meshes.size() > kMeshesPerEntry) {
                 m_bytes -= meshBytes(it->meshes.back().second);
                 it->bytes -= meshBytes(it->meshes.back().second);
                 it->meshes.pop_back();
             }
         }
+        if (keepOnly)
+            return {field, {}, params.iso};
         return {field, std::move(mesh), params.iso};
     }
     SurfaceResult built = buildSurface(gather(), params, interrupter);
@@ -72,10 +79,13 @@ SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& para
     Entry entry;
     entry.key = key;
     entry.field = built.field;
-    entry.meshes.emplace_back(built.iso, built.mesh);
     entry.bytes = built.field->memoryBytes() + meshBytes(built.mesh);
+    if (keepOnly)
+        entry.meshes.emplace_back(built.iso, std::move(built.mesh));
+    else
+        entry.meshes.emplace_back(built.iso, built.mesh);
     insertLocked(std::move(entry));
-    return built;
+    return keepOnly ? SurfaceResult{built.field, {}, built.iso} : built;
 }
 
 void SurfaceCache::insertLocked(Entry entry) {

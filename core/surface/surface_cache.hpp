@@ -27,8 +27,11 @@ class SurfaceCache {
     // The surface for key + params.iso: cached, or re-meshed from a cached field when only the
     // iso-value changed (within the field's range), or built from gather()'s spheres. Thread-safe;
     // the build runs outside the lock. Exceptions from buildSurface pass through, nothing cached.
+    // keepOnly: the caller only wants the surface kept (a journal's surface.build before its
+    // exports): a new mesh is moved into the cache, not copied, and the result holds no mesh.
     SurfaceResult get(const SurfaceKey& key, const SurfaceParams& params,
-                      const std::function<SphereSet()>& gather, Interrupter* interrupter = nullptr);
+                      const std::function<SphereSet()>& gather, Interrupter* interrupter = nullptr,
+                      bool keepOnly = false);
 
     // Cached result without any work, or an empty result (field == nullptr).
     SurfaceResult find(const SurfaceKey& key, float iso) const;

@@ -67,3 +67,34 @@ TEST(SurfaceCache, MemberHashDependsOnTheMembers) {
     EXPECT_NE(fc::hashMemberIds(a), fc::hashMemberIds(c));
     EXPECT_EQ(fc::hashMemberIds(a), fc::hashMemberIds(std::vector<std::int64_t>{1, 2, 3}));
 }
+
+// keepOnly (a journal's surface.build): the surface is kept whole and the result holds no mesh;
+// a later get returns the kept mesh, the same as a build returned to its caller.
+TEST(SurfaceCache, KeepOnlyKeepsTheMeshAndReturnsNone) {
+    const Spheres s;
+    fc::SurfaceParams params;
+    params.iso = 2.0f;
+    params.voxelSize = 0.1f;
+    const fc::SurfaceKey key{0, 1, fc::fieldParamsHash(params)};
+    auto gather = [&] { return s.set(); };
+    fc::SurfaceCache plain, kept;
+    const auto expected = plain.get(key, params, gather);
+    ASSERT_GT(expected.mesh.indices.size(), 0u);
+    const auto built = kept.get(key, params, gather, nullptr, true);
+    EXPECT_NE(built.field, nullptr);
+    EXPECT_EQ(built.mesh.indices.size(), 0u);
+    EXPECT_EQ(kept.memoryBytes(), plain.memoryBytes());
+    const auto again = kept.get(key, params, gather, nullptr, true); // a hit: still no copy
+    EXPECT_EQ(again.mesh.indices.size(), 0u);
+    const auto read = kept.get(key, params, gather);
+    EXPECT_EQ(read.mesh.indices, expected.mesh.indices);
+    EXPECT_EQ(read.mesh.positions, expected.mesh.positions);
+    // A re-mesh at another iso-value in range, kept the same way.
+    params.iso = 2.05f;
+    EXPECT_EQ(kept.get(key, params, gather, nullptr, true).mesh.indices.size(), 0u);
+    EXPECT_EQ(kept.get(key, params, gather).mesh.indices,
+              plain.get(key, params, gather).mesh.indices);
+    EXPECT_EQ(kept.counters().builds, 1u);
+    EXPECT_EQ(kept.counters().remeshes, 1u);
+    EXPECT_EQ(kept.counters().hits, 3u);
+}
