@@ -51,14 +51,20 @@ void expectRefused(Session& s, const char* text, const std::string& message) {
     EXPECT_EQ(s.state(), before) << text;
 }
 
+// The sliding block with its incremental strains (against the frame before, face neighbours
+// only), at its last frame.
+void openSlidingAtFrame2(Session& s, const TempDir& dir) {
+    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
+    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.1,"prefix":"inc_"})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+}
+
 } // namespace
 
 TEST(StrainSession, IncrementalShearStrainPicksOutTheSlidingPlane) {
     TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
-    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.1,"prefix":"inc_"})"));
-    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    openSlidingAtFrame2(s, dir);
     auto frame = s.currentFrame();
     for (const char* name :
          {"inc_shear_strain", "inc_volumetric_strain", "inc_d2min", "inc_displacement"})
@@ -234,9 +240,7 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
 TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
     TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
-    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.1,"prefix":"inc_"})"));
-    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    openSlidingAtFrame2(s, dir);
     s.apply(cmd(R"({"op":"threshold.add","variable":"inc_shear_strain","low":0.05,"high":1e30})"));
     s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
     s.apply(cmd(R"({"op":"surface.build","fault":"F1","kernel":"inverse-square","voxel":0.25,)"
