@@ -3,6 +3,7 @@
 #include "../core/test_files.hpp"
 #include "core/session/color_range.hpp"
 #include "core/session/session.hpp"
+#include "core/surface/surface_cache.hpp"
 #include "core/synth/demo_model.hpp"
 #include "gl_required.hpp"
 #include "headless_ui.hpp"
@@ -286,4 +287,22 @@ TEST_F(PanelTest, ExportDialogsOpenWhereTheLastExportWent) {
         setenv("XDG_DATA_HOME", saved.c_str(), 1);
     else
         unsetenv("XDG_DATA_HOME");
+}
+
+// A figure after surface.build draws the surface the op built (the session keeps it for the
+// frame); the next frame of a movie builds its own.
+TEST_F(MovieTest, AFigureDrawsTheSurfaceSurfaceBuildMade) {
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(
+        R"({"op":"surface.build","fault":"F1","kernel":"compact","voxel":0.25,"iso":0.5})"));
+    const core::SurfaceCache& cache = session.surfaceCache();
+    EXPECT_EQ(cache.counters().builds, 1u);
+    session.apply(Json::parse(R"({"op":"render","path":"out/s.png","size":[64,48]})"));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/s.png")));
+    EXPECT_EQ(cache.counters().builds, 1u);
+    EXPECT_EQ(cache.counters().hits, 1u);
+    session.apply(
+        Json::parse(R"({"op":"render","path":"seq/s%d.png","size":[64,48],"frames":[1,2]})"));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("seq/s2.png")));
+    EXPECT_EQ(cache.counters().builds, 3u);
 }

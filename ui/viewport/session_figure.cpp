@@ -124,7 +124,11 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
                          [&](std::int64_t id) { return frame->rowOf(id).has_value(); }))
             continue; // none of its members in this frame: nothing to draw
         try {
-            scene.meshes.push_back(toMeshData(core::buildFaultSurface(*frame, {*fault, st}).mesh));
+            // The session's surfaces of this frame: one surface.build made is drawn, not built
+            // again (a movie builds each frame's once).
+            const core::SurfaceReuse reuse{&session.surfaceCacheFor(frame), frameIndex};
+            scene.meshes.push_back(
+                toMeshData(core::buildFaultSurface(*frame, {*fault, st}, nullptr, reuse).mesh));
         } catch (const std::exception& e) {
             throw CommandError(std::string("render: surface of ") + e.what());
         }
