@@ -188,8 +188,6 @@ void part525k() {
         if (round == 0) {
             coldStrain = s;
             coldParse = p;
-        }
-        if (round == 0) {
             std::size_t nan = 0, high = 0;
             for (float v : cols[0].floats) {
                 nan += std::isnan(v) ? 1 : 0;

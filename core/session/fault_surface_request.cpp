@@ -167,6 +167,11 @@ void makeFolder(const std::string& path) {
 
 } // namespace
 
+SurfaceReuse surfaceReuseFor(Session& s, const std::shared_ptr<const Frame>& frame,
+                             std::size_t frameIndex) {
+    return {&s.surfaceCacheFor(frame), frameIndex};
+}
+
 SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r,
                                 Interrupter* interrupter, SurfaceReuse reuse) {
     try {

@@ -92,11 +92,6 @@ Json storeSettings(Session& s, const SurfaceSettings& st) {
     return inverse;
 }
 
-// The session's surfaces of this frame: an export after surface.build takes the built one.
-SurfaceReuse reuseFor(Session& s, const std::shared_ptr<const Frame>& frame) {
-    return {&s.surfaceCacheFor(frame), s.state().frame};
-}
-
 // Builds the surface into the session's cache (the exports take it from there); refuses what
 // cannot be built.
 void build(Session& s, const SurfaceSettings& st, const char* op) {
@@ -111,7 +106,7 @@ void build(Session& s, const SurfaceSettings& st, const char* op) {
                                " spheres passes the thresholds in frame " +
                                std::to_string(s.state().frame) + ": it has not formed there yet");
     try {
-        SurfaceReuse reuse = reuseFor(s, frame);
+        SurfaceReuse reuse = surfaceReuseFor(s, frame, s.state().frame);
         reuse.keepOnly = true; // no copy of a mesh nobody reads here
         buildFaultSurface(*frame, {fault, st}, nullptr, reuse);
     } catch (const std::exception& e) {
@@ -172,7 +167,8 @@ void registerSurfaceOps(OpRegistry& ops) {
         const std::string path = s.outputPath(args::string(cmd, "path"));
         try {
             const auto frame = frameOf(s, "export.vdb");
-            writeFaultVdb(*frame, request, path, nullptr, reuseFor(s, frame));
+            writeFaultVdb(*frame, request, path, nullptr,
+                          surfaceReuseFor(s, frame, s.state().frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.vdb: ") + e.what());
         }
@@ -191,7 +187,7 @@ void registerSurfaceOps(OpRegistry& ops) {
             const auto frame = frameOf(s, "export.gltf");
             writeFaultsGlb(*frame, requests, path,
                            args::optionalBool(cmd, "glyphs").value_or(false), nullptr,
-                           reuseFor(s, frame));
+                           surfaceReuseFor(s, frame, s.state().frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.gltf: ") + e.what());
         }
