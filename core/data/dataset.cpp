@@ -309,11 +309,12 @@ namespace {
 // `base` with its derived columns replaced by those of `strains` against their references.
 std::shared_ptr<const Frame>
 deriveFrame(const std::shared_ptr<const Frame>& base, std::size_t index, std::size_t count,
-            const std::vector<StrainSpec>& strains,
+            const std::vector<StrainSpec>& strains, std::uint64_t derivation,
             const std::function<std::shared_ptr<const Frame>(std::size_t)>& frameAt) {
     auto out = std::make_shared<Frame>(*base);
     out->attributes.resize(out->attributes.size() - out->derivedColumns);
     out->derivedColumns = 0;
+    out->derivation = strains.empty() ? 0 : derivation;
     for (const StrainSpec& spec : strains) {
         std::vector<AttributeColumn> cols;
         if (auto ref = spec.referenceFor(index, count)) {
@@ -347,6 +348,14 @@ std::string derivedVariant(const std::vector<StrainSpec>& strains, std::size_t i
              (s.referenceFor(index, count) ? "" : " none");
     }
     return v;
+}
+
+// Frame::derivation for a variant: never 0 (0 is "as read").
+std::uint64_t derivationTag(const std::string& variant) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : variant)
+        h = (h ^ c) * 0x100000001b3ull;
+    return h | 1;
 }
 
 // How many of a frame's last columns the specs derive (they come last, in spec order).
@@ -396,6 +405,8 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
         std::shared_ptr<FrameCache> disk = m_loader ? nullptr : frameCache();
         std::vector<FrameLocation> references;
         std::string variant;
+        const std::uint64_t derivation =
+            strains.empty() ? 0 : derivationTag(derivedVariant(strains, index, m_frames.size()));
         if (disk && disk->enabled() && !strains.empty()) {
             variant = derivedVariant(strains, index, m_frames.size());
             for (const auto& spec : strains)
@@ -404,6 +415,7 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
             if (auto hit = disk->lookupDerived(m_frames[index], references, variant)) {
                 auto frame = std::make_shared<Frame>(std::move(*hit));
                 frame->derivedColumns = trailingDerivedColumns(*frame, strains);
+                frame->derivation = derivation;
                 loaded = std::move(frame);
             }
         }
@@ -412,7 +424,7 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
                 base = readFrame(index);
             loaded = strains.empty() && base->derivedColumns == 0
                          ? base
-                         : deriveFrame(base, index, m_frames.size(), strains,
+                         : deriveFrame(base, index, m_frames.size(), strains, derivation,
                                        [this](std::size_t k) { return baseFrame(k); });
             if (!variant.empty())
                 disk->storeDerived(m_frames[index], references, variant, *loaded);

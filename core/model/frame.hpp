@@ -57,6 +57,9 @@ class Frame {
     // The last `derivedColumns` attributes were derived (strain from motion), not read: the
     // dataset strips them before deriving again (core/data/dataset.hpp).
     std::size_t derivedColumns = 0;
+    // Which strain list derived them, as a hash of the list and this frame's references; 0: none.
+    // Frames whose derived columns hold other values differ in it (surface colours' cache keys).
+    std::uint64_t derivation = 0;
 
     std::size_t size() const { return ids.size(); }
 

@@ -128,8 +128,8 @@ SurfaceParams surfaceParamsOf(const SurfaceSettings& settings, const Fault& faul
     return params;
 }
 
-SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceSettings& settings,
-                        const SurfaceParams& params) {
+SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Frame* frame, const Fault& fault,
+                        const SurfaceSettings& settings, const SurfaceParams& params) {
     std::uint64_t members = hashMemberIds(fault.ids);
     auto mix = [&](std::uint64_t v) { members = (members ^ v) * 0x100000001b3ull; };
     for (float c : plainColour(settings, fault))
@@ -141,6 +141,14 @@ SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const Surfac
         if (settings.colorRange)
             for (double r : *settings.colorRange)
                 mix(std::bit_cast<std::uint64_t>(r));
+        if (frame && frame->derivedColumns > 0) {
+            const auto& columns = frame->attributes;
+            const bool derived = std::any_of(
+                columns.end() - static_cast<std::ptrdiff_t>(frame->derivedColumns), columns.end(),
+                [&](const AttributeColumn& c) { return c.name == settings.colorBy; });
+            if (derived)
+                mix(frame->derivation);
+        }
     }
     return {static_cast<std::int64_t>(frameIndex), members, fieldParamsHash(params)};
 }
@@ -184,7 +192,7 @@ SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r
             built.colorReach = static_cast<float>(2.0 * meanRadius(spheres.set()));
         if (reuse.cache)
             return reuse.cache->get(
-                surfaceKeyOf(reuse.frameIndex, r.fault, r.settings, params), built,
+                surfaceKeyOf(reuse.frameIndex, &frame, r.fault, r.settings, params), built,
                 [&] { return spheres.set(); }, interrupter, reuse.keepOnly);
         return buildSurface(spheres.set(), built, interrupter);
     } catch (const SurfaceCancelled&) {

@@ -61,9 +61,11 @@ std::optional<double> faultWrappingIso(const Frame& frame, const Fault& fault,
 
 // The SurfaceCache key of a fault's surface in frame `frameIndex`: members and their colours (the
 // fault's, or a variable's through a map and range: the colour grid depends on them) and every
-// field parameter except iso.
-SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Fault& fault, const SurfaceSettings& settings,
-                        const SurfaceParams& params);
+// field parameter except iso. A colour variable derived from motion also keys by the strain list
+// that derived it (Frame::derivation of `frame`; null: none), since deriving again under the
+// same names gives the frame other values.
+SurfaceKey surfaceKeyOf(std::size_t frameIndex, const Frame* frame, const Fault& fault,
+                        const SurfaceSettings& settings, const SurfaceParams& params);
 
 // One fault's surface as an export wants it: the fault and its surface settings.
 struct FaultSurfaceRequest {

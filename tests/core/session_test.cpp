@@ -487,8 +487,8 @@ TEST(Session, ASurfaceTakesItsSpheresColoursFromAVariable) {
     EXPECT_GT(east / ne - west / nw, 0.5) << west / nw << " vs " << east / ne;
     // Its own cache entry: colours are part of the key.
     const SurfaceParams params = surfaceParamsOf(byStrain, *s.state().fault("F1"));
-    EXPECT_NE(surfaceKeyOf(0, *s.state().fault("F1"), byStrain, params).members,
-              surfaceKeyOf(0, *s.state().fault("F1"), plain, params).members);
+    EXPECT_NE(surfaceKeyOf(0, nullptr, *s.state().fault("F1"), byStrain, params).members,
+              surfaceKeyOf(0, nullptr, *s.state().fault("F1"), plain, params).members);
     // Saved and restored; undone to the fault's plain colour.
     const std::string file = dir.file("c.faultline.json");
     s.apply({{"op", "session.save"}, {"path", file}});
@@ -539,8 +539,8 @@ TEST(Session, ASurfaceTakesAColourOfItsOwn) {
         EXPECT_NEAR(c[2], 0.2f, 1e-4f);
     }
     const SurfaceParams params = surfaceParamsOf(own, f1);
-    EXPECT_NE(surfaceKeyOf(0, f1, own, params).members,
-              surfaceKeyOf(0, f1, plain, surfaceParamsOf(plain, f1)).members);
+    EXPECT_NE(surfaceKeyOf(0, nullptr, f1, own, params).members,
+              surfaceKeyOf(0, nullptr, f1, plain, surfaceParamsOf(plain, f1)).members);
     const std::string file = dir.file("own.faultline.json");
     s.apply({{"op", "session.save"}, {"path", file}});
     EXPECT_EQ(loadSessionFile(file), s.state());

@@ -255,7 +255,7 @@ TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
     const FaultSurfaceRequest request = surfaceRequestFor(s, "F1", "test");
     const SurfaceResult own = buildFaultSurface(*s.currentFrame(), request);
     const SurfaceResult kept =
-        cache.find(surfaceKeyOf(2, request.fault, request.settings,
+        cache.find(surfaceKeyOf(2, s.currentFrame().get(), request.fault, request.settings,
                                 surfaceParamsOf(request.settings, request.fault)),
                    1.5f);
     ASSERT_NE(kept.field, nullptr);
@@ -278,4 +278,42 @@ TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
     s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-2.glb")}});
     EXPECT_EQ(cache.counters().builds, 3u);
     EXPECT_EQ(cache.counters().hits, 2u);
+}
+
+// A surface coloured by a derived variable keys by the strain list that derived the frame, so a
+// cache that outlives frame objects (the workbench's) never gives the colours of other values:
+// the same names derived again with another cutoff or reference make another key. Colours by a
+// variable read from the file, or by none, keep theirs.
+TEST(StrainSession, ASurfaceColouredByDerivedValuesKeysByTheirDerivation) {
+    TempDir dir;
+    Session s;
+    openSlidingAtFrame2(s, dir);
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","ids":[1,2,3,4,5,6,7,8]})"));
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color_by":"inc_shear_strain"})"));
+    auto keyOf = [&](const std::string& colorBy) {
+        SurfaceSettings settings = *s.state().surface("F1");
+        settings.colorBy = colorBy;
+        const Fault& fault = *s.state().fault("F1");
+        return surfaceKeyOf(2, s.currentFrame().get(), fault, settings,
+                            surfaceParamsOf(settings, fault));
+    };
+    const auto first = s.currentFrame();
+    ASSERT_NE(first->derivation, 0u);
+    const SurfaceKey derived = keyOf("inc_shear_strain");
+    const SurfaceKey read = keyOf("strain");
+    const SurfaceKey plain = keyOf("");
+    // The same list again (another frame object, e.g. reloaded): the same keys.
+    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":2})"));
+    EXPECT_EQ(s.currentFrame()->derivation, first->derivation);
+    EXPECT_EQ(keyOf("inc_shear_strain"), derived);
+    // Derived again under the same prefix with another cutoff: other values, another key.
+    s.apply(cmd(R"({"op":"strain.remove","prefix":"inc_"})"));
+    s.apply(cmd(R"({"op":"strain.add","since_offset":-1,"cutoff":1.6,"prefix":"inc_"})"));
+    ASSERT_NE(s.currentFrame()->attribute("inc_shear_strain")->floats,
+              first->attribute("inc_shear_strain")->floats);
+    EXPECT_NE(s.currentFrame()->derivation, first->derivation);
+    EXPECT_NE(keyOf("inc_shear_strain"), derived);
+    EXPECT_EQ(keyOf("strain"), read);
+    EXPECT_EQ(keyOf(""), plain);
 }

@@ -175,6 +175,36 @@ TEST_F(PanelTest, ASurfaceIsColouredByAVariableOrLikeTheView) {
     EXPECT_EQ(session.state().surface("F1")->colorBy, "layer");
 }
 
+// Strains derived again under the same names (another reference or cutoff) may give a surface
+// coloured by them other colours: the workbench builds it again instead of drawing the colours of
+// the old values. (The lattice does not move, so here the values happen to stay zero; the store
+// keys by how they were derived, not by looking at them.)
+TEST_F(PanelTest, ASurfaceColouredByStrainIsBuiltAgainWhenTheStrainIsDerivedAgain) {
+    openLattice();
+    session.apply(Json::parse(R"({"op":"frame.set","frame":2})"));
+    session.apply(Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
+    session.apply(Json::parse(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","kernel":"compact","iso":0.5,)"
+                              R"("color_reach":1,"color_by":"inc_shear_strain"})"));
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
+    const auto before = wb().mainDisplay()->surfaces[0].mesh;
+    session.apply(Json::parse(R"({"op":"strain.remove","prefix":"inc_"})"));
+    session.apply(
+        Json::parse(R"({"op":"strain.add","since_frame":0,"cutoff":2.5,"prefix":"inc_"})"));
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->surfaces.size(), 1u);
+    EXPECT_NE(wb().mainDisplay()->surfaces[0].mesh, before);
+    // Colouring by a variable read from the file keeps the surface across such a change.
+    session.apply(Json::parse(R"({"op":"surface.set","fault":"F1","color_by":"strain"})"));
+    headless.settle(wb());
+    const auto byRead = wb().mainDisplay()->surfaces[0].mesh;
+    session.apply(Json::parse(R"({"op":"strain.remove","prefix":"inc_"})"));
+    session.apply(Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->surfaces[0].mesh, byRead);
+}
+
 // Issue 41: "own colour" in the colour menu gives the surface a colour apart from its fault's
 // (the fault's complement to start with), shown in the views and in the surfaces' list; "fault
 // colour" takes it back.

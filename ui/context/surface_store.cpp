@@ -21,9 +21,10 @@ SurfaceStore::SurfaceStore(JobRunner& jobs)
 
 std::optional<SurfaceStore::Key> SurfaceStore::keyOf(const core::SurfaceSettings& settings,
                                                      const core::Fault& fault,
-                                                     std::size_t frameIndex) const {
+                                                     std::size_t frameIndex,
+                                                     const core::Frame* frame) const {
     const core::SurfaceParams params = core::surfaceParamsOf(settings, fault);
-    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, fault, settings, params);
+    const core::SurfaceKey k = core::surfaceKeyOf(frameIndex, frame, fault, settings, params);
     return Key{k.frame, k.members, k.params, params.iso};
 }
 
@@ -71,7 +72,7 @@ SurfaceStore::surfacesFor(const core::SessionState& state, std::size_t frameInde
         const core::Fault* fault = sourceOf(state, settings.fault, frame, visibility);
         if (!fault || !fault->visible || fault->ids.empty()) // none formed in this frame yet
             continue;
-        const auto key = keyOf(settings, *fault, frameIndex);
+        const auto key = keyOf(settings, *fault, frameIndex, frame.get());
         if (!key)
             continue;
         Entry& e = m_entries[*key];
@@ -166,7 +167,7 @@ SurfaceStore::status(const core::SessionState& state, const std::string& fault,
         s.state = SurfaceStatus::State::NotFormed;
         return s;
     }
-    const auto key = keyOf(*settings, *source, frameIndex);
+    const auto key = keyOf(*settings, *source, frameIndex, frame.get());
     if (!key)
         return {};
     auto it = m_entries.find(*key);

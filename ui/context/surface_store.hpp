@@ -84,7 +84,7 @@ class SurfaceStore {
         std::uint64_t lastUse = 0;
     };
     std::optional<Key> keyOf(const core::SurfaceSettings& settings, const core::Fault& fault,
-                             std::size_t frameIndex) const;
+                             std::size_t frameIndex, const core::Frame* frame) const;
     void startBuild(const Key& key, Entry& entry, const core::SurfaceSettings& settings,
                     const core::Fault& fault, std::shared_ptr<const core::Frame> frame, double now);
     void prune();
