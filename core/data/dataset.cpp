@@ -314,7 +314,6 @@ deriveFrame(const std::shared_ptr<const Frame>& base, std::size_t index, std::si
     auto out = std::make_shared<Frame>(*base);
     out->attributes.resize(out->attributes.size() - out->derivedColumns);
     out->derivedColumns = 0;
-    out->derivation = strains.empty() ? 0 : derivation;
     for (const StrainSpec& spec : strains) {
         std::vector<AttributeColumn> cols;
         if (auto ref = spec.referenceFor(index, count)) {
@@ -332,6 +331,7 @@ deriveFrame(const std::shared_ptr<const Frame>& base, std::size_t index, std::si
             ++out->derivedColumns;
         }
     }
+    out->derivation = out->derivedColumns > 0 ? derivation : 0;
     return out;
 }
 
@@ -404,18 +404,19 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
         // A frame derived before (this run or an earlier one) comes from the disk cache whole.
         std::shared_ptr<FrameCache> disk = m_loader ? nullptr : frameCache();
         std::vector<FrameLocation> references;
-        std::string variant;
-        const std::uint64_t derivation =
-            strains.empty() ? 0 : derivationTag(derivedVariant(strains, index, m_frames.size()));
+        const std::string described =
+            strains.empty() ? std::string() : derivedVariant(strains, index, m_frames.size());
+        const std::uint64_t derivation = strains.empty() ? 0 : derivationTag(described);
+        std::string variant; // the disk cache's name for it; empty: not stored
         if (disk && disk->enabled() && !strains.empty()) {
-            variant = derivedVariant(strains, index, m_frames.size());
+            variant = described;
             for (const auto& spec : strains)
                 if (auto ref = spec.referenceFor(index, m_frames.size()))
                     references.push_back(m_frames[*ref]);
             if (auto hit = disk->lookupDerived(m_frames[index], references, variant)) {
                 auto frame = std::make_shared<Frame>(std::move(*hit));
                 frame->derivedColumns = trailingDerivedColumns(*frame, strains);
-                frame->derivation = derivation;
+                frame->derivation = frame->derivedColumns > 0 ? derivation : 0;
                 loaded = std::move(frame);
             }
         }
