@@ -49,12 +49,14 @@ SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
         throw CommandError(std::string(op) + ": no fault named \"" + fault + "\"");
     SurfaceSettings st;
     st.fault = fault;
-    if (const SurfaceSettings* old = s.state().surface(fault))
+    const SurfaceSettings* old = s.state().surface(fault);
+    if (old)
         st = *old;
     // "iso":"wrap" (and surface.build without "iso"): the iso-value that wraps the spheres,
     // worked out once the other settings are read (it depends on kernel and voxel).
-    const bool isoWrap =
+    const bool explicitWrap =
         cmd.contains("iso") ? cmd["iso"] == "wrap" : std::string(op) == "surface.build";
+    bool isoWrap = explicitWrap;
     Json fields = cmd;
     if (isoWrap)
         fields.erase("iso");
@@ -65,6 +67,16 @@ SurfaceSettings settingsFrom(Session& s, const Json& cmd, const char* op) {
         throw CommandError(items::commandMessage(op, e) +
                            (e.path == "iso" && !isoWrap ? " (or \"wrap\")" : ""));
     }
+    // surface.set without "iso" for a new surface, or with another kernel, under an inverse
+    // kernel: the wrapping iso too, as the workbench's Surfaces panel gives. The default of 1
+    // lies far outside the field of a few hundred spheres or more (r/d or r/d^2 summed over
+    // them), whose surface is then one ball around them all. The compact kernel's field is a
+    // sum of bumps, where 1 keeps its meaning (and recorded journals their figures). With no
+    // data open or no member formed in this frame, the default stays.
+    const bool implicitWrap = !explicitWrap && !cmd.contains("iso") &&
+                              st.kernel != MetaballKernel::Compact &&
+                              (!old || old->kernel != st.kernel);
+    isoWrap = explicitWrap || (implicitWrap && s.currentFrame());
     if (isoWrap) {
         auto frame = s.currentFrame();
         if (!frame)

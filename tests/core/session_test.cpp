@@ -581,6 +581,41 @@ TEST(Session, ASurfaceBuiltWithoutAnIsoValueWrapsItsSpheres) {
     expectRefused(s, R"({"op":"surface.set","fault":"F1","iso":"high"})", "(or \"wrap\")");
 }
 
+// surface.set without "iso" for a new surface, or one whose kernel changes, under an inverse
+// kernel takes the wrapping iso too, as the workbench's Surfaces panel does: the default of 1
+// lies outside the whole lattice's r/d^2 field, and its surface would be one ball around it. The
+// compact kernel keeps the default, an existing surface its iso-value, and a number is kept.
+TEST(Session, ANewInverseSurfaceWithoutAnIsoValueWrapsItsSpheres) {
+    TempDir dir;
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {writeLattice(dir)}}});
+    s.apply(cmd(R"({"op":"fault.create","name":"F1","from":"visible"})"));
+    s.apply(cmd(R"({"op":"fault.create","name":"F2","ids":[1,2,3,4,5,6]})"));
+    auto wrapOf = [&](const std::string& fault) {
+        return *faultWrappingIso(*s.currentFrame(), *s.state().fault(fault),
+                                 *s.state().surface(fault));
+    };
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","voxel":0.25})")); // inverse-square
+    EXPECT_EQ(s.state().surface("F1")->kernel, MetaballKernel::InverseSquare);
+    EXPECT_EQ(s.state().surface("F1")->iso, wrapOf("F1"));
+    EXPECT_GT(s.state().surface("F1")->iso, 1.0);
+    // An existing surface keeps its iso-value when other settings change.
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","iso":3.5})"));
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","voxel":0.3,"opacity":0.5})"));
+    EXPECT_EQ(s.state().surface("F1")->iso, 3.5);
+    // Another inverse kernel without an iso-value: wrapped for it.
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","kernel":"inverse"})"));
+    EXPECT_EQ(s.state().surface("F1")->iso, wrapOf("F1"));
+    // The compact kernel keeps the number it has (recorded journals' figures stay).
+    s.apply(cmd(R"({"op":"surface.set","fault":"F2","kernel":"compact"})"));
+    EXPECT_EQ(s.state().surface("F2")->iso, 1.0);
+    s.apply(cmd(R"({"op":"undo"})"));
+    EXPECT_EQ(s.state().surface("F2"), nullptr);
+    // A number given is kept.
+    s.apply(cmd(R"({"op":"surface.set","fault":"F2","iso":0.7})"));
+    EXPECT_EQ(s.state().surface("F2")->iso, 0.7);
+}
+
 TEST(SessionFile, SaveAndLoadRoundTripWithRelativeDataPaths) {
     TempDir dir;
     Session s;
