@@ -199,6 +199,41 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderWhenTheColouringChanges) {
     EXPECT_FLOAT_EQ(headless.rect(wb(), "histogram.layer").y0, layerY);
 }
 
+// A file of positions alone (as most DEM codes write) shows the radius histogram; strain from
+// motion derived shows its first variables, and they come back after it is derived anew (the
+// default list was kept from before, the radius alone).
+TEST_F(PanelTest, DefaultHistogramsFollowTheStrainVariablesAsTheyComeAndGo) {
+    std::string text;
+    for (int t = 0; t < 2; ++t) {
+        text += "ITEM: TIMESTEP\n" + std::to_string(t) +
+                "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
+                "ITEM: ATOMS id x y z radius\n";
+        for (int id = 0; id < 27; ++id)
+            text += std::to_string(id + 1) + " " + std::to_string(id % 3 * (1.0 + 0.1 * t)) + " " +
+                    std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) + " 0.5\n";
+    }
+    wb().opener().openData({dir.write("positions.dump", text)});
+    headless.settle(wb());
+    ASSERT_NE(session.dataset(), nullptr);
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.radius"));
+    session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
+    session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"prefix":"inc_"})"));
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.inc_shear_strain"));
+    EXPECT_FALSE(headless.has(wb(), "histogram.radius"));
+    session.apply(Json::parse(R"({"op":"strain.remove","prefix":"inc_"})"));
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.radius"));
+    session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"cutoff":1.5,"prefix":"c_"})"));
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.c_shear_strain"));
+    // Still the default list: nothing was saved as the user's choice.
+    const Json* settings = std::as_const(wb().layout()).panelSettings(ui::panel_ids::kHistograms);
+    EXPECT_TRUE(!settings || !settings->contains("variables"));
+}
+
 // Issue 41, item 12: reopening a session coloured by a variable showed the histograms in
 // another order (the colour variable first).
 TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderAfterReopeningASession) {

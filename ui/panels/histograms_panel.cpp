@@ -121,12 +121,13 @@ class HistogramsPanel final : public Panel {
         }
         // Default: the file's first three columns, in its order: the same list whatever the
         // colouring and however the session was reached (issue 41: the order changed after
-        // reopening a session, which took the colour variable first).
-        if (wb.dataset().get() == m_defaultFor && !m_default.empty() &&
-            std::all_of(m_default.begin(), m_default.end(),
-                        [&](const std::string& v) { return v == "radius" || frame.attribute(v); }))
+        // reopening a session, which took the colour variable first). Chosen again when the
+        // columns change (strain from motion added or taken away): a file of positions alone
+        // shows its strain once derived, and again after it is derived anew.
+        std::vector<std::string> names = frame.attributeNames();
+        if (wb.dataset().get() == m_defaultFor && !m_default.empty() && names == m_defaultNames)
             return m_default;
-        for (const std::string& n : frame.attributeNames()) {
+        for (const std::string& n : names) {
             if (out.size() >= 3)
                 break;
             if (std::find(out.begin(), out.end(), n) == out.end())
@@ -136,10 +137,12 @@ class HistogramsPanel final : public Panel {
             out.push_back("radius");
         m_default = out;
         m_defaultFor = wb.dataset().get();
+        m_defaultNames = std::move(names);
         return out;
     }
     std::vector<std::string> m_default; // the default list, and the dataset it was chosen for
     const void* m_defaultFor = nullptr;
+    std::vector<std::string> m_defaultNames; // the frame's columns it was chosen from
 
     static bool settingsLog(PanelContext& wb) {
         // Log by default: DEM variables (broken bonds, strain) are strongly skewed.
