@@ -286,8 +286,7 @@ class PySession {
         if (!frame)
             throw core::CommandError("surface: no data is open");
         // The session's surfaces of this frame: one built by surface.build is not built again.
-        const core::SurfaceReuse reuse =
-            core::surfaceReuseFor(m_session, frame, m_session.state().frame);
+        const core::SurfaceReuse reuse = core::surfaceReuseFor(m_session, m_session.state().frame);
         core::SurfaceResult built = interruptible(m_stop, [&] {
             StopFlag flag(m_stop);
             return core::buildFaultSurface(*frame, request, &flag, reuse);

@@ -175,9 +175,8 @@ void makeFolder(const std::string& path) {
 
 } // namespace
 
-SurfaceReuse surfaceReuseFor(Session& s, const std::shared_ptr<const Frame>& frame,
-                             std::size_t frameIndex) {
-    return {&s.surfaceCacheFor(frame), frameIndex};
+SurfaceReuse surfaceReuseFor(Session& s, std::size_t frameIndex) {
+    return {&s.surfaceCacheFor(frameIndex), frameIndex};
 }
 
 SurfaceResult buildFaultSurface(const Frame& frame, const FaultSurfaceRequest& r,

@@ -91,10 +91,9 @@ struct SurfaceReuse {
     bool keepOnly = false; // with a cache: keep the surface there, return no mesh (no copy)
 };
 
-// The session's surfaces of `frame` (frame `frameIndex` of its data) as a reuse: a surface
-// surface.build made there is taken, not built again (Session::surfaceCacheFor).
-SurfaceReuse surfaceReuseFor(Session& s, const std::shared_ptr<const Frame>& frame,
-                             std::size_t frameIndex);
+// The session's surfaces of frame `frameIndex` of its data as a reuse: a surface surface.build
+// made there is taken, not built again (Session::surfaceCacheFor).
+SurfaceReuse surfaceReuseFor(Session& s, std::size_t frameIndex);
 
 // The fault's surface in `frame`: built, or taken from (and kept in) reuse.cache. Throws what
 // buildSurface throws, with the fault named in the message (SurfaceCancelled as it is).

@@ -59,13 +59,14 @@ Session::Session() : m_surfaceCache(std::make_shared<SurfaceCache>(kSessionSurfa
 
 Session::~Session() = default;
 
-SurfaceCache& Session::surfaceCacheFor(const std::shared_ptr<const Frame>& frame) {
-    // A live weak pointer to the same object: the same frame (an expired one never matches, so
-    // a new frame at a freed frame's address cannot inherit its surfaces).
-    const auto held = m_surfaceFrame.lock();
-    if (!held || held != frame) {
+SurfaceCache& Session::surfaceCacheFor(std::size_t frameIndex) {
+    // A live weak pointer to the same object: the same data (an expired one never matches, so
+    // data opened at a freed dataset's address cannot inherit its surfaces).
+    const auto held = m_surfaceData.lock();
+    if (!held || held != m_dataset || frameIndex != m_surfaceFrameIndex) {
         m_surfaceCache->clear();
-        m_surfaceFrame = frame;
+        m_surfaceData = m_dataset;
+        m_surfaceFrameIndex = frameIndex;
     }
     return *m_surfaceCache;
 }

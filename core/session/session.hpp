@@ -161,13 +161,14 @@ class Session {
     // The open dataset and the current frame (loaded on demand); null without data.
     std::shared_ptr<Dataset> dataset() const { return m_dataset; }
     std::shared_ptr<const Frame> currentFrame();
-    // The surfaces that surface.build, the exports and the Python module built in `frame`, so
-    // that an export after a build, a second export or a new iso-value within the built range
-    // does not build again. It holds the surfaces of one frame object at most (512 MiB): asked
-    // for another (a frame change, strains derived again, other data), it empties first, so
-    // nothing stale can come back. Frames are immutable, and the cache's key holds the members,
-    // their colours and every field parameter.
-    SurfaceCache& surfaceCacheFor(const std::shared_ptr<const Frame>& frame);
+    // The surfaces that surface.build, the exports and the Python module built in frame
+    // `frameIndex` of the open data, so that an export after a build, a second export or a new
+    // iso-value within the built range does not build again. It holds one frame's surfaces at
+    // most (512 MiB; a movie keeps no more than the frame it draws): asked for another frame or
+    // other data, it empties first. The cache's key holds the members, their colours, every
+    // field parameter and, for a colour derived from motion, how it was derived
+    // (Frame::derivation), so strains derived again never bring old colours back.
+    SurfaceCache& surfaceCacheFor(std::size_t frameIndex);
     // The same cache without a frame (its counters; benches clear it to time a whole build).
     SurfaceCache& surfaceCache() { return *m_surfaceCache; }
     // The frame a view shows (its binding applied to the current frame, clamped).
@@ -215,9 +216,10 @@ class Session {
     std::uint64_t m_version = 1;
     std::shared_ptr<Dataset> m_dataset;
     std::shared_ptr<SurfaceCache> m_surfaceCache;
-    std::weak_ptr<const Frame> m_surfaceFrame; // the frame whose surfaces m_surfaceCache holds
-    std::vector<Json> m_undo;                  // inverses, most recent last
-    std::uint64_t m_savedVersion = 1;          // m_version starts at 1: a new session is unmodified
+    std::weak_ptr<Dataset> m_surfaceData; // the data and frame whose surfaces m_surfaceCache holds
+    std::size_t m_surfaceFrameIndex = 0;
+    std::vector<Json> m_undo;         // inverses, most recent last
+    std::uint64_t m_savedVersion = 1; // m_version starts at 1: a new session is unmodified
     // Where in its history the state is: the step on top of the undo stack (each step has a
     // serial), or the start of the history when none. Saved at markSaved().
     std::vector<std::uint64_t> m_undoSerials, m_redoSerials;

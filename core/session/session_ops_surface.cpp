@@ -118,7 +118,7 @@ void build(Session& s, const SurfaceSettings& st, const char* op) {
                                " spheres passes the thresholds in frame " +
                                std::to_string(s.state().frame) + ": it has not formed there yet");
     try {
-        SurfaceReuse reuse = surfaceReuseFor(s, frame, s.state().frame);
+        SurfaceReuse reuse = surfaceReuseFor(s, s.state().frame);
         reuse.keepOnly = true; // no copy of a mesh nobody reads here
         buildFaultSurface(*frame, {fault, st}, nullptr, reuse);
     } catch (const std::exception& e) {
@@ -179,8 +179,7 @@ void registerSurfaceOps(OpRegistry& ops) {
         const std::string path = s.outputPath(args::string(cmd, "path"));
         try {
             const auto frame = frameOf(s, "export.vdb");
-            writeFaultVdb(*frame, request, path, nullptr,
-                          surfaceReuseFor(s, frame, s.state().frame));
+            writeFaultVdb(*frame, request, path, nullptr, surfaceReuseFor(s, s.state().frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.vdb: ") + e.what());
         }
@@ -199,7 +198,7 @@ void registerSurfaceOps(OpRegistry& ops) {
             const auto frame = frameOf(s, "export.gltf");
             writeFaultsGlb(*frame, requests, path,
                            args::optionalBool(cmd, "glyphs").value_or(false), nullptr,
-                           surfaceReuseFor(s, frame, s.state().frame));
+                           surfaceReuseFor(s, s.state().frame));
         } catch (const std::exception& e) {
             throw CommandError(std::string("export.gltf: ") + e.what());
         }

@@ -57,10 +57,9 @@ SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& para
         auto it = lookup(key);
         if (it != m_entries.end() && it->field == field) {
             const std::size_t bytes = meshBytes(mesh);
-            if (keepOnly)
-                it->meshes.insert(it->meshes.begin(), {params.iso, std::move(mesh)});
-            else
-                it->meshes.insert(it->meshes.begin(), {params.iso, mesh});
+            // Moved in when the caller reads no mesh, else copied.
+            it->meshes.insert(it->meshes.begin(),
+                              {params.iso, keepOnly ? std::move(mesh) : SurfaceMesh(mesh)});
             m_bytes += bytes;
             it->bytes += bytes;
             while (it->meshes.size() > kMeshesPerEntry) {
@@ -80,10 +79,8 @@ SurfaceResult SurfaceCache::get(const SurfaceKey& key, const SurfaceParams& para
     entry.key = key;
     entry.field = built.field;
     entry.bytes = built.field->memoryBytes() + meshBytes(built.mesh);
-    if (keepOnly)
-        entry.meshes.emplace_back(built.iso, std::move(built.mesh));
-    else
-        entry.meshes.emplace_back(built.iso, built.mesh);
+    entry.meshes.emplace_back(built.iso,
+                              keepOnly ? std::move(built.mesh) : SurfaceMesh(built.mesh));
     insertLocked(std::move(entry));
     return keepOnly ? SurfaceResult{built.field, {}, built.iso} : built;
 }

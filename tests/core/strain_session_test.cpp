@@ -236,7 +236,8 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
 
 // An export after surface.build (or a second export, or a new iso-value within the built range)
 // takes the surface the session built in this frame, and never one built on other values: a
-// frame change or strains derived again empty the session's surfaces first.
+// frame change empties the session's surfaces first, and strains derived again in the same frame
+// key the surfaces coloured by them anew (Frame::derivation).
 TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
     TempDir dir;
     Session s;
@@ -278,6 +279,19 @@ TEST(StrainSession, ExportsReuseTheBuiltSurfaceAndNeverAStaleOne) {
     s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-2.glb")}});
     EXPECT_EQ(cache.counters().builds, 3u);
     EXPECT_EQ(cache.counters().hits, 2u);
+    // In the same frame, with no frame change between: the second set derived again with
+    // another cutoff gives its variables other values, and a surface coloured by one of them is
+    // built again; a second export then takes it.
+    s.apply(cmd(R"({"op":"surface.set","fault":"F1","color_by":"shear_strain"})"));
+    s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-3.glb")}});
+    EXPECT_EQ(cache.counters().builds, 4u);
+    s.apply(cmd(R"({"op":"strain.remove","prefix":""})"));
+    s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.6})"));
+    s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-4.glb")}});
+    EXPECT_EQ(cache.counters().builds, 5u);
+    s.apply({{"op", "export.gltf"}, {"faults", {"F1"}}, {"path", dir.file("F1-5.glb")}});
+    EXPECT_EQ(cache.counters().builds, 5u);
+    EXPECT_EQ(cache.counters().hits, 3u);
 }
 
 // A surface coloured by a derived variable keys by the strain list that derived the frame, so a

@@ -126,7 +126,7 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         try {
             // The session's surfaces of this frame: one surface.build made is drawn, not built
             // again (a movie builds each frame's once).
-            const core::SurfaceReuse reuse = core::surfaceReuseFor(session, frame, frameIndex);
+            const core::SurfaceReuse reuse = core::surfaceReuseFor(session, frameIndex);
             scene.meshes.push_back(
                 toMeshData(core::buildFaultSurface(*frame, {*fault, st}, nullptr, reuse).mesh));
         } catch (const std::exception& e) {
