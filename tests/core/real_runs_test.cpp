@@ -4,7 +4,9 @@
 // export.textExt with attributes). Each reads as the program meant it.
 #include "core/data/dataset.hpp"
 #include "core/motion/strain_from_motion.hpp"
+#include "core/session/fault_surface_request.hpp"
 #include "core/session/session.hpp"
+#include "core/surface/fault_surface.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -234,4 +236,41 @@ TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
             EXPECT_LT(t[k], t[k - 1] - 0.5) << fault << " frame " << k + 1;
         EXPECT_LT(t.back(), -3.5); // the plate moved 8 grain diameters in all
     }
+}
+
+// A journal's surface.set for the graben's bands (no iso-value; the default inverse-square
+// kernel) wraps the bands' spheres: it drew one ball around the whole block while it kept the
+// default iso-value of 1, far outside the summed field of about 2,000 spheres.
+TEST(RealRuns, ANewSurfaceOfTheLammpsGrabenBandsWrapsThem) {
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {run("lammps/dump.extension.gz")}}});
+    s.apply({{"op", "frame.set"}, {"frame", 4}});
+    s.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
+    s.apply(
+        {{"op", "threshold.add"}, {"variable", "inc_shear_strain"}, {"low", 0.05}, {"high", 1e30}});
+    s.apply({{"op", "fault.create"}, {"name", "F1"}, {"from", "visible"}});
+    s.apply({{"op", "threshold.set"}, {"variable", "inc_shear_strain"}, {"enabled", false}});
+    const std::size_t members = s.state().fault("F1")->ids.size();
+    EXPECT_GT(members, 1000u);
+    s.apply({{"op", "surface.set"}, {"fault", "F1"}, {"color_by", "inc_shear_strain"}});
+    const SurfaceSettings& st = *s.state().surface("F1");
+    EXPECT_EQ(st.iso, *faultWrappingIso(*s.currentFrame(), *s.state().fault("F1"), st));
+    EXPECT_GT(st.iso, 5.0);
+    // The surface lies around the bands' spheres: within a few diameters of their bounds.
+    const FaultSurfaceRequest request = surfaceRequestFor(s, "F1", "test");
+    const SurfaceResult built = buildFaultSurface(*s.currentFrame(), request);
+    ASSERT_GT(built.mesh.triangleCount(), 0u);
+    const auto frame = s.currentFrame();
+    std::array<float, 3> lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+    for (std::int64_t id : s.state().fault("F1")->ids) {
+        const std::size_t r = *frame->rowOf(id);
+        const float c[3] = {frame->x[r], frame->y[r], frame->z[r]};
+        for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+    }
+    for (const auto& p : built.mesh.positions)
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_GT(p[k], lo[k] - 3.0f) << "axis " << k;
+            ASSERT_LT(p[k], hi[k] + 3.0f) << "axis " << k;
+        }
 }
