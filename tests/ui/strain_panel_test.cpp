@@ -65,6 +65,36 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
     EXPECT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
 }
 
+// After strain.remove the view keeps its variable (undo and a new strain.add bring it back),
+// but its colour button says the frame lacks it instead of naming a colour map over spheres in
+// one colour.
+TEST_F(PanelTest, TheColourButtonSaysWhenTheFrameLacksItsVariable) {
+    openLattice();
+    session.apply({{"op", "strain.add"}, {"since_frame", 0}});
+    session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "shear_strain"}});
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    ASSERT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
+    EXPECT_TRUE(headless.has(wb(), "view.colour.main"));
+    EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
+
+    session.apply({{"op", "strain.remove"}, {"prefix", ""}});
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    ASSERT_EQ(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
+    EXPECT_EQ(session.state().view("main")->colorVariable, "shear_strain");
+    EXPECT_TRUE(headless.has(wb(), "view.colour.missing.main"));
+
+    ASSERT_TRUE(session.undo());
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
+    // Categories and differences have no variable of their own to miss.
+    session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "faults"}});
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
+}
+
 // A view coloured by displacement has no variable, yet is not plain: Add leaves its colours.
 TEST_F(PanelTest, StrainAddLeavesADisplacementColouringAlone) {
     openLattice();

@@ -8,6 +8,7 @@
 #include "ui/panels/viewport_cell.hpp"
 
 #include "core/model/frame_difference.hpp"
+#include "core/selection/column_view.hpp"
 #include "core/session/commands.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/context/frame_columns.hpp"
@@ -29,6 +30,16 @@ namespace {
 //-----------------------------------------------------------------------------
 // [SECTION] Helpers
 //-----------------------------------------------------------------------------
+
+// Why a view coloured by a variable shows one colour: the shown frame lacks it (empty: it has
+// it, or the view shows plain colour, categories or a difference).
+std::string missingColourNote(const core::ViewState& view, const ViewDisplay& d) {
+    if (!d.frame || view.colorVariable.empty() || view.colorVariable == kFaultsVariable ||
+        !d.palette.empty() || d.colorColumn ||
+        view.difference.mode != core::ColorDifference::Mode::None)
+        return {};
+    return core::missingVariableNote(*d.frame, view.colorVariable);
+}
 
 std::string bindingText(const core::FrameBinding& b) {
     if (!b.relative)
@@ -252,7 +263,12 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     // button, its label shortened to fit (the whole of it in the tooltip). Categories (faults,
     // candidates) have no colour map to name.
     const std::string title = d.colorTitle.empty() ? view.colorVariable : d.colorTitle;
-    const std::string colour = title.empty() ? std::string("plain colour")
+    // A variable this frame lacks (strain removed, a column another file of the series does
+    // not have): the spheres are in one colour, and the button says why rather than naming a
+    // colour map that shows nothing.
+    const std::string missing = missingColourNote(view, d);
+    const std::string colour = title.empty()      ? std::string("plain colour")
+                               : !missing.empty() ? title + " (not in this frame)"
                                : !d.palette.empty()
                                    ? title
                                    : title + " (" + core::colorMapName(view.colorMap) + ")";
@@ -276,9 +292,15 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
         m_sinceEdit = static_cast<int>(view.difference.reference.value);
         ImGui::OpenPopup("##colourpopup");
     }
-    if (shown != colour && ImGui::IsItemHovered())
+    if (!missing.empty() && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s: the spheres are in one colour.\nClick to colour by another "
+                          "variable.",
+                          missing.c_str());
+    else if (shown != colour && ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", colour.c_str());
     wb.mark("view.colour." + view.name);
+    if (!missing.empty())
+        wb.mark("view.colour.missing." + view.name);
     drawColourPopup(wb, view, d);
     ImGui::SameLine();
     if (wb.state().views.size() > 1) {
