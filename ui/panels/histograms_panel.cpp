@@ -157,7 +157,7 @@ class HistogramsPanel final : public Panel {
         wb.commitLayout();
     }
 
-    // A float variable's automatic bin count is chosen on the first frame it is shown at and
+    // A float variable's automatic bin count is chosen on the first frame it has values at and
     // kept while scrubbing; it rides along in the panel's settings (saved with the session,
     // without marking it changed), so a reopened session shows the same bins rather than
     // those of the frame it reopens at.
@@ -167,7 +167,9 @@ class HistogramsPanel final : public Panel {
             return 0;
         const core::Json& bins = (*s)["bins"];
         const auto it = bins.find(var);
-        return it != bins.end() && it->is_number_integer() && it->get<int>() > 0 &&
+        // One bin: chosen on a frame with one value or none (sessions saved before the count
+        // waited for values); chosen again.
+        return it != bins.end() && it->is_number_integer() && it->get<int>() > 1 &&
                        it->get<int>() <= core::kMaxAutoHistogramBins
                    ? it->get<int>()
                    : 0;
@@ -191,12 +193,15 @@ class HistogramsPanel final : public Panel {
             core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty())
                                                  ? c.hist.binning
                                                  : core::chooseBinning(*column, spec);
-            if (!column->isInteger() && c.autoBins == 0) {
+            const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
+            c.hist = core::computeHistogram(*column, binning, mask);
+            // The bin count is kept (the bars hold still while frames change) once it comes from
+            // values: a frame where every value is NaN (incremental strain on the first frames)
+            // gave one bin, kept for every frame after and saved with the layout.
+            if (!column->isInteger() && c.autoBins == 0 && c.hist.all.inRange() > 0) {
                 c.autoBins = binning.bins;
                 wb.layout().panelSettings(panel_ids::kHistograms)["bins"][var] = binning.bins;
             }
-            const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
-            c.hist = core::computeHistogram(*column, binning, mask);
             c.frame = main.frame;
             c.visKey = visKey;
             return &c.hist;
