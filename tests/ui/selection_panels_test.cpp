@@ -268,6 +268,54 @@ TEST_F(PanelTest, AHistogramTakesItsBinsFromTheFirstFrameWithValues) {
     EXPECT_GT(savedBins(), 1);
 }
 
+// Two extreme values in 400 (grains thrown out of a model, with strain in the hundreds)
+// put every other value in the first bar. The plot's menu shows the 1st to 99th percentile
+// instead (kept with the layout), says how many lie beyond, and a threshold dragged to its right
+// end still takes the extreme values.
+TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
+    std::string text = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n400\nITEM: BOX BOUNDS ff ff ff\n"
+                       "0 20\n0 20\n0 1\nITEM: ATOMS id x y z radius v\n";
+    auto value = [](int id) { return id == 7 || id == 261 ? 1000.0 : id / 400.0; };
+    for (int id = 0; id < 400; ++id)
+        text += std::to_string(id + 1) + " " + std::to_string(id % 20) + " " +
+                std::to_string(id / 20) + " 0 0.5 " + std::to_string(value(id)) + "\n";
+    wb().opener().openData({dir.write("tail.dump", text)});
+    headless.settle(wb());
+    ASSERT_NE(session.dataset(), nullptr);
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    ASSERT_TRUE(headless.has(wb(), "histogram.v"));
+    EXPECT_FALSE(headless.has(wb(), "histogram.v.beyond"));
+    headless.click(wb(), "histogram.v", 1);
+    headless.frames(wb(), 2);
+    headless.click(wb(), "histogram.v.middle");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["middle"]["v"], true);
+    EXPECT_TRUE(headless.has(wb(), "histogram.v.beyond"));
+
+    // From the middle of what is shown (about 0.5) to the right end: up to the largest value.
+    headless.clearEmitted();
+    const ui::ItemRect r = headless.rect(wb(), "histogram.v");
+    headless.drag(wb(), r.x0 + (r.x1 - r.x0) * 0.5f, r.cy(), r.x1 - 1, r.cy());
+    ASSERT_EQ(headless.emitted("threshold.add").size(), 1u);
+    const Json add = headless.emitted("threshold.add")[0];
+    const double low = add["low"].get<double>();
+    EXPECT_NEAR(low, 0.5, 0.03);
+    EXPECT_EQ(add["high"].get<double>(), 1000.0);
+    std::size_t above = 0;
+    for (int id = 0; id < 400; ++id)
+        above += float(value(id)) >= low ? 1 : 0;
+    EXPECT_EQ(visible(), above); // the two extremes among them
+
+    // Off again: the whole range, nothing beyond.
+    headless.click(wb(), "histogram.v", 1);
+    headless.frames(wb(), 2);
+    headless.click(wb(), "histogram.v.middle");
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(session.state().dockLayout["panels"]["histograms"]["middle"].contains("v"));
+    EXPECT_FALSE(headless.has(wb(), "histogram.v.beyond"));
+}
+
 // Issue 41, item 12: reopening a session coloured by a variable showed the histograms in
 // another order (the colour variable first).
 TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderAfterReopeningASession) {

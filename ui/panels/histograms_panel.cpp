@@ -1,12 +1,18 @@
 // Histograms panel: one plot per chosen variable with all spheres and the visible ones overlaid
 // (log scale optional). Dragging across a plot sets that variable's threshold; its edges are
 // handles; integer variables move by whole values. Chosen variables are kept with the layout.
+//
+// Index of this file:
+// [SECTION] The panel: toolbar and plots
+// [SECTION] Settings kept with the layout: variables, log scale, bins, percentile view
+// [SECTION] One histogram: bins, bars, threshold drag, menu
 #include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/widgets/text_fit.hpp"
 
+#include "core/model/frame_difference.hpp"
 #include "core/selection/histogram.hpp"
 
 #include <imgui.h>
@@ -28,6 +34,12 @@ struct Cached {
     std::uint64_t visKey = 0;
     int autoBins = 0; // the float binning chosen on the first frame, reused for later frames
     core::Histogram hist;
+    // Shown over the 1st to 99th percentile of the frame's values (a few extreme values, such
+    // as grains thrown out of a model, left every other sphere in the first bar), with its own
+    // bin count, and the whole range of the frame's finite values (what the plot's ends mean).
+    bool middle = false;
+    int middleBins = 0;
+    double fullLo = 0, fullHi = 0;
 };
 
 enum class DragKind { None, NewRange, Low, High };
@@ -36,6 +48,10 @@ class HistogramsPanel final : public Panel {
   public:
     const char* id() const override { return panel_ids::kHistograms; }
     const char* title() const override { return "Histograms"; }
+
+    //-----------------------------------------------------------------------------
+    // [SECTION] The panel: toolbar and plots
+    //-----------------------------------------------------------------------------
 
     void draw(PanelContext& wb) override {
         const ViewDisplay* main = wb.mainDisplay();
@@ -110,6 +126,10 @@ class HistogramsPanel final : public Panel {
         ImGui::TextDisabled("%s", label);
     }
 
+    //-----------------------------------------------------------------------------
+    // [SECTION] Settings kept with the layout: variables, log scale, bins, percentile view
+    //-----------------------------------------------------------------------------
+
     std::vector<std::string> chosenVariables(PanelContext& wb, const core::Frame& frame) {
         const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
         std::vector<std::string> out;
@@ -175,13 +195,36 @@ class HistogramsPanel final : public Panel {
                    : 0;
     }
 
+    // Whether a variable's plot shows the middle 98 % of its values (kept with the layout).
+    static bool savedMiddle(PanelContext& wb, const std::string& var) {
+        const core::Json* s = std::as_const(wb.layout()).panelSettings(panel_ids::kHistograms);
+        if (!s || !s->contains("middle") || !(*s)["middle"].is_object())
+            return false;
+        const auto it = (*s)["middle"].find(var);
+        return it != (*s)["middle"].end() && it->is_boolean() && it->get<bool>();
+    }
+    static void saveMiddle(PanelContext& wb, const std::string& var, bool middle) {
+        core::Json& s = wb.layout().panelSettings(panel_ids::kHistograms);
+        if (middle)
+            s["middle"][var] = true;
+        else if (s.contains("middle") && s["middle"].is_object())
+            s["middle"].erase(var);
+        wb.commitLayout();
+    }
+
+    //-----------------------------------------------------------------------------
+    // [SECTION] One histogram: bins, bars, threshold drag, menu
+    //-----------------------------------------------------------------------------
+
     const core::Histogram* histogramFor(PanelContext& wb, const core::Frame& frame,
                                         const ViewDisplay& main, const std::string& var) {
         Cached& c = m_cache[var];
         if (c.autoBins == 0)
             c.autoBins = savedBins(wb, var);
         const std::uint64_t visKey = main.visibilityKey;
-        if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty())
+        const bool middle = savedMiddle(wb, var);
+        if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty() &&
+            c.middle == middle)
             return &c.hist;
         auto column = core::findColumn(frame, var);
         if (!column)
@@ -190,9 +233,31 @@ class HistogramsPanel final : public Panel {
             core::HistogramSpec spec;
             if (c.autoBins > 0 && !column->isInteger())
                 spec.bins = c.autoBins;
-            core::HistogramBinning binning = (c.frame.get() == &frame && !c.hist.edges.empty())
-                                                 ? c.hist.binning
-                                                 : core::chooseBinning(*column, spec);
+            const bool wasMiddle = c.middle;
+            if (const auto full = core::variableRange(frame, var))
+                c.fullLo = full->low, c.fullHi = full->high;
+            if (middle && !column->isInteger()) {
+                // The middle 98 % of this frame's values, in bins of their own (chosen once).
+                const std::vector<std::uint8_t> all(frame.size(), 1);
+                const auto q = core::maskedQuantiles(frame, var, all, 0.01, 0.99);
+                if (q && q->first < q->second) {
+                    spec.range = std::array<double, 2>{q->first, q->second};
+                    spec.bins = c.middleBins;
+                    const core::HistogramBinning b = core::chooseBinning(*column, spec);
+                    c.middleBins = b.bins;
+                    c.hist = core::computeHistogram(
+                        *column, b, main.visibility ? &main.visibility->mask : nullptr);
+                    c.frame = main.frame;
+                    c.visKey = visKey;
+                    c.middle = true;
+                    return &c.hist;
+                }
+            }
+            c.middle = middle;
+            core::HistogramBinning binning =
+                (c.frame.get() == &frame && !c.hist.edges.empty() && !wasMiddle)
+                    ? c.hist.binning
+                    : core::chooseBinning(*column, spec);
             const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
             c.hist = core::computeHistogram(*column, binning, mask);
             // The bin count is kept (the bars hold still while frames change) once it comes from
@@ -260,12 +325,18 @@ class HistogramsPanel final : public Panel {
         auto toX = [&](double v) {
             return p0.x + static_cast<float>((std::clamp(v, lo, hi) - lo) / (hi - lo)) * width;
         };
-        // Within a few pixels of either end means the end itself (the range's min or max).
+        // Within a few pixels of either end means the end itself (the range's min or max; the
+        // values' own min or max when the plot shows their middle: a threshold dragged to the
+        // right end takes the extreme values too).
+        const Cached& cached = m_cache[var];
+        const bool middle = cached.middle;
+        const double endLo = middle ? std::min(lo, cached.fullLo) : lo;
+        const double endHi = middle ? std::max(hi, cached.fullHi) : hi;
         auto toValue = [&](float x) {
             if (x <= p0.x + 3 * scale)
-                return lo;
+                return endLo;
             if (x >= p1.x - 3 * scale)
-                return hi;
+                return endHi;
             return lo + (std::clamp(x, p0.x, p1.x) - p0.x) / width * (hi - lo);
         };
 
@@ -354,10 +425,12 @@ class HistogramsPanel final : public Panel {
                 }
                 if (!integer) {
                     const double step = (hi - lo) / 1000.0; // a readable precision
-                    d.low = std::max(lo, std::floor(d.low / step) * step);
-                    d.high = std::min(hi, std::ceil(d.high / step) * step);
-                    if (d.low <= lo)
-                        d.low = lo;
+                    if (d.low > endLo)
+                        d.low = std::max(endLo, std::floor(d.low / step) * step);
+                    if (d.high < endHi)
+                        d.high = std::min(endHi, std::ceil(d.high / step) * step);
+                    if (d.low <= endLo)
+                        d.low = endLo;
                 }
                 wb.preview("histogram." + var, command(t, var, d));
             }
@@ -374,6 +447,16 @@ class HistogramsPanel final : public Panel {
                 wb.emit(core::cmd::thresholdRemove(var));
             if (!t)
                 ImGui::TextDisabled("Drag across the plot to set a threshold.");
+            if (!integer) {
+                ImGui::Separator();
+                if (ImGui::MenuItem("Show the 1st to 99th percentile", nullptr, middle))
+                    saveMiddle(wb, var, !middle);
+                wb.mark("histogram." + var + ".middle");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("A few extreme values (grains thrown out of the model) leave "
+                                      "every other sphere in the first bar:\nshow the middle "
+                                      "98 %% of the values, and how many lie beyond.");
+            }
             ImGui::EndPopup();
         }
         if (hovered && d.kind == DragKind::None) {
@@ -402,6 +485,12 @@ class HistogramsPanel final : public Panel {
         ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetContentRegionMax().x -
                                                              ImGui::CalcTextSize(right.c_str()).x));
         ImGui::TextDisabled("%s", right.c_str());
+        if (middle && h->all.outside > 0) {
+            ImGui::TextDisabled("1st to 99th percentile; %llu sphere%s beyond",
+                                static_cast<unsigned long long>(h->all.outside),
+                                h->all.outside == 1 ? "" : "s");
+            wb.mark("histogram." + var + ".beyond");
+        }
         // NaN (no reference for strain from motion, a sphere gone since it): never passes a
         // threshold, so say how many there are.
         if (h->all.nan > 0) {
