@@ -234,6 +234,40 @@ TEST_F(PanelTest, DefaultHistogramsFollowTheStrainVariablesAsTheyComeAndGo) {
     EXPECT_TRUE(!settings || !settings->contains("variables"));
 }
 
+// LIGGGHTS writes type and velocities: strain from motion came after them, and the default
+// histograms (the first three columns) never showed it. Its shear strain now comes first.
+TEST_F(PanelTest, DefaultHistogramsShowShearStrainBeforeTheFilesColumns) {
+    std::string text;
+    for (int t = 0; t < 2; ++t) {
+        text += "ITEM: TIMESTEP\n" + std::to_string(t) +
+                "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
+                "ITEM: ATOMS id type x y z radius vx vy\n";
+        for (int id = 0; id < 27; ++id)
+            text += std::to_string(id + 1) + " 1 " + std::to_string(id % 3 * (1.0 + 0.1 * t)) +
+                    " " + std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) +
+                    " 0.5 0.1 0.2\n";
+    }
+    wb().opener().openData({dir.write("typed.dump", text)});
+    headless.settle(wb());
+    ASSERT_NE(session.dataset(), nullptr);
+    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.vx"));
+    session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
+    session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"prefix":"inc_"})"));
+    headless.settle(wb());
+    EXPECT_TRUE(headless.has(wb(), "histogram.inc_shear_strain"));
+    EXPECT_TRUE(headless.has(wb(), "histogram.type"));
+    EXPECT_TRUE(headless.has(wb(), "histogram.vx"));
+    EXPECT_FALSE(headless.has(wb(), "histogram.vy"));
+    EXPECT_LT(headless.rect(wb(), "histogram.inc_shear_strain").y0,
+              headless.rect(wb(), "histogram.type").y0);
+    ASSERT_TRUE(session.undo());
+    headless.settle(wb());
+    EXPECT_FALSE(headless.has(wb(), "histogram.inc_shear_strain"));
+    EXPECT_TRUE(headless.has(wb(), "histogram.vy"));
+}
+
 // Incremental strain added on the first frame has no value there (no frame before it): the
 // histogram's automatic bin count, which is kept for every frame after (and saved with the
 // layout), came from that frame and was one bin: a solid block on every frame with values.

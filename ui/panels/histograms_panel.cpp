@@ -13,6 +13,7 @@
 #include "ui/widgets/text_fit.hpp"
 
 #include "core/model/frame_difference.hpp"
+#include "core/motion/strain_spec.hpp"
 #include "core/selection/histogram.hpp"
 
 #include <imgui.h>
@@ -139,14 +140,22 @@ class HistogramsPanel final : public Panel {
                     out.push_back(v.get<std::string>());
             return out;
         }
-        // Default: the file's first three columns, in its order: the same list whatever the
-        // colouring and however the session was reached (issue 41: the order changed after
-        // reopening a session, which took the colour variable first). Chosen again when the
-        // columns change (strain from motion added or taken away): a file of positions alone
-        // shows its strain once derived, and again after it is derived anew.
+        // Default: the shear strain of each strain from motion, then the file's first columns in
+        // its order, three in all: the same list whatever the colouring and however the session
+        // was reached (issue 41: the order changed after reopening a session, which took the
+        // colour variable first). Chosen again when the columns change (strain from motion added
+        // or taken away): its shear strain shows once derived, and again after it is derived
+        // anew.
         std::vector<std::string> names = frame.attributeNames();
         if (wb.dataset().get() == m_defaultFor && !m_default.empty() && names == m_defaultNames)
             return m_default;
+        // (A file with velocities or types of its own showed those alone after Add.)
+        for (const core::StrainSpec& spec : wb.state().strains) {
+            const std::string shear = spec.prefix + std::string(core::kShearStrain);
+            if (out.size() < 3 && std::find(names.begin(), names.end(), shear) != names.end() &&
+                std::find(out.begin(), out.end(), shear) == out.end())
+                out.push_back(shear);
+        }
         for (const std::string& n : names) {
             if (out.size() >= 3)
                 break;
