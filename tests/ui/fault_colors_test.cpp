@@ -22,6 +22,24 @@ void twoWalls(core::Session& session) {
 
 } // namespace
 
+// Candidates found with every sphere visible are pieces of the whole model: the section says
+// so and what to narrow them by (a walkthrough on LIGGGHTS' run found three slabs of the block).
+TEST_F(PanelTest, CandidatesOfTheWholeModelSayToNarrowTheSpheresFirst) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().selection().candidates.has_value());
+    EXPECT_TRUE(headless.has(wb(), "candidates.all_visible"));
+    twoWalls(session);
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    headless.frames(wb(), 2);
+    ASSERT_TRUE(wb().selection().candidates.has_value());
+    EXPECT_FALSE(headless.has(wb(), "candidates.all_visible"));
+}
+
 TEST_F(PanelTest, CandidatesAreShownInTheirColoursAndAcceptedAsFaults) {
     openLattice();
     twoWalls(session);

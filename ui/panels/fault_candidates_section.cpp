@@ -1,6 +1,7 @@
 // Faults panel, "Candidates": linked groups of the visible spheres (k x (r_i + r_j)), found on
 // request and shown in distinct colours in the main view, largest first; the user accepts one as
 // a named fault (fault.create), or all at once (the journal's fault.candidates).
+#include "core/motion/strain_spec.hpp"
 #include "core/session/commands.hpp"
 #include "ui/panels/panels.hpp"
 #include "ui/viewport/fault_edit.hpp"
@@ -20,6 +21,18 @@
 namespace faultline::ui {
 
 namespace {
+
+// What to threshold on to narrow the spheres to their faults: the shear strain from motion,
+// else a damage column the file has.
+std::string narrowingHint(PanelContext& wb, const core::Frame& frame) {
+    for (const core::StrainSpec& spec : wb.state().strains)
+        if (const std::string v = spec.prefix + std::string(core::kShearStrain); frame.attribute(v))
+            return "a threshold on " + v + " (Histograms or Thresholds)";
+    for (const char* v : {"broken_bonds", "strain", "damage"})
+        if (frame.attribute(v))
+            return std::string("a threshold on ") + v + " (Histograms or Thresholds)";
+    return "strain from motion (Data panel), then a threshold on its shear strain";
+}
 
 class FaultCandidatesSection {
   public:
@@ -63,6 +76,15 @@ class FaultCandidatesSection {
         if (ImGui::Button("Clear"))
             return clear(wb);
         wb.mark("candidates.clear");
+        // Found with nothing narrowed: the groups are pieces of the whole model, not faults (a
+        // walkthrough on LIGGGHTS' run: three slabs of the block).
+        if (preview->visibility && preview->frame &&
+            preview->visibility->visibleCount == preview->frame->size()) {
+            hint("Every sphere was visible: groups of the whole model are pieces of it, not "
+                 "faults. Narrow the spheres first: %s.",
+                 narrowingHint(wb, *preview->frame).c_str());
+            wb.mark("candidates.all_visible");
+        }
         const auto& cands = preview->set.candidates;
         if (cands.empty()) {
             ImGui::TextDisabled(preview->options.method == core::CandidateMethod::Network
