@@ -95,6 +95,28 @@ TEST_F(PanelTest, TheColourButtonSaysWhenTheFrameLacksItsVariable) {
     EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
 }
 
+// Incremental strain has no value on a frame without one that far back: the spheres are grey,
+// and a view showing such a frame (the first frame, or a view bound a frame back) drew a legend
+// from -0.5 to 0.5 for values no sphere has. It now draws none and its button says why.
+TEST_F(PanelTest, AViewWhoseVariableHasNoValueInItsFrameSaysSo) {
+    openLattice();
+    session.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
+    session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "inc_shear_strain"}});
+    session.apply({{"op", "frame.set"}, {"frame", 0}});
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    ASSERT_NE(wb().mainDisplay()->frame->attribute("inc_shear_strain"), nullptr);
+    EXPECT_TRUE(wb().mainDisplay()->colorHasNoValue);
+    EXPECT_TRUE(headless.has(wb(), "view.colour.novalue.main"));
+    EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
+
+    session.apply({{"op", "frame.set"}, {"frame", 1}});
+    headless.frames(wb(), 2);
+    headless.settle(wb());
+    EXPECT_FALSE(wb().mainDisplay()->colorHasNoValue);
+    EXPECT_FALSE(headless.has(wb(), "view.colour.novalue.main"));
+}
+
 // A view coloured by displacement has no variable, yet is not plain: Add leaves its colours.
 TEST_F(PanelTest, StrainAddLeavesADisplacementColouringAlone) {
     openLattice();

@@ -79,6 +79,9 @@ struct ViewDisplay {
     // variable's own, or one colour while a reference frame loads) and what the legend calls it.
     std::shared_ptr<const core::AttributeColumn> colorColumn;
     std::string colorTitle;
+    // The view's own variable is in the frame but no sphere has a value of it (incremental
+    // strain on a frame with none before it): grey spheres, no legend, and the button says so.
+    bool colorHasNoValue = false;
     std::vector<ViewSurface> surfaces; // fault surfaces ready in the shown frame
     std::vector<glm::vec3> palette;    // categories (faults, candidates): colorColumn holds k + 0.5
     std::vector<LegendEntry> legend;   // categories' names and colours, for the legend

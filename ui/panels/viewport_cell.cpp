@@ -8,6 +8,7 @@
 #include "ui/panels/viewport_cell.hpp"
 
 #include "core/model/frame_difference.hpp"
+#include "core/motion/strain_spec.hpp"
 #include "core/selection/column_view.hpp"
 #include "core/session/commands.hpp"
 #include "core/view/box_handles.hpp"
@@ -39,6 +40,21 @@ std::string missingColourNote(const core::ViewState& view, const ViewDisplay& d)
         view.difference.mode != core::ColorDifference::Mode::None)
         return {};
     return core::missingVariableNote(*d.frame, view.colorVariable);
+}
+
+// Why a view coloured by a variable shows grey spheres: the frame has the column, without a
+// value (strain from motion on a frame with no reference frame).
+std::string noValueNote(const core::ViewState& view, const ViewDisplay& d,
+                        const core::SessionState& state) {
+    if (!d.colorHasNoValue)
+        return {};
+    std::string note = "no sphere has a value of '" + view.colorVariable + "' in this frame";
+    for (const core::StrainSpec& spec : state.strains)
+        if (view.colorVariable.rfind(spec.prefix, 0) == 0 && spec.relative)
+            return note + " (strain from motion against " + std::to_string(-spec.reference) +
+                   " frame" + (spec.reference == -1 ? "" : "s") +
+                   " before: this frame has none that far back)";
+    return note;
 }
 
 std::string bindingText(const core::FrameBinding& b) {
@@ -267,8 +283,10 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     // not have): the spheres are in one colour, and the button says why rather than naming a
     // colour map that shows nothing.
     const std::string missing = missingColourNote(view, d);
+    const std::string noValue = noValueNote(view, d, wb.state());
     const std::string colour = title.empty()      ? std::string("plain colour")
                                : !missing.empty() ? title + " (not in this frame)"
+                               : !noValue.empty() ? title + " (no values in this frame)"
                                : !d.palette.empty()
                                    ? title
                                    : title + " (" + core::colorMapName(view.colorMap) + ")";
@@ -296,11 +314,15 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
         ImGui::SetTooltip("%s: the spheres are in one colour.\nClick to colour by another "
                           "variable.",
                           missing.c_str());
+    else if (!noValue.empty() && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s: the spheres are grey.", noValue.c_str());
     else if (shown != colour && ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", colour.c_str());
     wb.mark("view.colour." + view.name);
     if (!missing.empty())
         wb.mark("view.colour.missing." + view.name);
+    if (!noValue.empty())
+        wb.mark("view.colour.novalue." + view.name);
     drawColourPopup(wb, view, d);
     ImGui::SameLine();
     if (wb.state().views.size() > 1) {

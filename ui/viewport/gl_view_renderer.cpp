@@ -131,7 +131,8 @@ void GlViewRenderer::render(const ViewScene& scene) {
         << '|' << scene.camera.distance << '|' << scene.camera.azimuth << '|'
         << scene.camera.elevation << '|' << scene.camera.fovY << '|' << scene.camera.orthographic
         << '|' << (scene.selectedBox ? int(*scene.selectedBox) : -1) << '|'
-        << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints;
+        << (scene.activeFace ? *scene.activeFace : -1) << '|' << scene.contextPoints << '|'
+        << scene.valueLegend;
     for (const auto& c : scene.palette)
         sig << '|' << c.r << ',' << c.g << ',' << c.b;
     for (const auto& e : scene.legend)
@@ -171,7 +172,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
         RenderStyle style;
         style.legendTitle = scene.colorVariable;
         style.showLegend = roomForLegend(scene.width, scene.height) &&
-                           !scene.colorVariable.empty() &&
+                           !scene.colorVariable.empty() && scene.valueLegend &&
                            (scene.palette.empty() || !scene.legend.empty());
         if (!scene.palette.empty())
             style.categories = scene.legend;

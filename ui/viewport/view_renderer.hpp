@@ -40,6 +40,7 @@ struct ViewScene {
     std::optional<int> activeFace;          // 0..5 (-x +x -y +y -z +z), highlighted
     std::vector<ViewSurface> surfaces;      // fault surfaces, drawn with the spheres
     bool contextPoints = false;             // hidden spheres as faint small points
+    bool valueLegend = true; // false: the colour variable has no value here (no legend)
     // Categories: colour value k + 0.5 takes palette[k] (colorRange is [0, size]); their legend
     // names each colour (faults; empty: no legend).
     std::vector<glm::vec3> palette;

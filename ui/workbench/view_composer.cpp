@@ -235,6 +235,29 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
     d.colorColumn = c.column;
     d.colorTitle = c.title;
     d.colorRange = {c.range.low, c.range.high};
+    d.colorHasNoValue = !c.column && !v.colorVariable.empty() &&
+                        v.difference.mode == core::ColorDifference::Mode::None &&
+                        hasNoValue(d.frame, v.colorVariable);
+}
+
+// Whether `frame` holds `variable` as a column without one finite value (a scan that stops at
+// the first value; a column of NaN is scanned once per frame and kept).
+bool ViewComposer::hasNoValue(const std::shared_ptr<const core::Frame>& frame,
+                              const std::string& variable) {
+    const core::AttributeColumn* c = frame->attribute(variable);
+    if (!c || c->isInteger() || c->floats.empty())
+        return false;
+    if (std::isfinite(c->floats.front()))
+        return false;
+    for (const auto& e : m_noValue)
+        if (e.frame == frame && e.variable == variable)
+            return e.none;
+    const bool none =
+        std::none_of(c->floats.begin(), c->floats.end(), [](float x) { return std::isfinite(x); });
+    if (m_noValue.size() >= 8)
+        m_noValue.erase(m_noValue.begin());
+    m_noValue.push_back({frame, variable, none});
+    return none;
 }
 
 const CategoryColoring* ViewComposer::categoriesFor(const core::ViewState& v, const ViewDisplay& d,

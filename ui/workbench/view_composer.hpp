@@ -77,6 +77,13 @@ class ViewComposer {
         std::optional<std::pair<double, double>> range;
     };
     std::vector<VisibleRangeEntry> m_visibleRanges; // the views' latest, a few at most
+    bool hasNoValue(const std::shared_ptr<const core::Frame>& frame, const std::string& variable);
+    struct NoValueEntry {
+        std::shared_ptr<const core::Frame> frame;
+        std::string variable;
+        bool none = false;
+    };
+    std::vector<NoValueEntry> m_noValue; // frames' columns without a value, a few at most
     struct FaultColoringEntry {
         std::shared_ptr<const core::Frame> frame;
         std::uint64_t key = 0;

@@ -386,6 +386,7 @@ void Workbench::renderViews() {
         scene.visible = d.visibility ? &d.visibility->mask : nullptr;
         scene.visibleKey = d.visibilityKey;
         scene.colorVariable = d.colorTitle;
+        scene.valueLegend = !d.colorHasNoValue;
         scene.colorColumn = d.colorColumn;
         scene.colorMap = v->colorMap;
         scene.surfaces = d.surfaces;
