@@ -202,25 +202,40 @@ TEST_F(PanelTest, DefaultHistogramsKeepTheirOrderWhenTheColouringChanges) {
 // A file of positions alone (as most DEM codes write) shows the radius histogram; strain from
 // motion derived shows its first variables, and they come back after it is derived anew (the
 // default list was kept from before, the radius alone).
-TEST_F(PanelTest, DefaultHistogramsFollowTheStrainVariablesAsTheyComeAndGo) {
-    std::string text;
-    for (int t = 0; t < 2; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t) +
-                "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
-                "ITEM: ATOMS id x y z radius\n";
-        for (int id = 0; id < 27; ++id)
-            text += std::to_string(id + 1) + " " + std::to_string(id % 3 * (1.0 + 0.1 * t)) + " " +
-                    std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) + " 0.5\n";
+// A 3 x 3 x 3 lattice of positions, stretched by 10 % along x in its second frame (strain from
+// motion has a value there), with `columns` after the radius and the same `values` in each row.
+class StretchedLatticeTest : public PanelTest {
+  protected:
+    void openStretchedLattice(const std::string& columns = "", const std::string& values = "") {
+        std::string text;
+        for (int t = 0; t < 2; ++t) {
+            text += "ITEM: TIMESTEP\n" + std::to_string(t) +
+                    "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
+                    "ITEM: ATOMS id x y z radius" +
+                    columns + "\n";
+            for (int id = 0; id < 27; ++id)
+                text += std::to_string(id + 1) + " " + std::to_string(id % 3 * (1.0 + 0.1 * t)) +
+                        " " + std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) + " 0.5" +
+                        values + "\n";
+        }
+        wb().opener().openData({dir.write("lattice2.dump", text)});
+        headless.settle(wb());
+        ASSERT_NE(session.dataset(), nullptr);
+        headless.showPanel(wb(), ui::panel_ids::kHistograms);
+        headless.settle(wb());
     }
-    wb().opener().openData({dir.write("positions.dump", text)});
-    headless.settle(wb());
-    ASSERT_NE(session.dataset(), nullptr);
-    headless.showPanel(wb(), ui::panel_ids::kHistograms);
-    headless.settle(wb());
+    // Cumulative strain "inc_*" against frame 0, shown at frame 1.
+    void deriveStrainAtFrameOne() {
+        session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
+        session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"prefix":"inc_"})"));
+        headless.settle(wb());
+    }
+};
+
+TEST_F(StretchedLatticeTest, DefaultHistogramsFollowTheStrainVariablesAsTheyComeAndGo) {
+    openStretchedLattice();
     EXPECT_TRUE(headless.has(wb(), "histogram.radius"));
-    session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
-    session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"prefix":"inc_"})"));
-    headless.settle(wb());
+    deriveStrainAtFrameOne();
     EXPECT_TRUE(headless.has(wb(), "histogram.inc_shear_strain"));
     EXPECT_FALSE(headless.has(wb(), "histogram.radius"));
     session.apply(Json::parse(R"({"op":"strain.remove","prefix":"inc_"})"));
@@ -236,26 +251,10 @@ TEST_F(PanelTest, DefaultHistogramsFollowTheStrainVariablesAsTheyComeAndGo) {
 
 // LIGGGHTS writes type and velocities: strain from motion came after them, and the default
 // histograms (the first three columns) never showed it. Its shear strain now comes first.
-TEST_F(PanelTest, DefaultHistogramsShowShearStrainBeforeTheFilesColumns) {
-    std::string text;
-    for (int t = 0; t < 2; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t) +
-                "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
-                "ITEM: ATOMS id type x y z radius vx vy\n";
-        for (int id = 0; id < 27; ++id)
-            text += std::to_string(id + 1) + " 1 " + std::to_string(id % 3 * (1.0 + 0.1 * t)) +
-                    " " + std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) +
-                    " 0.5 0.1 0.2\n";
-    }
-    wb().opener().openData({dir.write("typed.dump", text)});
-    headless.settle(wb());
-    ASSERT_NE(session.dataset(), nullptr);
-    headless.showPanel(wb(), ui::panel_ids::kHistograms);
-    headless.settle(wb());
+TEST_F(StretchedLatticeTest, DefaultHistogramsShowShearStrainBeforeTheFilesColumns) {
+    openStretchedLattice(" type vx vy", " 1 0.1 0.2");
     EXPECT_TRUE(headless.has(wb(), "histogram.vx"));
-    session.apply(Json::parse(R"({"op":"frame.set","frame":1})"));
-    session.apply(Json::parse(R"({"op":"strain.add","since_frame":0,"prefix":"inc_"})"));
-    headless.settle(wb());
+    deriveStrainAtFrameOne();
     EXPECT_TRUE(headless.has(wb(), "histogram.inc_shear_strain"));
     EXPECT_TRUE(headless.has(wb(), "histogram.type"));
     EXPECT_TRUE(headless.has(wb(), "histogram.vx"));
@@ -271,20 +270,8 @@ TEST_F(PanelTest, DefaultHistogramsShowShearStrainBeforeTheFilesColumns) {
 // Incremental strain added on the first frame has no value there (no frame before it): the
 // histogram's automatic bin count, which is kept for every frame after (and saved with the
 // layout), came from that frame and was one bin: a solid block on every frame with values.
-TEST_F(PanelTest, AHistogramTakesItsBinsFromTheFirstFrameWithValues) {
-    std::string text;
-    for (int t = 0; t < 2; ++t) {
-        text += "ITEM: TIMESTEP\n" + std::to_string(t) +
-                "\nITEM: NUMBER OF ATOMS\n27\nITEM: BOX BOUNDS ff ff ff\n0 3\n0 3\n0 3\n"
-                "ITEM: ATOMS id x y z radius\n";
-        for (int id = 0; id < 27; ++id)
-            text += std::to_string(id + 1) + " " + std::to_string(id % 3 * (1.0 + 0.1 * t)) + " " +
-                    std::to_string(id / 3 % 3) + " " + std::to_string(id / 9) + " 0.5\n";
-    }
-    wb().opener().openData({dir.write("positions.dump", text)});
-    headless.settle(wb());
-    ASSERT_NE(session.dataset(), nullptr);
-    headless.showPanel(wb(), ui::panel_ids::kHistograms);
+TEST_F(StretchedLatticeTest, AHistogramTakesItsBinsFromTheFirstFrameWithValues) {
+    openStretchedLattice();
     // A session saved before this fix holds the one bin: chosen again too.
     wb().layout().panelSettings(ui::panel_ids::kHistograms)["bins"]["inc_shear_strain"] = 1;
     session.apply(Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
