@@ -110,6 +110,16 @@ TEST_F(PanelTest, AViewWhoseVariableHasNoValueInItsFrameSaysSo) {
     EXPECT_TRUE(headless.has(wb(), "view.colour.novalue.main"));
     EXPECT_FALSE(headless.has(wb(), "view.colour.missing.main"));
 
+    // Faults' colours (categories) have no values to miss: not marked, though the last
+    // colouring was.
+    session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "faults"}});
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(wb().mainDisplay()->colorHasNoValue);
+    EXPECT_FALSE(headless.has(wb(), "view.colour.novalue.main"));
+    session.apply({{"op", "color.set"}, {"view", "main"}, {"variable", "inc_shear_strain"}});
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(wb().mainDisplay()->colorHasNoValue);
+
     session.apply({{"op", "frame.set"}, {"frame", 1}});
     headless.frames(wb(), 2);
     headless.settle(wb());

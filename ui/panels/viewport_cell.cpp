@@ -45,15 +45,21 @@ std::string missingColourNote(const core::ViewState& view, const ViewDisplay& d)
 // Why a view coloured by a variable shows grey spheres: the frame has the column, without a
 // value (strain from motion on a frame with no reference frame).
 std::string noValueNote(const core::ViewState& view, const ViewDisplay& d,
-                        const core::SessionState& state) {
+                        const core::SessionState& state, std::size_t frameCount) {
     if (!d.colorHasNoValue)
         return {};
     std::string note = "no sphere has a value of '" + view.colorVariable + "' in this frame";
+    // One of a strain's own variables, and the strain has no reference frame for this one.
     for (const core::StrainSpec& spec : state.strains)
-        if (view.colorVariable.rfind(spec.prefix, 0) == 0 && spec.relative)
-            return note + " (strain from motion against " + std::to_string(-spec.reference) +
-                   " frame" + (spec.reference == -1 ? "" : "s") +
-                   " before: this frame has none that far back)";
+        for (std::string_view v : core::kStrainVariables)
+            if (view.colorVariable == spec.prefix + std::string(v) &&
+                !spec.referenceFor(d.shownFrame, frameCount))
+                return note + (spec.relative
+                                   ? " (strain from motion against " +
+                                         std::to_string(std::llabs(spec.reference)) + " frame" +
+                                         (std::llabs(spec.reference) == 1 ? "" : "s") +
+                                         " away: this frame has none that far)"
+                                   : " (its reference frame is not in the data)");
     return note;
 }
 
@@ -283,7 +289,8 @@ void ViewportCells::drawHeader(PanelContext& wb, const core::ViewState& view, co
     // not have): the spheres are in one colour, and the button says why rather than naming a
     // colour map that shows nothing.
     const std::string missing = missingColourNote(view, d);
-    const std::string noValue = noValueNote(view, d, wb.state());
+    const std::string noValue =
+        noValueNote(view, d, wb.state(), wb.dataset() ? wb.dataset()->frameCount() : 0);
     const std::string colour = title.empty()      ? std::string("plain colour")
                                : !missing.empty() ? title + " (not in this frame)"
                                : !noValue.empty() ? title + " (no values in this frame)"

@@ -180,6 +180,7 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
     d.legend.clear();
     d.colorTitle = v.colorVariable;
     d.colorRange = {0, 1};
+    d.colorHasNoValue = false;
     if (!d.frame)
         return;
     if (const CategoryColoring* cat = categoriesFor(v, d, selection)) {
@@ -240,17 +241,19 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
                         hasNoValue(d.frame, v.colorVariable);
 }
 
-// Whether `frame` holds `variable` as a column without one finite value (a scan that stops at
-// the first value; a column of NaN is scanned once per frame and kept).
+// Whether `frame` holds `variable` as a column without one finite value. Such a column's
+// cached range is [0, 0] (cacheColumnRange, strainFromMotion), so only those are scanned, once
+// per frame (the answer kept, the frame not held).
 bool ViewComposer::hasNoValue(const std::shared_ptr<const core::Frame>& frame,
                               const std::string& variable) {
     const core::AttributeColumn* c = frame->attribute(variable);
-    if (!c || c->isInteger() || c->floats.empty())
+    if (!c || c->isInteger() || c->floats.empty() || c->min != 0.0 || c->max != 0.0)
         return false;
     if (std::isfinite(c->floats.front()))
         return false;
     for (const auto& e : m_noValue)
-        if (e.frame == frame && e.variable == variable)
+        if (!e.frame.owner_before(frame) && !frame.owner_before(e.frame) && !e.frame.expired() &&
+            e.variable == variable)
             return e.none;
     const bool none =
         std::none_of(c->floats.begin(), c->floats.end(), [](float x) { return std::isfinite(x); });

@@ -79,7 +79,7 @@ class ViewComposer {
     std::vector<VisibleRangeEntry> m_visibleRanges; // the views' latest, a few at most
     bool hasNoValue(const std::shared_ptr<const core::Frame>& frame, const std::string& variable);
     struct NoValueEntry {
-        std::shared_ptr<const core::Frame> frame;
+        std::weak_ptr<const core::Frame> frame;
         std::string variable;
         bool none = false;
     };
