@@ -33,14 +33,15 @@ struct Cached {
     std::shared_ptr<const core::Frame>
         frame; // held: a pointer alone could be reused by another frame
     std::uint64_t visKey = 0;
-    int autoBins = 0; // the float binning chosen on the first frame, reused for later frames
+    int autoBins = 0; // the float bin count chosen on the first frame with values, kept
     core::Histogram hist;
-    // Shown over the 1st to 99th percentile of the frame's values (a few extreme values, such
-    // as grains thrown out of a model, left every other sphere in the first bar), with its own
-    // bin count, and the whole range of the frame's finite values (what the plot's ends mean).
-    bool middle = false;
+    // The 1st to 99th percentile of the frame's values asked for (a few extreme values, such as
+    // grains thrown out of a model, left every other sphere in the first bar); whether `hist`
+    // shows it (with a bin count of its own) or, the middle being one value, the whole range;
+    // and the frame's smallest and largest value (what the plot's ends mean; NaN: none).
+    bool middleAsked = false, middle = false, middleOneValue = false;
     int middleBins = 0;
-    double fullLo = 0, fullHi = 0;
+    double fullLo = NAN, fullHi = NAN;
 };
 
 enum class DragKind { None, NewRange, Low, High };
@@ -231,53 +232,59 @@ class HistogramsPanel final : public Panel {
         if (c.autoBins == 0)
             c.autoBins = savedBins(wb, var);
         const std::uint64_t visKey = main.visibilityKey;
-        const bool middle = savedMiddle(wb, var);
-        if (c.frame.get() == &frame && c.visKey == visKey && !c.hist.edges.empty() &&
-            c.middle == middle)
+        const bool asked = savedMiddle(wb, var);
+        const bool sameFrame =
+            c.frame.get() == &frame && !c.hist.edges.empty() && c.middleAsked == asked;
+        if (sameFrame && c.visKey == visKey)
             return &c.hist;
         auto column = core::findColumn(frame, var);
         if (!column)
             return nullptr;
         try {
-            core::HistogramSpec spec;
-            if (c.autoBins > 0 && !column->isInteger())
-                spec.bins = c.autoBins;
-            const bool wasMiddle = c.middle;
+            const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
+            // Only the visible spheres changed (a threshold or box dragged): the same bins,
+            // counted again.
+            if (sameFrame) {
+                c.hist = core::computeHistogram(*column, c.hist.binning, mask);
+                c.visKey = visKey;
+                return &c.hist;
+            }
+            c.frame = main.frame;
+            c.visKey = visKey;
+            c.middleAsked = asked;
+            c.middle = c.middleOneValue = false;
+            c.fullLo = c.fullHi = NAN;
             if (const auto full = core::variableRange(frame, var))
                 c.fullLo = full->low, c.fullHi = full->high;
-            if (middle && !column->isInteger()) {
+            if (asked && !column->isInteger()) {
                 // The middle 98 % of this frame's values, in bins of their own (chosen once).
                 const std::vector<std::uint8_t> all(frame.size(), 1);
                 const auto q = core::maskedQuantiles(frame, var, all, 0.01, 0.99);
                 if (q && q->first < q->second) {
+                    core::HistogramSpec spec;
                     spec.range = std::array<double, 2>{q->first, q->second};
                     spec.bins = c.middleBins;
                     const core::HistogramBinning b = core::chooseBinning(*column, spec);
                     c.middleBins = b.bins;
-                    c.hist = core::computeHistogram(
-                        *column, b, main.visibility ? &main.visibility->mask : nullptr);
-                    c.frame = main.frame;
-                    c.visKey = visKey;
+                    c.hist = core::computeHistogram(*column, b, mask);
                     c.middle = true;
                     return &c.hist;
                 }
+                c.middleOneValue = q.has_value(); // the whole range is shown, and says why
             }
-            c.middle = middle;
-            core::HistogramBinning binning =
-                (c.frame.get() == &frame && !c.hist.edges.empty() && !wasMiddle)
-                    ? c.hist.binning
-                    : core::chooseBinning(*column, spec);
-            const auto* mask = main.visibility ? &main.visibility->mask : nullptr;
+            core::HistogramSpec spec;
+            if (c.autoBins > 0 && !column->isInteger())
+                spec.bins = c.autoBins;
+            const core::HistogramBinning binning = core::chooseBinning(*column, spec);
             c.hist = core::computeHistogram(*column, binning, mask);
             // The bin count is kept (the bars hold still while frames change) once it comes from
             // values: a frame where every value is NaN (incremental strain on the first frames)
             // gave one bin, kept for every frame after and saved with the layout.
-            if (!column->isInteger() && c.autoBins == 0 && c.hist.all.inRange() > 0) {
+            if (!column->isInteger() && c.autoBins == 0 && c.hist.all.inRange() > 0 &&
+                binning.bins > 1) {
                 c.autoBins = binning.bins;
                 wb.layout().panelSettings(panel_ids::kHistograms)["bins"][var] = binning.bins;
             }
-            c.frame = main.frame;
-            c.visKey = visKey;
             return &c.hist;
         } catch (const std::exception&) {
             return nullptr;
@@ -339,14 +346,19 @@ class HistogramsPanel final : public Panel {
         // right end takes the extreme values too).
         const Cached& cached = m_cache[var];
         const bool middle = cached.middle;
-        const double endLo = middle ? std::min(lo, cached.fullLo) : lo;
-        const double endHi = middle ? std::max(hi, cached.fullHi) : hi;
+        const double endLo =
+            middle && std::isfinite(cached.fullLo) ? std::min(lo, cached.fullLo) : lo;
+        const double endHi =
+            middle && std::isfinite(cached.fullHi) ? std::max(hi, cached.fullHi) : hi;
+        auto valueAt = [&](float x) {
+            return lo + (std::clamp(x, p0.x, p1.x) - p0.x) / width * (hi - lo);
+        };
         auto toValue = [&](float x) {
             if (x <= p0.x + 3 * scale)
                 return endLo;
             if (x >= p1.x - 3 * scale)
                 return endHi;
-            return lo + (std::clamp(x, p0.x, p1.x) - p0.x) / width * (hi - lo);
+            return valueAt(x);
         };
 
         // Bars: all, then visible over them.
@@ -469,7 +481,8 @@ class HistogramsPanel final : public Panel {
             ImGui::EndPopup();
         }
         if (hovered && d.kind == DragKind::None) {
-            if (auto bin = h->binning.binOf(toValue(io.MousePos.x))) {
+            if (auto bin =
+                    h->binning.binOf(std::min(valueAt(io.MousePos.x), std::nextafter(hi, lo)))) {
                 const std::size_t k = static_cast<std::size_t>(*bin);
                 ImGui::BeginTooltip();
                 if (integer && h->binning.integerWidth == 1)
@@ -481,10 +494,13 @@ class HistogramsPanel final : public Panel {
                             static_cast<unsigned long long>(h->all.bins[k]),
                             static_cast<unsigned long long>(h->hasVisible ? h->visible.bins[k]
                                                                           : h->all.bins[k]));
-                // Right-click has something to offer only once there is a threshold.
-                ImGui::TextDisabled(t ? "drag to set the threshold; right-click to disable or "
-                                        "remove it"
-                                      : "drag across the plot to set a threshold");
+                // Right-click: the threshold's switches once there is one, the percentile view
+                // on a float variable.
+                ImGui::TextDisabled(
+                    "%s", t ? "drag to set the threshold; right-click to disable or remove it"
+                          : integer ? "drag across the plot to set a threshold"
+                                    : "drag across the plot to set a threshold; right-click to "
+                                      "show the 1st to 99th percentile");
                 ImGui::EndTooltip();
             }
         }
@@ -499,6 +515,8 @@ class HistogramsPanel final : public Panel {
                                 static_cast<unsigned long long>(h->all.outside),
                                 h->all.outside == 1 ? "" : "s");
             wb.mark("histogram." + var + ".beyond");
+        } else if (cached.middleOneValue) {
+            ImGui::TextDisabled("The middle 98 %% of the values are one value: all are shown");
         }
         // NaN (no reference for strain from motion, a sphere gone since it): never passes a
         // threshold, so say how many there are.
