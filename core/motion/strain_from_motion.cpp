@@ -1022,8 +1022,12 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
         tbb::blocked_range<std::size_t>(0, now.size(), 16384), Ranges{},
         [&](const tbb::blocked_range<std::size_t>& range, Ranges acc) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                if (i + 16 < range.end() && nowPoints[i + 16].slot != kNone)
-                    __builtin_prefetch(&values[nowPoints[i + 16].slot]);
+                if (i + 16 < range.end() && nowPoints[i + 16].slot != kNone) {
+                    // Both ends: a 24-byte record may straddle two cache lines.
+                    const char* at = reinterpret_cast<const char*>(&values[nowPoints[i + 16].slot]);
+                    __builtin_prefetch(at);
+                    __builtin_prefetch(at + sizeof(SlotValues) - 1);
+                }
                 const NowPoint& p = nowPoints[i];
                 const std::uint32_t k = p.slot;
                 if (k == kNone)
