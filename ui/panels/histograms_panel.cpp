@@ -257,9 +257,14 @@ class HistogramsPanel final : public Panel {
             if (const auto full = core::variableRange(frame, var))
                 c.fullLo = full->low, c.fullHi = full->high;
             if (asked && !column->isInteger()) {
-                // The middle 98 % of this frame's values, in bins of their own (chosen once).
-                const std::vector<std::uint8_t> all(frame.size(), 1);
-                const auto q = core::maskedQuantiles(frame, var, all, 0.01, 0.99);
+                // The middle 98 % of this frame's values, in bins of their own (chosen once); the
+                // percentiles of at most 65,536 evenly spaced rows (a display range: scrubbing
+                // millions of spheres, each new frame sorted them all on the UI thread).
+                std::vector<std::uint8_t> sampled(frame.size(), 0);
+                const std::size_t step = std::max<std::size_t>(1, frame.size() / 65536);
+                for (std::size_t row = 0; row < frame.size(); row += step)
+                    sampled[row] = 1;
+                const auto q = core::maskedQuantiles(frame, var, sampled, 0.01, 0.99);
                 if (q && q->first < q->second) {
                     core::HistogramSpec spec;
                     spec.range = std::array<double, 2>{q->first, q->second};
