@@ -363,7 +363,7 @@ std::size_t trailingDerivedColumns(const Frame& frame, const std::vector<StrainS
     std::vector<std::string> names;
     for (const auto& s : strains)
         for (auto v : kStrainVariables)
-            names.push_back(s.prefix + std::string(v));
+            names.push_back(s.variable(v));
     std::size_t n = 0;
     while (n < frame.attributes.size() &&
            std::find(names.begin(), names.end(),

@@ -20,6 +20,8 @@ struct StrainSpec {
     // The reference frame for `frame` of `count` frames; nothing when it lies outside the data
     // (the variables are NaN there).
     std::optional<std::size_t> referenceFor(std::size_t frame, std::size_t count) const;
+    // One of its variables under its prefix: variable(kShearStrain) is "inc_shear_strain".
+    std::string variable(std::string_view name) const { return prefix + std::string(name); }
 };
 
 // The variables each spec adds, without its prefix, in column order.

@@ -49,7 +49,7 @@ void registerStrainOps(OpRegistry& ops) {
                 const std::size_t own = frame->attributes.size() - frame->derivedColumns;
                 for (std::size_t k = 0; k < own; ++k)
                     for (auto v : kStrainVariables)
-                        if (frame->attributes[k].name == spec.prefix + std::string(v))
+                        if (frame->attributes[k].name == spec.variable(v))
                             throw CommandError("strain.add: the data has a variable \"" +
                                                frame->attributes[k].name +
                                                "\" already: give a \"prefix\"");

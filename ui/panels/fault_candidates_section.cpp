@@ -26,7 +26,7 @@ namespace {
 // else a damage column the file has.
 std::string narrowingHint(PanelContext& wb, const core::Frame& frame) {
     for (const core::StrainSpec& spec : wb.state().strains)
-        if (const std::string v = spec.prefix + std::string(core::kShearStrain); frame.attribute(v))
+        if (const std::string v = spec.variable(core::kShearStrain); frame.attribute(v))
             return "a threshold on " + v + " (Histograms or Thresholds)";
     for (const char* v : {"broken_bonds", "strain", "damage"})
         if (frame.attribute(v))

@@ -152,7 +152,7 @@ class HistogramsPanel final : public Panel {
             return m_default;
         // (A file with velocities or types of its own showed those alone after Add.)
         for (const core::StrainSpec& spec : wb.state().strains) {
-            const std::string shear = spec.prefix + std::string(core::kShearStrain);
+            const std::string shear = spec.variable(core::kShearStrain);
             if (out.size() < 3 && std::find(names.begin(), names.end(), shear) != names.end() &&
                 std::find(out.begin(), out.end(), shear) == out.end())
                 out.push_back(shear);

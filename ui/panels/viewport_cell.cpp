@@ -52,7 +52,7 @@ std::string noValueNote(const core::ViewState& view, const ViewDisplay& d,
     // One of a strain's own variables, and the strain has no reference frame for this one.
     for (const core::StrainSpec& spec : state.strains)
         for (std::string_view v : core::kStrainVariables)
-            if (view.colorVariable == spec.prefix + std::string(v) &&
+            if (view.colorVariable == spec.variable(v) &&
                 !spec.referenceFor(d.shownFrame, frameCount))
                 return note + (spec.relative
                                    ? " (strain from motion against " +

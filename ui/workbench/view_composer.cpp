@@ -251,9 +251,9 @@ bool ViewComposer::hasNoValue(const std::shared_ptr<const core::Frame>& frame,
         return false;
     if (std::isfinite(c->floats.front()))
         return false;
+    // The same frame object (an expired entry keeps its control block, so no new frame matches).
     for (const auto& e : m_noValue)
-        if (!e.frame.owner_before(frame) && !frame.owner_before(e.frame) && !e.frame.expired() &&
-            e.variable == variable)
+        if (!e.frame.owner_before(frame) && !frame.owner_before(e.frame) && e.variable == variable)
             return e.none;
     const bool none =
         std::none_of(c->floats.begin(), c->floats.end(), [](float x) { return std::isfinite(x); });
