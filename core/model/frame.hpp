@@ -29,6 +29,10 @@ struct AttributeColumn {
                                            : static_cast<double>(ints[row]);
     }
     bool isInteger() const { return type == ColumnType::Int32; }
+    // A float column without one finite value (incremental strain on a frame before its
+    // reference: every value NaN). Only a cached range of [0, 0], which such a column has,
+    // leads to a scan.
+    bool hasNoValue() const;
 };
 
 // The simulation box: orthogonal [lo, hi], or a LAMMPS triclinic box with tilts xy xz yz.

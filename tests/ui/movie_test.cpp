@@ -306,3 +306,31 @@ TEST_F(MovieTest, AFigureDrawsTheSurfaceSurfaceBuildMade) {
     EXPECT_TRUE(std::filesystem::exists(dir.file("seq/s2.png")));
     EXPECT_EQ(cache.counters().builds, 3u);
 }
+
+// A figure of a frame where the colour variable has no value (incremental strain on the first
+// frame, which has no frame before it) shows grey spheres without a legend, as the workbench's
+// views do; the next frame's figure has its legend. Counted as pixels unlike the background in
+// the image's rightmost tenth, where the legend's bar and labels stand.
+TEST_F(MovieTest, AFigureOfAFrameWithoutValuesDrawsNoLegend) {
+    session.apply(Json::parse(R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})"));
+    session.apply(Json::parse(R"({"op":"color.set","view":"main","variable":"inc_shear_strain"})"));
+    auto legendPixels = [&](std::size_t frame) {
+        ui::FigureRequest request;
+        request.width = 640;
+        request.height = 360;
+        request.frame = frame;
+        const ui::RgbaImage img = ui::renderSessionImage(session, request);
+        const std::uint8_t* corner = &img.pixels[std::size_t(img.width - 1) * 4];
+        std::size_t n = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = img.width * 9 / 10; x < img.width; ++x) {
+                const std::uint8_t* p = &img.pixels[(std::size_t(y) * img.width + x) * 4];
+                n += std::abs(p[0] - corner[0]) + std::abs(p[1] - corner[1]) +
+                         std::abs(p[2] - corner[2]) >
+                     30;
+            }
+        return n;
+    };
+    EXPECT_EQ(legendPixels(0), 0u) << "a legend for a variable without values";
+    EXPECT_GT(legendPixels(1), 100u) << "no legend where the variable has values";
+}

@@ -97,6 +97,12 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
             core::colorView(*view, frameIndex, dataset->frameCount(), frame, &visibility, sources);
         scene.colorVariable = coloring.title;
         scene.colorColumn = coloring.column.get();
+        // A variable without one value in this frame (incremental strain before its reference):
+        // grey spheres and no legend, as the workbench's views show it.
+        if (const core::AttributeColumn* shown =
+                scene.colorColumn ? scene.colorColumn : frame->attribute(scene.colorVariable))
+            if (shown->hasNoValue())
+                scene.style.showLegend = false;
         scene.colorRange = request.colorRange ? *request.colorRange : coloring.range;
     }
     for (const auto& b : session.state().boxes)
