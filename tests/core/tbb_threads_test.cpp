@@ -14,6 +14,7 @@ TEST(TestMain, TbbLoopsRunInAnArenaOfTheThreadsAsked) {
     const int threads = std::atoi(n);
     EXPECT_EQ(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
               std::size_t(threads));
-    if (threads > tbb::info::default_concurrency()) // more than the machine's cores
+    if (threads > tbb::info::default_concurrency()) { // more than the machine's cores
         EXPECT_EQ(tbb::this_task_arena::max_concurrency(), threads);
+    }
 }

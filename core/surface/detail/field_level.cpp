@@ -171,8 +171,15 @@ FAULTLINE_HOT void interpolatePasses(const float* src, const Int3& sd, int strid
     for (int i = 0; i < n[0]; ++i) {
         float* d = pass1 + i * plane;
         v8f w[kTaps];
+#if defined(__GNUC__) && !defined(__clang__) // GCC 12 takes these stores for uses of w[4], w[5]
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
         for (int q = 0; q < kTaps; ++q)
             w[q] = simd8::splat(weights[0][i][q]);
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
         const float* s = src + base[0][i] * plane;
         for (std::size_t e = 0; e < plane; e += 8) {
             v8f acc{};
