@@ -8,6 +8,7 @@
 // [SECTION] Step 3b: where faults cross
 // [SECTION] Step 4: leftover spheres go to the nearest surface
 // [SECTION] Step 5: planar pieces no group reached
+// [SECTION] Step 6: small regions where no group reached
 // [SECTION] faultNetworkGroups: the steps in order
 
 #include "core/faults/fault_network.hpp"
@@ -61,6 +62,8 @@ constexpr int kLastRounds = 8;
 // Whether a region sits on other zones' surfaces is decided on at most about this many of its
 // spheres.
 constexpr std::size_t kJunctionSample = 256;
+// Where no group reached, regions of at least minSize / kReseedShare spheres seed groups.
+constexpr std::size_t kReseedShare = 3;
 // Leftovers are reached over links from the groups up to about this many radii away.
 constexpr double kLeftoverReach = 3.0;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
@@ -801,6 +804,30 @@ std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const
     return groups;
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Step 6: small regions where no group reached
+//-----------------------------------------------------------------------------
+
+// Step 6: spheres still in no group go back to the region they grew in when it holds at least
+// a third of minSize (kReseedShare), and the leftover rule runs again from those regions
+// (groups that stay below minSize are dropped with the others). Where every region of a noisy
+// band stays below minSize, all of them were dissolved, their spheres reached no group, and the
+// band with its strained surroundings is diffuse, not a planar piece: the whole of it had no
+// candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and 86th percentile
+// of incremental strain). Only such spheres change: a group of the steps before keeps what it
+// holds. Returns whether any sphere was given back to its region.
+bool reseedUnreached(std::span<const std::int32_t> grown, std::span<const std::size_t> size,
+                     std::size_t minSize, std::vector<std::int32_t>& group) {
+    const std::size_t least = std::max<std::size_t>(1, minSize / kReseedShare);
+    bool any = false;
+    for (std::size_t i = 0; i < group.size(); ++i)
+        if (group[i] == -1 && grown[i] >= 0 && size[std::size_t(grown[i])] >= least) {
+            group[i] = grown[i]; // a region below minSize: its label is no group's
+            any = true;
+        }
+    return any;
+}
+
 } // namespace
 
 //-----------------------------------------------------------------------------
@@ -878,6 +905,7 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
         if (g >= 0)
             ++size[std::size_t(g)];
     const std::size_t minSize = std::max<std::size_t>(options.minSize, 1);
+    const std::vector<std::int32_t> grown = region;
     for (std::int32_t& g : region)
         if (g >= 0 && size[std::size_t(g)] < minSize)
             g = -1;
@@ -885,6 +913,10 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
                     onSurface);
     const std::size_t groupCount =
         planarPieces(frame, linkCells, graph, minSize, regionCount, region);
+    // Step 6: where no group reached, the regions grown there seed groups after all.
+    if (reseedUnreached(grown, size, minSize, region))
+        assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
+                        onSurface);
 
     std::vector<std::int32_t> dense(groupCount, -1);
     for (std::size_t i = 0; i < linkCells.size(); ++i)

@@ -263,8 +263,12 @@ TEST(CandidatesOnRealRuns, TheLammpsShorteningThrustFrom85To95) {
 // In the second millimetre (1 -> 2) a steeper east-dipping fault (78 degrees) joins it in a V
 // whose base is a broad zone of distributed strain: at the 92nd and 93rd percentile both faults
 // are matched as above; from the 90th to the 95th they are two candidates within 2 diameters and
-// 7 degrees (the base's strained grains pull the planes by up to 6.8); below the 90th the base
-// goes with the west-dipping fault, 14-24 degrees off (printed, not asserted).
+// 7 degrees (the base's strained grains pull the planes by up to 6.8); from the 87th to the
+// 89th the base goes with the west-dipping fault, 14-24 degrees off (printed, not asserted). At
+// the 85th and 86th every region grown in the noisy V stays below the minimum size: they gave no
+// candidate at all until the regions where no group reached seed groups (step 6 of
+// fault_network.hpp); now both faults are matched as above (at most 4.7 degrees and 1.9 d off),
+// the west one by a candidate of its 67-71 most planar spheres beside a few fragments.
 TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
     auto ds = Dataset::open({run("yade/sb-spheres-*.vtk.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
@@ -272,7 +276,7 @@ TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
         expectMatched(
             check("Yade sandbox 0 -> 1", *ds->frame(0), *ds->frame(1), "inc_shear_strain", p, 30),
             1);
-    for (double p : {92.0, 93.0})
+    for (double p : {85.0, 86.0, 92.0, 93.0})
         expectMatched(
             check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30),
             2);
@@ -281,7 +285,7 @@ TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
             check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30),
             7.0);
     }
-    for (double p : {85.0, 87.0, 88.0, 89.0})
+    for (double p : {87.0, 88.0, 89.0})
         check("Yade sandbox 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 30);
 }
 
@@ -292,8 +296,11 @@ TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
 // than the minimum size and stood too far from the east zone to be its leftover: at the 90th
 // percentile it had no candidate. As a planar piece of its own it is one candidate within 3.9
 // degrees and 0.5 diameters from the 90th to the 94th percentile, apart from the east zone's.
-// The east zone's candidate is 4.9 degrees off at the 92.5th and 12-19 degrees elsewhere (its
-// base pulls it flatter): printed, not asserted.
+// The east zone's candidate is 4.9 degrees off at the 92.5th and 12-19 degrees from the 90th to
+// the 95th (its base pulls it flatter): printed, not asserted. Below, since step 6 of
+// fault_network.hpp (printed): at the 85th the east zone is a candidate 2.7 degrees off (none
+// before) and the west fault's is 6.6 off; at the 87.5th the V is no longer one candidate and
+// the west fault's is 1.3 degrees off, while the east zone's spheres go with the base.
 TEST(CandidatesOnRealRuns, TheYadeSandboxWithAFloorThinFaultIsACandidate) {
     auto ds = Dataset::open({run("yade/sbfloor-spheres-*.vtk.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
