@@ -809,23 +809,49 @@ std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const
 //-----------------------------------------------------------------------------
 
 // Step 6: spheres still in no group go back to the region they grew in when it holds at least
-// a third of minSize (kReseedShare), and the leftover rule runs again from those regions
-// (groups that stay below minSize are dropped with the others). Where every region of a noisy
-// band stays below minSize, all of them were dissolved, their spheres reached no group, and the
-// band with its strained surroundings is diffuse, not a planar piece: the whole of it had no
-// candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and 86th percentile
-// of incremental strain). Only such spheres change: a group of the steps before keeps what it
-// holds. Returns whether any sphere was given back to its region.
-bool reseedUnreached(std::span<const std::int32_t> grown, std::span<const std::size_t> size,
-                     std::size_t minSize, std::vector<std::int32_t>& group) {
+// a third of minSize (kReseedShare); the leftover rule then runs again for those regions only
+// (the groups of the steps before keep what they held), and a seeded group that grew diffuse
+// is dissolved (dropDiffuse); groups that stay below minSize are dropped with the others. Where
+// every region grown in a noisy band stays below minSize, all of them were dissolved, their spheres
+// reached no group, and the band with its strained surroundings is diffuse, not a planar piece: the
+// whole of it had no candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and
+// 86th percentile of incremental strain). The labels of the regions given back, which no group had,
+// are returned.
+std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
+                                          std::span<const std::size_t> size, std::size_t minSize,
+                                          std::vector<std::int32_t>& group) {
     const std::size_t least = std::max<std::size_t>(1, minSize / kReseedShare);
-    bool any = false;
+    std::vector<std::int32_t> seeded;
     for (std::size_t i = 0; i < group.size(); ++i)
         if (group[i] == -1 && grown[i] >= 0 && size[std::size_t(grown[i])] >= least) {
             group[i] = grown[i]; // a region below minSize: its label is no group's
-            any = true;
+            seeded.push_back(grown[i]);
         }
-    return any;
+    std::sort(seeded.begin(), seeded.end());
+    seeded.erase(std::unique(seeded.begin(), seeded.end()), seeded.end());
+    return seeded;
+}
+
+// The groups `seeded` that grew diffuse (a blob of distributed strain, as candidateShape judges
+// it) are dissolved: step 6 is for bands, as step 5 is.
+void dropDiffuse(const Frame& frame, const SphereCells& linkCells,
+                 std::span<const std::int32_t> seeded, std::size_t minSize,
+                 std::vector<std::int32_t>& group) {
+    std::vector<std::vector<std::int64_t>> ids(seeded.size());
+    for (std::size_t i = 0; i < group.size(); ++i)
+        if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), group[i]);
+            at != seeded.end() && *at == group[i])
+            ids[std::size_t(at - seeded.begin())].push_back(frame.ids[linkCells.row[i]]);
+    std::vector<std::uint8_t> drop(seeded.size(), 0);
+    for (std::size_t k = 0; k < seeded.size(); ++k)
+        if (ids[k].size() >= minSize) {
+            const CandidateShape shape = candidateShape(frame, ids[k]);
+            drop[k] = !shape.valid || shape.diffuse;
+        }
+    for (std::int32_t& g : group)
+        if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), g);
+            at != seeded.end() && *at == g && drop[std::size_t(at - seeded.begin())])
+            g = -1;
 }
 
 } // namespace
@@ -914,9 +940,19 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     const std::size_t groupCount =
         planarPieces(frame, linkCells, graph, minSize, regionCount, region);
     // Step 6: where no group reached, the regions grown there seed groups after all.
-    if (reseedUnreached(grown, size, minSize, region))
+    if (const auto seeded = reseedUnreached(grown, size, minSize, region); !seeded.empty()) {
+        const std::vector<std::int32_t> before = region;
         assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
                         onSurface);
+        // The groups of the steps before keep what they held, and no more: from the seeded
+        // regions the leftover rule reaches a step further, and a group next to a V's broad
+        // base took it all (the floored Yade sandbox at the 85th percentile).
+        for (std::size_t i = 0; i < region.size(); ++i)
+            if (before[i] == -1 && region[i] >= 0 &&
+                !std::binary_search(seeded.begin(), seeded.end(), region[i]))
+                region[i] = -1;
+        dropDiffuse(frame, linkCells, seeded, minSize, region);
+    }
 
     std::vector<std::int32_t> dense(groupCount, -1);
     for (std::size_t i = 0; i < linkCells.size(); ++i)
