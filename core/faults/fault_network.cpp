@@ -581,19 +581,25 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
 //-----------------------------------------------------------------------------
 
 // Step 4: spheres a few links from a group go to the group whose surface passes nearest.
-// Everything per link slot; the wide cells find the grouped spheres within the radius.
+// Everything per link slot; the wide cells find the grouped spheres within the radius. Each
+// sphere taken gets, in `ref`, the normal of the grouped sphere that decided. `from` (sorted
+// labels; empty: every group): only spheres a few links from those groups are taken, though
+// every group competes for them (step 6).
 void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
                      std::span<const std::uint32_t> linkToWide, const Graph& g,
-                     const std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
-                     double meanRadius, double onSurface) {
+                     std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
+                     double meanRadius, double onSurface, std::span<const std::int32_t> from = {}) {
     const std::size_t n = wide.size();
     const int hops =
         int(std::clamp(std::ceil(kLeftoverReach * radius / (2 * meanRadius)), 2.0, 192.0));
     std::vector<std::uint8_t> reached(n, 0);
     std::vector<std::uint32_t> frontier, next, left;
     for (std::uint32_t i = 0; i < n; ++i)
-        if (group[i] >= 0)
-            frontier.push_back(i), reached[i] = 1;
+        if (group[i] >= 0) {
+            reached[i] = 1;
+            if (from.empty() || std::binary_search(from.begin(), from.end(), group[i]))
+                frontier.push_back(i);
+        }
     for (int h = 0; h < hops && !frontier.empty(); ++h) {
         next.clear();
         for (std::uint32_t i : frontier)
@@ -756,7 +762,8 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
         open.swap(still);
     }
     for (std::size_t q = 0; q < left.size(); ++q)
-        group[left[q]] = chosen[q];
+        if ((group[left[q]] = chosen[q]) >= 0)
+            ref[left[q]] = chosenRef[q];
 }
 
 //-----------------------------------------------------------------------------
@@ -770,8 +777,8 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
 // sandbox's 55-degree fault at the 90th percentile of incremental strain had no candidate).
 // Returns the number of groups; new ones are numbered from `groups`.
 std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const Graph& graph,
-                         std::size_t minSize, std::size_t groups,
-                         std::vector<std::int32_t>& group) {
+                         std::size_t minSize, std::size_t groups, std::vector<std::int32_t>& group,
+                         std::vector<F3>& ref) {
     constexpr std::int32_t kSeen = -2, kLeft = -3;
     std::vector<std::uint32_t> piece;
     std::vector<std::int64_t> ids;
@@ -787,16 +794,24 @@ std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const
                     piece.push_back(j);
                 }
         bool planar = false;
+        F3 normal{0, 0, 1};
         if (piece.size() >= minSize) {
             ids.clear();
             for (std::uint32_t j : piece)
                 ids.push_back(frame.ids[linkCells.row[j]]);
             const CandidateShape shape = candidateShape(frame, ids);
             planar = shape.valid && !shape.diffuse;
+            if (planar) {
+                const Vec3d n = normalFromOrientation(shape.dip, shape.dipDirection);
+                normal = {float(n[0]), float(n[1]), float(n[2])};
+            }
         }
         const std::int32_t label = planar ? std::int32_t(groups++) : kLeft;
-        for (std::uint32_t j : piece)
+        for (std::uint32_t j : piece) {
             group[j] = label;
+            if (planar) // the piece's plane: what step 6's leftovers measure against
+                ref[j] = normal;
+        }
     }
     for (std::int32_t& g : group)
         if (g == kLeft)
@@ -808,10 +823,12 @@ std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const
 // [SECTION] Step 6: small regions where no group reached
 //-----------------------------------------------------------------------------
 
-// Step 6: spheres still in no group go back to the region they grew in when it holds at least
-// a third of minSize (kReseedShare); the leftover rule then runs again for those regions only
-// (the groups of the steps before keep what they held), and a seeded group that grew diffuse
-// is dissolved (dropDiffuse); groups that stay below minSize are dropped with the others. Where
+// Step 6: spheres still in no group go back to the region they grew in when that region, as
+// grown, held minSize / kReseedShare spheres or more (rounded down); the leftover rule then runs
+// again over the spheres a few links from those regions, with every group competing for them,
+// but what it gives to the groups of the steps before is taken back (they keep what they held);
+// a seeded group that grew diffuse is dissolved (dropDiffuse), and groups that stay below
+// minSize are dropped with the others. Where
 // every region grown in a noisy band stays below minSize, all of them were dissolved, their spheres
 // reached no group, and the band with its strained surroundings is diffuse, not a planar piece: the
 // whole of it had no candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and
@@ -821,14 +838,16 @@ std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
                                           std::span<const std::size_t> size, std::size_t minSize,
                                           std::vector<std::int32_t>& group) {
     const std::size_t least = std::max<std::size_t>(1, minSize / kReseedShare);
-    std::vector<std::int32_t> seeded;
+    std::vector<std::uint8_t> given(size.size(), 0);
     for (std::size_t i = 0; i < group.size(); ++i)
         if (group[i] == -1 && grown[i] >= 0 && size[std::size_t(grown[i])] >= least) {
             group[i] = grown[i]; // a region below minSize: its label is no group's
-            seeded.push_back(grown[i]);
+            given[std::size_t(grown[i])] = 1;
         }
-    std::sort(seeded.begin(), seeded.end());
-    seeded.erase(std::unique(seeded.begin(), seeded.end()), seeded.end());
+    std::vector<std::int32_t> seeded;
+    for (std::size_t r = 0; r < given.size(); ++r)
+        if (given[r])
+            seeded.push_back(std::int32_t(r));
     return seeded;
 }
 
@@ -938,15 +957,14 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
                     onSurface);
     const std::size_t groupCount =
-        planarPieces(frame, linkCells, graph, minSize, regionCount, region);
+        planarPieces(frame, linkCells, graph, minSize, regionCount, region, ref);
     // Step 6: where no group reached, the regions grown there seed groups after all.
     if (const auto seeded = reseedUnreached(grown, size, minSize, region); !seeded.empty()) {
         const std::vector<std::int32_t> before = region;
         assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
-                        onSurface);
-        // The groups of the steps before keep what they held, and no more: from the seeded
-        // regions the leftover rule reaches a step further, and a group next to a V's broad
-        // base took it all (the floored Yade sandbox at the 85th percentile).
+                        onSurface, seeded);
+        // The groups of the steps before keep what they held, and no more: a group next to a
+        // V's broad base took it all (the floored Yade sandbox at the 85th percentile).
         for (std::size_t i = 0; i < region.size(); ++i)
             if (before[i] == -1 && region[i] >= 0 &&
                 !std::binary_search(seeded.begin(), seeded.end(), region[i]))

@@ -22,7 +22,8 @@
 //    group are left out.
 // 5. Linked pieces of the spheres left out that hold min_size and are planar become groups.
 // 6. Where still no group reached, the regions grown there (at least a third of min_size) take
-//    their spheres back and seed groups by the leftover rule of step 4: a noisy band whose
+//    their spheres back and seed groups by the leftover rule of step 4 (the groups before keep
+//    what they held; a seeded group that grows diffuse is dissolved): a noisy band whose
 //    regions all stayed below min_size is not lost.
 // Cost: one pass over pooled cells for the planes, growth and joining linear in spheres, and
 // sampled scans for junctions and leftovers: about 0.25 s per 100k visible spheres on 2 cores.
