@@ -33,7 +33,7 @@ template <typename T> void rangeOf(const std::vector<T>& values, double& lo, dou
 } // namespace
 
 bool AttributeColumn::hasNoValue() const {
-    if (isInteger() || floats.empty() || min != 0.0 || max != 0.0 || std::isfinite(floats.front()))
+    if (!mayHaveNoValue())
         return false;
     return std::none_of(floats.begin(), floats.end(), [](float x) { return std::isfinite(x); });
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -31,8 +32,12 @@ struct AttributeColumn {
     bool isInteger() const { return type == ColumnType::Int32; }
     // A float column without one finite value (incremental strain on a frame before its
     // reference: every value NaN). Only a cached range of [0, 0], which such a column has,
-    // leads to a scan.
+    // leads to a scan; mayHaveNoValue is the test before it.
     bool hasNoValue() const;
+    bool mayHaveNoValue() const {
+        return !isInteger() && !floats.empty() && min == 0.0 && max == 0.0 &&
+               !std::isfinite(floats.front());
+    }
 };
 
 // The simulation box: orthogonal [lo, hi], or a LAMMPS triclinic box with tilts xy xz yz.

@@ -98,10 +98,11 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
         scene.colorVariable = coloring.title;
         scene.colorColumn = coloring.column.get();
         // A variable without one value in this frame (incremental strain before its reference):
-        // grey spheres and no legend, as the workbench's views show it.
-        if (const core::AttributeColumn* shown =
-                scene.colorColumn ? scene.colorColumn : frame->attribute(scene.colorVariable))
-            if (shown->hasNoValue())
+        // grey spheres and no legend, as the workbench's views show it (for the variable's own
+        // column; a difference keeps its legend there too).
+        if (!coloring.column)
+            if (const core::AttributeColumn* own = frame->attribute(scene.colorVariable);
+                own && own->hasNoValue())
                 scene.style.showLegend = false;
         scene.colorRange = request.colorRange ? *request.colorRange : coloring.range;
     }

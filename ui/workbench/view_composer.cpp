@@ -247,9 +247,8 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
 bool ViewComposer::hasNoValue(const std::shared_ptr<const core::Frame>& frame,
                               const std::string& variable) {
     const core::AttributeColumn* c = frame->attribute(variable);
-    if (!c || c->isInteger() || c->floats.empty() || c->min != 0.0 || c->max != 0.0 ||
-        std::isfinite(c->floats.front()))
-        return false; // the quick answers of AttributeColumn::hasNoValue, before the cache
+    if (!c || !c->mayHaveNoValue())
+        return false;
     // The same frame object (an expired entry keeps its control block, so no new frame matches).
     for (const auto& e : m_noValue)
         if (!e.frame.owner_before(frame) && !frame.owner_before(e.frame) && e.variable == variable)
