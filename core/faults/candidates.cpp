@@ -259,6 +259,7 @@ CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> 
     out.thicknessRatio = within > 0 ? std::sqrt(across / within) : 1.0;
     out.diffuse =
         out.thicknessRatio > (thin >= 0 ? kDiffuseSectionThicknessRatio : kDiffuseThicknessRatio);
+    out.subHorizontal = out.dip < kSubHorizontalDip;
     return out;
 }
 
@@ -271,6 +272,20 @@ std::string diffuseNote(const CandidateShape& shape) {
                   "fault plane",
                   shape.thicknessRatio);
     return text;
+}
+
+std::string shapeNote(const CandidateShape& shape) {
+    std::string note = diffuseNote(shape);
+    if (shape.valid && shape.subHorizontal) {
+        char text[160];
+        std::snprintf(
+            text, sizeof text,
+            "sub-horizontal: dips %.0f degrees, a layer along the model's surface or "
+            "base (a creeping free surface, a basal detachment) rather than a dipping fault",
+            shape.dip);
+        note += (note.empty() ? "" : "; ") + std::string(text);
+    }
+    return note;
 }
 
 std::vector<Fault> faultsFromCandidates(std::span<const Candidate> candidates,

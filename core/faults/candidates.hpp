@@ -78,15 +78,24 @@ CandidateMethod parseCandidateMethod(std::string_view name);
 // 0.16-0.35 at the 85th-95th percentile of their strain, so there the limit is higher.
 inline constexpr double kDiffuseThicknessRatio = 0.3;
 inline constexpr double kDiffuseSectionThicknessRatio = 0.5;
+// A candidate dipping less than this many degrees is flagged sub-horizontal: in a real run a
+// layer along the model's free surface (which creeps as the block stretches) or its base, more
+// often than a fault (issue 37); in a shear box it is the shear zone itself. Flagged, not left
+// out.
+inline constexpr double kSubHorizontalDip = 15.0;
 struct CandidateShape {
     bool valid = false; // >= 3 members in the frame with a determined plane
     double dip = 0, dipDirection = 0;
     double thicknessRatio = 0;
     bool diffuse = false;
+    bool subHorizontal = false; // dip below kSubHorizontalDip
 };
 CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> ids);
 // "diffuse: spheres fill a volume (thickness 0.62 of the width), not one fault plane", or "".
 std::string diffuseNote(const CandidateShape& shape);
+// What an accepted candidate's notes say of its shape: diffuseNote, and for a sub-horizontal one
+// "sub-horizontal: dips 2 degrees, ...", joined by "; "; "" for a dipping sheet.
+std::string shapeNote(const CandidateShape& shape);
 
 // The n-th of a sequence of distinct colours (golden-angle hues), for showing candidates.
 std::array<float, 3> candidateColor(std::size_t index);

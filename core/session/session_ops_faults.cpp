@@ -320,8 +320,9 @@ void registerFaultOps(OpRegistry& ops) {
                                    "\" exists already (choose another \"prefix\")");
             Json create = {
                 {"op", "fault.create"}, {"name", f.name}, {"ids", f.ids}, {"color", f.color}};
-            // Distributed damage is accepted too, but says what it is (issue 41).
-            if (std::string note = diffuseNote(candidateShape(*frame, f.ids)); !note.empty())
+            // Distributed damage (issue 41) and sub-horizontal layers (issue 37) are accepted
+            // too, but say what they are.
+            if (std::string note = shapeNote(candidateShape(*frame, f.ids)); !note.empty())
                 create["notes"] = note;
             batch.push_back(std::move(create));
         }

@@ -989,10 +989,11 @@ TEST(Session, AFaultsSurfaceIsWhatOfItHasFormedInTheFrame) {
 TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
     TempDir dir;
     Session s;
-    openTwoWalls(s, dir); // two thin walls: sheets
+    openTwoWalls(s, dir); // two thin walls: sheets, upright
     s.apply(cmd(R"({"op":"fault.candidates","min_size":10})"));
     ASSERT_EQ(s.state().faults.size(), 2u);
     EXPECT_EQ(s.state().faults[0].notes, "");
+    EXPECT_EQ(s.state().faults[1].notes, "");
     s.apply(cmd(R"({"op":"undo"})"));
     // Three layers of the 4x4x4 block: a blob, nearly as thick as it is wide.
     s.apply(cmd(R"({"op":"box.remove","name":"west"})"));
@@ -1007,6 +1008,14 @@ TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
     EXPECT_TRUE(sheet.valid);
     EXPECT_FALSE(sheet.diffuse); // the z = 0 layer
     EXPECT_NEAR(sheet.dip, 0.0, 1e-6);
+    // Flat (issue 37): flagged, and said so by the notes with the journal's op too.
+    EXPECT_TRUE(sheet.subHorizontal);
+    EXPECT_EQ(shapeNote(sheet).rfind("sub-horizontal: dips 0 degrees", 0), 0u) << shapeNote(sheet);
+    s.apply(cmd(R"({"op":"undo"})"));
+    s.apply(cmd(R"({"op":"box.set","name":"east","min":[0,0,0],"max":[3,3,0]})"));
+    s.apply(cmd(R"({"op":"fault.candidates","min_size":10})"));
+    ASSERT_EQ(s.state().faults.size(), 1u);
+    EXPECT_EQ(s.state().faults[0].notes, shapeNote(sheet));
 }
 
 // Issue 39: one cache of visible spheres keyed by what they depend on. The same selection in the

@@ -257,3 +257,29 @@ TEST_F(PanelTest, DoubleClickRenamesAFaultInPlace) {
     EXPECT_EQ(session.state().fault("C2"), nullptr);
     EXPECT_FALSE(headless.has(wb(), "faults.rename.Graben W"));
 }
+
+// Issue 37: a sub-horizontal candidate (a real run's creeping surface layer) is flagged "flat" in
+// the list, and accepting it says so in the fault's notes; the lattice's walls are not flagged.
+TEST_F(PanelTest, FlatCandidatesAreFlaggedAndSayWhatTheyMayBe) {
+    openLattice();
+    twoWalls(session);
+    headless.showPanel(wb(), ui::panel_ids::kFaults);
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    headless.frames(wb(), 2);
+    ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 2u);
+    EXPECT_FALSE(headless.has(wb(), "candidates.flat.1"));
+    EXPECT_FALSE(headless.has(wb(), "candidates.flat.2"));
+    session.apply(Json::parse(R"({"op":"box.remove","name":"west"})"));
+    session.apply(Json::parse(R"({"op":"box.set","name":"east","min":[0,0,0],"max":[3,3,0]})"));
+    headless.click(wb(), "candidates.find");
+    headless.settle(wb());
+    headless.frames(wb(), 2);
+    ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 1u);
+    EXPECT_TRUE(headless.has(wb(), "candidates.flat.1"));
+    headless.click(wb(), "candidates.accept.1");
+    const core::Fault* floor = session.state().fault("C1");
+    ASSERT_NE(floor, nullptr);
+    EXPECT_NE(floor->notes.find("sub-horizontal: dips 0 degrees"), std::string::npos)
+        << floor->notes;
+}

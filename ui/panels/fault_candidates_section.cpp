@@ -185,6 +185,18 @@ class FaultCandidatesSection {
                                 "dip says little. Accepted, the fault's notes say so.",
                                 shape.thicknessRatio);
                     }
+                    if (shape.valid && shape.subHorizontal) {
+                        besideOrBelow("flat");
+                        ImGui::TextColored(ImVec4(0.2f, 0.45f, 0.75f, 1), "flat");
+                        wb.mark("candidates.flat." + std::to_string(k + 1));
+                        if (ImGui::IsItemHovered())
+                            ImGui::SetTooltip(
+                                "Sub-horizontal (dips %.0f degrees): in a stretched or shortened\n"
+                                "block more often a layer along its free surface (which creeps)\n"
+                                "or its base than a fault; in a shear box, the shear zone.\n"
+                                "Accepted, the fault's notes say so.",
+                                shape.dip);
+                    }
                 }
                 if (const std::size_t kk = static_cast<std::size_t>(k);
                     kk < m_overlaps.size() && !m_overlaps[kk].empty() && !m_accepted.count(k)) {
@@ -319,7 +331,7 @@ class FaultCandidatesSection {
         cmd.color(color);
         const auto& shapes = wb.selection().candidates->shapes;
         if (static_cast<std::size_t>(k) < shapes.size())
-            if (std::string note = core::diffuseNote(shapes[static_cast<std::size_t>(k)]);
+            if (std::string note = core::shapeNote(shapes[static_cast<std::size_t>(k)]);
                 !note.empty())
                 cmd.notes(note);
         wb.emit(withEmptiedRemoved(wb.state(), cmd, cand.ids, name), [this, &wb, k, name] {
