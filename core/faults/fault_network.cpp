@@ -828,12 +828,11 @@ std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const
 // again over the spheres a few links from those regions, with every group competing for them,
 // but what it gives to the groups of the steps before is taken back (they keep what they held);
 // a seeded group that grew diffuse is dissolved (dropDiffuse), and groups that stay below
-// minSize are dropped with the others. Where
-// every region grown in a noisy band stays below minSize, all of them were dissolved, their spheres
-// reached no group, and the band with its strained surroundings is diffuse, not a planar piece: the
-// whole of it had no candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and
-// 86th percentile of incremental strain). The labels of the regions given back, which no group had,
-// are returned.
+// minSize are dropped with the others. Where every region grown in a noisy band stays below
+// minSize, all of them were dissolved, their spheres reached no group, and the band with its
+// strained surroundings is diffuse, not a planar piece: the whole of it had no candidate
+// (issue 37: a Yade sandbox's V of two normal faults at the 85th and 86th percentile of
+// incremental strain). Returns the labels of the regions given back, which no group had.
 std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
                                           std::span<const std::size_t> size, std::size_t minSize,
                                           std::vector<std::int32_t>& group) {
