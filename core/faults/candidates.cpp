@@ -277,13 +277,12 @@ std::string diffuseNote(const CandidateShape& shape) {
 std::string shapeNote(const CandidateShape& shape) {
     std::string note = diffuseNote(shape);
     if (shape.valid && shape.subHorizontal) {
-        char text[160];
-        std::snprintf(
-            text, sizeof text,
-            "sub-horizontal: dips %.0f degrees, a layer along the model's surface or "
-            "base (a creeping free surface, a basal detachment) rather than a dipping fault",
-            shape.dip);
-        note += (note.empty() ? "" : "; ") + std::string(text);
+        char dip[32];
+        std::snprintf(dip, sizeof dip, "%.1f", shape.dip);
+        note += (note.empty() ? "" : "; ") + std::string("sub-horizontal: dips ") + dip +
+                " degrees; often a layer along the model's surface or base (a creeping free "
+                "surface, a basal detachment) rather than a dipping fault; in a shear box, the "
+                "shear zone";
     }
     return note;
 }

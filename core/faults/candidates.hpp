@@ -91,17 +91,18 @@ struct CandidateShape {
     bool subHorizontal = false; // dip below kSubHorizontalDip
 };
 CandidateShape candidateShape(const Frame& frame, std::span<const std::int64_t> ids);
-// "diffuse: spheres fill a volume (thickness 0.62 of the width), not one fault plane", or "".
+// "diffuse: its spheres fill a volume (thickness 0.62 of its width), not one fault plane", or "".
 std::string diffuseNote(const CandidateShape& shape);
 // What an accepted candidate's notes say of its shape: diffuseNote, and for a sub-horizontal one
-// "sub-horizontal: dips 2 degrees, ...", joined by "; "; "" for a dipping sheet.
+// "sub-horizontal: dips 2.0 degrees; ...", joined by "; "; "" for a dipping sheet.
 std::string shapeNote(const CandidateShape& shape);
 
 // The n-th of a sequence of distinct colours (golden-angle hues), for showing candidates.
 std::array<float, 3> candidateColor(std::size_t index);
 
 // The journal's `fault.candidates` acceptance: faults named prefix + "1".."n" (largest first),
-// coloured candidateColor(i), empty notes, visible. Name clashes are the caller's to resolve.
+// coloured candidateColor(i), empty notes (the op adds shapeNote's), visible. Name clashes are
+// the caller's to resolve.
 std::vector<Fault> faultsFromCandidates(std::span<const Candidate> candidates,
                                         std::string_view prefix);
 

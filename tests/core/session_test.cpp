@@ -1010,7 +1010,8 @@ TEST(Session, DiffuseCandidatesSayWhatTheyAre) {
     EXPECT_NEAR(sheet.dip, 0.0, 1e-6);
     // Flat (issue 37): flagged, and said so by the notes with the journal's op too.
     EXPECT_TRUE(sheet.subHorizontal);
-    EXPECT_EQ(shapeNote(sheet).rfind("sub-horizontal: dips 0 degrees", 0), 0u) << shapeNote(sheet);
+    EXPECT_EQ(shapeNote(sheet).rfind("sub-horizontal: dips 0.0 degrees", 0), 0u)
+        << shapeNote(sheet);
     s.apply(cmd(R"({"op":"undo"})"));
     s.apply(cmd(R"({"op":"box.set","name":"east","min":[0,0,0],"max":[3,3,0]})"));
     s.apply(cmd(R"({"op":"fault.candidates","min_size":10})"));

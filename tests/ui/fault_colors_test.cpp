@@ -280,6 +280,6 @@ TEST_F(PanelTest, FlatCandidatesAreFlaggedAndSayWhatTheyMayBe) {
     headless.click(wb(), "candidates.accept.1");
     const core::Fault* floor = session.state().fault("C1");
     ASSERT_NE(floor, nullptr);
-    EXPECT_NE(floor->notes.find("sub-horizontal: dips 0 degrees"), std::string::npos)
+    EXPECT_NE(floor->notes.find("sub-horizontal: dips 0.0 degrees"), std::string::npos)
         << floor->notes;
 }
