@@ -583,8 +583,9 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
 // Step 4: spheres a few links from a group go to the group whose surface passes nearest.
 // Everything per link slot; the wide cells find the grouped spheres within the radius. Each
 // sphere taken gets, in `ref`, the normal of the grouped sphere that decided. `from` (sorted
-// labels; empty: every group): only spheres a few links from those groups are taken, though
-// every group competes for them (step 6).
+// labels; empty: every group): only spheres a few links from those groups are taken, and only
+// into them; every group competes for the spheres, and one whose surface passes nearer another
+// group stays out, so the other groups keep what they held (step 6).
 void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
                      std::span<const std::uint32_t> linkToWide, const Graph& g,
                      std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
@@ -762,8 +763,11 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
         open.swap(still);
     }
     for (std::size_t q = 0; q < left.size(); ++q)
-        if ((group[left[q]] = chosen[q]) >= 0)
+        if (chosen[q] >= 0 &&
+            (from.empty() || std::binary_search(from.begin(), from.end(), chosen[q]))) {
+            group[left[q]] = chosen[q];
             ref[left[q]] = chosenRef[q];
+        }
 }
 
 //-----------------------------------------------------------------------------
@@ -959,15 +963,11 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
         planarPieces(frame, linkCells, graph, minSize, regionCount, region, ref);
     // Step 6: where no group reached, the regions grown there seed groups after all.
     if (const auto seeded = reseedUnreached(grown, size, minSize, region); !seeded.empty()) {
-        const std::vector<std::int32_t> before = region;
+        // Into the seeded groups only: the groups of the steps before keep what they held, and
+        // no more (a group next to a V's broad base took it all: the floored Yade sandbox at the
+        // 85th percentile).
         assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
                         onSurface, seeded);
-        // The groups of the steps before keep what they held, and no more: a group next to a
-        // V's broad base took it all (the floored Yade sandbox at the 85th percentile).
-        for (std::size_t i = 0; i < region.size(); ++i)
-            if (before[i] == -1 && region[i] >= 0 &&
-                !std::binary_search(seeded.begin(), seeded.end(), region[i]))
-                region[i] = -1;
         dropDiffuse(frame, linkCells, seeded, minSize, region);
     }
 
