@@ -106,6 +106,10 @@ class NeighbourCells {
             const double edge[3][3] = {
                 {cell.lx, 0, 0}, {cell.xy, cell.ly, 0}, {cell.xz, cell.yz, cell.lz}};
             std::vector<std::array<double, 3>> shifts;
+            // Each shift's last axis whose cell edge moves it (c moves only z, b only y and x):
+            // on that axis only centres within a slab by the opposite face can have an image in
+            // bounds, a test on one coordinate that skips most spheres before the whole one.
+            std::vector<int> slabAxis;
             for (int na = -1; na <= 1; ++na)
                 for (int nb = -1; nb <= 1; ++nb)
                     for (int nc = -1; nc <= 1; ++nc) {
@@ -116,6 +120,7 @@ class NeighbourCells {
                         for (int a = 0; a < 3; ++a)
                             s[a] = na * edge[0][a] + nb * edge[1][a] + nc * edge[2][a];
                         shifts.push_back(s);
+                        slabAxis.push_back(nc ? 2 : nb ? 1 : 0);
                     }
             // In parallel by blocks of spheres, then joined in order (shift, block, sphere): the
             // same list, so the same sums, as one pass would give.
@@ -124,8 +129,20 @@ class NeighbourCells {
             std::vector<std::vector<CellPoint>> found(shifts.size() * blocks);
             tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t t) {
                 const double* s = shifts[t / blocks].data();
+                const int axis = slabAxis[t / blocks];
+                const float* along = axis == 0   ? ref.x.data()
+                                     : axis == 1 ? ref.y.data()
+                                                 : ref.z.data();
+                // The slab widened by far more than any rounding: the whole test decides.
+                const double margin = 1e-5 * (std::fabs(lo[axis]) + std::fabs(hi[axis]) +
+                                              std::fabs(s[axis]) + cutoff);
+                const bool finite = std::isfinite(margin);
+                const double slabLo = finite ? lo[axis] - s[axis] - margin : -HUGE_VAL;
+                const double slabHi = finite ? hi[axis] - s[axis] + margin : HUGE_VAL;
                 const std::size_t first = (t % blocks) * kBlock;
                 for (std::size_t i = first; i < std::min(n, first + kBlock); ++i) {
+                    if (!(along[i] >= slabLo && along[i] <= slabHi))
+                        continue; // and a centre that is no number, whose image would be gone
                     const double q[3] = {ref.x[i] + s[0], ref.y[i] + s[1], ref.z[i] + s[2]};
                     if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                         q[2] < lo[2] || q[2] > hi[2])
@@ -169,13 +186,14 @@ class NeighbourCells {
         for (int a = 0; a < 3; ++a)
             m_lo[a] = lo[a];
         auto cellOf = makeScratchArray<std::uint32_t>(count);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
+        m_inverseSize = 1.0 / m_size;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t k = r.begin(); k != r.end(); ++k)
-                                  cellOf[k] = k < n ? cellIndex(ref.x[k], ref.y[k], ref.z[k])
-                                                    : cellIndex(images[k - n].x, images[k - n].y,
-                                                                images[k - n].z);
+                                  cellOf[k] = cellIndex(ref.x[k], ref.y[k], ref.z[k]);
                           });
+        for (std::size_t k = n; k < count; ++k)
+            cellOf[k] = cellIndex(images[k - n].x, images[k - n].y, images[k - n].z);
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
         m_start.assign(cells + 1, 0);
         for (std::size_t k = 0; k < count; ++k)
@@ -301,7 +319,7 @@ class NeighbourCells {
     // Clamped before the conversion: a centre that is no number, or far beyond the int range
     // (a finite extreme a file may hold), is no undefined conversion.
     int coord(double v, int axis) const {
-        const double c = (v - m_lo[axis]) / m_size;
+        const double c = (v - m_lo[axis]) * m_inverseSize;
         if (!(c > 0))
             return 0;
         return c >= double(m_dims[axis] - 1) ? m_dims[axis] - 1 : static_cast<int>(c);
@@ -312,7 +330,7 @@ class NeighbourCells {
     }
 
     double m_lo[3] = {0, 0, 0};
-    double m_size = 1;
+    double m_size = 1, m_inverseSize = 1;
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::size_t m_count = 0;
