@@ -1,3 +1,13 @@
+// Dataset: the frames of a run indexed from its files, loaded lazily through a bounded cache in
+// memory, with the variables derived from motion, and kept in the disk frame cache.
+//
+// Index of this file:
+// [SECTION] Opening: globs, per-processor pieces, the frame index
+// [SECTION] Frames in memory
+// [SECTION] Derived frames
+// [SECTION] Derived frames in the background
+// [SECTION] Memory budget and disk cache
+
 #include "core/data/dataset.hpp"
 
 #include "core/data/frame_cache.hpp"
@@ -15,6 +25,10 @@
 #include <regex>
 
 namespace faultline::core {
+
+//-----------------------------------------------------------------------------
+// [SECTION] Opening: globs, per-processor pieces, the frame index
+//-----------------------------------------------------------------------------
 
 std::size_t defaultFrameMemoryBudget() {
     const long pages = ::sysconf(_SC_PHYS_PAGES);
@@ -232,6 +246,10 @@ std::vector<std::string> Dataset::files() const {
     return out;
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Frames in memory
+//-----------------------------------------------------------------------------
+
 const Dataset::CacheEntry* Dataset::touchLocked(std::size_t index) const {
     const auto it = m_lruIndex.find(index);
     if (it == m_lruIndex.end())
@@ -304,6 +322,9 @@ void Dataset::insertLocked(std::size_t index, std::shared_ptr<const Frame> frame
     evictLocked(evicted);
 }
 
+//-----------------------------------------------------------------------------
+// [SECTION] Derived frames
+//-----------------------------------------------------------------------------
 namespace {
 
 // `base` with its derived columns replaced by those of `strains` against their references.
@@ -445,6 +466,85 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     promise.set_value(loaded);
     return loaded;
 }
+
+//-----------------------------------------------------------------------------
+// [SECTION] Derived frames in the background
+//-----------------------------------------------------------------------------
+
+bool Dataset::storesDerived() const {
+    std::shared_ptr<FrameCache> disk;
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_strains.empty())
+            return false;
+        disk = m_frameCache;
+    }
+    return !m_loader && disk && !m_frames.empty() && disk->keeps(m_frames.front());
+}
+
+std::uint64_t Dataset::strainsVersion() const {
+    std::lock_guard lock(m_mutex);
+    return m_strainsVersion;
+}
+
+bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases) const {
+    if (index >= m_frames.size())
+        throw std::out_of_range("frame " + std::to_string(index) + " of " +
+                                std::to_string(m_frames.size()));
+    std::vector<StrainSpec> strains;
+    std::shared_ptr<FrameCache> disk;
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_strains.empty() || m_loader || !m_frameCache)
+            return false;
+        strains = m_strains;
+        disk = m_frameCache;
+        // Derived in memory: frame() stored it as it derived it (when the cache keeps it).
+        if (auto it = m_lruIndex.find(index); it != m_lruIndex.end() && currentLocked(*it->second))
+            return disk->keeps(m_frames[index]);
+    }
+    if (!disk->keeps(m_frames[index]))
+        return false;
+    // A frame as read: the pass's own, else one in memory (any version: the same positions),
+    // else read (and kept by the pass, not in memory's cache, where it would push out the
+    // frames the views look at).
+    auto base = [&](std::size_t k) -> std::shared_ptr<const Frame> {
+        if (auto it = bases.find(k); it != bases.end())
+            return it->second;
+        {
+            std::lock_guard lock(m_mutex);
+            if (auto it = m_lruIndex.find(k); it != m_lruIndex.end())
+                return it->second->frame;
+        }
+        return bases[k] = readFrame(k);
+    };
+    const std::string variant = derivedVariant(strains, index, m_frames.size());
+    std::vector<FrameLocation> references;
+    for (const auto& spec : strains)
+        if (auto ref = spec.referenceFor(index, m_frames.size()))
+            references.push_back(m_frames[*ref]);
+    if (!disk->lookupDerived(m_frames[index], references, variant)) {
+        const auto derived =
+            deriveFrame(base(index), index, m_frames.size(), strains, derivationTag(variant), base);
+        disk->storeDerived(m_frames[index], references, variant, *derived);
+    }
+    // What a pass in frame order reads again: frames ahead, and the references of frames ahead.
+    std::erase_if(bases, [&](const auto& entry) {
+        const std::size_t k = entry.first;
+        if (k > index)
+            return false;
+        for (const StrainSpec& s : strains)
+            if (s.relative ? static_cast<long long>(k) - s.reference > static_cast<long long>(index)
+                           : static_cast<long long>(k) == s.reference)
+                return false;
+        return true;
+    });
+    return true;
+}
+
+//-----------------------------------------------------------------------------
+// [SECTION] Memory budget and disk cache
+//-----------------------------------------------------------------------------
 
 void Dataset::setCacheBudget(std::size_t bytes) {
     std::vector<std::shared_ptr<const Frame>> evicted;

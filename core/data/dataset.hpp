@@ -66,6 +66,22 @@ class Dataset {
     // Loads (or returns the cached) frame, blocking; safe to call from several threads. Two
     // threads asking for the same frame share one load. Throws InputError from the reader.
     std::shared_ptr<const Frame> frame(std::size_t index) const;
+    // Frames as read, kept by a pass over the frames between its calls of storeDerivedFrame.
+    using BaseFrames = std::map<std::size_t, std::shared_ptr<const Frame>>;
+    // For a background pass that readies a whole run for scrubbing: frame `index` derived with
+    // the current strains and written to the disk cache, unless it is there (or derived in
+    // memory) already, without keeping it in memory. `bases` keeps the frames read for it that
+    // a pass in frame order needs again (the next frames' references); the rest are dropped.
+    // False when this frame's derived version is not stored (no strains, no disk cache, a
+    // frame too small to keep, frames made by a function). Throws like frame().
+    bool storeDerivedFrame(std::size_t index, BaseFrames& bases) const;
+    // Whether frames derived now go to a disk cache: strains are set, the frames come from files
+    // (not from a function), and the cache keeps the first of them (enabled, sources not too
+    // small: FrameCache::keeps).
+    bool storesDerived() const;
+    // Grows with each new list of strains: a pass over the frames starts again.
+    std::uint64_t strainsVersion() const;
+
     // Cached frame or null, never loads (marks the frame most recently used).
     std::shared_ptr<const Frame> cachedFrame(std::size_t index) const;
     // Whether the frame is in memory; leaves the LRU order alone.

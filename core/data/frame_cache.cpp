@@ -200,6 +200,13 @@ std::optional<Frame> FrameCache::lookupDerived(const FrameLocation& location,
     return lookupState(derivedState(location, others, variant));
 }
 
+bool FrameCache::keeps(const FrameLocation& location) const {
+    if (!enabled())
+        return false;
+    const auto s = sourceState(location);
+    return s && s->sourceBytes >= m_settings.minSourceBytes;
+}
+
 void FrameCache::storeDerived(const FrameLocation& location,
                               const std::vector<FrameLocation>& others, const std::string& variant,
                               const Frame& frame) {

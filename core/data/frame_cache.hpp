@@ -67,6 +67,9 @@ class FrameCache {
     void storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
                       const std::string& variant, const Frame& frame);
 
+    // Whether frames of `location` (as read or derived) are kept: the cache is enabled and their
+    // sources are not too small (minSourceBytes). The disk's room is not asked.
+    bool keeps(const FrameLocation& location) const;
     // The file that holds (or would hold) a location's frame; empty when disabled.
     std::string pathFor(const FrameLocation& location) const;
     // Deletes every cache file in the folder.

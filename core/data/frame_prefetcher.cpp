@@ -1,5 +1,7 @@
 #include "core/data/frame_prefetcher.hpp"
 
+#include "core/data/frame_cache.hpp"
+
 #include <algorithm>
 #include <exception>
 #include <limits>
@@ -105,6 +107,7 @@ void FramePrefetcher::cancelPending() {
     std::lock_guard lock(m_mutex);
     m_channels.clear();
     m_queue.clear();
+    m_background.on = false;
     if (m_running.empty() && m_finishing == 0)
         m_idle.notify_all();
 }
@@ -127,7 +130,79 @@ void FramePrefetcher::setOnLoaded(std::function<void(std::size_t)> callback) {
 
 std::size_t FramePrefetcher::pendingCount() const {
     std::lock_guard lock(m_mutex);
-    return m_queue.size() + m_running.size() + m_finishing;
+    return m_queue.size() + m_running.size() + m_finishing + (m_background.running ? 1 : 0);
+}
+
+void FramePrefetcher::setBackgroundDerivation(bool on) {
+    std::lock_guard lock(m_mutex);
+    m_background.on = on;
+    if (on)
+        m_wake.notify_all();
+}
+
+FramePrefetcher::BackgroundProgress FramePrefetcher::backgroundProgress() const {
+    std::lock_guard lock(m_mutex);
+    BackgroundProgress p;
+    p.total = m_dataset ? m_dataset->frameCount() : 0;
+    const bool current =
+        m_background.started && m_dataset && m_dataset->strainsVersion() == m_background.version;
+    p.done = current ? m_background.done : 0;
+    p.running =
+        m_background.running || (m_background.on && m_dataset && m_dataset->storesDerived() &&
+                                 p.done < p.total && backgroundFitsLocked());
+    return p;
+}
+
+bool FramePrefetcher::backgroundFitsLocked() const {
+    // The run's size at that of the frames in memory (none yet: wait for the views' first).
+    const std::size_t cached = m_dataset->cachedFrameCount();
+    const auto disk = m_dataset->frameCache();
+    if (cached == 0 || !disk)
+        return false;
+    const double perFrame = double(m_dataset->cachedBytes()) / double(cached);
+    return perFrame * double(m_dataset->frameCount()) <= 0.5 * double(disk->settings().budgetBytes);
+}
+
+bool FramePrefetcher::backgroundDueLocked() {
+    if (!m_background.on || m_background.running || m_stop || !m_queue.empty() ||
+        !m_running.empty() || !m_dataset || !m_dataset->storesDerived())
+        return false;
+    if (const std::uint64_t version = m_dataset->strainsVersion();
+        !m_background.started || version != m_background.version) {
+        m_background.started = true;
+        m_background.version = version;
+        m_background.next = m_background.done = 0;
+        m_background.bases.clear();
+    }
+    const std::size_t count = m_dataset->frameCount();
+    return m_background.next < count && backgroundFitsLocked();
+}
+
+void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
+    const std::size_t index = m_background.next++;
+    const std::uint64_t version = m_background.version;
+    Dataset::BaseFrames bases = std::move(m_background.bases);
+    m_background.running = true;
+    lock.unlock();
+    try {
+        m_dataset->storeDerivedFrame(index, bases);
+    } catch (...) {
+        // A frame that cannot be read is skipped here: a view that shows it reports the error.
+        bases.clear();
+    }
+    lock.lock();
+    m_background.running = false;
+    if (m_background.version == version) {
+        m_background.bases = std::move(bases);
+        ++m_background.done;
+    }
+    if (auto callback = m_onLoaded) { // the UI shows the progress
+        ++m_finishing;
+        lock.unlock();
+        callback(index);
+        lock.lock();
+        --m_finishing;
+    }
 }
 
 bool FramePrefetcher::waitIdle(std::chrono::milliseconds timeout) const {
@@ -198,9 +273,14 @@ void FramePrefetcher::rebuildQueueLocked() {
 void FramePrefetcher::work() {
     std::unique_lock lock(m_mutex);
     for (;;) {
-        m_wake.wait(lock, [this] { return m_stop || !m_queue.empty(); });
+        m_wake.wait(lock, [this] { return m_stop || !m_queue.empty() || backgroundDueLocked(); });
         if (m_stop)
             return;
+        if (m_queue.empty()) {
+            runBackground(lock);
+            rebuildQueueLocked();
+            continue;
+        }
         const std::size_t index = m_queue.front();
         m_queue.pop_front();
         m_running.insert(index);

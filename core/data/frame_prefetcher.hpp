@@ -63,9 +63,25 @@ class FramePrefetcher {
     // Called on a worker thread after each load ends (loaded or failed), e.g. to wake the UI.
     void setOnLoaded(std::function<void(std::size_t index)> callback);
 
-    // Queued plus running loads.
+    // A pass in the background while no view waits for a frame: every frame derived with the
+    // dataset's strains into the disk cache (Dataset::storeDerivedFrame), in frame order, so that
+    // scrubbing anywhere later reads derived frames instead of deriving them. One frame at a time
+    // on one worker, never while a view's load runs. It runs only while the dataset stores
+    // derived frames and the whole run, at the size of the frames in memory, fits in half the
+    // disk cache's budget (a larger run would push its own first frames out). Starts again when
+    // the strains change. Off by default; cancelPending() turns it off.
+    void setBackgroundDerivation(bool on);
+    struct BackgroundProgress {
+        std::size_t done = 0;  // frames of the pass readied (derived now or found stored)
+        std::size_t total = 0; // the run's frames
+        bool running = false;  // working, or with frames left to do and allowed to go on
+    };
+    BackgroundProgress backgroundProgress() const;
+
+    // Queued plus running loads (a background frame included).
     std::size_t pendingCount() const;
-    // Waits until nothing is queued or running (for tests and the CLI); false on timeout.
+    // Waits until nothing is queued or running (for tests and the CLI; a background pass is not
+    // waited for); false on timeout.
     bool waitIdle(std::chrono::milliseconds timeout) const;
 
     const std::shared_ptr<const Dataset>& dataset() const { return m_dataset; }
@@ -92,6 +108,22 @@ class FramePrefetcher {
     std::function<void(std::size_t)> m_onLoaded;
     bool m_stop = false;
     std::vector<std::thread> m_workers;
+
+    struct Background {
+        bool on = false;
+        bool started = false;
+        std::uint64_t version = 0; // the dataset's strains version the pass is for
+        std::size_t next = 0, done = 0;
+        bool running = false;
+        Dataset::BaseFrames bases; // kept between frames: the next ones' references
+    };
+    Background m_background;
+    // Whether a worker should ready the next frame in the background now (starts the pass again
+    // when the strains changed).
+    bool backgroundDueLocked();
+    // Whether the whole run fits in half the disk cache's budget.
+    bool backgroundFitsLocked() const;
+    void runBackground(std::unique_lock<std::mutex>& lock);
 
     void rebuildQueueLocked();
     std::vector<std::size_t> wishesLocked(const Channel& channel, std::size_t depth) const;

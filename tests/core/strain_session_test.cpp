@@ -2,6 +2,7 @@
 // columns for thresholds, histograms and CSV, undo, save and reopen with the session, and hostile
 // options are refused naming the field before anything changes.
 #include "core/data/frame_cache.hpp"
+#include "core/data/frame_prefetcher.hpp"
 #include "core/io/input_error.hpp"
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/session.hpp"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 using namespace faultline::core;
 using faultline::test::TempDir;
@@ -232,6 +234,98 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
     EXPECT_GT(cache->stats().writes, writes);
     EXPECT_NE(other->attribute("inc_shear_strain")->floats,
               derived->attribute("inc_shear_strain")->floats);
+}
+
+// The workbench's background pass (FramePrefetcher::setBackgroundDerivation): every frame's
+// strain goes to the frame cache while the views are idle, without being held in memory, so a
+// later scrub reads derived frames; new strains start the pass again; a run too large for half
+// the cache's budget is left alone.
+TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
+    TempDir dir;
+    const std::string dump = writeSlidingBlock(dir);
+    FrameCacheSettings settings;
+    settings.folder = dir.file("cache");
+    settings.minSourceBytes = 0;
+    settings.minFreeDiskBytes = 0;
+    auto cache = std::make_shared<FrameCache>(settings);
+    auto ds = Dataset::open({dump});
+    ds->setFrameCache(cache);
+    ds->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    PrefetchSettings viewOnly; // no frames read ahead for the view: what is in memory is its own
+    viewOnly.lookAhead = 0;
+    FramePrefetcher prefetcher(ds, viewOnly);
+    EXPECT_FALSE(prefetcher.backgroundProgress().running); // off until asked for
+    prefetcher.setBackgroundDerivation(true);
+    auto passDone = [&] {
+        for (int k = 0; k < 3000; ++k) {
+            const auto p = prefetcher.backgroundProgress();
+            if (p.total > 0 && p.done == p.total && !p.running)
+                return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        return false;
+    };
+    // The pass waits for a frame in memory (the size of a frame tells whether the run fits).
+    while (prefetcher.request(0).status != FrameStatus::Ready)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ASSERT_TRUE(passDone());
+    EXPECT_EQ(prefetcher.backgroundProgress().total, 3u);
+    EXPECT_FALSE(ds->isCached(1));
+    EXPECT_FALSE(ds->isCached(2));
+
+    // Another dataset on the same files reads every derived frame from the cache, as derived.
+    auto again = Dataset::open({dump});
+    again->setFrameCache(cache);
+    again->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    const auto writes = cache->stats().writes;
+    const auto hits = cache->stats().hits;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const auto f = again->frame(k);
+        ASSERT_NE(f->attribute("inc_shear_strain"), nullptr);
+        EXPECT_EQ(f->derivedColumns, 7u);
+    }
+    EXPECT_EQ(cache->stats().hits, hits + 3);
+    EXPECT_EQ(cache->stats().writes, writes);
+    auto direct = Dataset::open({dump});
+    direct->setFrameCache(nullptr);
+    direct->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    EXPECT_EQ(again->frame(2)->attribute("inc_shear_strain")->floats,
+              direct->frame(2)->attribute("inc_shear_strain")->floats);
+
+    // New strains: the pass starts again and stores each frame derived the new way.
+    ds->setStrains({StrainSpec{false, 0, 1.6, ""}});
+    while (prefetcher.request(0).status != FrameStatus::Ready)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ASSERT_TRUE(passDone());
+    EXPECT_GE(cache->stats().writes, writes + 2); // frames 1 and 2 (frame 0 derived for the view)
+
+    // A run over half the cache's budget: no pass.
+    FrameCacheSettings small = settings;
+    small.folder = dir.file("small");
+    small.budgetBytes = 1000;
+    auto tight = Dataset::open({dump});
+    tight->setFrameCache(std::make_shared<FrameCache>(small));
+    tight->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    FramePrefetcher idle(tight);
+    idle.setBackgroundDerivation(true);
+    while (idle.request(0).status != FrameStatus::Ready)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    idle.waitIdle(std::chrono::seconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(idle.backgroundProgress().running);
+    EXPECT_EQ(idle.backgroundProgress().done, 0u);
+
+    // Sources the cache does not keep (smaller than its minSourceBytes): nothing to store.
+    FrameCacheSettings large = settings;
+    large.folder = dir.file("large");
+    large.minSourceBytes = 1 << 20;
+    auto smallRun = Dataset::open({dump});
+    smallRun->setFrameCache(std::make_shared<FrameCache>(large));
+    smallRun->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    EXPECT_FALSE(smallRun->storesDerived());
+    Dataset::BaseFrames bases;
+    EXPECT_FALSE(smallRun->storeDerivedFrame(2, bases));
+    EXPECT_TRUE(ds->storesDerived());
 }
 
 // An export after surface.build (or a second export, or a new iso-value within the built range)

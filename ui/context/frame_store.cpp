@@ -29,6 +29,7 @@ void FrameStore::setDataset(std::shared_ptr<core::Dataset> dataset) {
     core::PrefetchSettings settings;
     settings.loop = m_loop;
     m_prefetcher = std::make_unique<core::FramePrefetcher>(m_dataset, settings);
+    m_prefetcher->setBackgroundDerivation(true);
     auto wake = m_wake;
     m_prefetcher->setOnLoaded([wake](std::size_t) {
         if (*wake)
@@ -87,6 +88,11 @@ std::optional<std::size_t> FrameStore::loading() const {
 }
 
 std::string FrameStore::lastError() const { return m_error; }
+
+core::FramePrefetcher::BackgroundProgress FrameStore::backgroundProgress() const {
+    return m_prefetcher ? m_prefetcher->backgroundProgress()
+                        : core::FramePrefetcher::BackgroundProgress{};
+}
 
 void FrameStore::waitIdle() {
     if (m_prefetcher)

@@ -38,6 +38,9 @@ class FrameStore {
     // A frame asked for and not there yet, if any; the last load error (cleared by a success).
     std::optional<std::size_t> loading() const;
     std::string lastError() const;
+    // The pass that derives every frame's strain into the disk cache while the views are idle
+    // (FramePrefetcher::setBackgroundDerivation, on for the workbench's dataset).
+    core::FramePrefetcher::BackgroundProgress backgroundProgress() const;
     // Blocks until nothing is queued or loading (tests, scripted runs).
     void waitIdle();
     // Called on a worker thread after each load (wakes an idle event loop).

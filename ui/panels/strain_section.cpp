@@ -55,6 +55,18 @@ void StrainSection::draw(PanelContext& wb) {
     // The frame on screen is still being derived (the view shows the previous one meanwhile).
     if (ds && !strains.empty() && !ds->isCached(wb.displayFrame()))
         ImGui::TextDisabled("computing strain for frame %zu...", wb.displayFrame());
+    // The other frames, derived in the background for scrubbing.
+    if (const auto pass = wb.frames().backgroundProgress();
+        ds && !strains.empty() && pass.running && pass.total > 0) {
+        const std::string label = "strain ready for " + std::to_string(pass.done) + " of " +
+                                  std::to_string(pass.total) + " frames";
+        ImGui::ProgressBar(float(pass.done) / float(pass.total), ImVec2(-1, 0), label.c_str());
+        wb.mark("strain.progress");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Every frame's strain is computed in the background and kept in "
+                              "the frame cache:\nonce done, the timeline scrubs without "
+                              "computing.");
+    }
     ImGui::Spacing();
 
     const float field = ImGui::GetFontSize() * 4;
