@@ -487,12 +487,15 @@ std::uint64_t Dataset::strainsVersion() const {
     return m_strainsVersion;
 }
 
-bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases) const {
+bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
+                                const std::atomic<bool>* cancel) const {
     if (index >= m_frames.size())
         throw std::out_of_range("frame " + std::to_string(index) + " of " +
                                 std::to_string(m_frames.size()));
+    auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
     std::vector<StrainSpec> strains;
     std::shared_ptr<FrameCache> disk;
+    bool inMemory = false;
     {
         std::lock_guard lock(m_mutex);
         if (m_strains.empty() || m_loader || !m_frameCache)
@@ -500,11 +503,34 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases) const {
         strains = m_strains;
         disk = m_frameCache;
         // Derived in memory: frame() stored it as it derived it (when the cache keeps it).
-        if (auto it = m_lruIndex.find(index); it != m_lruIndex.end() && currentLocked(*it->second))
-            return disk->keeps(m_frames[index]);
+        const auto it = m_lruIndex.find(index);
+        inMemory = it != m_lruIndex.end() && currentLocked(*it->second);
     }
-    if (!disk->keeps(m_frames[index]))
-        return false;
+    const std::size_t count = m_frames.size();
+    // What a pass in frame order reads again: frames ahead, and the references of frames ahead.
+    auto trim = [&] {
+        std::erase_if(bases, [&](const auto& entry) {
+            const auto k = static_cast<long long>(entry.first);
+            const auto at = static_cast<long long>(index), n = static_cast<long long>(count);
+            if (k > at)
+                return false;
+            for (const StrainSpec& s : strains)
+                if (s.relative ? k - s.reference > at && k - s.reference < n : k == s.reference)
+                    return false;
+            return true;
+        });
+        // Within a quarter of the memory budget (a long offset of large frames): the lowest
+        // frames go, to be read again (from the disk cache) when their turn comes.
+        std::size_t bytes = 0;
+        for (const auto& [k, f] : bases)
+            bytes += f->memoryBytes();
+        for (auto it = bases.begin(); it != bases.end() && bytes > m_budget.load() / 4;)
+            bytes -= it->second->memoryBytes(), it = bases.erase(it);
+    };
+    if (inMemory || !disk->keeps(m_frames[index]) || cancelled()) {
+        trim();
+        return inMemory && disk->keeps(m_frames[index]);
+    }
     // A frame as read: the pass's own, else one in memory (any version: the same positions),
     // else read (and kept by the pass, not in memory's cache, where it would push out the
     // frames the views look at).
@@ -518,28 +544,23 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases) const {
         }
         return bases[k] = readFrame(k);
     };
-    const std::string variant = derivedVariant(strains, index, m_frames.size());
+    const std::string variant = derivedVariant(strains, index, count);
     std::vector<FrameLocation> references;
     for (const auto& spec : strains)
-        if (auto ref = spec.referenceFor(index, m_frames.size()))
+        if (auto ref = spec.referenceFor(index, count))
             references.push_back(m_frames[*ref]);
-    if (!disk->lookupDerived(m_frames[index], references, variant)) {
-        const auto derived =
-            deriveFrame(base(index), index, m_frames.size(), strains, derivationTag(variant), base);
-        disk->storeDerived(m_frames[index], references, variant, *derived);
+    bool stored = disk->lookupDerived(m_frames[index], references, variant).has_value();
+    if (!stored) {
+        const auto own = base(index);
+        if (!cancelled()) {
+            const auto derived =
+                deriveFrame(own, index, count, strains, derivationTag(variant), base);
+            stored =
+                !cancelled() && disk->storeDerived(m_frames[index], references, variant, *derived);
+        }
     }
-    // What a pass in frame order reads again: frames ahead, and the references of frames ahead.
-    std::erase_if(bases, [&](const auto& entry) {
-        const std::size_t k = entry.first;
-        if (k > index)
-            return false;
-        for (const StrainSpec& s : strains)
-            if (s.relative ? static_cast<long long>(k) - s.reference > static_cast<long long>(index)
-                           : static_cast<long long>(k) == s.reference)
-                return false;
-        return true;
-    });
-    return true;
+    trim();
+    return stored;
 }
 
 //-----------------------------------------------------------------------------

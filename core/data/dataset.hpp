@@ -72,9 +72,12 @@ class Dataset {
     // the current strains and written to the disk cache, unless it is there (or derived in
     // memory) already, without keeping it in memory. `bases` keeps the frames read for it that
     // a pass in frame order needs again (the next frames' references); the rest are dropped.
-    // False when this frame's derived version is not stored (no strains, no disk cache, a
-    // frame too small to keep, frames made by a function). Throws like frame().
-    bool storeDerivedFrame(std::size_t index, BaseFrames& bases) const;
+    // `bases` is kept within a quarter of the memory budget. True when the frame is stored now
+    // or was already; false when it is not (no strains, no disk cache or one that does not keep
+    // it, the disk short, frames made by a function, or `cancel` set meanwhile, which the steps
+    // check between them). Throws like frame().
+    bool storeDerivedFrame(std::size_t index, BaseFrames& bases,
+                           const std::atomic<bool>* cancel = nullptr) const;
     // Whether frames derived now go to a disk cache: strains are set, the frames come from files
     // (not from a function), and the cache keeps the first of them (enabled, sources not too
     // small: FrameCache::keeps).

@@ -203,15 +203,19 @@ std::optional<Frame> FrameCache::lookupDerived(const FrameLocation& location,
 bool FrameCache::keeps(const FrameLocation& location) const {
     if (!enabled())
         return false;
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_writesDisabled)
+            return false;
+    }
     const auto s = sourceState(location);
     return s && s->sourceBytes >= m_settings.minSourceBytes;
 }
 
-void FrameCache::storeDerived(const FrameLocation& location,
+bool FrameCache::storeDerived(const FrameLocation& location,
                               const std::vector<FrameLocation>& others, const std::string& variant,
                               const Frame& frame) {
-    if (enabled())
-        storeState(derivedState(location, others, variant), frame);
+    return enabled() && storeState(derivedState(location, others, variant), frame);
 }
 
 std::optional<Frame> FrameCache::lookupState(const std::optional<SourceState>& s) {
@@ -237,24 +241,23 @@ std::optional<Frame> FrameCache::lookupState(const std::optional<SourceState>& s
     return std::nullopt;
 }
 
-void FrameCache::store(const FrameLocation& location, const Frame& frame) {
-    if (enabled())
-        storeState(sourceState(location), frame);
+bool FrameCache::store(const FrameLocation& location, const Frame& frame) {
+    return enabled() && storeState(sourceState(location), frame);
 }
 
-void FrameCache::storeState(const std::optional<SourceState>& s, const Frame& frame) {
+bool FrameCache::storeState(const std::optional<SourceState>& s, const Frame& frame) {
     {
         std::lock_guard lock(m_mutex);
         if (m_writesDisabled)
-            return;
+            return false;
     }
     if (!s || s->sourceBytes < m_settings.minSourceBytes)
-        return;
+        return false;
     std::error_code ec;
     fs::create_directories(m_settings.folder, ec);
     if (ec) {
         noteProblem("cannot create " + m_settings.folder + ": " + ec.message(), true);
-        return;
+        return false;
     }
     struct statvfs vfs {};
     if (::statvfs(m_settings.folder.c_str(), &vfs) == 0) {
@@ -263,7 +266,7 @@ void FrameCache::storeState(const std::optional<SourceState>& s, const Frame& fr
             noteProblem("less than " + std::to_string(m_settings.minFreeDiskBytes >> 20) +
                             " MiB free in " + m_settings.folder + "; not caching frames",
                         false);
-            return;
+            return false;
         }
     }
     const std::string path = (fs::path(m_settings.folder) / fileNameFor(s->identity)).string();
@@ -277,12 +280,12 @@ void FrameCache::storeState(const std::optional<SourceState>& s, const Frame& fr
         noteProblem(e.what(), forGood);
         std::lock_guard lock(m_mutex);
         ++m_stats.writeFailures;
-        return;
+        return false;
     } catch (const std::exception& e) {
         noteProblem(e.what(), false);
         std::lock_guard lock(m_mutex);
         ++m_stats.writeFailures;
-        return;
+        return false;
     }
     bool scan = false;
     {
@@ -295,6 +298,7 @@ void FrameCache::storeState(const std::optional<SourceState>& s, const Frame& fr
     }
     if (scan)
         evictOverBudget(path);
+    return true;
 }
 
 void FrameCache::evictOverBudget(const std::string& keep) {

@@ -55,8 +55,9 @@ class FrameCache {
 
     // The cached frame, or nullopt (missing, stale or corrupt: a bad file is deleted).
     std::optional<Frame> lookup(const FrameLocation& location);
-    // Writes `frame` for `location` unless disabled, too small, or the disk is short; never throws.
-    void store(const FrameLocation& location, const Frame& frame);
+    // Writes `frame` for `location` unless disabled, too small, or the disk is short (false);
+    // never throws.
+    bool store(const FrameLocation& location, const Frame& frame);
 
     // A frame derived from `location` and the frames at `others` (strain from motion against
     // reference frames), `variant` naming what was derived: valid while every source is as it
@@ -64,11 +65,12 @@ class FrameCache {
     std::optional<Frame> lookupDerived(const FrameLocation& location,
                                        const std::vector<FrameLocation>& others,
                                        const std::string& variant);
-    void storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
+    bool storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
                       const std::string& variant, const Frame& frame);
 
-    // Whether frames of `location` (as read or derived) are kept: the cache is enabled and their
-    // sources are not too small (minSourceBytes). The disk's room is not asked.
+    // Whether frames of `location` (as read or derived) are kept: the cache is enabled, takes
+    // writes, and their sources are not too small (minSourceBytes). The disk's room is not asked
+    // (store() answers that).
     bool keeps(const FrameLocation& location) const;
     // The file that holds (or would hold) a location's frame; empty when disabled.
     std::string pathFor(const FrameLocation& location) const;
@@ -96,7 +98,7 @@ class FrameCache {
 
     void noteProblem(const std::string& message, bool disableWrites);
     std::optional<Frame> lookupState(const std::optional<detail::SourceState>& state);
-    void storeState(const std::optional<detail::SourceState>& state, const Frame& frame);
+    bool storeState(const std::optional<detail::SourceState>& state, const Frame& frame);
     void evictOverBudget(const std::string& keep);
 };
 

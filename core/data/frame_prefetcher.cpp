@@ -2,6 +2,8 @@
 
 #include "core/data/frame_cache.hpp"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <exception>
 #include <limits>
@@ -25,6 +27,7 @@ FramePrefetcher::~FramePrefetcher() {
     {
         std::lock_guard lock(m_mutex);
         m_stop = true;
+        m_cancel = true;
         m_queue.clear();
     }
     m_wake.notify_all();
@@ -108,6 +111,7 @@ void FramePrefetcher::cancelPending() {
     m_channels.clear();
     m_queue.clear();
     m_background.on = false;
+    m_cancel = true;
     if (m_running.empty() && m_finishing == 0)
         m_idle.notify_all();
 }
@@ -136,6 +140,7 @@ std::size_t FramePrefetcher::pendingCount() const {
 void FramePrefetcher::setBackgroundDerivation(bool on) {
     std::lock_guard lock(m_mutex);
     m_background.on = on;
+    m_cancel = !on;
     if (on)
         m_wake.notify_all();
 }
@@ -147,9 +152,8 @@ FramePrefetcher::BackgroundProgress FramePrefetcher::backgroundProgress() const 
     const bool current =
         m_background.started && m_dataset && m_dataset->strainsVersion() == m_background.version;
     p.done = current ? m_background.done : 0;
-    p.running =
-        m_background.running || (m_background.on && m_dataset && m_dataset->storesDerived() &&
-                                 p.done < p.total && backgroundFitsLocked());
+    p.running = m_background.running || (m_background.on && current && m_background.useful &&
+                                         m_background.next < p.total && backgroundFitsLocked());
     return p;
 }
 
@@ -165,7 +169,7 @@ bool FramePrefetcher::backgroundFitsLocked() const {
 
 bool FramePrefetcher::backgroundDueLocked() {
     if (!m_background.on || m_background.running || m_stop || !m_queue.empty() ||
-        !m_running.empty() || !m_dataset || !m_dataset->storesDerived())
+        !m_running.empty() || !m_dataset)
         return false;
     if (const std::uint64_t version = m_dataset->strainsVersion();
         !m_background.started || version != m_background.version) {
@@ -173,28 +177,34 @@ bool FramePrefetcher::backgroundDueLocked() {
         m_background.version = version;
         m_background.next = m_background.done = 0;
         m_background.bases.clear();
+        m_background.useful = m_dataset->storesDerived(); // once a pass: it stats a file
     }
-    const std::size_t count = m_dataset->frameCount();
-    return m_background.next < count && backgroundFitsLocked();
+    return m_background.useful && m_background.next < m_dataset->frameCount() &&
+           backgroundFitsLocked();
 }
 
 void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
     const std::size_t index = m_background.next++;
-    const std::uint64_t version = m_background.version;
     Dataset::BaseFrames bases = std::move(m_background.bases);
     m_background.running = true;
     lock.unlock();
+    bool stored = false;
     try {
-        m_dataset->storeDerivedFrame(index, bases);
+        // On one thread: the other core stays for the views' loads (and the UI), and a view's
+        // load that arrives meanwhile does not share both with this frame.
+        tbb::task_arena one(1);
+        one.execute([&] { stored = m_dataset->storeDerivedFrame(index, bases, &m_cancel); });
     } catch (...) {
         // A frame that cannot be read is skipped here: a view that shows it reports the error.
         bases.clear();
     }
     lock.lock();
     m_background.running = false;
-    if (m_background.version == version) {
-        m_background.bases = std::move(bases);
-        ++m_background.done;
+    if (m_dataset->strainsVersion() == m_background.version) {
+        // The last frame's references are needed no more.
+        if (m_background.next < m_dataset->frameCount())
+            m_background.bases = std::move(bases);
+        m_background.done += stored ? 1 : 0;
     }
     if (auto callback = m_onLoaded) { // the UI shows the progress
         ++m_finishing;
@@ -273,7 +283,15 @@ void FramePrefetcher::rebuildQueueLocked() {
 void FramePrefetcher::work() {
     std::unique_lock lock(m_mutex);
     for (;;) {
-        m_wake.wait(lock, [this] { return m_stop || !m_queue.empty() || backgroundDueLocked(); });
+        // With a background pass, a look every half second: new strains start it again, and
+        // nothing else wakes the workers when no view asks for a frame.
+        const auto ready = [this] { return m_stop || !m_queue.empty() || backgroundDueLocked(); };
+        if (m_background.on)
+            m_wake.wait_for(lock, std::chrono::milliseconds(500), ready);
+        else
+            m_wake.wait(lock, ready);
+        if (!m_stop && m_queue.empty() && !backgroundDueLocked())
+            continue;
         if (m_stop)
             return;
         if (m_queue.empty()) {

@@ -4,6 +4,7 @@
 
 #include "core/data/dataset.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -115,9 +116,11 @@ class FramePrefetcher {
         std::uint64_t version = 0; // the dataset's strains version the pass is for
         std::size_t next = 0, done = 0;
         bool running = false;
+        bool useful = false;       // the dataset stores derived frames (asked once a pass)
         Dataset::BaseFrames bases; // kept between frames: the next ones' references
     };
     Background m_background;
+    std::atomic<bool> m_cancel{false}; // a background frame stops between its steps
     // Whether a worker should ready the next frame in the background now (starts the pass again
     // when the strains changed).
     bool backgroundDueLocked();

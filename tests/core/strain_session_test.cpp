@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -265,9 +266,17 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
         }
         return false;
     };
+    // A frame for the view, within a generous time (a failed load fails the test, not hangs it).
+    auto show = [](FramePrefetcher& p) {
+        for (int k = 0; k < 15000; ++k) {
+            if (p.request(0).status == FrameStatus::Ready)
+                return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        return false;
+    };
     // The pass waits for a frame in memory (the size of a frame tells whether the run fits).
-    while (prefetcher.request(0).status != FrameStatus::Ready)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ASSERT_TRUE(show(prefetcher));
     ASSERT_TRUE(passDone());
     EXPECT_EQ(prefetcher.backgroundProgress().total, 3u);
     EXPECT_FALSE(ds->isCached(1));
@@ -294,8 +303,7 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
 
     // New strains: the pass starts again and stores each frame derived the new way.
     ds->setStrains({StrainSpec{false, 0, 1.6, ""}});
-    while (prefetcher.request(0).status != FrameStatus::Ready)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ASSERT_TRUE(show(prefetcher));
     ASSERT_TRUE(passDone());
     EXPECT_GE(cache->stats().writes, writes + 2); // frames 1 and 2 (frame 0 derived for the view)
 
@@ -308,8 +316,7 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     tight->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
     FramePrefetcher idle(tight);
     idle.setBackgroundDerivation(true);
-    while (idle.request(0).status != FrameStatus::Ready)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ASSERT_TRUE(show(idle));
     idle.waitIdle(std::chrono::seconds(10));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     EXPECT_FALSE(idle.backgroundProgress().running);
@@ -326,6 +333,33 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     Dataset::BaseFrames bases;
     EXPECT_FALSE(smallRun->storeDerivedFrame(2, bases));
     EXPECT_TRUE(ds->storesDerived());
+
+    // A pass keeps only the frames read that frames ahead take as references: against the
+    // frame two before, frame 0 until frame 2 is done; frame 1 is no frame's (there is no 3).
+    auto pass = Dataset::open({dump});
+    FrameCacheSettings fresh = settings;
+    fresh.folder = dir.file("fresh");
+    pass->setFrameCache(std::make_shared<FrameCache>(fresh));
+    pass->setStrains({StrainSpec{true, -2, 1.1, "inc2_"}});
+    Dataset::BaseFrames kept;
+    auto keys = [&] {
+        std::vector<std::size_t> k;
+        for (const auto& [index, frame] : kept)
+            k.push_back(index);
+        return k;
+    };
+    EXPECT_TRUE(pass->storeDerivedFrame(0, kept));
+    EXPECT_EQ(keys(), std::vector<std::size_t>{0});
+    EXPECT_TRUE(pass->storeDerivedFrame(1, kept));
+    EXPECT_EQ(keys(), std::vector<std::size_t>{0});
+    EXPECT_TRUE(pass->storeDerivedFrame(2, kept));
+    EXPECT_TRUE(keys().empty());
+    EXPECT_EQ(pass->cachedFrameCount(), 0u);       // nothing in memory's cache
+    EXPECT_TRUE(pass->storeDerivedFrame(2, kept)); // found stored
+    // Cancelled: nothing stored.
+    pass->setStrains({StrainSpec{true, -1, 1.3, "inc3_"}});
+    const std::atomic<bool> cancel{true};
+    EXPECT_FALSE(pass->storeDerivedFrame(1, kept, &cancel));
 }
 
 // An export after surface.build (or a second export, or a new iso-value within the built range)
