@@ -41,6 +41,15 @@ std::string writeSlidingBlock(const TempDir& dir) {
     return dir.write("slide.dump", text.str());
 }
 
+// A frame cache in `dir` that keeps even the sliding block's small frames.
+FrameCacheSettings cacheIn(const TempDir& dir, const std::string& folder) {
+    FrameCacheSettings settings;
+    settings.folder = dir.file(folder);
+    settings.minSourceBytes = 0;
+    settings.minFreeDiskBytes = 0;
+    return settings;
+}
+
 Json cmd(const char* text) { return Json::parse(text); }
 
 void expectRefused(Session& s, const char* text, const std::string& message) {
@@ -200,11 +209,7 @@ TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {
 TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
     TempDir dir;
     const std::string dump = writeSlidingBlock(dir);
-    FrameCacheSettings settings;
-    settings.folder = dir.file("cache");
-    settings.minSourceBytes = 0;
-    settings.minFreeDiskBytes = 0;
-    auto cache = std::make_shared<FrameCache>(settings);
+    auto cache = std::make_shared<FrameCache>(cacheIn(dir, "cache"));
     const std::vector<StrainSpec> strains = {StrainSpec{true, -1, 1.1, "inc_"}};
     auto first = Dataset::open({dump});
     first->setFrameCache(cache);
@@ -244,10 +249,7 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
 TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     TempDir dir;
     const std::string dump = writeSlidingBlock(dir);
-    FrameCacheSettings settings;
-    settings.folder = dir.file("cache");
-    settings.minSourceBytes = 0;
-    settings.minFreeDiskBytes = 0;
+    const FrameCacheSettings settings = cacheIn(dir, "cache");
     auto cache = std::make_shared<FrameCache>(settings);
     auto ds = Dataset::open({dump});
     ds->setFrameCache(cache);
@@ -337,9 +339,7 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     // A pass keeps only the frames read that frames ahead take as references: against the
     // frame two before, frame 0 until frame 2 is done; frame 1 is no frame's (there is no 3).
     auto pass = Dataset::open({dump});
-    FrameCacheSettings fresh = settings;
-    fresh.folder = dir.file("fresh");
-    pass->setFrameCache(std::make_shared<FrameCache>(fresh));
+    pass->setFrameCache(std::make_shared<FrameCache>(cacheIn(dir, "fresh")));
     pass->setStrains({StrainSpec{true, -2, 1.1, "inc2_"}});
     Dataset::BaseFrames kept;
     auto keys = [&] {
