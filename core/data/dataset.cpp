@@ -492,44 +492,60 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
     if (index >= m_frames.size())
         throw std::out_of_range("frame " + std::to_string(index) + " of " +
                                 std::to_string(m_frames.size()));
-    auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
     std::vector<StrainSpec> strains;
     std::shared_ptr<FrameCache> disk;
-    bool inMemory = false;
+    std::shared_ptr<const Frame> inMemory; // derived with the current strains
+    std::uint64_t version = 0;
     {
         std::lock_guard lock(m_mutex);
         if (m_strains.empty() || m_loader || !m_frameCache)
             return false;
         strains = m_strains;
         disk = m_frameCache;
-        // Derived in memory: frame() stored it as it derived it (when the cache keeps it).
-        const auto it = m_lruIndex.find(index);
-        inMemory = it != m_lruIndex.end() && currentLocked(*it->second);
+        version = m_strainsVersion;
+        if (const auto it = m_lruIndex.find(index);
+            it != m_lruIndex.end() && currentLocked(*it->second))
+            inMemory = it->second->frame;
     }
+    // Asked to stop, or the strains changed: this frame's work is for nothing.
+    auto cancelled = [&] {
+        return (cancel && cancel->load(std::memory_order_relaxed)) || strainsVersion() != version;
+    };
     const std::size_t count = m_frames.size();
+    auto fixedReference = [&](std::size_t k) {
+        return std::any_of(strains.begin(), strains.end(), [&](const StrainSpec& s) {
+            return !s.relative && static_cast<long long>(k) == s.reference;
+        });
+    };
     // What a pass in frame order reads again: frames ahead, and the references of frames ahead.
     auto trim = [&] {
         std::erase_if(bases, [&](const auto& entry) {
             const auto k = static_cast<long long>(entry.first);
             const auto at = static_cast<long long>(index), n = static_cast<long long>(count);
-            if (k > at)
+            if (k > at || fixedReference(entry.first))
                 return false;
             for (const StrainSpec& s : strains)
-                if (s.relative ? k - s.reference > at && k - s.reference < n : k == s.reference)
+                if (s.relative && k - s.reference > at && k - s.reference < n)
                     return false;
             return true;
         });
-        // Within a quarter of the memory budget (a long offset of large frames): the lowest
-        // frames go, to be read again (from the disk cache) when their turn comes.
+        // Within a quarter of the memory budget (a long offset of large frames): the highest
+        // frames go, the last to be needed, to be read again (from the disk cache) then; a
+        // since_frame reference, needed by every frame, stays.
         std::size_t bytes = 0;
         for (const auto& [k, f] : bases)
             bytes += f->memoryBytes();
-        for (auto it = bases.begin(); it != bases.end() && bytes > m_budget.load() / 4;)
-            bytes -= it->second->memoryBytes(), it = bases.erase(it);
+        for (auto it = bases.end(); it != bases.begin() && bytes > m_budget.load() / 4;) {
+            --it;
+            if (fixedReference(it->first))
+                continue;
+            bytes -= it->second->memoryBytes();
+            it = bases.erase(it);
+        }
     };
-    if (inMemory || !disk->keeps(m_frames[index]) || cancelled()) {
+    if (!disk->keeps(m_frames[index]) || cancelled()) {
         trim();
-        return inMemory && disk->keeps(m_frames[index]);
+        return false;
     }
     // A frame as read: the pass's own, else one in memory (any version: the same positions),
     // else read (and kept by the pass, not in memory's cache, where it would push out the
@@ -550,7 +566,9 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
         if (auto ref = spec.referenceFor(index, count))
             references.push_back(m_frames[*ref]);
     bool stored = disk->lookupDerived(m_frames[index], references, variant).has_value();
-    if (!stored) {
+    if (!stored && inMemory) // derived for a view, and not stored then (the disk was short)
+        stored = disk->storeDerived(m_frames[index], references, variant, *inMemory);
+    else if (!stored) {
         const auto own = base(index);
         if (!cancelled()) {
             const auto derived =

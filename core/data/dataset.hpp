@@ -74,8 +74,8 @@ class Dataset {
     // a pass in frame order needs again (the next frames' references); the rest are dropped.
     // `bases` is kept within a quarter of the memory budget. True when the frame is stored now
     // or was already; false when it is not (no strains, no disk cache or one that does not keep
-    // it, the disk short, frames made by a function, or `cancel` set meanwhile, which the steps
-    // check between them). Throws like frame().
+    // it, the disk short, frames made by a function, or `cancel` set or the strains changed
+    // meanwhile, which the steps check between them). Throws like frame().
     bool storeDerivedFrame(std::size_t index, BaseFrames& bases,
                            const std::atomic<bool>* cancel = nullptr) const;
     // Whether frames derived now go to a disk cache: strains are set, the frames come from files

@@ -176,6 +176,7 @@ bool FramePrefetcher::backgroundDueLocked() {
         m_background.started = true;
         m_background.version = version;
         m_background.next = m_background.done = 0;
+        m_background.dropped.merge(m_background.bases); // freed by runBackground, unlocked
         m_background.bases.clear();
         m_background.useful = m_dataset->storesDerived(); // once a pass: it stats a file
     }
@@ -185,10 +186,14 @@ bool FramePrefetcher::backgroundDueLocked() {
 
 void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
     const std::size_t index = m_background.next++;
+    const std::uint64_t version = m_background.version;
     Dataset::BaseFrames bases = std::move(m_background.bases);
+    // Frames are freed with the lock released (a request() from the UI must not wait on it).
+    Dataset::BaseFrames unused = std::move(m_background.dropped);
     m_background.running = true;
     lock.unlock();
-    bool stored = false;
+    unused.clear();
+    bool stored = false, failed = false;
     try {
         // On one thread: the other core stays for the views' loads (and the UI), and a view's
         // load that arrives meanwhile does not share both with this frame.
@@ -196,23 +201,30 @@ void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
         one.execute([&] { stored = m_dataset->storeDerivedFrame(index, bases, &m_cancel); });
     } catch (...) {
         // A frame that cannot be read is skipped here: a view that shows it reports the error.
-        bases.clear();
+        failed = true;
     }
     lock.lock();
     m_background.running = false;
-    if (m_dataset->strainsVersion() == m_background.version) {
-        // The last frame's references are needed no more.
-        if (m_background.next < m_dataset->frameCount())
+    const std::size_t count = m_dataset->frameCount();
+    if (m_background.version == version && m_dataset->strainsVersion() == version) {
+        if (stored)
+            ++m_background.done;
+        else if (m_cancel) // stopped: done again when the pass goes on
+            m_background.next = std::min(m_background.next, index);
+        else if (!failed) // the cache refused it (the disk short): the rest would be refused too
+            m_background.next = count;
+        if (m_background.next < count) // else the last frame's references are needed no more
             m_background.bases = std::move(bases);
-        m_background.done += stored ? 1 : 0;
     }
-    if (auto callback = m_onLoaded) { // the UI shows the progress
-        ++m_finishing;
-        lock.unlock();
+    unused = std::move(bases);  // what was not kept
+    auto callback = m_onLoaded; // the UI shows the progress
+    ++m_finishing;
+    lock.unlock();
+    unused.clear();
+    if (callback)
         callback(index);
-        lock.lock();
-        --m_finishing;
-    }
+    lock.lock();
+    --m_finishing;
 }
 
 bool FramePrefetcher::waitIdle(std::chrono::milliseconds timeout) const {

@@ -116,8 +116,9 @@ class FramePrefetcher {
         std::uint64_t version = 0; // the dataset's strains version the pass is for
         std::size_t next = 0, done = 0;
         bool running = false;
-        bool useful = false;       // the dataset stores derived frames (asked once a pass)
-        Dataset::BaseFrames bases; // kept between frames: the next ones' references
+        bool useful = false;         // the dataset stores derived frames (asked once a pass)
+        Dataset::BaseFrames bases;   // kept between frames: the next ones' references
+        Dataset::BaseFrames dropped; // of a pass started again, to free with the lock released
     };
     Background m_background;
     std::atomic<bool> m_cancel{false}; // a background frame stops between its steps

@@ -309,6 +309,14 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     ASSERT_TRUE(passDone());
     EXPECT_GE(cache->stats().writes, writes + 2); // frames 1 and 2 (frame 0 derived for the view)
 
+    // Turned off and on again (within a frame or between two): every frame is still readied.
+    ds->setStrains({StrainSpec{true, -1, 1.4, "inc_"}});
+    ASSERT_TRUE(show(prefetcher));
+    prefetcher.setBackgroundDerivation(false);
+    prefetcher.setBackgroundDerivation(true);
+    ASSERT_TRUE(passDone());
+    EXPECT_EQ(prefetcher.backgroundProgress().done, 3u);
+
     // A run over half the cache's budget: no pass.
     FrameCacheSettings small = settings;
     small.folder = dir.file("small");
