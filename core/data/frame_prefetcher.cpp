@@ -176,6 +176,14 @@ bool FramePrefetcher::backgroundDueLocked() {
         m_background.started = true;
         m_background.version = version;
         m_background.next = m_background.done = 0;
+        // From the frame a view shows, onwards (then the frames before it): where the user is
+        // likely to scrub next is readied first.
+        m_background.start = 0;
+        for (const auto& [id, channel] : m_channels)
+            if (channel.seen) {
+                m_background.start = channel.index;
+                break;
+            }
         m_background.dropped.merge(m_background.bases); // freed by runBackground, unlocked
         m_background.bases.clear();
         m_background.useful = m_dataset->storesDerived(); // once a pass: it stats a file
@@ -185,7 +193,8 @@ bool FramePrefetcher::backgroundDueLocked() {
 }
 
 void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
-    const std::size_t index = m_background.next++;
+    const std::size_t visit = m_background.next++;
+    const std::size_t index = (m_background.start + visit) % m_dataset->frameCount();
     const std::uint64_t version = m_background.version;
     Dataset::BaseFrames bases = std::move(m_background.bases);
     // Frames are freed with the lock released (a request() from the UI must not wait on it).
@@ -210,10 +219,12 @@ void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
         if (stored)
             ++m_background.done;
         else if (m_cancel) // stopped: done again when the pass goes on
-            m_background.next = std::min(m_background.next, index);
+            m_background.next = std::min(m_background.next, visit);
         else if (!failed) // the cache refused it (the disk short): the rest would be refused too
             m_background.next = count;
-        if (m_background.next < count) // else the last frame's references are needed no more
+        // The references of frames ahead; none after the last frame (the pass goes on from the
+        // first then, or is done).
+        if (m_background.next < count && index + 1 < count)
             m_background.bases = std::move(bases);
     }
     unused = std::move(bases);  // what was not kept

@@ -65,12 +65,13 @@ class FramePrefetcher {
     void setOnLoaded(std::function<void(std::size_t index)> callback);
 
     // A pass in the background while no view waits for a frame: every frame derived with the
-    // dataset's strains into the disk cache (Dataset::storeDerivedFrame), in frame order, so that
-    // scrubbing anywhere later reads derived frames instead of deriving them. One frame at a time
-    // on one worker, never while a view's load runs. It runs only while the dataset stores
-    // derived frames and the whole run, at the size of the frames in memory, fits in half the
-    // disk cache's budget (a larger run would push its own first frames out). Starts again when
-    // the strains change. Off by default; cancelPending() turns it off.
+    // dataset's strains into the disk cache (Dataset::storeDerivedFrame), so that scrubbing
+    // anywhere later reads derived frames instead of deriving them. In frame order from the one a
+    // view shows when the pass starts (then from the first), one frame at a time on one worker,
+    // never while a view's load runs. It runs only while the dataset stores derived frames and the
+    // whole run, at the size of the frames in memory, fits in half the disk cache's budget (a
+    // larger run would push its own first frames out). Starts again when the strains change. Off by
+    // default; cancelPending() turns it off.
     void setBackgroundDerivation(bool on);
     struct BackgroundProgress {
         std::size_t done = 0;  // frames of the pass readied (derived now or found stored)
@@ -113,8 +114,9 @@ class FramePrefetcher {
     struct Background {
         bool on = false;
         bool started = false;
-        std::uint64_t version = 0; // the dataset's strains version the pass is for
-        std::size_t next = 0, done = 0;
+        std::uint64_t version = 0;      // the dataset's strains version the pass is for
+        std::size_t start = 0;          // the first frame of the pass (a view's at its start)
+        std::size_t next = 0, done = 0; // frames visited (start, start + 1, ... around the end)
         bool running = false;
         bool useful = false;         // the dataset stores derived frames (asked once a pass)
         Dataset::BaseFrames bases;   // kept between frames: the next ones' references

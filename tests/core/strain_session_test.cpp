@@ -269,9 +269,9 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
         return false;
     };
     // A frame for the view, within a generous time (a failed load fails the test, not hangs it).
-    auto show = [](FramePrefetcher& p) {
+    auto show = [](FramePrefetcher& p, std::size_t frame = 0) {
         for (int k = 0; k < 15000; ++k) {
-            if (p.request(0).status == FrameStatus::Ready)
+            if (p.request(frame).status == FrameStatus::Ready)
                 return true;
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
@@ -309,13 +309,21 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     ASSERT_TRUE(passDone());
     EXPECT_GE(cache->stats().writes, writes + 2); // frames 1 and 2 (frame 0 derived for the view)
 
-    // Turned off and on again (within a frame or between two): every frame is still readied.
+    // Turned off and on again (within a frame or between two), and started from the frame the
+    // view shows (1, then 2, then around to 0): every frame is still readied.
     ds->setStrains({StrainSpec{true, -1, 1.4, "inc_"}});
-    ASSERT_TRUE(show(prefetcher));
+    ASSERT_TRUE(show(prefetcher, 1));
     prefetcher.setBackgroundDerivation(false);
     prefetcher.setBackgroundDerivation(true);
     ASSERT_TRUE(passDone());
     EXPECT_EQ(prefetcher.backgroundProgress().done, 3u);
+    auto third = Dataset::open({dump});
+    third->setFrameCache(cache);
+    third->setStrains({StrainSpec{true, -1, 1.4, "inc_"}});
+    const auto hitsBefore = cache->stats().hits;
+    for (std::size_t k = 0; k < 3; ++k)
+        third->frame(k);
+    EXPECT_EQ(cache->stats().hits, hitsBefore + 3);
 
     // A run over half the cache's budget: no pass.
     FrameCacheSettings small = settings;
