@@ -371,6 +371,18 @@ std::string derivedVariant(const std::vector<StrainSpec>& strains, std::size_t i
     return v;
 }
 
+// The sources of a frame's references under `strains`, which the disk cache keys a derived
+// frame by beside its own.
+std::vector<FrameLocation> referenceLocations(const std::vector<StrainSpec>& strains,
+                                              std::size_t index,
+                                              const std::vector<FrameLocation>& frames) {
+    std::vector<FrameLocation> references;
+    for (const auto& spec : strains)
+        if (auto ref = spec.referenceFor(index, frames.size()))
+            references.push_back(frames[*ref]);
+    return references;
+}
+
 // Frame::derivation for a variant: never 0 (0 is "as read").
 std::uint64_t derivationTag(const std::string& variant) {
     std::uint64_t h = 0xcbf29ce484222325ull;
@@ -431,9 +443,7 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
         std::string variant; // the disk cache's name for it; empty: not stored
         if (disk && disk->enabled() && !strains.empty()) {
             variant = described;
-            for (const auto& spec : strains)
-                if (auto ref = spec.referenceFor(index, m_frames.size()))
-                    references.push_back(m_frames[*ref]);
+            references = referenceLocations(strains, index, m_frames);
             if (auto hit = disk->lookupDerived(m_frames[index], references, variant)) {
                 auto frame = std::make_shared<Frame>(std::move(*hit));
                 frame->derivedColumns = trailingDerivedColumns(*frame, strains);
@@ -561,10 +571,7 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
         return bases[k] = readFrame(k);
     };
     const std::string variant = derivedVariant(strains, index, count);
-    std::vector<FrameLocation> references;
-    for (const auto& spec : strains)
-        if (auto ref = spec.referenceFor(index, count))
-            references.push_back(m_frames[*ref]);
+    const std::vector<FrameLocation> references = referenceLocations(strains, index, m_frames);
     bool stored = disk->lookupDerived(m_frames[index], references, variant).has_value();
     if (!stored && inMemory) // derived for a view, and not stored then (the disk was short)
         stored = disk->storeDerived(m_frames[index], references, variant, *inMemory);

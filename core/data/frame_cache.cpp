@@ -201,14 +201,15 @@ std::optional<Frame> FrameCache::lookupDerived(const FrameLocation& location,
 }
 
 bool FrameCache::keeps(const FrameLocation& location) const {
-    if (!enabled())
-        return false;
+    return enabled() && keepsState(sourceState(location));
+}
+
+bool FrameCache::keepsState(const std::optional<SourceState>& s) const {
     {
         std::lock_guard lock(m_mutex);
         if (m_writesDisabled)
             return false;
     }
-    const auto s = sourceState(location);
     return s && s->sourceBytes >= m_settings.minSourceBytes;
 }
 
@@ -246,12 +247,7 @@ bool FrameCache::store(const FrameLocation& location, const Frame& frame) {
 }
 
 bool FrameCache::storeState(const std::optional<SourceState>& s, const Frame& frame) {
-    {
-        std::lock_guard lock(m_mutex);
-        if (m_writesDisabled)
-            return false;
-    }
-    if (!s || s->sourceBytes < m_settings.minSourceBytes)
+    if (!keepsState(s))
         return false;
     std::error_code ec;
     fs::create_directories(m_settings.folder, ec);

@@ -99,6 +99,8 @@ class FrameCache {
     void noteProblem(const std::string& message, bool disableWrites);
     std::optional<Frame> lookupState(const std::optional<detail::SourceState>& state);
     bool storeState(const std::optional<detail::SourceState>& state, const Frame& frame);
+    // Writes not refused for good, and sources not too small (keeps, storeState).
+    bool keepsState(const std::optional<detail::SourceState>& state) const;
     void evictOverBudget(const std::string& keep);
 };
 

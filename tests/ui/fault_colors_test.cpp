@@ -27,15 +27,11 @@ void twoWalls(core::Session& session) {
 TEST_F(PanelTest, CandidatesOfTheWholeModelSayToNarrowTheSpheresFirst) {
     openLattice();
     headless.showPanel(wb(), ui::panel_ids::kFaults);
-    headless.click(wb(), "candidates.find");
-    headless.settle(wb());
-    headless.frames(wb(), 2);
+    findCandidates();
     ASSERT_TRUE(wb().selection().candidates.has_value());
     EXPECT_TRUE(headless.has(wb(), "candidates.all_visible"));
     twoWalls(session);
-    headless.click(wb(), "candidates.find");
-    headless.settle(wb());
-    headless.frames(wb(), 2);
+    findCandidates();
     ASSERT_TRUE(wb().selection().candidates.has_value());
     EXPECT_FALSE(headless.has(wb(), "candidates.all_visible"));
 }
@@ -264,17 +260,13 @@ TEST_F(PanelTest, FlatCandidatesAreFlaggedAndSayWhatTheyMayBe) {
     openLattice();
     twoWalls(session);
     headless.showPanel(wb(), ui::panel_ids::kFaults);
-    headless.click(wb(), "candidates.find");
-    headless.settle(wb());
-    headless.frames(wb(), 2);
+    findCandidates();
     ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 2u);
     EXPECT_FALSE(headless.has(wb(), "candidates.flat.1"));
     EXPECT_FALSE(headless.has(wb(), "candidates.flat.2"));
     session.apply(Json::parse(R"({"op":"box.remove","name":"west"})"));
     session.apply(Json::parse(R"({"op":"box.set","name":"east","min":[0,0,0],"max":[3,3,0]})"));
-    headless.click(wb(), "candidates.find");
-    headless.settle(wb());
-    headless.frames(wb(), 2);
+    findCandidates();
     ASSERT_EQ(wb().selection().candidates->set.candidates.size(), 1u);
     EXPECT_TRUE(headless.has(wb(), "candidates.flat.1"));
     headless.click(wb(), "candidates.accept.1");

@@ -36,6 +36,13 @@ class PanelTest : public ::testing::Test {
         headless.click(wb(), item);
         headless.frames(wb(), 2);
     }
+    // Presses Faults > Candidates > Find in visible, waits for the background job and draws
+    // two frames: the list shows what was found.
+    void findCandidates() {
+        headless.click(wb(), "candidates.find");
+        headless.settle(wb());
+        headless.frames(wb(), 2);
+    }
     // Opens the lattice (3 frames of 64 spheres) the way a user does, in the background.
     void openLattice() {
         wb().opener().openData({writeLattice(dir.file("lattice.dump"))});
