@@ -205,12 +205,12 @@ bool FrameCache::keeps(const FrameLocation& location) const {
 }
 
 bool FrameCache::keepsState(const std::optional<SourceState>& s) const {
-    {
-        std::lock_guard lock(m_mutex);
-        if (m_writesDisabled)
-            return false;
-    }
-    return s && s->sourceBytes >= m_settings.minSourceBytes;
+    return !writesRefused() && s && s->sourceBytes >= m_settings.minSourceBytes;
+}
+
+bool FrameCache::writesRefused() const {
+    std::lock_guard lock(m_mutex);
+    return m_writesDisabled;
 }
 
 bool FrameCache::storeDerived(const FrameLocation& location,

@@ -79,6 +79,8 @@ class FrameCache {
 
     const FrameCacheSettings& settings() const { return m_settings; }
     bool enabled() const { return m_settings.enabled && !m_settings.folder.empty(); }
+    // Whether writes are refused after a failed one (a short disk, an unwritable folder).
+    bool writesRefused() const;
     // The last problem (unwritable folder, full disk, corrupt file), "" when none.
     std::string problem() const;
 

@@ -152,19 +152,42 @@ FramePrefetcher::BackgroundProgress FramePrefetcher::backgroundProgress() const 
     const bool current =
         m_background.started && m_dataset && m_dataset->strainsVersion() == m_background.version;
     p.done = current ? m_background.done : 0;
+    std::uint64_t runBytes = 0, budgetBytes = 0;
+    const bool fits = backgroundFitsLocked(&runBytes, &budgetBytes);
     p.running = m_background.running || (m_background.on && current && m_background.useful &&
-                                         m_background.next < p.total && backgroundFitsLocked());
+                                         m_background.next < p.total && fits);
+    if (!m_background.on || !current || p.running || p.done >= p.total)
+        return p;
+    using Held = BackgroundProgress::Held;
+    if (!m_background.useful || m_background.refused) {
+        const auto disk = m_dataset->frameCache();
+        if (!disk || !disk->enabled())
+            p.held = Held::CacheOff;
+        else if (m_background.refused || disk->writesRefused())
+            p.held = Held::CacheRefusesWrites;
+    } else if (runBytes > 0 && !fits) {
+        p.held = Held::RunTooLarge;
+        p.runBytes = runBytes;
+        p.budgetBytes = budgetBytes;
+    }
     return p;
 }
 
-bool FramePrefetcher::backgroundFitsLocked() const {
+bool FramePrefetcher::backgroundFitsLocked(std::uint64_t* runBytes,
+                                           std::uint64_t* budgetBytes) const {
     // The run's size at that of the frames in memory (none yet: wait for the views' first).
     const std::size_t cached = m_dataset->cachedFrameCount();
     const auto disk = m_dataset->frameCache();
     if (cached == 0 || !disk)
         return false;
     const double perFrame = double(m_dataset->cachedBytes()) / double(cached);
-    return perFrame * double(m_dataset->frameCount()) <= 0.5 * double(disk->settings().budgetBytes);
+    const double run = perFrame * double(m_dataset->frameCount());
+    const double half = 0.5 * double(disk->settings().budgetBytes);
+    if (runBytes)
+        *runBytes = static_cast<std::uint64_t>(run);
+    if (budgetBytes)
+        *budgetBytes = static_cast<std::uint64_t>(half);
+    return run <= half;
 }
 
 bool FramePrefetcher::backgroundDueLocked() {
@@ -187,6 +210,7 @@ bool FramePrefetcher::backgroundDueLocked() {
         m_background.dropped.merge(m_background.bases); // freed by runBackground, unlocked
         m_background.bases.clear();
         m_background.useful = m_dataset->storesDerived(); // once a pass: it stats a file
+        m_background.refused = false;
     }
     return m_background.useful && m_background.next < m_dataset->frameCount() &&
            backgroundFitsLocked();
@@ -220,8 +244,10 @@ void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
             ++m_background.done;
         else if (m_cancel) // stopped: done again when the pass goes on
             m_background.next = std::min(m_background.next, visit);
-        else if (!failed) // the cache refused it (the disk short): the rest would be refused too
+        else if (!failed) { // the cache refused it (the disk short): the rest would be too
             m_background.next = count;
+            m_background.refused = true;
+        }
         // The references of frames ahead; none after the last frame (the pass goes on from the
         // first then, or is done).
         if (m_background.next < count && index + 1 < count)

@@ -77,6 +77,14 @@ class FramePrefetcher {
         std::size_t done = 0;  // frames of the pass readied (derived now or found stored)
         std::size_t total = 0; // the run's frames
         bool running = false;  // working, or with frames left to do and allowed to go on
+        // Why a pass with frames left does not run, for the UI to say: the frame cache is off,
+        // takes no more files (a short disk, an unwritable folder), or the run is too large for
+        // it. None while it runs, once done, before a frame is in memory, and for sources too
+        // small to cache (they derive as fast as they read).
+        enum class Held { None, CacheOff, CacheRefusesWrites, RunTooLarge };
+        Held held = Held::None;
+        std::uint64_t runBytes = 0;    // RunTooLarge: the run at the size of the frames in memory
+        std::uint64_t budgetBytes = 0; // RunTooLarge: half the frame cache's budget
     };
     BackgroundProgress backgroundProgress() const;
 
@@ -119,6 +127,7 @@ class FramePrefetcher {
         std::size_t next = 0, done = 0; // frames visited (start, start + 1, ... around the end)
         bool running = false;
         bool useful = false;         // the dataset stores derived frames (asked once a pass)
+        bool refused = false;        // the cache refused a frame: the pass ended there
         Dataset::BaseFrames bases;   // kept between frames: the next ones' references
         Dataset::BaseFrames dropped; // of a pass started again, to free with the lock released
     };
@@ -127,8 +136,10 @@ class FramePrefetcher {
     // Whether a worker should ready the next frame in the background now (starts the pass again
     // when the strains changed).
     bool backgroundDueLocked();
-    // Whether the whole run fits in half the disk cache's budget.
-    bool backgroundFitsLocked() const;
+    // Whether the whole run fits in half the disk cache's budget; `runBytes` / `budgetBytes`:
+    // the two sides (0 when no frame is in memory yet or there is no cache).
+    bool backgroundFitsLocked(std::uint64_t* runBytes = nullptr,
+                              std::uint64_t* budgetBytes = nullptr) const;
     void runBackground(std::unique_lock<std::mutex>& lock);
 
     void rebuildQueueLocked();

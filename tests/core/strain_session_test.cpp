@@ -339,6 +339,32 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     EXPECT_FALSE(idle.backgroundProgress().running);
     EXPECT_EQ(idle.backgroundProgress().done, 0u);
+    // ... and the Data panel says why.
+    using Held = FramePrefetcher::BackgroundProgress::Held;
+    EXPECT_EQ(idle.backgroundProgress().held, Held::RunTooLarge);
+    EXPECT_GT(idle.backgroundProgress().runBytes, idle.backgroundProgress().budgetBytes);
+    EXPECT_EQ(idle.backgroundProgress().budgetBytes, 500u);
+    EXPECT_EQ(prefetcher.backgroundProgress().held, Held::None); // done
+
+    // The frame cache off, or refusing files (a disk short of room): no pass, and why.
+    for (const bool off : {true, false}) {
+        FrameCacheSettings s = settings;
+        s.folder = dir.file(off ? "off" : "short");
+        s.enabled = !off;
+        s.minFreeDiskBytes = off ? 0 : std::uint64_t(1) << 62;
+        auto run = Dataset::open({dump});
+        run->setFrameCache(std::make_shared<FrameCache>(s));
+        run->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+        FramePrefetcher held(run);
+        held.setBackgroundDerivation(true);
+        ASSERT_TRUE(show(held));
+        for (int k = 0; k < 2000 && held.backgroundProgress().held == Held::None; ++k)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        const auto p = held.backgroundProgress();
+        EXPECT_EQ(p.held, off ? Held::CacheOff : Held::CacheRefusesWrites) << off;
+        EXPECT_FALSE(p.running);
+        EXPECT_LT(p.done, p.total);
+    }
 
     // Sources the cache does not keep (smaller than its minSourceBytes): nothing to store.
     FrameCacheSettings large = settings;

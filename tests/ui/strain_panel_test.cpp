@@ -3,7 +3,11 @@
 // The first Add colours the plain main view by the new shear strain; later ones leave it.
 #include "panel_fixture.hpp"
 
+#include "core/data/frame_cache.hpp"
 #include "ui/dock/panel_ids.hpp"
+
+#include <chrono>
+#include <thread>
 
 namespace faultline::test {
 namespace {
@@ -63,6 +67,29 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
     headless.settle(wb());
     EXPECT_EQ(wb().mainDisplay()->frame->attribute("inc_shear_strain"), nullptr);
     EXPECT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
+}
+
+// With the frame cache off, the Data panel says why the other frames are not readied in the
+// background: each one's strain is computed when it is shown.
+TEST_F(PanelTest, TheStrainSectionSaysWhyFramesAreNotReadiedInTheBackground) {
+    struct Restore {
+        std::shared_ptr<core::FrameCache> before = core::FrameCache::processDefault();
+        ~Restore() { core::FrameCache::setProcessDefault(before); }
+    } restore;
+    core::FrameCacheSettings off;
+    off.enabled = false;
+    core::FrameCache::setProcessDefault(std::make_shared<core::FrameCache>(off));
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kData);
+    EXPECT_FALSE(headless.has(wb(), "strain.held"));
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    for (int k = 0; k < 400 && !headless.has(wb(), "strain.held"); ++k) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        headless.frames(wb(), 1);
+    }
+    EXPECT_TRUE(headless.has(wb(), "strain.held"));
+    EXPECT_FALSE(headless.has(wb(), "strain.progress"));
 }
 
 // After strain.remove the view keeps its variable (undo and a new strain.add bring it back),

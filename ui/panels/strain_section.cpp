@@ -1,5 +1,6 @@
 #include "ui/panels/strain_section.hpp"
 
+#include "core/data/frame_prefetcher.hpp"
 #include "core/motion/strain_from_motion.hpp"
 #include "core/session/commands.hpp"
 #include "core/session/items/strain_codec.hpp"
@@ -24,6 +25,29 @@ std::string describe(const core::StrainSpec& s) {
         text = "against " + std::to_string(s.reference) + " frames after";
     text += s.cutoff > 0 ? ", cutoff " + numberText(s.cutoff) : ", cutoff auto";
     return text;
+}
+
+// Why the background pass leaves frames to be derived when shown ("" when it does not).
+std::string heldText(const core::FramePrefetcher::BackgroundProgress& pass) {
+    using Held = core::FramePrefetcher::BackgroundProgress::Held;
+    std::string why;
+    switch (pass.held) {
+    case Held::None:
+        return {};
+    case Held::CacheOff:
+        why = "the frame cache is off (FAULTLINE_FRAME_CACHE)";
+        break;
+    case Held::CacheRefusesWrites:
+        why = "the frame cache takes no more files (a short disk or an unwritable folder)";
+        break;
+    case Held::RunTooLarge:
+        why = "the run, about " + bytesText(pass.runBytes) +
+              " in memory, is over half the frame cache's budget (" + bytesText(pass.budgetBytes) +
+              ")";
+        break;
+    }
+    return "Frames are not readied in the background: " + why +
+           ". Each frame's strain is computed when it is shown or prefetched.";
 }
 
 } // namespace
@@ -66,6 +90,11 @@ void StrainSection::draw(PanelContext& wb) {
             ImGui::SetTooltip("Every frame's strain is computed in the background and kept in "
                               "the frame cache:\nonce done, the timeline scrubs without "
                               "computing.");
+    } else if (const std::string held = heldText(pass); ds && !strains.empty() && !held.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("%s", held.c_str());
+        ImGui::PopStyleColor();
+        wb.mark("strain.held");
     }
     ImGui::Spacing();
 
