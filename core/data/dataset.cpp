@@ -572,7 +572,7 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
     };
     const std::string variant = derivedVariant(strains, index, count);
     const std::vector<FrameLocation> references = referenceLocations(strains, index, m_frames);
-    bool stored = disk->lookupDerived(m_frames[index], references, variant).has_value();
+    bool stored = disk->holdsDerived(m_frames[index], references, variant);
     if (!stored && inMemory) // derived for a view, and not stored then (the disk was short)
         stored = disk->storeDerived(m_frames[index], references, variant, *inMemory);
     else if (!stored) {

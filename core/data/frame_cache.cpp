@@ -200,6 +200,30 @@ std::optional<Frame> FrameCache::lookupDerived(const FrameLocation& location,
     return lookupState(derivedState(location, others, variant));
 }
 
+bool FrameCache::holdsDerived(const FrameLocation& location,
+                              const std::vector<FrameLocation>& others,
+                              const std::string& variant) {
+    if (!enabled())
+        return false;
+    const auto s = derivedState(location, others, variant);
+    if (!s)
+        return false;
+    const std::string path = (fs::path(m_settings.folder) / fileNameFor(s->identity)).string();
+    std::string detail;
+    const CachedFrameStatus status = peekCachedFrame(path, s->key, &detail);
+    if (status == CachedFrameStatus::Ok) {
+        ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0); // most recently used: evicted last
+        return true;
+    }
+    if (status == CachedFrameStatus::Corrupt) {
+        ::unlink(path.c_str());
+        noteProblem("ignored a corrupt cache file " + path + " (" + detail + ")", false);
+        std::lock_guard lock(m_mutex);
+        ++m_stats.rejected;
+    }
+    return false;
+}
+
 bool FrameCache::keeps(const FrameLocation& location) const {
     return enabled() && keepsState(sourceState(location));
 }

@@ -67,6 +67,10 @@ class FrameCache {
                                        const std::string& variant);
     bool storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
                       const std::string& variant, const Frame& frame);
+    // Whether lookupDerived would find the frame, from the file's header alone (its columns are
+    // not read: a background pass asks this of every frame of a run). A corrupt file is deleted.
+    bool holdsDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
+                      const std::string& variant);
 
     // Whether frames of `location` (as read or derived) are kept: the cache is enabled, takes
     // writes, and their sources are not too small (minSourceBytes). The disk's room is not asked

@@ -159,6 +159,14 @@ class FileDescriptor {
     }
     FileDescriptor(const FileDescriptor&) = delete;
     FileDescriptor& operator=(const FileDescriptor&) = delete;
+    FileDescriptor& operator=(FileDescriptor&& other) noexcept {
+        if (this != &other) {
+            if (m_fd >= 0)
+                ::close(m_fd);
+            m_fd = std::exchange(other.m_fd, -1);
+        }
+        return *this;
+    }
     int get() const { return m_fd; }
     int release() { return std::exchange(m_fd, -1); }
 
@@ -223,18 +231,19 @@ const void* columnData(const Frame& f, std::uint32_t column) {
     }
 }
 
-} // namespace
-
-CachedFrameRead readCachedFrame(const std::string& path, std::string_view expectedKey) {
+// Opens a cache file and checks its header, metadata and key (not the columns): Ok with `fd`,
+// `h`, `meta` and `fileBytes` set, or why the file is not used.
+CachedFrameRead openChecked(const std::string& path, std::string_view expectedKey,
+                            FileDescriptor& fdOut, FileHeader& h, std::vector<char>& meta,
+                            std::uint64_t& fileBytes) {
     FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
     if (fd.get() < 0)
         return reject(CachedFrameStatus::Missing, std::strerror(errno));
     struct stat st {};
     if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode))
         return reject(CachedFrameStatus::Corrupt, "not a regular file");
-    const auto fileBytes = static_cast<std::uint64_t>(st.st_size);
+    fileBytes = static_cast<std::uint64_t>(st.st_size);
 
-    FileHeader h{};
     if (fileBytes < sizeof h || !readExactly(fd.get(), &h, sizeof h, 0))
         return reject(CachedFrameStatus::Corrupt, "shorter than a header");
     if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
@@ -257,13 +266,42 @@ CachedFrameRead readCachedFrame(const std::string& path, std::string_view expect
                                     h.namesBytes;
     if (sizeof h + metaBytes > fileBytes)
         return reject(CachedFrameStatus::Corrupt, "metadata runs past the end of the file");
-    std::vector<char> meta(metaBytes);
+    meta.assign(metaBytes, 0);
     if (!readExactly(fd.get(), meta.data(), meta.size(), sizeof h))
         return reject(CachedFrameStatus::Corrupt, "metadata unreadable");
     if (detail::checksum64(meta.data(), meta.size(), kMetaSeed) != h.metaChecksum)
         return reject(CachedFrameStatus::Corrupt, "metadata checksum mismatch");
     if (std::string_view(meta.data(), h.keyBytes) != expectedKey)
         return reject(CachedFrameStatus::Stale, "written for another source state");
+    fdOut = std::move(fd);
+    CachedFrameRead ok;
+    ok.status = CachedFrameStatus::Ok;
+    return ok;
+}
+
+} // namespace
+
+CachedFrameStatus peekCachedFrame(const std::string& path, std::string_view expectedKey,
+                                  std::string* detail) {
+    FileDescriptor fd(-1);
+    FileHeader h{};
+    std::vector<char> meta;
+    std::uint64_t fileBytes = 0;
+    CachedFrameRead r = openChecked(path, expectedKey, fd, h, meta, fileBytes);
+    if (detail)
+        *detail = std::move(r.detail);
+    return r.status;
+}
+
+CachedFrameRead readCachedFrame(const std::string& path, std::string_view expectedKey) {
+    FileDescriptor fd(-1);
+    FileHeader h{};
+    std::vector<char> meta;
+    std::uint64_t fileBytes = 0;
+    if (CachedFrameRead r = openChecked(path, expectedKey, fd, h, meta, fileBytes);
+        r.status != CachedFrameStatus::Ok)
+        return r;
+    const std::uint64_t metaBytes = meta.size();
 
     std::vector<ColumnEntry> entries(h.columnCount);
     std::memcpy(entries.data(), meta.data() + h.keyBytes, entries.size() * sizeof(ColumnEntry));

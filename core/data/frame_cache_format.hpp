@@ -30,6 +30,12 @@ struct CachedFrameRead {
 // trusted. Never throws for bad file content.
 CachedFrameRead readCachedFrame(const std::string& path, std::string_view expectedKey);
 
+// Whether `path` holds a cache file for `expectedKey`, from its header and metadata alone (the
+// columns are neither read nor checked: readCachedFrame still may find one corrupt). `detail`:
+// what was wrong.
+CachedFrameStatus peekCachedFrame(const std::string& path, std::string_view expectedKey,
+                                  std::string* detail = nullptr);
+
 // Writes `frame` to `path` atomically (a temporary file in the same folder, then rename).
 // Returns the bytes written; throws std::system_error (with errno) when the file system refuses.
 // No fsync: a cache needs no durability, and the checksums catch a file torn by a crash.

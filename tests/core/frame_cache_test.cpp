@@ -213,6 +213,33 @@ TEST(FrameCacheFormat, CorruptFilesAreRejectedNeverTrusted) {
     EXPECT_NE(r.detail.find("overlaps"), std::string::npos) << r.detail;
 }
 
+// A peek (the background strain pass asking whether a frame is stored) reads the header and
+// metadata only: it answers as a read does for everything but the columns' bytes.
+TEST(FrameCacheFormat, APeekChecksTheHeaderAndKeyButNotTheColumns) {
+    TempDir dir;
+    const std::string path = dir.file("f.flframe");
+    writeCachedFrame(path, "k", everyFieldFrame());
+    const std::string good = readAll(path);
+    EXPECT_EQ(peekCachedFrame(path, "k"), CachedFrameStatus::Ok);
+    EXPECT_EQ(peekCachedFrame(path, "other"), CachedFrameStatus::Stale);
+    EXPECT_EQ(peekCachedFrame(dir.file("none"), "k"), CachedFrameStatus::Missing);
+    std::string detail;
+    writeAll(path, good.substr(0, 100));
+    EXPECT_EQ(peekCachedFrame(path, "k", &detail), CachedFrameStatus::Corrupt);
+    EXPECT_NE(detail.find("header"), std::string::npos) << detail;
+    writeAll(path, good.substr(0, good.size() - 1)); // the size the header gives is checked
+    EXPECT_EQ(peekCachedFrame(path, "k"), CachedFrameStatus::Corrupt);
+    std::string flipped = good;
+    flipped[flipped.size() - 3] ^= 0x10; // a value in the last column: only a read sees it
+    writeAll(path, flipped);
+    EXPECT_EQ(peekCachedFrame(path, "k"), CachedFrameStatus::Ok);
+    EXPECT_EQ(readCachedFrame(path, "k").status, CachedFrameStatus::Corrupt);
+    for (std::size_t length = 0; length < good.size(); length += 7) {
+        writeAll(path, good.substr(0, length));
+        ASSERT_EQ(peekCachedFrame(path, "k"), CachedFrameStatus::Corrupt) << length;
+    }
+}
+
 TEST(FrameCacheFormat, EveryTruncationAndByteFlipIsCaught) {
     TempDir dir;
     const std::string path = dir.file("f.flframe");
