@@ -407,7 +407,10 @@ std::size_t trailingDerivedColumns(const Frame& frame, const std::vector<StrainS
 
 } // namespace
 
-std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
+std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const { return frame(index, {}); }
+
+std::shared_ptr<const Frame> Dataset::frame(std::size_t index,
+                                            const std::function<void()>& ready) const {
     if (index >= m_frames.size())
         throw std::out_of_range("frame " + std::to_string(index) + " of " +
                                 std::to_string(m_frames.size()));
@@ -418,8 +421,13 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
     {
         std::unique_lock lock(m_mutex);
         if (const CacheEntry* hit = touchLocked(index)) {
-            if (currentLocked(*hit))
-                return hit->frame;
+            if (currentLocked(*hit)) {
+                auto frame = hit->frame;
+                lock.unlock();
+                if (ready)
+                    ready();
+                return frame;
+            }
             base = hit->frame; // derived for another list: derive again from its columns
         }
         version = m_strains.empty() ? kRead : m_strainsVersion;
@@ -427,20 +435,24 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
             loading != m_loading.end() && loading->second.derived == version) {
             auto future = loading->second.future;
             lock.unlock();
-            return future.get(); // rethrows the loader's error
+            auto frame = future.get(); // rethrows the loader's error
+            if (ready)
+                ready();
+            return frame;
         }
         m_loading[index] = {version, promise.get_future().share()};
         strains = m_strains;
     }
     std::shared_ptr<const Frame> loaded;
+    std::shared_ptr<FrameCache> storeIn; // a frame derived now: written once the view has it
+    std::vector<FrameLocation> references;
+    std::string variant; // the disk cache's name for it; empty: not stored
     try {
         // A frame derived before (this run or an earlier one) comes from the disk cache whole.
         std::shared_ptr<FrameCache> disk = m_loader ? nullptr : frameCache();
-        std::vector<FrameLocation> references;
         const std::string described =
             strains.empty() ? std::string() : derivedVariant(strains, index, m_frames.size());
         const std::uint64_t derivation = strains.empty() ? 0 : derivationTag(described);
-        std::string variant; // the disk cache's name for it; empty: not stored
         if (disk && disk->enabled() && !strains.empty()) {
             variant = described;
             references = referenceLocations(strains, index, m_frames);
@@ -459,7 +471,7 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
                          : deriveFrame(base, index, m_frames.size(), strains, derivation,
                                        [this](std::size_t k) { return baseFrame(k); });
             if (!variant.empty())
-                disk->storeDerived(m_frames[index], references, variant, *loaded);
+                storeIn = disk;
         }
     } catch (...) {
         std::lock_guard lock(m_mutex);
@@ -468,12 +480,25 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index) const {
         promise.set_exception(std::current_exception());
         throw;
     }
-    std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock: frees are slow
-    std::lock_guard lock(m_mutex);
-    insertLocked(index, loaded, version, evicted);
-    if (auto it = m_loading.find(index); it != m_loading.end() && it->second.derived == version)
-        m_loading.erase(it);
-    promise.set_value(loaded);
+    {
+        std::vector<std::shared_ptr<const Frame>> evicted; // freed after the lock: frees are slow
+        std::lock_guard lock(m_mutex);
+        insertLocked(index, loaded, version, evicted);
+        if (auto it = m_loading.find(index); it != m_loading.end() && it->second.derived == version)
+            m_loading.erase(it);
+        promise.set_value(loaded);
+    }
+    if (ready)
+        ready();
+    // Writing a derived frame (16 MB for a demo frame) takes longer than deriving it: after the
+    // frame is out. The frame is loaded whatever the write does: a refused one is the cache's
+    // to note (FrameCache::problem), and an exception (memory short) is no load error.
+    if (storeIn) {
+        try {
+            storeIn->storeDerived(m_frames[index], references, variant, *loaded);
+        } catch (const std::exception&) {
+        }
+    }
     return loaded;
 }
 

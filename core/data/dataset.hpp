@@ -66,6 +66,11 @@ class Dataset {
     // Loads (or returns the cached) frame, blocking; safe to call from several threads. Two
     // threads asking for the same frame share one load. Throws InputError from the reader.
     std::shared_ptr<const Frame> frame(std::size_t index) const;
+    // The same; `ready` is called once the frame is in memory (at once when it is; other threads
+    // asking for it get it from then on), before a frame derived now is written to the disk
+    // cache, which takes longer than deriving it: a prefetcher wakes the view with it. Not
+    // called when the load fails.
+    std::shared_ptr<const Frame> frame(std::size_t index, const std::function<void()>& ready) const;
     // Frames as read, kept by a pass over the frames between its calls of storeDerivedFrame.
     using BaseFrames = std::map<std::size_t, std::shared_ptr<const Frame>>;
     // For a background pass that readies a whole run for scrubbing: frame `index` derived with

@@ -351,10 +351,16 @@ void FramePrefetcher::work() {
         const std::size_t index = m_queue.front();
         m_queue.pop_front();
         m_running.insert(index);
+        const auto wake = m_onLoaded;
         lock.unlock();
         std::string error;
         try {
-            m_dataset->frame(index);
+            // The view is woken as soon as the frame is in memory: a frame derived now is then
+            // written to the disk cache, which takes longer than deriving it.
+            m_dataset->frame(index, [&] {
+                if (wake)
+                    wake(index);
+            });
         } catch (const std::exception& e) {
             error = e.what();
         } catch (...) {

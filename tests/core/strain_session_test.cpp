@@ -242,6 +242,40 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
               derived->attribute("inc_shear_strain")->floats);
 }
 
+// A frame derived now is out (in memory, the caller told) before it is written to the frame
+// cache, which takes longer than deriving it; the write still happens, on the same thread.
+TEST(StrainSession, ADerivedFrameIsReadyBeforeItIsWrittenToTheFrameCache) {
+    TempDir dir;
+    const std::string dump = writeSlidingBlock(dir);
+    auto cache = std::make_shared<FrameCache>(cacheIn(dir, "cache"));
+    auto ds = Dataset::open({dump});
+    ds->setFrameCache(cache);
+    ds->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    bool inMemory = false, called = false;
+    std::uint64_t writesWhenReady = 0;
+    const auto f = ds->frame(1, [&] {
+        called = true;
+        inMemory = ds->isCached(1);
+        writesWhenReady = cache->stats().writes;
+    });
+    EXPECT_TRUE(called);
+    EXPECT_TRUE(inMemory);
+    EXPECT_EQ(cache->stats().writes, writesWhenReady + 1); // the derived frame, after
+    auto again = Dataset::open({dump});
+    again->setFrameCache(cache);
+    again->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+    const auto hits = cache->stats().hits;
+    EXPECT_EQ(again->frame(1)->attribute("inc_shear_strain")->floats,
+              f->attribute("inc_shear_strain")->floats);
+    EXPECT_EQ(cache->stats().hits, hits + 1);
+    // A frame in memory already: ready at once, nothing written.
+    called = false;
+    const auto writes = cache->stats().writes;
+    EXPECT_EQ(ds->frame(1, [&] { called = true; }), f);
+    EXPECT_TRUE(called);
+    EXPECT_EQ(cache->stats().writes, writes);
+}
+
 // The workbench's background pass (FramePrefetcher::setBackgroundDerivation): every frame's
 // strain goes to the frame cache while the views are idle, without being held in memory, so a
 // later scrub reads derived frames; new strains start the pass again; a run too large for half
