@@ -496,7 +496,7 @@ std::shared_ptr<const Frame> Dataset::frame(std::size_t index,
     if (storeIn) {
         try {
             storeIn->storeDerived(m_frames[index], references, variant, *loaded);
-        } catch (const std::exception&) {
+        } catch (...) {
         }
     }
     return loaded;
@@ -598,7 +598,10 @@ bool Dataset::storeDerivedFrame(std::size_t index, BaseFrames& bases,
     const std::string variant = derivedVariant(strains, index, count);
     const std::vector<FrameLocation> references = referenceLocations(strains, index, m_frames);
     bool stored = disk->holdsDerived(m_frames[index], references, variant);
-    if (!stored && inMemory) // derived for a view, and not stored then (the disk was short)
+    // Derived for a view and not stored: the disk was short then, or the view's load is
+    // writing it now (a second write of the same file is harmless: each goes to a file of its
+    // own, renamed into place).
+    if (!stored && inMemory)
         stored = disk->storeDerived(m_frames[index], references, variant, *inMemory);
     else if (!stored) {
         const auto own = base(index);

@@ -67,8 +67,9 @@ class FrameCache {
                                        const std::string& variant);
     bool storeDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
                       const std::string& variant, const Frame& frame);
-    // Whether lookupDerived would find the frame, from the file's header alone (its columns are
-    // not read: a background pass asks this of every frame of a run). A corrupt file is deleted.
+    // Whether lookupDerived would find the frame, from the file's header and key alone (neither
+    // the column table nor the columns are checked: a background pass asks this of every frame
+    // of a run, and a read still rejects a bad file). A corrupt header: the file is deleted.
     bool holdsDerived(const FrameLocation& location, const std::vector<FrameLocation>& others,
                       const std::string& variant);
 

@@ -30,9 +30,9 @@ struct CachedFrameRead {
 // trusted. Never throws for bad file content.
 CachedFrameRead readCachedFrame(const std::string& path, std::string_view expectedKey);
 
-// Whether `path` holds a cache file for `expectedKey`, from its header and metadata alone (the
-// columns are neither read nor checked: readCachedFrame still may find one corrupt). `detail`:
-// what was wrong.
+// Whether `path` holds a cache file for `expectedKey`: the header, the metadata's checksum and
+// the key are checked as readCachedFrame checks them; the column table and the columns are not
+// (a read still may find them corrupt). `detail`: what was wrong.
 CachedFrameStatus peekCachedFrame(const std::string& path, std::string_view expectedKey,
                                   std::string* detail = nullptr);
 

@@ -148,9 +148,11 @@ void FramePrefetcher::setBackgroundDerivation(bool on) {
 FramePrefetcher::BackgroundProgress FramePrefetcher::backgroundProgress() const {
     std::lock_guard lock(m_mutex);
     BackgroundProgress p;
-    p.total = m_dataset ? m_dataset->frameCount() : 0;
+    if (!m_dataset)
+        return p;
+    p.total = m_dataset->frameCount();
     const bool current =
-        m_background.started && m_dataset && m_dataset->strainsVersion() == m_background.version;
+        m_background.started && m_dataset->strainsVersion() == m_background.version;
     p.done = current ? m_background.done : 0;
     std::uint64_t runBytes = 0, budgetBytes = 0;
     const bool fits = backgroundFitsLocked(&runBytes, &budgetBytes);
@@ -165,7 +167,7 @@ FramePrefetcher::BackgroundProgress FramePrefetcher::backgroundProgress() const 
             p.held = Held::CacheOff;
         else if (m_background.refused || disk->writesRefused())
             p.held = Held::CacheRefusesWrites;
-    } else if (runBytes > 0 && !fits) {
+    } else if (m_background.next < p.total && runBytes > 0 && !fits) {
         p.held = Held::RunTooLarge;
         p.runBytes = runBytes;
         p.budgetBytes = budgetBytes;
@@ -356,7 +358,8 @@ void FramePrefetcher::work() {
         std::string error;
         try {
             // The view is woken as soon as the frame is in memory: a frame derived now is then
-            // written to the disk cache, which takes longer than deriving it.
+            // written to the disk cache, which takes longer than deriving it. (Woken again
+            // below, once the load is over: harmless.)
             m_dataset->frame(index, [&] {
                 if (wake)
                     wake(index);

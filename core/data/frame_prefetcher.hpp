@@ -78,9 +78,9 @@ class FramePrefetcher {
         std::size_t total = 0; // the run's frames
         bool running = false;  // working, or with frames left to do and allowed to go on
         // Why a pass with frames left does not run, for the UI to say: the frame cache is off,
-        // takes no more files (a short disk, an unwritable folder), or the run is too large for
-        // it. None while it runs, once done, before a frame is in memory, and for sources too
-        // small to cache (they derive as fast as they read).
+        // refused a frame (a short disk, an unwritable folder: FrameCache::problem() says), or
+        // the run is too large for it (known once a frame is in memory). None while it runs,
+        // once done, and for sources too small to cache (they derive as fast as they read).
         enum class Held { None, CacheOff, CacheRefusesWrites, RunTooLarge };
         Held held = Held::None;
         std::uint64_t runBytes = 0;    // RunTooLarge: the run at the size of the frames in memory

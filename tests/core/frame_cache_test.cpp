@@ -213,8 +213,8 @@ TEST(FrameCacheFormat, CorruptFilesAreRejectedNeverTrusted) {
     EXPECT_NE(r.detail.find("overlaps"), std::string::npos) << r.detail;
 }
 
-// A peek (the background strain pass asking whether a frame is stored) reads the header and
-// metadata only: it answers as a read does for everything but the columns' bytes.
+// A peek (the background strain pass asking whether a frame is stored) checks the header, the
+// metadata's checksum and the key as a read does, not the column table or the columns.
 TEST(FrameCacheFormat, APeekChecksTheHeaderAndKeyButNotTheColumns) {
     TempDir dir;
     const std::string path = dir.file("f.flframe");

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -268,6 +269,22 @@ TEST(StrainSession, ADerivedFrameIsReadyBeforeItIsWrittenToTheFrameCache) {
     EXPECT_EQ(again->frame(1)->attribute("inc_shear_strain")->floats,
               f->attribute("inc_shear_strain")->floats);
     EXPECT_EQ(cache->stats().hits, hits + 1);
+    // The background pass finds it stored from its file's header; a corrupt header is dropped
+    // (and the frame stored again), a corrupt column is left to the read that meets it.
+    Dataset::BaseFrames bases;
+    const auto writesBefore = cache->stats().writes;
+    EXPECT_TRUE(ds->storeDerivedFrame(1, bases));
+    EXPECT_EQ(cache->stats().writes, writesBefore);
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir.file("cache")))
+        files.push_back(e.path().string());
+    for (const auto& file : files) // headers cut short: every file (plain or derived) corrupt
+        std::filesystem::resize_file(file, 100);
+    const auto rejected = cache->stats().rejected;
+    EXPECT_TRUE(ds->storeDerivedFrame(1, bases));
+    EXPECT_GT(cache->stats().rejected, rejected);
+    EXPECT_EQ(cache->stats().writes, writesBefore + 1);
+
     // A frame in memory already: ready at once, nothing written.
     called = false;
     const auto writes = cache->stats().writes;

@@ -1,5 +1,6 @@
 #include "ui/panels/strain_section.hpp"
 
+#include "core/data/frame_cache.hpp"
 #include "core/data/frame_prefetcher.hpp"
 #include "core/motion/strain_from_motion.hpp"
 #include "core/session/commands.hpp"
@@ -27,26 +28,29 @@ std::string describe(const core::StrainSpec& s) {
     return text;
 }
 
-// Why the background pass leaves frames to be derived when shown ("" when it does not).
-std::string heldText(const core::FramePrefetcher::BackgroundProgress& pass) {
+// Why the background pass leaves frames to be derived when shown ("" when it does not), with
+// the frame cache's last problem when it refused a frame.
+std::string heldText(const core::FramePrefetcher::BackgroundProgress& pass,
+                     const core::Dataset& ds) {
     using Held = core::FramePrefetcher::BackgroundProgress::Held;
     std::string why;
     switch (pass.held) {
     case Held::None:
         return {};
     case Held::CacheOff:
-        why = "the frame cache is off (FAULTLINE_FRAME_CACHE)";
+        why = "the frame cache is off (FAULTLINE_FRAME_CACHE=0, or no cache folder)";
         break;
     case Held::CacheRefusesWrites:
-        why = "the frame cache takes no more files (a short disk or an unwritable folder)";
+        why = "the frame cache refused a frame";
+        if (const auto cache = ds.frameCache(); cache && !cache->problem().empty())
+            why += " (" + cache->problem() + ")";
         break;
     case Held::RunTooLarge:
         why = "the run, about " + bytesText(pass.runBytes) +
-              " in memory, is over half the frame cache's budget (" + bytesText(pass.budgetBytes) +
-              ")";
+              ", is over half the frame cache's budget (" + bytesText(pass.budgetBytes) + ")";
         break;
     }
-    return "Frames are not readied in the background: " + why +
+    return "Strain is not computed ahead for the other frames: " + why +
            ". Each frame's strain is computed when it is shown or prefetched.";
 }
 
@@ -90,7 +94,8 @@ void StrainSection::draw(PanelContext& wb) {
             ImGui::SetTooltip("Every frame's strain is computed in the background and kept in "
                               "the frame cache:\nonce done, the timeline scrubs without "
                               "computing.");
-    } else if (const std::string held = heldText(pass); ds && !strains.empty() && !held.empty()) {
+    } else if (const std::string held = ds ? heldText(pass, *ds) : std::string();
+               !strains.empty() && !held.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
         ImGui::TextWrapped("%s", held.c_str());
         ImGui::PopStyleColor();
