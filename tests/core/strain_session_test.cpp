@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -376,25 +377,30 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
         third->frame(k);
     EXPECT_EQ(cache->stats().hits, hitsBefore + 3);
 
+    // The same sources with a frame cache of `s`, the pass on and frame 0 shown.
+    auto passWith = [&](const FrameCacheSettings& s) {
+        auto run = Dataset::open({dump});
+        run->setFrameCache(std::make_shared<FrameCache>(s));
+        run->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
+        auto pass = std::make_unique<FramePrefetcher>(run);
+        pass->setBackgroundDerivation(true);
+        EXPECT_TRUE(show(*pass));
+        return pass;
+    };
     // A run over half the cache's budget: no pass.
     FrameCacheSettings small = settings;
     small.folder = dir.file("small");
     small.budgetBytes = 1000;
-    auto tight = Dataset::open({dump});
-    tight->setFrameCache(std::make_shared<FrameCache>(small));
-    tight->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
-    FramePrefetcher idle(tight);
-    idle.setBackgroundDerivation(true);
-    ASSERT_TRUE(show(idle));
-    idle.waitIdle(std::chrono::seconds(10));
+    const auto idle = passWith(small);
+    idle->waitIdle(std::chrono::seconds(10));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    EXPECT_FALSE(idle.backgroundProgress().running);
-    EXPECT_EQ(idle.backgroundProgress().done, 0u);
+    EXPECT_FALSE(idle->backgroundProgress().running);
+    EXPECT_EQ(idle->backgroundProgress().done, 0u);
     // ... and the Data panel says why.
     using Held = FramePrefetcher::BackgroundProgress::Held;
-    EXPECT_EQ(idle.backgroundProgress().held, Held::RunTooLarge);
-    EXPECT_GT(idle.backgroundProgress().runBytes, idle.backgroundProgress().budgetBytes);
-    EXPECT_EQ(idle.backgroundProgress().budgetBytes, 500u);
+    EXPECT_EQ(idle->backgroundProgress().held, Held::RunTooLarge);
+    EXPECT_GT(idle->backgroundProgress().runBytes, idle->backgroundProgress().budgetBytes);
+    EXPECT_EQ(idle->backgroundProgress().budgetBytes, 500u);
     EXPECT_EQ(prefetcher.backgroundProgress().held, Held::None); // done
 
     // The frame cache off, or refusing files (a disk short of room): no pass, and why.
@@ -403,15 +409,10 @@ TEST(StrainSession, ABackgroundPassDerivesEveryFrameIntoTheFrameCache) {
         s.folder = dir.file(off ? "off" : "short");
         s.enabled = !off;
         s.minFreeDiskBytes = off ? 0 : std::uint64_t(1) << 62;
-        auto run = Dataset::open({dump});
-        run->setFrameCache(std::make_shared<FrameCache>(s));
-        run->setStrains({StrainSpec{true, -1, 1.1, "inc_"}});
-        FramePrefetcher held(run);
-        held.setBackgroundDerivation(true);
-        ASSERT_TRUE(show(held));
-        for (int k = 0; k < 2000 && held.backgroundProgress().held == Held::None; ++k)
+        const auto held = passWith(s);
+        for (int k = 0; k < 2000 && held->backgroundProgress().held == Held::None; ++k)
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        const auto p = held.backgroundProgress();
+        const auto p = held->backgroundProgress();
         EXPECT_EQ(p.held, off ? Held::CacheOff : Held::CacheRefusesWrites) << off;
         EXPECT_FALSE(p.running);
         EXPECT_LT(p.done, p.total);
