@@ -127,6 +127,7 @@ class Dataset {
     // it without deriving; cached as read when it was not cached.
     std::shared_ptr<const Frame> baseFrame(std::size_t index) const;
     std::shared_ptr<const Frame> readFrame(std::size_t index) const;
+    Frame readFrameValue(std::size_t index) const; // the same, not shared
     void insertLocked(std::size_t index, std::shared_ptr<const Frame> frame, std::uint64_t derived,
                       std::vector<std::shared_ptr<const Frame>>& evicted) const;
     mutable std::mutex m_mutex;          // guards everything below
