@@ -215,12 +215,8 @@ bool FrameCache::holdsDerived(const FrameLocation& location,
         ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0); // most recently used: evicted last
         return true;
     }
-    if (status == CachedFrameStatus::Corrupt) {
-        ::unlink(path.c_str());
-        noteProblem("ignored a corrupt cache file " + path + " (" + detail + ")", false);
-        std::lock_guard lock(m_mutex);
-        ++m_stats.rejected;
-    }
+    if (status == CachedFrameStatus::Corrupt)
+        dropCorrupt(path, detail);
     return false;
 }
 
@@ -255,10 +251,7 @@ std::optional<Frame> FrameCache::lookupState(const std::optional<SourceState>& s
         return std::move(read.frame);
     }
     if (read.status == CachedFrameStatus::Corrupt) {
-        ::unlink(path.c_str());
-        noteProblem("ignored a corrupt cache file " + path + " (" + read.detail + ")", false);
-        std::lock_guard lock(m_mutex);
-        ++m_stats.rejected;
+        dropCorrupt(path, read.detail);
         return std::nullopt;
     }
     std::lock_guard lock(m_mutex);
@@ -381,6 +374,13 @@ std::string FrameCache::problem() const {
 FrameCache::Stats FrameCache::stats() const {
     std::lock_guard lock(m_mutex);
     return m_stats;
+}
+
+void FrameCache::dropCorrupt(const std::string& path, const std::string& detail) {
+    ::unlink(path.c_str());
+    noteProblem("ignored a corrupt cache file " + path + " (" + detail + ")", false);
+    std::lock_guard lock(m_mutex);
+    ++m_stats.rejected;
 }
 
 void FrameCache::noteProblem(const std::string& message, bool disableWrites) {

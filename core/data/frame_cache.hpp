@@ -104,6 +104,8 @@ class FrameCache {
     Stats m_stats;
 
     void noteProblem(const std::string& message, bool disableWrites);
+    // Deletes a cache file found corrupt, notes it and counts it.
+    void dropCorrupt(const std::string& path, const std::string& detail);
     std::optional<Frame> lookupState(const std::optional<detail::SourceState>& state);
     bool storeState(const std::optional<detail::SourceState>& state, const Frame& frame);
     // Writes not refused for good, and sources not too small (keeps, storeState).

@@ -358,7 +358,7 @@ void FramePrefetcher::work() {
         std::string error;
         try {
             // The view is woken as soon as the frame is in memory: a frame derived now is then
-            // written to the disk cache, which takes longer than deriving it. (Woken again
+            // written to the disk cache, which the view need not wait for. (Woken again
             // below, once the load is over: harmless.)
             m_dataset->frame(index, [&] {
                 if (wake)

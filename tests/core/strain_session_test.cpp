@@ -245,7 +245,7 @@ TEST(StrainSession, DerivedFramesAreKeptInTheFrameCache) {
 }
 
 // A frame derived now is out (in memory, the caller told) before it is written to the frame
-// cache, which takes longer than deriving it; the write still happens, on the same thread.
+// cache, which the view need not wait for; the write still happens, on the same thread.
 TEST(StrainSession, ADerivedFrameIsReadyBeforeItIsWrittenToTheFrameCache) {
     TempDir dir;
     const std::string dump = writeSlidingBlock(dir);
