@@ -14,9 +14,15 @@
 #     shear_attrs_N.txt           yade.export.textExt, format='x_y_z_r_attrs'
 # The attributes in the last two: id (scalar), velocity (vector), displacement since the start
 # (vector) and the number of intact cohesive bonds (scalar).
+#
+# BIG=1 yade -n -x shear_box.py: a block large enough to hold a shear band apart from its grips
+# (40 x 8 x 24 mm, mean radius 0.5 mm, 6,310 spheres, frictionless walls on both y faces,
+# 6 % shear in 4 snapshots), VTK files only: out/shearbig-spheres-0000000N.vtk, N = 0..3.
 
-import os
+import os, time
 from yade import pack, export
+BIG = os.environ.get('BIG', '0') == '1'
+t0 = time.time()
 
 OUT = 'out'
 os.makedirs(OUT, exist_ok=True)
@@ -27,6 +33,11 @@ RMEAN, FUZZ = 0.00075, 0.3
 VSHEAR = 0.02                            # top grip speed (m/s)
 SHEAR_STRAIN = 0.04                      # total shear displacement / H
 NFRAMES = 3
+if BIG:
+    L, W, H = 0.040, 0.008, 0.024
+    RMEAN = 0.0005
+    SHEAR_STRAIN = 0.06
+    NFRAMES = 4
 
 grains = O.materials.append(CohFrictMat(
     young=1e8, poisson=0.3, density=2600, frictionAngle=radians(30),
@@ -37,10 +48,22 @@ sp = pack.randomDensePack(pack.inAlignedBox((0, 0, 0), (L, W, H)), radius=RMEAN,
                           spheresInCell=1500, returnSpherePack=True, seed=1)
 sp.toSimulation(material=grains)
 nSpheres = len(O.bodies)
+print('packed %d spheres in %.0f s' % (nSpheres, time.time() - t0), flush=True)
+if BIG:
+    # frictionless walls on both y faces: the band is not pulled apart sideways
+    wallMat = O.materials.append(CohFrictMat(young=1e8, poisson=0.3, density=2600, frictionAngle=0,
+                                             isCohesive=False, momentRotationLaw=False))
+    for yw in (0.0, W):
+        a, b, c, d = (Vector3(-0.01, yw, -0.01), Vector3(L + 0.01, yw, -0.01),
+                      Vector3(L + 0.01, yw, H + 0.01), Vector3(-0.01, yw, H + 0.01))
+        O.bodies.append(facet([a, b, c], material=wallMat, fixed=True, wire=False))
+        O.bodies.append(facet([a, c, d], material=wallMat, fixed=True, wire=False))
 
 # grips: the bottom and top 2 mean diameters
 bottom, top = [], []
 for b in O.bodies:
+    if not isinstance(b.shape, Sphere):
+        continue
     z = b.state.pos[2]
     if z < 4 * RMEAN:
         bottom.append(b)
@@ -58,9 +81,10 @@ for b in top:
 # ---- engines --------------------------------------------------------------------------------
 O.engines = [
     ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=1.3, label='aabb')]),
+    InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=1.3, label='aabb'), Bo1_Facet_Aabb()]),
     InteractionLoop(
-        [Ig2_Sphere_Sphere_ScGeom6D(interactionDetectionFactor=1.3, label='ig2')],
+        [Ig2_Sphere_Sphere_ScGeom6D(interactionDetectionFactor=1.3, label='ig2'),
+         Ig2_Facet_Sphere_ScGeom6D()],
         [Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True, setCohesionOnNewContacts=False)],
         [Law2_ScGeom6D_CohFrictPhys_CohesionMoment(useIncrementalForm=True, always_use_moment_law=True)],
     ),
@@ -81,11 +105,16 @@ nPer = nIter // (NFRAMES - 1)
 
 ATTRS = ['b.id', 'b.state.vel', 'b.state.displ()',
          'sum(1 for i in b.intrs() if i.isReal and not i.phys.cohesionBroken)']
-vtk = export.VTKExporter(os.path.join(OUT, 'shear'))
+vtk = export.VTKExporter(os.path.join(OUT, 'shearbig' if BIG else 'shear'))
+spheres = [b.id for b in O.bodies if isinstance(b.shape, Sphere)]
 
 
 def snapshot(n):
     t = O.time
+    if BIG:
+        vtk.exportSpheres(ids=spheres, what=dict(id='b.id'), numLabel=n)
+        print('frame %d: iter %d t=%g s (%.0f s)' % (n, O.iter, t, time.time() - t0), flush=True)
+        return
     vtk.exportSpheres(what=dict(id='b.id', velocity='b.state.vel', displacement='b.state.displ()',
                                 nbonds=ATTRS[3]),
                       comment='Faultline shear_box.py t=%g s iter=%d' % (t, O.iter), numLabel=n)
