@@ -119,12 +119,15 @@ void checkEveryPanel(float width, float height, const char* layout = nullptr,
             R"({"op":"view.add","name":"view 3","frame":2})",
             R"({"op":"frame.set","frame":3})",
             R"({"op":"color.set","view":"main","variable":"broken_bonds","difference":"change","since_frame":1})",
+            // Strain from motion: the lattice's spheres are too far apart to have neighbours,
+            // so every value is NaN and the histogram says how many have none.
+            R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})",
         })
         session.apply(Json::parse(op));
     wb->selection().faults = {"F2"};
     // The histograms a user picked, the thresholded one first (its title shows the bounds).
-    wb->layout().panelSettings(ui::panel_ids::kHistograms)["variables"] = {"broken_bonds", "type",
-                                                                           "strain"};
+    wb->layout().panelSettings(ui::panel_ids::kHistograms)["variables"] = {
+        "broken_bonds", "type", "strain", "inc_shear_strain"};
     wb->showHelp();
     headless.settle(*wb);
     checkAll("after an hour");

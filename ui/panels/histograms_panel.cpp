@@ -10,6 +10,7 @@
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
 #include "ui/panels/panels.hpp"
+#include "ui/widgets/section.hpp"
 #include "ui/widgets/text_fit.hpp"
 
 #include "core/model/frame_difference.hpp"
@@ -516,19 +517,17 @@ class HistogramsPanel final : public Panel {
                                                              ImGui::CalcTextSize(right.c_str()).x));
         ImGui::TextDisabled("%s", right.c_str());
         if (middle && h->all.outside > 0) {
-            ImGui::TextDisabled("1st to 99th percentile; %llu sphere%s beyond",
-                                static_cast<unsigned long long>(h->all.outside),
-                                h->all.outside == 1 ? "" : "s");
+            hint("1st to 99th percentile; %llu sphere%s beyond",
+                 static_cast<unsigned long long>(h->all.outside), h->all.outside == 1 ? "" : "s");
             wb.mark("histogram." + var + ".beyond");
         } else if (cached.middleOneValue) {
-            ImGui::TextDisabled("The middle 98 %% of the values are one value: all are shown");
+            hint("The middle 98 %% of the values are one value: all are shown");
         }
         // NaN (no reference for strain from motion, a sphere gone since it): never passes a
         // threshold, so say how many there are.
         if (h->all.nan > 0) {
-            ImGui::TextDisabled("%llu sphere%s without a value (pass no threshold)",
-                                static_cast<unsigned long long>(h->all.nan),
-                                h->all.nan == 1 ? "" : "s");
+            hint("%llu sphere%s without a value (pass no threshold)",
+                 static_cast<unsigned long long>(h->all.nan), h->all.nan == 1 ? "" : "s");
             wb.mark("histogram." + var + ".nan");
         }
         return keep;
