@@ -35,11 +35,13 @@ std::string demoLikeDump() {
                 for (int x = 0; x < 6; ++x) {
                     const double px = 1 + x * 53.98 + 0.013 * t * x, py = 0.815 + y * 12.81,
                                  pz = 0.583 + z * 13.51;
+                    // The last grain thrown out: its strain crowds the others into one bar
+                    // of the histogram, which offers the middle view.
+                    const double strain = id == 216 ? 1000.0 : 0.0001 + 0.5217 * (x + y) * t;
                     char row[240];
-                    std::snprintf(row, sizeof row,
-                                  "%d %d %.4f %.4f %.4f 1 %.4f %d %d %.4f %.4f %.4f\n", id++,
-                                  1 + (x + y) % 3, px, py, pz, 0.0001 + 0.5217 * (x + y) * t,
-                                  (x == y) ? 4 * t : 0, z, px, py, pz);
+                    std::snprintf(
+                        row, sizeof row, "%d %d %.4f %.4f %.4f 1 %.4f %d %d %.4f %.4f %.4f\n", id++,
+                        1 + (x + y) % 3, px, py, pz, strain, (x == y) ? 4 * t : 0, z, px, py, pz);
                     text += row;
                 }
     }
@@ -131,6 +133,9 @@ void checkEveryPanel(float width, float height, const char* layout = nullptr,
     wb->showHelp();
     headless.settle(*wb);
     checkAll("after an hour");
+    headless.showPanel(*wb, ui::panel_ids::kHistograms);
+    headless.settle(*wb);
+    EXPECT_TRUE(headless.has(*wb, "histogram.strain.offer-middle")) << "the button was checked";
     // The long-named fault picked, with a surface: its settings and metrics under its name.
     session.apply(Json::parse(
         R"({"op":"surface.set","fault":"West-dipping graben boundary fault","kernel":"compact","iso":0.3,"visible":true})"));

@@ -295,9 +295,9 @@ TEST_F(StretchedLatticeTest, AHistogramTakesItsBinsFromTheFirstFrameWithValues) 
 }
 
 // Two extreme values in 400 (grains thrown out of a model, with strain in the hundreds)
-// put every other value in the first bar. The plot's menu shows the 1st to 99th percentile
-// instead (kept with the layout), says how many lie beyond, and a threshold dragged to its right
-// end still takes the extreme values.
+// put every other value in the first bar. A button under the plot (and the plot's menu) shows the
+// 1st to 99th percentile instead (kept with the layout), says how many lie beyond, and a
+// threshold dragged to its right end still takes the extreme values.
 TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
     std::string text = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n400\nITEM: BOX BOUNDS ff ff ff\n"
                        "0 20\n0 20\n0 1\nITEM: ATOMS id x y z radius v\n";
@@ -312,6 +312,20 @@ TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
     headless.settle(wb());
     ASSERT_TRUE(headless.has(wb(), "histogram.v"));
     EXPECT_FALSE(headless.has(wb(), "histogram.v.beyond"));
+    // Under the plot, a button offers the middle view: all but two values are in one bar.
+    ASSERT_TRUE(headless.has(wb(), "histogram.v.offer-middle"));
+    headless.click(wb(), "histogram.v.offer-middle");
+    headless.frames(wb(), 2);
+    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["middle"]["v"], true);
+    EXPECT_TRUE(headless.has(wb(), "histogram.v.beyond"));
+    EXPECT_FALSE(headless.has(wb(), "histogram.v.offer-middle"));
+    // And the plot's menu switches it, off and on.
+    headless.click(wb(), "histogram.v", 1);
+    headless.frames(wb(), 2);
+    headless.click(wb(), "histogram.v.middle");
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(session.state().dockLayout["panels"]["histograms"]["middle"].contains("v"));
+    EXPECT_TRUE(headless.has(wb(), "histogram.v.offer-middle"));
     headless.click(wb(), "histogram.v", 1);
     headless.frames(wb(), 2);
     headless.click(wb(), "histogram.v.middle");

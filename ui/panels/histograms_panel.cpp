@@ -522,6 +522,15 @@ class HistogramsPanel final : public Panel {
             wb.mark("histogram." + var + ".beyond");
         } else if (cached.middleOneValue) {
             hint("The middle 98 %% of the values are one value: all are shown");
+        } else if (!middle && !integer && h->all.bins.size() > 1 && h->all.inRange() >= 20 &&
+                   h->all.maxBin() * 10 >= h->all.inRange() * 9) {
+            // Nine in ten values in one bar: a few extreme ones (grains thrown out of the model,
+            // with strains in the tens) set the range. The menu's middle view, offered here.
+            hint("Nine in ten spheres are in one bar.");
+            flowSameLine(buttonWidth("1st to 99th percentile"));
+            if (ImGui::SmallButton("1st to 99th percentile"))
+                saveMiddle(wb, var, true);
+            wb.mark("histogram." + var + ".offer-middle");
         }
         // NaN (no reference for strain from motion, a sphere gone since it): never passes a
         // threshold, so say how many there are.
