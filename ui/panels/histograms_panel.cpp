@@ -526,7 +526,7 @@ class HistogramsPanel final : public Panel {
                    h->all.maxBin() * 10 >= h->all.inRange() * 9) {
             // Nine in ten values in one bar: a few extreme ones (grains thrown out of the model,
             // with strains in the tens) set the range. The menu's middle view, offered here.
-            hint("Nine in ten spheres are in one bar.");
+            hint("Nine in ten spheres or more are in one bar.");
             flowSameLine(buttonWidth("1st to 99th percentile"));
             if (ImGui::SmallButton("1st to 99th percentile"))
                 saveMiddle(wb, var, true);
