@@ -161,9 +161,12 @@ class FaultMetricsSection {
             ImGui::EndCombo();
         }
         wb.mark("faults.metrics.metric");
-        if (all)
-            hint(total > shown.size() ? "first %zu of %zu faults" : "all %zu faults", shown.size(),
-                 total);
+        if (all && total > shown.size())
+            hint("first %zu of %zu faults", shown.size(), total);
+        else if (all && total == 1)
+            hint("the one fault");
+        else if (all)
+            hint("all %zu faults", shown.size());
         else
             hint("%zu selected", shown.size());
 
