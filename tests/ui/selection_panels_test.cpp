@@ -320,17 +320,16 @@ TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
     EXPECT_TRUE(headless.has(wb(), "histogram.v.beyond"));
     EXPECT_FALSE(headless.has(wb(), "histogram.v.offer-middle"));
     // And the plot's menu switches it, off and on.
-    headless.click(wb(), "histogram.v", 1);
-    headless.frames(wb(), 2);
-    headless.click(wb(), "histogram.v.middle");
-    headless.frames(wb(), 2);
-    EXPECT_FALSE(session.state().dockLayout["panels"]["histograms"]["middle"].contains("v"));
+    auto switchFromTheMenu = [&] {
+        headless.click(wb(), "histogram.v", 1);
+        headless.frames(wb(), 2);
+        headless.click(wb(), "histogram.v.middle");
+        headless.frames(wb(), 2);
+        return session.state().dockLayout["panels"]["histograms"]["middle"].contains("v");
+    };
+    EXPECT_FALSE(switchFromTheMenu());
     EXPECT_TRUE(headless.has(wb(), "histogram.v.offer-middle"));
-    headless.click(wb(), "histogram.v", 1);
-    headless.frames(wb(), 2);
-    headless.click(wb(), "histogram.v.middle");
-    headless.frames(wb(), 2);
-    EXPECT_EQ(session.state().dockLayout["panels"]["histograms"]["middle"]["v"], true);
+    EXPECT_TRUE(switchFromTheMenu());
     EXPECT_TRUE(headless.has(wb(), "histogram.v.beyond"));
 
     // From the middle of what is shown (about 0.5) to the right end: up to the largest value.
@@ -348,11 +347,7 @@ TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
     EXPECT_EQ(visible(), above); // the two extremes among them
 
     // Off again: the whole range, nothing beyond.
-    headless.click(wb(), "histogram.v", 1);
-    headless.frames(wb(), 2);
-    headless.click(wb(), "histogram.v.middle");
-    headless.frames(wb(), 2);
-    EXPECT_FALSE(session.state().dockLayout["panels"]["histograms"]["middle"].contains("v"));
+    EXPECT_FALSE(switchFromTheMenu());
     EXPECT_FALSE(headless.has(wb(), "histogram.v.beyond"));
 }
 
