@@ -77,6 +77,12 @@ constexpr double kRadiusOverThickness = 2.5;
 // planted networks' faults that cross or end against each other 0.21 and more.
 constexpr std::size_t kSegmentLinks = 5;
 constexpr double kSegmentFlatness = 0.06;
+// And each of the two spreads across their joint plane at most this share of its own spread
+// along its longest axis (a small piece at an angle is not taken in by a large one's flatness):
+// a segment 35 degrees off the joint plane, about 0.33 (sin^2 35); a fault ending against
+// another at 45 degrees or more, 0.5 and more. Measured on the pairs above that are one fault:
+// 0.02-0.35 (the LAMMPS fault's shallow part, a blob against its deep part, 0.35).
+constexpr double kSegmentShare = 0.4;
 
 //-----------------------------------------------------------------------------
 // [SECTION] Helpers: vectors, region sets, a section's thin axis
@@ -885,8 +891,6 @@ void dropDiffuse(const Frame& frame, const SphereCells& linkCells,
             g = -1;
 }
 
-} // namespace
-
 //-----------------------------------------------------------------------------
 // [SECTION] Step 7: segments of one band
 //-----------------------------------------------------------------------------
@@ -915,37 +919,86 @@ struct Moments {
         }
         return m;
     }
-    // The spread across the best plane over the spread along the longest axis (0: a thin
-    // sheet; about 0.1 and more: a slab, or two planes at an angle). In a section model the
-    // plane contains the thin axis: both spreads are taken in the section.
-    double flatness(int thin) const {
-        if (n < 3)
-            return INFINITY;
+    Mat3d covariance() const {
         Mat3d c{};
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
                 c[a][b] = ss[a][b] / n - (s[a] / n) * (s[b] / n);
-        if (thin >= 0) {
-            const int u = thin == 0 ? 1 : 0, v = thin == 2 ? 1 : 2;
-            const double tr = c[u][u] + c[v][v], det = c[u][u] * c[v][v] - c[u][v] * c[u][v];
-            const double root = std::sqrt(std::max(0.0, tr * tr / 4 - det));
-            const double hi = tr / 2 + root, lo = std::max(0.0, tr / 2 - root);
-            return hi > 0 ? lo / hi : INFINITY;
-        }
-        const SymmetricEigen3 e = eigenSymmetric3(c);
-        return e.values[2] > 0 ? std::max(0.0, e.values[0]) / e.values[2] : INFINITY;
+        return c;
     }
 };
 
+// The spread of a set of centres (its covariance) across its best plane and along its longest
+// axis, and that plane's unit normal. In a section model (`thin` an axis) the plane contains the
+// thin axis: spreads and normal are taken in the section.
+struct Spread {
+    double across = 0, along = 0;
+    Vec3d normal{0, 0, 0};
+};
+Spread spreadOf(const Mat3d& c, int thin) {
+    Spread out;
+    if (thin >= 0) {
+        const int u = thin == 0 ? 1 : 0, v = thin == 2 ? 1 : 2;
+        const double tr = c[u][u] + c[v][v], det = c[u][u] * c[v][v] - c[u][v] * c[u][v];
+        const double root = std::sqrt(std::max(0.0, tr * tr / 4 - det));
+        out.along = tr / 2 + root;
+        out.across = out.along > 0 ? std::max(0.0, det) / out.along : 0.0;
+        // The eigenvector of the smaller eigenvalue: (c_uv, across - c_uu), or the axis itself.
+        double nu = c[u][v], nv = out.across - c[u][u];
+        if (std::hypot(nu, nv) <= 1e-12 * std::max(out.along, 1e-300))
+            c[u][u] <= c[v][v] ? (nu = 1, nv = 0) : (nu = 0, nv = 1);
+        const double len = std::hypot(nu, nv);
+        out.normal[u] = nu / len;
+        out.normal[v] = nv / len;
+        return out;
+    }
+    const SymmetricEigen3 e = eigenSymmetric3(c);
+    out.across = std::max(0.0, e.values[0]);
+    out.along = e.values[2];
+    out.normal = e.vectors[0];
+    return out;
+}
+
+// Whether two linked sets of centres (their moments) are segments of one thin sheet: together
+// they spread across their best plane at most kSegmentFlatness of their spread along it, and
+// each spreads across that plane at most kSegmentShare of its own length (so a small piece at
+// an angle, a fault ending against a large one, is not taken in by the large one's flatness).
+bool oneSheet(const Moments& a, const Moments& b, int thin, double tiny) {
+    if (a.n < 3 || b.n < 3)
+        return false;
+    const Moments u = a + b;
+    const Spread joint = spreadOf(u.covariance(), thin);
+    if (!(joint.along > tiny) || !(joint.across <= kSegmentFlatness * joint.along))
+        return false;
+    for (const Moments* m : {&a, &b}) {
+        const Mat3d c = m->covariance();
+        const Vec3d& nn = joint.normal;
+        double across = 0, offset = 0;
+        for (int p = 0; p < 3; ++p) {
+            offset += nn[p] * (m->s[p] / m->n - u.s[p] / u.n);
+            for (int q = 0; q < 3; ++q)
+                across += nn[p] * c[p][q] * nn[q];
+        }
+        const double along = spreadOf(c, thin).along;
+        if (!(along > tiny) || !(across + offset * offset <= kSegmentShare * along))
+            return false;
+    }
+    return true;
+}
+
 // Step 7: groups linked to each other (at least kSegmentLinks links between their spheres) whose
-// spheres together form a sheet as thin as kSegmentFlatness are one fault: a shear band of
-// segments at 20-30 degrees to each other (as a Yade shear box's band steps from 30 to 5 to 22
-// degrees), too far apart in orientation for step 3, is one band, while two faults meeting at
-// an angle, crossing or ending against each other form no thin sheet together and stay apart.
+// spheres together form a sheet as thin as kSegmentFlatness, each of them lying along it
+// (kSegmentShare), are one fault: a shear band whose segments differ by 17-25 degrees (a Yade
+// shear box's band steps from 30 to 5 to 22 degrees), too far apart in orientation for step 3,
+// is one band, while two faults meeting at an angle, crossing or ending against each other form
+// no thin sheet together and stay apart. Pairs are taken in order, each tested on the sets its
+// groups have joined by then: a chain of segments joins only while it stays one thin sheet.
 // Returns the group each group joins.
 std::vector<std::int32_t> joinSegments(const SphereCells& cells, const Graph& g,
                                        std::span<const std::int32_t> group, std::size_t groupCount,
-                                       int thin) {
+                                       int thin, double meanRadius) {
+    // Spreads below this (squared lengths) are no spread: a set of one point, in rounding.
+    const double tiny = 1e-6 * meanRadius * meanRadius;
     std::vector<Moments> moments(groupCount);
     const Vec3d origin{cells.size() ? cells.x[0] : 0.0f, cells.size() ? cells.y[0] : 0.0f,
                        cells.size() ? cells.z[0] : 0.0f};
@@ -961,14 +1014,19 @@ std::vector<std::int32_t> joinSegments(const SphereCells& cells, const Graph& g,
                 links.emplace_back(std::uint32_t(std::min(group[i], group[j])),
                                    std::uint32_t(std::max(group[i], group[j])));
     std::sort(links.begin(), links.end());
+    // In the pairs' order, each tested on the sets their groups are in by then (a chain of
+    // segments is one sheet only if it stays one as it grows).
     UnionFind sets{groupCount};
     for (std::size_t k = 0; k < links.size();) {
         std::size_t e = k;
         while (e < links.size() && links[e] == links[k])
             ++e;
-        const auto [a, b] = links[k];
-        if (e - k >= kSegmentLinks && (moments[a] + moments[b]).flatness(thin) <= kSegmentFlatness)
+        const std::uint32_t a = sets.find(links[k].first), b = sets.find(links[k].second);
+        if (e - k >= kSegmentLinks && a != b && oneSheet(moments[a], moments[b], thin, tiny)) {
+            const Moments joined = moments[a] + moments[b];
             sets.unite(a, b);
+            moments[sets.find(a)] = joined;
+        }
         k = e;
     }
     std::vector<std::int32_t> to(groupCount);
@@ -976,6 +1034,8 @@ std::vector<std::int32_t> joinSegments(const SphereCells& cells, const Graph& g,
         to[q] = std::int32_t(sets.find(std::uint32_t(q)));
     return to;
 }
+
+} // namespace
 
 //-----------------------------------------------------------------------------
 // [SECTION] faultNetworkGroups: the steps in order
@@ -1072,7 +1132,7 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
 
     // Step 7: the segments of one band are one fault.
     const std::vector<std::int32_t> joined =
-        joinSegments(linkCells, graph, region, groupCount, thin);
+        joinSegments(linkCells, graph, region, groupCount, thin, meanRadius);
     for (std::int32_t& g : region)
         if (g >= 0)
             g = joined[std::size_t(g)];

@@ -26,8 +26,9 @@
 //    what they held; a seeded group that grows diffuse is dissolved): a noisy band whose
 //    regions all stayed below min_size is not lost.
 // 7. Groups linked to each other whose spheres together form a thin sheet (spread across their
-//    plane at most 6 % of the spread along it, in variance) are one fault: the segments of one
-//    shear band, at more than `angle` to each other, come out as one.
+//    plane at most 6 % of the spread along it, in variance), each lying along that plane, are
+//    one fault: the segments of one shear band, too far apart in orientation for step 3 (17-25
+//    degrees in a Yade shear box), come out as one.
 // Cost: one pass over pooled cells for the planes, growth and joining linear in spheres, and
 // sampled scans for junctions and leftovers: about 0.25 s per 100k visible spheres on 2 cores.
 #pragma once

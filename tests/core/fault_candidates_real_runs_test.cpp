@@ -241,7 +241,7 @@ TEST(CandidatesOnRealRuns, TheYadeShearBandIsOneCandidateAtThe85th) {
         check("Yade shear box 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", p, 15);
 }
 
-// The larger shear box (examples/yade/shear_box.py with BIG=1: 6,310 grains, 16 diameters between
+// The larger shear box (examples/yade/shear_box.py with BIG=1: 6,310 grains, 20 diameters between
 // the grips), 4 % to 6 % shear: one band dipping 22 degrees east (kinematic_faults_test.cpp), three
 // to five grains thick and built of three segments: 28-32 degrees under the top grip's trailing
 // end, nearly flat in the middle (0-9 degrees), 17-28 near the far end (like the Riedel shears of

@@ -82,9 +82,10 @@ TEST(KinematicFaults, TheYadeShearBoxIsTwoBlocksAndOneBand) {
 
 // The larger shear box (BIG=1 yade -n -x shear_box.py: 6,310 grains, 24 mm high, walls on both y
 // faces), its last two snapshots (4 % to 6 % shear): the grips and what sticks to them move as two
-// blocks, and between them one shear band dips 22 degrees east (towards the moving top grip's
-// trailing end), its motion changing within 3.5 diameters. (Between the snapshots before, 2 % to
-// 4 %, the same band, 21.6 degrees, still changes over 5.6 diameters: not yet identifiable.)
+// blocks, and between them one shear band dips 22 degrees east (the way the top grip moves: from
+// under its trailing end down to the bottom grip's far end), its motion changing within 3.5
+// diameters. (Between the snapshots before, 2 % to 4 %, the same band, 21.6 degrees, still changes
+// over 5.6 diameters: not yet identifiable.)
 TEST(KinematicFaults, TheLargerYadeShearBoxIsTwoBlocksAndOneBand) {
     auto ds = Dataset::open({run("yade/shearbig-spheres-*.vtk.gz")});
     ASSERT_EQ(ds->frameCount(), 2u);

@@ -523,8 +523,10 @@ class HistogramsPanel final : public Panel {
         } else if (cached.middleOneValue) {
             hint("The middle 98 %% of the values are one value: all are shown");
         } else if (!middle && !integer && h->all.bins.size() > 1 && h->all.inRange() >= 20 &&
-                   h->all.maxBin() * 10 >= h->all.inRange() * 9) {
-            // Nine in ten values in one bar: a few extreme ones (grains thrown out of the model,
+                   h->all.maxBin() * 10 >= h->all.inRange() * 9 &&
+                   h->all.maxBin() < h->all.inRange()) {
+            // Nine in ten values in one bar, not all of them (a column of one value has no
+            // middle to show): most often a few extreme ones (grains thrown out of the model,
             // with strains in the tens) set the range. The menu's middle view, offered here.
             hint("Nine in ten spheres or more are in one bar.");
             flowSameLine(buttonWidth("1st to 99th percentile"));
