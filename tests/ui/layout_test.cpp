@@ -35,9 +35,8 @@ std::string demoLikeDump() {
                 for (int x = 0; x < 6; ++x) {
                     const double px = 1 + x * 53.98 + 0.013 * t * x, py = 0.815 + y * 12.81,
                                  pz = 0.583 + z * 13.51;
-                    // The last grain thrown out: its strain crowds the others into one bar of
-                    // the histogram, whatever its bin count (up to 256), which offers the middle
-                    // view.
+                    // The last grain thrown out: its strain stretches the histogram's axis
+                    // (the others fill under a thousandth of it), which offers the middle view.
                     const double strain = id == 216 ? 1.0e5 : 0.0001 + 0.5217 * (x + y) * t;
                     char row[240];
                     std::snprintf(

@@ -312,7 +312,8 @@ TEST_F(PanelTest, AHistogramCanShowTheMiddleOfItsValues) {
     headless.settle(wb());
     ASSERT_TRUE(headless.has(wb(), "histogram.v"));
     EXPECT_FALSE(headless.has(wb(), "histogram.v.beyond"));
-    // Under the plot, a button offers the middle view: all but two values are in one bar.
+    // Under the plot, a button offers the middle view: all but two values fill a thousandth of
+    // the axis.
     ASSERT_TRUE(headless.has(wb(), "histogram.v.offer-middle"));
     headless.click(wb(), "histogram.v.offer-middle");
     headless.frames(wb(), 2);
