@@ -936,27 +936,8 @@ struct Spread {
     Vec3d normal{0, 0, 0};
 };
 Spread spreadOf(const Mat3d& c, int thin) {
-    Spread out;
-    if (thin >= 0) {
-        const int u = thin == 0 ? 1 : 0, v = thin == 2 ? 1 : 2;
-        const double tr = c[u][u] + c[v][v], det = c[u][u] * c[v][v] - c[u][v] * c[u][v];
-        const double root = std::sqrt(std::max(0.0, tr * tr / 4 - det));
-        out.along = tr / 2 + root;
-        out.across = out.along > 0 ? std::max(0.0, det) / out.along : 0.0;
-        // The eigenvector of the smaller eigenvalue: (c_uv, across - c_uu), or the axis itself.
-        double nu = c[u][v], nv = out.across - c[u][u];
-        if (std::hypot(nu, nv) <= 1e-12 * std::max(out.along, 1e-300))
-            c[u][u] <= c[v][v] ? (nu = 1, nv = 0) : (nu = 0, nv = 1);
-        const double len = std::hypot(nu, nv);
-        out.normal[u] = nu / len;
-        out.normal[v] = nv / len;
-        return out;
-    }
-    const SymmetricEigen3 e = eigenSymmetric3(c);
-    out.across = std::max(0.0, e.values[0]);
-    out.along = e.values[2];
-    out.normal = e.vectors[0];
-    return out;
+    const SymmetricEigen3 e = planeAxes(c, thin);
+    return {std::max(0.0, e.values[0]), thin >= 0 ? e.values[1] : e.values[2], e.vectors[0]};
 }
 
 // Whether two linked sets of centres (their moments) are segments of one thin sheet: together

@@ -159,6 +159,19 @@ int sectionAxisOfSpheres(const Vec3d& extent, double meanDiameter) {
                : -1;
 }
 
+SymmetricEigen3 planeAxes(Mat3d cov, int containsAxis) {
+    if (containsAxis >= 0 && containsAxis < 3) {
+        // The axis becomes the direction of the largest spread, uncoupled from the others, so
+        // the smallest eigenvector (the normal) lies in the plane of the other two axes.
+        const int a = containsAxis;
+        const double trace = cov[0][0] + cov[1][1] + cov[2][2];
+        for (int i = 0; i < 3; ++i)
+            cov[a][i] = cov[i][a] = 0.0;
+        cov[a][a] = 4.0 * trace + 1.0;
+    }
+    return eigenSymmetric3(cov);
+}
+
 PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis) {
     PlaneFit fit;
     fit.count = points.size();
@@ -189,18 +202,9 @@ PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis) {
             cov[i][j] /= static_cast<double>(points.size());
             cov[j][i] = cov[i][j];
         }
-    double axisVariance = -1.0;
-    if (containsAxis >= 0 && containsAxis < 3) {
-        // The axis becomes the direction of the largest spread, uncoupled from the others, so
-        // the smallest eigenvector (the normal) lies in the plane of the other two axes.
-        const int a = containsAxis;
-        axisVariance = cov[a][a];
-        const double trace = cov[0][0] + cov[1][1] + cov[2][2];
-        for (int i = 0; i < 3; ++i)
-            cov[a][i] = cov[i][a] = 0.0;
-        cov[a][a] = 4.0 * trace + 1.0;
-    }
-    const SymmetricEigen3 eig = eigenSymmetric3(cov);
+    const bool section = containsAxis >= 0 && containsAxis < 3;
+    const double axisVariance = section ? cov[containsAxis][containsAxis] : -1.0;
+    const SymmetricEigen3 eig = planeAxes(cov, containsAxis);
     fit.eigenvalues = eig.values;
     if (axisVariance >= 0.0) { // report the real spread along the axis, not the stand-in
         fit.eigenvalues[2] = axisVariance;

@@ -58,6 +58,10 @@ struct PlaneFit {
 // has no component along it): for section models, thin along one axis, where the thinnest
 // spread of a fault's spheres is the model's own thickness, not the fault's.
 PlaneFit fitPlane(std::span<const Vec3d> points, int containsAxis = -1);
+// The principal axes of a covariance as fitPlane takes them (values ascending, vectors[0] the
+// normal): with `containsAxis`, that axis is made the largest (a stand-in value) and uncoupled,
+// so the normal and values[0..1] lie in the plane of the other two axes.
+SymmetricEigen3 planeAxes(Mat3d covariance, int containsAxis = -1);
 
 // The axis a model is thin along (extent below `ratio` of its largest extent), or -1: such a
 // model is a section, and faults in it are planes containing that axis.
