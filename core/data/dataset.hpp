@@ -69,8 +69,7 @@ class Dataset {
     // The same; `ready` is called once the frame is in memory (at once when it is; other threads
     // asking for it get it from then on), before a frame derived now is written to the disk
     // cache (5-7 ms for a demo frame, more with loads writing at once): a prefetcher wakes the
-    // view with it. Not
-    // called when the load fails; must not throw.
+    // view with it. Not called when the load fails; must not throw.
     std::shared_ptr<const Frame> frame(std::size_t index, const std::function<void()>& ready) const;
     // Frames as read, kept by a pass over the frames between its calls of storeDerivedFrame.
     using BaseFrames = std::map<std::size_t, std::shared_ptr<const Frame>>;

@@ -337,6 +337,23 @@ std::optional<Histogram> computeHistogram(const Frame& frame, std::string_view v
     return computeHistogram(*column, chooseBinning(*column, spec), visibleMask);
 }
 
+bool extremesStretchAxis(const Histogram& h, double share) {
+    const auto& bins = h.all.bins;
+    const std::uint64_t total = h.all.inRange();
+    // All in one bar: one value (or values closer than a bar), which no middle view spreads.
+    if (bins.size() < 2 || total < 20 || h.edges.size() != bins.size() + 1 ||
+        h.all.maxBin() == total)
+        return false;
+    std::size_t left = 0, right = bins.size();
+    for (std::uint64_t sum = 0; left < bins.size() && (sum + bins[left]) * 100 <= total;)
+        sum += bins[left++];
+    for (std::uint64_t sum = 0; right > left && (sum + bins[right - 1]) * 100 <= total;)
+        sum += bins[--right];
+    const double width = h.edges.back() - h.edges.front();
+    const double outside = (h.edges[left] - h.edges.front()) + (h.edges.back() - h.edges[right]);
+    return width > 0 && outside >= share * width;
+}
+
 std::vector<double> logCounts(const std::vector<std::uint64_t>& counts) {
     std::vector<double> out(counts.size());
     for (std::size_t k = 0; k < counts.size(); ++k)

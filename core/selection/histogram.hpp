@@ -85,4 +85,10 @@ std::optional<Histogram> computeHistogram(const Frame& frame, std::string_view v
 // For a log-scale plot: log10(1 + count) per bin (empty bins stay at 0, one sphere is 0.30).
 std::vector<double> logCounts(const std::vector<std::uint64_t>& counts);
 
+// Whether the values outside their 1st to 99th percentile stretch over `share` of the plot's
+// axis, told from whole bins at either end holding at most 1 % of the values each (a few
+// extreme values, such as grains thrown out of a model, set the range: a view of the middle 98 %
+// shows the rest better). False for fewer than 20 values or 2 bins, and when all are in one bar.
+bool extremesStretchAxis(const Histogram& h, double share = 0.8);
+
 } // namespace faultline::core

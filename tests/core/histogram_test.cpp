@@ -315,3 +315,30 @@ TEST(Histogram, ParallelCountsMatchBinOf) {
         }
     }
 }
+
+// The middle view is offered when a few extreme values set the range, not for a long tail or
+// a spike at zero (most spheres undamaged), nor for one value.
+TEST(Histogram, ExtremesStretchTheAxisOnlyWhenAFewValuesSetTheRange) {
+    auto histogram = [](const std::vector<float>& values) {
+        AttributeColumn c;
+        c.name = "v";
+        c.type = ColumnType::Float32;
+        c.floats = values;
+        const ColumnView view = viewOf(c);
+        return computeHistogram(view, chooseBinning(view));
+    };
+    std::vector<float> values;
+    for (int i = 0; i < 398; ++i)
+        values.push_back(float(i) / 400.0f);
+    std::vector<float> thrown = values;
+    thrown.push_back(1000.0f), thrown.push_back(900.0f); // 2 of 400 far out
+    EXPECT_TRUE(extremesStretchAxis(histogram(thrown)));
+    EXPECT_FALSE(extremesStretchAxis(histogram(values))); // spread evenly
+    // Nine in ten at zero and a tail holding the rest: a fair picture as it is.
+    std::vector<float> spike(3600, 0.0f);
+    for (int i = 0; i < 400; ++i)
+        spike.push_back(float(i) / 100.0f);
+    EXPECT_FALSE(extremesStretchAxis(histogram(spike)));
+    EXPECT_FALSE(extremesStretchAxis(histogram(std::vector<float>(100, 2.5f)))); // one value
+    EXPECT_FALSE(extremesStretchAxis(histogram({0.0f, 1000.0f})));               // too few
+}

@@ -297,26 +297,6 @@ class HistogramsPanel final : public Panel {
         }
     }
 
-    // Whether the values outside their 1st to 99th percentile stretch over four fifths of the
-    // plot's axis (told from whole bins at either end holding at most 1 % of the values each):
-    // then the middle view shows the rest better. Not for a long tail that holds more (the
-    // demo's strain: its top 1 % spans 71 % of the axis), nor for one value.
-    static bool extremesStretchTheAxis(const core::Histogram& h) {
-        const auto& bins = h.all.bins;
-        const std::uint64_t total = h.all.inRange();
-        if (bins.size() < 2 || total < 20 || h.edges.size() != bins.size() + 1)
-            return false;
-        std::size_t left = 0, right = bins.size();
-        for (std::uint64_t sum = 0; left < bins.size() && (sum + bins[left]) * 100 <= total;)
-            sum += bins[left++];
-        for (std::uint64_t sum = 0; right > left && (sum + bins[right - 1]) * 100 <= total;)
-            sum += bins[--right];
-        const double width = h.edges.back() - h.edges.front();
-        const double outside =
-            (h.edges[left] - h.edges.front()) + (h.edges.back() - h.edges[right]);
-        return width > 0 && outside >= 0.8 * width;
-    }
-
     // Draws one histogram; false when its close button was pressed.
     bool drawOne(PanelContext& wb, const core::Frame& frame, const ViewDisplay& main,
                  const std::string& var, bool logScale) {
@@ -542,9 +522,10 @@ class HistogramsPanel final : public Panel {
             wb.mark("histogram." + var + ".beyond");
         } else if (cached.middleOneValue) {
             hint("The middle 98 %% of the values are one value: all are shown");
-        } else if (!middle && !integer && extremesStretchTheAxis(*h)) {
+        } else if (!middle && !integer && core::extremesStretchAxis(*h)) {
             // A few extreme values (grains thrown out of the model, with strains in the tens)
-            // set the range: the menu's middle view, offered here.
+            // set the range: the menu's middle view, offered here (not for a long tail that
+            // holds more: the demo's strain, whose top 1 % spans 71 % of the axis).
             hint("98 %% of the values fill under a fifth of the axis.");
             flowSameLine(buttonWidth("1st to 99th percentile"));
             if (ImGui::SmallButton("1st to 99th percentile"))
