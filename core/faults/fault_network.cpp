@@ -6,10 +6,10 @@
 // [SECTION] Step 2: regions grown from the most planar spheres
 // [SECTION] Step 3: coplanar regions facing each other join
 // [SECTION] Step 3b: where faults cross
-// [SECTION] Step 4: leftover spheres go to the nearest surface
-// [SECTION] Step 5: planar pieces no group reached
-// [SECTION] Step 6: small regions where no group reached
-// [SECTION] Step 7: segments of one band
+// [SECTION] Steps 4 and 6: leftover spheres go to the nearest surface
+// [SECTION] Step 5: small regions where no group reached
+// [SECTION] Step 7: planar pieces no group reached
+// [SECTION] Step 8: segments of one band
 // [SECTION] faultNetworkGroups: the steps in order
 
 #include "core/faults/fault_network.hpp"
@@ -54,12 +54,12 @@ constexpr std::size_t kMinFacing = 12;
 // spheres around its cell (an even sample).
 constexpr std::size_t kLeftoverSample = 1024;
 // Leftovers further than a radius from every group wait for their outer neighbours: at most
-// this many rounds.
+// this many rounds of the rule "into the zone a sphere lies in" (steps 4 and 5).
 constexpr int kLeftoverRounds = 6;
-// The last rule (nearest surface within the radius) then repeats while it takes spheres, at
-// most this many times: a thick band's far end, beyond the radius from the region grown along
-// one of its edges, is reached through the spheres the round before took.
-constexpr int kLastRounds = 8;
+// The rule "to the nearest surface within the radius" (step 6) repeats while it takes spheres,
+// at most this many rounds: a thick band's far end, beyond the radius from the region grown
+// along one of its edges, is reached through the spheres the round before took.
+constexpr int kNearestRounds = 9;
 // Whether a region sits on other zones' surfaces is decided on at most about this many of its
 // spheres.
 constexpr std::size_t kJunctionSample = 256;
@@ -69,7 +69,7 @@ constexpr std::size_t kReseedShare = 3;
 constexpr double kLeftoverReach = 3.0;
 // The neighbourhood radius is grown to this many times the zones' typical thickness.
 constexpr double kRadiusOverThickness = 2.5;
-// Step 7: two groups are segments of one band when their spheres are linked at least this many
+// Step 8: two groups are segments of one band when their spheres are linked at least this many
 // times and together spread across their best plane at most this share of their spread along
 // their longest axis (variances). Measured on the tests' runs: the Yade shear box's band
 // segments 0.017-0.041 and a LAMMPS graben fault's deep and shallow parts 0.039 and 0.054 (one
@@ -592,19 +592,24 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Step 4: leftover spheres go to the nearest surface
+// [SECTION] Steps 4 and 6: leftover spheres go to the nearest surface
 //-----------------------------------------------------------------------------
 
-// Step 4: spheres a few links from a group go to the group whose surface passes nearest.
-// Everything per link slot; the wide cells find the grouped spheres within the radius. Each
-// sphere taken gets, in `ref`, the normal of the grouped sphere that decided. `from` (sorted
-// labels; empty: every group): only spheres a few links from those groups are taken, and only
-// into them; every group competes for the spheres, and one whose surface passes nearer another
-// group stays out, so the other groups keep what they held (step 6).
+// How leftovers are taken: only into a zone they lie in (the zone's local mid-plane within a
+// half-thickness: steps 4 and 5), or by the nearest surface within the radius (step 6).
+enum class LeftoverRule { InZone, Nearest };
+
+// Steps 4 to 6: spheres a few links from a group go to the group whose surface passes nearest,
+// by `rule`. Everything per link slot; the wide cells find the grouped spheres within the
+// radius. Each sphere taken gets, in `ref`, the normal of the grouped sphere that decided.
+// `from` (sorted labels; empty: every group): only spheres a few links from those groups are
+// taken, and only into them; every group competes for the spheres, and one whose surface passes
+// nearer another group stays out, so the other groups keep what they held (step 5).
 void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
                      std::span<const std::uint32_t> linkToWide, const Graph& g,
                      std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
-                     double meanRadius, double onSurface, std::span<const std::int32_t> from = {}) {
+                     double meanRadius, double onSurface, LeftoverRule rule,
+                     std::span<const std::int32_t> from = {}) {
     const std::size_t n = wide.size();
     const int hops =
         int(std::clamp(std::ceil(kLeftoverReach * radius / (2 * meanRadius)), 2.0, 192.0));
@@ -647,18 +652,19 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
     std::vector<F3> chosenRef(left.size());
     std::vector<std::uint32_t> open(left.size());
     std::iota(open.begin(), open.end(), 0u);
-    // Rounds take a sphere only into a zone it lies in (mid-plane within a half-thickness):
+    // InZone takes a sphere only into a zone it lies in (mid-plane within a half-thickness):
     // where one zone's settled spheres stand back from a crossing, the other zone's would
-    // otherwise take its spheres first. Last rounds take what is left by nearest surface.
+    // otherwise take its spheres first. Nearest takes what is left by nearest surface.
+    const bool nearest = rule == LeftoverRule::Nearest;
     const float within = float(onSurface);
     // A leftover's verdict depends only on the grouped spheres in the cells around it: after the
-    // first round and after the first last round (whose rule differs), cells with no newly
-    // grouped sphere around them give the same verdict and are skipped (the demo's leftovers took
-    // 64% of a fault-following run re-measuring unchanged neighbourhoods).
+    // first round, cells with no newly grouped sphere around them give the same verdict and are
+    // skipped (the demo's leftovers took 64% of a fault-following run re-measuring unchanged
+    // neighbourhoods).
     std::vector<std::uint8_t> changed(wide.cellCount(), 1);
-    for (int round = 0; round <= kLeftoverRounds + kLastRounds && !open.empty(); ++round) {
-        const bool last = round >= kLeftoverRounds;
-        const bool everyCell = round == 0 || round == kLeftoverRounds;
+    const int rounds = nearest ? kNearestRounds : kLeftoverRounds;
+    for (int round = 0; round < rounds && !open.empty(); ++round) {
+        const bool everyCell = round == 0;
         std::sort(open.begin(), open.end(), [&](std::uint32_t a, std::uint32_t b) {
             return leftWide[a] < leftWide[b]; // wide slots are in cell order
         });
@@ -753,7 +759,7 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
                         best = score, pick = m;
                 }
                 if (pick >= 0 &&
-                    (last || std::fabs(seen[pick].offset / seen[pick].count) <= within)) {
+                    (nearest || std::fabs(seen[pick].offset / seen[pick].count) <= within)) {
                     chosen[q] = seen[pick].group;
                     chosenRef[q] = wideRef[seen[pick].closest];
                 }
@@ -770,11 +776,8 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
                 still.push_back(q);
             }
         }
-        if (still.size() == open.size()) {
-            if (last)
-                break;
-            round = kLeftoverRounds - 1; // nothing moved: straight to the last round
-        }
+        if (still.size() == open.size())
+            break; // nothing moved: no further round would
         open.swap(still);
     }
     for (std::size_t q = 0; q < left.size(); ++q)
@@ -786,72 +789,23 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Step 5: planar pieces no group reached
+// [SECTION] Step 5: small regions where no group reached
 //-----------------------------------------------------------------------------
 
-// Step 5: linked pieces of the spheres still in no group become groups of their own when they
-// hold at least minSize spheres and are planar (not diffuse, as candidateShape judges it): a
-// band one or two grains thick and ragged grows only regions smaller than minSize, which are
-// dissolved, and its spheres lie too far from every group to be leftovers (issue 37: a Yade
-// sandbox's 55-degree fault at the 90th percentile of incremental strain had no candidate).
-// Returns the number of groups; new ones are numbered from `groups`.
-std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const Graph& graph,
-                         std::size_t minSize, std::size_t groups, std::vector<std::int32_t>& group,
-                         std::vector<F3>& ref) {
-    constexpr std::int32_t kSeen = -2, kLeft = -3;
-    std::vector<std::uint32_t> piece;
-    std::vector<std::int64_t> ids;
-    for (std::uint32_t s = 0; s < group.size(); ++s) {
-        if (group[s] != -1)
-            continue;
-        piece.assign(1, s);
-        group[s] = kSeen;
-        for (std::size_t h = 0; h < piece.size(); ++h)
-            for (std::uint32_t e = graph.start[piece[h]]; e < graph.start[piece[h] + 1]; ++e)
-                if (const std::uint32_t j = graph.adj[e]; group[j] == -1) {
-                    group[j] = kSeen;
-                    piece.push_back(j);
-                }
-        bool planar = false;
-        F3 normal{0, 0, 1};
-        if (piece.size() >= minSize) {
-            ids.clear();
-            for (std::uint32_t j : piece)
-                ids.push_back(frame.ids[linkCells.row[j]]);
-            const CandidateShape shape = candidateShape(frame, ids);
-            planar = shape.valid && !shape.diffuse;
-            if (planar) {
-                const Vec3d n = normalFromOrientation(shape.dip, shape.dipDirection);
-                normal = {float(n[0]), float(n[1]), float(n[2])};
-            }
-        }
-        const std::int32_t label = planar ? std::int32_t(groups++) : kLeft;
-        for (std::uint32_t j : piece) {
-            group[j] = label;
-            if (planar) // the piece's plane: what step 6's leftovers measure against
-                ref[j] = normal;
-        }
-    }
-    for (std::int32_t& g : group)
-        if (g == kLeft)
-            g = -1;
-    return groups;
-}
-
-//-----------------------------------------------------------------------------
-// [SECTION] Step 6: small regions where no group reached
-//-----------------------------------------------------------------------------
-
-// Step 6: spheres still in no group go back to the region they grew in when that region, as
-// grown, held minSize / kReseedShare spheres or more (rounded down); the leftover rule then runs
-// again over the spheres a few links from those regions, with every group competing for them,
-// but what it gives to the groups of the steps before is taken back (they keep what they held);
-// a seeded group that grew diffuse is dissolved (dropDiffuse), and groups that stay below
-// minSize are dropped with the others. Where every region grown in a noisy band stays below
-// minSize, all of them were dissolved, their spheres reached no group, and the band with its
-// strained surroundings is diffuse, not a planar piece: the whole of it had no candidate
-// (issue 37: a Yade sandbox's V of two normal faults at the 85th and 86th percentile of
-// incremental strain). Returns the labels of the regions given back, which no group had.
+// Step 5: spheres still in no group go back to the region they grew in when that region, as
+// grown, held minSize / kReseedShare spheres or more (rounded down); the in-zone rule of step 4
+// then runs again over the spheres a few links from those regions, with every group competing
+// for them, but what it gives to the groups of the steps before is taken back (they keep what
+// they held). The seeded groups then take part in step 6 like the others; one that grew diffuse
+// is dissolved (dropDiffuse), and groups that stay below minSize are dropped with the others.
+// Where every region grown in a noisy band stays below minSize, all of them were dissolved,
+// their spheres reached no group, and the band with its strained surroundings is diffuse, not a
+// planar piece: the whole of it had no candidate (issue 37: a Yade sandbox's V of two normal
+// faults at the 85th and 86th percentile of incremental strain). Seeded before step 6, not
+// after it: the fault whose regions all stayed small competes for the V's broad base with the
+// one that reached it (the floored Yade sandbox's 75-degree fault had taken all of it, and read
+// 61 degrees at the 90th percentile). Returns the labels of the regions given back, which no
+// group had.
 std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
                                           std::span<const std::size_t> size, std::size_t minSize,
                                           std::vector<std::int32_t>& group) {
@@ -870,8 +824,8 @@ std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
 }
 
 // The groups `seeded` that grew diffuse (a blob of distributed strain, as candidateShape judges
-// it) are dissolved: step 6 is for bands, as step 5 is.
-void dropDiffuse(const Frame& frame, const SphereCells& linkCells,
+// it) are dissolved: step 5 is for bands, as step 7 is. Whether any was.
+bool dropDiffuse(const Frame& frame, const SphereCells& linkCells,
                  std::span<const std::int32_t> seeded, std::size_t minSize,
                  std::vector<std::int32_t>& group) {
     std::vector<std::vector<std::int64_t>> ids(seeded.size());
@@ -885,14 +839,62 @@ void dropDiffuse(const Frame& frame, const SphereCells& linkCells,
             const CandidateShape shape = candidateShape(frame, ids[k]);
             drop[k] = !shape.valid || shape.diffuse;
         }
+    if (std::find(drop.begin(), drop.end(), 1) == drop.end())
+        return false;
     for (std::int32_t& g : group)
         if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), g);
             at != seeded.end() && *at == g && drop[std::size_t(at - seeded.begin())])
             g = -1;
+    return true;
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Step 7: segments of one band
+// [SECTION] Step 7: planar pieces no group reached
+//-----------------------------------------------------------------------------
+
+// Step 7: linked pieces of the spheres still in no group become groups of their own when they
+// hold at least minSize spheres and are planar (not diffuse, as candidateShape judges it): a
+// band one or two grains thick and ragged grows only regions smaller than minSize, which are
+// dissolved, and its spheres lie too far from every group to be leftovers (issue 37: a Yade
+// sandbox's 55-degree fault at the 90th percentile of incremental strain had no candidate).
+// Returns the number of groups; new ones are numbered from `groups`.
+std::size_t planarPieces(const Frame& frame, const SphereCells& linkCells, const Graph& graph,
+                         std::size_t minSize, std::size_t groups,
+                         std::vector<std::int32_t>& group) {
+    constexpr std::int32_t kSeen = -2, kLeft = -3;
+    std::vector<std::uint32_t> piece;
+    std::vector<std::int64_t> ids;
+    for (std::uint32_t s = 0; s < group.size(); ++s) {
+        if (group[s] != -1)
+            continue;
+        piece.assign(1, s);
+        group[s] = kSeen;
+        for (std::size_t h = 0; h < piece.size(); ++h)
+            for (std::uint32_t e = graph.start[piece[h]]; e < graph.start[piece[h] + 1]; ++e)
+                if (const std::uint32_t j = graph.adj[e]; group[j] == -1) {
+                    group[j] = kSeen;
+                    piece.push_back(j);
+                }
+        bool planar = false;
+        if (piece.size() >= minSize) {
+            ids.clear();
+            for (std::uint32_t j : piece)
+                ids.push_back(frame.ids[linkCells.row[j]]);
+            const CandidateShape shape = candidateShape(frame, ids);
+            planar = shape.valid && !shape.diffuse;
+        }
+        const std::int32_t label = planar ? std::int32_t(groups++) : kLeft;
+        for (std::uint32_t j : piece)
+            group[j] = label;
+    }
+    for (std::int32_t& g : group)
+        if (g == kLeft)
+            g = -1;
+    return groups;
+}
+
+//-----------------------------------------------------------------------------
+// [SECTION] Step 8: segments of one band
 //-----------------------------------------------------------------------------
 
 // Moments of a group's centres: count, sum and sum of outer products (about `origin`, so large
@@ -967,7 +969,7 @@ bool oneSheet(const Moments& a, const Moments& b, int thin, double tiny) {
     return true;
 }
 
-// Step 7: groups linked to each other (at least kSegmentLinks links between their spheres) whose
+// Step 8: groups linked to each other (at least kSegmentLinks links between their spheres) whose
 // spheres together form a sheet as thin as kSegmentFlatness, each of them lying along it
 // (kSegmentShare), are one fault: a shear band whose segments differ by 17-25 degrees (a Yade
 // shear box's band steps from 30 to 5 to 22 degrees), too far apart in orientation for step 3,
@@ -1097,21 +1099,30 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     for (std::int32_t& g : region)
         if (g >= 0 && size[std::size_t(g)] < minSize)
             g = -1;
-    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
-                    onSurface);
-    const std::size_t groupCount =
-        planarPieces(frame, linkCells, graph, minSize, regionCount, region, ref);
-    // Step 6: where no group reached, the regions grown there seed groups after all.
-    if (const auto seeded = reseedUnreached(grown, size, minSize, region); !seeded.empty()) {
-        // Into the seeded groups only: the groups of the steps before keep what they held, and
-        // no more (a group next to a V's broad base took it all: the floored Yade sandbox at the
-        // 85th percentile).
+    // Step 4: leftovers join the zone they lie in.
+    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius, onSurface,
+                    LeftoverRule::InZone);
+    // Step 5: where no group reached, the regions grown there seed groups after all, and take
+    // the zones they lie in. Into the seeded groups only: the groups of the steps before keep
+    // what they held, and no more.
+    const auto seeded = reseedUnreached(grown, size, minSize, region);
+    if (!seeded.empty())
         assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
-                        onSurface, seeded);
-        dropDiffuse(frame, linkCells, seeded, minSize, region);
-    }
+                        onSurface, LeftoverRule::InZone, seeded);
+    // Step 6: what is left goes to the nearest surface, every group competing (the seeded ones
+    // too: a V's broad base is shared by its two faults rather than taken whole by the one
+    // that reached it first). A seeded group grown diffuse is dissolved, and its spheres go to
+    // the nearest surface again (a band's deep, broad end, which had seeded a group of its own).
+    assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius, onSurface,
+                    LeftoverRule::Nearest);
+    if (!seeded.empty() && dropDiffuse(frame, linkCells, seeded, minSize, region))
+        assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
+                        onSurface, LeftoverRule::Nearest);
+    // Step 7: planar pieces no group reached are groups of their own.
+    const std::size_t groupCount =
+        planarPieces(frame, linkCells, graph, minSize, regionCount, region);
 
-    // Step 7: the segments of one band are one fault.
+    // Step 8: the segments of one band are one fault.
     const std::vector<std::int32_t> joined =
         joinSegments(linkCells, graph, region, groupCount, thin, meanRadius);
     for (std::int32_t& g : region)

@@ -182,9 +182,9 @@ TEST(FaultNetwork, FaultEndingAgainstAnotherIsItsOwnFault) {
     expectTheBranchApart({-1e9, -1e9, kMainTop + 1.0}, {1e9, 1e9, 1e9}, 1, 0.95);
 }
 
-// Step 7 joins the touching segments of one thin sheet: a small fault ending against a large
+// Step 8 joins the touching segments of one thin sheet: a small fault ending against a large
 // one is no segment of it, however flat the large one makes the two together (without the test
-// of each part's own spread across the joint plane, kSegmentShare, step 7 joined them here).
+// of each part's own spread across the joint plane, kSegmentShare, step 8 joined them here).
 TEST(FaultNetwork, ASmallFaultEndingAgainstALargeOneIsItsOwnFault) {
     // Over ten rows above the main fault's south edge, ending against its upper side.
     expectTheBranchApart({-1e9, -1e9, kMainTop}, {1e9, 10.0, kMainTop + 10.0}, 8, 0.9);
