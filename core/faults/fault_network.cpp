@@ -6,8 +6,8 @@
 // [SECTION] Step 2: regions grown from the most planar spheres
 // [SECTION] Step 3: coplanar regions facing each other join
 // [SECTION] Step 3b: where faults cross
-// [SECTION] Steps 4 and 6: leftover spheres go to the nearest surface
-// [SECTION] Step 5: small regions where no group reached
+// [SECTION] Steps 4 to 6: leftovers join their zone or the nearest surface
+// [SECTION] Step 5: small regions no group took
 // [SECTION] Step 7: planar pieces no group reached
 // [SECTION] Step 8: segments of one band
 // [SECTION] faultNetworkGroups: the steps in order
@@ -63,7 +63,7 @@ constexpr int kNearestRounds = 9;
 // Whether a region sits on other zones' surfaces is decided on at most about this many of its
 // spheres.
 constexpr std::size_t kJunctionSample = 256;
-// Where no group reached, regions of at least minSize / kReseedShare spheres seed groups.
+// Where no group took the spheres, regions of at least minSize / kReseedShare spheres seed groups.
 constexpr std::size_t kReseedShare = 3;
 // Leftovers are reached over links from the groups up to about this many radii away.
 constexpr double kLeftoverReach = 3.0;
@@ -592,7 +592,7 @@ void dissolveJunctionRegions(const SphereCells& cells, std::span<const std::uint
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Steps 4 and 6: leftover spheres go to the nearest surface
+// [SECTION] Steps 4 to 6: leftovers join their zone or the nearest surface
 //-----------------------------------------------------------------------------
 
 // How leftovers are taken: only into a zone they lie in (the zone's local mid-plane within a
@@ -604,12 +604,14 @@ enum class LeftoverRule { InZone, Nearest };
 // radius. Each sphere taken gets, in `ref`, the normal of the grouped sphere that decided.
 // `from` (sorted labels; empty: every group): only spheres a few links from those groups are
 // taken, and only into them; every group competes for the spheres, and one whose surface passes
-// nearer another group stays out, so the other groups keep what they held (step 5).
+// nearer another group stays out, so the other groups keep what they held (step 5). `only` (per
+// link slot; empty: every sphere): only those spheres are taken (step 6's second pass).
 void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wideToLink,
                      std::span<const std::uint32_t> linkToWide, const Graph& g,
                      std::vector<F3>& ref, std::vector<std::int32_t>& group, double radius,
                      double meanRadius, double onSurface, LeftoverRule rule,
-                     std::span<const std::int32_t> from = {}) {
+                     std::span<const std::int32_t> from = {},
+                     std::span<const std::uint8_t> only = {}) {
     const std::size_t n = wide.size();
     const int hops =
         int(std::clamp(std::ceil(kLeftoverReach * radius / (2 * meanRadius)), 2.0, 192.0));
@@ -632,6 +634,8 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
                 }
         frontier.swap(next);
     }
+    if (!only.empty())
+        std::erase_if(left, [&](std::uint32_t j) { return !only[j]; });
     std::vector<std::int32_t> wideGroup(n);
     std::vector<F3> wideRef(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -789,7 +793,7 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Step 5: small regions where no group reached
+// [SECTION] Step 5: small regions no group took
 //-----------------------------------------------------------------------------
 
 // Step 5: spheres still in no group go back to the region they grew in when that region, as
@@ -797,18 +801,17 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
 // then runs again over the spheres a few links from those regions, with every group competing
 // for them, but what it gives to the groups of the steps before is taken back (they keep what
 // they held). The seeded groups then take part in step 6 like the others; one that grew diffuse
-// is dissolved (dropDiffuse), and groups that stay below minSize are dropped with the others.
-// Where every region grown in a noisy band stays below minSize, all of them were dissolved,
-// their spheres reached no group, and the band with its strained surroundings is diffuse, not a
-// planar piece: the whole of it had no candidate (issue 37: a Yade sandbox's V of two normal
-// faults at the 85th and 86th percentile of incremental strain). Seeded before step 6, not
-// after it: the fault whose regions all stayed small competes for the V's broad base with the
-// one that reached it (the floored Yade sandbox's 75-degree fault had taken all of it, and read
-// 61 degrees at the 90th percentile). Returns the labels of the regions given back, which no
-// group had.
-std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
-                                          std::span<const std::size_t> size, std::size_t minSize,
-                                          std::vector<std::int32_t>& group) {
+// or stayed below minSize is dissolved there (dissolveSeeded). Where every region grown in a
+// noisy band stays below minSize, all of them were dissolved, no group took their spheres, and
+// the band with its strained surroundings is diffuse, not a planar piece: the whole of it had no
+// candidate (issue 37: a Yade sandbox's V of two normal faults at the 85th and 86th percentile
+// of incremental strain). Seeded before step 6, not after it: the fault whose regions all stayed
+// small competes for the V's broad base with the one that reached it (the floored Yade
+// sandbox's 75-degree fault had taken all of it, and read 61 degrees at the 90th percentile).
+// Returns the labels of the regions given back, which no group had.
+std::vector<std::int32_t> reseedUntaken(std::span<const std::int32_t> grown,
+                                        std::span<const std::size_t> size, std::size_t minSize,
+                                        std::vector<std::int32_t>& group) {
     const std::size_t least = std::max<std::size_t>(1, minSize / kReseedShare);
     std::vector<std::uint8_t> given(size.size(), 0);
     for (std::size_t i = 0; i < group.size(); ++i)
@@ -824,28 +827,38 @@ std::vector<std::int32_t> reseedUnreached(std::span<const std::int32_t> grown,
 }
 
 // The groups `seeded` that grew diffuse (a blob of distributed strain, as candidateShape judges
-// it) are dissolved: step 5 is for bands, as step 7 is. Whether any was.
-bool dropDiffuse(const Frame& frame, const SphereCells& linkCells,
-                 std::span<const std::int32_t> seeded, std::size_t minSize,
-                 std::vector<std::int32_t>& group) {
+// it) are dissolved, step 5 being for bands as step 7 is, and so are those still below minSize,
+// which would be dropped with their spheres. Per link slot, whether its sphere was released
+// (empty: none was).
+std::vector<std::uint8_t> dissolveSeeded(const Frame& frame, const SphereCells& linkCells,
+                                         std::span<const std::int32_t> seeded, std::size_t minSize,
+                                         std::vector<std::int32_t>& group) {
     std::vector<std::vector<std::int64_t>> ids(seeded.size());
     for (std::size_t i = 0; i < group.size(); ++i)
         if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), group[i]);
             at != seeded.end() && *at == group[i])
             ids[std::size_t(at - seeded.begin())].push_back(frame.ids[linkCells.row[i]]);
     std::vector<std::uint8_t> drop(seeded.size(), 0);
-    for (std::size_t k = 0; k < seeded.size(); ++k)
-        if (ids[k].size() >= minSize) {
+    for (std::size_t k = 0; k < seeded.size(); ++k) {
+        if (ids[k].empty())
+            continue;
+        if (ids[k].size() < minSize) {
+            drop[k] = 1;
+        } else {
             const CandidateShape shape = candidateShape(frame, ids[k]);
             drop[k] = !shape.valid || shape.diffuse;
         }
+    }
     if (std::find(drop.begin(), drop.end(), 1) == drop.end())
-        return false;
-    for (std::int32_t& g : group)
-        if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), g);
-            at != seeded.end() && *at == g && drop[std::size_t(at - seeded.begin())])
-            g = -1;
-    return true;
+        return {};
+    std::vector<std::uint8_t> released(group.size(), 0);
+    for (std::size_t i = 0; i < group.size(); ++i)
+        if (const auto at = std::lower_bound(seeded.begin(), seeded.end(), group[i]);
+            at != seeded.end() && *at == group[i] && drop[std::size_t(at - seeded.begin())]) {
+            group[i] = -1;
+            released[i] = 1;
+        }
+    return released;
 }
 
 //-----------------------------------------------------------------------------
@@ -1102,22 +1115,25 @@ NetworkGroups faultNetworkGroups(const Frame& frame, std::span<const std::uint8_
     // Step 4: leftovers join the zone they lie in.
     assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius, onSurface,
                     LeftoverRule::InZone);
-    // Step 5: where no group reached, the regions grown there seed groups after all, and take
-    // the zones they lie in. Into the seeded groups only: the groups of the steps before keep
-    // what they held, and no more.
-    const auto seeded = reseedUnreached(grown, size, minSize, region);
+    // Step 5: where no group took the spheres, the regions grown there seed groups after all,
+    // and take the zones they lie in. Into the seeded groups only: the groups of the steps before
+    // keep what they held, and no more.
+    const auto seeded = reseedUntaken(grown, size, minSize, region);
     if (!seeded.empty())
         assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
                         onSurface, LeftoverRule::InZone, seeded);
     // Step 6: what is left goes to the nearest surface, every group competing (the seeded ones
     // too: a V's broad base is shared by its two faults rather than taken whole by the one
-    // that reached it first). A seeded group grown diffuse is dissolved, and its spheres go to
-    // the nearest surface again (a band's deep, broad end, which had seeded a group of its own).
+    // that reached it first). A seeded group grown diffuse, or still below minSize, is
+    // dissolved, and its spheres alone go to the nearest surface again (a band's deep, broad
+    // end, which had seeded a group of its own).
     assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius, onSurface,
                     LeftoverRule::Nearest);
-    if (!seeded.empty() && dropDiffuse(frame, linkCells, seeded, minSize, region))
-        assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
-                        onSurface, LeftoverRule::Nearest);
+    if (!seeded.empty())
+        if (const auto released = dissolveSeeded(frame, linkCells, seeded, minSize, region);
+            !released.empty())
+            assignLeftovers(wide, wideToLink, linkToWide, graph, ref, region, radius, meanRadius,
+                            onSurface, LeftoverRule::Nearest, {}, released);
     // Step 7: planar pieces no group reached are groups of their own.
     const std::size_t groupCount =
         planarPieces(frame, linkCells, graph, minSize, regionCount, region);

@@ -19,14 +19,15 @@
 // 4. Leftovers: groups below min_size are dissolved; spheres reached from a group over links
 //    join, round by round, the zone whose local mid-plane (the mean offset of its spheres along
 //    their normals) they lie within.
-// 5. Where no group reached, the regions grown there (at least a third of min_size) take their
-//    spheres back and seed groups, which take the zones they lie in by the rule of step 4 (the
+// 5. Where no group took the spheres, the regions grown there (at least a third of min_size)
+//    take them back and seed groups, which take the zones they lie in by the rule of step 4 (the
 //    groups before keep what they held): a noisy band whose regions all stayed below min_size
 //    is not lost.
 // 6. What is left goes to the nearest surface, every group competing, round by round while
-//    spheres are taken; a seeded group that grew diffuse is dissolved and its spheres go to the
-//    nearest surface again; spheres that reach no group are left out. After step 5, so a V's
-//    broad base is shared by its two faults, not taken whole by the first that reached it.
+//    spheres are taken; a seeded group that grew diffuse or stayed below min_size is dissolved
+//    and its spheres go to the nearest surface again; spheres that reach no group are left out.
+//    After step 5, so a V's broad base is shared by its two faults, not taken whole by the
+//    first that reached it.
 // 7. Linked pieces of the spheres left out that hold min_size and are planar become groups.
 // 8. Groups linked to each other whose spheres together form a thin sheet (spread across their
 //    plane at most 6 % of the spread along it, in variance), each lying along that plane, are
