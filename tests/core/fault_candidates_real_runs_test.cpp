@@ -26,6 +26,10 @@ double angleBetween(double a, double b) {
     return std::min(d, 360.0 - d);
 }
 
+// Issue 37's match: dip within 5 degrees, dip direction within 15, centroid within 2 mean
+// diameters of the truth plane.
+constexpr double kMaxDipError = 5.0, kMaxDirError = 15.0, kMaxDistance = 2.0;
+
 struct Match {
     std::size_t candidate = 0;
     double dipError = 0, dirError = 0, distance = 0; // distance in mean diameters
@@ -137,8 +141,8 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
                 best.localDirError = angleBetween(m.dipDirection, local.orientation.dipDirection);
             }
             // The verdict on the unrounded errors (scripts/candidate-matches.py reads it).
-            const bool within =
-                best.dipError <= 5.0 && best.dirError <= 15.0 && best.distance <= 2.0;
+            const bool within = best.dipError <= kMaxDipError && best.dirError <= kMaxDirError &&
+                                best.distance <= kMaxDistance;
             std::printf(
                 "  truth dip %.1f/%03.0f: C%zu (%zu spheres) dip %.1f/%03.0f, errors %.1f / %.1f "
                 "degrees, %.2f d from the plane; over its span the truth dips %.1f (error %.1f); "
@@ -156,9 +160,9 @@ std::vector<Match> check(const char* name, const Frame& before, const Frame& aft
 void expectMatched(const std::vector<Match>& matches, std::size_t faults) {
     ASSERT_EQ(matches.size(), faults);
     for (std::size_t i = 0; i < matches.size(); ++i) {
-        EXPECT_LE(matches[i].dipError, 5.0);
-        EXPECT_LE(matches[i].dirError, 15.0);
-        EXPECT_LE(matches[i].distance, 2.0);
+        EXPECT_LE(matches[i].dipError, kMaxDipError);
+        EXPECT_LE(matches[i].dirError, kMaxDirError);
+        EXPECT_LE(matches[i].distance, kMaxDistance);
         for (std::size_t j = 0; j < i; ++j)
             EXPECT_NE(matches[i].candidate, matches[j].candidate) << "two faults in one candidate";
     }
@@ -171,8 +175,8 @@ void expectTwoApart(const std::vector<Match>& matches, double maxDipError) {
     EXPECT_NE(matches[0].candidate, matches[1].candidate) << "the V came out as one candidate";
     for (const Match& m : matches) {
         EXPECT_LE(m.dipError, maxDipError);
-        EXPECT_LE(m.dirError, 15.0);
-        EXPECT_LE(m.distance, 2.0);
+        EXPECT_LE(m.dirError, kMaxDirError);
+        EXPECT_LE(m.distance, kMaxDistance);
     }
 }
 
