@@ -103,7 +103,8 @@ Json sessionToJson(const SessionState& s, const std::string& baseDir) {
 
 SessionState sessionFromJson(const Json& input, const std::string& baseDir,
                              const std::string& path) {
-    if (!input.is_object() || input.value("format", std::string()) != "faultline-session")
+    // Not value("format", ...): a "format" that is no string would throw the library's error.
+    if (!input.is_object() || !input.contains("format") || input["format"] != "faultline-session")
         throw InputError(path,
                          "not a Faultline session (expected \"format\": \"faultline-session\")");
     if (!input.contains("schema") || !input["schema"].is_number_integer())

@@ -658,6 +658,9 @@ TEST(SessionFile, BadFilesAreRefusedWithLocatedMessages) {
            "invalid JSON: syntax error while parsing object key - unexpected end of input; "
            "expected string literal");
     refuse("[1,2]", "not a Faultline session (expected \"format\": \"faultline-session\")");
+    // Found by fuzz_session_file: a "format" that is no string escaped as a library exception.
+    refuse(R"({"'Ap":"ap","format":{}})",
+           "not a Faultline session (expected \"format\": \"faultline-session\")");
     refuse(
         R"({"format":"faultline-session","schema":99})",
         "session schema 99 is newer than this Faultline understands (1): please update Faultline");
