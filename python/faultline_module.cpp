@@ -267,7 +267,8 @@ class PySession {
         }
         // Rendering keeps to this thread (its offscreen GL context is current here); anything
         // else runs where Ctrl+C can stop it.
-        if (j.is_object() && j.value("op", std::string()) == "render") {
+        // (Not value("op", ...): an "op" that is no string goes on to the session's own error.)
+        if (j.is_object() && j.contains("op") && j["op"] == "render") {
             py::gil_scoped_release release;
             m_session.apply(j);
             return py::none();

@@ -64,6 +64,10 @@ def test_refused_ops_raise_and_change_nothing():
     before = s.state
     with pytest.raises(faultline.CommandError, match="low must not exceed high"):
         s.run({"op": "threshold.set", "variable": "z", "low": 20, "high": 10})
+    # An "op" that is no string: the session's message, not the JSON library's.
+    for op in (5, {}):
+        with pytest.raises(faultline.CommandError, match='needs an "op" string'):
+            s.run({"op": op})
     assert s.state == before
 
 
