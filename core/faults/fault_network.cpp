@@ -17,6 +17,7 @@
 #include "core/faults/candidates.hpp"
 #include "core/faults/plane_fit.hpp"
 #include "core/faults/sphere_cells.hpp"
+#include "core/util/points_within.hpp"
 #include "core/util/union_find.hpp"
 
 #include <tbb/blocked_range.h>
@@ -702,16 +703,17 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
             std::vector<std::uint32_t> sample;
             for (std::size_t t = 0; t < near.size(); t += stride)
                 sample.push_back(near[t]);
+            // (Eight more of each: pointsWithin works on whole vectors.)
             const std::size_t m = sample.size();
-            std::vector<float> sxv(m), syv(m), szv(m), d2v(m);
-            std::vector<std::uint32_t> reachable(m);
+            std::vector<float> sxv(m + 8), syv(m + 8), szv(m + 8), d2v(m + 8);
+            std::vector<std::uint32_t> reachable(m + 8);
             for (std::size_t t = 0; t < m; ++t)
                 sxv[t] = wide.x[sample[t]], syv[t] = wide.y[sample[t]], szv[t] = wide.z[sample[t]];
             const float* __restrict sx = sxv.data();
             const float* __restrict sy = syv.data();
             const float* __restrict sz = szv.data();
-            float* __restrict d2s = d2v.data();
-            std::uint32_t* __restrict inReach = reachable.data();
+            const float* d2s = d2v.data(); // written by pointsWithin
+            const std::uint32_t* inReach = reachable.data();
             constexpr int kMaxGroups = 8;
             for (std::uint32_t k = k0; k < k1; ++k) {
                 const std::uint32_t q = open[k], u = leftWide[q];
@@ -723,15 +725,9 @@ void assignLeftovers(const SphereCells& wide, std::span<const std::uint32_t> wid
                 } seen[kMaxGroups];
                 int groups = 0;
                 const float ux = wide.x[u], uy = wide.y[u], uz = wide.z[u];
-                for (std::size_t t = 0; t < m; ++t) {
-                    const float dx = ux - sx[t], dy = uy - sy[t], dz = uz - sz[t];
-                    d2s[t] = dx * dx + dy * dy + dz * dz;
-                }
-                std::size_t reach = 0; // the sample within reach, in order, without branches
-                for (std::size_t t = 0; t < m; ++t) {
-                    inReach[reach] = std::uint32_t(t);
-                    reach += d2s[t] <= r2;
-                }
+                // The sample within reach, in order.
+                const std::size_t reach =
+                    pointsWithin(sx, sy, sz, m, ux, uy, uz, r2, d2v.data(), reachable.data());
                 for (std::size_t i = 0; i < reach; ++i) {
                     const std::size_t t = inReach[i];
                     const std::uint32_t j = sample[t];

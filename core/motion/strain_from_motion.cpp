@@ -13,6 +13,7 @@
 #include "core/model/frame_difference.hpp"
 #include "core/model/periodic_cell.hpp"
 #include "core/motion/strain_spec.hpp"
+#include "core/util/lane_table.hpp"
 #include "core/util/mat3.hpp"
 #include "core/util/scratch_array.hpp"
 #include "core/util/simd8.hpp"
@@ -502,20 +503,7 @@ FAULTLINE_HOT void cellSumsBaseline(const NeighbourCells& cells, std::size_t cel
 // A sphere has about 20 neighbours, so this does a sixth of the products the eight-wide
 // baseline does over every candidate, in 4 accumulators instead of 19; the terms come in the
 // order of the points, so the sums are those of a pass over all 27 cells.
-struct LaneTable {
-    alignas(32) std::uint32_t lanes[256][8];
-};
-constexpr LaneTable makeLaneTable() {
-    LaneTable t{};
-    for (unsigned m = 0; m < 256; ++m) {
-        unsigned n = 0;
-        for (unsigned b = 0; b < 8; ++b)
-            if ((m >> b) & 1u)
-                t.lanes[m][n++] = b;
-    }
-    return t;
-}
-constexpr LaneTable kLaneTable = makeLaneTable();
+using detail::kLaneTable;
 
 // The runs of points in the 27 cells around a cell (NeighbourCells::around), at most 9.
 struct Runs {
