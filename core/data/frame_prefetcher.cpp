@@ -4,6 +4,8 @@
 
 #include <tbb/task_arena.h>
 
+#include <time.h>
+
 #include <algorithm>
 #include <exception>
 #include <limits>
@@ -13,6 +15,14 @@ namespace faultline::core {
 namespace {
 // A step larger than this is a jump, not travel: prefetch one by one from where it landed.
 constexpr std::size_t kMaxStride = 8;
+// How long a prefetch held back for a view's load watches for an idle core at a time.
+constexpr std::chrono::milliseconds kHoldWindow{20};
+
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
+}
 } // namespace
 
 FramePrefetcher::FramePrefetcher(std::shared_ptr<const Dataset> dataset, PrefetchSettings settings)
@@ -218,6 +228,46 @@ bool FramePrefetcher::backgroundDueLocked() {
            backgroundFitsLocked();
 }
 
+bool FramePrefetcher::wantedLocked(std::size_t index) const {
+    return std::any_of(m_channels.begin(), m_channels.end(),
+                       [&](const auto& c) { return c.second.seen && c.second.index == index; });
+}
+
+bool FramePrefetcher::prefetchBehindViewLocked() const {
+    return !m_queue.empty() && !wantedLocked(m_queue.front()) &&
+           std::any_of(m_running.begin(), m_running.end(),
+                       [&](std::size_t r) { return wantedLocked(r) && !m_delivered.count(r); });
+}
+
+bool FramePrefetcher::nextLoadDueLocked() const {
+    return !m_queue.empty() && (!prefetchBehindViewLocked() || m_hold.released);
+}
+
+void FramePrefetcher::watchHoldLocked() {
+    if (!prefetchBehindViewLocked()) {
+        m_hold = {};
+        return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const double cpu = m_settings.cpuSeconds ? m_settings.cpuSeconds() : processCpuSeconds();
+    if (!m_hold.watching) {
+        m_hold.watching = true;
+        m_hold.since = now;
+        m_hold.cpuSeconds = cpu;
+        return;
+    }
+    const double wall = std::chrono::duration<double>(now - m_hold.since).count();
+    if (wall < kHoldWindow.count() * 1e-3)
+        return;
+    // The cores TBB may use, at most those the machine has (tests ask TBB for more threads).
+    const double cores = std::max(1u, std::min(unsigned(tbb::this_task_arena::max_concurrency()),
+                                               std::max(1u, std::thread::hardware_concurrency())));
+    if ((cpu - m_hold.cpuSeconds) / wall < cores - 0.5)
+        m_hold.released = true;
+    m_hold.since = now;
+    m_hold.cpuSeconds = cpu;
+}
+
 void FramePrefetcher::runBackground(std::unique_lock<std::mutex>& lock) {
     const std::size_t visit = m_background.next++;
     const std::size_t index = (m_background.start + visit) % m_dataset->frameCount();
@@ -336,16 +386,25 @@ void FramePrefetcher::work() {
     for (;;) {
         // With a background pass, a look every half second: new strains start it again, and
         // nothing else wakes the workers when no view asks for a frame.
-        const auto ready = [this] { return m_stop || !m_queue.empty() || backgroundDueLocked(); };
-        if (m_background.on)
+        // A prefetch held back for a view's load: a look every kHoldWindow for an idle core.
+        const auto ready = [this] {
+            return m_stop || nextLoadDueLocked() || backgroundDueLocked() ||
+                   (prefetchBehindViewLocked() && !m_hold.watching);
+        };
+        watchHoldLocked();
+        if (m_hold.watching && !m_hold.released)
+            m_wake.wait_for(lock, kHoldWindow, ready);
+        else if (m_background.on)
             m_wake.wait_for(lock, std::chrono::milliseconds(500), ready);
         else
             m_wake.wait(lock, ready);
-        if (!m_stop && m_queue.empty() && !backgroundDueLocked())
-            continue;
+        watchHoldLocked();
         if (m_stop)
             return;
-        if (m_queue.empty()) {
+        const bool load = nextLoadDueLocked();
+        if (!load && !backgroundDueLocked())
+            continue;
+        if (!load) {
             runBackground(lock);
             rebuildQueueLocked();
             continue;
@@ -361,6 +420,11 @@ void FramePrefetcher::work() {
             // written to the disk cache, which the view need not wait for. (Woken again
             // below, once the load is over: harmless.)
             m_dataset->frame(index, [&] {
+                {
+                    std::lock_guard delivered(m_mutex);
+                    m_delivered.insert(index);
+                }
+                m_wake.notify_all(); // a prefetch held back for this frame may start
                 if (wake)
                     wake(index);
             });
@@ -371,6 +435,7 @@ void FramePrefetcher::work() {
         }
         lock.lock();
         m_running.erase(index);
+        m_delivered.erase(index);
         if (!error.empty())
             m_errors[index] = std::move(error);
         if (auto callback = m_onLoaded) {

@@ -32,6 +32,9 @@ struct PrefetchSettings {
     std::size_t workers = 2;   // loads in flight at most
     std::size_t lookAhead = 4; // frames prefetched per channel, fewer when memory is short
     bool loop = false;         // prefetch past the last frame wraps to the first (and back)
+    // The process's CPU time so far in seconds, which tells whether a view's load leaves a core
+    // idle for a prefetch; empty: the process's own (tests give a stand-in).
+    std::function<double()> cpuSeconds;
 };
 
 class FramePrefetcher {
@@ -113,6 +116,9 @@ class FramePrefetcher {
     std::map<std::size_t, Channel> m_channels;
     std::deque<std::size_t> m_queue; // next load first
     std::set<std::size_t> m_running;
+    // Running loads whose frame is in memory already (a derived one is being written to the disk
+    // cache): no view waits for them any more.
+    std::set<std::size_t> m_delivered;
     std::size_t m_finishing = 0; // loads ended whose callback is running
     std::map<std::size_t, std::string> m_errors;
     std::function<void(std::size_t)> m_onLoaded;
@@ -136,6 +142,24 @@ class FramePrefetcher {
     // Whether a worker should ready the next frame in the background now (starts the pass again
     // when the strains changed).
     bool backgroundDueLocked();
+    // Whether a view shows frame `index` now (a channel's current frame).
+    bool wantedLocked(std::size_t index) const;
+    // Whether a worker should start the queue's next load now. A prefetch waits while a frame a
+    // view waits for loads, which then has every core (on 2 cores, a prefetch beside it made
+    // it take twice as long), unless that load leaves a core idle (a gzip file inflates on one
+    // thread): the prefetch then starts on it.
+    bool nextLoadDueLocked() const;
+    // A view's load runs and the next load is a prefetch (held unless m_hold.released).
+    bool prefetchBehindViewLocked() const;
+    // Watches the process's CPU time while a prefetch is held back: a window of it using a core
+    // less than the machine has releases the prefetch.
+    void watchHoldLocked();
+    struct Hold {
+        bool watching = false, released = false;
+        std::chrono::steady_clock::time_point since;
+        double cpuSeconds = 0; // the process's CPU time at `since`
+    };
+    Hold m_hold;
     // Whether the whole run fits in half the disk cache's budget; `runBytes` / `budgetBytes`:
     // the two sides (0 when no frame is in memory yet or there is no cache).
     bool backgroundFitsLocked(std::uint64_t* runBytes = nullptr,

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <future>
 #include <mutex>
 #include <set>
+#include <thread>
 #include <vector>
 
 using namespace faultline::core;
@@ -19,6 +21,10 @@ class RecordingLoader {
     explicit RecordingLoader(std::size_t frames, std::size_t particles = 1000)
         : m_dataset(Dataset::fromLoader(frames,
                                         [this, particles](std::size_t k) {
+                                            {
+                                                std::lock_guard lock(m_mutex);
+                                                m_started.push_back(k);
+                                            }
                                             m_gate.wait();
                                             {
                                                 std::lock_guard lock(m_mutex);
@@ -49,9 +55,15 @@ class RecordingLoader {
         std::lock_guard lock(m_mutex);
         return m_loaded;
     }
+    // Loads begun, held back or not, in the order they began.
+    std::vector<std::size_t> started() const {
+        std::lock_guard lock(m_mutex);
+        return m_started;
+    }
     void forgetLoaded() {
         std::lock_guard lock(m_mutex);
         m_loaded.clear();
+        m_started.clear();
     }
     std::shared_ptr<Dataset> dataset() const { return m_dataset; }
 
@@ -66,7 +78,7 @@ class RecordingLoader {
     std::shared_future<void> m_gate;
     std::set<std::size_t> m_failing;
     mutable std::mutex m_mutex;
-    std::vector<std::size_t> m_loaded;
+    std::vector<std::size_t> m_loaded, m_started;
 };
 
 PrefetchSettings oneWorker(std::size_t lookAhead) {
@@ -169,6 +181,56 @@ TEST(FramePrefetcher, ChannelsAreServedCurrentFramesFirst) {
     EXPECT_EQ(order[1], 5u); // before any prefetch of channel 0
     EXPECT_EQ(p.request(20, 0).status, FrameStatus::Ready);
     EXPECT_EQ(p.request(5, 1).status, FrameStatus::Ready);
+}
+
+// On 2 cores a prefetch beside the frame a view waits for made that frame take twice as long:
+// prefetches wait while it loads on every core. Frames that views show now load side by side.
+TEST(FramePrefetcher, PrefetchesWaitForTheFrameAViewWaitsFor) {
+    RecordingLoader loader(20);
+    loader.dataset()->frame(0); // a frame's weight is known: three ahead from the start
+    loader.forgetLoaded();
+    loader.holdLoads();
+    PrefetchSettings settings;
+    settings.workers = 2;
+    settings.lookAhead = 3;
+    const auto start = std::chrono::steady_clock::now();
+    settings.cpuSeconds = [start] { // every core busy, however many there are
+        return 1000 *
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    FramePrefetcher p(loader.dataset(), settings);
+    p.request(10);
+    std::this_thread::sleep_for(200ms); // time for an idle worker to start a prefetch
+    EXPECT_EQ(loader.started(), (std::vector<std::size_t>{10}));
+    p.request(4, 1); // another view's frame: loads now, beside frame 10
+    for (int k = 0; k < 10000 && loader.started().size() < 2; ++k)
+        std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(loader.started(), (std::vector<std::size_t>{10, 4}));
+    loader.releaseLoads();
+    ASSERT_TRUE(p.waitIdle(10s));
+    auto loaded = loader.loaded();
+    std::sort(loaded.begin(), loaded.end());
+    EXPECT_EQ(loaded, (std::vector<std::size_t>{4, 5, 6, 7, 10, 11, 12, 13}));
+}
+
+// A view's load that leaves a core idle (a gzip file inflates on one thread) does not hold the
+// prefetch back: it starts on that core.
+TEST(FramePrefetcher, PrefetchesUseACoreTheViewsLoadLeavesIdle) {
+    RecordingLoader loader(20);
+    loader.dataset()->frame(0);
+    loader.forgetLoaded();
+    loader.holdLoads();
+    PrefetchSettings settings;
+    settings.workers = 2;
+    settings.lookAhead = 3;
+    settings.cpuSeconds = [] { return 0.0; }; // nothing busy
+    FramePrefetcher p(loader.dataset(), settings);
+    p.request(10);
+    for (int k = 0; k < 10000 && loader.started().size() < 2; ++k)
+        std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(loader.started(), (std::vector<std::size_t>{10, 11}));
+    loader.releaseLoads();
+    ASSERT_TRUE(p.waitIdle(10s));
 }
 
 TEST(FramePrefetcher, LoadErrorsAreValuesUntilRetried) {
