@@ -236,7 +236,9 @@ bool FramePrefetcher::wantedLocked(std::size_t index) const {
 bool FramePrefetcher::prefetchBehindViewLocked() const {
     return !m_queue.empty() && !wantedLocked(m_queue.front()) &&
            std::any_of(m_running.begin(), m_running.end(),
-                       [&](std::size_t r) { return wantedLocked(r) && !m_delivered.count(r); });
+                       // In memory already (a derived frame being written to the disk cache):
+                       // no view waits for it any more.
+                       [&](std::size_t r) { return wantedLocked(r) && !m_dataset->isCached(r); });
 }
 
 bool FramePrefetcher::nextLoadDueLocked() const {
@@ -420,11 +422,10 @@ void FramePrefetcher::work() {
             // written to the disk cache, which the view need not wait for. (Woken again
             // below, once the load is over: harmless.)
             m_dataset->frame(index, [&] {
-                {
-                    std::lock_guard delivered(m_mutex);
-                    m_delivered.insert(index);
-                }
-                m_wake.notify_all(); // a prefetch held back for this frame may start
+                // A prefetch held back for this frame may start. (The lock orders this after
+                // a worker's look at the predicate, so the wake is not lost.)
+                { std::lock_guard ordered(m_mutex); }
+                m_wake.notify_all();
                 if (wake)
                     wake(index);
             });
@@ -435,7 +436,6 @@ void FramePrefetcher::work() {
         }
         lock.lock();
         m_running.erase(index);
-        m_delivered.erase(index);
         if (!error.empty())
             m_errors[index] = std::move(error);
         if (auto callback = m_onLoaded) {

@@ -116,9 +116,6 @@ class FramePrefetcher {
     std::map<std::size_t, Channel> m_channels;
     std::deque<std::size_t> m_queue; // next load first
     std::set<std::size_t> m_running;
-    // Running loads whose frame is in memory already (a derived one is being written to the disk
-    // cache): no view waits for them any more.
-    std::set<std::size_t> m_delivered;
     std::size_t m_finishing = 0; // loads ended whose callback is running
     std::map<std::size_t, std::string> m_errors;
     std::function<void(std::size_t)> m_onLoaded;
