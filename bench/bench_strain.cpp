@@ -12,8 +12,8 @@
 // Usage: bench_strain [--skip-10m] [--demo], bench_strain --demo-only (part 3 alone), or
 // bench_strain --strain-only N: strainFromMotion alone on the 525k pair, N times with the AVX2 sums
 // and with the baseline ones (for a profiler and to compare the two; FAULTLINE_BENCH_AVX2_ONLY=1:
-// the AVX2 sums only). The dumps (~42 MB plain, and gzipped) are made in a temp folder and deleted
-// at the end.
+// the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run). The dumps (~42 MB
+// plain, and gzipped) are made in a temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_prefetcher.hpp"
@@ -397,11 +397,16 @@ int main(int argc, char** argv) {
             const Frame ref = densePacking(525000);
             const Frame now = faulted(ref);
             std::vector<double> times[2];
+            // FAULTLINE_BENCH_EVICT=1: 64 MB written before each run, so the frames come from
+            // memory rather than the caches, as just after a frame was opened.
+            const char* evictEnv = std::getenv("FAULTLINE_BENCH_EVICT");
+            std::vector<char> evict(evictEnv && std::strcmp(evictEnv, "1") == 0 ? 64 << 20 : 0);
             for (int r = std::max(1, std::atoi(argv[k + 1])); r > 0; --r)
                 for (const bool baseline : {false, true}) {
                     if (const char* only = std::getenv("FAULTLINE_BENCH_AVX2_ONLY");
                         baseline && only && std::strcmp(only, "1") == 0)
                         continue;
+                    std::fill(evict.begin(), evict.end(), char(r));
                     detail::setStrainBaselineOnly(baseline);
                     const auto t0 = std::chrono::steady_clock::now();
                     strainFromMotion(now, ref, 0);

@@ -59,11 +59,9 @@ constexpr std::uint32_t kNone = ~std::uint32_t(0);
 // crossed a periodic face (or an image, whose reference is a cell edge away) keeps the
 // precision of its small motion in float.
 struct CellPoint {
-    float x, y, z;       // reference
-    float wx, wy, wz;    // motion
-    std::uint32_t owner; // reference row; the top bit marks an image
+    float x, y, z;    // reference
+    float wx, wy, wz; // motion
 };
-constexpr std::uint32_t kImage = 0x80000000u;
 constexpr float kFar = std::numeric_limits<float>::infinity();
 
 // A row of the current frame: its centre and its sphere's slot in the cell list.
@@ -152,7 +150,6 @@ class NeighbourCells {
                     p.x = static_cast<float>(q[0]);
                     p.y = static_cast<float>(q[1]);
                     p.z = static_cast<float>(q[2]);
-                    p.owner |= kImage;
                     found[t].push_back(p);
                 }
             });
@@ -188,25 +185,48 @@ class NeighbourCells {
             m_lo[a] = lo[a];
         auto cellOf = makeScratchArray<std::uint32_t>(count);
         m_inverseSize = 1.0 / m_size;
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t k = r.begin(); k != r.end(); ++k)
-                                  cellOf[k] = cellIndex(ref.x[k], ref.y[k], ref.z[k]);
+                                  cellOf[k] = k < n ? cellIndex(ref.x[k], ref.y[k], ref.z[k])
+                                                    : cellIndex(images[k - n].x, images[k - n].y,
+                                                                images[k - n].z);
                           });
-        for (std::size_t k = n; k < count; ++k)
-            cellOf[k] = cellIndex(images[k - n].x, images[k - n].y, images[k - n].z);
+        // Each point's slot in cell order, the order within a cell being the points' (so the
+        // spheres come before the images): a counting sort in three parts (the spheres' two
+        // halves and the images), each part counted per cell, then its points given the slots
+        // after those of the parts before it, the parts in parallel.
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
-        m_start.assign(cells + 1, 0);
-        for (std::size_t k = 0; k < count; ++k)
-            ++m_start[cellOf[k] + 1];
-        for (std::size_t c = 0; c < cells; ++c)
-            m_start[c + 1] += m_start[c];
-        // Each point's slot in cell order (in turn: the order within a cell is the points'),
-        // then the points written to their slots in parallel.
-        std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
+        const std::size_t bounds[4] = {0, n / 2, n, count};
+        std::vector<std::uint32_t> next[3];
+        tbb::parallel_for(0, 3, [&](int part) {
+            next[part].assign(cells, 0);
+            std::uint32_t* c = next[part].data();
+            for (std::size_t k = bounds[part]; k < bounds[part + 1]; ++k)
+                ++c[cellOf[k]];
+        });
+        m_start.resize(cells + 1);
+        m_spheresEnd.resize(cells);
+        std::uint32_t at = 0;
+        for (std::size_t c = 0; c < cells; ++c) {
+            m_start[c] = at;
+            for (int part = 0; part < 3; ++part) {
+                const std::uint32_t here = next[part][c];
+                next[part][c] = at;
+                at += here;
+                if (part == 1)
+                    m_spheresEnd[c] = at;
+            }
+        }
+        m_start[cells] = at;
         ScratchArray<std::uint32_t>& slot = cellOf; // cellOf[k] read once, then k's slot
-        for (std::size_t k = 0; k < count; ++k)
-            slot[k] = fill[slot[k]]++;
+        tbb::parallel_for(0, 3, [&](int part) {
+            std::uint32_t* c = next[part].data();
+            for (std::size_t k = bounds[part]; k < bounds[part + 1]; ++k)
+                slot[k] = c[slot[k]]++;
+        });
+        for (auto& v : next)
+            std::vector<std::uint32_t>().swap(v); // not held through the filling below
         // Reference positions as float arrays and whole points (reference and motion) in cell
         // order. Not zeroed first (every slot is written below, in parallel: a serial clearing
         // of these ~30 bytes a point cost as much as filling them).
@@ -216,7 +236,6 @@ class NeighbourCells {
             std::fill(v->get() + count, v->get() + count + 8, kFar);
         }
         m_points = makeScratchArray<float>(8 * count);
-        m_owner = makeScratchArray<std::uint32_t>(count);
         m_count = count;
         std::atomic<std::uint32_t> widest[3] = {0, 0, 0}; // float bits: >= 0 orders as floats
         tbb::parallel_for(
@@ -229,7 +248,11 @@ class NeighbourCells {
                     if (const std::size_t a = k + 16; a < std::min(r.end(), n)) {
                         if (const std::uint32_t row = nowRowOf[a]; row != kNone)
                             __builtin_prefetch(m_now.get() + row, 1);
-                        __builtin_prefetch(m_points.get() + 8 * std::size_t(slot[a]), 1);
+                        const std::size_t to = slot[a];
+                        __builtin_prefetch(m_points.get() + 8 * to, 1);
+                        __builtin_prefetch(m_x.get() + to, 1);
+                        __builtin_prefetch(m_y.get() + to, 1);
+                        __builtin_prefetch(m_z.get() + to, 1);
                     }
                     const std::uint32_t at = slot[k];
                     const CellPoint p = k < n ? pointOf(ref, nowRowOf, k, noShift) : images[k - n];
@@ -242,7 +265,6 @@ class NeighbourCells {
                     q[0] = p.x, q[1] = p.y, q[2] = p.z;
                     q[3] = p.wx, q[4] = p.wy, q[5] = p.wz;
                     q[6] = q[7] = 0.0f;
-                    m_owner[at] = p.owner;
                     if (k < n && nowRowOf[k] != kNone)
                         m_now[nowRowOf[k]].slot = at;
                     wide[0] = std::max(wide[0], std::fabs(p.wx));
@@ -267,7 +289,8 @@ class NeighbourCells {
     std::size_t pointCount() const { return m_count; }
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
-    std::uint32_t owner(std::size_t k) const { return m_owner[k]; }
+    // The end of the cell's spheres: its images (periodic axes) follow them.
+    std::size_t spheresEnd(std::size_t cell) const { return m_spheresEnd[cell]; }
     // Each row of the current frame: its centre and where its sphere is in cell order (kNone:
     // not in the reference).
     const NowPoint* nowPoints() const { return m_now.get(); }
@@ -302,7 +325,7 @@ class NeighbourCells {
                       const double shift[3]) const {
         const std::uint32_t k = nowRowOf[i];
         const float nan = std::numeric_limits<float>::quiet_NaN();
-        CellPoint p{ref.x[i], ref.y[i], ref.z[i], nan, nan, nan, static_cast<std::uint32_t>(i)};
+        CellPoint p{ref.x[i], ref.y[i], ref.z[i], nan, nan, nan};
         if (k != kNone) {
             const NowPoint& q = m_now[k];
             double w[3] = {double(q.x) - ref.x[i] - shift[0], double(q.y) - ref.y[i] - shift[1],
@@ -335,7 +358,7 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::size_t m_count = 0;
-    ScratchArray<std::uint32_t> m_owner;
+    std::vector<std::uint32_t> m_spheresEnd;
     ScratchArray<NowPoint> m_now;
     ScratchArray<float> m_x, m_y, m_z, m_points;
     PeriodicCell m_nowCell;
@@ -901,8 +924,8 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             cacheColumnRange(c);
         return cols;
     }
-    if (ref.size() >= kImage)
-        throw std::length_error("strain from motion: more than 2^31 spheres in one frame");
+    if (ref.size() >= kNone || now.size() >= kNone) // rows are 32-bit, kNone the mark of none
+        throw std::length_error("strain from motion: 2^32 spheres or more in one frame");
     // Where each reference sphere is in the current frame (rowsOf's "none" is kNone).
     auto nowRowOf = makeScratchArray<std::uint32_t>(ref.size());
     const bool aligned = sameIdOrder(now, ref);
@@ -988,9 +1011,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             };
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
                 const std::size_t first = selves.size();
-                for (std::size_t self = cells.begin(cell); self != cells.end(cell); ++self) {
-                    if (cells.owner(self) & kImage)
-                        continue;
+                for (std::size_t self = cells.begin(cell); self != cells.spheresEnd(cell); ++self) {
                     if (std::isnan(cells.point(self)[3])) // gone, or a centre that is no number
                         store(self, StrainValues{});
                     else
