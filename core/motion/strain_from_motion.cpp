@@ -391,6 +391,28 @@ struct NeighbourSums {
     int count = 0;
 };
 
+// One sphere's sums as the AVX2 sums leave them, for the solve to read four spheres' at once:
+// the sums of d * X_x, d * X_y, d * X_z and d * d over its neighbours, d = (X, U, 0, 0), and
+// how many neighbours. Not initialised: each is written whole.
+struct RawSums {
+    alignas(32) float r[4][8];
+    int count;
+};
+
+// The same sums as NeighbourSums (V's two halves from one sum).
+NeighbourSums sumsOf(const RawSums& s) {
+    NeighbourSums out;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            out.V[i][j] = s.r[std::max(i, j)][std::min(i, j)];
+            out.A[i][j] = s.r[j][3 + i];
+        }
+        out.uu[i] = s.r[3][3 + i];
+    }
+    out.count = s.count;
+    return out;
+}
+
 // The points of the 27 cells around one cell, contiguous and padded to whole vectors with
 // points that are never near, for the baseline sums: reference positions (x, y, z; infinite:
 // gone) and how far each moved (w = now - reference; an image's reference is shifted by a cell
@@ -604,7 +626,7 @@ FAULTLINE_AVX2 void packCandidates(const NeighbourCells& cells, const Runs& runs
 template <bool Wrap>
 FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packed,
                                       const float* self, float cutoff2, const CellF& cell,
-                                      NeighbourSums& out) {
+                                      RawSums& out) {
     const __m256 px = _mm256_set1_ps(self[0]), py = _mm256_set1_ps(self[1]),
                  pz = _mm256_set1_ps(self[2]), c2 = _mm256_set1_ps(cutoff2);
     // Locals: the stores to `near` could otherwise alias the arrays' pointers.
@@ -660,24 +682,16 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packe
         sz = _mm256_fmadd_ps(d, _mm256_sub_ps(_mm256_broadcast_ss(cz + j), pz), sz);
         su = _mm256_fmadd_ps(d, d, su);
     }
-    alignas(32) float r[4][8];
-    _mm256_store_ps(r[0], sx);
-    _mm256_store_ps(r[1], sy);
-    _mm256_store_ps(r[2], sz);
-    _mm256_store_ps(r[3], su);
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            out.V[i][j] = r[std::max(i, j)][std::min(i, j)]; // one sum for both halves
-            out.A[i][j] = r[j][3 + i];
-        }
-        out.uu[i] = r[3][3 + i];
-    }
+    _mm256_store_ps(out.r[0], sx);
+    _mm256_store_ps(out.r[1], sy);
+    _mm256_store_ps(out.r[2], sz);
+    _mm256_store_ps(out.r[3], su);
     out.count = static_cast<int>(n) - 1; // the sphere itself (X = U = 0: no term)
 }
 
 FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, std::size_t cell,
                                  const std::uint32_t* selves, std::size_t count, float cutoff2,
-                                 const CellF& now, bool wrap, Packed& packed, NeighbourSums* out) {
+                                 const CellF& now, bool wrap, Packed& packed, RawSums* out) {
     Runs runs;
     std::size_t total = 0;
     cells.around(cell, [&](std::size_t first, std::size_t last) {
@@ -798,16 +812,35 @@ template <int dim> StrainValues solve(const NeighbourSums& s, const int* axes) {
 // solve<3> for four spheres at once, one per lane of AVX2 doubles: the same operations in the
 // same order (sums start from zero as its loops do; no multiply-adds are fused in ISO C++
 // mode), so the same values to the last bit, whichever of the two solves a sphere.
-FAULTLINE_AVX2 void solve3x4(const NeighbourSums* s, StrainValues* out) {
+FAULTLINE_AVX2 void solve3x4(const RawSums* s, StrainValues* out) {
     typedef double v4d __attribute__((vector_size(32)));
     // (No helper returning a vector: outside this function's target it would need AVX.)
+    // Each of the four sums' vectors of the four spheres transposed (unpack, then shuffle: lane
+    // k of the four in the low half of u[k % 4], or the high half for k >= 4), then widened to
+    // double, which is exact.
+    v4d col[4][6];
+    for (int b = 0; b < 4; ++b) {
+        const __m256 r0 = _mm256_load_ps(s[0].r[b]), r1 = _mm256_load_ps(s[1].r[b]),
+                     r2 = _mm256_load_ps(s[2].r[b]), r3 = _mm256_load_ps(s[3].r[b]);
+        const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+        const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+        col[b][0] = _mm256_cvtps_pd(_mm256_castps256_ps128(u0));
+        col[b][1] = _mm256_cvtps_pd(_mm256_castps256_ps128(u1));
+        col[b][2] = _mm256_cvtps_pd(_mm256_castps256_ps128(u2));
+        col[b][3] = _mm256_cvtps_pd(_mm256_castps256_ps128(u3));
+        col[b][4] = _mm256_cvtps_pd(_mm256_extractf128_ps(u0, 1));
+        col[b][5] = _mm256_cvtps_pd(_mm256_extractf128_ps(u1, 1));
+    }
+    // As sumsOf: V's two halves from one sum.
     v4d V[3][3], A[3][3], uu[3];
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-            V[i][j] = v4d{s[0].V[i][j], s[1].V[i][j], s[2].V[i][j], s[3].V[i][j]};
-            A[i][j] = v4d{s[0].A[i][j], s[1].A[i][j], s[2].A[i][j], s[3].A[i][j]};
+            V[i][j] = col[std::max(i, j)][std::min(i, j)];
+            A[i][j] = col[j][3 + i];
         }
-        uu[i] = v4d{s[0].uu[i], s[1].uu[i], s[2].uu[i], s[3].uu[i]};
+        uu[i] = col[3][3 + i];
     }
     const v4d count =
         v4d{double(s[0].count), double(s[1].count), double(s[2].count), double(s[3].count)};
@@ -986,7 +1019,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
 #endif
             // The spheres summed and not yet solved, solved four at a time across cells.
             std::vector<std::uint32_t> selves;
-            std::vector<NeighbourSums> sums;
+            std::vector<NeighbourSums> sums; // baseline
+            std::unique_ptr<RawSums[]> raw;  // AVX2, one for each of `selves`
+            std::size_t rawCapacity = 0;
             auto store = [&](std::size_t k, const StrainValues& v) {
                 const float* q = cells.point(k);
                 values[k] = {v.shear, v.volumetric, v.d2min, {q[3], q[4], q[5]}};
@@ -994,20 +1029,29 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
             auto solveSummed = [&](bool all) {
                 std::size_t s = 0;
 #if FAULTLINE_STRAIN_AVX2
-                if (avx2 && dim == 3)
-                    for (; s + 4 <= selves.size(); s += 4) {
-                        StrainValues v[4];
-                        solve3x4(sums.data() + s, v);
-                        for (int l = 0; l < 4; ++l)
-                            store(selves[s + l], v[l]);
-                    }
+                if (avx2) {
+                    if (dim == 3)
+                        for (; s + 4 <= selves.size(); s += 4) {
+                            StrainValues v[4];
+                            solve3x4(raw.get() + s, v);
+                            for (int l = 0; l < 4; ++l)
+                                store(selves[s + l], v[l]);
+                        }
+                    if (all)
+                        for (; s < selves.size(); ++s) {
+                            const NeighbourSums one = sumsOf(raw[s]);
+                            store(selves[s], dim == 3 ? solve<3>(one, axes) : solve<2>(one, axes));
+                        }
+                    std::copy(raw.get() + s, raw.get() + selves.size(), raw.get());
+                } else
 #endif
-                if (all)
+                {
                     for (; s < selves.size(); ++s)
                         store(selves[s],
                               dim == 3 ? solve<3>(sums[s], axes) : solve<2>(sums[s], axes));
+                    sums.clear();
+                }
                 selves.erase(selves.begin(), selves.begin() + std::ptrdiff_t(s));
-                sums.erase(sums.begin(), sums.begin() + std::ptrdiff_t(s));
             };
             for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
                 const std::size_t first = selves.size();
@@ -1020,15 +1064,23 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                 const std::size_t count = selves.size() - first;
                 if (count == 0)
                     continue;
-                sums.resize(selves.size()); // each new one written whole by cellSums
 #if FAULTLINE_STRAIN_AVX2
-                if (avx2)
+                if (avx2) {
+                    if (rawCapacity < selves.size()) {
+                        rawCapacity = std::max<std::size_t>(2 * rawCapacity, selves.size());
+                        std::unique_ptr<RawSums[]> more(new RawSums[rawCapacity]); // not zeroed
+                        std::copy(raw.get(), raw.get() + first, more.get());
+                        raw = std::move(more);
+                    }
                     cellSumsAvx2(cells, cell, selves.data() + first, count, cutoff2, nowCellF, wrap,
-                                 packed, sums.data() + first);
-                else
+                                 packed, raw.get() + first);
+                } else
 #endif
+                {
+                    sums.resize(selves.size()); // each new one written whole by cellSums
                     cellSumsBaseline(cells, cell, selves.data() + first, count, cutoff2, nowCellF,
                                      wrap, candidates, sums.data() + first);
+                }
                 if (selves.size() >= 64)
                     solveSummed(false);
             }
