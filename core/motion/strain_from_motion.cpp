@@ -187,10 +187,12 @@ class NeighbourCells {
         m_inverseSize = 1.0 / m_size;
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t k = r.begin(); k != r.end(); ++k)
-                                  cellOf[k] = k < n ? cellIndex(ref.x[k], ref.y[k], ref.z[k])
-                                                    : cellIndex(images[k - n].x, images[k - n].y,
-                                                                images[k - n].z);
+                              const std::size_t split = std::clamp(n, r.begin(), r.end());
+                              for (std::size_t k = r.begin(); k < split; ++k)
+                                  cellOf[k] = cellIndex(ref.x[k], ref.y[k], ref.z[k]);
+                              for (std::size_t k = split; k < r.end(); ++k)
+                                  cellOf[k] =
+                                      cellIndex(images[k - n].x, images[k - n].y, images[k - n].z);
                           });
         // Each point's slot in cell order, the order within a cell being the points' (so the
         // spheres come before the images): a counting sort in three parts (the spheres' two
@@ -342,11 +344,12 @@ class NeighbourCells {
     }
     // Clamped before the conversion: a centre that is no number, or far beyond the int range
     // (a finite extreme a file may hold), is no undefined conversion.
+    // Without branches (NaN fails the first test), so that a loop of them vectorises.
     int coord(double v, int axis) const {
-        const double c = (v - m_lo[axis]) * m_inverseSize;
-        if (!(c > 0))
-            return 0;
-        return c >= double(m_dims[axis] - 1) ? m_dims[axis] - 1 : static_cast<int>(c);
+        double c = (v - m_lo[axis]) * m_inverseSize;
+        c = c > 0 ? c : 0.0;
+        const double top = m_dims[axis] - 1;
+        return static_cast<int>(c < top ? c : top);
     }
     std::uint32_t cellIndex(double px, double py, double pz) const {
         return static_cast<std::uint32_t>(
