@@ -306,12 +306,31 @@ class NeighbourCells {
     // The largest |motion| on each axis (of the points whose motion is a number).
     const float* widestMotion() const { return m_widestMotion; }
 
+    // A cell and its coordinates, stepped through in order: one cell's three divisions (as
+    // much time as a cell's packing) once per range of cells.
+    struct At {
+        std::size_t index;
+        int x, y, z;
+    };
+    At at(std::size_t cell) const {
+        return {cell, int(cell % m_dims[0]), int((cell / m_dims[0]) % m_dims[1]),
+                int(cell / (std::size_t(m_dims[0]) * m_dims[1]))};
+    }
+    void next(At& c) const {
+        ++c.index;
+        if (++c.x < m_dims[0])
+            return;
+        c.x = 0;
+        if (++c.y < m_dims[1])
+            return;
+        c.y = 0;
+        ++c.z;
+    }
+
     // fn(first, last) for each run of points in the 27 cells around `cell` (9 runs of up to
     // three cells that lie next to each other in memory).
-    template <typename Fn> void around(std::size_t cell, Fn fn) const {
-        const int cx = int(cell % m_dims[0]);
-        const int cy = int((cell / m_dims[0]) % m_dims[1]);
-        const int cz = int(cell / (std::size_t(m_dims[0]) * m_dims[1]));
+    template <typename Fn> void around(const At& cell, Fn fn) const {
+        const int cx = cell.x, cy = cell.y, cz = cell.z;
         for (int k = std::max(0, cz - 1); k <= std::min(m_dims[2] - 1, cz + 1); ++k)
             for (int j = std::max(0, cy - 1); j <= std::min(m_dims[1] - 1, cy + 1); ++j) {
                 const std::size_t row = (std::size_t(k) * m_dims[1] + j) * m_dims[0];
@@ -423,7 +442,7 @@ NeighbourSums sumsOf(const RawSums& s) {
 struct Candidates {
     std::vector<float> x, y, z, wx, wy, wz;
     std::size_t size = 0;
-    void gather(const NeighbourCells& cells, std::size_t cell) {
+    void gather(const NeighbourCells& cells, const NeighbourCells::At& cell) {
         size = 0;
         cells.around(cell, [&](std::size_t first, std::size_t last) {
             const std::size_t n = last - first;
@@ -527,7 +546,7 @@ template <bool Wrap>
 // The sums of the spheres `selves` (rows in cell order) of one cell: the points around the
 // cell gathered once, then each sphere against them. Spheres per call, not one: the loops are
 // short (a dozen vectors), so a call per sphere cost as much as its sums.
-FAULTLINE_HOT void cellSumsBaseline(const NeighbourCells& cells, std::size_t cell,
+FAULTLINE_HOT void cellSumsBaseline(const NeighbourCells& cells, const NeighbourCells::At& cell,
                                     const std::uint32_t* selves, std::size_t count, float cutoff2,
                                     const CellF& now, bool wrap, Candidates& candidates,
                                     NeighbourSums* out) {
@@ -692,7 +711,7 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packe
     out.count = static_cast<int>(n) - 1; // the sphere itself (X = U = 0: no term)
 }
 
-FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, std::size_t cell,
+FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, const NeighbourCells::At& cell,
                                  const std::uint32_t* selves, std::size_t count, float cutoff2,
                                  const CellF& now, bool wrap, Packed& packed, RawSums* out) {
     Runs runs;
@@ -1056,7 +1075,8 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                 }
                 selves.erase(selves.begin(), selves.begin() + std::ptrdiff_t(s));
             };
-            for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
+            for (auto at = cells.at(range.begin()); at.index != range.end(); cells.next(at)) {
+                const std::size_t cell = at.index;
                 const std::size_t first = selves.size();
                 for (std::size_t self = cells.begin(cell); self != cells.spheresEnd(cell); ++self) {
                     if (std::isnan(cells.point(self)[3])) // gone, or a centre that is no number
@@ -1075,13 +1095,13 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                         std::copy(raw.get(), raw.get() + first, more.get());
                         raw = std::move(more);
                     }
-                    cellSumsAvx2(cells, cell, selves.data() + first, count, cutoff2, nowCellF, wrap,
+                    cellSumsAvx2(cells, at, selves.data() + first, count, cutoff2, nowCellF, wrap,
                                  packed, raw.get() + first);
                 } else
 #endif
                 {
                     sums.resize(selves.size()); // each new one written whole by cellSums
-                    cellSumsBaseline(cells, cell, selves.data() + first, count, cutoff2, nowCellF,
+                    cellSumsBaseline(cells, at, selves.data() + first, count, cutoff2, nowCellF,
                                      wrap, candidates, sums.data() + first);
                 }
                 if (selves.size() >= 64)
