@@ -138,7 +138,10 @@ class NeighbourCells {
                 const bool finite = std::isfinite(margin);
                 const double slabLo = finite ? lo[axis] - s[axis] - margin : -HUGE_VAL;
                 const double slabHi = finite ? hi[axis] - s[axis] + margin : HUGE_VAL;
+                // The spheres in bounds first, then their motions (the current centres read
+                // in no order, so fetched ahead).
                 const std::size_t first = (t % blocks) * kBlock;
+                std::vector<std::uint32_t> inside;
                 for (std::size_t i = first; i < std::min(n, first + kBlock); ++i) {
                     if (!(along[i] >= slabLo && along[i] <= slabHi))
                         continue; // and a centre that is no number, whose image would be gone
@@ -146,10 +149,18 @@ class NeighbourCells {
                     if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1] ||
                         q[2] < lo[2] || q[2] > hi[2])
                         continue;
+                    inside.push_back(static_cast<std::uint32_t>(i));
+                }
+                found[t].reserve(inside.size());
+                for (std::size_t h = 0; h < inside.size(); ++h) {
+                    if (h + 8 < inside.size())
+                        if (const std::uint32_t row = nowRowOf[inside[h + 8]]; row != kNone)
+                            __builtin_prefetch(m_now.get() + row);
+                    const std::size_t i = inside[h];
                     CellPoint p = pointOf(ref, nowRowOf, i, s);
-                    p.x = static_cast<float>(q[0]);
-                    p.y = static_cast<float>(q[1]);
-                    p.z = static_cast<float>(q[2]);
+                    p.x = static_cast<float>(ref.x[i] + s[0]);
+                    p.y = static_cast<float>(ref.y[i] + s[1]);
+                    p.z = static_cast<float>(ref.z[i] + s[2]);
                     found[t].push_back(p);
                 }
             });
