@@ -12,8 +12,9 @@
 // Usage: bench_strain [--skip-10m] [--demo], bench_strain --demo-only (part 3 alone), or
 // bench_strain --strain-only N: strainFromMotion alone on the 525k pair, N times with the AVX2 sums
 // and with the baseline ones (for a profiler and to compare the two; FAULTLINE_BENCH_AVX2_ONLY=1:
-// the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run). The dumps (~42 MB
-// plain, and gzipped) are made in a temp folder and deleted at the end.
+// the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run;
+// FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too). The dumps (~42
+// MB plain, and gzipped) are made in a temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_prefetcher.hpp"
@@ -127,6 +128,24 @@ Frame faulted(const Frame& ref) {
     }
     f.finalize();
     return f;
+}
+
+// `f` with its rows in a random order.
+Frame shuffled(const Frame& f) {
+    std::vector<std::size_t> order(f.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937(11));
+    Frame out;
+    out.box = f.box;
+    for (std::size_t i : order) {
+        out.ids.push_back(f.ids[i]);
+        out.x.push_back(f.x[i]);
+        out.y.push_back(f.y[i]);
+        out.z.push_back(f.z[i]);
+        out.radius.push_back(f.radius[i]);
+    }
+    out.finalize();
+    return out;
 }
 
 void part525k() {
@@ -394,7 +413,12 @@ int main(int argc, char** argv) {
     for (int k = 1; k + 1 < argc; ++k)
         if (std::strcmp(argv[k], "--strain-only") == 0) {
             // Only strainFromMotion on the 525k pair, N times (for a profiler).
-            const Frame ref = densePacking(525000);
+            // FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference's rows in no order too, as
+            // LAMMPS writes them when several processes run.
+            const char* shuffledEnv = std::getenv("FAULTLINE_BENCH_SHUFFLED_REFERENCE");
+            const Frame packed = densePacking(525000);
+            const Frame ref =
+                shuffledEnv && std::strcmp(shuffledEnv, "1") == 0 ? shuffled(packed) : packed;
             const Frame now = faulted(ref);
             std::vector<double> times[2];
             // FAULTLINE_BENCH_EVICT=1: 64 MB written before each run, so the frames come from
