@@ -13,8 +13,9 @@
 // bench_strain --strain-only N: strainFromMotion alone on the 525k pair, N times with the AVX2 sums
 // and with the baseline ones (for a profiler and to compare the two; FAULTLINE_BENCH_AVX2_ONLY=1:
 // the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run;
-// FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too). The dumps (~42
-// MB plain, and gzipped) are made in a temp folder and deleted at the end.
+// FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too); or
+// bench_strain --demo-strain-only N: strainFromMotion alone on two of the demo's frames. The dumps
+// (~42 MB plain, and gzipped) are made in a temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_prefetcher.hpp"
@@ -410,6 +411,23 @@ int main(int argc, char** argv) {
         demo = demo || std::strcmp(argv[k], "--demo") == 0;
         demoOnly = demoOnly || std::strcmp(argv[k], "--demo-only") == 0;
     }
+    for (int k = 1; k + 1 < argc; ++k)
+        if (std::strcmp(argv[k], "--demo-strain-only") == 0) {
+            // strainFromMotion alone on the demo's frames 39 against 35 (incremental strain at
+            // -4), N times, against reading frame 39 from the binary frame cache.
+            auto ds = Dataset::open({ensureDemoModel()});
+            const auto now = ds->frame(39), ref = ds->frame(35);
+            std::vector<double> times;
+            for (int r = std::max(1, std::atoi(argv[k + 1])); r > 0; --r) {
+                const auto t0 = std::chrono::steady_clock::now();
+                strainFromMotion(*now, *ref, 0);
+                times.push_back(seconds(t0) * 1e3);
+            }
+            std::sort(times.begin(), times.end());
+            std::printf("demo strain (%zu spheres): fastest %.1f ms, median %.1f ms of %zu\n",
+                        now->size(), times.front(), times[times.size() / 2], times.size());
+            return 0;
+        }
     for (int k = 1; k + 1 < argc; ++k)
         if (std::strcmp(argv[k], "--strain-only") == 0) {
             // Only strainFromMotion on the 525k pair, N times (for a profiler).
