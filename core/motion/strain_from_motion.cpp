@@ -317,8 +317,8 @@ class NeighbourCells {
     // The largest |motion| on each axis (of the points whose motion is a number).
     const float* widestMotion() const { return m_widestMotion; }
 
-    // A cell and its coordinates, stepped through in order: one cell's three divisions (as
-    // much time as a cell's packing) once per range of cells.
+    // A cell and its coordinates, stepped through in order: the three 64-bit divisions that
+    // find a cell's coordinates from its index, once per range of cells rather than per cell.
     struct At {
         std::size_t index;
         int x, y, z;
@@ -1070,7 +1070,9 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                             for (int l = 0; l < 4; ++l)
                                 store(selves[s + l], v[l]);
                         }
-                    if (all)
+                    // The rest one by one: the last few, or every sphere of 2-D data (not held
+                    // back, or each call would move all that were held).
+                    if (all || dim != 3)
                         for (; s < selves.size(); ++s) {
                             const NeighbourSums one = sumsOf(raw[s]);
                             store(selves[s], dim == 3 ? solve<3>(one, axes) : solve<2>(one, axes));
