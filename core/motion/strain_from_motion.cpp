@@ -206,34 +206,36 @@ class NeighbourCells {
                                       cellIndex(images[k - n].x, images[k - n].y, images[k - n].z);
                           });
         // Each point's slot in cell order, the order within a cell being the points' (so the
-        // spheres come before the images): a counting sort in three parts (the spheres' two
-        // halves and the images), each part counted per cell, then its points given the slots
+        // spheres come before the images): a counting sort in parts (the spheres' two halves,
+        // and the images if any), each part counted per cell, then its points given the slots
         // after those of the parts before it, the parts in parallel.
         const std::size_t cells = std::size_t(m_dims[0]) * m_dims[1] * m_dims[2];
         const std::size_t bounds[4] = {0, n / 2, n, count};
+        const int parts = count > n ? 3 : 2;
         std::vector<std::uint32_t> next[3];
-        tbb::parallel_for(0, 3, [&](int part) {
+        tbb::parallel_for(0, parts, [&](int part) {
             next[part].assign(cells, 0);
             std::uint32_t* c = next[part].data();
             for (std::size_t k = bounds[part]; k < bounds[part + 1]; ++k)
                 ++c[cellOf[k]];
         });
         m_start.resize(cells + 1);
-        m_spheresEnd.resize(cells);
+        if (parts == 3)
+            m_spheresEnd.resize(cells);
         std::uint32_t at = 0;
         for (std::size_t c = 0; c < cells; ++c) {
             m_start[c] = at;
-            for (int part = 0; part < 3; ++part) {
+            for (int part = 0; part < parts; ++part) {
                 const std::uint32_t here = next[part][c];
                 next[part][c] = at;
                 at += here;
-                if (part == 1)
+                if (part == 1 && parts == 3)
                     m_spheresEnd[c] = at;
             }
         }
         m_start[cells] = at;
         ScratchArray<std::uint32_t>& slot = cellOf; // cellOf[k] read once, then k's slot
-        tbb::parallel_for(0, 3, [&](int part) {
+        tbb::parallel_for(0, parts, [&](int part) {
             std::uint32_t* c = next[part].data();
             for (std::size_t k = bounds[part]; k < bounds[part + 1]; ++k)
                 slot[k] = c[slot[k]]++;
@@ -303,7 +305,9 @@ class NeighbourCells {
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
     std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     // The end of the cell's spheres: its images (periodic axes) follow them.
-    std::size_t spheresEnd(std::size_t cell) const { return m_spheresEnd[cell]; }
+    std::size_t spheresEnd(std::size_t cell) const {
+        return m_spheresEnd.empty() ? m_start[cell + 1] : m_spheresEnd[cell];
+    }
     // Each row of the current frame: its centre and where its sphere is in cell order (kNone:
     // not in the reference).
     const NowPoint* nowPoints() const { return m_now.get(); }
@@ -391,7 +395,7 @@ class NeighbourCells {
     int m_dims[3] = {1, 1, 1};
     std::vector<std::uint32_t> m_start;
     std::size_t m_count = 0;
-    std::vector<std::uint32_t> m_spheresEnd;
+    std::vector<std::uint32_t> m_spheresEnd; // empty: no images
     ScratchArray<NowPoint> m_now;
     ScratchArray<float> m_x, m_y, m_z, m_points;
     PeriodicCell m_nowCell;
