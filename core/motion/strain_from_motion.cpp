@@ -303,7 +303,6 @@ class NeighbourCells {
     std::size_t cellCount() const { return m_start.size() - 1; }
     std::size_t pointCount() const { return m_count; }
     std::size_t begin(std::size_t cell) const { return m_start[cell]; }
-    std::size_t end(std::size_t cell) const { return m_start[cell + 1]; }
     // The end of the cell's spheres: its images (periodic axes) follow them.
     std::size_t spheresEnd(std::size_t cell) const {
         return m_spheresEnd.empty() ? m_start[cell + 1] : m_spheresEnd[cell];
@@ -436,16 +435,24 @@ struct RawSums {
     int count;
 };
 
-// The same sums as NeighbourSums (V's two halves from one sum).
-NeighbourSums sumsOf(const RawSums& s) {
-    NeighbourSums out;
+// Sums kept as a sphere's four vectors r (r[b][lane]: the sum of d * X_b for b < 3, of d * d for
+// b = 3; d = (X, U, 0, 0)) as V, A and uu: V from lanes 0-2 of the first three (one sum for
+// both halves), A from their lanes 3-5, uu from lanes 3-5 of the last. For one sphere's floats
+// and for the AVX2 solve's vectors of four spheres alike (inlined there: its vectors need AVX).
+template <typename R, typename T>
+[[gnu::always_inline]] inline void unpackSums(const R& r, T (&V)[3][3], T (&A)[3][3], T (&uu)[3]) {
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-            out.V[i][j] = s.r[std::max(i, j)][std::min(i, j)];
-            out.A[i][j] = s.r[j][3 + i];
+            V[i][j] = r[std::max(i, j)][std::min(i, j)];
+            A[i][j] = r[j][3 + i];
         }
-        out.uu[i] = s.r[3][3 + i];
+        uu[i] = r[3][3 + i];
     }
+}
+
+NeighbourSums sumsOf(const RawSums& s) {
+    NeighbourSums out;
+    unpackSums(s.r, out.V, out.A, out.uu);
     out.count = s.count;
     return out;
 }
@@ -870,15 +877,8 @@ FAULTLINE_AVX2 void solve3x4(const RawSums* s, StrainValues* out) {
         col[b][4] = _mm256_cvtps_pd(_mm256_extractf128_ps(u0, 1));
         col[b][5] = _mm256_cvtps_pd(_mm256_extractf128_ps(u1, 1));
     }
-    // As sumsOf: V's two halves from one sum.
     v4d V[3][3], A[3][3], uu[3];
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            V[i][j] = col[std::max(i, j)][std::min(i, j)];
-            A[i][j] = col[j][3 + i];
-        }
-        uu[i] = col[3][3 + i];
-    }
+    unpackSums(col, V, A, uu);
     const v4d count =
         v4d{double(s[0].count), double(s[1].count), double(s[2].count), double(s[3].count)};
     // invert3's operations, lane by lane.
