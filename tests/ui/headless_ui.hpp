@@ -71,13 +71,15 @@ class HeadlessUi {
         }
     }
     // Frames until background work (opening, frame loads) is done.
+    // Until two looks in a row find no job and no frame loading: work a frame starts (a
+    // surface built again once a derived frame arrives, which the frame cache can hand over at
+    // once) shows only at the next look.
     void settle(ui::Workbench& wb) {
-        for (int k = 0; k < 50; ++k) {
+        for (int k = 0, quiet = 0; k < 50 && quiet < 2; ++k) {
             wb.jobs().waitAll();
             wb.frames().waitIdle();
             frames(wb, 2);
-            if (!wb.jobs().busy() && !wb.frames().loading())
-                break;
+            quiet = !wb.jobs().busy() && !wb.frames().loading() ? quiet + 1 : 0;
         }
         frames(wb, 2);
     }
