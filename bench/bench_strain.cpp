@@ -14,7 +14,9 @@
 // and with the baseline ones (for a profiler and to compare the two; FAULTLINE_BENCH_AVX2_ONLY=1:
 // the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run;
 // FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too); or
-// bench_strain --demo-strain-only N: strainFromMotion alone on two of the demo's frames. The dumps
+// bench_strain --demo-strain-only N: strainFromMotion alone on two of the demo's frames; or
+// bench_strain --dump FILE [FROM TO]: a file's frame TO parsed against its strain against frame
+// FROM (e.g. examples/lammps/in.tiled525k's real run tiled by LAMMPS to 527k grains). The dumps
 // (~42 MB plain, and gzipped) are made in a temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
@@ -426,6 +428,53 @@ int main(int argc, char** argv) {
             std::sort(times.begin(), times.end());
             std::printf("demo strain (%zu spheres): fastest %.1f ms, median %.1f ms of %zu\n",
                         now->size(), times.front(), times[times.size() / 2], times.size());
+            return 0;
+        }
+    for (int k = 1; k + 1 < argc; ++k)
+        if (std::strcmp(argv[k], "--dump") == 0) {
+            // A user's own data (any file Faultline reads, e.g. a LAMMPS dump): opening frame TO
+            // (parsed, no frame cache) against its strain against frame FROM (default 0 and 1),
+            // in rounds, each ratio taken within its round, as part 1 does for the 525k block.
+            const std::string path = argv[k + 1];
+            const std::size_t from = k + 2 < argc ? std::size_t(std::atoll(argv[k + 2])) : 0;
+            const std::size_t to = k + 3 < argc ? std::size_t(std::atoll(argv[k + 3])) : 1;
+            std::vector<double> parses, strains, ratios;
+            std::size_t spheres = 0;
+            try {
+                for (int round = 0; round < 11; ++round) {
+                    auto ds = Dataset::open({path});
+                    ds->setFrameCache(nullptr);
+                    auto t0 = std::chrono::steady_clock::now();
+                    const auto now = ds->frame(to);
+                    const double p = seconds(t0);
+                    const auto ref = ds->frame(from);
+                    t0 = std::chrono::steady_clock::now();
+                    const auto cols = strainFromMotion(*now, *ref, 0);
+                    const double s = seconds(t0);
+                    spheres = now->size();
+                    if (round == 0) {
+                        std::size_t nan = 0;
+                        for (float v : cols[0].floats)
+                            nan += std::isnan(v) ? 1 : 0;
+                        std::printf("%s: frame %zu against %zu, %zu spheres (%zu without a "
+                                    "value), default cutoff %.3f\n",
+                                    path.c_str(), to, from, spheres, nan,
+                                    defaultStrainCutoff(*ref));
+                    }
+                    parses.push_back(p * 1e3);
+                    strains.push_back(s * 1e3);
+                    ratios.push_back(s / p);
+                }
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "%s\n", e.what());
+                return 1;
+            }
+            for (auto* v : {&parses, &strains, &ratios})
+                std::sort(v->begin(), v->end());
+            std::printf("  open frame %zu, parsed: median %.1f ms; strainFromMotion: median %.1f "
+                        "ms (fastest %.1f)\n  strain / parse: median %.2f (rounds %.2f to %.2f)\n",
+                        to, parses[5], strains[5], strains.front(), ratios[5], ratios.front(),
+                        ratios.back());
             return 0;
         }
     for (int k = 1; k + 1 < argc; ++k)
