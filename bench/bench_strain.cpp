@@ -65,6 +65,23 @@ long peakKb() {
     return u.ru_maxrss;
 }
 
+// The peak resident set since the last resetPeak (kB; VmHWM of /proc/self/status), and its reset
+// (Linux: "5" to /proc/self/clear_refs); false where the kernel does not offer the reset.
+long highWaterKb() {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("VmHWM:", 0) == 0)
+            return std::atol(line.c_str() + 6);
+    return 0;
+}
+bool resetPeak() {
+    std::ofstream out("/proc/self/clear_refs");
+    out << "5";
+    out.flush();
+    return bool(out);
+}
+
 // About `n` spheres of radius 0.5 in hexagonal close packing, jittered by 0.05, in a block twice
 // as long (x) as it is high (z) and half as deep (y).
 Frame densePacking(std::size_t n) {
@@ -442,16 +459,21 @@ int main(int argc, char** argv) {
             std::size_t spheres = 0;
             try {
                 for (int round = 0; round < 11; ++round) {
-                    auto ds = Dataset::open({path});
+                    auto ds = Dataset::open({path}); // the frames parsed again each round
                     ds->setFrameCache(nullptr);
                     auto t0 = std::chrono::steady_clock::now();
                     const auto now = ds->frame(to);
                     const double p = seconds(t0);
                     const auto ref = ds->frame(from);
+                    // The first round's extra memory (nothing in the scratch pool yet): the
+                    // peak resident set during the strain over the resident set before it.
+                    const bool peakReset = round == 0 && resetPeak();
+                    const long residentBefore = residentKb();
                     t0 = std::chrono::steady_clock::now();
                     const auto cols = strainFromMotion(*now, *ref, 0);
                     const double s = seconds(t0);
                     spheres = now->size();
+                    const long growthKb = peakReset ? highWaterKb() - residentBefore : -1;
                     if (round == 0) {
                         std::size_t nan = 0;
                         for (float v : cols[0].floats)
@@ -460,6 +482,12 @@ int main(int argc, char** argv) {
                                     "value), default cutoff %.3f\n",
                                     path.c_str(), to, from, spheres, nan,
                                     defaultStrainCutoff(*ref));
+                        if (growthKb >= 0)
+                            std::printf("  first round: strain %.1f ms, peak resident growth "
+                                        "%.0f MB = %.1f bytes per sphere\n",
+                                        s * 1e3, double(growthKb) / 1024,
+                                        double(growthKb) * 1024 /
+                                            double(std::max<std::size_t>(1, spheres)));
                     }
                     parses.push_back(p * 1e3);
                     strains.push_back(s * 1e3);
