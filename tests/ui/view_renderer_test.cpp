@@ -78,3 +78,41 @@ TEST(RenderCamera, MatchesTheOrbitCameraOfTheViewport) {
         EXPECT_NEAR(cam.right()[k], b.right[k], 1e-9);
     }
 }
+
+// A long sandbox seen end-on beside a colour legend (the strain bench's 69 x 421 x 22 block
+// from the front): in perspective its near face is far nearer the eye than the box's middle,
+// and moving the target by half the legend at the middle's depth moved that face twice as far,
+// out of the view's left edge. Every corner must project inside the view, left of the legend,
+// and the box must fill the room it has (neither side far from its edge).
+TEST(RenderCamera, FitBesideALegendKeepsADeepBoxInTheRoomLeft) {
+    const std::array<double, 3> lo{0.65, 0.0, 0.56}, hi{68.4, 420.0, 21.4};
+    const double width = 950, height = 700, legend = 140;
+    for (const char* preset : {"front", "side", "iso", "top"})
+        for (const bool ortho : {false, true}) {
+            core::CameraState c;
+            c.orthographic = ortho;
+            ui::applyPreset(c, preset);
+            ui::fitBesideLegend(c, lo, hi, width, height, legend);
+            const glm::dmat4 vp =
+                ui::projectionMatrix(c, width / height, 300.0) * ui::viewMatrix(c);
+            double left = width, right = 0, top = height, bottom = 0;
+            for (int k = 0; k < 8; ++k) {
+                const auto p = ui::projectToPixels(
+                    vp,
+                    glm::dvec3(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]),
+                    {width, height});
+                ASSERT_TRUE(p) << preset;
+                left = std::min(left, p->x), right = std::max(right, p->x);
+                top = std::min(top, p->y), bottom = std::max(bottom, p->y);
+            }
+            SCOPED_TRACE(std::string(preset) + (ortho ? ", orthographic" : ", perspective"));
+            EXPECT_GE(left, 0.0);
+            EXPECT_LE(right, width - legend);
+            EXPECT_GE(top, 0.0);
+            EXPECT_LE(bottom, height);
+            // Centred across the room left of the legend, and as large as it allows: its sides,
+            // or its top or bottom, within the margin.
+            EXPECT_NEAR(left, width - legend - right, 2.0);
+            EXPECT_TRUE(left < 0.06 * width || std::min(top, height - bottom) < 0.06 * height);
+        }
+}

@@ -89,11 +89,81 @@ void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
                      const std::array<double, 3>& hi, double width, double height,
                      double legendPixels) {
     height = std::max(height, 1.0);
-    fit(c, lo, hi, std::max(width - legendPixels, 1.0) / height);
+    width = std::max(width, 1.0);
+    legendPixels = std::clamp(legendPixels, 0.0, width - 1.0);
+    if (!(legendPixels > 0)) {
+        fit(c, lo, hi, width / height);
+        return;
+    }
+    // The box must show in the view's pixels left of the legend: the target moves right by s
+    // (the model left). In a perspective view a corner nearer the eye moves further on screen
+    // than the target's depth does, so the distance and s are found together. A corner at x
+    // across the view and depth e (the distance plus its offset along the view) shows at
+    // (x - s) / e, in tangents of the view's angle; the room is [-T, R] across (R short of the
+    // legend) and [-tanY, tanY] up, each less the margin. For a distance d the s that keep every
+    // corner in the room form a range, which widens as d grows: the least d with one. Then s
+    // such that the box is centred in the room (its left gap equals its right one), found by
+    // bisection: moving s moves every corner the same way. (Orthographic: e = d for every
+    // corner.)
+    const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
+    const glm::dvec3 centre = 0.5 * (a + b);
+    const double tanY = std::tan(glm::radians(c.fovY) / 2.0);
+    const double T = tanY * width / height, R = T * (1.0 - 2.0 * legendPixels / width);
+    constexpr double kMargin = 1.06; // as fit()'s
+    const double mid = 0.5 * (R - T), half = 0.5 * (R + T) / kMargin;
+    const double roomLeft = mid - half, roomRight = mid + half, roomUp = tanY / kMargin;
+    c.target = {centre.x, centre.y, centre.z};
     const CameraBasis basis = cameraBasis(c);
-    const double worldPerPixel = 2.0 * c.distance * std::tan(glm::radians(c.fovY) / 2.0) / height;
+    double x[8], y[8], z[8];
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p =
+            glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
+        x[k] = glm::dot(p, basis.right);
+        y[k] = std::fabs(glm::dot(p, basis.up));
+        z[k] = c.orthographic ? 0.0 : glm::dot(p, basis.forward);
+    }
+    const auto fits = [&](double d) {
+        double from = -HUGE_VAL, to = HUGE_VAL;
+        for (int k = 0; k < 8; ++k) {
+            const double e = d + z[k];
+            if (!(e > 0) || y[k] > roomUp * e)
+                return false;
+            from = std::max(from, x[k] - roomRight * e);
+            to = std::min(to, x[k] - roomLeft * e);
+        }
+        return from <= to;
+    };
+    double high = 1e-6;
+    for (int k = 0; k < 8; ++k) // beyond every corner's depth
+        high = std::max(high, std::fabs(z[k]) + std::fabs(x[k]) + y[k]);
+    for (int guard = 0; guard < 200 && !fits(high); ++guard)
+        high *= 2;
+    double low = 0;
+    for (int k = 0; k < 60; ++k) {
+        const double d = 0.5 * (low + high);
+        (fits(d) ? high : low) = d;
+    }
+    c.distance = high;
+    // Left gap minus right gap, (min + max) - (R - T) in tangents, falls as s grows.
+    const auto lopsided = [&](double s) {
+        double least = HUGE_VAL, most = -HUGE_VAL;
+        for (int k = 0; k < 8; ++k) {
+            const double t = (x[k] - s) / (high + z[k]);
+            least = std::min(least, t), most = std::max(most, t);
+        }
+        return least + most - (R - T);
+    };
+    double sLow = -HUGE_VAL, sHigh = HUGE_VAL, span = 1e-6;
+    for (int k = 0; k < 8; ++k)
+        span = std::max(span, std::fabs(x[k]) + (T + R) * (high + std::fabs(z[k])));
+    sLow = -span, sHigh = span;
+    for (int k = 0; k < 80; ++k) {
+        const double s = 0.5 * (sLow + sHigh);
+        (lopsided(s) > 0 ? sLow : sHigh) = s;
+    }
+    const double s = 0.5 * (sLow + sHigh);
     for (int k = 0; k < 3; ++k)
-        c.target[k] += basis.right[k] * 0.5 * legendPixels * worldPerPixel;
+        c.target[k] += basis.right[k] * (std::isfinite(s) ? s : 0.0);
 }
 
 void applyPreset(core::CameraState& c, const char* preset) {
