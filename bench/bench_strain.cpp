@@ -16,7 +16,7 @@
 // FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too); or
 // bench_strain --demo-strain-only N: strainFromMotion alone on two of the demo's frames; or
 // bench_strain --dump FILE [FROM TO]: a file's frame TO parsed against its strain against frame
-// FROM (e.g. examples/lammps/in.tiled525k's real run tiled by LAMMPS to 527k grains). The dumps
+// FROM (e.g. the real run examples/lammps/tile.sh has LAMMPS tile to 527k grains). The dumps
 // (~42 MB plain, and gzipped) are made in a temp folder and deleted at the end.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
