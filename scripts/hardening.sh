@@ -67,17 +67,37 @@ unset LD_LIBRARY_PATH TSAN_OPTIONS FAULTLINE_TBB_THREADS XDG_CACHE_HOME
 
 artifacts="$build/fuzz-artifacts"
 mkdir -p "$artifacts"
-for target in "$build"/fuzz/fuzz_*; do
-    [ -x "$target" ] || continue
+# Each target for $seconds, as many at once as there are cores (2 here: 7 targets in 2 min, not
+# 3.5), each reported as it ends, in order.
+fuzzOne() {
+    local target="$1" name corpus
     name="$(basename "$target")"
     corpus="$build/fuzz-corpus/$name"
     mkdir -p "$corpus"
-    seeds=("$here/tests/data" "$here/tests/replay")
+    local seeds=("$here/tests/data" "$here/tests/replay")
     [ -d "$here/fuzz/corpus/${name#fuzz_}" ] && seeds+=("$here/fuzz/corpus/${name#fuzz_}")
-    echo "fuzz: $name for ${seconds}s"
     "$target" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
         -artifact_prefix="$artifacts/$name-" -print_final_stats=1 "$corpus" "${seeds[@]}" \
-        2>"$artifacts/$name.log" || { tail -40 "$artifacts/$name.log"; exit 1; }
+        2>"$artifacts/$name.log"
+}
+fuzzReport() {
+    local name
+    name="$(basename "$1")"
+    wait "$2" || { tail -40 "$artifacts/$name.log"; echo "fuzz: $name failed"; exit 1; }
+    echo "fuzz: $name for ${seconds}s"
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$artifacts/$name.log" | sed "s/^/  /"
+}
+targets=() pids=()
+for target in "$build"/fuzz/fuzz_*; do
+    [ -x "$target" ] || continue
+    if [ "${#pids[@]}" -ge "$(nproc)" ]; then
+        fuzzReport "${targets[0]}" "${pids[0]}"
+        targets=("${targets[@]:1}") pids=("${pids[@]:1}")
+    fi
+    fuzzOne "$target" &
+    targets+=("$target") pids+=($!)
+done
+for k in "${!pids[@]}"; do
+    fuzzReport "${targets[$k]}" "${pids[$k]}"
 done
 echo "hardening: sanitizer tests (ASan, UBSan, TSan) and fuzzing passed"
