@@ -70,8 +70,8 @@ class HeadlessUi {
             m_releaseAfterFrame.clear();
         }
     }
-    // Frames until background work (opening, frame loads) is done.
-    // Until two looks in a row find no job and no frame loading: work a frame starts (a
+    // Frames until background work (opening, frame loads) is done: until two looks in a row
+    // find no job and no frame loading, since work a frame starts (a
     // surface built again once a derived frame arrives, which the frame cache can hand over at
     // once) shows only at the next look.
     void settle(ui::Workbench& wb) {

@@ -13,6 +13,31 @@ namespace faultline::ui {
 
 namespace {
 glm::dvec3 target(const core::CameraState& c) { return {c.target[0], c.target[1], c.target[2]}; }
+
+// The fits' margin: the box fills 1 / 1.06 of the view.
+constexpr double kFitMargin = 1.06;
+
+// The box [lo, hi] centred on the camera's target: its centre, and each corner's offset from it
+// across the view (right), up and along the view (forward), for the fits below.
+struct BoxInView {
+    double x[8], y[8], z[8];
+};
+BoxInView boxInView(core::CameraState& c, const std::array<double, 3>& lo,
+                    const std::array<double, 3>& hi) {
+    const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
+    const glm::dvec3 centre = 0.5 * (a + b);
+    c.target = {centre.x, centre.y, centre.z};
+    const CameraBasis basis = cameraBasis(c);
+    BoxInView box;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p =
+            glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
+        box.x[k] = glm::dot(p, basis.right);
+        box.y[k] = glm::dot(p, basis.up);
+        box.z[k] = glm::dot(p, basis.forward);
+    }
+    return box;
+}
 } // namespace
 
 CameraBasis cameraBasis(const core::CameraState& c) {
@@ -62,27 +87,21 @@ void zoom(core::CameraState& c, double factor) {
 
 void fit(core::CameraState& c, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
          double aspect) {
-    const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
-    const glm::dvec3 centre = 0.5 * (a + b);
-    c.target = {centre.x, centre.y, centre.z};
+    const BoxInView box = boxInView(c, lo, hi);
     aspect = std::max(aspect, 1e-3);
     const double tanY = std::tan(glm::radians(c.fovY) / 2.0), tanX = tanY * aspect;
-    const CameraBasis basis = cameraBasis(c);
     // Each corner must lie inside the view: |x| <= depth tanX and |y| <= depth tanY, where depth
     // is the distance plus the corner's offset along the view direction (perspective); an
     // orthographic view shows a height of 2 d tanY whatever the depth.
     double d = 1e-6;
     for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 p =
-            glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
-        const double x = std::fabs(glm::dot(p, basis.right)), y = std::fabs(glm::dot(p, basis.up));
-        const double z = glm::dot(p, basis.forward);
+        const double x = std::fabs(box.x[k]), y = std::fabs(box.y[k]), z = box.z[k];
         if (c.orthographic)
             d = std::max({d, x / tanX, y / tanY});
         else
             d = std::max({d, x / tanX - z, y / tanY - z});
     }
-    c.distance = d * 1.06;
+    c.distance = d * kFitMargin;
 }
 
 void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
@@ -105,22 +124,17 @@ void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
     // such that the box is centred in the room (its left gap equals its right one), found by
     // bisection: moving s moves every corner the same way. (Orthographic: e = d for every
     // corner.)
-    const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
-    const glm::dvec3 centre = 0.5 * (a + b);
     const double tanY = std::tan(glm::radians(c.fovY) / 2.0);
     const double T = tanY * width / height, R = T * (1.0 - 2.0 * legendPixels / width);
-    constexpr double kMargin = 1.06; // as fit()'s
-    const double mid = 0.5 * (R - T), half = 0.5 * (R + T) / kMargin;
-    const double roomLeft = mid - half, roomRight = mid + half, roomUp = tanY / kMargin;
-    c.target = {centre.x, centre.y, centre.z};
+    const double mid = 0.5 * (R - T), half = 0.5 * (R + T) / kFitMargin;
+    const double roomLeft = mid - half, roomRight = mid + half, roomUp = tanY / kFitMargin;
+    const BoxInView box = boxInView(c, lo, hi);
     const CameraBasis basis = cameraBasis(c);
-    double x[8], y[8], z[8];
+    const double* x = box.x;
+    double y[8], z[8];
     for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 p =
-            glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
-        x[k] = glm::dot(p, basis.right);
-        y[k] = std::fabs(glm::dot(p, basis.up));
-        z[k] = c.orthographic ? 0.0 : glm::dot(p, basis.forward);
+        y[k] = std::fabs(box.y[k]);
+        z[k] = c.orthographic ? 0.0 : box.z[k];
     }
     const auto fits = [&](double d) {
         double from = -HUGE_VAL, to = HUGE_VAL;
@@ -153,10 +167,10 @@ void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
         }
         return least + most - (R - T);
     };
-    double sLow = -HUGE_VAL, sHigh = HUGE_VAL, span = 1e-6;
+    double span = 1e-6;
     for (int k = 0; k < 8; ++k)
         span = std::max(span, std::fabs(x[k]) + (T + R) * (high + std::fabs(z[k])));
-    sLow = -span, sHigh = span;
+    double sLow = -span, sHigh = span;
     for (int k = 0; k < 80; ++k) {
         const double s = 0.5 * (sLow + sHigh);
         (lopsided(s) > 0 ? sLow : sHigh) = s;
