@@ -1,7 +1,7 @@
 #include "core/faults/metrics.hpp"
 #include "core/util/enum_names.hpp"
 
-#include "core/faults/sphere_grid.hpp"
+#include "core/faults/frame_grid.hpp"
 #include "core/faults/tracking.hpp"
 
 #include <tbb/parallel_for.h>
@@ -108,7 +108,7 @@ class Footprint {
 FaultFrameMetrics computeOne(const Frame& frame, std::size_t frameIndex, std::size_t faultIndex,
                              const Fault& fault, const MetricsOptions& options,
                              const DisplacementColumns& displacement,
-                             const detail::SphereGrid* grid) {
+                             const detail::FrameGrid* grid) {
     FaultFrameMetrics m;
     m.frame = frameIndex;
     m.fault = faultIndex;
@@ -293,9 +293,9 @@ std::vector<FaultFrameMetrics> computeFrameMetrics(const Frame& frame, std::size
                 displacement = refs(c.name.substr(0, c.name.size() - 5));
         }
     }
-    std::unique_ptr<detail::SphereGrid> grid;
+    std::unique_ptr<detail::FrameGrid> grid;
     if (options.computeThrow && displacement.present() && !faults.empty())
-        grid = std::make_unique<detail::SphereGrid>(frame);
+        grid = std::make_unique<detail::FrameGrid>(frame);
     std::vector<FaultFrameMetrics> result(faults.size());
     tbb::parallel_for(std::size_t(0), faults.size(), [&](std::size_t k) {
         result[k] = computeOne(frame, frameIndex, k, faults[k], options, displacement, grid.get());

@@ -1,4 +1,4 @@
-#include "core/faults/sphere_grid.hpp"
+#include "core/faults/frame_grid.hpp"
 
 #include "fault_test_support.hpp"
 
@@ -8,11 +8,11 @@
 #include <set>
 
 using namespace faultline::core;
-using faultline::core::detail::SphereGrid;
+using faultline::core::detail::FrameGrid;
 using faultline::core::testing::frameOf;
 using faultline::core::testing::Sphere;
 
-TEST(FaultSphereGrid, VisitsEverySphereNearAPlaneInsideTheBox) {
+TEST(FrameGrid, VisitsEverySphereNearAPlaneInsideTheBox) {
     std::mt19937 rng(3);
     std::vector<Sphere> s;
     for (int i = 0; i < 4000; ++i)
@@ -21,7 +21,7 @@ TEST(FaultSphereGrid, VisitsEverySphereNearAPlaneInsideTheBox) {
     s.push_back({9000, NAN, 1, 1}); // never visited
     const Frame f = frameOf(s);
     for (double spc : {1.0, 8.0, 50.0}) {
-        const SphereGrid grid(f, spc);
+        const FrameGrid grid(f, spc);
         EXPECT_EQ(grid.size(), 4000u);
         for (int trial = 0; trial < 20; ++trial) {
             const Vec3d n = normalFromOrientation(rng() % 91, rng() % 360);
@@ -50,11 +50,11 @@ TEST(FaultSphereGrid, VisitsEverySphereNearAPlaneInsideTheBox) {
     }
 }
 
-TEST(FaultSphereGrid, EmptyAndFlatFrames) {
-    const SphereGrid empty(frameOf({}));
+TEST(FrameGrid, EmptyAndFlatFrames) {
+    const FrameGrid empty(frameOf({}));
     EXPECT_EQ(empty.size(), 0u);
     const Frame flat = frameOf({{1, 0, 0, 0}, {2, 5, 0, 0}, {3, 10, 0, 0}});
-    const SphereGrid grid(flat);
+    const FrameGrid grid(flat);
     std::vector<std::uint32_t> seen;
     grid.forEachNearPlane(
         {-1, -1, -1}, {11, 1, 1}, {5, 0, 0}, {1, 0, 0}, 0.5, [](const Vec3d&) { return true; },

@@ -1,4 +1,4 @@
-// SphereGrid (internal): every sphere of a frame binned in a dense grid, positions copied in
+// FrameGrid (internal): every sphere of a frame binned in a dense grid, positions copied in
 // cell order, to visit only the spheres near a plane patch (fault throw sampling) quickly.
 #pragma once
 
@@ -11,10 +11,10 @@
 
 namespace faultline::core::detail {
 
-class SphereGrid {
+class FrameGrid {
   public:
     // About `spheresPerCell` finite spheres a cell on average; non-finite centres are left out.
-    explicit SphereGrid(const Frame& frame, double spheresPerCell = 8.0);
+    explicit FrameGrid(const Frame& frame, double spheresPerCell = 8.0);
 
     double cellSize() const { return m_cell; }
     std::size_t size() const { return m_rows.size(); }
@@ -50,9 +50,9 @@ class SphereGrid {
 };
 
 template <typename AcceptCell, typename Visit>
-void SphereGrid::forEachNearPlane(const Vec3d& lo, const Vec3d& hi, const Vec3d& point,
-                                  const Vec3d& normal, double reach, AcceptCell&& acceptCell,
-                                  Visit&& visit) const {
+void FrameGrid::forEachNearPlane(const Vec3d& lo, const Vec3d& hi, const Vec3d& point,
+                                 const Vec3d& normal, double reach, AcceptCell&& acceptCell,
+                                 Visit&& visit) const {
     if (m_rows.empty())
         return;
     // a: the axis the normal is most along; b, c: the other two (the column grid).

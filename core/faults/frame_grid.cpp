@@ -1,4 +1,4 @@
-#include "core/faults/sphere_grid.hpp"
+#include "core/faults/frame_grid.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -8,7 +8,7 @@
 
 namespace faultline::core::detail {
 
-SphereGrid::SphereGrid(const Frame& frame, double spheresPerCell) {
+FrameGrid::FrameGrid(const Frame& frame, double spheresPerCell) {
     const std::size_t n = frame.size();
     auto finite = [&](std::size_t r) {
         return std::isfinite(frame.x[r]) && std::isfinite(frame.y[r]) && std::isfinite(frame.z[r]);
