@@ -12,6 +12,7 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -257,8 +258,10 @@ TEST_F(UnsavedWork, AProcessKilledWithUnsavedChangesOffersThemAtTheNextStart) {
     std::string dirEnv = "FAULTLINE_UNSAVED_DIR=" + dir.path().string();
     char* argv[] = {const_cast<char*>("/proc/self/exe"), filter.data(), nullptr};
     std::vector<char*> envp;
-    for (char** e = environ; *e; ++e)
-        envp.push_back(*e);
+    for (char** e = environ; *e; ++e) // not this run's share of the tests (it would hold none)
+        if (std::strncmp(*e, "GTEST_SHARD_INDEX=", 18) != 0 &&
+            std::strncmp(*e, "GTEST_TOTAL_SHARDS=", 19) != 0)
+            envp.push_back(*e);
     envp.push_back(env.data());
     envp.push_back(dirEnv.data());
     envp.push_back(nullptr);
