@@ -14,6 +14,7 @@
 
 #include "lattice_dump.hpp"
 #include "test_files.hpp"
+#include "tests/common/sanitizers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -250,7 +251,8 @@ std::vector<Json> shrink(std::vector<Json> ops, const std::string& data, const T
 TEST(SessionModel, RandomOpSequencesReplaySaveAndUndoToTheSameState) {
     TempDir dir;
     const std::string data = dir.write("lattice.dump", faultline::test::latticeDump());
-    constexpr int kSequences = 300, kOps = 60;
+    // Under TSan a third of them (common/sanitizers.hpp).
+    constexpr int kSequences = faultline::test::kUnderThreadSanitizer ? 100 : 300, kOps = 60;
     std::map<std::string, int> accepted; // by op: the sequences reach every kind of change
     for (int seed = 1; seed <= kSequences; ++seed) {
         OpGenerator gen(static_cast<std::uint32_t>(seed));
