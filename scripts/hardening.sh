@@ -41,7 +41,7 @@ runPool() {
     done
 }
 kShares=16
-shares() { # the jobs of one program's shares: PREFIX0 .. PREFIX15
+shares() { # the jobs of one program's shares: PREFIX0 .. PREFIX15 (PREFIX: name-)
     local k
     for ((k = 0; k < kShares; ++k)); do echo "$1$k"; done
 }
@@ -63,10 +63,10 @@ start=$(date +%s)
 # command-line and script tests) through CTest.
 asanShare() {
     cd "$build/tests" && XDG_CACHE_HOME="$build/tests/xdg-cache" GTEST_TOTAL_SHARDS=$kShares \
-        GTEST_SHARD_INDEX="${1#core}" ./faultline_core_tests
+        GTEST_SHARD_INDEX="${1#*-}" ./faultline_core_tests
 }
-runPool "$build/asan" asanShare $(shares core)
-echo "asan: $(testsRan "$build"/asan-core*.log) core unit tests, no report, $(( $(date +%s) - start )) s"
+runPool "$build/asan" asanShare $(shares core-)
+echo "asan: $(testsRan "$build"/asan-core-*.log) core unit tests, no report, $(( $(date +%s) - start )) s"
 (cd "$build" && ctest --output-on-failure --parallel "$(nproc)" --timeout 600 -LE unit)
 
 # ThreadSanitizer (issue 42): the core and workbench tests in one clang TSan build (its own
@@ -99,10 +99,9 @@ export FAULTLINE_TBB_THREADS=$tbbThreads XDG_CACHE_HOME="$tsan/xdg-cache"
 # The core tests and the workbench's (panels, background jobs, the soak's random use; GL under
 # Xvfb, a server for each share) in one pool.
 tsanShare() {
-    local program="$tsan/tests/faultline_core_tests"
     export GTEST_TOTAL_SHARDS=$kShares GTEST_SHARD_INDEX="${1#*-}"
     if [ "${1%-*}" = core ]; then
-        "$program"
+        "$tsan/tests/faultline_core_tests"
     else
         cd "$tsan/tests" && FAULTLINE_SOAK_ACTIONS=4000 FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1 \
             LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe xvfb-run -a -n $((200 + 4 * GTEST_SHARD_INDEX)) \
@@ -115,37 +114,22 @@ unset LD_LIBRARY_PATH TSAN_OPTIONS FAULTLINE_TBB_THREADS XDG_CACHE_HOME
 
 artifacts="$build/fuzz-artifacts"
 mkdir -p "$artifacts"
-# Each target for $seconds, as many at once as there are cores (2 here: 7 targets in 2 min, not
-# 3.5), each reported as it ends, in order.
+# Each target for $seconds, in the pool (2 cores: 7 targets in 2 min, not 3.5).
 fuzzOne() {
-    local target="$1" name corpus
-    name="$(basename "$target")"
-    corpus="$build/fuzz-corpus/$name"
-    mkdir -p "$corpus"
+    local target="$build/fuzz/$1" corpus="$build/fuzz-corpus/$1"
     local seeds=("$here/tests/data" "$here/tests/replay")
-    [ -d "$here/fuzz/corpus/${name#fuzz_}" ] && seeds+=("$here/fuzz/corpus/${name#fuzz_}")
+    mkdir -p "$corpus"
+    [ -d "$here/fuzz/corpus/${1#fuzz_}" ] && seeds+=("$here/fuzz/corpus/${1#fuzz_}")
     "$target" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
-        -artifact_prefix="$artifacts/$name-" -print_final_stats=1 "$corpus" "${seeds[@]}" \
-        2>"$artifacts/$name.log"
+        -artifact_prefix="$artifacts/$1-" -print_final_stats=1 "$corpus" "${seeds[@]}"
 }
-fuzzReport() {
-    local name
-    name="$(basename "$1")"
-    wait "$2" || { tail -40 "$artifacts/$name.log"; echo "fuzz: $name failed"; exit 1; }
-    echo "fuzz: $name for ${seconds}s"
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$artifacts/$name.log" | sed "s/^/  /"
-}
-targets=() pids=()
+targets=()
 for target in "$build"/fuzz/fuzz_*; do
-    [ -x "$target" ] || continue
-    if [ "${#pids[@]}" -ge "$(nproc)" ]; then
-        fuzzReport "${targets[0]}" "${pids[0]}"
-        targets=("${targets[@]:1}") pids=("${pids[@]:1}")
-    fi
-    fuzzOne "$target" &
-    targets+=("$target") pids+=($!)
+    if [ -x "$target" ]; then targets+=("$(basename "$target")"); fi
 done
-for k in "${!pids[@]}"; do
-    fuzzReport "${targets[$k]}" "${pids[$k]}"
+runPool "$artifacts/fuzz" fuzzOne "${targets[@]}"
+for name in "${targets[@]}"; do
+    echo "fuzz: $name for ${seconds}s"
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$artifacts/fuzz-$name.log" | sed "s/^/  /"
 done
 echo "hardening: sanitizer tests (ASan, UBSan, TSan) and fuzzing passed"
