@@ -71,9 +71,9 @@ class HeadlessUi {
         }
     }
     // Frames until background work (opening, frame loads) is done: until two looks in a row
-    // find no job and no frame loading, since work a frame starts (a
-    // surface built again once a derived frame arrives, which the frame cache can hand over at
-    // once) shows only at the next look.
+    // find no job and no frame loading, since work a frame starts (a surface built again once a
+    // derived frame arrives, which the frame cache can hand over at once) shows only at the
+    // next look.
     void settle(ui::Workbench& wb) {
         for (int k = 0, quiet = 0; k < 50 && quiet < 2; ++k) {
             wb.jobs().waitAll();

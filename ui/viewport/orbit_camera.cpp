@@ -18,17 +18,19 @@ glm::dvec3 target(const core::CameraState& c) { return {c.target[0], c.target[1]
 constexpr double kFitMargin = 1.06;
 
 // The box [lo, hi] centred on the camera's target: its centre, and each corner's offset from it
-// across the view (right), up and along the view (forward), for the fits below.
+// across the view (right), up and along the view (forward), for the fits below; and the basis.
 struct BoxInView {
     double x[8], y[8], z[8];
+    CameraBasis basis;
 };
 BoxInView boxInView(core::CameraState& c, const std::array<double, 3>& lo,
                     const std::array<double, 3>& hi) {
     const glm::dvec3 a(lo[0], lo[1], lo[2]), b(hi[0], hi[1], hi[2]);
     const glm::dvec3 centre = 0.5 * (a + b);
     c.target = {centre.x, centre.y, centre.z};
-    const CameraBasis basis = cameraBasis(c);
     BoxInView box;
+    box.basis = cameraBasis(c);
+    const CameraBasis& basis = box.basis;
     for (int k = 0; k < 8; ++k) {
         const glm::dvec3 p =
             glm::dvec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z) - centre;
@@ -129,7 +131,7 @@ void fitBesideLegend(core::CameraState& c, const std::array<double, 3>& lo,
     const double mid = 0.5 * (R - T), half = 0.5 * (R + T) / kFitMargin;
     const double roomLeft = mid - half, roomRight = mid + half, roomUp = tanY / kFitMargin;
     const BoxInView box = boxInView(c, lo, hi);
-    const CameraBasis basis = cameraBasis(c);
+    const CameraBasis& basis = box.basis;
     const double* x = box.x;
     double y[8], z[8];
     for (int k = 0; k < 8; ++k) {
