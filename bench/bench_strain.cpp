@@ -18,6 +18,7 @@
 // bench_strain --dump FILE [FROM TO]: a file's frame TO parsed against its strain against frame
 // FROM (e.g. the real run examples/lammps/tile.sh has LAMMPS tile to 527k grains). The dumps
 // (~42 MB plain, and gzipped) are made in a temp folder and deleted at the end.
+// FAULTLINE_BENCH_NO_AVX512=1 (any part): the AVX2 sums where the CPU has AVX-512 too.
 #include "core/data/dataset.hpp"
 #include "core/data/frame_cache.hpp"
 #include "core/data/frame_prefetcher.hpp"
@@ -425,6 +426,11 @@ void partDemo() {
 
 int main(int argc, char** argv) {
     bool skip10m = false, demo = false, demoOnly = false;
+    if (const char* no512 = std::getenv("FAULTLINE_BENCH_NO_AVX512"); no512 && *no512 == '1')
+        detail::setStrainAvx512Allowed(false);
+    std::printf("neighbour sums: %s\n", detail::strainUsesAvx512() ? "AVX-512"
+                                        : detail::strainUsesAvx2() ? "AVX2"
+                                                                   : "baseline");
     for (int k = 1; k < argc; ++k) {
         skip10m = skip10m || std::strcmp(argv[k], "--skip-10m") == 0;
         demo = demo || std::strcmp(argv[k], "--demo") == 0;

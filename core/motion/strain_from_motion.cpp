@@ -245,10 +245,11 @@ class NeighbourCells {
         // Reference positions as float arrays and whole points (reference and motion) in cell
         // order. Not zeroed first (every slot is written below, in parallel: a serial clearing
         // of these ~30 bytes a point cost as much as filling them).
-        // Eight more, infinitely far: the AVX2 sums read whole vectors past a run's end.
+        // Sixteen more, infinitely far: the AVX2 and AVX-512 sums read whole vectors past a
+        // run's end.
         for (auto* v : {&m_x, &m_y, &m_z}) {
-            *v = makeScratchArray<float>(count + 8);
-            std::fill(v->get() + count, v->get() + count + 8, kFar);
+            *v = makeScratchArray<float>(count + 16);
+            std::fill(v->get() + count, v->get() + count + 16, kFar);
         }
         m_points = makeScratchArray<float>(8 * count);
         m_count = count;
@@ -618,12 +619,12 @@ struct Packed {
     std::vector<std::uint32_t> slot, near;
     std::size_t size = 0;
     void reserve(std::size_t total) {
-        if (x.size() < total + 8)
+        if (x.size() < total + 16)
             for (auto* v : {&x, &y, &z})
-                v->resize(2 * total + 8);
-        if (slot.size() < total + 8) {
-            slot.resize(2 * total + 8);
-            near.resize(2 * total + 8);
+                v->resize(2 * total + 16);
+        if (slot.size() < total + 16) {
+            slot.resize(2 * total + 16);
+            near.resize(2 * total + 16);
         }
     }
 };
@@ -761,14 +762,216 @@ FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, const NeighbourCel
             sumNeighboursAvx2<false>(cells, packed, sphere, cutoff2, now, out[s]);
     }
 }
+
+// The same sums with AVX-512 (where the CPU has F, DQ, BW and VL), to the last bit: the same
+// points packed in the same order, the same neighbours found in the same order, and each lane
+// of the sums the same multiply-adds in the same order as the AVX2 sums. Sixteen candidates a
+// test instead of eight, packed by the CPU's compress rather than a table; and each neighbour's
+// four products as two sixteen-wide multiply-adds, d = (X, U, 0, 0) in both halves times
+// (X_x | X_y) and (X_z | d): the first half of each register one of the AVX2 sums, the second
+// half the next.
+#define FAULTLINE_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl,avx2,fma")))
+// GCC 12's AVX-512 intrinsics start some results from a deliberately undefined vector
+// (_mm512_undefined_ps), which its own warning then reports once they are inlined here.
+#if !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+FAULTLINE_AVX512 inline unsigned lanesWithin16(__m512 d2, __m512 c2, std::size_t left) {
+    return static_cast<unsigned>(_mm512_cmp_ps_mask(d2, c2, _CMP_LE_OQ)) &
+           (left >= 16 ? 0xffffu : (1u << left) - 1u);
+}
+
+FAULTLINE_AVX512 void packCandidates512(const NeighbourCells& cells, const Runs& runs,
+                                        const float* lo, const float* hi, float cutoff2,
+                                        Packed& out) {
+    const __m512 lx = _mm512_set1_ps(lo[0]), ly = _mm512_set1_ps(lo[1]), lz = _mm512_set1_ps(lo[2]);
+    const __m512 hx = _mm512_set1_ps(hi[0]), hy = _mm512_set1_ps(hi[1]), hz = _mm512_set1_ps(hi[2]);
+    const __m512 c2 = _mm512_set1_ps(cutoff2), zero = _mm512_setzero_ps();
+    const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const float *cx = cells.xs(), *cy = cells.ys(), *cz = cells.zs();
+    float *ox = out.x.data(), *oy = out.y.data(), *oz = out.z.data();
+    std::uint32_t* os = out.slot.data();
+    std::size_t n = 0;
+    for (int r = 0; r < runs.count; ++r) {
+        const std::size_t last = runs.last[r];
+        for (std::size_t k = runs.first[r]; k < last; k += 16) {
+            const __m512 x = _mm512_loadu_ps(cx + k), y = _mm512_loadu_ps(cy + k),
+                         z = _mm512_loadu_ps(cz + k);
+            // As packCandidates: the same operations, so the same points kept.
+            const __m512 dx =
+                _mm512_max_ps(_mm512_max_ps(_mm512_sub_ps(lx, x), _mm512_sub_ps(x, hx)), zero);
+            const __m512 dy =
+                _mm512_max_ps(_mm512_max_ps(_mm512_sub_ps(ly, y), _mm512_sub_ps(y, hy)), zero);
+            const __m512 dz =
+                _mm512_max_ps(_mm512_max_ps(_mm512_sub_ps(lz, z), _mm512_sub_ps(z, hz)), zero);
+            const __m512 d2 =
+                _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+            const auto mask = static_cast<__mmask16>(lanesWithin16(d2, c2, last - k));
+            // Compressed in registers, then stored whole (a compressing store to memory is
+            // slow on some CPUs).
+            _mm512_storeu_ps(ox + n, _mm512_maskz_compress_ps(mask, x));
+            _mm512_storeu_ps(oy + n, _mm512_maskz_compress_ps(mask, y));
+            _mm512_storeu_ps(oz + n, _mm512_maskz_compress_ps(mask, z));
+            _mm512_storeu_si512(
+                os + n, _mm512_maskz_compress_epi32(
+                            mask, _mm512_add_epi32(iota, _mm512_set1_epi32(static_cast<int>(k)))));
+            n += static_cast<std::size_t>(__builtin_popcount(mask));
+        }
+    }
+    out.size = n;
+}
+
+// The slots of the packed points within the cutoff of `self`, in the packed order, into `near`
+// (room for the packed points and 16 more); how many (the sphere itself among them).
+FAULTLINE_AVX512 inline std::size_t neighbours512(const Packed& packed, const float* self,
+                                                  float cutoff2, std::uint32_t* near) {
+    const __m512 px = _mm512_set1_ps(self[0]), py = _mm512_set1_ps(self[1]),
+                 pz = _mm512_set1_ps(self[2]), c2 = _mm512_set1_ps(cutoff2);
+    const float *cx = packed.x.data(), *cy = packed.y.data(), *cz = packed.z.data();
+    const std::uint32_t* slots = packed.slot.data();
+    const std::size_t last = packed.size;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < last; k += 16) {
+        const __m512 dx = _mm512_sub_ps(_mm512_loadu_ps(cx + k), px);
+        const __m512 dy = _mm512_sub_ps(_mm512_loadu_ps(cy + k), py);
+        const __m512 dz = _mm512_sub_ps(_mm512_loadu_ps(cz + k), pz);
+        const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+        const auto mask = static_cast<__mmask16>(lanesWithin16(d2, c2, last - k));
+        _mm512_storeu_si512(near + n,
+                            _mm512_maskz_compress_epi32(mask, _mm512_loadu_si512(slots + k)));
+        n += static_cast<std::size_t>(__builtin_popcount(mask));
+    }
+    return n;
+}
+
+// One sphere's sums over the points of the slots `near` (its neighbours and itself).
+template <bool Wrap>
+FAULTLINE_AVX512 inline void accumulate512(const NeighbourCells& cells, const std::uint32_t* near,
+                                           std::size_t n, const float* self, const CellF& cell,
+                                           RawSums& out) {
+    const float* cp = cells.points();
+    const __m512 me = _mm512_broadcast_f32x8(_mm256_loadu_ps(self));
+    // X_x | X_y, and X_z | d.
+    const __m512i firstIdx = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);
+    const __m512i secondIdx =
+        _mm512_setr_epi32(2, 2, 2, 2, 2, 2, 2, 2, 16, 17, 18, 19, 20, 21, 22, 23);
+    __m512 s01 = _mm512_setzero_ps(), s23 = s01;
+    if constexpr (!Wrap) {
+        const __m512i ownIdx = _mm512_setr_epi32(2, 2, 2, 2, 2, 2, 2, 2, 0, 1, 2, 3, 4, 5, 6, 7);
+        for (std::size_t t = 0; t < n; ++t) {
+            const __m512 d = _mm512_sub_ps(
+                _mm512_broadcast_f32x8(_mm256_loadu_ps(cp + 8 * std::size_t(near[t]))), me);
+            s01 = _mm512_fmadd_ps(d, _mm512_permutexvar_ps(firstIdx, d), s01);
+            s23 = _mm512_fmadd_ps(d, _mm512_permutexvar_ps(ownIdx, d), s23);
+        }
+    } else {
+        const __m256 tz8 = _mm256_setr_ps(0, 0, 0, cell.xz, cell.yz, cell.l[2], 0, 0);
+        const __m256 ty8 = _mm256_setr_ps(0, 0, 0, cell.xy, cell.l[1], 0, 0, 0);
+        const __m256 tx8 = _mm256_setr_ps(0, 0, 0, cell.l[0], 0, 0, 0, 0);
+        const __m512 tz = _mm512_broadcast_f32x8(tz8), ty = _mm512_broadcast_f32x8(ty8),
+                     tx = _mm512_broadcast_f32x8(tx8);
+        const __m512 ilx = _mm512_set1_ps(cell.inv[0]), ily = _mm512_set1_ps(cell.inv[1]),
+                     ilz = _mm512_set1_ps(cell.inv[2]);
+        const __m512i laneX = _mm512_set1_epi32(3), laneY = _mm512_set1_epi32(4),
+                      laneZ = _mm512_set1_epi32(5);
+        constexpr int kRound = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+        const bool wrapX = cell.periodic[0], wrapY = cell.periodic[1], wrapZ = cell.periodic[2];
+        for (std::size_t t = 0; t < n; ++t) {
+            const __m512 x = _mm512_sub_ps(
+                _mm512_broadcast_f32x8(_mm256_loadu_ps(cp + 8 * std::size_t(near[t]))), me);
+            __m512 d = x; // as the AVX2 sums, lane by lane
+            if (wrapZ)
+                d = _mm512_fnmadd_ps(
+                    _mm512_roundscale_ps(_mm512_mul_ps(_mm512_permutexvar_ps(laneZ, d), ilz),
+                                         kRound),
+                    tz, d);
+            if (wrapY)
+                d = _mm512_fnmadd_ps(
+                    _mm512_roundscale_ps(_mm512_mul_ps(_mm512_permutexvar_ps(laneY, d), ily),
+                                         kRound),
+                    ty, d);
+            if (wrapX)
+                d = _mm512_fnmadd_ps(
+                    _mm512_roundscale_ps(_mm512_mul_ps(_mm512_permutexvar_ps(laneX, d), ilx),
+                                         kRound),
+                    tx, d);
+            // X from the offset before the wrap (the AVX2 sums read it from the packed centres).
+            s01 = _mm512_fmadd_ps(d, _mm512_permutexvar_ps(firstIdx, x), s01);
+            s23 = _mm512_fmadd_ps(d, _mm512_permutex2var_ps(x, secondIdx, d), s23);
+        }
+    }
+    _mm512_storeu_ps(out.r[0], s01);     // r[0], r[1]
+    _mm512_storeu_ps(out.r[2], s23);     // r[2], r[3]
+    out.count = static_cast<int>(n) - 1; // the sphere itself (X = U = 0: no term)
+}
+
+FAULTLINE_AVX512 void cellSums512(const NeighbourCells& cells, const NeighbourCells::At& cell,
+                                  const std::uint32_t* selves, std::size_t count, float cutoff2,
+                                  const CellF& now, bool wrap, Packed& packed, RawSums* out) {
+    Runs runs;
+    std::size_t total = 0;
+    cells.around(cell, [&](std::size_t first, std::size_t last) {
+        runs.first[runs.count] = first;
+        runs.last[runs.count++] = last;
+        total += last - first;
+    });
+    packed.reserve(total);
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+        lo[a] = hi[a] = cells.point(selves[0])[a];
+    for (std::size_t s = 1; s < count; ++s) {
+        const float* p = cells.point(selves[s]);
+        for (int a = 0; a < 3; ++a)
+            lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    }
+    packCandidates512(cells, runs, lo, hi, cutoff2, packed);
+    // A sphere's neighbours found while the one before it sums its own: each list read well
+    // after it was stored (a load of a few bytes right after a whole vector was stored there
+    // waits for the store).
+    const std::size_t stride = packed.size + 16;
+    if (packed.near.size() < 2 * stride)
+        packed.near.resize(2 * stride);
+    std::uint32_t* lists[2] = {packed.near.data(), packed.near.data() + stride};
+    std::size_t found[2] = {0, 0};
+    for (std::size_t s = 0; s <= count; ++s) {
+        if (s < count)
+            found[s & 1] = neighbours512(packed, cells.point(selves[s]), cutoff2, lists[s & 1]);
+        if (s == 0)
+            continue;
+        const std::size_t p = s - 1;
+        if (wrap)
+            accumulate512<true>(cells, lists[p & 1], found[p & 1], cells.point(selves[p]), now,
+                                out[p]);
+        else
+            accumulate512<false>(cells, lists[p & 1], found[p & 1], cells.point(selves[p]), now,
+                                 out[p]);
+    }
+}
+#if !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #endif
 
 std::atomic<bool> g_baselineOnly{false};
+std::atomic<bool> g_avx512Allowed{true};
 
 bool useAvx2() {
 #if FAULTLINE_STRAIN_AVX2
     static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     return has && !g_baselineOnly.load(std::memory_order_relaxed);
+#else
+    return false;
+#endif
+}
+
+bool useAvx512() {
+#if FAULTLINE_STRAIN_AVX2
+    static const bool has =
+        __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+    return has && useAvx2() && g_avx512Allowed.load(std::memory_order_relaxed);
 #else
     return false;
 #endif
@@ -1047,6 +1250,7 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
     };
     auto values = makeScratchArray<SlotValues>(cells.pointCount());
     const bool avx2 = useAvx2();
+    const bool avx512 = useAvx512();
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, cells.cellCount(), 64),
         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -1112,8 +1316,12 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                         std::copy(raw.get(), raw.get() + first, more.get());
                         raw = std::move(more);
                     }
-                    cellSumsAvx2(cells, at, selves.data() + first, count, cutoff2, nowCellF, wrap,
-                                 packed, raw.get() + first);
+                    if (avx512)
+                        cellSums512(cells, at, selves.data() + first, count, cutoff2, nowCellF,
+                                    wrap, packed, raw.get() + first);
+                    else
+                        cellSumsAvx2(cells, at, selves.data() + first, count, cutoff2, nowCellF,
+                                     wrap, packed, raw.get() + first);
                 } else
 #endif
                 {
@@ -1192,6 +1400,10 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
 void detail::setStrainBaselineOnly(bool baselineOnly) { g_baselineOnly = baselineOnly; }
 
 bool detail::strainUsesAvx2() { return useAvx2(); }
+
+void detail::setStrainAvx512Allowed(bool allowed) { g_avx512Allowed = allowed; }
+
+bool detail::strainUsesAvx512() { return useAvx512(); }
 
 std::optional<std::size_t> StrainSpec::referenceFor(std::size_t frame, std::size_t count) const {
     const long long f = relative ? static_cast<long long>(frame) + reference : reference;

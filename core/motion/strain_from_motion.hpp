@@ -44,6 +44,10 @@ namespace detail {
 void setStrainBaselineOnly(bool baselineOnly);
 // Whether strainFromMotion takes the AVX2 sums now (the CPU has them, not set to the baseline).
 bool strainUsesAvx2();
+// Where the CPU has AVX-512 (F, DQ, BW, VL), the AVX2 sums take it: the same values to the last
+// bit. false: AVX2 only (tests compare the two; benchmarks time them).
+void setStrainAvx512Allowed(bool allowed);
+bool strainUsesAvx512();
 } // namespace detail
 
 } // namespace faultline::core

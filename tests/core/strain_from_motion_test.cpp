@@ -489,10 +489,64 @@ TEST(StrainFromMotion, TheAvx2AndBaselineSumsAgree) {
         }
 }
 
+// The AVX-512 sums (used where the CPU has them) give the AVX2 ones' values to the last bit, every
+// column: on the triclinic cell periodic on all three axes with motions that straddle half a cell
+// (both wrap U on every axis), on a sheared block with no wrap, and on 2-D data.
+TEST(StrainFromMotion, TheAvx512AndAvx2SumsAgreeToTheBit) {
+    detail::setStrainBaselineOnly(false);
+    detail::setStrainAvx512Allowed(true);
+    if (!detail::strainUsesAvx512())
+        GTEST_SKIP() << "no AVX-512 on this CPU: the AVX2 sums run";
+    std::vector<std::pair<Frame, Frame>> cases; // (now, reference)
+    {
+        const Frame ref = triclinicPacking(9, 1.5, -1.0, 0.75, 23);
+        std::mt19937 rng(31);
+        std::uniform_real_distribution<double> noise(-0.08, 0.08);
+        Frame now = ref;
+        for (std::size_t i = 0; i < now.size(); ++i)
+            moveInCell(now, i,
+                       {4.4 + 0.05 * now.z[i] + noise(rng), 4.45 + noise(rng), 4.5 + noise(rng)});
+        now.ids[100] = 100000; // gone
+        now.y[200] = std::numeric_limits<float>::quiet_NaN();
+        now.finalize();
+        cases.emplace_back(now, ref);
+    }
+    for (const bool flat : {false, true}) {
+        const Frame ref = packing(flat ? 40 : 16, 5, flat);
+        std::mt19937 rng(37);
+        std::uniform_real_distribution<double> noise(-0.03, 0.03);
+        Frame now = ref;
+        for (std::size_t i = 0; i < now.size(); ++i) {
+            now.x[i] += static_cast<float>(0.06 * now.y[i] + noise(rng));
+            now.y[i] += static_cast<float>(noise(rng));
+        }
+        now.finalize();
+        cases.emplace_back(now, ref);
+    }
+    for (const auto& [now, ref] : cases) {
+        detail::setStrainAvx512Allowed(false);
+        const auto avx2 = strainFromMotion(now, ref, 0);
+        detail::setStrainAvx512Allowed(true);
+        const auto avx512 = strainFromMotion(now, ref, 0);
+        ASSERT_EQ(avx2.size(), avx512.size());
+        std::size_t finite = 0;
+        for (std::size_t c = 0; c < avx2.size(); ++c) {
+            ASSERT_EQ(avx2[c].floats.size(), avx512[c].floats.size());
+            EXPECT_EQ(std::memcmp(avx2[c].floats.data(), avx512[c].floats.data(),
+                                  avx2[c].floats.size() * sizeof(float)),
+                      0)
+                << avx2[c].name << ", " << now.size() << " spheres";
+            for (float v : avx512[c].floats)
+                finite += std::isfinite(v) ? 1 : 0;
+        }
+        EXPECT_GT(finite, 6 * now.size());
+    }
+}
+
 // Hostile centres and boxes (a reader's checks let finite extremes through): huge and tiny
 // coordinates, a periodic box far smaller than the spacing, ids in the current frame that the
-// reference lacks. Neither kind of sums reads out of bounds (the sanitizer builds run this) and
-// both give NaN for exactly the same spheres.
+// reference lacks. No kind of sums (baseline, AVX2, AVX-512 where the CPU has it) reads out of
+// bounds (the sanitizer builds run this) and all give NaN for exactly the same spheres.
 TEST(StrainFromMotion, HostileCentresAndBoxesDoNotBreakEitherSums) {
     std::mt19937 rng(77);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -523,10 +577,16 @@ TEST(StrainFromMotion, HostileCentresAndBoxesDoNotBreakEitherSums) {
             const auto baseline = strainFromMotion(now, ref, cutoff);
             detail::setStrainBaselineOnly(false);
             const auto fast = strainFromMotion(now, ref, cutoff);
+            detail::setStrainAvx512Allowed(false); // the AVX2 sums where AVX-512 ran above
+            const auto avx2 = strainFromMotion(now, ref, cutoff);
+            detail::setStrainAvx512Allowed(true);
             ASSERT_EQ(baseline.size(), fast.size());
-            for (std::size_t i = 0; i < now.size(); ++i)
+            for (std::size_t i = 0; i < now.size(); ++i) {
                 ASSERT_EQ(std::isnan(baseline[0].floats[i]), std::isnan(fast[0].floats[i]))
                     << "round " << round << " cutoff " << cutoff << " row " << i;
+                ASSERT_EQ(std::isnan(avx2[0].floats[i]), std::isnan(fast[0].floats[i]))
+                    << "round " << round << " cutoff " << cutoff << " row " << i;
+            }
         }
     }
     // No centre of the reference is a number: every value NaN.
