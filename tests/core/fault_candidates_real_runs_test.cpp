@@ -19,7 +19,7 @@ using namespace faultline::core;
 
 namespace {
 
-std::string run(const std::string& name) { return faultline::test::dataFile("real_runs/" + name); }
+using faultline::test::realRunFile;
 
 double angleBetween(double a, double b) {
     const double d = std::fmod(std::fabs(a - b), 360.0);
@@ -193,7 +193,7 @@ void expectTwoApart(const std::vector<Match>& matches, double maxDipError) {
 // degrees off among three candidates, until leftovers went to the nearest surface only after
 // step 5 of fault_network.hpp: now 308 spheres, 1.1 degrees off.)
 TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To90AndHowFarAbove) {
-    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.extension.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {85.0, 86.0, 87.0, 88.0, 89.0, 90.0})
         expectMatched(check("LAMMPS extension 3 -> 4", *ds->frame(3), *ds->frame(4),
@@ -218,7 +218,7 @@ TEST(CandidatesOnRealRuns, TheLammpsGrabensTwoFaultsFrom85To90AndHowFarAbove) {
 // candidates for the two faults. (At the 90.5th and 92nd the faults' shallow ends drop out and
 // the steeper rest is 5.1 to 5.3 degrees off the whole fault's plane: printed, not asserted.)
 TEST(CandidatesOnRealRuns, TheLammpsGrabensFaultsWhileBothSlipAndABentFaultAsOne) {
-    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.extension.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {85.0, 87.5, 90.0, 92.5, 95.0})
         expectMatched(check("LAMMPS extension 2 -> 3", *ds->frame(2), *ds->frame(3),
@@ -240,7 +240,7 @@ TEST(CandidatesOnRealRuns, TheLammpsGrabensFaultsWhileBothSlipAndABentFaultAsOne
 // for the closing note; asserted only that the 85th gives the band's candidate on its plane.
 // (The box is the readers' fixture; the larger one below holds a band apart from its grips.)
 TEST(CandidatesOnRealRuns, TheYadeShearBandIsOneCandidateAtThe85th) {
-    auto ds = Dataset::open({run("yade/shear-spheres-*.vtk")});
+    auto ds = Dataset::open({realRunFile("yade/shear-spheres-*.vtk")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     const auto at85 =
         check("Yade shear box 1 -> 2", *ds->frame(1), *ds->frame(2), "inc_shear_strain", 85, 15);
@@ -263,7 +263,7 @@ TEST(CandidatesOnRealRuns, TheYadeShearBandIsOneCandidateAtThe85th) {
 // At the 94th and 95th what is left of the outer segments is their steeper part: 6.1 and 7.2
 // degrees off (printed, not asserted).
 TEST(CandidatesOnRealRuns, TheLargerYadeShearBoxBandFrom85To93) {
-    auto ds = Dataset::open({run("yade/shearbig-spheres-*.vtk.gz")});
+    auto ds = Dataset::open({realRunFile("yade/shearbig-spheres-*.vtk.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {85.0, 86.0, 87.0, 87.5, 88.0, 89.0, 90.0, 91.0, 92.0, 92.5, 93.0}) {
         std::size_t count = 0;
@@ -286,7 +286,7 @@ TEST(CandidatesOnRealRuns, TheLargerYadeShearBoxBandFrom85To93) {
 // one candidate within 5 degrees and 2 diameters at every threshold from the 85th to the 95th
 // percentile of frame 2's incremental strain (measured: at most 2.7 degrees and 0.33 d off).
 TEST(CandidatesOnRealRuns, TheLammpsShorteningThrustFrom85To95) {
-    auto ds = Dataset::open({run("lammps/dump.shortening.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.shortening.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {85.0, 87.0, 89.0, 90.0, 92.5, 95.0})
         expectMatched(check("LAMMPS shortening 1 -> 2", *ds->frame(1), *ds->frame(2),
@@ -314,7 +314,7 @@ TEST(CandidatesOnRealRuns, TheLammpsShorteningThrustFrom85To95) {
 // degrees off), among six candidates: the strained V in pieces, the west fault as its 67 most
 // planar spheres.
 TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
-    auto ds = Dataset::open({run("yade/sb-spheres-*.vtk.gz")});
+    auto ds = Dataset::open({realRunFile("yade/sb-spheres-*.vtk.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {85.0, 86.0, 87.0, 87.5, 88.0, 89.0, 90.0, 91.0, 92.0, 92.5, 93.0, 94.0, 95.0})
         expectMatched(
@@ -351,7 +351,7 @@ TEST(CandidatesOnRealRuns, TheYadeSandboxNormalFaults) {
 // 12-18 degrees flat from the 87.5th to the 92nd: matched at the 85th and 92.5th only.
 // Printed: the 85th (east 5.7 degrees off) and the 95th (what is left of the east zone, 10.3).
 TEST(CandidatesOnRealRuns, TheYadeSandboxWithAFloorGrabenFaults) {
-    auto ds = Dataset::open({run("yade/sbfloor-spheres-*.vtk.gz")});
+    auto ds = Dataset::open({realRunFile("yade/sbfloor-spheres-*.vtk.gz")});
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     for (double p : {87.5, 90.0, 93.0})
         expectMatched(check("Yade sandbox with a floor 2 -> 3", *ds->frame(0), *ds->frame(1),

@@ -8,7 +8,7 @@
 using namespace faultline::core;
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNaNDouble = std::numeric_limits<double>::quiet_NaN();
 
 FaultMetricsSeries tinySeries() {
     FaultMetricsSeries s;
@@ -45,11 +45,11 @@ FaultMetricsSeries tinySeries() {
     b.fault = 1;
     b.name = "odd, \"name\"";
     b.count = 0;
-    b.dip = b.dipDirection = b.strike = b.thickness = b.area = b.length = b.height = kNaN;
+    b.dip = b.dipDirection = b.strike = b.thickness = b.area = b.length = b.height = kNaNDouble;
     b.throwStatus = ThrowStatus::NoPlane;
-    b.throwVertical = b.netSlip = b.dipSlip = b.strikeSlip = kNaN;
-    b.centroid = b.min = b.max = b.normal = b.eigenvalues = {kNaN, kNaN, kNaN};
-    b.meanRadius = kNaN;
+    b.throwVertical = b.netSlip = b.dipSlip = b.strikeSlip = kNaNDouble;
+    b.centroid = b.min = b.max = b.normal = b.eigenvalues = {kNaNDouble, kNaNDouble, kNaNDouble};
+    b.meanRadius = kNaNDouble;
     s.rows = {a, b};
     s.seeds = {FaultSeed{true, 0, 3, {1.5, 2, 1e-7}}, FaultSeed{}};
     return s;

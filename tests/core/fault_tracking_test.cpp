@@ -22,7 +22,7 @@ Frame twoLines() {
     return frameOf(s);
 }
 // Lines of spheres have no plane: these tests link by distance.
-CandidateOptions connected() {
+CandidateOptions trackedCandidates() {
     CandidateOptions o;
     o.method = CandidateMethod::Connected;
     return o;
@@ -39,7 +39,7 @@ TEST(FaultTracking, MatchPicksTheCandidateSharingMostIds) {
     const Frame f = twoLines();
     std::vector<std::uint8_t> vis(f.size(), 1);
     vis.back() = 0;
-    const CandidateSet set = findCandidates(f, vis, connected());
+    const CandidateSet set = findCandidates(f, vis, trackedCandidates());
     ASSERT_EQ(set.candidates.size(), 2u);
     // 3 ids in candidate 0 (1..5), 2 in candidate 1 (11..13), one hidden (20), one absent (99)
     const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 11, 12, 20, 99}), faultOf("G", {20, 99}),
@@ -82,7 +82,7 @@ TEST(FaultTracking, TrackFollowsAGrowingFault) {
     };
     const std::vector<Fault> faults{faultOf("F", {1, 2, 3, 4})};
     const auto tracks = trackFaults(
-        3, [&](std::size_t i) { return frames[i]; }, visible, faults, connected(), true);
+        3, [&](std::size_t i) { return frames[i]; }, visible, faults, trackedCandidates(), true);
     ASSERT_EQ(tracks.size(), 1u);
     ASSERT_EQ(tracks[0].points.size(), 3u);
     for (std::size_t t = 0; t < 3; ++t) {
@@ -98,7 +98,7 @@ TEST(FaultTracking, TrackFollowsAGrowingFault) {
         EXPECT_EQ(p.members.back(), std::int64_t(4 + 2 * t));
     }
     const auto lean = trackFaults(
-        3, [&](std::size_t i) { return frames[i]; }, visible, faults, connected());
+        3, [&](std::size_t i) { return frames[i]; }, visible, faults, trackedCandidates());
     EXPECT_TRUE(lean[0].points[2].members.empty());
 }
 
@@ -135,7 +135,7 @@ TEST(FaultTracking, AOneOrTwoFrameFlickerIsNoEvent) {
                 mask[*frame.rowOf(id)] = 0;
         return mask;
     };
-    CandidateOptions options = connected();
+    CandidateOptions options = trackedCandidates();
     options.minSize = 3;
     const auto events = faultEvents(trackFaults(n, load, visible, faults, options));
     const std::vector<FaultEvent> expected = {

@@ -29,7 +29,7 @@ Frame frameWith(std::vector<float> values, bool integral, std::string name = "v"
     return f;
 }
 
-ColumnView column(const Frame& f) { return viewOf(f.attributes.front()); }
+ColumnView firstColumn(const Frame& f) { return viewOf(f.attributes.front()); }
 
 HistogramSpec spec(int bins, std::optional<std::array<double, 2>> range = std::nullopt) {
     HistogramSpec s;
@@ -66,8 +66,8 @@ TEST(Histogram, ValuesOnEdgesGoRightAndHighIsInTheLastBin) {
     // the file's 0.7 would; 1.0 is the high end and falls in the last bin.
     const Frame f = frameWith(
         {0.0f, 0.1f, 0.3f, 0.6f, 0.7f, 0.9f, 1.0f, -0.0001f, 1.0001f, kNaN, kInf, -kInf}, false);
-    const auto binning = chooseBinning(column(f), spec(10, {{0, 1}}));
-    const Histogram h = computeHistogram(column(f), binning);
+    const auto binning = chooseBinning(firstColumn(f), spec(10, {{0, 1}}));
+    const Histogram h = computeHistogram(firstColumn(f), binning);
     EXPECT_EQ(h.all.bins, (Counts{1, 1, 0, 1, 0, 0, 1, 1, 0, 2}));
     EXPECT_EQ(h.all.outside, 4u);
     EXPECT_EQ(h.all.nan, 1u);
@@ -95,13 +95,13 @@ TEST(Histogram, IntegerColumnsGetOneBinPerValue) {
 TEST(Histogram, WideIntegerRangesGroupWholeValues) {
     {
         const Frame f = frameWith({0, 255}, true);
-        const auto b = chooseBinning(column(f));
+        const auto b = chooseBinning(firstColumn(f));
         EXPECT_EQ(b.bins, 256);
         EXPECT_EQ(b.integerWidth, 1);
     }
     {
         const Frame f = frameWith({0, 256}, true);
-        const auto b = chooseBinning(column(f));
+        const auto b = chooseBinning(firstColumn(f));
         EXPECT_EQ(b.integerWidth, 2);
         EXPECT_EQ(b.bins, 129);
         EXPECT_EQ(b.hi, 258.0);
@@ -121,7 +121,7 @@ TEST(Histogram, WideIntegerRangesGroupWholeValues) {
     }
     {
         const Frame f = frameWith({-10, 5}, true);
-        const auto b = chooseBinning(column(f));
+        const auto b = chooseBinning(firstColumn(f));
         EXPECT_EQ(b.bins, 16);
         EXPECT_EQ(b.lo, -10.0);
         EXPECT_EQ(b.hi, 6.0);
@@ -138,7 +138,7 @@ TEST(Histogram, IntegerColumnWithAGivenRange) {
     EXPECT_EQ(h->all.bins, (Counts{1, 1, 1}));
     EXPECT_EQ(h->all.outside, 2u);
     // A range far beyond int32 is clipped to it (int32 values cannot lie outside).
-    const auto wide = chooseBinning(column(f), spec(0, {{-1e300, 1e300}}));
+    const auto wide = chooseBinning(firstColumn(f), spec(0, {{-1e300, 1e300}}));
     EXPECT_EQ(wide.lo, double(std::numeric_limits<std::int32_t>::min()));
     EXPECT_EQ(wide.bins, 256);
     EXPECT_EQ(wide.integerWidth, 16777216); // 2^32 values in 256 bins
@@ -171,7 +171,7 @@ TEST(Histogram, FreedmanDiaconisByDefault) {
     EXPECT_EQ(h->binning.hi, 99.0);
     EXPECT_EQ(h->all.bins, (Counts{20, 20, 20, 20, 20}));
     // A given range keeps the width: 49.5 / 21.33 = 2.32.
-    EXPECT_EQ(chooseBinning(column(f), spec(0, {{0, 49.5}})).bins, 3);
+    EXPECT_EQ(chooseBinning(firstColumn(f), spec(0, {{0, 49.5}})).bins, 3);
 }
 
 TEST(Histogram, SturgesWhenTheIqrIsZero) {
@@ -189,7 +189,7 @@ TEST(Histogram, AutomaticBinsAreCappedAt256) {
         values.push_back(float(i) * 1e-3f);
     values.push_back(1000.0f);
     const Frame f = frameWith(values, false);
-    EXPECT_EQ(chooseBinning(column(f)).bins, 256);
+    EXPECT_EQ(chooseBinning(firstColumn(f)).bins, 256);
 }
 
 TEST(Histogram, ConstantColumns) {
@@ -241,10 +241,10 @@ TEST(Histogram, EmptyAndAllNaNFrames) {
 
 TEST(Histogram, IntegerBinningReusedOnAFloatColumn) {
     const Frame ints = frameWith({0, 1, 2}, true);
-    const auto binning = chooseBinning(column(ints));
+    const auto binning = chooseBinning(firstColumn(ints));
     ASSERT_TRUE(binning.isInteger());
     const Frame floats = frameWith({0.5f, 2.9f, 3.0f, kNaN, -0.1f}, false);
-    const Histogram h = computeHistogram(column(floats), binning);
+    const Histogram h = computeHistogram(firstColumn(floats), binning);
     EXPECT_EQ(h.all.bins, (Counts{1, 0, 1}));
     EXPECT_EQ(h.all.outside, 2u);
     EXPECT_EQ(h.all.nan, 1u);
@@ -252,12 +252,13 @@ TEST(Histogram, IntegerBinningReusedOnAFloatColumn) {
 
 TEST(Histogram, BadSpecsAreRejected) {
     const Frame f = frameWith({1, 2}, false);
-    EXPECT_THROW(chooseBinning(column(f), spec(-1)), std::invalid_argument);
-    EXPECT_THROW(chooseBinning(column(f), spec(kMaxHistogramBins + 1)), std::invalid_argument);
-    EXPECT_THROW(chooseBinning(column(f), spec(4, {{1, 0}})), std::invalid_argument);
-    EXPECT_THROW(chooseBinning(column(f), spec(4, {{std::nan(""), 1}})), std::invalid_argument);
-    EXPECT_THROW(chooseBinning(column(f), spec(4, {{-1e308, 1e308}})), std::invalid_argument);
-    EXPECT_EQ(chooseBinning(column(f), spec(kMaxHistogramBins)).bins, kMaxHistogramBins);
+    EXPECT_THROW(chooseBinning(firstColumn(f), spec(-1)), std::invalid_argument);
+    EXPECT_THROW(chooseBinning(firstColumn(f), spec(kMaxHistogramBins + 1)), std::invalid_argument);
+    EXPECT_THROW(chooseBinning(firstColumn(f), spec(4, {{1, 0}})), std::invalid_argument);
+    EXPECT_THROW(chooseBinning(firstColumn(f), spec(4, {{std::nan(""), 1}})),
+                 std::invalid_argument);
+    EXPECT_THROW(chooseBinning(firstColumn(f), spec(4, {{-1e308, 1e308}})), std::invalid_argument);
+    EXPECT_EQ(chooseBinning(firstColumn(f), spec(kMaxHistogramBins)).bins, kMaxHistogramBins);
 }
 
 TEST(Histogram, MissingAndBuiltInVariables) {
@@ -290,12 +291,12 @@ TEST(Histogram, ParallelCountsMatchBinOf) {
     for (const bool integral : {false, true}) {
         const Frame f = frameWith(integral ? ints : floats, integral);
         for (const HistogramSpec& s : {spec(0), spec(37, {{0, 1}}), spec(256)}) {
-            const auto binning = chooseBinning(column(f), s);
-            const Histogram h = computeHistogram(column(f), binning, &mask);
+            const auto binning = chooseBinning(firstColumn(f), s);
+            const Histogram h = computeHistogram(firstColumn(f), binning, &mask);
             Counts all(binning.bins), visible(binning.bins);
             std::uint64_t nan = 0, outside = 0, visibleOutside = 0;
             for (int i = 0; i < n; ++i) {
-                const double v = column(f).value(i);
+                const double v = firstColumn(f).value(i);
                 if (auto k = binning.binOf(v)) {
                     ++all[*k];
                     visible[*k] += mask[i] != 0;

@@ -14,7 +14,7 @@ using namespace faultline::core;
 
 namespace {
 
-std::string run(const std::string& name) { return faultline::test::dataFile("real_runs/" + name); }
+using faultline::test::realRunFile;
 
 void print(const char* what, const KinematicResult& k) {
     std::printf("%s: %zu blocks (", what, k.blocks.size());
@@ -45,7 +45,7 @@ std::vector<KinematicFault> identifiable(const KinematicResult& k) {
 // between the last two frames, and the two normal faults between them, dipping about 55 degrees
 // towards each other; the graben's floor between the faults' feet near x = 31.
 TEST(KinematicFaults, TheLammpsGrabenIsThreeBlocksAndTwoNormalFaults) {
-    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.extension.gz")});
     for (auto [a, b] : {std::pair<std::size_t, std::size_t>{3, 4}, {2, 4}}) {
         const KinematicResult k = kinematicFaults(*ds->frame(a), *ds->frame(b));
         print(("LAMMPS extension " + std::to_string(a) + " -> " + std::to_string(b)).c_str(), k);
@@ -71,7 +71,7 @@ TEST(KinematicFaults, TheLammpsGrabenIsThreeBlocksAndTwoNormalFaults) {
 // Yade's bonded shear box (examples/yade/shear_box.py): the two grips and what sticks to them
 // move as two blocks; between them one gently dipping shear band.
 TEST(KinematicFaults, TheYadeShearBoxIsTwoBlocksAndOneBand) {
-    auto ds = Dataset::open({run("yade/shear-spheres-*.vtk")});
+    auto ds = Dataset::open({realRunFile("yade/shear-spheres-*.vtk")});
     ASSERT_EQ(ds->frameCount(), 3u);
     const KinematicResult k = kinematicFaults(*ds->frame(1), *ds->frame(2));
     print("Yade shear box 1 -> 2", k);
@@ -87,7 +87,7 @@ TEST(KinematicFaults, TheYadeShearBoxIsTwoBlocksAndOneBand) {
 // diameters. (Between the snapshots before, 2 % to 4 %, the same band, 21.6 degrees, still changes
 // over 5.6 diameters: not yet identifiable.)
 TEST(KinematicFaults, TheLargerYadeShearBoxIsTwoBlocksAndOneBand) {
-    auto ds = Dataset::open({run("yade/shearbig-spheres-*.vtk.gz")});
+    auto ds = Dataset::open({realRunFile("yade/shearbig-spheres-*.vtk.gz")});
     ASSERT_EQ(ds->frameCount(), 2u);
     const KinematicResult k = kinematicFaults(*ds->frame(0), *ds->frame(1));
     print("Yade larger shear box 2 -> 3", k);
@@ -102,14 +102,14 @@ TEST(KinematicFaults, TheLargerYadeShearBoxIsTwoBlocksAndOneBand) {
 // LIGGGHTS' shortening (examples/liggghts/in.shortening) thickens a wedge in front of the
 // pusher diffusely: no boundary between rigid blocks there is a fault by the rules above.
 TEST(KinematicFaults, TheLiggghtsWedgeHasNoSharpFault) {
-    auto ds = Dataset::open({run("liggghts/run.dump.gz")});
+    auto ds = Dataset::open({realRunFile("liggghts/run.dump.gz")});
     const KinematicResult k = kinematicFaults(*ds->frame(2), *ds->frame(3));
     print("LIGGGHTS shortening 2 -> 3", k);
     EXPECT_TRUE(identifiable(k).empty());
 }
 
 TEST(KinematicFaults, OneRigidBodyHasNoFaultAndTooFewSpheresAreRefused) {
-    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.extension.gz")});
     const KinematicResult same = kinematicFaults(*ds->frame(4), *ds->frame(4));
     EXPECT_TRUE(same.faults.empty());
     Frame tiny;
@@ -125,7 +125,7 @@ TEST(KinematicFaults, OneRigidBodyHasNoFaultAndTooFewSpheresAreRefused) {
 // dipping about 35 degrees towards the pusher (west) over the resting foreland. Later pairs
 // deform the wedge internally: no sharp boundary there.
 TEST(KinematicFaults, TheLammpsShorteningFormsAThrust) {
-    auto ds = Dataset::open({run("lammps/dump.shortening.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.shortening.gz")});
     ASSERT_EQ(ds->frameCount(), 5u);
     const KinematicResult k = kinematicFaults(*ds->frame(1), *ds->frame(2));
     print("LAMMPS shortening 1 -> 2", k);

@@ -14,7 +14,7 @@ using namespace faultline::core;
 
 namespace {
 
-std::string errorOf(const std::string& text) {
+std::string mercuryErrorOf(const std::string& text) {
     try {
         parseMercuryDataFrame("m.data", text);
     } catch (const InputError& e) {
@@ -70,24 +70,25 @@ TEST(MercuryData, TwoDimensionalStepsLieInTheXyPlane) {
 
 TEST(MercuryData, MalformedStepsNameLineAndWhat) {
     const std::string h = "1 0 0 0 0 1 1 1\n";
-    EXPECT_EQ(errorOf("1 0 0 0 0 1 1\n"),
+    EXPECT_EQ(mercuryErrorOf("1 0 0 0 0 1 1\n"),
               "m.data:1: expected a time step header of 8 numbers (N time xmin ymin zmin xmax "
               "ymax zmax) or 6 in 2-D, found 7 values");
-    EXPECT_EQ(errorOf("x 0 0 0 0 1 1 1\n"),
+    EXPECT_EQ(mercuryErrorOf("x 0 0 0 0 1 1 1\n"),
               "m.data:1: expected the number of particles first, found 'x'");
-    EXPECT_EQ(errorOf("1 0 0 0 nan 1 1 1\n"),
+    EXPECT_EQ(mercuryErrorOf("1 0 0 0 nan 1 1 1\n"),
               "m.data:1: header value 5: expected a finite number, found 'nan'");
-    EXPECT_EQ(errorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0\n"),
+    EXPECT_EQ(mercuryErrorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0\n"),
               "m.data:2: expected 14 values (a 3-D MercuryDPM row), found 13");
-    EXPECT_EQ(errorOf(h + "0 0 0 0 0 0 -1 0 0 0 0 0 0 0\n"),
+    EXPECT_EQ(mercuryErrorOf(h + "0 0 0 0 0 0 -1 0 0 0 0 0 0 0\n"),
               "m.data:2: the radius must be positive, found '-1'");
-    EXPECT_EQ(errorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0 0.5\n"),
+    EXPECT_EQ(mercuryErrorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0 0.5\n"),
               "m.data:2: the species index must be a whole number, found '0.5'");
-    EXPECT_EQ(errorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0 inf\n"),
+    EXPECT_EQ(mercuryErrorOf(h + "0 0 0 0 0 0 0.5 0 0 0 0 0 0 inf\n"),
               "m.data:2: value 14: expected a finite number, found 'inf'");
-    EXPECT_EQ(errorOf("2 0 0 0 0 1 1 1\n0 0 0 0 0 0 0.5 0 0 0 0 0 0 0\n"),
+    EXPECT_EQ(mercuryErrorOf("2 0 0 0 0 1 1 1\n0 0 0 0 0 0 0.5 0 0 0 0 0 0 0\n"),
               "m.data:3: file ends after 1 of 2 particle rows");
-    EXPECT_NE(errorOf("99999999999 0 0 0 0 1 1 1\n0 0\n").find("announces"), std::string::npos);
+    EXPECT_NE(mercuryErrorOf("99999999999 0 0 0 0 1 1 1\n0 0\n").find("announces"),
+              std::string::npos);
 }
 
 TEST(MercuryData, TruncatedFileNamesTheStep) {

@@ -25,7 +25,7 @@ PlanesModelOptions tiny() {
 }
 
 // Members linked by centre distance <= 2.2 form one piece.
-bool connected(const Frame& frame, const std::vector<std::int64_t>& ids) {
+bool isConnected(const Frame& frame, const std::vector<std::int64_t>& ids) {
     if (ids.empty())
         return true;
     std::vector<char> seen(ids.size(), 0);
@@ -110,7 +110,7 @@ TEST(PlanesModel, RandomFaultsGrowApartAndCarryTheDamage) {
             EXPECT_TRUE(std::includes(f.members[k].begin(), f.members[k].end(),
                                       f.members[k - 1].begin(), f.members[k - 1].end()))
                 << f.name << " lost members at frame " << k;
-            EXPECT_TRUE(connected(m.frames[k], f.members[k])) << f.name << " frame " << k;
+            EXPECT_TRUE(isConnected(m.frames[k], f.members[k])) << f.name << " frame " << k;
         }
     }
     // No sphere in two faults; members damaged, every other sphere intact.

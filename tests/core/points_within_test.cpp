@@ -45,9 +45,10 @@ TEST(PointsWithin, MatchesTheScalarLoopForEveryCount) {
         ASSERT_EQ(n, expected.size()) << "m " << m;
         for (std::size_t k = 0; k < n; ++k)
             EXPECT_EQ(within[k], expected[k]) << "m " << m << ", " << k;
-        if (m > 5)
+        if (m > 5) {
             EXPECT_NE(std::find(within.begin(), within.begin() + std::ptrdiff_t(n), 5u),
                       within.begin() + std::ptrdiff_t(n))
                 << "a point exactly at the limit is within reach";
+        }
     }
 }

@@ -21,12 +21,12 @@ using namespace faultline::core;
 
 namespace {
 
-std::string run(const std::string& name) { return faultline::test::dataFile("real_runs/" + name); }
+using faultline::test::realRunFile;
 
 } // namespace
 
 TEST(RealRuns, LiggghtsCustomVtkSeriesSkipsItsBoundingBoxes) {
-    auto ds = Dataset::open({run("liggghts/run_*.vtk")});
+    auto ds = Dataset::open({realRunFile("liggghts/run_*.vtk")});
     ASSERT_EQ(ds->frameCount(), 4u); // not 6: run_boundingBox_*.vtk are no frames
     EXPECT_EQ(ds->location(0).timestep, 0);
     EXPECT_EQ(ds->location(3).timestep, 60000);
@@ -45,7 +45,7 @@ TEST(RealRuns, LiggghtsCustomVtkSeriesSkipsItsBoundingBoxes) {
     EXPECT_FALSE(ds->frame(1)->box.known);
     // The same run as a text dump (gzipped after the run: Debian's LIGGGHTS writes no .gz)
     // agrees sphere by sphere, matched by id (custom/vtk reorders them every frame).
-    auto dump = Dataset::open({run("liggghts/run.dump.gz")});
+    auto dump = Dataset::open({realRunFile("liggghts/run.dump.gz")});
     ASSERT_EQ(dump->frameCount(), 4u);
     const auto text = dump->frame(3);
     ASSERT_EQ(text->size(), last->size());
@@ -59,7 +59,7 @@ TEST(RealRuns, LiggghtsCustomVtkSeriesSkipsItsBoundingBoxes) {
 
 TEST(RealRuns, YadeExportsKeepTheirColumns) {
     // VTKExporter: no cells, ids as doubles, vectors split into _x _y _z.
-    auto vtk = Dataset::open({run("yade/shear-spheres-*.vtk")});
+    auto vtk = Dataset::open({realRunFile("yade/shear-spheres-*.vtk")});
     ASSERT_EQ(vtk->frameCount(), 3u);
     EXPECT_EQ(vtk->location(2).timestep, 2); // the number in the file name
     const auto f = vtk->frame(2);
@@ -68,12 +68,12 @@ TEST(RealRuns, YadeExportsKeepTheirColumns) {
     EXPECT_NE(f->attribute("velocity_x"), nullptr);
     EXPECT_NE(f->attribute("nbonds"), nullptr);
     // export.text: '#format x_y_z_r', no ids.
-    auto text = Dataset::open({run("yade/shear_xyzr_2.txt")});
+    auto text = Dataset::open({realRunFile("yade/shear_xyzr_2.txt")});
     EXPECT_EQ(text->frame(0)->size(), 1051u);
     EXPECT_TRUE(text->frame(0)->idsAreRowNumbers);
     // export.textExt(format='x_y_z_r_attrs') with a comment naming the columns: the names are
     // the comment's; 'id' is the id.
-    auto ext = Dataset::open({run("yade/shear_attrs_2.txt")});
+    auto ext = Dataset::open({realRunFile("yade/shear_attrs_2.txt")});
     const auto g = ext->frame(0);
     EXPECT_EQ(g->size(), 1051u);
     EXPECT_FALSE(g->idsAreRowNumbers);
@@ -90,7 +90,7 @@ TEST(RealRuns, YadeExportsKeepTheirColumns) {
 // The Yade run breaks bonds along an inclined band: the spheres that lost bonds gather where the
 // shear strain from motion (against the first export) is highest.
 TEST(RealRuns, YadeBrokenBondsAreWhereStrainFromMotionIsHigh) {
-    auto vtk = Dataset::open({run("yade/shear-spheres-*.vtk")});
+    auto vtk = Dataset::open({realRunFile("yade/shear-spheres-*.vtk")});
     const auto first = vtk->frame(0), last = vtk->frame(2);
     const auto cols = strainFromMotion(*last, *first, 0);
     const AttributeColumn* before = first->attribute("nbonds");
@@ -127,7 +127,7 @@ TEST(RealRuns, YadeBrokenBondsAreWhereStrainFromMotionIsHigh) {
 // depth by tests/data/real_runs/lammps/README.md, dips about 57 degrees) hold the high-strain
 // grains, the footwalls stay quiet. y is periodic, wrapped without image flags.
 TEST(RealRuns, LammpsExtensionIncrementalStrainPicksOutTheGrabenFaults) {
-    auto ds = Dataset::open({run("lammps/dump.extension.gz")});
+    auto ds = Dataset::open({realRunFile("lammps/dump.extension.gz")});
     ASSERT_EQ(ds->frameCount(), 5u);
     ds->setStrains({StrainSpec{true, -1, 0, "inc_"}});
     const auto last = ds->frame(4);
@@ -192,7 +192,7 @@ TEST(RealRuns, LammpsExtensionIncrementalStrainPicksOutTheGrabenFaults) {
 TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
     faultline::test::TempDir dir;
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {run("lammps/dump.extension.gz")}}});
+    s.apply({{"op", "data.open"}, {"paths", {realRunFile("lammps/dump.extension.gz")}}});
     s.apply({{"op", "frame.set"}, {"frame", 4}});
     s.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
     s.apply({{"op", "strain.add"}, {"since_frame", 0}});
@@ -243,7 +243,7 @@ TEST(RealRuns, TheLammpsGrabenFaultsAppearAndTheirThrowGrows) {
 // default iso-value of 1, far outside the summed field of about 2,000 spheres.
 TEST(RealRuns, ANewSurfaceOfTheLammpsGrabenBandsWrapsThem) {
     Session s;
-    s.apply({{"op", "data.open"}, {"paths", {run("lammps/dump.extension.gz")}}});
+    s.apply({{"op", "data.open"}, {"paths", {realRunFile("lammps/dump.extension.gz")}}});
     s.apply({{"op", "frame.set"}, {"frame", 4}});
     s.apply({{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}});
     s.apply(

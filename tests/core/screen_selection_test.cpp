@@ -27,7 +27,7 @@ Frame sheet() {
 // World x, y in [0, 10] fill the view; the camera looks down.
 ScreenMapping topView() { return {glm::ortho(0.0, 10.0, 0.0, 10.0, -1.0, 1.0), {100.0, 100.0}}; }
 
-std::vector<std::int64_t> idsOf(const Frame& f, const std::vector<std::uint32_t>& rows) {
+std::vector<std::int64_t> idsOfRows(const Frame& f, const std::vector<std::uint32_t>& rows) {
     std::vector<std::int64_t> ids;
     for (std::uint32_t r : rows)
         ids.push_back(f.ids[r]);
@@ -51,11 +51,14 @@ TEST(ScreenSelection, RectangleTakesTheCentresInsideInAnyCornerOrder) {
     // Pixels x 12..38, y 60..78: columns i = 1, 2, 3 (x 15, 25, 35), rows j = 2, 3 (y 75, 65).
     const std::vector<std::int64_t> want{id(1, 2), id(2, 2), id(3, 2),
                                          id(1, 3), id(2, 3), id(3, 3)};
-    EXPECT_EQ(idsOf(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {12, 60}, {38, 78})), want);
-    EXPECT_EQ(idsOf(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {38, 60}, {12, 78})), want);
+    EXPECT_EQ(idsOfRows(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {12, 60}, {38, 78})),
+              want);
+    EXPECT_EQ(idsOfRows(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {38, 60}, {12, 78})),
+              want);
     // A tiny rectangle around one centre takes that sphere alone.
-    EXPECT_EQ(idsOf(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {44.9, 54.9}, {45.1, 55.1})),
-              (std::vector<std::int64_t>{id(4, 4)}));
+    EXPECT_EQ(
+        idsOfRows(f, rowsInRectangle(topView(), f.x, f.y, f.z, {}, {44.9, 54.9}, {45.1, 55.1})),
+        (std::vector<std::int64_t>{id(4, 4)}));
     EXPECT_TRUE(rowsInRectangle(topView(), f.x, f.y, f.z, {}, {0, 0}, {4, 4}).empty());
 }
 
@@ -63,7 +66,7 @@ TEST(ScreenSelection, HiddenRowsAreNeverSelected) {
     const Frame f = sheet();
     std::vector<std::uint8_t> mask(f.size(), 1);
     mask[f.rowOf(id(2, 2)).value()] = 0;
-    EXPECT_EQ(idsOf(f, rowsInRectangle(topView(), f.x, f.y, f.z, mask, {20, 60}, {30, 80})),
+    EXPECT_EQ(idsOfRows(f, rowsInRectangle(topView(), f.x, f.y, f.z, mask, {20, 60}, {30, 80})),
               (std::vector<std::int64_t>{id(2, 3)}));
 }
 
@@ -77,7 +80,7 @@ TEST(ScreenSelection, TriangleLassoIsExact) {
         for (int i = 0; i < 5; ++i)
             if (i + j <= 4)
                 want.push_back(id(i, j));
-    EXPECT_EQ(idsOf(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, lasso)), want);
+    EXPECT_EQ(idsOfRows(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, lasso)), want);
 }
 
 TEST(ScreenSelection, ConcaveLassoLeavesItsNotchOut) {
@@ -86,7 +89,7 @@ TEST(ScreenSelection, ConcaveLassoLeavesItsNotchOut) {
     const std::vector<glm::dvec2> lasso{{0, 0}, {10, 0}, {10, 90}, {50, 90}, {50, 100}, {0, 100}};
     const std::vector<std::int64_t> want{id(0, 0), id(1, 0), id(2, 0), id(3, 0), id(4, 0),
                                          id(0, 1), id(0, 2), id(0, 3), id(0, 4)};
-    EXPECT_EQ(idsOf(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, lasso)), want);
+    EXPECT_EQ(idsOfRows(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, lasso)), want);
 }
 
 TEST(ScreenSelection, SelfCrossingLassoAlternatesInAndOut) {
@@ -107,7 +110,7 @@ TEST(ScreenSelection, SelfCrossingLassoAlternatesInAndOut) {
                 want.push_back(id(i, j));
         }
     EXPECT_EQ(want.size(), 15u);
-    EXPECT_EQ(idsOf(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, bowTie)), want);
+    EXPECT_EQ(idsOfRows(f, rowsInPolygon(topView(), f.x, f.y, f.z, {}, bowTie)), want);
 }
 
 TEST(ScreenSelection, DegenerateLassosSelectNothing) {
@@ -129,7 +132,7 @@ TEST(ScreenSelection, PerspectiveSkipsCentresBehindTheEye) {
     ASSERT_TRUE(projectToScreen(m, 0, 0, 0, p));
     EXPECT_NEAR(p.x, 100.0, 1e-9);
     EXPECT_NEAR(p.y, 100.0, 1e-9);
-    EXPECT_EQ(idsOf(f, rowsInRectangle(m, f.x, f.y, f.z, {}, {90, 90}, {130, 110})),
+    EXPECT_EQ(idsOfRows(f, rowsInRectangle(m, f.x, f.y, f.z, {}, {90, 90}, {130, 110})),
               (std::vector<std::int64_t>{1, 2}));
 }
 

@@ -1,6 +1,7 @@
 #include "core/io/input_error.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "session_commands.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +29,7 @@ std::string writeCube(const TempDir& dir, const std::string& name) {
     return dir.write(name, text);
 }
 
-Json cmd(const char* text) { return Json::parse(text); }
+using faultline::test::cmd;
 
 } // namespace
 

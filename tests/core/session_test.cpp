@@ -7,6 +7,7 @@
 #include "core/session/session_json.hpp"
 #include "core/surface/fault_surface.hpp"
 #include "lattice_dump.hpp"
+#include "session_commands.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -26,7 +27,7 @@ std::string writeLattice(const TempDir& dir) {
     return dir.write("lattice.dump", faultline::test::latticeDump());
 }
 
-Json cmd(const char* text) { return Json::parse(text); }
+using faultline::test::cmd;
 
 // `text` is refused with a CommandError whose message holds `message`.
 void expectRefused(Session& s, const char* text, const std::string& message) {

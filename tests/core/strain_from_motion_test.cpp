@@ -96,7 +96,7 @@ void moveInCell(Frame& f, std::size_t i, const Vec& by) {
     f.z[i] = static_cast<float>(p[2]);
 }
 
-Frame mapped(const Frame& ref, const Map& map) {
+Frame mappedFrame(const Frame& ref, const Map& map) {
     Frame f;
     f.ids = ref.ids;
     f.radius = ref.radius;
@@ -150,7 +150,7 @@ void expectEverywhere(const std::vector<AttributeColumn>& cols, Expected e, doub
 TEST(StrainFromMotion, UniaxialStretch) {
     const Frame ref = packing(5);
     const double e = 0.1;
-    const Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const Frame now = mappedFrame(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
     const double exx = ((1 + e) * (1 + e) - 1) / 2; // 0.105
     // von Mises: sqrt(((Exx-0)^2 + 0 + (0-Exx)^2) / 6) = Exx / sqrt(3).
     expectEverywhere(strainFromMotion(now, ref, 1.5), {exx / std::sqrt(3.0), exx / 3});
@@ -161,7 +161,7 @@ TEST(StrainFromMotion, UniaxialStretch) {
 TEST(StrainFromMotion, AHugeCutoffTakesEverySphere) {
     const Frame ref = packing(3); // 27 spheres: the last vector has 5 lanes of padding
     const double e = 0.1;
-    const Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const Frame now = mappedFrame(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
     const double exx = ((1 + e) * (1 + e) - 1) / 2;
     expectEverywhere(strainFromMotion(now, ref, 1e20), {exx / std::sqrt(3.0), exx / 3});
 }
@@ -169,7 +169,7 @@ TEST(StrainFromMotion, AHugeCutoffTakesEverySphere) {
 TEST(StrainFromMotion, SimpleShear) {
     const Frame ref = packing(5);
     const double g = 0.2;
-    const Frame now = mapped(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const Frame now = mappedFrame(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
     // F^T F = [[1, g, 0], [g, 1 + g^2, 0], [0, 0, 1]]: Exy = g/2, Eyy = g^2/2.
     const double exy = g / 2, eyy = g * g / 2;
     const double shear = std::sqrt(exy * exy + (eyy * eyy + eyy * eyy) / 6);
@@ -179,7 +179,7 @@ TEST(StrainFromMotion, SimpleShear) {
 TEST(StrainFromMotion, RotationAndTranslationHaveNoStrain) {
     const Frame ref = packing(5);
     const double a = 0.7, c = std::cos(a), s = std::sin(a);
-    const Frame now = mapped(ref, affine({{c, -s, 0}, {s, c, 0}, {0, 0, 1}}, {3, -1, 0.5}));
+    const Frame now = mappedFrame(ref, affine({{c, -s, 0}, {s, c, 0}, {0, 0, 1}}, {3, -1, 0.5}));
     const auto cols = strainFromMotion(now, ref, 1.5);
     expectEverywhere(cols, {0, 0});
     // Displacement is each sphere's own.
@@ -192,7 +192,7 @@ TEST(StrainFromMotion, RotationAndTranslationHaveNoStrain) {
 TEST(StrainFromMotion, UniformDilation) {
     const Frame ref = packing(5);
     const double a = 0.05;
-    const Frame now = mapped(ref, affine({{1 + a, 0, 0}, {0, 1 + a, 0}, {0, 0, 1 + a}}));
+    const Frame now = mappedFrame(ref, affine({{1 + a, 0, 0}, {0, 1 + a, 0}, {0, 0, 1 + a}}));
     const double eii = ((1 + a) * (1 + a) - 1) / 2;
     expectEverywhere(strainFromMotion(now, ref, 1.5), {0, eii});
 }
@@ -345,7 +345,7 @@ TEST(StrainFromMotion, TriclinicCellsWrapAlongTheirEdges) {
 TEST(StrainFromMotion, TwoDimensionalDataUsesThePlaneForm) {
     const Frame ref = packing(7, 13, /*flatZ=*/true);
     const double g = 0.1;
-    const Frame now = mapped(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
+    const Frame now = mappedFrame(ref, affine({{1, g, 0}, {0, 1, 0}, {0, 0, 1}}));
     const auto cols = strainFromMotion(now, ref, 1.8); // corners keep 3 neighbours
     // E = [[0, g/2], [g/2, g^2/2]]: shear = sqrt(Exy^2 + (Exx-Eyy)^2 / 2), vol = (Exx+Eyy)/2.
     const double exy = g / 2, eyy = g * g / 2;
@@ -357,7 +357,7 @@ TEST(StrainFromMotion, TwoDimensionalDataUsesThePlaneForm) {
 TEST(StrainFromMotion, SpheresAreMatchedById) {
     const Frame ref = packing(5);
     const double e = 0.1;
-    Frame stretched = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    Frame stretched = mappedFrame(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
     Frame now;
     for (std::size_t k = stretched.size(); k-- > 1;) { // reversed; id 1 (row 0) is gone
         now.ids.push_back(stretched.ids[k]);
@@ -398,7 +398,7 @@ TEST(StrainFromMotion, SpheresAreMatchedById) {
 TEST(StrainFromMotion, ACentreThatIsNoNumberHasNoValue) {
     const Frame ref = packing(5);
     const double e = 0.1;
-    Frame now = mapped(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    Frame now = mappedFrame(ref, affine({{1 + e, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
     // Inside the packing: x NaN, z NaN, y infinite.
     const std::size_t bad[3] = {62, 31, 87};
     now.x[bad[0]] = std::numeric_limits<float>::quiet_NaN();

@@ -7,6 +7,7 @@
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "session_commands.hpp"
 #include "test_files.hpp"
 
 #include <gtest/gtest.h>
@@ -52,9 +53,9 @@ FrameCacheSettings cacheIn(const TempDir& dir, const std::string& folder) {
     return settings;
 }
 
-Json cmd(const char* text) { return Json::parse(text); }
+using faultline::test::cmd;
 
-void expectRefused(Session& s, const char* text, const std::string& message) {
+void expectRefusedUnchanged(Session& s, const char* text, const std::string& message) {
     const SessionState before = s.state();
     try {
         s.apply(cmd(text));
@@ -144,43 +145,50 @@ TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
     TempDir dir;
     Session s;
     s.apply({{"op", "data.open"}, {"paths", {writeSlidingBlock(dir)}}});
-    expectRefused(s, R"({"op":"strain.add"})",
-                  "strain.add: give \"since_frame\" (a frame) or \"since_offset\" (frames "
-                  "before each frame, e.g. -4)");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":0})",
-                  "strain.add: \"cutoff\" must be a number > 0, found 0");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":-1.5})",
-                  "strain.add: \"cutoff\" must be a number > 0, found -1.5");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":"wide"})",
-                  "strain.add: \"cutoff\" must be a number > 0, found \"wide\"");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"cutoff":1e300})",
-                  "strain.add: \"cutoff\" 1e+300 is more than 20 times the automatic one (1.5) "
-                  "for this data");
-    expectRefused(s, R"({"op":"strain.add","since_frame":3})",
-                  "strain.add: \"since_frame\" 3 is out of range 0..2");
-    expectRefused(s, R"({"op":"strain.add","since_frame":-1})",
-                  "strain.add: since_frame must be >= 0");
-    expectRefused(s, R"({"op":"strain.add","since_frame":1.5})",
-                  "strain.add: \"since_frame\" must be a whole number, found 1.5");
-    expectRefused(s, R"({"op":"strain.add","since_frame":1e300})",
-                  "strain.add: \"since_frame\" must be a whole number of frames, found 1e+300");
-    expectRefused(s, R"({"op":"strain.add","since_offset":0})",
-                  "strain.add: since_offset must not be 0 (a frame against itself has no strain)");
-    expectRefused(s, R"({"op":"strain.add","since_offset":-3})",
-                  "strain.add: \"since_offset\" -3 reaches past all 3 frames");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"since_offset":-1})",
-                  "strain.add: \"since_offset\" goes with no \"since_frame\": give one of them");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"prefix":"a b"})",
-                  "strain.add: prefix may hold only letters, digits, '_', '-' and '.'");
-    expectRefused(s, R"({"op":"strain.add","since_frame":0,"radius":2})",
-                  "strain.add: unknown field \"radius\" (expected since_frame, since_offset, "
-                  "cutoff, prefix, index)");
+    expectRefusedUnchanged(s, R"({"op":"strain.add"})",
+                           "strain.add: give \"since_frame\" (a frame) or \"since_offset\" (frames "
+                           "before each frame, e.g. -4)");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":0,"cutoff":0})",
+                           "strain.add: \"cutoff\" must be a number > 0, found 0");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":0,"cutoff":-1.5})",
+                           "strain.add: \"cutoff\" must be a number > 0, found -1.5");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":0,"cutoff":"wide"})",
+                           "strain.add: \"cutoff\" must be a number > 0, found \"wide\"");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_frame":0,"cutoff":1e300})",
+        "strain.add: \"cutoff\" 1e+300 is more than 20 times the automatic one (1.5) "
+        "for this data");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":3})",
+                           "strain.add: \"since_frame\" 3 is out of range 0..2");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":-1})",
+                           "strain.add: since_frame must be >= 0");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":1.5})",
+                           "strain.add: \"since_frame\" must be a whole number, found 1.5");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_frame":1e300})",
+        "strain.add: \"since_frame\" must be a whole number of frames, found 1e+300");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_offset":0})",
+        "strain.add: since_offset must not be 0 (a frame against itself has no strain)");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_offset":-3})",
+                           "strain.add: \"since_offset\" -3 reaches past all 3 frames");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_frame":0,"since_offset":-1})",
+        "strain.add: \"since_offset\" goes with no \"since_frame\": give one of them");
+    expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":0,"prefix":"a b"})",
+                           "strain.add: prefix may hold only letters, digits, '_', '-' and '.'");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_frame":0,"radius":2})",
+        "strain.add: unknown field \"radius\" (expected since_frame, since_offset, "
+        "cutoff, prefix, index)");
     s.apply(cmd(R"({"op":"strain.add","since_frame":0})"));
-    expectRefused(s, R"({"op":"strain.add","since_offset":-1})",
-                  "strain.add: strain variables with prefix \"\" exist already: strain.remove "
-                  "them first, or give another \"prefix\"");
-    expectRefused(s, R"({"op":"strain.remove","prefix":"inc_"})",
-                  "strain.remove: no strain variables with prefix \"inc_\" (there are \"\")");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_offset":-1})",
+        "strain.add: strain variables with prefix \"\" exist already: strain.remove "
+        "them first, or give another \"prefix\"");
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.remove","prefix":"inc_"})",
+        "strain.remove: no strain variables with prefix \"inc_\" (there are \"\")");
 }
 
 TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {

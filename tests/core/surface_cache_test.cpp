@@ -6,14 +6,14 @@
 namespace fc = faultline::core;
 
 namespace {
-struct Spheres {
+struct CacheSpheres {
     std::vector<float> x{0.0f, 0.9f}, y{0, 0}, z{0, 0}, r{0.5f, 0.5f}, rgb{};
     fc::SphereSet set() const { return {x, y, z, r, rgb}; }
 };
 } // namespace
 
 TEST(SurfaceCache, BuildsOnceThenRemeshesOnlyForANewIso) {
-    const Spheres s;
+    const CacheSpheres s;
     fc::SurfaceCache cache;
     fc::SurfaceParams params;
     params.iso = 2.0f;
@@ -49,7 +49,7 @@ TEST(SurfaceCache, BuildsOnceThenRemeshesOnlyForANewIso) {
 }
 
 TEST(SurfaceCache, EvictsLeastRecentlyUsedOverBudget) {
-    const Spheres s;
+    const CacheSpheres s;
     fc::SurfaceCache cache(1); // every new entry evicts the older ones
     fc::SurfaceParams params;
     params.iso = 2.0f;
@@ -71,7 +71,7 @@ TEST(SurfaceCache, MemberHashDependsOnTheMembers) {
 // keepOnly (a journal's surface.build): the surface is kept whole and the result holds no mesh;
 // a later get returns the kept mesh, the same as a build returned to its caller.
 TEST(SurfaceCache, KeepOnlyKeepsTheMeshAndReturnsNone) {
-    const Spheres s;
+    const CacheSpheres s;
     fc::SurfaceParams params;
     params.iso = 2.0f;
     params.voxelSize = 0.1f;

@@ -19,7 +19,7 @@ namespace fc = faultline::core;
 
 namespace {
 
-struct Spheres {
+struct ExportSpheres {
     std::vector<float> x{0.0f, 0.8f, 1.6f}, y{0, 0, 0.2f}, z{0, 0.1f, 0}, r{0.5f, 0.5f, 0.4f};
     std::vector<float> rgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
     fc::SphereSet set() const { return {x, y, z, r, rgb}; }
@@ -30,7 +30,7 @@ std::filesystem::path tempPath(const std::string& name) {
 }
 
 // The test spheres' surface at `iso`, voxel 0.1 (r/d^2).
-fc::SurfaceResult surfaceAt(const Spheres& s, float iso) {
+fc::SurfaceResult surfaceAt(const ExportSpheres& s, float iso) {
     fc::SurfaceParams params;
     params.iso = iso;
     params.voxelSize = 0.1f;
@@ -40,7 +40,7 @@ fc::SurfaceResult surfaceAt(const Spheres& s, float iso) {
 } // namespace
 
 TEST(SurfaceExport, VdbHoldsNamedGridsAndMetadata) {
-    const Spheres s;
+    const ExportSpheres s;
     const auto result = surfaceAt(s, 2.0f);
     const auto path = tempPath("F1.vdb");
     const fc::VdbSurface entry{"F1", result.field.get(), 2.0f, {}};
@@ -109,7 +109,7 @@ TEST(SurfaceExport, VdbSaysWhatTheColoursMean) {
 }
 
 TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
-    const Spheres s;
+    const ExportSpheres s;
     const auto a = surfaceAt(s, 2.0f);
     const auto b = surfaceAt(s, 2.5f);
     const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}, {"F2", &b.mesh, 0.8}};
@@ -174,7 +174,7 @@ TEST(SurfaceExport, GlbHasOneNamedNodePerSurfaceAndGlyphsAsOneColouredMesh) {
 
 // A path ending in .gltf gets the JSON form (buffers embedded), which glTF tools read as text.
 TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
-    const Spheres s;
+    const ExportSpheres s;
     const auto a = surfaceAt(s, 2.0f);
     const fc::GltfSurface surfaces[] = {{"F1", &a.mesh}};
     const auto path = tempPath("faults.gltf");
@@ -197,7 +197,7 @@ TEST(SurfaceExport, GltfPathWritesTheJsonForm) {
 // their central differences (one-sided beside a tile). Spheres scattered so that many leaves sit
 // next to tiles, where the mesher reads the neighbourhood of each cell, voxel by voxel.
 TEST(SurfaceGrids, VertexColoursAndNormalsComeFromTheStoredCorners) {
-    Spheres s{{}, {}, {}, {}, {}};
+    ExportSpheres s{{}, {}, {}, {}, {}};
     std::mt19937 random(11);
     std::uniform_real_distribution<float> at(0.0f, 5.0f), radius(0.3f, 0.6f), unit(0.0f, 1.0f);
     for (int n = 0; n < 50; ++n) {

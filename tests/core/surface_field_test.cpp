@@ -23,14 +23,14 @@ namespace fc = faultline::core;
 
 namespace {
 
-struct Spheres {
+struct FieldSpheres {
     std::vector<float> x, y, z, r, rgb;
     fc::SphereSet set() const { return {x, y, z, r, rgb}; }
 };
 
 // A slab-shaped "fault zone" of jittered spheres, deterministic.
-Spheres slab(int nx, int ny, int nz, unsigned seed) {
-    Spheres s;
+FieldSpheres slab(int nx, int ny, int nz, unsigned seed) {
+    FieldSpheres s;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> jitter(-0.15f, 0.15f), radius(0.4f, 0.6f);
     for (int i = 0; i < nx; ++i)
@@ -52,7 +52,7 @@ struct Check {
 };
 
 // Evaluates every planned block and compares every voxel with Algorithm 1.
-Check compareWithReference(const Spheres& s, const fc::SurfaceParams& params, float voxel,
+Check compareWithReference(const FieldSpheres& s, const fc::SurfaceParams& params, float voxel,
                            float isoMin, float isoMax, const fc::MultilevelTuning& tuning,
                            int* levels = nullptr, int* chargeLevels = nullptr,
                            double* estimate = nullptr, std::array<int, 2>* cutoffs = nullptr) {
@@ -100,8 +100,8 @@ Check compareWithReference(const Spheres& s, const fc::SurfaceParams& params, fl
 // packing (spacing 2, radius 1) within 1.5 of three dipping planes that cross a box of
 // size[0] x size[1] x size[2], so most of the box is far from any sphere.
 // every: keep one sphere in `every` (1: dense zones, every sphere of the packing kept).
-Spheres spreadZones(std::array<double, 3> size, unsigned seed, int every = 4) {
-    Spheres s;
+FieldSpheres spreadZones(std::array<double, 3> size, unsigned seed, int every = 4) {
+    FieldSpheres s;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> jitter(-0.2f, 0.2f);
     const double c = std::cos(60.0 * M_PI / 180.0), d = std::sin(60.0 * M_PI / 180.0);
@@ -141,7 +141,7 @@ Spheres spreadZones(std::array<double, 3> size, unsigned seed, int every = 4) {
 TEST(MetaballField, FoldedPlanningKeepsEveryBlockTheSpreadOutSurfaceCrosses) {
     for (const int every : {4, 1})
         for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
-            const Spheres s = spreadZones({80, 50, 40}, 11, every);
+            const FieldSpheres s = spreadZones({80, 50, 40}, 11, every);
             ASSERT_GT(s.x.size(), 500u);
             const auto set = s.set();
             SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
@@ -192,7 +192,7 @@ TEST(MetaballField, FoldedPlanningKeepsEveryBlockTheSpreadOutSurfaceCrosses) {
 // triangles through the same vertices, for both inverse kernels. (Block counts differ a little
 // either way here; on the demo's 30k spheres the tree, giving up on cells, kept twice as many.)
 TEST(MetaballField, FoldedAndTreePlanningGiveTheSameMeshOnADenseSet) {
-    const Spheres s = spreadZones({40, 30, 30}, 3, 1);
+    const FieldSpheres s = spreadZones({40, 30, 30}, 3, 1);
     const auto set = s.set();
     for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
         SCOPED_TRACE(std::string(fc::kernelName(kernel)));
@@ -230,7 +230,7 @@ TEST(MetaballField, FoldBoundsHoldEverywhereInNestedBoxes) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (const int every : {4, 1}) // sparse and dense zones (issue 40)
         for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
-            const Spheres s = spreadZones({80, 50, 40}, 17, every);
+            const FieldSpheres s = spreadZones({80, 50, 40}, 17, every);
             const auto set = s.set();
             SCOPED_TRACE(std::string(fc::kernelName(kernel)) + (every == 1 ? " dense" : " sparse"));
             fc::SurfaceParams params;
@@ -271,7 +271,7 @@ TEST(MetaballField, FoldBoundsHoldEverywhereInNestedBoxes) {
 // grid lists them in cell order), for boxes inside, across and outside the spheres' box, small
 // and large reaches, with the colours beside their spheres.
 TEST(SphereGrid, GathersTheSpheresTheTreeGathers) {
-    const Spheres s = spreadZones({80, 50, 40}, 23);
+    const FieldSpheres s = spreadZones({80, 50, 40}, 23);
     std::vector<float> rgb(3 * s.x.size());
     for (std::size_t i = 0; i < rgb.size(); ++i)
         rgb[i] = float(i % 97) / 96.0f;
@@ -313,7 +313,7 @@ TEST(SphereGrid, GathersTheSpheresTheTreeGathers) {
 // A sparse set takes a wider near cutoff (fewer level-1 nodes); the field still matches
 // Algorithm 1 within the tolerance at every voxel of every planned block.
 TEST(MetaballField, SparseSetWiderNearCutoffStillMatchesAlgorithm1) {
-    const Spheres s = spreadZones({30, 24, 20}, 3);
+    const FieldSpheres s = spreadZones({30, 24, 20}, 3);
     for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
         SCOPED_TRACE(std::string(fc::kernelName(kernel)));
         fc::SurfaceParams params;
@@ -339,7 +339,7 @@ TEST(MetaballField, SparseSetWiderNearCutoffStillMatchesAlgorithm1) {
 }
 
 TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
-    const Spheres s = slab(10, 10, 3, 1);
+    const FieldSpheres s = slab(10, 10, 3, 1);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::InverseSquare;
     params.colorReach = 0.1f;
@@ -360,7 +360,7 @@ TEST(MetaballField, InverseSquareMatchesAlgorithm1WithinTolerance) {
 // the cheapest pair whose error estimate fits the budget. Where they differ, the field must still
 // match Algorithm 1 within the tolerance.
 TEST(MetaballField, ACheaperNearCutoffThanTheCoarseLevelsStillMatchesAlgorithm1) {
-    const Spheres s = slab(14, 14, 4, 3);
+    const FieldSpheres s = slab(14, 14, 4, 3);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::InverseSquare;
     fc::MultilevelTuning tuning;
@@ -385,7 +385,7 @@ TEST(MetaballField, ACheaperNearCutoffThanTheCoarseLevelsStillMatchesAlgorithm1)
 // Coarsening stops where summing every sphere costs less than the windowed levels would: the
 // field then has fewer levels and still matches Algorithm 1.
 TEST(MetaballField, ATopLevelChosenByCostStillMatchesAlgorithm1) {
-    const Spheres s = slab(12, 12, 3, 4);
+    const FieldSpheres s = slab(12, 12, 3, 4);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::InverseSquare;
     const float iso = 7.0f;
@@ -407,7 +407,7 @@ TEST(MetaballField, ATopLevelChosenByCostStillMatchesAlgorithm1) {
 // add an interpolation error on the spheres' side; the estimate counts it and still bounds the
 // error against Algorithm 1.
 TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
-    const Spheres s = slab(14, 14, 3, 5);
+    const FieldSpheres s = slab(14, 14, 3, 5);
     for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Inverse}) {
         fc::SurfaceParams params;
         params.kernel = kernel;
@@ -439,7 +439,7 @@ TEST(MetaballField, GridChargesOnTheCoarseLevelsStillMatchAlgorithm1) {
 // estimate, which the field chooses its cutoffs by, must still bound the error. The error was
 // 1.4x over it before the estimate counted the spheres within the cutoff.
 TEST(MetaballField, TheEstimateBoundsTheErrorWithFewSpheresInTheNearCutoff) {
-    const Spheres s = slab(10, 10, 3, 1);
+    const FieldSpheres s = slab(10, 10, 3, 1);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::InverseSquare;
     params.iso = 7.0f;
@@ -507,7 +507,7 @@ TEST(MetaballField, WrappingIsoHugsTheSpheres) {
     for (int size : {6, 12})
         for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Inverse,
                             fc::MetaballKernel::Compact}) {
-            const Spheres s = slab(size, size, 3, 7);
+            const FieldSpheres s = slab(size, size, 3, 7);
             fc::SurfaceParams params;
             params.kernel = kernel;
             const double iso = fc::wrappingIso(s.set(), params);
@@ -528,7 +528,7 @@ TEST(MetaballField, WrappingIsoHugsTheSpheres) {
 // the lower quartile, over 96 spheres, of referenceSample's lowest value 1.5 radii out along
 // the axes (the same double: meshes and replays at "iso":"wrap" do not move).
 TEST(MetaballField, WrappingIsoIsExactlyTheReferenceSamplesQuartile) {
-    const Spheres s = slab(12, 11, 3, 5);
+    const FieldSpheres s = slab(12, 11, 3, 5);
     const auto set = s.set();
     for (auto kernel : {fc::MetaballKernel::InverseSquare, fc::MetaballKernel::Inverse,
                         fc::MetaballKernel::Compact}) {
@@ -552,7 +552,7 @@ TEST(MetaballField, WrappingIsoIsExactlyTheReferenceSamplesQuartile) {
 }
 
 TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
-    const Spheres s = slab(9, 8, 3, 2);
+    const FieldSpheres s = slab(9, 8, 3, 2);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::Inverse;
     const float iso = 40.0f;
@@ -568,7 +568,7 @@ TEST(MetaballField, InverseMatchesAlgorithm1WithinTolerance) {
 }
 
 TEST(MetaballField, CompactIsExactWithinItsSupport) {
-    const Spheres s = slab(6, 5, 2, 3);
+    const FieldSpheres s = slab(6, 5, 2, 3);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::Compact;
     const Check c = compareWithReference(s, params, 0.2f, 0.3f, 0.6f, {});
@@ -577,7 +577,7 @@ TEST(MetaballField, CompactIsExactWithinItsSupport) {
 }
 
 TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
-    const Spheres s = slab(8, 8, 2, 4);
+    const FieldSpheres s = slab(8, 8, 2, 4);
     const auto set = s.set();
     fc::SurfaceParams params;
     const float iso = 5.0f;
@@ -613,7 +613,7 @@ TEST(MetaballField, GradientAtPointsMatchesAnalyticGradient) {
 // The dense baseline the benchmark times, with Algorithm 1 line 8's gradient, against the
 // double-precision reference at every voxel, for all three kernels.
 TEST(MetaballField, DenseAlgorithm1WithGradientMatchesTheReference) {
-    const Spheres s = slab(5, 4, 2, 6);
+    const FieldSpheres s = slab(5, 4, 2, 6);
     const auto set = s.set();
     for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare,
                         fc::MetaballKernel::Compact}) {
@@ -644,7 +644,7 @@ TEST(MetaballField, DenseAlgorithm1WithGradientMatchesTheReference) {
 }
 
 TEST(MetaballField, PlanLeavesOnlyBlocksThatCannotHoldTheSurface) {
-    const Spheres s = slab(6, 6, 2, 6);
+    const FieldSpheres s = slab(6, 6, 2, 6);
     const auto set = s.set();
     fc::SurfaceParams params;
     fc::MetaballField field(set, params, 0.25f);
@@ -667,7 +667,7 @@ TEST(MetaballField, PlanLeavesOnlyBlocksThatCannotHoldTheSurface) {
 }
 
 TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
-    const Spheres s = slab(20, 20, 2, 8);
+    const FieldSpheres s = slab(20, 20, 2, 8);
     fc::SurfaceParams params;
     fc::MetaballField field(s.set(), params, 0.01f);
     try {
@@ -686,7 +686,7 @@ TEST(MetaballField, RefusesAVoxelSizeOverTheMemoryBudget) {
 // Issue 23: r/d at iso 1 over a spread-out set is a shell hundreds of units out. It is refused
 // before any planning (no level counted), offering the wrapping iso and no absurd voxel size.
 TEST(MetaballField, AnIsoFarBelowTheFieldIsRefusedAtOnceWithTheWrappingIso) {
-    const Spheres s = spreadZones({80, 50, 40}, 11);
+    const FieldSpheres s = spreadZones({80, 50, 40}, 11);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::Inverse;
     params.iso = 1.0f;
@@ -717,7 +717,7 @@ TEST(MetaballField, AnIsoFarBelowTheFieldIsRefusedAtOnceWithTheWrappingIso) {
 }
 
 TEST(MetaballField, CheaperCutoffsChosenAfterPlanningStillMatchAlgorithm1) {
-    const Spheres s = slab(16, 16, 3, 11);
+    const FieldSpheres s = slab(16, 16, 3, 11);
     fc::SurfaceParams params;
     params.kernel = fc::MetaballKernel::Inverse;
     params.iso = 60.0f;
@@ -740,7 +740,7 @@ TEST(MetaballField, CheaperCutoffsChosenAfterPlanningStillMatchAlgorithm1) {
 // is skipped, its true values must lie within the bounds and on that side; where it is not, the
 // values must be evaluateBlock's, bit for bit.
 TEST(MetaballField, OneSidedBlocksSkipOnlyWhatTheirValuesConfirm) {
-    const Spheres s = slab(14, 14, 4, 5);
+    const FieldSpheres s = slab(14, 14, 4, 5);
     for (auto kernel : {fc::MetaballKernel::Inverse, fc::MetaballKernel::InverseSquare}) {
         fc::SurfaceParams params;
         params.kernel = kernel;

@@ -60,4 +60,7 @@ inline std::string dataFile(const std::string& name) {
     return std::string(FAULTLINE_TEST_DATA) + "/" + name;
 }
 
+// A real run's fixture (tests/data/real_runs).
+inline std::string realRunFile(const std::string& name) { return dataFile("real_runs/" + name); }
+
 } // namespace faultline::test

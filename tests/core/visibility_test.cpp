@@ -12,14 +12,14 @@ using namespace faultline::core;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaNValue = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInfValue = std::numeric_limits<float>::infinity();
 
 struct P {
     float x, y, z;
 };
 
-std::shared_ptr<Frame> makeFrame(const std::vector<P>& points) {
+std::shared_ptr<Frame> framePointer(const std::vector<P>& points) {
     auto f = std::make_shared<Frame>();
     for (std::size_t i = 0; i < points.size(); ++i) {
         f->ids.push_back(static_cast<std::int64_t>(i + 1));
@@ -36,7 +36,7 @@ std::shared_ptr<Frame> lineFrame(int n) {
     std::vector<P> points;
     for (int i = 0; i < n; ++i)
         points.push_back({float(i), 0.0f, 0.0f});
-    auto f = makeFrame(points);
+    auto f = framePointer(points);
     f->finalize();
     return f;
 }
@@ -136,12 +136,12 @@ TEST(Visibility, DisabledBoxesHaveNoEffect) {
 TEST(Visibility, BoxIsThreeDimensionalWithCornersInside) {
     const float below = std::nextafter(1.0f, 0.0f);
     const float above = std::nextafter(2.0f, 3.0f);
-    auto f = makeFrame({{1, 1, 1},
-                        {2, 2, 2},
-                        {1.5f, 1.5f, 1.5f},
-                        {1.5f, below, 1.5f},
-                        {1.5f, 1.5f, above},
-                        {1, 2, 1}});
+    auto f = framePointer({{1, 1, 1},
+                           {2, 2, 2},
+                           {1.5f, 1.5f, 1.5f},
+                           {1.5f, below, 1.5f},
+                           {1.5f, 1.5f, above},
+                           {1, 2, 1}});
     f->finalize();
     EXPECT_EQ(visible(f, {box("c", {1, 1, 1}, {2, 2, 2})}), bytes({1, 1, 1, 0, 0, 1}));
 }
@@ -151,7 +151,7 @@ TEST(Visibility, BoxBoundsCompareAsTheFileWroteThem) {
     // same number to the user: the centre lies on the face, inside both boxes.
     const float tenth = 0.1f;
     const float belowTenth = std::nextafter(tenth, 0.0f); // 0.0999999940...
-    auto f = makeFrame({{tenth, 0, 0}, {belowTenth, 0, 0}});
+    auto f = framePointer({{tenth, 0, 0}, {belowTenth, 0, 0}});
     f->finalize();
     EXPECT_EQ(visible(f, {xBox(0.1, 1.0)}), bytes({1, 0}));
     EXPECT_EQ(visible(f, {xBox(0.0, 0.1)}), bytes({1, 1}));
@@ -165,7 +165,8 @@ TEST(Visibility, EmptyBoxKeepsNothing) {
 
 TEST(Visibility, ThresholdBoundsAreInclusiveAndNaNNeverPasses) {
     auto f = lineFrame(6);
-    f->attributes.push_back(makeAttribute("strain", {0.0f, 0.5f, 1.0f, 1.5f, kNaN, 2.0f}, false));
+    f->attributes.push_back(
+        makeAttribute("strain", {0.0f, 0.5f, 1.0f, 1.5f, kNaNValue, 2.0f}, false));
     f->finalize();
     EXPECT_EQ(visible(f, {}, {threshold("strain", 0.5, 1.5)}), bytes({0, 1, 1, 1, 0, 0}));
     EXPECT_EQ(visible(f, {}, {threshold("strain", -1e30, 1e30)}), bytes({1, 1, 1, 1, 0, 1}));
@@ -178,7 +179,7 @@ TEST(Visibility, ThresholdBoundsAreInclusiveAndNaNNeverPasses) {
 
 TEST(Visibility, InfiniteValuesPassOnlyInfiniteBounds) {
     auto f = lineFrame(3);
-    f->attributes.push_back(makeAttribute("v", {-kInf, 0.0f, kInf}, false));
+    f->attributes.push_back(makeAttribute("v", {-kInfValue, 0.0f, kInfValue}, false));
     f->finalize();
     const double inf = std::numeric_limits<double>::infinity();
     EXPECT_EQ(visible(f, {}, {threshold("v", -1e300, 1e300)}), bytes({0, 1, 0}));
@@ -216,7 +217,7 @@ TEST(Visibility, ThresholdsAndBoxesAllMustHold) {
 }
 
 TEST(Visibility, BuiltInColumnsCanBeThresholded) {
-    auto f = makeFrame({{0, 0, 0}, {0, 0, 1}, {0, 0, 2}});
+    auto f = framePointer({{0, 0, 0}, {0, 0, 1}, {0, 0, 2}});
     f->radius = {0.1f, 0.2f, 0.3f};
     f->finalize();
     EXPECT_EQ(visible(f, {}, {threshold("z", 1, 2)}), bytes({0, 1, 1}));
@@ -266,10 +267,10 @@ TEST(Visibility, MatchesTheRuleOnRandomFrames) {
         std::vector<P> points;
         for (int i = 0; i < n; ++i)
             points.push_back({unit(rng), unit(rng), unit(rng)});
-        auto f = makeFrame(points);
+        auto f = framePointer(points);
         std::vector<float> strain(n), broken(n);
         for (int i = 0; i < n; ++i) {
-            strain[i] = (i % 17 == 0) ? kNaN : unit(rng) / 10.0f;
+            strain[i] = (i % 17 == 0) ? kNaNValue : unit(rng) / 10.0f;
             broken[i] = float(small(rng));
         }
         f->attributes.push_back(makeAttribute("strain", std::move(strain), false));
@@ -311,8 +312,8 @@ TEST(RowBits, BoundsRoundToTheNearestFloat) {
     EXPECT_EQ(nearestFloatBound(2.0), 2.0f);
     EXPECT_EQ(nearestFloatBound(1e300), std::numeric_limits<float>::max());
     EXPECT_EQ(nearestFloatBound(-1e300), -std::numeric_limits<float>::max());
-    EXPECT_EQ(nearestFloatBound(std::numeric_limits<double>::infinity()), kInf);
-    EXPECT_EQ(nearestFloatBound(-std::numeric_limits<double>::infinity()), -kInf);
+    EXPECT_EQ(nearestFloatBound(std::numeric_limits<double>::infinity()), kInfValue);
+    EXPECT_EQ(nearestFloatBound(-std::numeric_limits<double>::infinity()), -kInfValue);
     EXPECT_TRUE(std::isnan(nearestFloatBound(std::nan(""))));
 }
 
@@ -353,8 +354,8 @@ TEST(RowBits, SimdWordsMatchScalar) {
         std::int32_t ints[64];
         std::uint8_t mask[64];
         for (int j = 0; j < 64; ++j) {
-            x[j] = (j % 13 == 0) ? kNaN : u(rng);
-            y[j] = (j % 29 == 0) ? kInf : u(rng);
+            x[j] = (j % 13 == 0) ? kNaNValue : u(rng);
+            y[j] = (j % 29 == 0) ? kInfValue : u(rng);
             z[j] = u(rng);
             ints[j] = ui(rng);
             mask[j] = static_cast<std::uint8_t>(j % 3 == 0 ? 0 : j * 7);

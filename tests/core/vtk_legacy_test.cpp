@@ -34,7 +34,7 @@ template <typename T> std::string bigEndian(std::initializer_list<T> values) {
 }
 
 // Parses and returns the InputError it must throw.
-InputError errorOf(const std::string& bytes) {
+InputError legacyErrorOf(const std::string& bytes) {
     try {
         parseVtkLegacy(kPath, bytes);
     } catch (const InputError& e) {
@@ -46,7 +46,7 @@ InputError errorOf(const std::string& bytes) {
 
 void expectError(const std::string& bytes, InputError::Where where, std::uint64_t position,
                  const std::string& needle) {
-    const InputError e = errorOf(bytes);
+    const InputError e = legacyErrorOf(bytes);
     EXPECT_EQ(e.path(), kPath);
     EXPECT_EQ(e.where(), where) << e.what();
     EXPECT_EQ(e.position(), position) << e.what();
@@ -54,7 +54,7 @@ void expectError(const std::string& bytes, InputError::Where where, std::uint64_
         << "message: " << e.what() << "\nexpected to contain: " << needle;
 }
 
-const AttributeColumn& column(const Frame& f, const std::string& name) {
+const AttributeColumn& legacyColumn(const Frame& f, const std::string& name) {
     const AttributeColumn* c = f.attribute(name);
     if (!c)
         throw std::runtime_error("no column " + name);
@@ -165,11 +165,11 @@ TEST(VtkLegacy, AsciiPolydataWithScalarsVectorsAndFields) {
     EXPECT_EQ(f.attributeNames(),
               (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z", "layer",
                                         "stress xy_0", "stress xy_1"}));
-    EXPECT_EQ(column(f, "velocity_y").floats, (std::vector<float>{2, 5, 8}));
-    EXPECT_FALSE(column(f, "velocity_y").isInteger());
-    EXPECT_TRUE(column(f, "layer").isInteger());
-    EXPECT_EQ(column(f, "layer").ints, (std::vector<std::int32_t>{1, 2, 3}));
-    EXPECT_EQ(column(f, "stress xy_1").floats, (std::vector<float>{0.2f, 0.4f, 0.6f}));
+    EXPECT_EQ(legacyColumn(f, "velocity_y").floats, (std::vector<float>{2, 5, 8}));
+    EXPECT_FALSE(legacyColumn(f, "velocity_y").isInteger());
+    EXPECT_TRUE(legacyColumn(f, "layer").isInteger());
+    EXPECT_EQ(legacyColumn(f, "layer").ints, (std::vector<std::int32_t>{1, 2, 3}));
+    EXPECT_EQ(legacyColumn(f, "stress xy_1").floats, (std::vector<float>{0.2f, 0.4f, 0.6f}));
     EXPECT_EQ(f.rowOf(20), 1u);
 }
 
@@ -221,8 +221,8 @@ TEST(VtkLegacy, Version51CellsMetadataDiameterAndTensors) {
     ASSERT_EQ(f.attributes.size(), 10u);
     EXPECT_EQ(f.attributes[0].name, "stress_0");
     EXPECT_EQ(f.attributes[8].name, "stress_8");
-    EXPECT_EQ(column(f, "stress_8").floats, (std::vector<float>{9, 1}));
-    EXPECT_EQ(column(f, "mass").floats, (std::vector<float>{2.5f, 3.5f}));
+    EXPECT_EQ(legacyColumn(f, "stress_8").floats, (std::vector<float>{9, 1}));
+    EXPECT_EQ(legacyColumn(f, "mass").floats, (std::vector<float>{2.5f, 3.5f}));
 }
 
 TEST(VtkLegacy, NoRadiusNoIdGivesDefaultsAndFloatIdsAreIds) {
@@ -254,8 +254,8 @@ TEST(VtkLegacy, BinaryBigEndianUnstructuredGrid) {
     EXPECT_EQ(f.radius, (std::vector<float>{0.5f, 1.5f, 2.5f}));
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{5000000000LL, 7, -3}));
     EXPECT_EQ(f.attributeNames(), (std::vector<std::string>{"flag", "n_x", "n_y", "n_z"}));
-    EXPECT_EQ(column(f, "flag").ints, (std::vector<std::int32_t>{1, 0, 255}));
-    EXPECT_EQ(column(f, "n_z").floats, (std::vector<float>{0, 0, -1}));
+    EXPECT_EQ(legacyColumn(f, "flag").ints, (std::vector<std::int32_t>{1, 0, 255}));
+    EXPECT_EQ(legacyColumn(f, "n_z").floats, (std::vector<float>{0, 0, -1}));
 }
 
 TEST(VtkLegacy, BinaryVersion51OffsetsConnectivity) {
@@ -264,7 +264,7 @@ TEST(VtkLegacy, BinaryVersion51OffsetsConnectivity) {
     EXPECT_EQ(f.x, (std::vector<float>{0.125f, 8}));
     EXPECT_EQ(f.z, (std::vector<float>{0.5f, 32}));
     EXPECT_EQ(f.radius, (std::vector<float>{0.75f, 1.25f}));
-    EXPECT_EQ(column(f, "count").ints, (std::vector<std::int32_t>{-2, 300}));
+    EXPECT_EQ(legacyColumn(f, "count").ints, (std::vector<std::int32_t>{-2, 300}));
 }
 
 TEST(VtkLegacy, MalformedTextNamesLineAndExpectation) {
@@ -397,10 +397,10 @@ TEST(VtkLegacy, LiggghtsCustomVtk51FieldData) {
     EXPECT_EQ(f->z.back(), 0.0161207f);
     EXPECT_EQ(f->radius.front(), 0.0015f);
     EXPECT_EQ(f->radius.back(), 0.0015f);
-    EXPECT_TRUE(column(*f, "type").isInteger());
-    EXPECT_EQ(column(*f, "type").min, 1.0);
-    EXPECT_EQ(column(*f, "v_x").floats.front(), -0.0072785979766f);
-    EXPECT_EQ(column(*f, "omega_z").floats.back(), 0.41025595512f);
+    EXPECT_TRUE(legacyColumn(*f, "type").isInteger());
+    EXPECT_EQ(legacyColumn(*f, "type").min, 1.0);
+    EXPECT_EQ(legacyColumn(*f, "v_x").floats.front(), -0.0072785979766f);
+    EXPECT_EQ(legacyColumn(*f, "omega_z").floats.back(), 0.41025595512f);
     EXPECT_EQ(f->rowOf(83), 0u);
 }
 
@@ -419,7 +419,7 @@ TEST(VtkLegacy, BinaryBigEndianTrackWithCellDataBeforePointData) {
     EXPECT_EQ(f->z[1], 1470.5f);
     EXPECT_EQ(f->x.back(), -1890.31f);
     EXPECT_EQ(f->z.back(), 9602.97f);
-    const AttributeColumn& s = column(*f, "scalars");
+    const AttributeColumn& s = legacyColumn(*f, "scalars");
     EXPECT_EQ(s.floats[0], 0.3f);
     EXPECT_EQ(s.floats[3], 2.0f);
     EXPECT_EQ(s.floats.back(), 2.4f);

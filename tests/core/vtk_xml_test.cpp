@@ -19,7 +19,7 @@ using namespace faultline::core;
 
 namespace {
 
-const std::string kPath = "synthetic.vtu";
+const std::string kXmlPath = "synthetic.vtu";
 
 // ---- building documents the way VTK writers do ------------------------------------------
 
@@ -192,7 +192,7 @@ TestPiece standardPiece() {
     return p;
 }
 
-const AttributeColumn& column(const Frame& f, const std::string& name) {
+const AttributeColumn& xmlColumn(const Frame& f, const std::string& name) {
     const AttributeColumn* c = f.attribute(name);
     if (!c)
         throw std::runtime_error("no column " + name);
@@ -211,10 +211,10 @@ void expectStandardFrame(const Frame& f) {
     EXPECT_EQ(f.attributeNames(),
               (std::vector<std::string>{"velocity_x", "velocity_y", "velocity_z", "grain", "q_0",
                                         "q_1", "flags"}));
-    EXPECT_EQ(column(f, "velocity_z").floats, (std::vector<float>{3, 6, 9}));
-    EXPECT_EQ(column(f, "grain").ints, (std::vector<std::int32_t>{-1, 0, 2}));
-    EXPECT_EQ(column(f, "q_1").floats, (std::vector<float>{1.5f, 3.5f, 5.5f}));
-    EXPECT_EQ(column(f, "flags").ints, (std::vector<std::int32_t>{0, 255, 10}));
+    EXPECT_EQ(xmlColumn(f, "velocity_z").floats, (std::vector<float>{3, 6, 9}));
+    EXPECT_EQ(xmlColumn(f, "grain").ints, (std::vector<std::int32_t>{-1, 0, 2}));
+    EXPECT_EQ(xmlColumn(f, "q_1").floats, (std::vector<float>{1.5f, 3.5f, 5.5f}));
+    EXPECT_EQ(xmlColumn(f, "flags").ints, (std::vector<std::int32_t>{0, 255, 10}));
 }
 
 std::vector<Options> everyEncoding() {
@@ -247,14 +247,14 @@ std::string describe(const Options& o) {
            (o.jointBase64 ? " joint" : "");
 }
 
-InputError errorOf(const std::string& doc) {
+InputError xmlErrorOf(const std::string& doc) {
     try {
-        parseVtkXml(kPath, doc);
+        parseVtkXml(kXmlPath, doc);
     } catch (const InputError& e) {
         return e;
     }
     ADD_FAILURE() << "expected an InputError for:\n" << doc.substr(0, 600);
-    return InputError(kPath, "none");
+    return InputError(kXmlPath, "none");
 }
 
 std::uint64_t lineOf(const std::string& doc, const std::string& what) {
@@ -264,10 +264,10 @@ std::uint64_t lineOf(const std::string& doc, const std::string& what) {
                    std::count(doc.begin(), doc.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
-void expectError(const std::string& doc, InputError::Where where, std::uint64_t position,
-                 const std::string& needle) {
-    const InputError e = errorOf(doc);
-    EXPECT_EQ(e.path(), kPath);
+void expectXmlError(const std::string& doc, InputError::Where where, std::uint64_t position,
+                    const std::string& needle) {
+    const InputError e = xmlErrorOf(doc);
+    EXPECT_EQ(e.path(), kXmlPath);
     EXPECT_EQ(e.where(), where) << e.what();
     EXPECT_EQ(e.position(), position) << e.what();
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
@@ -322,7 +322,7 @@ TEST(VtkXml, EveryEncodingGivesTheSameFrame) {
         SCOPED_TRACE(describe(o));
         const std::string doc = makeDocument(o, {standardPiece()});
         try {
-            expectStandardFrame(parseVtkXml(kPath, doc));
+            expectStandardFrame(parseVtkXml(kXmlPath, doc));
         } catch (const InputError& e) {
             ADD_FAILURE() << e.what();
         }
@@ -340,13 +340,13 @@ TEST(VtkXml, PolyDataAndSeveralPiecesConcatenate) {
     b.pointData = {{"radius", "Float64", 1, {0.4}},          {"id", "Int64", 1, {100}},
                    {"velocity", "Float32", 3, {-1, -2, -3}}, {"grain", "Int32", 1, {5}},
                    {"q", "Float64", 2, {0.25, 0.75}},        {"flags", "UInt8", 1, {1}}};
-    const Frame f = parseVtkXml(kPath, makeDocument(o, {a, b}));
+    const Frame f = parseVtkXml(kXmlPath, makeDocument(o, {a, b}));
     ASSERT_EQ(f.size(), 4u);
     EXPECT_EQ(f.x, (std::vector<float>{0.5f, 2, -0.75f, 10}));
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{7, 5, 9, 100}));
     EXPECT_EQ(f.radius.back(), 0.4f);
-    EXPECT_EQ(column(f, "velocity_y").floats, (std::vector<float>{2, 5, 8, -2}));
-    EXPECT_EQ(column(f, "q_0").floats.back(), 0.25f);
+    EXPECT_EQ(xmlColumn(f, "velocity_y").floats, (std::vector<float>{2, 5, 8, -2}));
+    EXPECT_EQ(xmlColumn(f, "q_0").floats.back(), 0.25f);
     EXPECT_EQ(f.rowOf(100), 3u);
 }
 
@@ -356,14 +356,14 @@ TEST(VtkXml, EmptyPieceAndDefaults) {
         "<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\"><Points>"
         "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
         "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>";
-    EXPECT_EQ(parseVtkXml(kPath, empty).size(), 0u);
+    EXPECT_EQ(parseVtkXml(kXmlPath, empty).size(), 0u);
     const std::string plain =
         "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"2\">"
         "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
         "format=\"ascii\">1 2 3 4 5 6</DataArray></Points>"
         "<PointData><DataArray type=\"Float32\" Name=\"Diameter\" format=\"ascii\">"
         "2 4</DataArray></PointData></Piece></PolyData></VTKFile>";
-    const Frame f = parseVtkXml(kPath, plain);
+    const Frame f = parseVtkXml(kXmlPath, plain);
     EXPECT_EQ(f.radius, (std::vector<float>{1, 2}));
     EXPECT_TRUE(f.idsAreRowNumbers);
     EXPECT_EQ(f.ids, (std::vector<std::int64_t>{0, 1}));
@@ -375,22 +375,23 @@ TEST(VtkXml, BadBinaryDataNamesTheByteOffset) {
     const std::string data = floats({1, 2, 3, 4, 5, 6, 7, 8, 9});
     // A character that is not base64.
     std::string bad = withPointsPayload(base64(le32(36)) + "!" + base64(data).substr(1));
-    expectError(bad, W::Byte, bad.find('!'), "expected base64 data, found '!'");
+    expectXmlError(bad, W::Byte, bad.find('!'), "expected base64 data, found '!'");
     // A size header beyond the data, and one that does not match the points.
     const std::string shortData = withPointsPayload(base64(le32(36)) + base64(data.substr(0, 12)));
-    expectError(shortData, W::Byte, shortData.find("JAAAAA==") + 8,
-                "declares 36 bytes, only 12 remain");
-    expectError(withPointsPayload(base64(le32(1000000000)) + base64(data)), W::Byte,
-                withPointsPayload("").find("</DataArray>") + 8,
-                "size header declares 1000000000 bytes, expected 36");
+    expectXmlError(shortData, W::Byte, shortData.find("JAAAAA==") + 8,
+                   "declares 36 bytes, only 12 remain");
+    expectXmlError(withPointsPayload(base64(le32(1000000000)) + base64(data)), W::Byte,
+                   withPointsPayload("").find("</DataArray>") + 8,
+                   "size header declares 1000000000 bytes, expected 36");
     // Header and data encoded together, cut short: refused before reading the data.
     const std::string cut = withPointsPayload(base64(le32(36) + data).substr(0, 49));
-    expectError(cut, W::Byte, cut.find("format=\"binary\">") + 16 + 8,
-                "declares 36 bytes, only 32 remain");
+    expectXmlError(cut, W::Byte, cut.find("format=\"binary\">") + 16 + 8,
+                   "declares 36 bytes, only 32 remain");
     // Base64 that ends inside a group of four characters.
     const std::string whole = base64(le32(24)) + base64(data.substr(0, 24));
     const std::string group = withPointsPayload(whole.substr(0, whole.size() - 3) + "   ", "", 2);
-    expectError(group, W::Byte, group.find("</DataArray>"), "ends inside a group of 4 characters");
+    expectXmlError(group, W::Byte, group.find("</DataArray>"),
+                   "ends inside a group of 4 characters");
 }
 
 TEST(VtkXml, LyingZlibBlocksAreRefusedBeforeAllocating) {
@@ -408,116 +409,117 @@ TEST(VtkXml, LyingZlibBlocksAreRefusedBeforeAllocating) {
     // The block inflates to 12 bytes, its header says 36.
     const std::string lies = withPointsPayload(
         base64(header(1, 36, 0, {static_cast<std::uint32_t>(small.size())})) + base64(small), zlib);
-    EXPECT_NE(std::string(errorOf(lies).what())
+    EXPECT_NE(std::string(xmlErrorOf(lies).what())
                   .find("does not decompress to the 36 bytes its header declares"),
               std::string::npos)
-        << errorOf(lies).what();
+        << xmlErrorOf(lies).what();
     // 10^8 points claimed from a few compressed bytes: more than zlib can produce.
     const std::string huge = withPointsPayload(
         base64(header(1, 1200000000, 0, {static_cast<std::uint32_t>(small.size())})) +
             base64(small),
         zlib, 100000000);
-    EXPECT_NE(std::string(errorOf(huge).what()).find("more than zlib can produce"),
+    EXPECT_NE(std::string(xmlErrorOf(huge).what()).find("more than zlib can produce"),
               std::string::npos)
-        << errorOf(huge).what();
-    EXPECT_EQ(errorOf(huge).where(), W::Byte);
+        << xmlErrorOf(huge).what();
+    EXPECT_EQ(xmlErrorOf(huge).where(), W::Byte);
     // Compressed sizes beyond the data, and a block count the data cannot hold.
     const std::string beyond =
         withPointsPayload(base64(header(1, 36, 0, {1000000})) + base64(small), zlib);
-    EXPECT_NE(
-        std::string(errorOf(beyond).what()).find("a compressed block of 1000000 bytes is declared"),
-        std::string::npos)
-        << errorOf(beyond).what();
-    const std::string blocks = withPointsPayload(base64(header(0x7fffffff, 36, 0, {})), zlib);
-    EXPECT_NE(std::string(errorOf(blocks).what()).find("more than the data can hold"),
+    EXPECT_NE(std::string(xmlErrorOf(beyond).what())
+                  .find("a compressed block of 1000000 bytes is declared"),
               std::string::npos)
-        << errorOf(blocks).what();
+        << xmlErrorOf(beyond).what();
+    const std::string blocks = withPointsPayload(base64(header(0x7fffffff, 36, 0, {})), zlib);
+    EXPECT_NE(std::string(xmlErrorOf(blocks).what()).find("more than the data can hold"),
+              std::string::npos)
+        << xmlErrorOf(blocks).what();
     // A total that does not match the points.
     const std::string total =
         withPointsPayload(base64(header(2, 36, 0, {4, 4})) + base64("abcdefgh"), zlib);
     EXPECT_NE(
-        std::string(errorOf(total).what()).find("declares 72 uncompressed bytes, expected 36"),
+        std::string(xmlErrorOf(total).what()).find("declares 72 uncompressed bytes, expected 36"),
         std::string::npos)
-        << errorOf(total).what();
+        << xmlErrorOf(total).what();
     // Garbage where zlib data should be.
     const std::string garbage =
         withPointsPayload(base64(header(1, 36, 0, {12})) + base64("not zlib at all"), zlib);
-    EXPECT_NE(std::string(errorOf(garbage).what()).find("zlib block 0 is corrupt"),
+    EXPECT_NE(std::string(xmlErrorOf(garbage).what()).find("zlib block 0 is corrupt"),
               std::string::npos)
-        << errorOf(garbage).what();
+        << xmlErrorOf(garbage).what();
 }
 
 TEST(VtkXml, MalformedStructureNamesLineAndExpectation) {
     using W = InputError::Where;
     Options ascii;
     const std::string good = makeDocument(ascii, {standardPiece()});
-    expectError("", W::Line, 1, "no XML element found");
-    expectError("<!-- only a comment -->\n", W::Line, 2, "no XML element found");
-    expectError("<!-- unterminated\n<VTKFile>", W::Line, 1, "unterminated comment");
-    expectError("<Other type=\"PolyData\"/>", W::Line, 1, "expected <VTKFile> as the root element");
-    expectError("<VTKFile type=\"ImageData\">\n</VTKFile>", W::Line, 1,
-                "VTKFile type 'ImageData' is not supported");
-    expectError(replaced(good, "header_type=\"UInt32\"", "header_type=\"UInt16\""), W::Line, 2,
-                "header_type: expected UInt32 or UInt64");
-    expectError(replaced(good, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), W::Line, 2,
-                "byte_order: expected LittleEndian or BigEndian");
-    expectError(replaced(good, "version=\"1.0\"", "compressor=\"vtkZstdDataCompressor\""), W::Line,
-                2, "'vtkZstdDataCompressor' is not supported");
+    expectXmlError("", W::Line, 1, "no XML element found");
+    expectXmlError("<!-- only a comment -->\n", W::Line, 2, "no XML element found");
+    expectXmlError("<!-- unterminated\n<VTKFile>", W::Line, 1, "unterminated comment");
+    expectXmlError("<Other type=\"PolyData\"/>", W::Line, 1,
+                   "expected <VTKFile> as the root element");
+    expectXmlError("<VTKFile type=\"ImageData\">\n</VTKFile>", W::Line, 1,
+                   "VTKFile type 'ImageData' is not supported");
+    expectXmlError(replaced(good, "header_type=\"UInt32\"", "header_type=\"UInt16\""), W::Line, 2,
+                   "header_type: expected UInt32 or UInt64");
+    expectXmlError(replaced(good, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), W::Line,
+                   2, "byte_order: expected LittleEndian or BigEndian");
+    expectXmlError(replaced(good, "version=\"1.0\"", "compressor=\"vtkZstdDataCompressor\""),
+                   W::Line, 2, "'vtkZstdDataCompressor' is not supported");
     // Deeply nested, unclosed and mismatched elements.
     std::string deep = "<VTKFile type=\"PolyData\">\n";
     for (int i = 0; i < 100; ++i)
         deep += "<a>";
-    expectError(deep, W::Line, 2, "nested deeper than 64 levels");
+    expectXmlError(deep, W::Line, 2, "nested deeper than 64 levels");
     const std::string unclosed = good.substr(0, good.find("  </UnstructuredGrid>"));
-    expectError(unclosed, W::Line, lineOf(good, "  </UnstructuredGrid>"),
-                "the file ends inside <UnstructuredGrid> opened at line 3");
-    expectError(replaced(good, "</Points>", "</Piece>"), W::Line, lineOf(good, "</Points>"),
-                "expected </Points>");
-    expectError(
+    expectXmlError(unclosed, W::Line, lineOf(good, "  </UnstructuredGrid>"),
+                   "the file ends inside <UnstructuredGrid> opened at line 3");
+    expectXmlError(replaced(good, "</Points>", "</Piece>"), W::Line, lineOf(good, "</Points>"),
+                   "expected </Points>");
+    expectXmlError(
         replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"1000000000000\""),
         W::Line, lineOf(good, "<Piece"), "NumberOfPoints=\"1000000000000\" is more than");
-    expectError(
+    expectXmlError(
         replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"100000000\""),
         W::Line, lineOf(good, "Name=\"Points\""), "expected 300000000 values, its text is only");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"three\""),
-                W::Line, lineOf(good, "<Piece"),
-                "NumberOfPoints: expected a non-negative integer, found 'three'");
-    expectError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece"), W::Line,
-                lineOf(good, "<Piece"), "<Piece> has no NumberOfPoints attribute");
-    expectError(replaced(good, "Name=\"radius\"", "Name=\"radius\" Name=\"r\""), W::Line,
-                lineOf(good, "Name=\"radius\""), "attribute Name appears twice");
-    expectError(
+    expectXmlError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece NumberOfPoints=\"three\""),
+                   W::Line, lineOf(good, "<Piece"),
+                   "NumberOfPoints: expected a non-negative integer, found 'three'");
+    expectXmlError(replaced(good, "<Piece NumberOfPoints=\"3\"", "<Piece"), W::Line,
+                   lineOf(good, "<Piece"), "<Piece> has no NumberOfPoints attribute");
+    expectXmlError(replaced(good, "Name=\"radius\"", "Name=\"radius\" Name=\"r\""), W::Line,
+                   lineOf(good, "Name=\"radius\""), "attribute Name appears twice");
+    expectXmlError(
         replaced(good, "type=\"Float64\" Name=\"radius\"", "type=\"Float16\" Name=\"radius\""),
         W::Line, lineOf(good, "Name=\"radius\""), "type 'Float16' is not supported");
-    expectError(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\"",
-                         "Name=\"Points\" NumberOfComponents=\"2\""),
-                W::Line, lineOf(good, "Name=\"Points\""),
-                "must have 3 numeric components, found 2");
-    expectError(replaced(good, "Name=\"grain\" NumberOfComponents=\"1\"",
-                         "Name=\"grain\" NumberOfComponents=\"1\" NumberOfTuples=\"4\""),
-                W::Line, lineOf(good, "Name=\"grain\""), "NumberOfTuples=4 but the Piece");
+    expectXmlError(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\"",
+                            "Name=\"Points\" NumberOfComponents=\"2\""),
+                   W::Line, lineOf(good, "Name=\"Points\""),
+                   "must have 3 numeric components, found 2");
+    expectXmlError(replaced(good, "Name=\"grain\" NumberOfComponents=\"1\"",
+                            "Name=\"grain\" NumberOfComponents=\"1\" NumberOfTuples=\"4\""),
+                   W::Line, lineOf(good, "Name=\"grain\""), "NumberOfTuples=4 but the Piece");
     // Values: not a number, NaN positions, too many values.
-    expectError(replaced(good, "0.10000000000000001", "zero.one"), W::Line,
-                lineOf(good, "0.10000000000000001"),
-                "value 1 of 3: expected a number, found 'zero.one'");
-    expectError(replaced(good, "-0.75", "nan"), W::Line, lineOf(good, "-0.75"),
-                "value 7 of 9: expected a finite number, found 'nan'");
-    expectError(replaced(good, " 7 5 9", " 7 5 9 11"), W::Line, lineOf(good, " 7 5 9"),
-                "more values than the 3 expected, found '11'");
-    expectError(replaced(good, " 7 5 9", " 7 5 9.5"), W::Line, lineOf(good, " 7 5 9"),
-                "expected an integer, found '9.5'");
-    expectError(replaced(good, " 7 5 9", " 7 7 9"), W::Line, lineOf(good, "Name=\"id\""),
-                "particle id 7 appears twice");
+    expectXmlError(replaced(good, "0.10000000000000001", "zero.one"), W::Line,
+                   lineOf(good, "0.10000000000000001"),
+                   "value 1 of 3: expected a number, found 'zero.one'");
+    expectXmlError(replaced(good, "-0.75", "nan"), W::Line, lineOf(good, "-0.75"),
+                   "value 7 of 9: expected a finite number, found 'nan'");
+    expectXmlError(replaced(good, " 7 5 9", " 7 5 9 11"), W::Line, lineOf(good, " 7 5 9"),
+                   "more values than the 3 expected, found '11'");
+    expectXmlError(replaced(good, " 7 5 9", " 7 5 9.5"), W::Line, lineOf(good, " 7 5 9"),
+                   "expected an integer, found '9.5'");
+    expectXmlError(replaced(good, " 7 5 9", " 7 7 9"), W::Line, lineOf(good, "Name=\"id\""),
+                   "particle id 7 appears twice");
     // Missing points, binary garbage in markup.
     const std::string noPoints = "<VTKFile type=\"PolyData\">\n<PolyData>\n<Piece "
                                  "NumberOfPoints=\"2\">\n</Piece>\n</PolyData>\n</VTKFile>";
-    expectError(noPoints, W::Line, 3, "Piece with 2 points has no <Points> DataArray");
-    expectError("<VTKFile type=\"PolyData\">\x01\x02\n<\x03\xff", W::Line, 2,
-                "expected a tag name after '<'");
-    expectError("<VTKFile type=\"PolyData\">\n<PolyData>\n</PolyData>\n</VTKFile>", W::File, 0,
-                "no <Piece> inside <PolyData>");
-    expectError("<VTKFile type=\"PolyData\"/> trailing", W::Line, 1,
-                "content after the root element");
+    expectXmlError(noPoints, W::Line, 3, "Piece with 2 points has no <Points> DataArray");
+    expectXmlError("<VTKFile type=\"PolyData\">\x01\x02\n<\x03\xff", W::Line, 2,
+                   "expected a tag name after '<'");
+    expectXmlError("<VTKFile type=\"PolyData\">\n<PolyData>\n</PolyData>\n</VTKFile>", W::File, 0,
+                   "no <Piece> inside <PolyData>");
+    expectXmlError("<VTKFile type=\"PolyData\"/> trailing", W::Line, 1,
+                   "content after the root element");
 }
 
 TEST(VtkXml, ArraysWithoutDataAreStillBounded) {
@@ -527,10 +529,10 @@ TEST(VtkXml, ArraysWithoutDataAreStillBounded) {
         doc += "<DataArray type=\"Float32\" Name=\"a" + std::to_string(i) +
                "\" NumberOfComponents=\"256\" format=\"ascii\"/>\n";
     doc += "</PointData></Piece></PolyData></VTKFile>";
-    expectError(doc, InputError::Where::Line, 4098, "more than 4096 PointData arrays");
+    expectXmlError(doc, InputError::Where::Line, 4098, "more than 4096 PointData arrays");
     const std::string twenty = doc.substr(0, doc.find("<DataArray type=\"Float32\" Name=\"a20\"")) +
                                "</PointData></Piece></PolyData></VTKFile>";
-    expectError(twenty, InputError::Where::Line, 18, "more than 4096 attribute columns");
+    expectXmlError(twenty, InputError::Where::Line, 18, "more than 4096 attribute columns");
 }
 
 TEST(VtkXml, AppendedDataErrors) {
@@ -539,12 +541,12 @@ TEST(VtkXml, AppendedDataErrors) {
     raw.mode = Mode::AppendedRaw;
     const std::string good = makeDocument(raw, {standardPiece()});
     const std::string noAppended = good.substr(0, good.find("  <AppendedData")) + "</VTKFile>\n";
-    expectError(noAppended, W::Line, lineOf(good, "Name=\"Points\""),
-                "is appended, but the file has no <AppendedData>");
-    expectError(replaced(good, "offset=\"0\"", "offset=\"100000\""), W::Line,
-                lineOf(good, "Name=\"radius\""), "offset 100000 is beyond the");
-    expectError(replaced(good, "   _", "   x"), W::Line, lineOf(good, "<AppendedData"),
-                "expected the '_' marker");
+    expectXmlError(noAppended, W::Line, lineOf(good, "Name=\"Points\""),
+                   "is appended, but the file has no <AppendedData>");
+    expectXmlError(replaced(good, "offset=\"0\"", "offset=\"100000\""), W::Line,
+                   lineOf(good, "Name=\"radius\""), "offset 100000 is beyond the");
+    expectXmlError(replaced(good, "   _", "   x"), W::Line, lineOf(good, "<AppendedData"),
+                   "expected the '_' marker");
     // An infinite coordinate in raw appended data: the byte offset of that array's data.
     TestPiece p = standardPiece();
     p.points.values[4] = std::numeric_limits<double>::infinity();
@@ -554,13 +556,13 @@ TEST(VtkXml, AppendedDataErrors) {
         "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"";
     const std::size_t at = inf.find(offsetAttr) + offsetAttr.size();
     const std::uint64_t offset = std::stoull(inf.substr(at, inf.find('"', at) - at));
-    expectError(inf, W::Byte, appendedStart + offset, "value 5 is not a finite number");
+    expectXmlError(inf, W::Byte, appendedStart + offset, "value 5 is not a finite number");
     // Appended data cut short.
     const std::string cut = good.substr(0, good.find("   _") + 4 + 190);
-    EXPECT_NE(std::string(errorOf(cut).what()).find("declares 36 bytes, only 15 remain"),
+    EXPECT_NE(std::string(xmlErrorOf(cut).what()).find("declares 36 bytes, only 15 remain"),
               std::string::npos)
-        << errorOf(cut).what();
-    EXPECT_EQ(errorOf(cut).where(), W::Byte) << errorOf(cut).what();
+        << xmlErrorOf(cut).what();
+    EXPECT_EQ(xmlErrorOf(cut).where(), W::Byte) << xmlErrorOf(cut).what();
 }
 
 TEST(VtkXml, TruncatedOrCorruptedFilesOnlyEverGiveInputErrors) {
@@ -575,7 +577,7 @@ TEST(VtkXml, TruncatedOrCorruptedFilesOnlyEverGiveInputErrors) {
         const std::string good = makeDocument(o, {standardPiece()});
         for (std::size_t n = 0; n < good.size(); ++n) {
             try {
-                parseVtkXml(kPath, good.substr(0, n));
+                parseVtkXml(kXmlPath, good.substr(0, n));
             } catch (const InputError&) {
             }
         }
@@ -584,7 +586,7 @@ TEST(VtkXml, TruncatedOrCorruptedFilesOnlyEverGiveInputErrors) {
                 std::string bad = good;
                 bad[i] = c;
                 try {
-                    parseVtkXml(kPath, bad);
+                    parseVtkXml(kXmlPath, bad);
                 } catch (const InputError&) {
                 }
             }
@@ -684,9 +686,9 @@ TEST(VtkXml, MercuryDpmAsciiWithCommentAndNoCells) {
     EXPECT_EQ(f->z.front(), 0.0676553f);
     EXPECT_EQ(f->x.back(), 1.08858f);
     EXPECT_EQ(f->y.back(), -0.0335996f);
-    EXPECT_EQ(column(*f, "Velocity_z").floats.front(), 0.0483901f);
-    EXPECT_EQ(column(*f, "Velocity_x").floats.back(), 0.0804779f);
-    EXPECT_FALSE(column(*f, "speciesType").isInteger()); // declared Float32
+    EXPECT_EQ(xmlColumn(*f, "Velocity_z").floats.front(), 0.0483901f);
+    EXPECT_EQ(xmlColumn(*f, "Velocity_x").floats.back(), 0.0804779f);
+    EXPECT_FALSE(xmlColumn(*f, "speciesType").isInteger()); // declared Float32
 }
 
 TEST(VtkXml, CowHeadInlineBase64PolyData) {
@@ -700,7 +702,7 @@ TEST(VtkXml, CowHeadInlineBase64PolyData) {
     EXPECT_EQ(f->x.front(), 3.238943099975586f);
     EXPECT_EQ(f->y.front(), 2.0651047229766846f);
     EXPECT_EQ(f->z.back(), 1.3911586999893188f);
-    const AttributeColumn& g = column(*f, "Gauss_Curvature");
+    const AttributeColumn& g = xmlColumn(*f, "Gauss_Curvature");
     EXPECT_EQ(g.floats.front(), static_cast<float>(-0.8535541913109399));
     EXPECT_EQ(g.floats.back(), static_cast<float>(72.99596859623286));
     EXPECT_EQ(g.min, static_cast<double>(static_cast<float>(-219.99439028280585)));
@@ -722,7 +724,7 @@ TEST(VtkXml, ParaViewLz4AndLzmaCompressedFilesReadExactly) {
         EXPECT_FALSE(f->idsAreRowNumbers);
         EXPECT_FALSE(f->radiusIsDefault);
         EXPECT_EQ(f->attributeNames(), (std::vector<std::string>{"strain"}));
-        const AttributeColumn& strain = column(*f, "strain");
+        const AttributeColumn& strain = xmlColumn(*f, "strain");
         for (std::size_t k = 0; k < 20; ++k) {
             const std::size_t i = k % 5, j = k / 5;
             EXPECT_EQ(f->ids[k], std::int64_t(1000 + k));
