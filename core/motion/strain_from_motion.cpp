@@ -629,6 +629,29 @@ struct Packed {
     }
 };
 
+// The runs of points around a cell (room for them reserved in `packed`), and the box around the
+// cell's spheres `selves` (lo, hi), for either packing of candidates.
+inline Runs runsAround(const NeighbourCells& cells, const NeighbourCells::At& cell,
+                       const std::uint32_t* selves, std::size_t count, Packed& packed, float* lo,
+                       float* hi) {
+    Runs runs;
+    std::size_t total = 0;
+    cells.around(cell, [&](std::size_t first, std::size_t last) {
+        runs.first[runs.count] = first;
+        runs.last[runs.count++] = last;
+        total += last - first;
+    });
+    packed.reserve(total);
+    for (int a = 0; a < 3; ++a)
+        lo[a] = hi[a] = cells.point(selves[0])[a];
+    for (std::size_t s = 1; s < count; ++s) {
+        const float* p = cells.point(selves[s]);
+        for (int a = 0; a < 3; ++a)
+            lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    }
+    return runs;
+}
+
 // Box distance per axis as the spheres' own test forms it (a - b, squared by multiply-adds in
 // the same order): every rounding is monotonic, so a point within the cutoff of a sphere is
 // within it of the box around the spheres in float too.
@@ -737,22 +760,8 @@ FAULTLINE_AVX2 void sumNeighboursAvx2(const NeighbourCells& cells, Packed& packe
 FAULTLINE_AVX2 void cellSumsAvx2(const NeighbourCells& cells, const NeighbourCells::At& cell,
                                  const std::uint32_t* selves, std::size_t count, float cutoff2,
                                  const CellF& now, bool wrap, Packed& packed, RawSums* out) {
-    Runs runs;
-    std::size_t total = 0;
-    cells.around(cell, [&](std::size_t first, std::size_t last) {
-        runs.first[runs.count] = first;
-        runs.last[runs.count++] = last;
-        total += last - first;
-    });
-    packed.reserve(total);
     float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a)
-        lo[a] = hi[a] = cells.point(selves[0])[a];
-    for (std::size_t s = 1; s < count; ++s) {
-        const float* p = cells.point(selves[s]);
-        for (int a = 0; a < 3; ++a)
-            lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-    }
+    const Runs runs = runsAround(cells, cell, selves, count, packed, lo, hi);
     packCandidates(cells, runs, lo, hi, cutoff2, packed);
     for (std::size_t s = 0; s < count; ++s) {
         const float* sphere = cells.point(selves[s]);
@@ -910,22 +919,8 @@ FAULTLINE_AVX512 inline void accumulate512(const NeighbourCells& cells, const st
 FAULTLINE_AVX512 void cellSums512(const NeighbourCells& cells, const NeighbourCells::At& cell,
                                   const std::uint32_t* selves, std::size_t count, float cutoff2,
                                   const CellF& now, bool wrap, Packed& packed, RawSums* out) {
-    Runs runs;
-    std::size_t total = 0;
-    cells.around(cell, [&](std::size_t first, std::size_t last) {
-        runs.first[runs.count] = first;
-        runs.last[runs.count++] = last;
-        total += last - first;
-    });
-    packed.reserve(total);
     float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a)
-        lo[a] = hi[a] = cells.point(selves[0])[a];
-    for (std::size_t s = 1; s < count; ++s) {
-        const float* p = cells.point(selves[s]);
-        for (int a = 0; a < 3; ++a)
-            lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-    }
+    const Runs runs = runsAround(cells, cell, selves, count, packed, lo, hi);
     packCandidates512(cells, runs, lo, hi, cutoff2, packed);
     // A sphere's neighbours found while the one before it sums its own: each list read well
     // after it was stored (a load of a few bytes right after a whole vector was stored there
