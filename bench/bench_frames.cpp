@@ -1,5 +1,7 @@
 // Time scrubbing: a 525,000-sphere frame from memory, from the binary frame cache (page cache
-// warm and cold) and parsed from text, on a 10-frame LAMMPS dump; plus difference columns.
+// warm and cold) and parsed from text, on a 10-frame LAMMPS dump; plus difference columns; and
+// the first and the last frame parsed from the same dump gzipped (one multi-frame .gz, as LAMMPS
+// writes dump.gz): the last one costs about what the first does (gzip_reader.hpp).
 // The data (~270 MB text, ~210 MB cache) is made in a temp folder and deleted at the end
 // (FAULTLINE_BENCH_KEEP=1 keeps it for the next run).
 #include "core/data/dataset.hpp"
@@ -10,6 +12,7 @@
 #include "core/model/frame_difference.hpp"
 
 #include <benchmark/benchmark.h>
+#include <zlib.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -79,8 +82,26 @@ std::string writeDump() {
     return path.string();
 }
 
+// The dump gzipped (level 1, as a run's dump.gz is written quickly); made once, as the dump.
+std::string writeGzipDump(const std::string& dump) {
+    const std::string path = dump + ".gz";
+    if (fs::exists(path))
+        return path;
+    const std::string tmp = path + ".partial";
+    std::FILE* in = std::fopen(dump.c_str(), "rb");
+    gzFile out = gzopen(tmp.c_str(), "wb1");
+    std::vector<char> buffer(1 << 20);
+    while (const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), in))
+        gzwrite(out, buffer.data(), static_cast<unsigned>(got));
+    gzclose(out);
+    std::fclose(in);
+    fs::rename(tmp, path);
+    return path;
+}
+
 struct Fixture {
     std::vector<FrameLocation> frames;
+    std::vector<FrameLocation> gzipFrames; // indexed in this process, as Dataset::open does
     std::shared_ptr<FrameCache> cache;
     std::vector<std::string> cacheFiles;
 };
@@ -88,7 +109,9 @@ struct Fixture {
 Fixture& fixture() {
     static Fixture fx = [] {
         Fixture f;
-        f.frames = indexDataFile(writeDump());
+        const std::string dump = writeDump();
+        f.frames = indexDataFile(dump);
+        f.gzipFrames = indexDataFile(writeGzipDump(dump));
         FrameCacheSettings s;
         s.folder = (benchFolder() / "cache").string();
         s.minFreeDiskBytes = 0;
@@ -235,6 +258,17 @@ void BM_Displacement(benchmark::State& state) {
         benchmark::DoNotOptimize(displacementSince(b, a).floats.data());
 }
 
+// Frame Arg (0, or -1: the last) parsed from the gzipped dump.
+void BM_GzipFrameParse(benchmark::State& state) {
+    auto& fx = fixture();
+    const std::size_t k = state.range(0) < 0 ? kFrames - 1 : std::size_t(state.range(0));
+    for (auto _ : state) {
+        Frame f = loadFrame(fx.gzipFrames[k]);
+        benchmark::DoNotOptimize(f.x.data());
+    }
+    state.SetLabel("frame " + std::to_string(k) + " of " + std::to_string(kFrames));
+}
+
 void BM_IndexDump(benchmark::State& state) {
     auto& fx = fixture();
     for (auto _ : state)
@@ -248,6 +282,7 @@ BENCHMARK(BM_PrefetcherRequestReady)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BinaryCacheLoadWarm)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_BinaryCacheLoadCold)->Unit(benchmark::kMillisecond)->Iterations(20);
 BENCHMARK(BM_TextParse)->Unit(benchmark::kMillisecond)->Iterations(10);
+BENCHMARK(BM_GzipFrameParse)->Arg(0)->Arg(-1)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_CacheWrite)->Unit(benchmark::kMillisecond)->Iterations(10);
 BENCHMARK(BM_PlaybackFromDiskCache)->Arg(10)->Arg(24)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_VariableChange)->Unit(benchmark::kMillisecond);

@@ -1,5 +1,6 @@
 #include "core/io/byte_source.hpp"
 
+#include "core/io/gzip_reader.hpp"
 #include "core/io/input_error.hpp"
 
 #include <zlib.h>
@@ -27,9 +28,14 @@ ByteSource::ByteSource(const std::string& path) : m_path(path) {
     if (!f)
         throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
     gzbuffer(f, 1u << 18);
-    m_gz = f;
     // Right after gzopen, gzdirect() looks at the header to tell plain from compressed.
     m_compressed = gzdirect(f) == 0;
+    if (!m_compressed) {
+        m_gz = f;
+        return;
+    }
+    gzclose(f);
+    m_reader = std::make_unique<GzipReader>(path, m_fileSize);
 }
 
 ByteSource::~ByteSource() {
@@ -44,6 +50,11 @@ std::uint64_t ByteSource::maxUncompressedSize() const {
 }
 
 std::size_t ByteSource::read(char* dst, std::size_t n) {
+    if (m_reader) {
+        const std::size_t got = m_reader->read(dst, n);
+        m_position += got;
+        return got;
+    }
     std::size_t total = 0;
     while (total < n) {
         const unsigned ask = static_cast<unsigned>(std::min<std::size_t>(n - total, 1u << 30));
@@ -72,6 +83,11 @@ std::size_t ByteSource::read(char* dst, std::size_t n) {
 }
 
 void ByteSource::seek(std::uint64_t offset) {
+    if (m_reader) {
+        m_reader->seek(offset);
+        m_position = offset;
+        return;
+    }
     if (offset > static_cast<std::uint64_t>(std::numeric_limits<z_off_t>::max()) ||
         gzseek(gz(m_gz), static_cast<z_off_t>(offset), SEEK_SET) < 0)
         throw InputError(m_path, InputError::Where::Byte, offset, "cannot seek to this offset");

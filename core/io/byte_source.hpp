@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace faultline::core {
+
+class GzipReader;
 
 class ByteSource {
   public:
@@ -16,7 +19,8 @@ class ByteSource {
 
     // Reads up to n bytes; returns 0 at the end. Throws InputError on a corrupt gzip stream.
     std::size_t read(char* dst, std::size_t n);
-    // Positions at an offset in the uncompressed stream (slow for gzip: it inflates up to it).
+    // Positions at an offset in the uncompressed stream (gzip: it inflates from the nearest
+    // access point before it that a reader of the same file remembered; gzip_reader.hpp).
     void seek(std::uint64_t offset);
     std::uint64_t position() const { return m_position; }
     bool compressed() const { return m_compressed; }
@@ -27,7 +31,8 @@ class ByteSource {
 
   private:
     std::string m_path;
-    void* m_gz = nullptr;
+    void* m_gz = nullptr;                 // a plain file (zlib's direct reads)
+    std::unique_ptr<GzipReader> m_reader; // a gzip file
     bool m_compressed = false;
     std::uint64_t m_fileSize = 0;
     std::uint64_t m_position = 0;
