@@ -10,13 +10,14 @@
 //     strain (since_offset -4), each frame's time; and how long the workbench's background pass
 //     takes to derive every frame into the frame cache.
 // Usage: bench_strain [--skip-10m] [--demo], bench_strain --demo-only (part 3 alone), or
-// bench_strain --strain-only N: strainFromMotion alone on the 525k pair, N times with the AVX2 sums
-// and with the baseline ones (for a profiler and to compare the two; FAULTLINE_BENCH_AVX2_ONLY=1:
-// the AVX2 sums only; FAULTLINE_BENCH_EVICT=1: caches flushed before each run;
-// FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows in no order too); or
-// bench_strain --demo-strain-only N: strainFromMotion alone on two of the demo's frames; or
-// bench_strain --dump FILE [FROM TO]: a file's frame TO parsed against its strain against frame
-// FROM (e.g. the real run examples/lammps/tile.sh has LAMMPS tile to 527k grains). The dumps
+// bench_strain --strain-only N: strainFromMotion alone on the 525k pair, N times with the vector
+// sums (AVX-512 or AVX2, as the CPU has them) and with the baseline ones (for a profiler and to
+// compare the two; FAULTLINE_BENCH_AVX2_ONLY=1: the vector sums only; FAULTLINE_BENCH_EVICT=1:
+// caches flushed before each run; FAULTLINE_BENCH_SHUFFLED_REFERENCE=1: the reference frame's rows
+// in no order too); or bench_strain --demo-strain-only N: strainFromMotion alone on two of the
+// demo's frames; or bench_strain --dump FILE [FROM TO]: a file's frame TO parsed against its strain
+// against frame FROM (e.g. the real run examples/lammps/tile.sh has LAMMPS tile to 527k grains).
+// The dumps
 // (~42 MB plain, and gzipped) are made in a temp folder and deleted at the end.
 // FAULTLINE_BENCH_NO_AVX512=1 (any part): the AVX2 sums where the CPU has AVX-512 too.
 #include "core/data/dataset.hpp"
@@ -335,10 +336,18 @@ void partDemo() {
         std::vector<double> ratios;
         for (std::size_t k = 0; k < without.size(); ++k)
             ratios.push_back(times[k] / without[k]);
+        const std::size_t worst =
+            std::size_t(std::max_element(ratios.begin(), ratios.end()) - ratios.begin());
         std::printf("demo scrub, frames 4..%zu each new, incremental strain %s: median frame "
-                    "%.1f ms against %.1f ms without strain; ratio median %.2f, worst %.2f\n",
+                    "%.1f ms against %.1f ms without strain; ratio median %.2f, worst %.2f "
+                    "(frame %zu: %.1f ms against %.1f ms)\n",
                     without.size() + 3, what, median(times) * 1e3, median(without) * 1e3,
-                    median(ratios), *std::max_element(ratios.begin(), ratios.end()));
+                    median(ratios), ratios[worst], worst + 4, times[worst] * 1e3,
+                    without[worst] * 1e3);
+        if (std::getenv("FAULTLINE_BENCH_FRAMES"))
+            for (std::size_t k = 0; k < ratios.size(); ++k)
+                std::printf("  frame %zu: %.1f ms against %.1f ms\n", k + 4, times[k] * 1e3,
+                            without[k] * 1e3);
     }
     fs::remove_all(folder);
 
@@ -544,9 +553,10 @@ int main(int argc, char** argv) {
                     continue;
                 std::sort(t.begin(), t.end());
                 std::printf("strain, %s sums: fastest %.1f ms, median %.1f ms of %zu\n",
-                            baseline                   ? "baseline"
-                            : detail::strainUsesAvx2() ? "AVX2"
-                                                       : "baseline (no AVX2 here)",
+                            baseline                     ? "baseline"
+                            : detail::strainUsesAvx512() ? "AVX-512"
+                            : detail::strainUsesAvx2()   ? "AVX2"
+                                                         : "baseline (no AVX2 here)",
                             t.front(), t[t.size() / 2], t.size());
             }
             return 0;
