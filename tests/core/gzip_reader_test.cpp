@@ -9,9 +9,12 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <atomic>
 #include <cstdint>
 #include <random>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace {
 using faultline::core::ByteSource;
@@ -113,6 +116,31 @@ TEST_F(GzipReaderTest, ASeekFirstStillFindsItsWay) {
     EXPECT_EQ(readFileBytes(path, text.size() - 100, 100), text.substr(text.size() - 100));
     EXPECT_GT(detail::gzipAccessPoints(path), 10u);
     EXPECT_EQ(readFileBytes(path, 12345, 1000), text.substr(12345, 1000));
+}
+
+TEST_F(GzipReaderTest, ReadersOnSeveralThreadsShareTheAccessPoints) {
+    // As the prefetcher loads frames: each thread its own sources, one index for the file,
+    // filled by whichever gets somewhere first.
+    TempDir dir;
+    const std::string text = dumpText(60000, 10);
+    const std::string path = dir.write("a.gz", gzipped(text, 6));
+    std::atomic<int> wrong{0};
+    std::vector<std::thread> threads;
+    for (unsigned t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            std::mt19937 rng(t);
+            std::uniform_int_distribution<std::uint64_t> at(0, text.size() - 1);
+            for (int k = 0; k < 15; ++k) {
+                const std::uint64_t offset = at(rng);
+                const std::uint64_t length = std::min<std::uint64_t>(5000, text.size() - offset);
+                if (readFileBytes(path, offset, length) != text.substr(offset, length))
+                    ++wrong;
+            }
+        });
+    for (auto& t : threads)
+        t.join();
+    EXPECT_EQ(wrong.load(), 0);
+    EXPECT_GT(detail::gzipAccessPoints(path), 10u);
 }
 
 TEST_F(GzipReaderTest, TrailingGarbageAfterTheLastMemberIsIgnored) {
