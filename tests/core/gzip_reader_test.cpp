@@ -75,11 +75,12 @@ std::string readAll(ByteSource& source) {
 
 TEST_F(GzipReaderTest, AnyOffsetReadsAsInOrder) {
     TempDir dir;
-    // Two members (as `cat a.gz b.gz` or a dump appended to), levels 9 and 1, and a stored one.
+    // Members (as `cat a.gz b.gz` or a dump appended to): levels 9 and 1, an empty one, and a
+    // stored one.
     const std::string a = dumpText(40000, 1), b = dumpText(30000, 2), c = dumpText(3000, 3);
     const std::string text = a + b + c;
     const std::string path =
-        dir.write("run.dump.gz", gzipped(a, 9) + gzipped(b, 1) + gzipped(c, 0));
+        dir.write("run.dump.gz", gzipped(a, 9) + gzipped(b, 1) + gzipped("", 6) + gzipped(c, 0));
     {
         ByteSource first(path);
         ASSERT_TRUE(first.compressed());
