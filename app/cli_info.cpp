@@ -73,6 +73,8 @@ int runInfo(const Args& args) {
                 appendf(out, " (timesteps %lld .. %lld)", static_cast<long long>(first.timestep),
                         static_cast<long long>(ds->location(ds->frameCount() - 1).timestep));
             appendf(out, "\n");
+            for (const auto& note : ds->notes())
+                appendf(out, "  note: %s\n", note.c_str());
             if (ds->files().size() > 1)
                 appendf(out, "  files: %zu\n", ds->files().size());
             appendf(out, "  frame 0 (timestep %lld):\n", static_cast<long long>(first.timestep));

@@ -1,5 +1,5 @@
 """Faultline: find, name and follow faults in Discrete Element Models (type stubs)."""
-from typing import Any, Optional, Sequence, Union
+from typing import Any, List, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -41,6 +41,9 @@ class Dataset:
     def __len__(self) -> int: ...
     def frame(self, index: int) -> Frame: ...
     def timestep(self, index: int) -> int: ...
+    @property
+    def notes(self) -> List[str]:
+        """A file that ends inside a frame keeps its complete frames; a note names the one left out."""
 
 def open(paths: Union[str, Sequence[str]]) -> Dataset:
     """Open DEM output (a path, a glob or a list); raises InputError."""

@@ -201,6 +201,7 @@ class PyDataset {
         return PyFrame(std::move(f));
     }
     long long timestep(std::size_t index) const { return m_ds->location(index).timestep; }
+    std::vector<std::string> notes() const { return m_ds->notes(); }
     const std::shared_ptr<core::Dataset>& dataset() const { return m_ds; }
 
   private:
@@ -488,7 +489,11 @@ cannot be read: path, line or byte, what was expected) and faultline.CommandErro
     py::class_<PyDataset>(m, "Dataset", "Frames of a DEM run, loaded lazily.")
         .def("__len__", &PyDataset::size)
         .def("frame", &PyDataset::frame, py::arg("index"), "frame `index` (negative: from the end)")
-        .def("timestep", &PyDataset::timestep, py::arg("index"), "the timestep of frame `index`");
+        .def("timestep", &PyDataset::timestep, py::arg("index"), "the timestep of frame `index`")
+        .def_property_readonly("notes", &PyDataset::notes,
+                               "what to know about how the files read: a file that ends inside a "
+                               "frame (a run still writing, or stopped) keeps its complete frames, "
+                               "and a note names the one left out");
 
     m.def("open", &openData, py::arg("paths"),
           "Open DEM output: one path, a glob (`dump.*.gz`) or a list of them; every reader "

@@ -207,7 +207,10 @@ std::shared_ptr<Dataset> Dataset::open(const std::vector<std::string>& patterns,
             continue;
         }
         for (const auto& file : expanded[k]) {
-            auto frames = indexDataFile(file);
+            std::string partial;
+            auto frames = indexDataFile(file, &partial);
+            if (!partial.empty())
+                ds->m_notes.push_back(std::move(partial));
             if (!boxes[k].empty() && frames.size() == 1)
                 if (const auto n = numberInFileName(file))
                     if (auto box =

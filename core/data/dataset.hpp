@@ -54,6 +54,10 @@ class Dataset {
     std::size_t frameCount() const { return m_frames.size(); }
     const FrameLocation& location(std::size_t frame) const { return m_frames.at(frame); }
     const std::vector<std::string>& patterns() const { return m_patterns; }
+    // What the user should know about how the files were read: a file that ends inside a frame
+    // after complete ones (a run still writing, or stopped mid-write) has that frame left out,
+    // and a note says so (file, where it stops). Empty for files read whole.
+    const std::vector<std::string>& notes() const { return m_notes; }
     std::vector<std::string> files() const;
 
     // Variables derived from motion (strain.add): every frame the dataset hands out carries
@@ -108,6 +112,7 @@ class Dataset {
 
   private:
     std::vector<std::string> m_patterns;
+    std::vector<std::string> m_notes;
     std::vector<FrameLocation> m_frames;
     std::function<Frame(std::size_t)> m_loader; // set by fromLoader
 

@@ -150,7 +150,7 @@ bool looksLikeXyz(std::string_view head) {
     return w.size() >= 4 && !isNumber(w[0]) && isNumber(w[1]) && isNumber(w[2]) && isNumber(w[3]);
 }
 
-std::vector<XyzFrameIndex> indexXyz(const std::string& path) {
+std::vector<XyzFrameIndex> indexXyz(const std::string& path, std::string* partial) {
     return indexTextFrames<XyzFrameIndex>(
         path, "no XYZ frame found",
         [&](TextLineReader& reader, XyzFrameIndex& f, std::size_t count) -> std::uint64_t {
@@ -172,7 +172,8 @@ std::vector<XyzFrameIndex> indexXyz(const std::string& path) {
         [](const XyzFrameIndex& f, std::size_t count) {
             return "the " + std::to_string(f.atoms) + " particle rows of frame " +
                    std::to_string(count);
-        });
+        },
+        partial);
 }
 
 Frame parseXyzFrame(const std::string& path, std::string_view text, std::uint64_t firstLine) {

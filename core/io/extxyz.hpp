@@ -25,7 +25,8 @@ struct XyzFrameIndex {
 bool looksLikeXyz(std::string_view head);
 
 // One pass: where each frame starts. InputError (line) on a bad count or a truncated frame.
-std::vector<XyzFrameIndex> indexXyz(const std::string& path);
+// partial: see indexTextFrames (text_lines.hpp).
+std::vector<XyzFrameIndex> indexXyz(const std::string& path, std::string* partial = nullptr);
 
 // One frame from its bytes. Positions: "pos" (or "positions"); ids: "id"/"ID"/"Identifier"
 // (else row numbers); radius: "radius"/"Radius" (or "diameter", halved). Other numeric columns

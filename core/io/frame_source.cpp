@@ -190,21 +190,21 @@ SimulationBox readVtkRectilinearBox(const std::string& path) {
     return box;
 }
 
-std::vector<FrameLocation> indexDataFile(const std::string& path) {
+std::vector<FrameLocation> indexDataFile(const std::string& path, std::string* partial) {
     const FileFormat format = detectFormat(path);
     std::vector<FrameLocation> frames;
     switch (format) {
     case FileFormat::LammpsDump:
-        for (const auto& f : indexLammpsDump(path))
+        for (const auto& f : indexLammpsDump(path, partial))
             frames.push_back(pieceOfFile(path, format, f.timestep, double(f.timestep), f.atoms, f));
         break;
     case FileFormat::Xyz:
-        for (const auto& f : indexXyz(path))
+        for (const auto& f : indexXyz(path, partial))
             frames.push_back(pieceOfFile(path, format, f.timestep, double(f.timestep), f.atoms, f));
         break;
     case FileFormat::MercuryData: {
         std::int64_t step = 0;
-        for (const auto& f : indexMercuryData(path))
+        for (const auto& f : indexMercuryData(path, partial))
             frames.push_back(pieceOfFile(path, format, step++, f.time, f.particles, f));
         break;
     }

@@ -49,7 +49,9 @@ bool isVtkRectilinearGrid(const std::string& path);
 SimulationBox readVtkRectilinearBox(const std::string& path);
 
 // Every frame one file holds (a .pvd collection expands to the files it lists).
-std::vector<FrameLocation> indexDataFile(const std::string& path);
+// `partial` (optional): a multi-frame text file (LAMMPS dump, XYZ, MercuryDPM) that ends inside
+// a frame after complete ones keeps them, and `partial` says what was left out (else an error).
+std::vector<FrameLocation> indexDataFile(const std::string& path, std::string* partial = nullptr);
 
 // Reads one frame; throws InputError with the file and position of any fault.
 Frame loadFrame(const FrameLocation& location);

@@ -173,6 +173,10 @@ void GzipReader::fail(const std::string& what) const {
     throw InputError(m_path, InputError::Where::Byte, m_out, what);
 }
 
+void GzipReader::failTruncated() const {
+    throw TruncatedInput(m_path, InputError::Where::Byte, m_out, "compressed stream is truncated");
+}
+
 void GzipReader::openAt(std::uint64_t fileOffset) {
     if (fileOffset > std::uint64_t(std::numeric_limits<off_t>::max()) ||
         fseeko(m_file, static_cast<off_t>(fileOffset), SEEK_SET) != 0)
@@ -209,7 +213,7 @@ void GzipReader::restart() {
     m_mode = Mode::Gzip;
     openAt(0);
     m_out = m_memberStart = m_nextPoint = 0;
-    m_end = false;
+    m_end = m_truncated = false;
 }
 
 void GzipReader::restore(const detail::GzipAccessPoint& point) {
@@ -217,11 +221,11 @@ void GzipReader::restore(const detail::GzipAccessPoint& point) {
     inflateReset2(s, -15); // raw deflate: the member's header lies behind
     m_mode = Mode::Raw;
     m_out = point.out;
-    m_end = false;
+    m_end = m_truncated = false;
     openAt(point.in - (point.bits ? 1 : 0));
     if (point.bits) {
         if (!ensureInput(1))
-            fail("compressed stream is truncated");
+            failTruncated();
         const int byte = *s->next_in;
         ++s->next_in;
         --s->avail_in;
@@ -236,22 +240,23 @@ void GzipReader::restore(const detail::GzipAccessPoint& point) {
     m_nextPoint = point.out + 1;
 }
 
-void GzipReader::endOfMember() {
+bool GzipReader::endOfMember() {
     z_stream* s = zs(m_stream);
     if (m_mode == Mode::Raw) { // the member's trailer (CRC-32 and size), checked only in order
         if (!ensureInput(8))
-            fail("compressed stream is truncated");
+            return false;
         s->next_in += 8;
         s->avail_in -= 8;
     }
     // Another member follows, or the stream ends (anything else after it is ignored).
     if (!ensureInput(2) || s->next_in[0] != 0x1f || s->next_in[1] != 0x8b) {
         m_end = true;
-        return;
+        return true;
     }
     inflateReset2(s, 15 + 32);
     m_mode = Mode::Gzip;
     m_memberStart = m_out;
+    return true;
 }
 
 void GzipReader::note(const unsigned char* out, std::size_t produced) {
@@ -293,9 +298,20 @@ void GzipReader::remember() {
 std::size_t GzipReader::read(char* dst, std::size_t n) {
     z_stream* s = zs(m_stream);
     std::size_t total = 0;
-    while (total < n && !m_end) {
-        if (s->avail_in == 0 && !ensureInput(1))
-            fail("compressed stream is truncated");
+    // The stream stops short: what came before it is returned first, the error on the next read
+    // (a reader reading ahead still gets the whole frames before the cut).
+    auto truncated = [&] {
+        if (total == 0)
+            failTruncated();
+        m_truncated = true;
+    };
+    if (m_truncated)
+        failTruncated();
+    while (total < n && !m_end && !m_truncated) {
+        if (s->avail_in == 0 && !ensureInput(1)) {
+            truncated();
+            break;
+        }
         auto* out = reinterpret_cast<unsigned char*>(dst + total);
         s->next_out = out;
         s->avail_out = static_cast<uInt>(std::min<std::size_t>(n - total, 1u << 30));
@@ -307,12 +323,13 @@ std::size_t GzipReader::read(char* dst, std::size_t n) {
         m_out += produced;
         total += produced;
         if (status == Z_STREAM_END) {
-            endOfMember();
+            if (!endOfMember())
+                truncated();
         } else if (status == Z_OK) {
             remember();
         } else if (status == Z_BUF_ERROR && produced == 0 && inBefore == s->avail_in) {
             if (!ensureInput(std::size_t(s->avail_in) + 1)) // needs more than there is
-                fail("compressed stream is truncated");
+                truncated();
         } else {
             fail(std::string("corrupt compressed data: ") + (s->msg ? s->msg : "?"));
         }

@@ -38,8 +38,8 @@ class GzipReader {
 
     // Up to n bytes of the uncompressed stream; 0 at its end. Members of a concatenated gzip
     // file follow each other; anything after the last member that is no gzip member is ignored
-    // (as gzread does). Throws InputError (byte offset in the uncompressed stream) on corrupt or
-    // truncated data.
+    // (as gzread does). Throws InputError (byte offset in the uncompressed stream) on corrupt
+    // data, TruncatedInput where the stream stops short.
     std::size_t read(char* dst, std::size_t n);
     // Positions at `offset` of the uncompressed stream. Past its end: reads return 0.
     void seek(std::uint64_t offset);
@@ -51,18 +51,20 @@ class GzipReader {
     bool ensureInput(std::size_t bytes);
     void restart();
     void restore(const detail::GzipAccessPoint& point);
-    void endOfMember();
+    bool endOfMember(); // false: the file stops inside the member's trailer
     void remember();
     void skip(std::uint64_t bytes);
     void note(const unsigned char* out, std::size_t produced);
     [[noreturn]] void fail(const std::string& what) const;
+    [[noreturn]] void failTruncated() const; // TruncatedInput
 
     std::string m_path;
     std::FILE* m_file = nullptr;
     void* m_stream = nullptr; // z_stream
     Mode m_mode = Mode::Gzip;
-    bool m_end = false;     // past the last member
-    bool m_fileEnd = false; // nothing more to read from the file
+    bool m_end = false;       // past the last member
+    bool m_fileEnd = false;   // nothing more to read from the file
+    bool m_truncated = false; // the stream stopped short: the next read throws
     std::vector<unsigned char> m_in;
     std::uint64_t m_inOffset = 0; // file offset of m_in[0]
     std::uint64_t m_out = 0;      // uncompressed bytes before the next one read

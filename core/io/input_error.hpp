@@ -29,6 +29,13 @@ class InputError : public std::runtime_error {
     std::string m_message;
 };
 
+// The input stops early: a compressed stream cut short (a file still being written, or a copy or
+// run stopped mid-write). Readers that can keep what came before it catch this one.
+class TruncatedInput : public InputError {
+  public:
+    using InputError::InputError;
+};
+
 // Shortens user-provided text (a bad token) for an error message.
 std::string quoteForError(std::string_view text, std::size_t maxLength = 40);
 

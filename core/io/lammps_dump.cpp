@@ -154,7 +154,7 @@ bool looksLikeLammpsDump(std::string_view head) {
     return head.substr(i, 5) == "ITEM:";
 }
 
-std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path) {
+std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path, std::string* partial) {
     return indexTextFrames<LammpsFrameIndex>(
         path, "no 'ITEM: TIMESTEP' frame found: not a LAMMPS dump",
         [&](TextLineReader& reader, LammpsFrameIndex& f, std::size_t) -> std::uint64_t {
@@ -168,7 +168,8 @@ std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path) {
         [](const LammpsFrameIndex& f, std::size_t) {
             return std::to_string(f.atoms) + " particle rows of timestep " +
                    std::to_string(f.timestep);
-        });
+        },
+        partial);
 }
 
 Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,

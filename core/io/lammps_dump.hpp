@@ -21,7 +21,9 @@ struct LammpsFrameIndex {
 
 // One pass over the file: where each frame starts, its timestep and atom count.
 // Throws InputError on a malformed header or a truncated frame.
-std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path);
+// partial: see indexTextFrames (text_lines.hpp).
+std::vector<LammpsFrameIndex> indexLammpsDump(const std::string& path,
+                                              std::string* partial = nullptr);
 
 // Parses one frame from its text (as located by the index). `firstLine` numbers errors.
 Frame parseLammpsDumpFrame(const std::string& path, std::string_view text,

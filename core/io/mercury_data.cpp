@@ -99,7 +99,7 @@ bool looksLikeMercuryData(std::string_view head) {
     return true;
 }
 
-std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path) {
+std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path, std::string* partial) {
     return indexTextFrames<MercuryFrameIndex>(
         path, "no MercuryDPM time step found",
         [&](TextLineReader& reader, MercuryFrameIndex& f, std::size_t count) -> std::uint64_t {
@@ -117,7 +117,8 @@ std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path) {
         [](const MercuryFrameIndex& f, std::size_t count) {
             return "the " + std::to_string(f.particles) + " particle rows of time step " +
                    std::to_string(count);
-        });
+        },
+        partial);
 }
 
 Frame parseMercuryDataFrame(const std::string& path, std::string_view text,

@@ -25,7 +25,9 @@ struct MercuryFrameIndex {
 bool looksLikeMercuryData(std::string_view head);
 
 // One pass: where each time step starts. InputError (line) on a bad header or a truncated step.
-std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path);
+// partial: see indexTextFrames (text_lines.hpp).
+std::vector<MercuryFrameIndex> indexMercuryData(const std::string& path,
+                                                std::string* partial = nullptr);
 
 // One time step. Ids are row numbers (the format has none); attributes vx vy vz,
 // orientation_x/y/z (2-D: orientation), angular_velocity_x/y/z (2-D: angular_velocity),

@@ -66,25 +66,53 @@ struct TextCursor {
 // are set) and returns how many rows follow; `rowsOf(f, count)` names the frame in the error for
 // a file that ends inside its rows ("particle rows of frame 3"). Throws InputError `none` when
 // the file holds no frame.
+// `partial` (optional): a file that ends inside a frame after complete ones (a run still writing,
+// or stopped mid-write: a job's time limit) keeps the complete frames, and `partial` says what
+// was left out; without it, or when no frame is complete, that is an error as any other.
 template <class Index, class Header, class RowsOf>
 std::vector<Index> indexTextFrames(const std::string& path, const std::string& none, Header header,
-                                   RowsOf rowsOf) {
+                                   RowsOf rowsOf, std::string* partial = nullptr) {
     ByteSource source(path);
     TextLineReader reader(source);
     std::vector<Index> frames;
+    auto endsInside = [&](const std::string& where) {
+        if (!partial || frames.empty())
+            return false;
+        const std::string n = std::to_string(frames.size());
+        *partial = path + ": the file ends inside frame " + n + " (" + where +
+                   "), as a run still " + "writing or stopped mid-write leaves it: the " + n +
+                   " complete frames before it are read";
+        return true;
+    };
     for (;;) {
-        reader.skipBlankLines();
-        if (reader.atEnd())
-            break;
         Index f;
-        f.offset = reader.offset();
-        f.firstLine = reader.lineNumber() + 1;
-        const std::uint64_t rows = header(reader, f, frames.size());
-        const std::uint64_t skipped = reader.skipLines(rows);
-        if (skipped < rows)
-            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1,
-                             "file ends after " + std::to_string(skipped) + " of " +
-                                 rowsOf(f, frames.size()));
+        std::uint64_t rows = 0, skipped = 0;
+        try {
+            reader.skipBlankLines();
+            if (reader.atEnd())
+                break;
+            f.offset = reader.offset();
+            f.firstLine = reader.lineNumber() + 1;
+            rows = header(reader, f, frames.size());
+            skipped = reader.skipLines(rows);
+        } catch (const TruncatedInput& e) {
+            if (endsInside(e.message() + " at byte " + std::to_string(e.position())))
+                break;
+            throw;
+        } catch (const InputError& e) {
+            // A header cut short by the end of the file.
+            if (reader.atEnd() &&
+                endsInside("its header stops at line " + std::to_string(reader.lineNumber())))
+                break;
+            throw;
+        }
+        if (skipped < rows) {
+            const std::string what =
+                "file ends after " + std::to_string(skipped) + " of " + rowsOf(f, frames.size());
+            if (endsInside("line " + std::to_string(reader.lineNumber() + 1) + ": " + what))
+                break;
+            throw InputError(path, InputError::Where::Line, reader.lineNumber() + 1, what);
+        }
         f.length = reader.offset() - f.offset;
         frames.push_back(f);
     }

@@ -112,12 +112,17 @@ TEST(ExtXyz, TruncatedFilesNameTheFrame) {
     const std::string cut = good.substr(0, good.size() - 200);
     const std::string p = dir.write("cut.xyz", cut);
     try {
-        Dataset::open({p});
+        indexDataFile(p);
         FAIL() << "a truncated file was accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("particle rows of frame 2"), std::string::npos)
             << e.what();
     }
+    // Opened: the two complete frames read, and a note names the one left out.
+    auto ds = Dataset::open({p});
+    EXPECT_EQ(ds->frameCount(), 2u);
+    ASSERT_EQ(ds->notes().size(), 1u);
+    EXPECT_NE(ds->notes()[0].find("particle rows of frame 2"), std::string::npos) << ds->notes()[0];
 }
 
 // Every truncation and byte change of the ASE file gives an InputError or a frame, never a crash.

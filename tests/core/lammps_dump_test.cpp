@@ -8,6 +8,7 @@
 #include <zlib.h>
 
 #include <cmath>
+#include <filesystem>
 
 using namespace faultline::core;
 using faultline::test::inputErrorOf;
@@ -205,10 +206,50 @@ TEST(LammpsDump, TruncatedMultiFrameNamesTheFrame) {
     const std::string p = dir.write(
         "cut.dump", header(2, "id x y z") + "1 0 0 0\n2 0 0 0\n" +
                         header(3, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", 200) + "1 0 0 0\n");
-    const std::string msg = inputErrorOf([&] { Dataset::open({p}); });
+    // Indexed alone, the cut is an error naming the line and the frame.
+    const std::string msg = inputErrorOf([&] { indexDataFile(p); });
     EXPECT_NE(msg.find(":22: file ends after 1 of 3 particle rows of timestep 200"),
               std::string::npos)
         << msg;
+    // Opened, the frame before it reads, and a note says what was left out (a run still writing,
+    // or one stopped by a job's time limit, keeps its complete frames).
+    auto ds = Dataset::open({p});
+    ASSERT_EQ(ds->frameCount(), 1u);
+    EXPECT_EQ(ds->frame(0)->size(), 2u);
+    ASSERT_EQ(ds->notes().size(), 1u);
+    EXPECT_NE(ds->notes()[0].find("ends inside frame 1 (line 22: file ends after 1 of 3 particle "
+                                  "rows of timestep 200)"),
+              std::string::npos)
+        << ds->notes()[0];
+    EXPECT_NE(ds->notes()[0].find("cut.dump"), std::string::npos);
+}
+
+TEST(LammpsDump, AGzipDumpCutShortKeepsItsCompleteFrames) {
+    // A dump.gz copied or written only in part: the frames before the cut read, whichever frame
+    // the decompressor's read-ahead was in when the stream stopped; a single cut frame is an
+    // error.
+    TempDir dir;
+    std::string text;
+    for (int t = 0; t < 6; ++t) {
+        text += header(4000, "id x y z", "pp pp pp\n0 1\n0 1\n0 1\n", t * 100);
+        for (int i = 0; i < 4000; ++i)
+            text += std::to_string(i + 1) + " 0." + std::to_string(1000 + (i * 7 + t) % 9000) +
+                    " 0.5 0.25\n";
+    }
+    const std::string p = dir.file("run.dump.gz");
+    gzFile g = gzopen(p.c_str(), "wb");
+    gzwrite(g, text.data(), static_cast<unsigned>(text.size()));
+    gzclose(g);
+    const auto whole = std::filesystem::file_size(p);
+    std::filesystem::resize_file(p, whole * 3 / 4);
+    auto ds = Dataset::open({p});
+    EXPECT_GE(ds->frameCount(), 3u);
+    EXPECT_LE(ds->frameCount(), 5u);
+    for (std::size_t k = 0; k < ds->frameCount(); ++k)
+        EXPECT_EQ(ds->frame(k)->size(), 4000u) << "frame " << k;
+    ASSERT_EQ(ds->notes().size(), 1u);
+    EXPECT_NE(ds->notes()[0].find("compressed stream is truncated"), std::string::npos)
+        << ds->notes()[0];
 }
 
 TEST(LammpsDump, GzipReadThroughZlib) {

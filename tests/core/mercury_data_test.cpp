@@ -97,12 +97,18 @@ TEST(MercuryData, TruncatedFileNamesTheStep) {
     const std::string good((std::istreambuf_iterator<char>(in)), {});
     const std::string p = dir.write("cut.data", good.substr(0, good.size() - 60));
     try {
-        Dataset::open({p});
+        indexDataFile(p);
         FAIL() << "accepted a truncated file";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("particle rows of time step 1"), std::string::npos)
             << e.what();
     }
+    // Opened: the complete step reads, and a note names the one left out.
+    auto ds = Dataset::open({p});
+    EXPECT_EQ(ds->frameCount(), 1u);
+    ASSERT_EQ(ds->notes().size(), 1u);
+    EXPECT_NE(ds->notes()[0].find("particle rows of time step 1"), std::string::npos)
+        << ds->notes()[0];
 }
 
 TEST(MercuryData, CorruptedBytesOnlyEverGiveInputErrors) {

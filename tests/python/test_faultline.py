@@ -58,6 +58,17 @@ def test_a_hostile_file_raises_the_readers_message(tmp_path):
         faultline.open(str(tmp_path / "none.*.gz"))
 
 
+def test_a_run_cut_short_keeps_its_complete_frames(tmp_path):
+    frame = ("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n"
+             "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n2 0.5 0 0\n")
+    cut = tmp_path / "cut.dump"
+    cut.write_text(frame.format(0) + frame.format(100) + frame.format(200)[:-12])
+    ds = faultline.open(str(cut))
+    assert len(ds) == 2
+    assert ds.timestep(1) == 100
+    assert len(ds.notes) == 1 and "ends inside frame 2" in ds.notes[0]
+
+
 def test_refused_ops_raise_and_change_nothing():
     s = faultline.Session(LAMMPS)
     s.run({"op": "threshold.add", "variable": "z", "low": 5, "high": 10})

@@ -62,6 +62,8 @@ class DataPanel final : public Panel {
         if (collapsingHeader("Frames", ImGuiTreeNodeFlags_DefaultOpen)) {
             const std::size_t f = wb.displayFrame();
             keyValue("frames", std::to_string(ds->frameCount()));
+            for (const auto& note : ds->notes()) // a file cut short: its last frame left out
+                ImGui::TextWrapped("%s", note.c_str());
             keyValue("current", std::to_string(f) + "  (timestep " +
                                     std::to_string(ds->location(f).timestep) + ")");
             if (main && main->frame) {
