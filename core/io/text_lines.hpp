@@ -99,9 +99,15 @@ std::vector<Index> indexTextFrames(const std::string& path, const std::string& n
             if (endsInside(e.message() + " at byte " + std::to_string(e.position())))
                 break;
             throw;
-        } catch (const InputError& e) {
-            // A header cut short by the end of the file.
-            if (reader.atEnd() &&
+        } catch (const InputError&) {
+            // A header cut short by the end of the file (or by a compressed stream's cut, met
+            // while looking for what follows it).
+            bool atEnd = true;
+            try {
+                atEnd = reader.atEnd();
+            } catch (const TruncatedInput&) {
+            }
+            if (atEnd &&
                 endsInside("its header stops at line " + std::to_string(reader.lineNumber())))
                 break;
             throw;

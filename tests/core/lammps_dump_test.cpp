@@ -224,6 +224,25 @@ TEST(LammpsDump, TruncatedMultiFrameNamesTheFrame) {
     EXPECT_NE(ds->notes()[0].find("cut.dump"), std::string::npos);
 }
 
+TEST(LammpsDump, AHeaderCutShortKeepsTheFramesBeforeIt) {
+    TempDir dir;
+    const std::string box = "pp pp pp\n0 1\n0 1\n0 1\n";
+    const std::string p = dir.write("cut.dump", header(1, "id x y z", box, 0) + "1 0 0 0\n" +
+                                                    header(1, "id x y z", box, 10) + "1 0 0 0\n" +
+                                                    "ITEM: TIMESTEP\n20\nITEM: NUMBER OF ATOMS\n");
+    auto ds = Dataset::open({p});
+    EXPECT_EQ(ds->frameCount(), 2u);
+    ASSERT_EQ(ds->notes().size(), 1u);
+    EXPECT_NE(ds->notes()[0].find("ends inside frame 2 (its header stops at line"),
+              std::string::npos)
+        << ds->notes()[0];
+    // A header broken before the end of the file is no cut: an error, as before.
+    const std::string bad = dir.write("bad.dump", header(1, "id x y z", box, 0) + "1 0 0 0\n" +
+                                                      "ITEM: TIMESTEP\nten\n" +
+                                                      header(1, "id x y z", box, 20) + "1 0 0 0\n");
+    EXPECT_THROW(Dataset::open({bad}), InputError);
+}
+
 TEST(LammpsDump, AGzipDumpCutShortKeepsItsCompleteFrames) {
     // A dump.gz copied or written only in part: the frames before the cut read, whichever frame
     // the decompressor's read-ahead was in when the stream stopped; a single cut frame is an
