@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Hardening checks: the core unit and replay tests under ASan + UBSan (clang, separate build
 # folder), the core and workbench tests under ThreadSanitizer (another folder), then every
-# libFuzzer target for FAULTLINE_FUZZ_SECONDS (default 30) on its seed corpus (tests/data,
+# libFuzzer target for FAULTLINE_FUZZ_SECONDS (default 20) on its seed corpus (tests/data,
 # tests/replay, fuzz/corpus/<target>). Crashes fail the run; their inputs are kept in
 # build-hardening/fuzz-artifacts/. In both sanitizer trees the test programs' own sources
 # compile at -O0 (tests/CMakeLists.txt), the library under test at -O2.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FAULTLINE_HARDENING_DIR:-$here/build-hardening}"
-seconds="${FAULTLINE_FUZZ_SECONDS:-30}"
+seconds="${FAULTLINE_FUZZ_SECONDS:-20}"
 export CCACHE_BASEDIR="$here" CCACHE_NOHASHDIR=1
 
 # Runs each of the jobs named after the first two arguments with `launch JOB` (its output in
@@ -103,7 +103,7 @@ tsanShare() {
     if [ "${1%-*}" = core ]; then
         "$tsan/tests/faultline_core_tests"
     else
-        cd "$tsan/tests" && FAULTLINE_SOAK_ACTIONS=4000 FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1 \
+        cd "$tsan/tests" && FAULTLINE_SOAK_ACTIONS=2500 FAULTLINE_REQUIRE_GL=1 FAULTLINE_GL_CHECKS=1 \
             LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe xvfb-run -a -n $((200 + 4 * GTEST_SHARD_INDEX)) \
             -s "-screen 0 1920x1080x24 -noreset" "$tsan/tests/faultline_ui_tests"
     fi

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up (installs missing Debian packages), builds, and runs every test: unit, CLI, replay
 # and GUI tests (GUI under Xvfb with Mesa's llvmpipe: no display or GPU needed), then the
-# hardening checks (tests under ASan + UBSan, each fuzz target for 30 s; scripts/hardening.sh).
+# hardening checks (tests under ASan + UBSan, each fuzz target for 20 s; scripts/hardening.sh).
 # FAULTLINE_QUICK=1 skips the hardening part.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

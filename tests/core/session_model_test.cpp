@@ -251,8 +251,11 @@ std::vector<Json> shrink(std::vector<Json> ops, const std::string& data, const T
 TEST(SessionModel, RandomOpSequencesReplaySaveAndUndoToTheSameState) {
     TempDir dir;
     const std::string data = dir.write("lattice.dump", faultline::test::latticeDump());
-    // Under TSan a third of them (common/sanitizers.hpp).
-    constexpr int kSequences = faultline::test::kUnderThreadSanitizer ? 100 : 300, kOps = 60;
+    // Under TSan a third of them, under ASan half (common/sanitizers.hpp).
+    constexpr int kSequences = faultline::test::kUnderThreadSanitizer    ? 100
+                               : faultline::test::kUnderAddressSanitizer ? 150
+                                                                         : 300,
+                  kOps = 60;
     std::map<std::string, int> accepted; // by op: the sequences reach every kind of change
     for (int seed = 1; seed <= kSequences; ++seed) {
         OpGenerator gen(static_cast<std::uint32_t>(seed));
