@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -24,18 +25,22 @@ ByteSource::ByteSource(const std::string& path) : m_path(path) {
     m_fileSize = std::filesystem::file_size(path, ec);
     if (ec)
         throw InputError(path, "cannot open: " + ec.message());
+    // The gzip magic, as zlib tells plain from compressed: a gzip file goes to GzipReader (its
+    // seeks use access points), a plain one to zlib's direct reads.
+    unsigned char magic[2] = {0, 0};
+    if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
+        m_compressed = std::fread(magic, 1, 2, probe) == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+        std::fclose(probe);
+    }
+    if (m_compressed) {
+        m_reader = std::make_unique<GzipReader>(path, m_fileSize);
+        return;
+    }
     gzFile f = gzopen(path.c_str(), "rb");
     if (!f)
         throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
     gzbuffer(f, 1u << 18);
-    // Right after gzopen, gzdirect() looks at the header to tell plain from compressed.
-    m_compressed = gzdirect(f) == 0;
-    if (!m_compressed) {
-        m_gz = f;
-        return;
-    }
-    gzclose(f);
-    m_reader = std::make_unique<GzipReader>(path, m_fileSize);
+    m_gz = f;
 }
 
 ByteSource::~ByteSource() {
@@ -59,23 +64,13 @@ std::size_t ByteSource::read(char* dst, std::size_t n) {
     while (total < n) {
         const unsigned ask = static_cast<unsigned>(std::min<std::size_t>(n - total, 1u << 30));
         const int got = gzread(gz(m_gz), dst + total, ask);
-        if (got < 0) {
-            int err = 0;
-            const char* msg = gzerror(gz(m_gz), &err);
+        int err = Z_OK;
+        const char* msg = got <= 0 ? gzerror(gz(m_gz), &err) : nullptr;
+        if (got < 0 || (err != Z_OK && err != Z_BUF_ERROR)) // a plain file: a read error
             throw InputError(m_path, InputError::Where::Byte, m_position + total,
-                             std::string("corrupt compressed data: ") + (msg ? msg : "?"));
-        }
-        if (got == 0) {
-            int err = 0;
-            const char* msg = gzerror(gz(m_gz), &err);
-            if (err != Z_OK && err != Z_BUF_ERROR)
-                throw InputError(m_path, InputError::Where::Byte, m_position + total,
-                                 std::string("corrupt compressed data: ") + (msg ? msg : "?"));
-            if (m_compressed && err == Z_BUF_ERROR)
-                throw InputError(m_path, InputError::Where::Byte, m_position + total,
-                                 "compressed stream is truncated");
+                             std::string("cannot read the file: ") + (msg ? msg : "?"));
+        if (got == 0)
             break;
-        }
         total += static_cast<std::size_t>(got);
     }
     m_position += total;
