@@ -1051,16 +1051,57 @@ template <int dim> StrainValues solve(const NeighbourSums& s, const int* axes) {
 }
 
 #if FAULTLINE_STRAIN_AVX2
-// solve<3> for four spheres at once, one per lane of AVX2 doubles: the same operations in the
-// same order (sums start from zero as its loops do; no multiply-adds are fused in ISO C++
-// mode), so the same values to the last bit, whichever of the two solves a sphere.
-FAULTLINE_AVX2 void solve3x4(const RawSums* s, StrainValues* out) {
-    typedef double v4d __attribute__((vector_size(32)));
-    // (No helper returning a vector: outside this function's target it would need AVX.)
-    // Each of the four sums' vectors of the four spheres transposed (unpack, then shuffle: lane
-    // k of the four in the low half of u[k % 4], or the high half for k >= 4), then widened to
-    // double, which is exact.
-    v4d col[4][6];
+// solve<3> for four or eight spheres at once, one per lane of vectors of doubles: the same
+// operations in the same order (sums start from zero as its loops do; no multiply-adds are
+// fused in ISO C++ mode), so the same values to the last bit, whichever solves a sphere.
+// `col`: the sums' vectors r[b] of the spheres widened to double, col[b][k] holding lane k of
+// each; `count`: their neighbour counts. Inlined into the AVX2 and AVX-512 solves below.
+template <typename VD, int N>
+[[gnu::always_inline]] inline void solveLanes(const VD (&col)[4][6], const double* count,
+                                              StrainValues* out) {
+    VD V[3][3], A[3][3], uu[3];
+    unpackSums(col, V, A, uu);
+    // invert3's operations, lane by lane.
+    VD det;
+    determinant3(V, det);
+    const VD scale = (V[0][0] + V[1][1] + V[2][2]) / 3.0;
+    VD inv[3][3];
+    scaledAdjugate3(V, 1.0 / det, inv);
+    VD G[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            G[i][j] = VD{} + A[i][0] * inv[0][j] + A[i][1] * inv[1][j] + A[i][2] * inv[2][j];
+    VD E[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            E[i][j] = 0.5 * (G[i][j] + G[j][i] +
+                             (VD{} + G[0][i] * G[0][j] + G[1][i] * G[1][j] + G[2][i] * G[2][j]));
+    VD ga = VD{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            ga += G[i][j] * A[i][j];
+    const VD residual = (VD{} + uu[0] + uu[1] + uu[2]) - ga;
+    const VD dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
+    const VD shear2 = E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
+                      (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0;
+    const VD volumetric = (E[0][0] + E[1][1] + E[2][2]) / 3.0;
+    for (int l = 0; l < N; ++l) {
+        // As solve<3>: too few neighbours or a nearly singular sum (or NaN): no value.
+        // (The square root per lane: correctly rounded, as the vector one.)
+        if (count[l] < 3 || !(std::fabs(det[l]) > 1e-9 * scale[l] * scale[l] * scale[l])) {
+            out[l] = StrainValues{};
+            continue;
+        }
+        out[l].shear = static_cast<float>(std::sqrt(shear2[l]));
+        out[l].volumetric = static_cast<float>(volumetric[l]);
+        out[l].d2min = static_cast<float>(residual[l] < 0 ? 0.0 : residual[l]);
+    }
+}
+
+// Four spheres' sums transposed (unpack, then shuffle: lane k of the four in the low half of
+// u[k % 4], or the high half for k >= 4) and widened to double, which is exact: out[b][k] holds
+// lane k of the four spheres' r[b].
+FAULTLINE_AVX2 inline void widenSums4(const RawSums* s, __m256d (&out)[4][6]) {
     for (int b = 0; b < 4; ++b) {
         const __m256 r0 = _mm256_load_ps(s[0].r[b]), r1 = _mm256_load_ps(s[1].r[b]),
                      r2 = _mm256_load_ps(s[2].r[b]), r3 = _mm256_load_ps(s[3].r[b]);
@@ -1068,57 +1109,44 @@ FAULTLINE_AVX2 void solve3x4(const RawSums* s, StrainValues* out) {
         const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
         const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
         const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
-        col[b][0] = _mm256_cvtps_pd(_mm256_castps256_ps128(u0));
-        col[b][1] = _mm256_cvtps_pd(_mm256_castps256_ps128(u1));
-        col[b][2] = _mm256_cvtps_pd(_mm256_castps256_ps128(u2));
-        col[b][3] = _mm256_cvtps_pd(_mm256_castps256_ps128(u3));
-        col[b][4] = _mm256_cvtps_pd(_mm256_extractf128_ps(u0, 1));
-        col[b][5] = _mm256_cvtps_pd(_mm256_extractf128_ps(u1, 1));
+        out[b][0] = _mm256_cvtps_pd(_mm256_castps256_ps128(u0));
+        out[b][1] = _mm256_cvtps_pd(_mm256_castps256_ps128(u1));
+        out[b][2] = _mm256_cvtps_pd(_mm256_castps256_ps128(u2));
+        out[b][3] = _mm256_cvtps_pd(_mm256_castps256_ps128(u3));
+        out[b][4] = _mm256_cvtps_pd(_mm256_extractf128_ps(u0, 1));
+        out[b][5] = _mm256_cvtps_pd(_mm256_extractf128_ps(u1, 1));
     }
-    v4d V[3][3], A[3][3], uu[3];
-    unpackSums(col, V, A, uu);
-    const v4d count =
-        v4d{double(s[0].count), double(s[1].count), double(s[2].count), double(s[3].count)};
-    // invert3's operations, lane by lane.
-    v4d det;
-    determinant3(V, det);
-    const v4d scale = (V[0][0] + V[1][1] + V[2][2]) / 3.0;
-    v4d inv[3][3];
-    scaledAdjugate3(V, 1.0 / det, inv);
-    v4d G[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            G[i][j] = v4d{} + A[i][0] * inv[0][j] + A[i][1] * inv[1][j] + A[i][2] * inv[2][j];
-    v4d E[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            E[i][j] = 0.5 * (G[i][j] + G[j][i] +
-                             (v4d{} + G[0][i] * G[0][j] + G[1][i] * G[1][j] + G[2][i] * G[2][j]));
-    v4d ga = v4d{};
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            ga += G[i][j] * A[i][j];
-    const v4d residual = (v4d{} + uu[0] + uu[1] + uu[2]) - ga;
-    const v4d dxy = E[0][0] - E[1][1], dyz = E[1][1] - E[2][2], dzx = E[2][2] - E[0][0];
-    const v4d shear2 = E[0][1] * E[0][1] + E[1][2] * E[1][2] + E[0][2] * E[0][2] +
-                       (dxy * dxy + dyz * dyz + dzx * dzx) / 6.0;
-    alignas(32) double sh[4], vo[4], d2[4], dt[4], sc[4], ct[4];
-    _mm256_store_pd(sh, _mm256_sqrt_pd(shear2));
-    _mm256_store_pd(vo, (E[0][0] + E[1][1] + E[2][2]) / 3.0);
-    _mm256_store_pd(d2, residual);
-    _mm256_store_pd(dt, det);
-    _mm256_store_pd(sc, scale);
-    _mm256_store_pd(ct, count);
-    for (int l = 0; l < 4; ++l) {
-        // As solve<3>: too few neighbours or a nearly singular sum (or NaN): no value.
-        if (ct[l] < 3 || !(std::fabs(dt[l]) > 1e-9 * sc[l] * sc[l] * sc[l])) {
-            out[l] = StrainValues{};
-            continue;
-        }
-        out[l].shear = static_cast<float>(sh[l]);
-        out[l].volumetric = static_cast<float>(vo[l]);
-        out[l].d2min = static_cast<float>(d2[l] < 0 ? 0.0 : d2[l]);
-    }
+}
+
+FAULTLINE_AVX2 void solve3x4(const RawSums* s, StrainValues* out) {
+    typedef double v4d __attribute__((vector_size(32)));
+    __m256d w[4][6];
+    widenSums4(s, w);
+    v4d col[4][6];
+    for (int b = 0; b < 4; ++b)
+        for (int k = 0; k < 6; ++k)
+            col[b][k] = v4d(w[b][k]);
+    const double count[4] = {double(s[0].count), double(s[1].count), double(s[2].count),
+                             double(s[3].count)};
+    solveLanes<v4d, 4>(col, count, out);
+}
+
+// The same for eight spheres, in AVX-512 doubles: half the instructions of two four-wide solves.
+FAULTLINE_AVX512 void solve3x8(const RawSums* s, StrainValues* out) {
+    typedef double v8d __attribute__((vector_size(64)));
+    typedef double v4d __attribute__((vector_size(32)));
+    __m256d lo[4][6], hi[4][6];
+    widenSums4(s, lo);
+    widenSums4(s + 4, hi);
+    v8d col[4][6];
+    for (int b = 0; b < 4; ++b)
+        for (int k = 0; k < 6; ++k)
+            col[b][k] =
+                __builtin_shufflevector(v4d(lo[b][k]), v4d(hi[b][k]), 0, 1, 2, 3, 4, 5, 6, 7);
+    double count[8];
+    for (int l = 0; l < 8; ++l)
+        count[l] = double(s[l].count);
+    solveLanes<v8d, 8>(col, count, out);
 }
 #endif
 
@@ -1266,6 +1294,13 @@ std::vector<AttributeColumn> strainFromMotion(const Frame& now, const Frame& ref
                 std::size_t s = 0;
 #if FAULTLINE_STRAIN_AVX2
                 if (avx2) {
+                    if (dim == 3 && avx512)
+                        for (; s + 8 <= selves.size(); s += 8) {
+                            StrainValues v[8];
+                            solve3x8(raw.get() + s, v);
+                            for (int l = 0; l < 8; ++l)
+                                store(selves[s + l], v[l]);
+                        }
                     if (dim == 3)
                         for (; s + 4 <= selves.size(); s += 4) {
                             StrainValues v[4];
