@@ -1,5 +1,6 @@
 // `faultline` hands the heavy commands to faultline-app, found beside its own executable.
 #include "app/cli.hpp"
+#include "core/util/malloc_huge_pages.hpp"
 
 #include <unistd.h>
 
@@ -19,6 +20,7 @@ int runFullApp(int argc, char** argv) {
     std::vector<char*> args(argv, argv + argc);
     args.push_back(nullptr);
     const std::string path = app.string();
+    core::addMallocHugePagesTunable(); // read at the app's start: no restart there
     execv(path.c_str(), args.data());
     std::fprintf(stderr,
                  "faultline: cannot start %s (%s); it holds the workbench, replay and render and "

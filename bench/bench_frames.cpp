@@ -10,6 +10,7 @@
 #include "core/data/frame_prefetcher.hpp"
 #include "core/io/frame_source.hpp"
 #include "core/model/frame_difference.hpp"
+#include "core/util/malloc_huge_pages.hpp"
 
 #include <benchmark/benchmark.h>
 #include <zlib.h>
@@ -290,6 +291,7 @@ BENCHMARK(BM_Displacement)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IndexDump)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 int main(int argc, char** argv) {
+    faultline::core::restartWithMallocHugePages(argv); // as faultline-app runs
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv))
         return 1;

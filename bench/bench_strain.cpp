@@ -26,6 +26,7 @@
 #include "core/motion/strain_from_motion.hpp"
 #include "core/synth/demo_model.hpp"
 #include "core/synth/dump_writer.hpp"
+#include "core/util/malloc_huge_pages.hpp"
 
 #include <sys/resource.h>
 
@@ -434,6 +435,11 @@ void partDemo() {
 } // namespace
 
 int main(int argc, char** argv) {
+    faultline::core::restartWithMallocHugePages(argv); // as faultline-app runs
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    std::printf("malloc huge pages: %s (as faultline-app; FAULTLINE_HUGE_PAGES=0: off)\n",
+                tunables != nullptr && std::strstr(tunables, "glibc.malloc.hugetlb=1") ? "on"
+                                                                                       : "off");
     bool skip10m = false, demo = false, demoOnly = false;
     if (const char* no512 = std::getenv("FAULTLINE_BENCH_NO_AVX512"); no512 && *no512 == '1')
         detail::setStrainAvx512Allowed(false);
