@@ -219,8 +219,10 @@ ColorMapTexture colorMapTexture(const ColorMapSpec& spec, int size) {
 }
 
 namespace {
-constexpr EnumName<RangeMode> kRangeModes[] = {
-    {RangeMode::CurrentFrame, "frame"}, {RangeMode::AllFrames, "all"}, {RangeMode::Fixed, "fixed"}};
+constexpr EnumName<RangeMode> kRangeModes[] = {{RangeMode::CurrentFrame, "frame"},
+                                               {RangeMode::AllFrames, "all"},
+                                               {RangeMode::Fixed, "fixed"},
+                                               {RangeMode::Percentile, "percentile"}};
 } // namespace
 
 std::string_view rangeModeName(RangeMode mode) { return nameIn(kRangeModes, mode, "frame"); }
@@ -249,6 +251,7 @@ ValueRange resolveColorRange(RangeMode mode, ValueRange currentFrame,
                              std::optional<ValueRange> allFrames, ValueRange fixed) {
     switch (mode) {
     case RangeMode::CurrentFrame:
+    case RangeMode::Percentile: // the caller's "current frame" range is the percentiles
         return widenDegenerate(currentFrame);
     case RangeMode::AllFrames:
         return widenDegenerate(allFrames ? *allFrames : currentFrame);

@@ -73,9 +73,10 @@ enum class RangeMode {
     CurrentFrame, // min/max of the variable in the frame shown
     AllFrames,    // min/max over every frame, so an animation does not flicker
     Fixed,        // as the user set it
+    Percentile,   // the 1st to 99th percentile in the frame shown: a few extremes wash out nothing
 };
 
-std::string_view rangeModeName(RangeMode mode); // "frame" | "all" | "fixed"
+std::string_view rangeModeName(RangeMode mode); // "frame" | "all" | "fixed" | "percentile"
 std::optional<RangeMode> parseRangeMode(std::string_view name);
 
 // The range a view uses. AllFrames falls back to the current frame until the all-frames range

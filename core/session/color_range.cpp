@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <stdexcept>
+#include <vector>
 
 namespace faultline::core {
 
@@ -62,9 +64,17 @@ std::optional<ValueRange> colorRangeOverFrames(const Dataset& dataset, const Vie
     if (view.colorVariable.empty())
         return std::nullopt;
     double lo = 1e300, hi = -1e300;
+    const bool percentiles = view.rangeMode == RangeMode::Percentile;
+    std::vector<std::uint8_t> every;
     auto take = [&](std::size_t k) {
-        if (const auto r = variableRange(*dataset.frame(k), view.colorVariable))
+        const auto frame = dataset.frame(k);
+        if (percentiles) {
+            every.assign(frame->size(), 1);
+            if (const auto q = maskedQuantiles(*frame, view.colorVariable, every, 0.01, 0.99))
+                lo = std::min(lo, q->first), hi = std::max(hi, q->second);
+        } else if (const auto r = variableRange(*frame, view.colorVariable)) {
             lo = std::min(lo, r->low), hi = std::max(hi, r->high);
+        }
     };
     if (frames.empty())
         for (std::size_t k = 0; k < dataset.frameCount(); ++k)

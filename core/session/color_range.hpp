@@ -22,8 +22,10 @@ std::optional<ValueRange> differenceRangeOverFrames(const Dataset& dataset, cons
                                                     std::vector<std::size_t> frames = {});
 
 // What a view's colours span over `frames` (every frame when empty): its difference column's
-// range as above, else its variable's (x, y, z too) over those frames; nothing without a
-// variable or a value.
+// range as above, else its variable's (x, y, z too) over those frames (a view whose range mode is
+// "percentile": from the lowest frame's 1st percentile to the highest frame's 99th, so a movie's
+// frames share colours that a few extremes do not wash out); nothing without a variable or a
+// value.
 std::optional<ValueRange> colorRangeOverFrames(const Dataset& dataset, const ViewState& view,
                                                const std::vector<std::size_t>& frames = {});
 

@@ -59,7 +59,7 @@ struct ViewState {
     FrameBinding frame;
     std::string colorVariable;                     // empty: a plain colour
     ColorMapSpec colorMap{ColorMapKind::BlueRed};  // a journal name ("blue-red") only in JSON
-    RangeMode rangeMode = RangeMode::CurrentFrame; // "frame" | "all" | "fixed" in JSON
+    RangeMode rangeMode = RangeMode::CurrentFrame; // "frame" | "all" | "fixed" | "percentile"
     std::array<double, 2> range{0, 1};             // used when rangeMode is Fixed
     ColorDifference difference;
     CameraState camera;

@@ -64,7 +64,13 @@ ViewColoring colorView(const ViewState& view, std::size_t shown, std::size_t fra
     // thresholds, boxes or the faults shown hide.
     if (mode == RangeMode::CurrentFrame && !view.colorVariable.empty() && visibility &&
         visibility->visibleCount > 0 && visibility->visibleCount < frame->size())
-        if (const auto r = sources.visibleRange(*frame, *visibility, view.colorVariable))
+        if (const auto r = sources.visibleRange(*frame, *visibility, view.colorVariable, false))
+            range = *r;
+    // The percentiles of the spheres shown (all of them too: the frame's own range is min to
+    // max). Until the visibility is known, the frame's min to max.
+    if (mode == RangeMode::Percentile && !view.colorVariable.empty() && visibility &&
+        visibility->visibleCount > 0)
+        if (const auto r = sources.visibleRange(*frame, *visibility, view.colorVariable, true))
             range = *r;
     if (view.rangeMode == RangeMode::Fixed)
         range = {view.range[0], view.range[1]};

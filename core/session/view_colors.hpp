@@ -5,7 +5,9 @@
 //     its column, titled "strain change since frame 10"; the range over every frame (a change
 //     symmetric about zero, a displacement from 0) unless the range is fixed;
 //   - else the variable's own column: "this frame's" range over the spheres shown (thresholds,
-//     boxes and faults hide the rest), "all frames" over every frame, or the fixed range;
+//     boxes and faults hide the rest), "percentile" the 1st to 99th percentile of those spheres
+//     (a few extremes, grains thrown out of a model, leave the rest their colours), "all
+//     frames" over every frame, or the fixed range;
 //   - a range of one value is widened by 0.5 either way, a range with no value is [0, 1].
 // Categories (the "faults" colouring, candidates) are the callers': they are palettes, not
 // ranges. What is slow (frames, difference columns, ranges over every frame) comes from
@@ -48,9 +50,10 @@ struct ViewColorSources {
     // frames seen so far until the whole run's is worked out.
     std::function<ValueRange(const ViewState& view, const std::string& title, ValueRange inFrame)>
         allFrames;
-    // `variable`'s range over the spheres `visibility` shows; nullopt without a finite value.
+    // `variable`'s range over the spheres `visibility` shows (`percentiles`: from its 1st to its
+    // 99th percentile there, maskedQuantiles); nullopt without a finite value.
     std::function<std::optional<ValueRange>(const Frame& frame, const VisibilityResult& visibility,
-                                            const std::string& variable)>
+                                            const std::string& variable, bool percentiles)>
         visibleRange;
 };
 

@@ -134,6 +134,9 @@ TEST(ColorRange, ModesAndFallbacks) {
     EXPECT_EQ(unite({0, 1}, {-1, 0.5}), (ValueRange{-1, 1}));
     EXPECT_EQ(*parseRangeMode("all"), RangeMode::AllFrames);
     EXPECT_EQ(rangeModeName(RangeMode::Fixed), "fixed");
+    EXPECT_EQ(*parseRangeMode("percentile"), RangeMode::Percentile);
+    EXPECT_EQ(rangeModeName(RangeMode::Percentile), "percentile");
+    EXPECT_EQ(resolveColorRange(RangeMode::Percentile, frame, all, fixed), frame);
     EXPECT_FALSE(parseRangeMode("sometimes"));
 }
 

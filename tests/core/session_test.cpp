@@ -350,7 +350,7 @@ TEST(Session, RejectedCommandsChangeNothing) {
     // color.set reads and checks through the view codec: its rules are a session file's.
     rejects(R"({"op":"color.set","range":[2,1]})", "color.set: color.range must have low < high");
     rejects(R"({"op":"color.set","range_mode":"al"})",
-            "color.set: \"range_mode\" must be frame, all or fixed, found \"al\"");
+            "color.set: \"range_mode\" must be frame, all, fixed or percentile, found \"al\"");
     rejects(R"({"op":"color.set","variable":"","difference":"change"})",
             "color.set: color.difference.mode change needs a variable");
     rejects(R"({"op":"data.open","paths":["/nonexistent/file.dump"]})",

@@ -39,8 +39,10 @@ struct Lattice {
             return colorRangeOverFrames(*ds, v).value_or(inFrame);
         };
         s.visibleRange = [](const Frame& f, const VisibilityResult& vis,
-                            const std::string& variable) -> std::optional<ValueRange> {
-            if (const auto r = maskedRange(f, variable, vis.mask))
+                            const std::string& variable,
+                            bool percentiles) -> std::optional<ValueRange> {
+            if (const auto r = percentiles ? maskedQuantiles(f, variable, vis.mask, 0.01, 0.99)
+                                           : maskedRange(f, variable, vis.mask))
                 return ValueRange{r->first, r->second};
             return std::nullopt;
         };
@@ -95,6 +97,56 @@ TEST(ViewColors, AVariableSpansItsFrameTheSpheresShownOrEveryFrame) {
     v.range = {-1, 5};
     c = l.color(v, 1, &west);
     EXPECT_EQ(c.range, (ValueRange{-1, 5}));
+}
+
+// "percentile": the 1st to 99th percentile of the spheres shown, so that a few grains thrown out
+// of a model (strain from motion in the hundreds) leave the others their colours.
+TEST(ViewColors, PercentilesLeaveAFewExtremesOut) {
+    Lattice l; // for its sources
+    auto f = std::make_shared<Frame>();
+    AttributeColumn shear;
+    shear.name = "shear";
+    shear.type = ColumnType::Float32;
+    for (int i = 0; i < 400; ++i) {
+        f->ids.push_back(i + 1);
+        f->x.push_back(float(i));
+        f->y.push_back(0.0f);
+        f->z.push_back(0.0f);
+        f->radius.push_back(0.5f);
+        // 0 .. 0.99 four times over, and two grains far out (x = 0 and 399).
+        shear.floats.push_back(i == 0 || i == 399 ? 500.0f : float(i % 100) / 100.0f);
+    }
+    f->attributes.push_back(shear);
+    f->finalize();
+    ViewState v;
+    v.name = "main";
+    v.colorVariable = "shear";
+    VisibilityResult all;
+    all.mask.assign(f->size(), 1);
+    all.visibleCount = f->size();
+    auto color = [&](const VisibilityResult* vis) {
+        return colorView(v, 0, 1, f, vis, l.sources());
+    };
+    EXPECT_DOUBLE_EQ(color(&all).range.high, 500.0); // this frame's min to max
+    v.rangeMode = RangeMode::Percentile;
+    ViewColoring c = color(&all);
+    EXPECT_NEAR(c.range.low, 0.0, 0.02);
+    EXPECT_NEAR(c.range.high, 0.99, 0.02);
+    EXPECT_EQ(c.title, "shear");
+    // Over the spheres shown: x < 200, whose values are 0 .. 0.99 and one far out.
+    VisibilityResult west = all;
+    for (std::size_t i = 200; i < f->size(); ++i)
+        west.mask[i] = 0;
+    west.visibleCount = 200;
+    c = color(&west);
+    EXPECT_NEAR(c.range.low, 0.0, 0.02);
+    EXPECT_NEAR(c.range.high, 0.99, 0.02);
+    // No visibility yet: the frame's min to max until it comes.
+    EXPECT_DOUBLE_EQ(color(nullptr).range.high, 500.0);
+    // A difference colouring spans every frame, whatever the mode.
+    EXPECT_EQ(effectiveRangeMode(v), RangeMode::Percentile);
+    v.difference.mode = ColorDifference::Mode::Change;
+    EXPECT_EQ(effectiveRangeMode(v), RangeMode::AllFrames);
 }
 
 TEST(ViewColors, AChangeIsSymmetricOverEveryFrameADisplacementStartsAtZero) {

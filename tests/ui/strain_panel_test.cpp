@@ -22,14 +22,18 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
     headless.settle(wb());
     // The main view was in plain colour: it shows the new shear strain, in the same step.
     ASSERT_EQ(headless.emitted("batch").size(), 1u) << wb().lastMessage();
-    EXPECT_EQ(
-        headless.emitted("batch")[0],
-        (Json{{"op", "batch"},
-              {"commands",
-               {{{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}},
-                {{"op", "color.set"}, {"view", "main"}, {"variable", "inc_shear_strain"}}}}}));
+    EXPECT_EQ(headless.emitted("batch")[0],
+              (Json{{"op", "batch"},
+                    {"commands",
+                     {{{"op", "strain.add"}, {"since_offset", -1}, {"prefix", "inc_"}},
+                      {{"op", "color.set"},
+                       {"view", "main"},
+                       {"variable", "inc_shear_strain"},
+                       {"range_mode", "percentile"}}}}}));
     ASSERT_EQ(session.state().strains.size(), 1u);
     EXPECT_EQ(session.state().view("main")->colorVariable, "inc_shear_strain");
+    // From the 1st to the 99th percentile: a few grains thrown out wash out nothing.
+    EXPECT_EQ(session.state().view("main")->rangeMode, core::RangeMode::Percentile);
     EXPECT_EQ(session.undoLabel(), "add strain from motion (inc_*), coloured by inc_shear_strain");
     ASSERT_TRUE(session.undo());
     EXPECT_TRUE(session.state().strains.empty());

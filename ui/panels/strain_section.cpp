@@ -179,12 +179,15 @@ void StrainSection::draw(PanelContext& wb) {
         if (!m_prefix.empty())
             cmd.prefix(m_prefix);
         // What was asked for, in view at once: a main view in plain colour shows the new
-        // shear strain (one undo step takes both back).
+        // shear strain (one undo step takes both back), from its 1st to its 99th percentile in
+        // the frame shown: grains that leave a model get strains hundreds of times the faults',
+        // and a min-to-max range would leave every other sphere one colour.
         const core::ViewState* view = wb.state().view("main");
         if (view && view->colorVariable.empty() &&
             view->difference.mode == core::ColorDifference::Mode::None)
-            wb.emit(core::cmd::batch({cmd, core::cmd::ColorSet("main").variable(
-                                               m_prefix + std::string(core::kShearStrain))}));
+            wb.emit(core::cmd::batch({cmd, core::cmd::ColorSet("main")
+                                               .variable(m_prefix + std::string(core::kShearStrain))
+                                               .rangeMode(core::RangeMode::Percentile)}));
         else
             wb.emit(cmd);
     }

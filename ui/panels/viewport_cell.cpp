@@ -453,6 +453,7 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
         core::RangeMode mode;
         const char* label;
     } modes[] = {{core::RangeMode::CurrentFrame, "this frame's min to max (spheres shown)"},
+                 {core::RangeMode::Percentile, "this frame's 1st to 99th percentile (shown)"},
                  {core::RangeMode::AllFrames, "all frames (steady in playback)"},
                  {core::RangeMode::Fixed, "fixed"}};
     // The range the colours take (core::effectiveRangeMode): a change or displacement spans
@@ -461,7 +462,8 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
     for (const auto& m : modes) {
         const std::string_view mode = core::rangeModeName(m.mode);
         const bool on = core::effectiveRangeMode(view) == m.mode;
-        const bool off = difference && m.mode == core::RangeMode::CurrentFrame;
+        const bool off = difference && (m.mode == core::RangeMode::CurrentFrame ||
+                                        m.mode == core::RangeMode::Percentile);
         ImGui::BeginDisabled(off);
         if (ImGui::RadioButton(m.label, on) && !on) {
             core::cmd::ColorSet cmd(view.name);

@@ -88,8 +88,11 @@ RgbaImage renderSessionImage(core::Session& session, const FigureRequest& reques
             return core::colorRangeOverFrames(*dataset, v).value_or(inFrame);
         };
         sources.visibleRange = [](const core::Frame& f, const core::VisibilityResult& vis,
-                                  const std::string& variable) -> std::optional<core::ValueRange> {
-            if (const auto r = core::maskedRange(f, variable, vis.mask))
+                                  const std::string& variable,
+                                  bool percentiles) -> std::optional<core::ValueRange> {
+            if (const auto r = percentiles
+                                   ? core::maskedQuantiles(f, variable, vis.mask, 0.01, 0.99)
+                                   : core::maskedRange(f, variable, vis.mask))
                 return core::ValueRange{r->first, r->second};
             return std::nullopt;
         };

@@ -215,16 +215,23 @@ void ViewComposer::resolveColors(const core::ViewState& v, ViewDisplay& d, std::
         return exact ? core::ValueRange{(*exact)[0], (*exact)[1]}
                      : core::ValueRange{all[0], all[1]};
     };
+    // Kept per visibility (a new frame or threshold brings a new one): the percentiles cost a
+    // selection over the spheres shown, once rather than at every redraw.
     sources.visibleRange = [&](const core::Frame& frame, const core::VisibilityResult&,
-                               const std::string& variable) -> std::optional<core::ValueRange> {
+                               const std::string& variable,
+                               bool percentiles) -> std::optional<core::ValueRange> {
         auto hit = std::find_if(m_visibleRanges.begin(), m_visibleRanges.end(), [&](const auto& e) {
-            return e.visibility == d.visibility && e.variable == variable;
+            return e.visibility == d.visibility && e.variable == variable &&
+                   e.percentiles == percentiles;
         });
         if (hit == m_visibleRanges.end()) {
             if (m_visibleRanges.size() >= 8)
                 m_visibleRanges.erase(m_visibleRanges.begin());
             m_visibleRanges.push_back(
-                {d.visibility, variable, core::maskedRange(frame, variable, d.visibility->mask)});
+                {d.visibility, variable, percentiles,
+                 percentiles
+                     ? core::maskedQuantiles(frame, variable, d.visibility->mask, 0.01, 0.99)
+                     : core::maskedRange(frame, variable, d.visibility->mask)});
             hit = m_visibleRanges.end() - 1;
         }
         if (!hit->range)

@@ -74,6 +74,7 @@ class ViewComposer {
     struct VisibleRangeEntry { // a variable's range over a view's visible spheres
         std::shared_ptr<const core::VisibilityResult> visibility;
         std::string variable;
+        bool percentiles = false; // the 1st to 99th percentile rather than min to max
         std::optional<std::pair<double, double>> range;
     };
     std::vector<VisibleRangeEntry> m_visibleRanges; // the views' latest, a few at most

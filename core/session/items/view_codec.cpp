@@ -60,7 +60,8 @@ const std::string& colorMapChoices() {
 void patchColor(ViewState& v, const ItemReader& c) {
     c.read("variable", v.colorVariable);
     c.readNamed("map", v.colorMap, parseJournalColorMap, colorMapChoices().c_str());
-    c.readNamed("range_mode", v.rangeMode, parseRangeMode, "must be frame, all or fixed");
+    c.readNamed("range_mode", v.rangeMode, parseRangeMode,
+                "must be frame, all, fixed or percentile");
     if (c.has("range")) {
         const Json& r = c.get("range");
         if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
