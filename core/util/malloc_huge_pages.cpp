@@ -7,10 +7,19 @@
 #include <fstream>
 #include <string>
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define FAULTLINE_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define FAULTLINE_SANITIZED 1
+#endif
+
 namespace faultline::core {
 
 bool addMallocHugePagesTunable() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || !defined(__GLIBC__)
+#if defined(FAULTLINE_SANITIZED) || !defined(__GLIBC__)
     return false; // the sanitizers bring their own allocator; other C libraries other knobs
 #else
     if (const char* v = std::getenv("FAULTLINE_HUGE_PAGES");

@@ -1,5 +1,6 @@
 // addMallocHugePagesTunable: what it adds to GLIBC_TUNABLES, and when it leaves it alone.
 #include "core/util/malloc_huge_pages.hpp"
+#include "tests/common/sanitizers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -48,11 +49,7 @@ bool kernelAdvisesHugePages() {
 }
 
 bool sanitizerBuild() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-    return true;
-#else
-    return false;
-#endif
+    return faultline::test::kUnderAddressSanitizer || faultline::test::kUnderThreadSanitizer;
 }
 
 } // namespace
