@@ -9,8 +9,8 @@ namespace faultline::core {
 
 using Mat3d = std::array<std::array<double, 3>, 3>;
 
-// M: Mat3d, or a 3 x 3 array of any number type (strain's four-wide solve uses vectors of
-// four doubles and gets, lane by lane, the same values as on doubles). Results go to out
+// M: Mat3d, or a 3 x 3 array of any number type (strain's vector solves use vectors of four or
+// eight doubles and get, lane by lane, the same values as on doubles). Results go to out
 // parameters: a vector returned from a function outside the caller's AVX target would change
 // the ABI (clang refuses it).
 template <typename M, typename T> void determinant3(const M& m, T& out) {
