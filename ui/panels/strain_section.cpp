@@ -147,14 +147,21 @@ void StrainSection::draw(PanelContext& wb) {
         m_sinceFrame = std::max(0, m_sinceFrame);
         wb.mark("strain.since");
     }
-    // The automatic cutoff, shown greyed in the empty field.
-    std::string autoText = "auto";
-    if (main && main->frame)
-        autoText = "auto " + numberText(core::defaultStrainCutoff(*main->frame));
-    flowSameLine(ImGui::CalcTextSize("cutoff").x + ImGui::GetStyle().ItemSpacing.x + field * 1.6f);
+    // The automatic cutoff, shown greyed in the empty field, which is wide enough for it
+    // ("auto 0.001489" for a model in metres).
+    if (!main || !main->frame) {
+        m_autoFor.reset();
+        m_autoText = "auto";
+    } else if (m_autoFor.lock() != main->frame) {
+        m_autoFor = main->frame;
+        m_autoText = "auto " + numberText(core::defaultStrainCutoff(*main->frame));
+    }
+    const float cutoffWidth = std::max(field * 1.6f, ImGui::CalcTextSize(m_autoText.c_str()).x +
+                                                         2 * ImGui::GetStyle().FramePadding.x);
+    flowSameLine(ImGui::CalcTextSize("cutoff").x + ImGui::GetStyle().ItemSpacing.x + cutoffWidth);
     ImGui::TextUnformatted("cutoff");
-    flowSameLine(field * 1.6f);
-    numberField("##cutoff", &m_cutoff, "%.4g", field * 1.6f, autoText.c_str(), 0.0);
+    flowSameLine(cutoffWidth);
+    numberField("##cutoff", &m_cutoff, "%.4g", cutoffWidth, m_autoText.c_str(), 0.0);
     wb.mark("strain.cutoff");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Neighbours within this distance in the reference frame\n"

@@ -24,6 +24,10 @@ class StrainSection {
     std::weak_ptr<core::Dataset> m_offsetData; // the data the offset was chosen for (not held)
     double m_cutoff = 0;                       // 0: automatic
     std::string m_prefix = "inc_";
+    // The automatic cutoff's hint, worked out once per frame shown (a median of up to 65,536
+    // radii: not at every redraw).
+    std::weak_ptr<const core::Frame> m_autoFor;
+    std::string m_autoText = "auto";
     bool m_prefixEdited = false;
 };
 
