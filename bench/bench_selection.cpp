@@ -1,6 +1,7 @@
 // Selection speed on 1,000,000 random spheres with 6 attributes: visibility after one threshold
 // change, 256-bin histograms of all + visible, and a plain single-threaded array-of-structs loop
 // doing the same work, measured in the same run (issue 4 asks for that baseline beside ours).
+#include "core/model/frame_difference.hpp"
 #include "core/selection/histogram.hpp"
 #include "core/selection/visibility.hpp"
 
@@ -179,6 +180,15 @@ void BM_ChooseBinning_FreedmanDiaconis(benchmark::State& state) {
         benchmark::DoNotOptimize(chooseBinning(column).bins);
 }
 BENCHMARK(BM_ChooseBinning_FreedmanDiaconis)->Unit(benchmark::kMillisecond);
+
+// A view's "percentile" colour range (1st to 99th percentile of the spheres shown), worked out
+// on the UI thread once per new frame or visibility.
+void BM_ColourRangePercentiles_Visible(benchmark::State& state) {
+    const Data& d = data();
+    for (auto _ : state)
+        benchmark::DoNotOptimize(maskedQuantiles(*d.frame, "stress", d.visibleMask, 0.01, 0.99));
+}
+BENCHMARK(BM_ColourRangePercentiles_Visible)->Unit(benchmark::kMillisecond);
 
 // (c) Baseline: a plain single-threaded loop over an array of structs, same rule, same output.
 void BM_Baseline_AoS_Visibility(benchmark::State& state) {

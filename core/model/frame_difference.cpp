@@ -182,15 +182,43 @@ std::optional<std::pair<double, double>> maskedQuantiles(const Frame& frame,
     const ColumnReader column(frame, variable);
     if (column.missing() || mask.size() != frame.size() || !(low >= 0 && low < high && high <= 1))
         return std::nullopt;
-    std::vector<float> values; // the columns' values are floats or ints
-    for (std::size_t row = 0; row < frame.size(); ++row)
-        if (mask[row])
-            if (const double v = column(row); std::isfinite(v))
-                values.push_back(static_cast<float>(v));
+    // The finite values shown (the columns' values are floats or ints), gathered in parallel by
+    // blocks: counted, then each block written at its place; without a branch per row (the
+    // mask is as random as a threshold makes it: a mispredicted branch a row took 5 ms a
+    // million rows).
+    constexpr std::size_t kBlock = 65536;
+    const std::size_t rows = frame.size(), blocks = (rows + kBlock - 1) / kBlock;
+    std::vector<std::size_t> start(blocks + 1, 0);
+    auto keep = [&](std::size_t row, float& v) {
+        v = static_cast<float>(column(row));
+        return (mask[row] != 0) & std::isfinite(v);
+    };
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+        std::size_t n = 0;
+        float v;
+        for (std::size_t row = b * kBlock; row < std::min(rows, (b + 1) * kBlock); ++row)
+            n += keep(row, v);
+        start[b + 1] = n;
+    });
+    for (std::size_t b = 0; b < blocks; ++b)
+        start[b + 1] += start[b];
+    // Each row's value is written at the next free slot, then kept by moving past it or not;
+    // past the block's last kept value the slot is the next block's, and nothing is written.
+    std::vector<float> values(start[blocks]);
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+        float* out = values.data() + start[b];
+        const float* end = values.data() + start[b + 1];
+        for (std::size_t row = b * kBlock; row < std::min(rows, (b + 1) * kBlock) && out < end;
+             ++row) {
+            float v;
+            const bool kept = keep(row, v);
+            *out = v;
+            out += kept;
+        }
+    });
     if (values.empty())
         return std::nullopt;
-    const double lo = quantile(values, low);
-    return std::pair{lo, quantile(values, high)};
+    return quantilePair(values, low, high);
 }
 
 } // namespace faultline::core
