@@ -390,17 +390,28 @@ TEST_F(PanelTest, ThePercentileRangeLeavesTheExtremesOut) {
     ASSERT_TRUE(expected && expected->first < expected->second);
     headless.click(wb(), "view.colour.main");
     headless.frames(wb(), 2);
-    ASSERT_TRUE(headless.has(wb(), "view.range.percentile.main"));
-    clickInColourPopup("view.range.percentile.main");
+    ASSERT_TRUE(headless.has(wb(), "view.range.fix_percentile.main"));
+    clickInColourPopup("view.range.fix_percentile.main");
     ASSERT_EQ(headless.emitted("color.set").size(), 1u);
     EXPECT_EQ(headless.emitted("color.set")[0]["range_mode"], "fixed");
     EXPECT_EQ(headless.emitted("color.set")[0]["range"],
               Json::array({expected->first, expected->second}));
     EXPECT_EQ(session.state().views[0].rangeMode, core::RangeMode::Fixed);
-    // A change colouring: the button is there but off.
+    // The "percentile" mode: the same range, following the frame and the spheres shown.
+    clickInColourPopup("view.range.percentile.main");
+    ASSERT_EQ(headless.emitted("color.set").size(), 1u);
+    EXPECT_EQ(headless.emitted("color.set")[0],
+              Json::parse(R"({"op":"color.set","view":"main","range_mode":"percentile"})"));
+    EXPECT_EQ(session.state().views[0].rangeMode, core::RangeMode::Percentile);
+    headless.settle(wb());
+    EXPECT_EQ(wb().mainDisplay()->colorRange[0], expected->first);
+    EXPECT_EQ(wb().mainDisplay()->colorRange[1], expected->second);
+    // A change colouring: the button and the mode are there but off.
     session.apply(
         Json::parse(R"({"op":"color.set","view":"main","difference":"change","since_frame":0})"));
     headless.settle(wb());
+    clickInColourPopup("view.range.fix_percentile.main");
+    EXPECT_TRUE(headless.emitted("color.set").empty());
     clickInColourPopup("view.range.percentile.main");
     EXPECT_TRUE(headless.emitted("color.set").empty());
 }

@@ -503,7 +503,7 @@ void ViewportCells::drawColourPopup(PanelContext& wb, const core::ViewState& vie
             wb.emit(core::cmd::ColorSet(view.name)
                         .rangeMode(core::RangeMode::Fixed)
                         .range(q->first, q->second));
-    wb.mark("view.range.percentile." + view.name);
+    wb.mark("view.range.fix_percentile." + view.name); // not the "percentile" mode's
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip(difference ? "Not for a change or a displacement colouring"
