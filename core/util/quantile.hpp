@@ -65,14 +65,15 @@ inline std::pair<double, double> quantilePair(std::vector<float>& values, double
         binOfRank[r] = b;
         before[r] = cum;
     }
-    // The values of the bins wanted (at most four), each bin's in order.
+    // The values of the bins wanted (at most four: ranks in one bin share its list), in no order:
+    // each rank is selected within its bin below.
     std::vector<float> inBin[4];
     for (float v : values) {
         const std::size_t b = binOf(v);
         for (int r = 0; r < 4; ++r)
             if (b == binOfRank[r]) {
                 inBin[r].push_back(v);
-                break; // ranks in one bin share the first list that holds it
+                break; // the first rank of that bin holds the list
             }
     }
     auto at = [&](int r) {
