@@ -39,6 +39,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace faultline::core {
 
@@ -1167,24 +1168,10 @@ std::vector<AttributeColumn> namedColumns(std::size_t rows, const std::string& p
 
 } // namespace
 
-double defaultStrainCutoff(const Frame& ref) {
-    const std::size_t n = ref.size();
-    if (n == 0)
-        return 1.0;
-    if (!ref.radiusIsDefault) {
-        // The median of up to 65,536 evenly spaced radii.
-        const std::size_t step = std::max<std::size_t>(1, n / 65536);
-        std::vector<float> sample;
-        sample.reserve(n / step + 1);
-        for (std::size_t i = 0; i < n; i += step)
-            sample.push_back(ref.radius[i]);
-        std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
-        const double r = sample[sample.size() / 2];
-        if (r > 0 && std::isfinite(r))
-            return 1.5 * 2.0 * r;
-    }
-    // No radii: a random close packing (0.64) of n spheres in the centres' bounds has diameter
-    // d with n * pi d^3 / 6 = 0.64 V; in 2-D, n * pi d^2 / 4 = 0.84 A.
+namespace {
+// The centres' bounds: the volume (an area in 2-D data, a length on a line) and how many axes
+// it spans (0: every centre at one point).
+std::pair<double, int> centreBounds(const Frame& ref) {
     const int flat = flatAxis(ref);
     double volume = 1;
     int dims = 0;
@@ -1195,12 +1182,63 @@ double defaultStrainCutoff(const Frame& ref) {
         volume *= l;
         ++dims;
     }
-    if (dims == 0)
+    return {volume, dims};
+}
+} // namespace
+
+double packingStrainCutoff(const Frame& ref) {
+    const std::size_t n = ref.size();
+    // A random close packing (0.64) of n spheres in the centres' bounds has diameter d with
+    // n * pi d^3 / 6 = 0.64 V; in 2-D, n * pi d^2 / 4 = 0.84 A.
+    const auto [volume, dims] = centreBounds(ref);
+    if (n == 0 || dims == 0 || !std::isfinite(volume))
         return 1.0;
     const double d = dims == 3   ? std::cbrt(0.64 * volume * 6.0 / (M_PI * double(n)))
                      : dims == 2 ? std::sqrt(0.84 * volume * 4.0 / (M_PI * double(n)))
                                  : volume / double(n);
     return 1.5 * d;
+}
+
+namespace {
+// The median of up to 65,536 evenly spaced radii; NaN without radii (or none positive).
+double medianRadius(const Frame& ref) {
+    const std::size_t n = ref.size();
+    if (n == 0 || ref.radiusIsDefault)
+        return std::numeric_limits<double>::quiet_NaN();
+    const std::size_t step = std::max<std::size_t>(1, n / 65536);
+    std::vector<float> sample;
+    sample.reserve(n / step + 1);
+    for (std::size_t i = 0; i < n; i += step)
+        sample.push_back(ref.radius[i]);
+    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+    const double r = sample[sample.size() / 2];
+    return r > 0 && std::isfinite(r) ? r : std::numeric_limits<double>::quiet_NaN();
+}
+} // namespace
+
+double defaultStrainCutoff(const Frame& ref) {
+    if (ref.size() == 0)
+        return 1.0;
+    const double r = medianRadius(ref);
+    return std::isnan(r) ? packingStrainCutoff(ref) : 1.5 * 2.0 * r;
+}
+
+double radiiOverSpacing(const Frame& ref) {
+    return 2.0 * medianRadius(ref) / (packingStrainCutoff(ref) / 1.5);
+}
+
+double strainNeighboursWithin(const Frame& ref, double cutoff) {
+    const std::size_t n = ref.size();
+    const auto [volume, dims] = centreBounds(ref);
+    if (n < 2)
+        return 0;
+    if (dims == 0 || !(volume > 0) || !std::isfinite(volume) || !std::isfinite(cutoff))
+        return double(n - 1); // every centre at one point, or no bounds to measure: all of them
+    const double density = double(n) / volume;
+    const double reach = dims == 3   ? 4.0 / 3.0 * M_PI * cutoff * cutoff * cutoff
+                         : dims == 2 ? M_PI * cutoff * cutoff
+                                     : 2.0 * cutoff;
+    return std::min(double(n - 1), density * reach);
 }
 
 std::vector<AttributeColumn> strainUnavailable(const Frame& now, const std::string& prefix) {

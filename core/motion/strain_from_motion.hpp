@@ -29,6 +29,17 @@ namespace faultline::core {
 // 1.5 x the median diameter of the reference; when the file gave no radius, 1.5 x the spacing a
 // random close packing of the same number of spheres in the centres' bounds would have.
 double defaultStrainCutoff(const Frame& reference);
+// 1.5 x that packing's spacing, whatever the radii (what to suggest when they are far off).
+double packingStrainCutoff(const Frame& reference);
+// The median diameter over the spacing of that packing (about 1 in a packed model); NaN when the
+// file gave no radius. Far above 1, the radii are likely in another unit than the centres.
+double radiiOverSpacing(const Frame& reference);
+// About how many other spheres lie within `cutoff` of each, from the density of the centres in
+// their bounds (at most all of them; outliers that widen the bounds make it an underestimate).
+double strainNeighboursWithin(const Frame& reference, double cutoff);
+// strain.add refuses an automatic cutoff that takes in more spheres around each than this (a
+// packing's takes about 17, at 1.5 diameters; this many lie within about 5 diameters).
+inline constexpr double kMaxAutomaticStrainNeighbours = 2000;
 
 // The seven columns (kStrainVariables order, each named prefix + variable) for every row of
 // `now`. `cutoff` <= 0: defaultStrainCutoff(reference). Results do not depend on thread count.

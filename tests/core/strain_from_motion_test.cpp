@@ -436,6 +436,44 @@ TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
     EXPECT_NEAR(defaultStrainCutoff(f), 1.5 * std::cbrt(0.64 * volume * 6 / (M_PI * 64)), 1e-9);
 }
 
+// How many spheres lie within a cutoff, from the density of the centres in their bounds: about
+// 4/3 pi c^3 in a lattice of spacing 1, pi c^2 in a 2-D one, never more than all the others.
+TEST(StrainFromMotion, NeighboursWithinACutoffFromTheDensity) {
+    auto lattice = [](int nx, int ny, int nz) {
+        Frame f;
+        for (int z = 0; z < nz; ++z)
+            for (int y = 0; y < ny; ++y)
+                for (int x = 0; x < nx; ++x) {
+                    f.ids.push_back(std::int64_t(f.ids.size()) + 1);
+                    f.x.push_back(float(x));
+                    f.y.push_back(float(y));
+                    f.z.push_back(float(z));
+                }
+        f.radius.assign(f.ids.size(), 0.5f);
+        f.finalize();
+        return f;
+    };
+    const Frame f = lattice(20, 20, 20);
+    const double density = 8000.0 / (19.0 * 19.0 * 19.0);
+    EXPECT_NEAR(strainNeighboursWithin(f, 2.0), density * 4.0 / 3.0 * M_PI * 8.0, 1e-9);
+    EXPECT_EQ(strainNeighboursWithin(f, 1e6), 7999.0);
+    EXPECT_NEAR(packingStrainCutoff(f), 1.5 * std::cbrt(0.64 * 19 * 19 * 19 * 6 / (M_PI * 8000)),
+                1e-9);
+    EXPECT_NEAR(radiiOverSpacing(f), 1.0 / (packingStrainCutoff(f) / 1.5), 1e-9);
+    Frame noRadii = f;
+    noRadii.radiusIsDefault = true;
+    EXPECT_TRUE(std::isnan(radiiOverSpacing(noRadii)));
+    const Frame flat = lattice(30, 30, 1);
+    EXPECT_NEAR(strainNeighboursWithin(flat, 2.0), 900.0 / (29.0 * 29.0) * M_PI * 4.0, 1e-9);
+    const Frame point = lattice(1, 1, 1);
+    EXPECT_EQ(strainNeighboursWithin(point, 1.0), 0.0); // no other sphere
+    Frame two = point;
+    two.ids.push_back(2);
+    two.x.push_back(0), two.y.push_back(0), two.z.push_back(0), two.radius.push_back(0.5f);
+    two.finalize();
+    EXPECT_EQ(strainNeighboursWithin(two, 1.0), 1.0); // every centre at one point: all of them
+}
+
 // The AVX2 neighbour sums (used where the CPU has them) and the baseline ones give the same
 // values, up to float rounding, on a non-affine motion of about half a cell along every edge of a
 // triclinic cell periodic on all three axes (neighbours' motions straddle half a cell, so both

@@ -191,6 +191,38 @@ TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
         "strain.remove: no strain variables with prefix \"inc_\" (there are \"\")");
 }
 
+// Radii far larger than the centres' spacing (a radius column in millimetres beside centres in
+// metres): the automatic cutoff would take in the whole model, hours of work on a large one and
+// no local strain. strain.add refuses it, saying what it would take in and what to give instead;
+// an explicit cutoff is taken.
+TEST(StrainSession, RadiiFarLargerThanTheSpacingAskForACutoff) {
+    TempDir dir;
+    std::ostringstream text;
+    for (int t = 0; t < 2; ++t) {
+        text << "ITEM: TIMESTEP\n"
+             << t << "\nITEM: NUMBER OF ATOMS\n2744\nITEM: BOX BOUNDS ff ff ff\n"
+             << "-0.5 13.5\n-0.5 13.5\n-0.5 13.5\nITEM: ATOMS id x y z radius\n";
+        int id = 1;
+        for (int z = 0; z < 14; ++z)
+            for (int y = 0; y < 14; ++y)
+                for (int x = 0; x < 14; ++x)
+                    text << id++ << " " << x + 0.01 * t * z << " " << y << " " << z << " 20\n";
+    }
+    Session s;
+    s.apply({{"op", "data.open"}, {"paths", {dir.write("mm.dump", text.str())}}});
+    expectRefusedUnchanged(
+        s, R"({"op":"strain.add","since_frame":0})",
+        "strain.add: the automatic \"cutoff\" 60 (1.5 x the median diameter) takes in about "
+        "2743 spheres around each in this data, where a packing of its centres would have about "
+        "17: the radii look far larger than the centres' spacing; give \"cutoff\", e.g. 1.49 "
+        "(1.5 x that spacing)");
+    s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.49})"));
+    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+    const AttributeColumn* shear = s.currentFrame()->attribute("shear_strain");
+    ASSERT_NE(shear, nullptr);
+    EXPECT_NEAR(shear->floats[1000], 0.005, 1e-4); // a simple shear of 0.01
+}
+
 TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {
     TempDir dir;
     auto load = [&](const std::string& strains) {
