@@ -172,6 +172,18 @@ std::string describeFailure(const nlohmann::json& cmd, const std::string& messag
         rest = rest.substr(op.size() + 2);
     else if (!op.empty() && rest.rfind(op + " ", 0) == 0)
         rest = rest.substr(op.size() + 1);
+    else if (op == "batch" && cmd.contains("commands") && cmd["commands"].is_array())
+        // A batch fails with the message of the command in it that failed.
+        for (const auto& inner : cmd["commands"]) {
+            const std::string name =
+                inner.is_object() && inner.contains("op") && inner["op"].is_string()
+                    ? inner["op"].get<std::string>()
+                    : std::string();
+            if (!name.empty() && rest.rfind(name + ": ", 0) == 0) {
+                rest = rest.substr(name.size() + 2);
+                break;
+            }
+        }
     return "Could not " + describeCommand(cmd) + ": " + rest;
 }
 

@@ -230,6 +230,15 @@ TEST(Session, CameraMovesAreNoUndoSteps) {
                               "threshold.set: low must not exceed high"),
               "Could not change the strain threshold: low must not exceed high");
     EXPECT_EQ(describeFailure(cmd(R"({"op":"undo"})"), "undo: nothing to undo"), "Nothing to undo");
+    // A batch fails with the message of the command in it that failed: its op's name goes too.
+    EXPECT_EQ(
+        describeFailure(
+            cmd(R"({"op":"batch","commands":[{"op":"threshold.set","variable":"strain","low":2}]})"),
+            "threshold.set: low must not exceed high"),
+        "Could not " +
+            describeCommand(cmd(
+                R"({"op":"batch","commands":[{"op":"threshold.set","variable":"strain","low":2}]})")) +
+            ": low must not exceed high");
     EXPECT_EQ(describeCommand(cmd(R"({"op":"layout.set","layout":{}})")), "rearrange the panels");
 }
 

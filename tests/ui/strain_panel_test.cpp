@@ -7,6 +7,7 @@
 #include "ui/dock/panel_ids.hpp"
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 namespace faultline::test {
@@ -71,6 +72,48 @@ TEST_F(PanelTest, StrainFromMotionSectionAddsAndRemovesVariables) {
     headless.settle(wb());
     EXPECT_EQ(wb().mainDisplay()->frame->attribute("inc_shear_strain"), nullptr);
     EXPECT_NE(wb().mainDisplay()->frame->attribute("shear_strain"), nullptr);
+}
+
+// Radii in another unit than the centres (40 beside a spacing of 1): the Data panel says so under
+// the frame, and Add with the automatic cutoff is refused with words that say what to give.
+TEST_F(PanelTest, RadiiFarLargerThanTheSpacingAreNotedAndAskForACutoff) {
+    openLattice();
+    headless.showPanel(wb(), ui::panel_ids::kData);
+    headless.frames(wb(), 2);
+    EXPECT_FALSE(headless.has(wb(), "data.radii_note")); // a packing: nothing to say
+    std::ofstream out(dir.file("mm.dump"));
+    for (int t = 0; t < 2; ++t) {
+        out << "ITEM: TIMESTEP\n"
+            << t << "\nITEM: NUMBER OF ATOMS\n2744\nITEM: BOX BOUNDS ff ff ff\n"
+            << "-0.5 13.5\n-0.5 13.5\n-0.5 13.5\nITEM: ATOMS id x y z radius\n";
+        int id = 1;
+        for (int z = 0; z < 14; ++z)
+            for (int y = 0; y < 14; ++y)
+                for (int x = 0; x < 14; ++x)
+                    out << id++ << " " << x + 0.01 * t * z << " " << y << " " << z << " 20\n";
+    }
+    out.close();
+    wb().opener().openData({dir.file("mm.dump")});
+    headless.settle(wb());
+    headless.frames(wb(), 2);
+    EXPECT_TRUE(headless.has(wb(), "data.radii_note"));
+    headless.clearEmitted();
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    EXPECT_TRUE(wb().lastMessageIsError());
+    // In words: what could not be done, then why (not the op's name).
+    EXPECT_EQ(wb().lastMessage().rfind("Could not add strain from motion (inc_*), coloured by "
+                                       "inc_shear_strain: the automatic \"cutoff\" 60",
+                                       0),
+              0u)
+        << wb().lastMessage();
+    EXPECT_NE(wb().lastMessage().find("give \"cutoff\", e.g. 1.49"), std::string::npos);
+    EXPECT_TRUE(session.state().strains.empty());
+    headless.retype(wb(), "strain.cutoff", "1.49");
+    headless.click(wb(), "strain.add");
+    headless.settle(wb());
+    ASSERT_EQ(session.state().strains.size(), 1u);
+    EXPECT_EQ(session.state().strains[0].cutoff, 1.49);
 }
 
 // With the frame cache off, the Data panel says why the other frames are not readied in the

@@ -1,5 +1,6 @@
 // Data panel: the files open, their frames, the current frame's columns with ranges, memory.
 #include "core/io/frame_source.hpp"
+#include "core/motion/strain_from_motion.hpp"
 #include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
@@ -10,7 +11,9 @@
 
 #include <imgui.h>
 
+#include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace faultline::ui {
 
@@ -80,6 +83,25 @@ class DataPanel final : public Panel {
                                         core::kDefaultRadius);
                 if (fr.idsAreRowNumbers)
                     ImGui::TextDisabled("no id column: row numbers are the ids");
+                // Radii in another unit than the centres (millimetres beside metres) draw one
+                // blob, slowly, and give strain from motion no neighbourhood: said once per frame.
+                if (m_radiiFor.lock() != main->frame) {
+                    m_radiiFor = main->frame;
+                    m_radiiNote.clear();
+                    if (const double ratio = core::radiiOverSpacing(fr); ratio > 4) {
+                        const double spacing = core::packingStrainCutoff(fr) / 1.5;
+                        m_radiiNote = "the median diameter is " + numberText(ratio * spacing) +
+                                      ", about " + std::to_string(std::lround(ratio)) +
+                                      " times the spacing of the centres (" + numberText(spacing) +
+                                      "): are the radii in another unit?";
+                    }
+                }
+                if (!m_radiiNote.empty()) {
+                    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.05f, 1));
+                    ImGui::TextWrapped("%s", m_radiiNote.c_str());
+                    ImGui::PopStyleColor();
+                    wb.mark("data.radii_note");
+                }
             }
         }
         if (main && main->frame && collapsingHeader("Columns", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -152,6 +174,9 @@ class DataPanel final : public Panel {
     StrainSection m_strain;
     int m_budgetMb = 0;
     bool m_editingBudget = false;
+    // The note on radii far larger than the centres' spacing, for the frame it was made for.
+    std::weak_ptr<const core::Frame> m_radiiFor;
+    std::string m_radiiNote;
 
     // "key   value", the value wrapped at the panel's edge in its column (issue 41: a narrow
     // panel cut "39 (timestep 3..." and the extent).
