@@ -11,6 +11,7 @@
 #include "core/motion/strain_from_motion.hpp"
 
 #include "core/model/frame_difference.hpp"
+#include "core/model/packing.hpp"
 #include "core/model/periodic_cell.hpp"
 #include "core/motion/strain_spec.hpp"
 #include "core/util/lane_table.hpp"
@@ -402,16 +403,6 @@ class NeighbourCells {
     PeriodicCell m_nowCell;
     float m_widestMotion[3] = {0, 0, 0};
 };
-
-// The axis every centre of `f` shares (2-D data), or -1.
-int flatAxis(const Frame& f) {
-    if (f.size() < 2)
-        return -1;
-    for (int a = 0; a < 3; ++a)
-        if (f.centreMin()[a] == f.centreMax()[a])
-            return a;
-    return -1;
-}
 
 //-----------------------------------------------------------------------------
 // [SECTION] Sums over a sphere's neighbours
@@ -1168,63 +1159,13 @@ std::vector<AttributeColumn> namedColumns(std::size_t rows, const std::string& p
 
 } // namespace
 
-namespace {
-// The centres' bounds: the volume (an area in 2-D data, a length on a line) and how many axes
-// it spans (0: every centre at one point).
-std::pair<double, int> centreBounds(const Frame& ref) {
-    const int flat = flatAxis(ref);
-    double volume = 1;
-    int dims = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double l = double(ref.centreMax()[a]) - ref.centreMin()[a];
-        if (a == flat || !(l > 0))
-            continue;
-        volume *= l;
-        ++dims;
-    }
-    return {volume, dims};
-}
-} // namespace
-
-double packingStrainCutoff(const Frame& ref) {
-    const std::size_t n = ref.size();
-    // A random close packing (0.64) of n spheres in the centres' bounds has diameter d with
-    // n * pi d^3 / 6 = 0.64 V; in 2-D, n * pi d^2 / 4 = 0.84 A.
-    const auto [volume, dims] = centreBounds(ref);
-    if (n == 0 || dims == 0 || !std::isfinite(volume))
-        return 1.0;
-    const double d = dims == 3   ? std::cbrt(0.64 * volume * 6.0 / (M_PI * double(n)))
-                     : dims == 2 ? std::sqrt(0.84 * volume * 4.0 / (M_PI * double(n)))
-                                 : volume / double(n);
-    return 1.5 * d;
-}
-
-namespace {
-// The median of up to 65,536 evenly spaced radii; NaN without radii (or none positive).
-double medianRadius(const Frame& ref) {
-    const std::size_t n = ref.size();
-    if (n == 0 || ref.radiusIsDefault)
-        return std::numeric_limits<double>::quiet_NaN();
-    const std::size_t step = std::max<std::size_t>(1, n / 65536);
-    std::vector<float> sample;
-    sample.reserve(n / step + 1);
-    for (std::size_t i = 0; i < n; i += step)
-        sample.push_back(ref.radius[i]);
-    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
-    const double r = sample[sample.size() / 2];
-    return r > 0 && std::isfinite(r) ? r : std::numeric_limits<double>::quiet_NaN();
-}
-} // namespace
+double packingStrainCutoff(const Frame& ref) { return 1.5 * packingSpacing(ref); }
 
 double defaultStrainCutoff(const Frame& ref) {
     if (ref.size() == 0)
         return 1.0;
     const double r = medianRadius(ref);
     return std::isnan(r) ? packingStrainCutoff(ref) : 1.5 * 2.0 * r;
-}
-
-double radiiOverSpacing(const Frame& ref) {
-    return 2.0 * medianRadius(ref) / (packingStrainCutoff(ref) / 1.5);
 }
 
 double strainNeighboursWithin(const Frame& ref, double cutoff) {

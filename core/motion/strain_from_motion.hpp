@@ -31,9 +31,6 @@ namespace faultline::core {
 double defaultStrainCutoff(const Frame& reference);
 // 1.5 x that packing's spacing, whatever the radii (what to suggest when they are far off).
 double packingStrainCutoff(const Frame& reference);
-// The median diameter over the spacing of that packing (about 1 in a packed model); NaN when the
-// file gave no radius. Far above 1, the radii are likely in another unit than the centres.
-double radiiOverSpacing(const Frame& reference);
 // About how many other spheres lie within `cutoff` of each, from the density of the centres in
 // their bounds (at most all of them; outliers that widen the bounds make it an underestimate).
 double strainNeighboursWithin(const Frame& reference, double cutoff);

@@ -53,16 +53,15 @@ void registerStrainOps(OpRegistry& ops) {
                     if (const double around = strainNeighboursWithin(*frame, automatic);
                         around > kMaxAutomaticStrainNeighbours) {
                         char text[400];
+                        // What to do first: a status line shows the start of it.
                         std::snprintf(
                             text, sizeof text,
-                            "strain.add: the automatic \"cutoff\" %g (1.5 x the median diameter) "
-                            "takes in about %.0f spheres around each in this data, where a "
-                            "packing of its centres would have about %.0f: the radii look far "
-                            "larger than the centres' spacing; give \"cutoff\", e.g. %.3g (1.5 x "
-                            "that spacing)",
-                            automatic, around,
-                            strainNeighboursWithin(*frame, packingStrainCutoff(*frame)),
-                            packingStrainCutoff(*frame));
+                            "strain.add: give \"cutoff\", e.g. %.3g (1.5 x the centres' "
+                            "spacing): the automatic one, %g (1.5 x the median diameter), takes "
+                            "in about %.0f spheres around each, where a packing's takes about "
+                            "%.0f; are the radii in another unit than the centres?",
+                            packingStrainCutoff(*frame), automatic, around,
+                            strainNeighboursWithin(*frame, packingStrainCutoff(*frame)));
                         throw CommandError(text);
                     }
                 }

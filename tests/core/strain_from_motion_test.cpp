@@ -459,10 +459,6 @@ TEST(StrainFromMotion, NeighboursWithinACutoffFromTheDensity) {
     EXPECT_EQ(strainNeighboursWithin(f, 1e6), 7999.0);
     EXPECT_NEAR(packingStrainCutoff(f), 1.5 * std::cbrt(0.64 * 19 * 19 * 19 * 6 / (M_PI * 8000)),
                 1e-9);
-    EXPECT_NEAR(radiiOverSpacing(f), 1.0 / (packingStrainCutoff(f) / 1.5), 1e-9);
-    Frame noRadii = f;
-    noRadii.radiusIsDefault = true;
-    EXPECT_TRUE(std::isnan(radiiOverSpacing(noRadii)));
     const Frame flat = lattice(30, 30, 1);
     EXPECT_NEAR(strainNeighboursWithin(flat, 2.0), 900.0 / (29.0 * 29.0) * M_PI * 4.0, 1e-9);
     const Frame point = lattice(1, 1, 1);

@@ -212,10 +212,9 @@ TEST(StrainSession, RadiiFarLargerThanTheSpacingAskForACutoff) {
     s.apply({{"op", "data.open"}, {"paths", {dir.write("mm.dump", text.str())}}});
     expectRefusedUnchanged(
         s, R"({"op":"strain.add","since_frame":0})",
-        "strain.add: the automatic \"cutoff\" 60 (1.5 x the median diameter) takes in about "
-        "2743 spheres around each in this data, where a packing of its centres would have about "
-        "17: the radii look far larger than the centres' spacing; give \"cutoff\", e.g. 1.49 "
-        "(1.5 x that spacing)");
+        "strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the automatic "
+        "one, 60 (1.5 x the median diameter), takes in about 2743 spheres around each, where a "
+        "packing's takes about 17; are the radii in another unit than the centres?");
     s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.49})"));
     s.apply(cmd(R"({"op":"frame.set","frame":1})"));
     const AttributeColumn* shear = s.currentFrame()->attribute("shear_strain");

@@ -473,3 +473,19 @@ TEST_F(GlRender, TransparentTrianglesSortOnlyWhenTheViewMoves) {
     renderer.render(cam, target);
     EXPECT_EQ(renderer.stats().meshSorts, 2u);
 }
+
+// Radii far larger than the centres' spacing (another unit): each sphere would cover the whole
+// view (one blob, and seconds a frame). The renderer draws, culls and fits them scaled down by
+// core::radiusDrawScale, so the scene's bounds are the lattice's, not 20 units beyond it.
+TEST_F(GlRender, RadiiFarLargerThanTheSpacingAreDrawnScaledDown) {
+    const core::Frame f = test::makeLattice(14, 14, 14, 20.0f); // spacing 1
+    SceneDescription scene;
+    scene.frame = &f;
+    GlRenderer renderer;
+    loadScene(renderer, scene);
+    const core::BoundingSphere bounds = renderer.sceneBounds();
+    const double halfDiagonal =
+        0.5 * std::sqrt(3.0) * (double(f.centreMax()[0]) - f.centreMin()[0]);
+    EXPECT_LT(bounds.radius, halfDiagonal + 2.0);
+    EXPECT_GT(bounds.radius, halfDiagonal);
+}

@@ -103,11 +103,10 @@ TEST_F(PanelTest, RadiiFarLargerThanTheSpacingAreNotedAndAskForACutoff) {
     EXPECT_TRUE(wb().lastMessageIsError());
     // In words: what could not be done, then why (not the op's name).
     EXPECT_EQ(wb().lastMessage().rfind("Could not add strain from motion (inc_*), coloured by "
-                                       "inc_shear_strain: the automatic \"cutoff\" 60",
+                                       "inc_shear_strain: give \"cutoff\", e.g. 1.49 (",
                                        0),
               0u)
         << wb().lastMessage();
-    EXPECT_NE(wb().lastMessage().find("give \"cutoff\", e.g. 1.49"), std::string::npos);
     EXPECT_TRUE(session.state().strains.empty());
     headless.retype(wb(), "strain.cutoff", "1.49");
     headless.click(wb(), "strain.add");

@@ -1,5 +1,6 @@
 #include "ui/context/frame_columns.hpp"
 
+#include "core/model/packing.hpp"
 #include "core/selection/column_view.hpp"
 #include "core/view/framing.hpp"
 
@@ -49,12 +50,14 @@ std::optional<VariableInfo> ColumnCatalog::info(const std::shared_ptr<const core
 
 namespace {
 
+// As drawn: radii far larger than the centres' spacing are drawn scaled down (the renderer's
+// core::radiusDrawScale), and the views frame what they draw.
 double largestRadius(const core::Frame& frame) {
     double r = 0;
     for (float f : frame.radius)
         if (std::isfinite(f))
             r = std::max<double>(r, f);
-    return r;
+    return r * core::radiusDrawScale(frame);
 }
 
 } // namespace
@@ -102,6 +105,7 @@ ModelBounds visibleBounds(const core::Frame& frame, const std::vector<std::uint8
     }
     if (!any)
         return modelBounds(frame);
+    r *= core::radiusDrawScale(frame);
     for (int a = 0; a < 3; ++a)
         b.lo[a] -= r, b.hi[a] += r;
     return b;

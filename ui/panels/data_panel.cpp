@@ -1,6 +1,6 @@
 // Data panel: the files open, their frames, the current frame's columns with ranges, memory.
 #include "core/io/frame_source.hpp"
-#include "core/motion/strain_from_motion.hpp"
+#include "core/model/packing.hpp"
 #include "core/session/commands.hpp"
 #include "ui/context/frame_columns.hpp"
 #include "ui/dock/panel_ids.hpp"
@@ -83,17 +83,21 @@ class DataPanel final : public Panel {
                                         core::kDefaultRadius);
                 if (fr.idsAreRowNumbers)
                     ImGui::TextDisabled("no id column: row numbers are the ids");
-                // Radii in another unit than the centres (millimetres beside metres) draw one
-                // blob, slowly, and give strain from motion no neighbourhood: said once per frame.
+                // Radii in another unit than the centres (millimetres beside metres) would draw
+                // one blob, slowly, and give strain from motion no neighbourhood: the views draw
+                // them scaled down (core::radiusDrawScale), and this says so, once per frame.
                 if (m_radiiFor.lock() != main->frame) {
                     m_radiiFor = main->frame;
                     m_radiiNote.clear();
-                    if (const double ratio = core::radiiOverSpacing(fr); ratio > 4) {
-                        const double spacing = core::packingStrainCutoff(fr) / 1.5;
+                    if (const double ratio = core::radiiOverSpacing(fr);
+                        ratio > core::kRadiiFarOverSpacing) {
+                        const double spacing = core::packingSpacing(fr);
+                        const std::string times = std::to_string(std::lround(ratio));
                         m_radiiNote = "the median diameter is " + numberText(ratio * spacing) +
-                                      ", about " + std::to_string(std::lround(ratio)) +
-                                      " times the spacing of the centres (" + numberText(spacing) +
-                                      "): are the radii in another unit?";
+                                      ", about " + times + " times the spacing of the centres (" +
+                                      numberText(spacing) +
+                                      "): are the radii in another unit? The views draw them " +
+                                      times + " times smaller.";
                     }
                 }
                 if (!m_radiiNote.empty()) {

@@ -99,12 +99,15 @@ void GlRenderer::setSpheres(const SphereColumns& s) {
     m_y.assign(s.y.begin(), s.y.end());
     m_z.assign(s.z.begin(), s.z.end());
     m_r.assign(s.radius.begin(), s.radius.end());
+    if (s.radiusScale != 1.0f)
+        for (float& r : m_r)
+            r *= s.radiusScale;
     std::vector<float> packed(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
         packed[4 * i + 0] = s.x[i];
         packed[4 * i + 1] = s.y[i];
         packed[4 * i + 2] = s.z[i];
-        packed[4 * i + 3] = std::max(0.0f, s.radius[i]);
+        packed[4 * i + 3] = std::max(0.0f, m_r[i]);
     }
     m_spheresTex.upload(packed.data(), packed.size() * sizeof(float), GL_RGBA32F);
     ++m_stats.positionUploads;

@@ -14,6 +14,9 @@ void MockRenderer::setSpheres(const SphereColumns& s) {
     m_y.assign(s.y.begin(), s.y.end());
     m_z.assign(s.z.begin(), s.z.end());
     m_r.assign(s.radius.begin(), s.radius.end());
+    if (s.radiusScale != 1.0f)
+        for (float& r : m_r)
+            r *= s.radiusScale;
     m_hasValues = false;
     compactRows(m_x.size(), {}, m_visible, &m_hidden);
     ++m_stats.positionUploads;

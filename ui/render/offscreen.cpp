@@ -1,5 +1,6 @@
 #include "ui/render/offscreen.hpp"
 
+#include "core/model/packing.hpp"
 #include "core/selection/column_view.hpp"
 
 #include "ui/render/legend_layout.hpp"
@@ -15,7 +16,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 namespace faultline::ui {
 
@@ -266,9 +269,18 @@ core::Camera fittedCamera(const SceneDescription& scene, int width, int height,
                           core::ViewPreset preset) {
     core::Aabb box;
     if (const core::Frame* f = scene.frame; f && f->size() > 0) {
-        box = core::boundsOf(f->x, f->y, f->z, f->radius, scene.visible);
+        // The radii as drawn (loadScene): scaled down where far larger than the spacing.
+        std::vector<float> scaled;
+        std::span<const float> radii = f->radius;
+        if (const double k = core::radiusDrawScale(*f); k != 1.0) {
+            scaled.assign(f->radius.begin(), f->radius.end());
+            for (float& r : scaled)
+                r = float(r * k);
+            radii = scaled;
+        }
+        box = core::boundsOf(f->x, f->y, f->z, radii, scene.visible);
         if (!box.valid) // nothing visible: frame them all
-            box = core::boundsOf(f->x, f->y, f->z, f->radius);
+            box = core::boundsOf(f->x, f->y, f->z, radii);
     }
     for (const MeshData& m : scene.meshes) {
         for (std::size_t v = 0; v + 2 < m.positions.size(); v += 3)
@@ -300,7 +312,7 @@ void loadScene(Renderer& renderer, const SceneDescription& scene) {
         style.legendTitle = scene.colorVariable;
     renderer.setStyle(style);
     if (f) {
-        renderer.setSpheres({f->x, f->y, f->z, f->radius});
+        renderer.setSpheres({f->x, f->y, f->z, f->radius, float(core::radiusDrawScale(*f))});
         if (!scene.colorVariable.empty()) {
             const core::AttributeColumn* column =
                 scene.colorColumn ? scene.colorColumn : f->attribute(scene.colorVariable);

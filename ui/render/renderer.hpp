@@ -26,6 +26,9 @@ enum class RendererBackend { OpenGL, Mock };
 // One frame's spheres as columns (see core::Frame). Copied on upload.
 struct SphereColumns {
     std::span<const float> x, y, z, radius;
+    // What the radii are drawn (and culled and picked) at: core::radiusDrawScale, below 1 only
+    // for radii far larger than the centres' spacing.
+    float radiusScale = 1.0f;
 };
 
 // A triangle mesh (e.g. a fault surface) with per-vertex colour and one opacity.

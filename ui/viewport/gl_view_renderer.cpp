@@ -2,6 +2,7 @@
 #include "ui/render/legend_layout.hpp"
 
 #include "core/color/colormap.hpp"
+#include "core/model/packing.hpp"
 #include "core/view/box_handles.hpp"
 #include "ui/viewport/orbit_camera.hpp"
 
@@ -60,7 +61,7 @@ void GlViewRenderer::render(const ViewScene& scene) {
         slot.frame = scene.frame;
         if (scene.frame) {
             const core::Frame& f = *scene.frame;
-            r.setSpheres({f.x, f.y, f.z, f.radius});
+            r.setSpheres({f.x, f.y, f.z, f.radius, float(core::radiusDrawScale(f))});
         } else {
             r.setSpheres({});
         }
