@@ -12,6 +12,7 @@
 #include <imgui.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -32,6 +33,16 @@ GuiApp::GuiApp(core::Session& session, GuiOptions options) {
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
     glfwWindowHint(GLFW_MAXIMIZED, options.maximize ? GLFW_TRUE : GLFW_FALSE);
+    // Within the screen's work area: where no window manager maximizes the window (a bare X
+    // server, some tiling setups), 1600 x 1000 on a 1600 x 900 screen hid the status line.
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor(); monitor && options.maximize) {
+        int x = 0, y = 0, w = 0, h = 0;
+        glfwGetMonitorWorkarea(monitor, &x, &y, &w, &h);
+        if (w > 0 && h > 0) {
+            options.width = std::min(options.width, w);
+            options.height = std::min(options.height, h);
+        }
+    }
     m_window =
         glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
     if (!m_window) {
