@@ -34,6 +34,9 @@ inline constexpr std::size_t kMinSpheresForSpacing = 64;
 // Above this radiiOverSpacing the radii are taken to be in another unit: each sphere overlaps
 // dozens of others.
 inline constexpr double kRadiiFarOverSpacing = 4.0;
+// Below this the radii are taken to be in another unit too (a packing whose outliers widen the
+// centres' bounds ten times still reads about 0.5). Drawn as they are: dilute flows exist.
+inline constexpr double kRadiiTinyOverSpacing = 1.0 / 20;
 
 // What the views multiply the radii by: 1, or where radiiOverSpacing is above
 // kRadiiFarOverSpacing, 1 / radiiOverSpacing (the median sphere drawn one spacing wide).

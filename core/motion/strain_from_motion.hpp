@@ -37,6 +37,10 @@ double strainNeighboursWithin(const Frame& reference, double cutoff);
 // strain.add refuses an automatic cutoff that takes in more spheres around each than this (a
 // packing's takes about 17, at 1.5 diameters; this many lie within about 5 diameters).
 inline constexpr double kMaxAutomaticStrainNeighbours = 2000;
+// And one that takes in fewer than this (radii a tenth of the spacing or less: a packing's 17 x
+// 0.1^3). Outliers that widen the centres' bounds lower the estimate: a sandbox whose fallen
+// grains made its bounds ten times taller still reads 1.7.
+inline constexpr double kMinAutomaticStrainNeighbours = 0.05;
 
 // The seven columns (kStrainVariables order, each named prefix + variable) for every row of
 // `now`. `cutoff` <= 0: defaultStrainCutoff(reference). Results do not depend on thread count.

@@ -49,9 +49,12 @@ void registerStrainOps(OpRegistry& ops) {
                 // Radii far larger than the centres' spacing (another unit, or not radii at
                 // all) make the automatic cutoff take in most of the model: no local strain, and
                 // hours of work on a large model (the whole of 27,000 spheres takes a second).
+                // Radii far smaller (metres beside millimetres) leave every sphere without a
+                // neighbour, and every value NaN.
                 if (spec.cutoff == 0) {
                     if (const double around = strainNeighboursWithin(*frame, automatic);
-                        around > kMaxAutomaticStrainNeighbours) {
+                        around > kMaxAutomaticStrainNeighbours ||
+                        around < kMinAutomaticStrainNeighbours) {
                         char text[400];
                         // What to do first: a status line shows the start of it.
                         std::snprintf(

@@ -215,6 +215,18 @@ TEST(StrainSession, RadiiFarLargerThanTheSpacingAskForACutoff) {
         "strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the automatic "
         "one, 60 (1.5 x the median diameter), takes in about 2743 spheres around each, where a "
         "packing's takes about 17; are the radii in another unit than the centres?");
+    // And radii a thousandth of the spacing (metres beside millimetres): no sphere would have a
+    // neighbour within the automatic cutoff.
+    Session tiny;
+    std::string small = text.str();
+    for (std::size_t at = 0; (at = small.find(" 20\n", at)) != std::string::npos;)
+        small.replace(at, 4, " 0.0005\n");
+    tiny.apply({{"op", "data.open"}, {"paths", {dir.write("m.dump", small)}}});
+    expectRefusedUnchanged(
+        tiny, R"({"op":"strain.add","since_frame":0})",
+        "strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the automatic "
+        "one, 0.0015 (1.5 x the median diameter), takes in about 0 spheres around each, where a "
+        "packing's takes about 17; are the radii in another unit than the centres?");
     s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.49})"));
     s.apply(cmd(R"({"op":"frame.set","frame":1})"));
     const AttributeColumn* shear = s.currentFrame()->attribute("shear_strain");

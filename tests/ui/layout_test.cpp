@@ -121,9 +121,10 @@ void checkEveryPanel(float width, float height, const char* layout = nullptr,
             R"({"op":"view.add","name":"view 3","frame":2})",
             R"({"op":"frame.set","frame":3})",
             R"({"op":"color.set","view":"main","variable":"broken_bonds","difference":"change","since_frame":1})",
-            // Strain from motion: the lattice's spheres are too far apart to have neighbours,
-            // so every value is NaN and the histogram says how many have none.
-            R"({"op":"strain.add","since_offset":-1,"prefix":"inc_"})",
+            // Strain from motion: the lattice's spheres are too far apart to have neighbours
+            // within the cutoff, so every value is NaN and the histogram says how many have
+            // none. (The automatic cutoff, 1.5 diameters, is refused here for that reason.)
+            R"({"op":"strain.add","since_offset":-1,"prefix":"inc_","cutoff":3})",
         })
         session.apply(Json::parse(op));
     wb->selection().faults = {"F2"};

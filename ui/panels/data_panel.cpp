@@ -98,6 +98,12 @@ class DataPanel final : public Panel {
                                       numberText(spacing) +
                                       "): are the radii in another unit? The views draw them " +
                                       times + " times smaller.";
+                    } else if (ratio < core::kRadiiTinyOverSpacing) {
+                        const double spacing = core::packingSpacing(fr);
+                        m_radiiNote = "the median diameter is " + numberText(ratio * spacing) +
+                                      ", about 1/" + std::to_string(std::lround(1 / ratio)) +
+                                      " of the spacing of the centres (" + numberText(spacing) +
+                                      "): are the radii in another unit?";
                     }
                 }
                 if (!m_radiiNote.empty()) {
