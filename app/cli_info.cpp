@@ -3,6 +3,7 @@
 
 #include "core/data/dataset.hpp"
 #include "core/io/input_error.hpp"
+#include "core/model/packing.hpp"
 
 #include <algorithm>
 #include <cstdarg>
@@ -46,6 +47,8 @@ void printFrame(std::string& out, const core::Frame& f) {
             b.known ? "" : " (bounds of the centres)");
     appendf(out, "  centres: [%g %g] x [%g %g] x [%g %g]\n", f.centreMin()[0], f.centreMax()[0],
             f.centreMin()[1], f.centreMax()[1], f.centreMin()[2], f.centreMax()[2]);
+    if (const std::string note = core::radiiUnitNote(f); !note.empty())
+        appendf(out, "  note: %s\n", note.c_str());
     appendf(out, "  columns: %zu\n", f.attributes.size());
     if (f.columnsAssumed)
         appendf(out, "  note: the file names no columns ('ITEM: ATOMS' alone, an old-style dump);\n"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -60,6 +61,25 @@ double radiiOverSpacing(const Frame& f) {
     if (f.size() < kMinSpheresForSpacing || centreBounds(f).second == 0)
         return std::numeric_limits<double>::quiet_NaN();
     return 2.0 * medianRadius(f) / packingSpacing(f);
+}
+
+std::string radiiUnitNote(const Frame& f) {
+    const double ratio = radiiOverSpacing(f);
+    if (!(ratio > kRadiiFarOverSpacing) && !(ratio < kRadiiTinyOverSpacing))
+        return {}; // NaN too
+    const double spacing = packingSpacing(f);
+    char text[240];
+    if (ratio > kRadiiFarOverSpacing)
+        std::snprintf(text, sizeof text,
+                      "the median diameter is %.4g, about %.0f times the spacing of the centres "
+                      "(%.4g): are the radii in another unit?",
+                      ratio * spacing, ratio, spacing);
+    else
+        std::snprintf(text, sizeof text,
+                      "the median diameter is %.4g, about 1/%.0f of the spacing of the centres "
+                      "(%.4g): are the radii in another unit?",
+                      ratio * spacing, 1.0 / ratio, spacing);
+    return text;
 }
 
 double radiusDrawScale(const Frame& f) {

@@ -8,6 +8,7 @@
 #include "core/model/frame.hpp"
 
 #include <cstddef>
+#include <string>
 #include <utility>
 
 namespace faultline::core {
@@ -37,6 +38,12 @@ inline constexpr double kRadiiFarOverSpacing = 4.0;
 // Below this the radii are taken to be in another unit too (a packing whose outliers widen the
 // centres' bounds ten times still reads about 0.5). Drawn as they are: dilute flows exist.
 inline constexpr double kRadiiTinyOverSpacing = 1.0 / 20;
+
+// Where the radii look like another unit than the centres (radiiOverSpacing above
+// kRadiiFarOverSpacing or below kRadiiTinyOverSpacing), a sentence that says so: "the median
+// diameter is 100, about 96 times the spacing of the centres (1.036): are the radii in another
+// unit?"; else empty. The Data panel and `faultline info` show it.
+std::string radiiUnitNote(const Frame& f);
 
 // What the views multiply the radii by: 1, or where radiiOverSpacing is above
 // kRadiiFarOverSpacing, 1 / radiiOverSpacing (the median sphere drawn one spacing wide).

@@ -50,10 +50,15 @@ TEST(Packing, RadiiFarLargerThanTheSpacingAreDrawnScaledDown) {
     EXPECT_NEAR(ratio, 40.0 / packingSpacing(mm), 1e-9);
     EXPECT_NEAR(radiusDrawScale(mm), 1.0 / ratio, 1e-12);
     EXPECT_NEAR(20.0 * radiusDrawScale(mm) * 2.0, packingSpacing(mm), 1e-9);
+    EXPECT_EQ(radiiUnitNote(mm), "the median diameter is 40, about 40 times the spacing of the "
+                                 "centres (0.9928): are the radii in another unit?");
     // Radii a thousandth of the spacing: far below, drawn as they are (dilute flows exist).
     const Frame m = lattice(14, 14, 14, 0.0005f);
     EXPECT_LT(radiiOverSpacing(m), kRadiiTinyOverSpacing);
     EXPECT_EQ(radiusDrawScale(m), 1.0);
+    EXPECT_EQ(radiiUnitNote(m), "the median diameter is 0.001, about 1/993 of the spacing of "
+                                "the centres (0.9928): are the radii in another unit?");
+    EXPECT_EQ(radiiUnitNote(packed), "");
     // Just above the spacing (overlapping grains, an SPH smoothing length): drawn as they are.
     EXPECT_EQ(radiusDrawScale(lattice(14, 14, 14, 1.5f)), 1.0);
     // No radius column, or none positive: nothing to compare.

@@ -89,22 +89,10 @@ class DataPanel final : public Panel {
                 if (m_radiiFor.lock() != main->frame) {
                     m_radiiFor = main->frame;
                     m_radiiNote.clear();
-                    if (const double ratio = core::radiiOverSpacing(fr);
-                        ratio > core::kRadiiFarOverSpacing) {
-                        const double spacing = core::packingSpacing(fr);
-                        const std::string times = std::to_string(std::lround(ratio));
-                        m_radiiNote = "the median diameter is " + numberText(ratio * spacing) +
-                                      ", about " + times + " times the spacing of the centres (" +
-                                      numberText(spacing) +
-                                      "): are the radii in another unit? The views draw them " +
-                                      times + " times smaller.";
-                    } else if (ratio < core::kRadiiTinyOverSpacing) {
-                        const double spacing = core::packingSpacing(fr);
-                        m_radiiNote = "the median diameter is " + numberText(ratio * spacing) +
-                                      ", about 1/" + std::to_string(std::lround(1 / ratio)) +
-                                      " of the spacing of the centres (" + numberText(spacing) +
-                                      "): are the radii in another unit?";
-                    }
+                    m_radiiNote = core::radiiUnitNote(fr);
+                    if (const double scale = core::radiusDrawScale(fr); scale != 1.0)
+                        m_radiiNote += " The views draw them " +
+                                       std::to_string(std::lround(1 / scale)) + " times smaller.";
                 }
                 if (!m_radiiNote.empty()) {
                     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.05f, 1));
