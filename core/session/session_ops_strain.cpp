@@ -36,14 +36,23 @@ void registerStrainOps(OpRegistry& ops) {
             // The names must not hide a variable the file has.
             if (auto frame = s.currentFrame()) {
                 // A neighbourhood of thousands of spheres is no local strain, and would take
-                // hours: at most 20 times the automatic cutoff.
+                // hours: at most 20 times the automatic cutoff, or where radii far smaller than
+                // the centres' spacing make that one tiny, 20 times 1.5 x the spacing (what the
+                // refusal below suggests).
                 const double automatic = defaultStrainCutoff(*frame);
-                if (spec.cutoff > 20 * automatic) {
-                    char text[160];
-                    std::snprintf(text, sizeof text,
-                                  "strain.add: \"cutoff\" %g is more than 20 times the automatic "
-                                  "one (%g) for this data",
-                                  spec.cutoff, automatic);
+                const double spacing = packingStrainCutoff(*frame);
+                if (spec.cutoff > 20 * std::max(automatic, spacing)) {
+                    char text[200];
+                    if (automatic >= spacing)
+                        std::snprintf(text, sizeof text,
+                                      "strain.add: \"cutoff\" %g is more than 20 times the "
+                                      "automatic one (%g) for this data",
+                                      spec.cutoff, automatic);
+                    else
+                        std::snprintf(text, sizeof text,
+                                      "strain.add: \"cutoff\" %g is more than 20 times 1.5 x "
+                                      "the centres' spacing (%.3g) in this data",
+                                      spec.cutoff, spacing);
                     throw CommandError(text);
                 }
                 // Radii far larger than the centres' spacing (another unit, or not radii at

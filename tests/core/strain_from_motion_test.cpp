@@ -439,35 +439,26 @@ TEST(StrainFromMotion, DefaultCutoffIsOneAndAHalfMedianDiameters) {
 // How many spheres lie within a cutoff, from the density of the centres in their bounds: about
 // 4/3 pi c^3 in a lattice of spacing 1, pi c^2 in a 2-D one, never more than all the others.
 TEST(StrainFromMotion, NeighboursWithinACutoffFromTheDensity) {
-    auto lattice = [](int nx, int ny, int nz) {
-        Frame f;
-        for (int z = 0; z < nz; ++z)
-            for (int y = 0; y < ny; ++y)
-                for (int x = 0; x < nx; ++x) {
-                    f.ids.push_back(std::int64_t(f.ids.size()) + 1);
-                    f.x.push_back(float(x));
-                    f.y.push_back(float(y));
-                    f.z.push_back(float(z));
-                }
-        f.radius.assign(f.ids.size(), 0.5f);
-        f.finalize();
-        return f;
+    auto extent = [](const Frame& f, int a) {
+        return double(f.centreMax()[a]) - double(f.centreMin()[a]);
     };
-    const Frame f = lattice(20, 20, 20);
-    const double density = 8000.0 / (19.0 * 19.0 * 19.0);
-    EXPECT_NEAR(strainNeighboursWithin(f, 2.0), density * 4.0 / 3.0 * M_PI * 8.0, 1e-9);
+    const Frame f = packing(20);
+    const double volume = extent(f, 0) * extent(f, 1) * extent(f, 2);
+    EXPECT_NEAR(strainNeighboursWithin(f, 2.0), 8000.0 / volume * 4.0 / 3.0 * M_PI * 8.0, 1e-9);
     EXPECT_EQ(strainNeighboursWithin(f, 1e6), 7999.0);
-    EXPECT_NEAR(packingStrainCutoff(f), 1.5 * std::cbrt(0.64 * 19 * 19 * 19 * 6 / (M_PI * 8000)),
-                1e-9);
-    const Frame flat = lattice(30, 30, 1);
-    EXPECT_NEAR(strainNeighboursWithin(flat, 2.0), 900.0 / (29.0 * 29.0) * M_PI * 4.0, 1e-9);
-    const Frame point = lattice(1, 1, 1);
-    EXPECT_EQ(strainNeighboursWithin(point, 1.0), 0.0); // no other sphere
-    Frame two = point;
-    two.ids.push_back(2);
-    two.x.push_back(0), two.y.push_back(0), two.z.push_back(0), two.radius.push_back(0.5f);
+    EXPECT_NEAR(packingStrainCutoff(f), 1.5 * std::cbrt(0.64 * volume * 6 / (M_PI * 8000)), 1e-9);
+    const Frame flat = packing(30, 7, true);
+    EXPECT_NEAR(strainNeighboursWithin(flat, 2.0),
+                900.0 / (extent(flat, 0) * extent(flat, 1)) * M_PI * 4.0, 1e-9);
+    Frame two;
+    two.ids = {1, 2};
+    two.x = {0, 0}, two.y = {0, 0}, two.z = {0, 0}, two.radius = {0.5f, 0.5f};
     two.finalize();
     EXPECT_EQ(strainNeighboursWithin(two, 1.0), 1.0); // every centre at one point: all of them
+    two.ids.pop_back(), two.x.pop_back(), two.y.pop_back(), two.z.pop_back();
+    two.radius.pop_back();
+    two.finalize();
+    EXPECT_EQ(strainNeighboursWithin(two, 1.0), 0.0); // no other sphere
 }
 
 // The AVX2 neighbour sums (used where the CPU has them) and the baseline ones give the same

@@ -7,6 +7,7 @@
 #include "core/session/fault_surface_request.hpp"
 #include "core/session/session.hpp"
 #include "core/session/session_json.hpp"
+#include "lattice_dump.hpp"
 #include "session_commands.hpp"
 #include "test_files.hpp"
 
@@ -19,6 +20,7 @@
 #include <memory>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 using namespace faultline::core;
 using faultline::test::TempDir;
@@ -197,41 +199,31 @@ TEST(StrainSession, HostileOptionsAreRefusedNamingTheField) {
 // an explicit cutoff is taken.
 TEST(StrainSession, RadiiFarLargerThanTheSpacingAskForACutoff) {
     TempDir dir;
-    std::ostringstream text;
-    for (int t = 0; t < 2; ++t) {
-        text << "ITEM: TIMESTEP\n"
-             << t << "\nITEM: NUMBER OF ATOMS\n2744\nITEM: BOX BOUNDS ff ff ff\n"
-             << "-0.5 13.5\n-0.5 13.5\n-0.5 13.5\nITEM: ATOMS id x y z radius\n";
-        int id = 1;
-        for (int z = 0; z < 14; ++z)
-            for (int y = 0; y < 14; ++y)
-                for (int x = 0; x < 14; ++x)
-                    text << id++ << " " << x + 0.01 * t * z << " " << y << " " << z << " 20\n";
+    // Radii 20 on a spacing of 1, and a thousandth of the spacing (metres beside millimetres:
+    // no sphere would have a neighbour within the automatic cutoff).
+    for (const auto& [radius, automatic, around] :
+         {std::tuple{"20", "60", "2743"}, std::tuple{"0.0005", "0.0015", "0"}}) {
+        Session s;
+        s.apply(
+            {{"op", "data.open"},
+             {"paths", {dir.write("r.dump", faultline::test::shearedLatticeDump(14, radius))}}});
+        expectRefusedUnchanged(
+            s, R"({"op":"strain.add","since_frame":0})",
+            std::string("strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the "
+                        "automatic one, ") +
+                automatic + " (1.5 x the median diameter), takes in about " + around +
+                " spheres around each, where a packing's takes about 17; are the radii in "
+                "another unit than the centres?");
+        if (std::string(radius) == "0.0005") // 20 x 1.5 x the spacing, not x the automatic
+            expectRefusedUnchanged(s, R"({"op":"strain.add","since_frame":0,"cutoff":40})",
+                                   "strain.add: \"cutoff\" 40 is more than 20 times 1.5 x the "
+                                   "centres' spacing (1.49) in this data");
+        s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.49})"));
+        s.apply(cmd(R"({"op":"frame.set","frame":1})"));
+        const AttributeColumn* shear = s.currentFrame()->attribute("shear_strain");
+        ASSERT_NE(shear, nullptr);
+        EXPECT_NEAR(shear->floats[1000], 0.005, 1e-4); // a simple shear of 0.01
     }
-    Session s;
-    s.apply({{"op", "data.open"}, {"paths", {dir.write("mm.dump", text.str())}}});
-    expectRefusedUnchanged(
-        s, R"({"op":"strain.add","since_frame":0})",
-        "strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the automatic "
-        "one, 60 (1.5 x the median diameter), takes in about 2743 spheres around each, where a "
-        "packing's takes about 17; are the radii in another unit than the centres?");
-    // And radii a thousandth of the spacing (metres beside millimetres): no sphere would have a
-    // neighbour within the automatic cutoff.
-    Session tiny;
-    std::string small = text.str();
-    for (std::size_t at = 0; (at = small.find(" 20\n", at)) != std::string::npos;)
-        small.replace(at, 4, " 0.0005\n");
-    tiny.apply({{"op", "data.open"}, {"paths", {dir.write("m.dump", small)}}});
-    expectRefusedUnchanged(
-        tiny, R"({"op":"strain.add","since_frame":0})",
-        "strain.add: give \"cutoff\", e.g. 1.49 (1.5 x the centres' spacing): the automatic "
-        "one, 0.0015 (1.5 x the median diameter), takes in about 0 spheres around each, where a "
-        "packing's takes about 17; are the radii in another unit than the centres?");
-    s.apply(cmd(R"({"op":"strain.add","since_frame":0,"cutoff":1.49})"));
-    s.apply(cmd(R"({"op":"frame.set","frame":1})"));
-    const AttributeColumn* shear = s.currentFrame()->attribute("shear_strain");
-    ASSERT_NE(shear, nullptr);
-    EXPECT_NEAR(shear->floats[1000], 0.005, 1e-4); // a simple shear of 0.01
 }
 
 TEST(StrainSession, ASessionFileWithBadStrainsIsRefusedWithItsPlace) {

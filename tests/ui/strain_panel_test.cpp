@@ -81,18 +81,7 @@ TEST_F(PanelTest, RadiiFarLargerThanTheSpacingAreNotedAndAskForACutoff) {
     headless.showPanel(wb(), ui::panel_ids::kData);
     headless.frames(wb(), 2);
     EXPECT_FALSE(headless.has(wb(), "data.radii_note")); // a packing: nothing to say
-    std::ofstream out(dir.file("mm.dump"));
-    for (int t = 0; t < 2; ++t) {
-        out << "ITEM: TIMESTEP\n"
-            << t << "\nITEM: NUMBER OF ATOMS\n2744\nITEM: BOX BOUNDS ff ff ff\n"
-            << "-0.5 13.5\n-0.5 13.5\n-0.5 13.5\nITEM: ATOMS id x y z radius\n";
-        int id = 1;
-        for (int z = 0; z < 14; ++z)
-            for (int y = 0; y < 14; ++y)
-                for (int x = 0; x < 14; ++x)
-                    out << id++ << " " << x + 0.01 * t * z << " " << y << " " << z << " 20\n";
-    }
-    out.close();
+    std::ofstream(dir.file("mm.dump")) << test::shearedLatticeDump(14, "20");
     wb().opener().openData({dir.file("mm.dump")});
     headless.settle(wb());
     headless.frames(wb(), 2);
