@@ -41,11 +41,11 @@ double packingSpacing(const Frame& f) {
                        : volume / double(n);
 }
 
-double medianRadius(const Frame& f) {
+double medianRadius(const Frame& f, std::size_t samples) {
     const std::size_t n = f.size();
     if (n == 0 || f.radiusIsDefault)
         return std::numeric_limits<double>::quiet_NaN();
-    const std::size_t step = std::max<std::size_t>(1, n / 65536);
+    const std::size_t step = std::max<std::size_t>(1, n / std::max<std::size_t>(1, samples));
     std::vector<float> sample;
     sample.reserve(n / step + 1);
     for (std::size_t i = 0; i < n; i += step)
@@ -60,7 +60,7 @@ double radiiOverSpacing(const Frame& f) {
     // as overlapping four times over).
     if (f.size() < kMinSpheresForSpacing || centreBounds(f).second == 0)
         return std::numeric_limits<double>::quiet_NaN();
-    return 2.0 * medianRadius(f) / packingSpacing(f);
+    return 2.0 * medianRadius(f, 1024) / packingSpacing(f);
 }
 
 std::string radiiUnitNote(const Frame& f) {

@@ -72,8 +72,7 @@ void registerStrainOps(OpRegistry& ops) {
                             "spacing): the automatic one, %g (1.5 x the median diameter), takes "
                             "in about %.0f spheres around each, where a packing's takes about "
                             "%.0f; are the radii in another unit than the centres?",
-                            packingStrainCutoff(*frame), automatic, around,
-                            strainNeighboursWithin(*frame, packingStrainCutoff(*frame)));
+                            spacing, automatic, around, strainNeighboursWithin(*frame, spacing));
                         throw CommandError(text);
                     }
                 }

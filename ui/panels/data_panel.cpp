@@ -88,7 +88,6 @@ class DataPanel final : public Panel {
                 // them scaled down (core::radiusDrawScale), and this says so, once per frame.
                 if (m_radiiFor.lock() != main->frame) {
                     m_radiiFor = main->frame;
-                    m_radiiNote.clear();
                     m_radiiNote = core::radiiUnitNote(fr);
                     if (const double scale = core::radiusDrawScale(fr); scale != 1.0)
                         m_radiiNote += " The views draw them " +
